@@ -1,0 +1,5 @@
+#!/usr/bin/env bash
+# README command 1: set up what the app needs, then open it on the default lecture scene.
+source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
+ensure_venv ""
+exec "$VENV/bin/python" -m app "$@"

@@ -1,0 +1,57 @@
+# Shared setup for the two README commands; sourced, not run.
+# Creates .venv in the checkout and installs the project into it, but only
+# when pyproject.toml changed since the last install (a stamp records its hash).
+set -euo pipefail
+ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+cd "$ROOT"
+VENV="$ROOT/.venv"
+PY="${PYTHON:-python3}"
+
+need_root() {
+    if [ "$(id -u)" -eq 0 ]; then "$@"; else sudo "$@"; fi
+}
+
+ensure_python() {
+    if ! command -v "$PY" >/dev/null || ! "$PY" -c 'import venv, ensurepip' 2>/dev/null; then
+        echo "setup: installing python3 and python3-venv (Debian packages)"
+        need_root apt-get update -qq
+        need_root apt-get install -y -qq python3 python3-venv python3-pip
+        PY=python3
+    fi
+}
+
+# $1: pip extras spec, e.g. "" or "[test]"
+ensure_venv() {
+    local extras="$1"
+    ensure_python
+    [ -x "$VENV/bin/python" ] || "$PY" -m venv "$VENV"
+    local stamp="$VENV/.installed$extras"
+    local want
+    want="$(sha256sum pyproject.toml | cut -d' ' -f1)"
+    if [ ! -f "$stamp" ] || [ "$(cat "$stamp")" != "$want" ]; then
+        echo "setup: installing Python packages into .venv (once per change of pyproject.toml)"
+        "$VENV/bin/python" -m pip install -q --upgrade pip
+        "$VENV/bin/python" -m pip install -q -e ".$extras"
+        echo "$want" > "$stamp"
+    fi
+}
+
+# Debian packages a headless machine lacks for Qt's xcb plugin and VTK's OpenGL under Xvfb.
+DEBIAN_GUI_PACKAGES=(
+    xvfb xauth libgl1 libegl1 libglx-mesa0 libgl1-mesa-dri libdbus-1-3 libfontconfig1
+    libxkbcommon0 libxkbcommon-x11-0 libxcb1 libxcb-cursor0 libxcb-icccm4 libxcb-image0
+    libxcb-keysyms1 libxcb-randr0 libxcb-render-util0 libxcb-shape0 libxcb-xfixes0
+    libxcb-xinerama0 libxcb-xkb1 libxrender1 libxext6 libxi6 fonts-dejavu-core
+)
+
+ensure_debian_gui() {
+    local missing=()
+    for p in "${DEBIAN_GUI_PACKAGES[@]}"; do
+        dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "ok installed" || missing+=("$p")
+    done
+    if [ ${#missing[@]} -gt 0 ]; then
+        echo "setup: installing Debian packages: ${missing[*]}"
+        need_root apt-get update -qq
+        DEBIAN_FRONTEND=noninteractive need_root apt-get install -y -qq --no-install-recommends "${missing[@]}"
+    fi
+}

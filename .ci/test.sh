@@ -1,0 +1,8 @@
+#!/usr/bin/env bash
+# README command 2: set up everything the tests need, then run the whole suite under Xvfb.
+source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
+ensure_debian_gui
+ensure_venv "[test]"
+export PATH="$VENV/bin:$PATH"
+ruff check .
+exec xvfb-run -a -s "-screen 0 1920x1080x24" python -m pytest "$@"

@@ -1,0 +1,245 @@
+"""The main window: wires the scene model to the 3D pane, the image pane and the controls.
+
+No algorithms live here.  The model (:class:`app.state.SceneModel`) holds the
+scene; the camera panel asks it for changes; its signals redraw the frustum
+and start a background render of the observer's image.
+"""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+from PySide6.QtCore import Qt
+from PySide6.QtGui import QAction, QFont, QKeySequence
+from PySide6.QtWidgets import (
+    QApplication,
+    QDockWidget,
+    QFileDialog,
+    QLabel,
+    QMainWindow,
+    QMessageBox,
+    QProgressBar,
+    QScrollArea,
+    QSplitter,
+    QVBoxLayout,
+    QWidget,
+)
+
+from app.mesh_files import read_mesh
+from app.state import SceneModel
+from app.workers import Renderer, RenderResult
+from core import presets, scene_file
+from core.camera import camera_problems
+from core.scene import Scene
+from views.camera_panel import CameraPanel
+from views.image_view import ImageView
+from views.scene_view import SceneView
+
+ORBIT_STEP_DEG = 5.0
+ZOOM_FACTOR = 1.15
+
+
+class MainWindow(QMainWindow):
+    """Render Explorer's window: 3D scene with the observer, and what the observer sees."""
+
+    def __init__(self, scene: Scene):
+        super().__init__()
+        self.setWindowTitle("Render Explorer")
+        self.model = SceneModel(scene, self)
+        self.scene_path: Path | None = None
+        self.scene_view = SceneView()
+        self.image_view = ImageView()
+        self.image_caption = QLabel()
+        self.image_caption.setWordWrap(True)
+        self.progress = QProgressBar()
+        self.progress.setRange(0, 100)
+        self.progress.setTextVisible(True)
+        self.progress.setFormat("ray casting… %p%")
+        self.camera_panel = CameraPanel(scene.camera)
+        self.renderer = Renderer(self)
+        self.last_result: RenderResult | None = None
+
+        image_pane = QWidget()
+        image_layout = QVBoxLayout(image_pane)
+        image_layout.setContentsMargins(6, 6, 6, 6)
+        title = QLabel("<b>What the observer sees</b> — ray cast, one ray per pixel")
+        image_layout.addWidget(title)
+        image_layout.addWidget(self.image_view, 1)
+        image_layout.addWidget(self.progress)
+        image_layout.addWidget(self.image_caption)
+        scene_pane = QWidget()
+        scene_layout = QVBoxLayout(scene_pane)
+        scene_layout.setContentsMargins(6, 6, 6, 6)
+        scene_layout.addWidget(QLabel(
+            "<b>The scene</b> — observer, viewing pyramid (frustum) and screen on the near plane"
+        ))
+        scene_layout.addWidget(self.scene_view, 1)
+        splitter = QSplitter(Qt.Orientation.Horizontal)
+        splitter.addWidget(scene_pane)
+        splitter.addWidget(image_pane)
+        splitter.setSizes([620, 480])
+        self.setCentralWidget(splitter)
+
+        dock = QDockWidget("Observer", self)
+        dock.setFeatures(QDockWidget.DockWidgetFeature.DockWidgetMovable)
+        scroll = QScrollArea()
+        scroll.setWidgetResizable(True)
+        scroll.setWidget(self.camera_panel)
+        dock.setWidget(scroll)
+        self.addDockWidget(Qt.DockWidgetArea.LeftDockWidgetArea, dock)
+        self._build_menus()
+
+        self.camera_panel.camera_requested.connect(self._camera_requested)
+        self.model.camera_changed.connect(self.camera_panel.set_camera)
+        self.model.camera_changed.connect(self.scene_view.set_camera)
+        self.model.camera_changed.connect(self._start_render)
+        self.model.scene_changed.connect(self.scene_view.set_scene)
+        self.model.scene_changed.connect(lambda s: self._start_render())
+        self.renderer.progress.connect(self._render_progress)
+        self.renderer.finished.connect(self._render_finished)
+        self.renderer.failed.connect(self._render_failed)
+
+        self.scene_view.set_scene(scene)
+        self._start_render()
+        self.resize(1400, 860)
+
+    # ----------------------------------------------------------------- menus
+    def _action(self, menu, text, slot, shortcut=None, tip=""):
+        action = QAction(text, self)
+        if shortcut:
+            action.setShortcut(QKeySequence(shortcut))
+        action.setStatusTip(tip)
+        action.setToolTip(tip)
+        action.triggered.connect(slot)
+        menu.addAction(action)
+        return action
+
+    def _build_menus(self):
+        file_menu = self.menuBar().addMenu("&File")
+        self._action(file_menu, "&Open scene…", self.open_scene_dialog, QKeySequence.StandardKey.Open,
+                     "Open a scene JSON file")
+        self._action(file_menu, "&Save scene as…", self.save_scene_dialog,
+                     QKeySequence.StandardKey.SaveAs, "Save the scene and observer as JSON")
+        self._action(file_menu, "&Lecture scene", self.reset_scene, "Ctrl+L",
+                     "Back to the lecture's cube and cone on a plane")
+        file_menu.addSeparator()
+        self._action(file_menu, "&Quit", self.close, QKeySequence.StandardKey.Quit)
+        observer = self.menuBar().addMenu("&Observer")
+        self._action(observer, "Walk left", lambda: self.orbit_by(-ORBIT_STEP_DEG, 0), "Left")
+        self._action(observer, "Walk right", lambda: self.orbit_by(ORBIT_STEP_DEG, 0), "Right")
+        self._action(observer, "Look from higher", lambda: self.orbit_by(0, ORBIT_STEP_DEG), "Up")
+        self._action(observer, "Look from lower", lambda: self.orbit_by(0, -ORBIT_STEP_DEG), "Down")
+        self._action(observer, "Step closer", lambda: self.zoom_by(1 / ZOOM_FACTOR), "+")
+        self._action(observer, "Step back", lambda: self.zoom_by(ZOOM_FACTOR), "-")
+        self._action(observer, "Toggle perspective / orthographic", self.toggle_projection, "P")
+        view = self.menuBar().addMenu("&View")
+        self._action(view, "Larger text (lecture hall)", lambda: self.scale_text(1.25),
+                     QKeySequence.StandardKey.ZoomIn)
+        self._action(view, "Smaller text", lambda: self.scale_text(0.8),
+                     QKeySequence.StandardKey.ZoomOut)
+        self._action(view, "Re-render", self._start_render, "F5")
+
+    # ----------------------------------------------------------- observer
+    def _camera_requested(self, camera):
+        if not self.model.set_camera(camera) and camera != self.model.camera:
+            problems = "; ".join(f"{f}: {m}" for f, m in camera_problems(camera))
+            self.statusBar().showMessage(f"Observer not moved — {problems}", 6000)
+            self.camera_panel.set_camera(self.model.camera)
+
+    def orbit_by(self, d_yaw: float, d_pitch: float) -> None:
+        cam = self.model.camera
+        pitch = max(-89.0, min(89.0, cam.pitch_deg + d_pitch))
+        self._camera_requested(cam.orbit(cam.yaw_deg + d_yaw, pitch))
+
+    def zoom_by(self, factor: float) -> None:
+        cam = self.model.camera
+        self._camera_requested(cam.orbit(cam.yaw_deg, cam.pitch_deg, cam.distance * factor))
+
+    def toggle_projection(self) -> None:
+        cam = self.model.camera
+        other = "orthographic" if cam.projection == "perspective" else "perspective"
+        self._camera_requested(cam.replace(projection=other))
+
+    def scale_text(self, factor: float) -> None:
+        app = QApplication.instance()
+        font = QFont(app.font())
+        font.setPointSizeF(max(7.0, min(40.0, font.pointSizeF() * factor)))
+        app.setFont(font)
+
+    # ------------------------------------------------------------- files
+    def open_scene_dialog(self) -> None:
+        path, _ = QFileDialog.getOpenFileName(self, "Open scene", "", "Scene files (*.json)")
+        if path:
+            self.open_scene(path)
+
+    def open_scene(self, path) -> bool:
+        """Load a scene file; on any problem show them all and keep the current scene."""
+        try:
+            scene = scene_file.load(path, read_mesh=read_mesh)
+        except scene_file.SceneFileError as exc:
+            QMessageBox.critical(self, "Cannot open scene", f"{Path(path).name}:\n\n{exc}")
+            return False
+        self.scene_path = Path(path)
+        self.setWindowTitle(f"Render Explorer — {self.scene_path.name}")
+        self.model.set_scene(scene)
+        return True
+
+    def save_scene_dialog(self) -> None:
+        path, _ = QFileDialog.getSaveFileName(self, "Save scene", "scene.json",
+                                              "Scene files (*.json)")
+        if path:
+            try:
+                scene_file.save(self.model.scene, path)
+            except OSError as exc:
+                QMessageBox.critical(self, "Cannot save scene", f"{path}:\n\n{exc}")
+
+    def reset_scene(self) -> None:
+        self.model.set_scene(presets.lecture_scene())
+
+    # ------------------------------------------------------------ render
+    def _start_render(self, *_):
+        self.progress.setValue(0)
+        self.progress.show()
+        self.renderer.request(self.model.scene)
+
+    def _render_progress(self, percent, partial):
+        self.progress.setValue(percent)
+        self.image_view.set_image(partial)
+
+    def _render_finished(self, result: RenderResult):
+        self.last_result = result
+        self.progress.setValue(100)
+        self.image_view.set_image(result.color)
+        h, w = result.t.shape
+        ms = {k: v * 1000 for k, v in result.timings.items()}
+        self.image_caption.setText(
+            f"{w} × {h} pixels · {w * h:,} primary rays · {result.tests:,} intersection tests"
+            f"<br>time: rays {ms['rays']:.0f} ms · intersections {ms['intersect']:.0f} ms · "
+            f"shading {ms['shade']:.0f} ms"
+        )
+
+    def _render_failed(self, message: str):
+        self.progress.hide()
+        QMessageBox.warning(self, "Render failed", message)
+
+    def closeEvent(self, event):
+        self.renderer.cancel()
+        self.scene_view.close()
+        super().closeEvent(event)
+
+
+def run(scene_path: str | None = None) -> int:
+    """Open the window on ``scene_path`` (or the lecture scene); returns the exit status."""
+    scene = presets.lecture_scene()
+    if scene_path is not None:
+        try:
+            scene = scene_file.load(scene_path, read_mesh=read_mesh)
+        except scene_file.SceneFileError as exc:
+            print(f"python -m app: error: {scene_path}: {exc}", file=sys.stderr)
+            return 2
+    app = QApplication.instance() or QApplication(sys.argv[:1])
+    app.setApplicationName("Render Explorer")
+    window = MainWindow(scene)
+    window.show()
+    return app.exec()

@@ -1,0 +1,159 @@
+"""Ray casting in image order: one ray per pixel, the closest hit wins.
+
+This is the simplest image-order renderer in the lecture: from the eye (or,
+for the orthographic projection, from the screen plane) a ray goes through
+each pixel; the first object it meets gives the pixel its colour, Lambert
+shaded by the point lights.  Pixels whose ray meets nothing keep the
+background colour.  Shadow rays, reflection and refraction come later.
+
+The loops run over objects and triangles; the rays are numpy arrays.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from core.scene import Scene, Sphere
+
+
+@dataclass(frozen=True)
+class RaycastImage:
+    """The result of ray casting a scene.
+
+    Attributes
+    ----------
+    color : (H, W, 3) float64, RGB in [0, 1].
+    t : (H, W) float64, ray parameter of the closest hit along the unit
+        primary ray (distance from the ray origin), +inf where nothing was hit.
+    object_index : (H, W) int64, index into ``scene.objects``, -1 for background.
+    timings : seconds spent per stage (``rays``, ``intersect``, ``shade``).
+    tests : number of ray-primitive intersection tests done.
+    """
+
+    color: np.ndarray
+    t: np.ndarray
+    object_index: np.ndarray
+    timings: dict[str, float] = field(default_factory=dict)
+    tests: int = 0
+
+
+def hit_spheres(origins, directions, center, radius):
+    """Nearest t >= 0 of unit rays against one sphere, +inf on a miss; (N,) each.
+
+    The discriminant is formed from the ray's perpendicular offset from the
+    centre, so a small sphere far away does not lose its precision.
+    """
+    f = origins - np.asarray(center)
+    half_b = np.einsum("ij,ij->i", f, directions)
+    perp = f - half_b[:, None] * directions
+    disc = (radius - np.linalg.norm(perp, axis=1)) * (radius + np.linalg.norm(perp, axis=1))
+    t = np.full(len(origins), np.inf)
+    ok = disc >= 0
+    root = np.sqrt(disc[ok])
+    q = -(half_b[ok] + np.copysign(root, half_b[ok]))
+    c = np.einsum("ij,ij->i", f[ok], f[ok]) - radius * radius
+    with np.errstate(divide="ignore", invalid="ignore"):
+        t0, t1 = q, np.where(q != 0, c / q, 0.0)
+    near, far = np.minimum(t0, t1), np.maximum(t0, t1)
+    t[ok] = np.where(near >= 0, near, np.where(far >= 0, far, np.inf))
+    return t
+
+
+def hit_triangle(origins, directions, a, b, c):
+    """Nearest t >= 0 of rays against triangle (a, b, c), +inf on a miss; (N,).
+
+    Solves ``o + t d = alpha A + beta B + (1 - alpha - beta) C`` by Cramer's rule.
+    """
+    e1, e2 = a - c, b - c
+    p = np.cross(directions, e2)
+    det = p @ e1
+    with np.errstate(divide="ignore", invalid="ignore"):
+        inv = 1.0 / det
+        s = origins - c
+        alpha = np.einsum("ij,ij->i", s, p) * inv
+        q = np.cross(s, e1)
+        beta = np.einsum("ij,ij->i", directions, q) * inv
+        t = (q @ e2) * inv
+    ok = (det != 0) & (alpha >= 0) & (beta >= 0) & (alpha + beta <= 1) & (t >= 0)
+    return np.where(ok, t, np.inf)
+
+
+def cast(scene: Scene, rows: tuple[int, int] | None = None) -> RaycastImage:
+    """Ray cast ``scene`` from its camera: closest hit, Lambert shading.
+
+    ``rows = (first, stop)`` casts only that band of image rows, so a caller
+    can fill the image band by band, report progress and stop early.
+    """
+    cam = scene.camera
+    first, stop = rows if rows is not None else (0, cam.height)
+    t_start = time.perf_counter()
+    origins, directions = cam.primary_rays()
+    origins = origins[first:stop].reshape(-1, 3)
+    directions = directions[first:stop].reshape(-1, 3)
+    n_rays = len(origins)
+    best_t = np.full(n_rays, np.inf)
+    best_obj = np.full(n_rays, -1, dtype=np.int64)
+    normals = np.zeros((n_rays, 3))
+    t_rays = time.perf_counter()
+    tests = 0
+    for index, obj in enumerate(scene.objects):
+        if isinstance(obj, Sphere):
+            t = hit_spheres(origins, directions, obj.center, obj.radius)
+            tests += n_rays
+            closer = t < best_t
+            best_t[closer], best_obj[closer] = t[closer], index
+            points = origins[closer] + t[closer, None] * directions[closer]
+            normals[closer] = (points - obj.center) / obj.radius
+            continue
+        center, radius = obj.bounding_sphere()
+        candidates = np.flatnonzero(hit_spheres(origins, directions, center, radius) < np.inf)
+        tests += n_rays
+        if candidates.size == 0:
+            continue
+        o, d = origins[candidates], directions[candidates]
+        for corners, normal in zip(obj.corners, obj.normals, strict=True):
+            t = hit_triangle(o, d, *corners)
+            tests += len(candidates)
+            closer = t < best_t[candidates]
+            rows = candidates[closer]
+            best_t[rows], best_obj[rows], normals[rows] = t[closer], index, normal
+    t_hit = time.perf_counter()
+    color = _lambert(scene, origins, directions, best_t, best_obj, normals)
+    t_shade = time.perf_counter()
+    shape = (stop - first, cam.width)
+    return RaycastImage(
+        color=color.reshape(*shape, 3),
+        t=best_t.reshape(shape),
+        object_index=best_obj.reshape(shape),
+        timings={"rays": t_rays - t_start, "intersect": t_hit - t_rays, "shade": t_shade - t_hit},
+        tests=tests,
+    )
+
+
+def _lambert(scene, origins, directions, t, obj_index, normals):
+    """Ambient plus diffuse light from every point light (no shadows yet)."""
+    color = np.broadcast_to(np.asarray(scene.background, dtype=float), origins.shape).copy()
+    hit = obj_index >= 0
+    if not hit.any():
+        return color
+    points = origins[hit] + t[hit, None] * directions[hit]
+    n = normals[hit]
+    # Two-sided: turn the normal toward the viewer so single-sided planes light up.
+    n = np.where((np.einsum("ij,ij->i", n, directions[hit]) > 0)[:, None], -n, n)
+    materials = [scene.objects[i].material for i in obj_index[hit]]
+    base = np.array([m.color for m in materials])
+    ka = np.array([m.ambient for m in materials])[:, None]
+    kd = np.array([m.diffuse for m in materials])[:, None]
+    light_sum = np.zeros_like(base)
+    for light in scene.lights:
+        to_light = np.asarray(light.position) - points
+        to_light /= np.linalg.norm(to_light, axis=1, keepdims=True)
+        lambert = np.clip(np.einsum("ij,ij->i", n, to_light), 0.0, None)[:, None]
+        light_sum += lambert * light.intensity * np.asarray(light.color)
+    if not scene.lights:
+        light_sum[:] = 1.0  # an unlit scene is shown flat rather than black
+    color[hit] = np.clip(base * (ka + kd * light_sum), 0.0, 1.0)
+    return color

@@ -1,0 +1,97 @@
+"""The window as a user drives it: move the observer, see the frustum and image follow."""
+
+import json
+
+import numpy as np
+import pytest
+from PySide6.QtCore import Qt
+from PySide6.QtWidgets import QMessageBox
+
+from app.main_window import MainWindow
+from core import presets
+
+RENDER_TIMEOUT_MS = 20000
+
+
+@pytest.fixture
+def window(qtbot):
+    win = MainWindow(presets.lecture_scene())
+    qtbot.addWidget(win)
+    win.show()
+    qtbot.waitUntil(lambda: win.last_result is not None, timeout=RENDER_TIMEOUT_MS)
+    return win
+
+
+def _drawn_frustum(win):
+    return np.array(win.scene_view.frustum.points)
+
+
+def _move_and_wait(qtbot, win, action):
+    with qtbot.waitSignal(win.renderer.finished, timeout=RENDER_TIMEOUT_MS):
+        action()
+    return win.last_result
+
+
+def test_start_shows_the_lecture_scene_and_its_image(window):
+    cam = window.model.camera
+    assert np.allclose(_drawn_frustum(window), cam.frustum_corners())
+    image = window.image_view.rgb
+    assert image.shape == (cam.height, cam.width, 3)
+    # The cube, the cone and the plane are all in view: more than the background shows.
+    colours = {tuple(c) for c in np.round(image.reshape(-1, 3), 1)}
+    assert len(colours) > 5
+    assert "primary rays" in window.image_caption.text()
+
+
+def test_yaw_slider_walks_the_observer_and_everything_follows(qtbot, window):
+    before_cam, before_img = window.model.camera, window.image_view.rgb.copy()
+    before_frustum = _drawn_frustum(window)
+    _move_and_wait(qtbot, window, lambda: window.camera_panel.yaw.slider.setValue(
+        round(before_cam.yaw_deg) + 40))
+    cam = window.model.camera
+    assert cam.yaw_deg == pytest.approx(round(before_cam.yaw_deg) + 40)
+    assert cam.distance == pytest.approx(before_cam.distance)
+    assert np.allclose(_drawn_frustum(window), cam.frustum_corners())
+    assert not np.allclose(_drawn_frustum(window), before_frustum)
+    assert np.abs(window.image_view.rgb - before_img).mean() > 0.01
+    assert window.camera_panel.eye[0].value() == pytest.approx(cam.eye[0], abs=0.01)
+
+
+def test_wider_viewing_angle_widens_the_frustum(qtbot, window):
+    def far_width(win):
+        corners = _drawn_frustum(win)
+        return np.linalg.norm(corners[5] - corners[4])
+
+    before = far_width(window)
+    _move_and_wait(qtbot, window, lambda: window.camera_panel.fov.spin.setValue(70.0))
+    assert window.model.camera.fov_y_deg == 70.0
+    assert far_width(window) > before * 1.5
+
+
+def test_keyboard_p_switches_to_orthographic(qtbot, window):
+    _move_and_wait(qtbot, window, lambda: qtbot.keyClick(window, Qt.Key.Key_P))
+    assert window.model.camera.projection == "orthographic"
+    corners = _drawn_frustum(window)
+    # A parallel projection's frustum is a box: near and far rectangles are the same size.
+    assert np.linalg.norm(corners[1] - corners[0]) == pytest.approx(
+        np.linalg.norm(corners[5] - corners[4]))
+    assert window.camera_panel.projection.currentText() == "orthographic"
+
+
+def test_near_beyond_far_is_refused_and_the_panel_restored(qtbot, window):
+    before = window.model.camera
+    window.camera_panel.near.setValue(before.far + 5)
+    assert window.model.camera == before
+    assert window.camera_panel.near.value() == pytest.approx(before.near)
+    assert "far" in window.statusBar().currentMessage()
+
+
+def test_bad_scene_file_shows_a_dialog_and_keeps_the_scene(qtbot, window, tmp_path, monkeypatch):
+    shown = []
+    monkeypatch.setattr(QMessageBox, "critical", lambda *args: shown.append(args[2]))
+    bad = tmp_path / "bad.json"
+    bad.write_text(json.dumps({"objects": [{"type": "sphere", "center": [0, 0, 0], "radius": -1}]}))
+    before = window.model.scene
+    assert not window.open_scene(bad)
+    assert window.model.scene == before
+    assert "objects[0].radius" in shown[0]

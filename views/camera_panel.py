@@ -1,0 +1,165 @@
+"""Controls that move the observer and change its lens.
+
+The panel shows the current :class:`core.camera.Camera` and, when the user
+edits a control, emits :attr:`CameraPanel.camera_requested` with the camera
+they asked for.  It never changes anything itself: whoever owns the scene
+decides, and calls :meth:`CameraPanel.set_camera` with the camera in force.
+"""
+
+from __future__ import annotations
+
+from PySide6.QtCore import Qt, Signal
+from PySide6.QtWidgets import (
+    QComboBox,
+    QDoubleSpinBox,
+    QFormLayout,
+    QGroupBox,
+    QHBoxLayout,
+    QSlider,
+    QVBoxLayout,
+    QWidget,
+)
+
+from core.camera import Camera
+
+RESOLUTIONS = [(160, 120), (320, 240), (480, 360), (640, 480), (960, 720)]
+
+
+def _spin(lo, hi, step, decimals, suffix="", tip=""):
+    box = QDoubleSpinBox()
+    box.setRange(lo, hi)
+    box.setSingleStep(step)
+    box.setDecimals(decimals)
+    box.setSuffix(suffix)
+    box.setKeyboardTracking(False)
+    box.setToolTip(tip)
+    return box
+
+
+class _AngleControl(QWidget):
+    """A slider and a spin box showing the same angle in degrees."""
+
+    def __init__(self, lo, hi, tip):
+        super().__init__()
+        self.slider = QSlider(Qt.Orientation.Horizontal)
+        self.slider.setRange(lo, hi)
+        self.slider.setToolTip(tip)
+        self.spin = _spin(lo, hi, 1.0, 1, "°", tip)
+        layout = QHBoxLayout(self)
+        layout.setContentsMargins(0, 0, 0, 0)
+        layout.addWidget(self.slider, 3)
+        layout.addWidget(self.spin, 2)
+        self.slider.valueChanged.connect(lambda v: self.spin.setValue(float(v)))
+
+    def set_value(self, value: float) -> None:
+        for w in (self.slider, self.spin):
+            w.blockSignals(True)
+        self.slider.setValue(round(value))
+        self.spin.setValue(value)
+        for w in (self.slider, self.spin):
+            w.blockSignals(False)
+
+
+class CameraPanel(QWidget):
+    """Eye position, orbit around the target, viewing angle, planes, projection."""
+
+    camera_requested = Signal(object)
+
+    def __init__(self, camera: Camera, parent: QWidget | None = None):
+        super().__init__(parent)
+        self._camera = camera
+        self.eye = [_spin(-1000, 1000, 0.25, 2, tip=f"Eye {a}: the observer's position")
+                    for a in "xyz"]
+        self.yaw = _AngleControl(-180, 180, "Yaw: walk the observer around the target (←/→)")
+        self.pitch = _AngleControl(-89, 89, "Pitch: raise or lower the observer (↑/↓)")
+        self.distance = _spin(0.1, 1000, 0.5, 2, tip="Distance from the eye to the target (+/−)")
+        self.fov = _AngleControl(1, 179, "Viewing angle α: the frustum's vertical opening")
+        self.near = _spin(0.01, 1000, 0.1, 2, tip="Front (near) plane: nothing closer is drawn")
+        self.far = _spin(0.02, 10000, 1.0, 2, tip="End (far) plane: nothing farther is drawn")
+        self.projection = QComboBox()
+        self.projection.addItems(["perspective", "orthographic"])
+        self.projection.setToolTip("Perspective: rays meet at the eye.  "
+                                   "Orthographic: parallel rays (P toggles)")
+        self.ortho_height = _spin(0.1, 1000, 0.5, 2, tip="Height of the orthographic view volume")
+        self.resolution = QComboBox()
+        self.resolution.addItems([f"{w} × {h}" for w, h in RESOLUTIONS])
+        self.resolution.setToolTip("Image size in pixels: more pixels, more rays, more time")
+
+        observer = QGroupBox("Observer")
+        form = QFormLayout(observer)
+        eye_row = QHBoxLayout()
+        for box in self.eye:
+            eye_row.addWidget(box)
+        form.addRow("Eye x, y, z", eye_row)
+        form.addRow("Yaw", self.yaw)
+        form.addRow("Pitch", self.pitch)
+        form.addRow("Distance", self.distance)
+        lens = QGroupBox("Lens and frustum")
+        form2 = QFormLayout(lens)
+        form2.addRow("Viewing angle α", self.fov)
+        form2.addRow("Near plane", self.near)
+        form2.addRow("Far plane", self.far)
+        form2.addRow("Projection", self.projection)
+        form2.addRow("Ortho height", self.ortho_height)
+        form2.addRow("Image size", self.resolution)
+        layout = QVBoxLayout(self)
+        layout.addWidget(observer)
+        layout.addWidget(lens)
+        layout.addStretch(1)
+
+        for box in self.eye:
+            box.valueChanged.connect(self._eye_edited)
+        self.yaw.spin.valueChanged.connect(self._orbit_edited)
+        self.pitch.spin.valueChanged.connect(self._orbit_edited)
+        self.distance.valueChanged.connect(self._orbit_edited)
+        self.fov.spin.valueChanged.connect(lambda v: self._request(fov_y_deg=v))
+        self.near.valueChanged.connect(lambda v: self._request(near=v))
+        self.far.valueChanged.connect(lambda v: self._request(far=v))
+        self.projection.currentTextChanged.connect(lambda v: self._request(projection=v))
+        self.ortho_height.valueChanged.connect(lambda v: self._request(ortho_height=v))
+        self.resolution.currentIndexChanged.connect(self._resolution_edited)
+        self.set_camera(camera)
+
+    @property
+    def _spins(self):
+        return [*self.eye, self.distance, self.near, self.far, self.ortho_height,
+                self.projection, self.resolution]
+
+    def set_camera(self, camera: Camera) -> None:
+        """Show ``camera`` in every control without emitting requests."""
+        self._camera = camera
+        for w in self._spins:
+            w.blockSignals(True)
+        for box, value in zip(self.eye, camera.eye, strict=True):
+            box.setValue(value)
+        self.distance.setValue(camera.distance)
+        self.near.setValue(camera.near)
+        self.far.setValue(camera.far)
+        self.ortho_height.setValue(camera.ortho_height)
+        self.projection.setCurrentText(camera.projection)
+        size = (camera.width, camera.height)
+        if size in RESOLUTIONS:
+            self.resolution.setCurrentIndex(RESOLUTIONS.index(size))
+        for w in self._spins:
+            w.blockSignals(False)
+        self.yaw.set_value(camera.yaw_deg)
+        self.pitch.set_value(camera.pitch_deg)
+        self.fov.set_value(camera.fov_y_deg)
+        self.ortho_height.setEnabled(camera.projection == "orthographic")
+        self.fov.setEnabled(camera.projection == "perspective")
+
+    def _request(self, **changes) -> None:
+        self.camera_requested.emit(self._camera.replace(**changes))
+
+    def _eye_edited(self) -> None:
+        self._request(eye=[box.value() for box in self.eye])
+
+    def _orbit_edited(self) -> None:
+        self.camera_requested.emit(
+            self._camera.orbit(self.yaw.spin.value(), self.pitch.spin.value(),
+                               self.distance.value())
+        )
+
+    def _resolution_edited(self, index: int) -> None:
+        width, height = RESOLUTIONS[index]
+        self._request(width=width, height=height)

@@ -1,0 +1,116 @@
+"""The 3D scene pane: the objects, the observer and its viewing pyramid.
+
+It shows the scene from the outside, from a free overview camera the user
+can rotate with the mouse, so the observer's own camera appears as an object:
+a small camera glyph at the eye, the frustum (translucent, with its edges),
+and the screen rectangle on the near plane.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pyvista as pv
+from PySide6.QtWidgets import QVBoxLayout, QWidget
+from pyvistaqt import QtInteractor
+
+from core.camera import Camera
+from core.scene import Scene
+from views import vtk_convert
+
+FRUSTUM_COLOR = "#ffd34d"
+SCREEN_COLOR = "#6fd0ff"
+
+
+class SceneView(QWidget):
+    """A pyvistaqt view of a :class:`core.scene.Scene` with its observer."""
+
+    def __init__(self, parent: QWidget | None = None):
+        super().__init__(parent)
+        self.plotter = QtInteractor(self, auto_update=False)
+        self.plotter.set_background("#1d2230", top="#3a4358")
+        self.plotter.enable_anti_aliasing("ssaa")
+        self.plotter.add_axes(line_width=3, labels_off=False)
+        layout = QVBoxLayout(self)
+        layout.setContentsMargins(0, 0, 0, 0)
+        layout.addWidget(self.plotter)
+        self._object_actors: list = []
+        self._observer_actors: list = []
+        self.frustum: pv.PolyData | None = None
+        self.screen: pv.PolyData | None = None
+
+    def set_scene(self, scene: Scene) -> None:
+        """Draw every object and light, then the observer; frame the whole."""
+        for actor in self._object_actors:
+            self.plotter.remove_actor(actor, render=False)
+        self._object_actors = []
+        for obj in scene.objects:
+            m = obj.material
+            actor = self.plotter.add_mesh(
+                vtk_convert.object_polydata(obj),
+                color=m.color,
+                opacity=m.opacity,
+                smooth_shading=False,
+                show_edges=False,
+                specular=m.specular,
+                name=f"object:{id(obj)}",
+                render=False,
+            )
+            self._object_actors.append(actor)
+        for i, light in enumerate(scene.lights):
+            actor = self.plotter.add_mesh(
+                pv.Sphere(radius=0.18, center=light.position),
+                color="#fff6a0",
+                lighting=False,
+                name=f"light:{i}",
+                render=False,
+            )
+            self._object_actors.append(actor)
+        self.set_camera(scene.camera, render=False)
+        self._frame(scene)
+        self.plotter.render()
+
+    def set_camera(self, camera: Camera, render: bool = True) -> None:
+        """Redraw the observer, its frustum and its screen for ``camera``."""
+        for actor in self._observer_actors:
+            self.plotter.remove_actor(actor, render=False)
+        self.frustum = vtk_convert.frustum_polydata(camera)
+        self.screen = vtk_convert.screen_polydata(camera)
+        glyph_size = 0.04 * max(camera.distance, 1.0)
+        add = self.plotter.add_mesh
+        self._observer_actors = [
+            add(self.frustum, color=FRUSTUM_COLOR, opacity=0.12, name="frustum", render=False),
+            add(self.frustum.extract_all_edges(), color=FRUSTUM_COLOR, line_width=2,
+                name="frustum-edges", render=False),
+            add(self.screen, color=SCREEN_COLOR, opacity=0.35, name="screen", render=False),
+            add(self.screen.extract_all_edges(), color=SCREEN_COLOR, line_width=3,
+                name="screen-edges", render=False),
+            add(vtk_convert.sight_line_polydata(camera), color="white", line_width=1,
+                name="sight-line", render=False),
+            add(vtk_convert.observer_glyph(camera, glyph_size), color="#e8e8e8",
+                name="observer", render=False),
+        ]
+        if render:
+            self.plotter.render()
+
+    def _frame(self, scene: Scene) -> None:
+        """Place the overview camera so the objects and the observer are in view."""
+        cam = scene.camera
+        points = [cam.eye, cam.target]
+        for actor in self._object_actors:
+            b = np.array(actor.GetBounds()).reshape(3, 2)
+            points += [b[:, 0], b[:, 1]]
+        points = np.array(points)
+        center = (points.min(axis=0) + points.max(axis=0)) / 2
+        radius = np.linalg.norm(points.max(axis=0) - points.min(axis=0)) / 2
+        side = np.cross(cam.forward, (0.0, 1.0, 0.0))
+        side = side / (np.linalg.norm(side) or 1.0)
+        direction = side * 0.9 + np.array([0.0, 0.6, 0.0]) - cam.forward * 0.4
+        direction /= np.linalg.norm(direction)
+        self.plotter.camera_position = [
+            tuple(center + direction * radius * 2.6), tuple(center), (0.0, 1.0, 0.0)
+        ]
+        self.plotter.reset_camera_clipping_range()
+
+    def close(self) -> bool:
+        self.plotter.close()
+        return super().close()

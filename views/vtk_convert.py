@@ -1,0 +1,80 @@
+"""The one place where core's plain data becomes pyvista/VTK geometry.
+
+core describes cameras and objects with numpy arrays in its own conventions
+(:mod:`core.projection`); VTK wants ``PolyData`` with padded face arrays and
+a ``vtkCamera``.  Every conversion between the two lives here.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pyvista as pv
+
+from core.camera import Camera
+from core.scene import Mesh, Sphere
+
+
+def _faces(triangles: np.ndarray) -> np.ndarray:
+    """VTK's padded face array: ``[3, i0, i1, i2, 3, ...]``."""
+    triangles = np.asarray(triangles, dtype=np.int64)
+    return np.hstack([np.full((len(triangles), 1), 3), triangles]).ravel()
+
+
+def mesh_polydata(mesh: Mesh) -> pv.PolyData:
+    """A core :class:`Mesh` as a triangle ``PolyData`` (flat faces)."""
+    return pv.PolyData(np.array(mesh.vertices), _faces(mesh.triangles))
+
+
+def sphere_polydata(sphere: Sphere) -> pv.PolyData:
+    """A smooth tessellation of an analytic sphere, for display only."""
+    return pv.Sphere(
+        radius=sphere.radius, center=sphere.center, theta_resolution=48, phi_resolution=32
+    )
+
+
+def object_polydata(obj: Mesh | Sphere) -> pv.PolyData:
+    return sphere_polydata(obj) if isinstance(obj, Sphere) else mesh_polydata(obj)
+
+
+def frustum_polydata(camera: Camera) -> pv.PolyData:
+    """The viewing pyramid truncated by the near and far planes: 8 points, 6 quads."""
+    quads = [[0, 1, 2, 3], [4, 7, 6, 5], [0, 4, 5, 1], [1, 5, 6, 2], [2, 6, 7, 3], [3, 7, 4, 0]]
+    faces = np.hstack([[4, *q] for q in quads])
+    return pv.PolyData(camera.frustum_corners(), faces)
+
+
+def screen_polydata(camera: Camera) -> pv.PolyData:
+    """The screen rectangle: the frustum's cross-section on the near plane."""
+    return pv.PolyData(camera.screen_corners(), np.array([4, 0, 1, 2, 3]))
+
+
+def sight_line_polydata(camera: Camera) -> pv.PolyData:
+    """The viewing axis from the eye to the target."""
+    return pv.Line(camera.eye, camera.target)
+
+
+def observer_glyph(camera: Camera, size: float) -> pv.PolyData:
+    """A small camera: a box body at the eye with a lens cone looking forward."""
+    forward = camera.forward
+    body = pv.Cube(center=camera.eye, x_length=size, y_length=size, z_length=size)
+    rot = camera.world_from_view[:3, :3]
+    body.points = (body.points - camera.eye) @ rot.T + camera.eye
+    lens = pv.Cone(
+        center=np.add(camera.eye, forward * size * 0.9),
+        direction=-forward,
+        height=size * 0.8,
+        radius=size * 0.45,
+        resolution=24,
+    )
+    return body.merge(lens)
+
+
+def apply_camera(vtk_camera, camera: Camera) -> None:
+    """Make a pyvista/VTK camera look exactly like ``camera`` (the same image)."""
+    vtk_camera.position = camera.eye
+    vtk_camera.focal_point = camera.target
+    vtk_camera.up = camera.up
+    vtk_camera.view_angle = camera.fov_y_deg
+    vtk_camera.clipping_range = (camera.near, camera.far)
+    vtk_camera.parallel_projection = camera.projection == "orthographic"
+    vtk_camera.parallel_scale = camera.ortho_height / 2.0
