@@ -78,10 +78,12 @@ class MainWindow(QMainWindow):
         splitter = QSplitter(Qt.Orientation.Horizontal)
         splitter.addWidget(scene_pane)
         splitter.addWidget(image_pane)
-        splitter.setSizes([620, 480])
+        splitter.setSizes([700, 500])
+        splitter.setStretchFactor(0, 3)
+        splitter.setStretchFactor(1, 2)
         self.setCentralWidget(splitter)
 
-        dock = QDockWidget("Observer", self)
+        dock = QDockWidget("Controls", self)
         dock.setFeatures(QDockWidget.DockWidgetFeature.DockWidgetMovable)
         scroll = QScrollArea()
         scroll.setWidgetResizable(True)
@@ -236,7 +238,7 @@ def run(scene_path: str | None = None) -> int:
         try:
             scene = scene_file.load(scene_path, read_mesh=read_mesh)
         except scene_file.SceneFileError as exc:
-            print(f"python -m app: error: {scene_path}: {exc}", file=sys.stderr)
+            print(f"python -m app: error: {exc}", file=sys.stderr)
             return 2
     app = QApplication.instance() or QApplication(sys.argv[:1])
     app.setApplicationName("Render Explorer")

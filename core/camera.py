@@ -156,17 +156,19 @@ class Camera:
             point, self.view_from_world, self.clip_from_view, self.width, self.height
         )
 
-    def primary_rays(self) -> tuple[np.ndarray, np.ndarray]:
+    def primary_rays(self, rows: tuple[int, int] | None = None) -> tuple[np.ndarray, np.ndarray]:
         """One ray per pixel centre: origins and unit directions, (H, W, 3) each.
 
         Perspective rays start at the eye and pass through the pixel centre on
         the near plane; orthographic rays are parallel to the viewing axis and
-        start on the near plane.
+        start on the near plane.  ``rows = (first, stop)`` gives only those
+        image rows.
         """
         w, h = self.width, self.height
+        first, stop = rows if rows is not None else (0, h)
         hw, hh = self.half_extent(1.0)
         xs = ((np.arange(w) + 0.5) / w * 2.0 - 1.0) * hw
-        ys = (1.0 - (np.arange(h) + 0.5) / h * 2.0) * hh
+        ys = (1.0 - (np.arange(first, stop) + 0.5) / h * 2.0) * hh
         px, py = np.meshgrid(xs, ys)
         rot = self.world_from_view[:3, :3]
         eye = np.asarray(self.eye, dtype=float)

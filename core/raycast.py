@@ -90,9 +90,8 @@ def cast(scene: Scene, rows: tuple[int, int] | None = None) -> RaycastImage:
     cam = scene.camera
     first, stop = rows if rows is not None else (0, cam.height)
     t_start = time.perf_counter()
-    origins, directions = cam.primary_rays()
-    origins = origins[first:stop].reshape(-1, 3)
-    directions = directions[first:stop].reshape(-1, 3)
+    origins, directions = cam.primary_rays((first, stop))
+    origins, directions = origins.reshape(-1, 3), directions.reshape(-1, 3)
     n_rays = len(origins)
     best_t = np.full(n_rays, np.inf)
     best_obj = np.full(n_rays, -1, dtype=np.int64)

@@ -109,9 +109,10 @@ class CameraPanel(QWidget):
 
         for box in self.eye:
             box.valueChanged.connect(self._eye_edited)
-        self.yaw.spin.valueChanged.connect(self._orbit_edited)
-        self.pitch.spin.valueChanged.connect(self._orbit_edited)
-        self.distance.valueChanged.connect(self._orbit_edited)
+        cam = lambda: self._camera  # noqa: E731 - read the camera in force at edit time
+        self.yaw.spin.valueChanged.connect(lambda v: self._orbit(v, cam().pitch_deg, cam().distance))
+        self.pitch.spin.valueChanged.connect(lambda v: self._orbit(cam().yaw_deg, v, cam().distance))
+        self.distance.valueChanged.connect(lambda v: self._orbit(cam().yaw_deg, cam().pitch_deg, v))
         self.fov.spin.valueChanged.connect(lambda v: self._request(fov_y_deg=v))
         self.near.valueChanged.connect(lambda v: self._request(near=v))
         self.far.valueChanged.connect(lambda v: self._request(far=v))
@@ -154,11 +155,9 @@ class CameraPanel(QWidget):
     def _eye_edited(self) -> None:
         self._request(eye=[box.value() for box in self.eye])
 
-    def _orbit_edited(self) -> None:
-        self.camera_requested.emit(
-            self._camera.orbit(self.yaw.spin.value(), self.pitch.spin.value(),
-                               self.distance.value())
-        )
+    def _orbit(self, yaw_deg: float, pitch_deg: float, distance: float) -> None:
+        """Only the control the user touched changes; the others keep full precision."""
+        self.camera_requested.emit(self._camera.orbit(yaw_deg, pitch_deg, distance))
 
     def _resolution_edited(self, index: int) -> None:
         width, height = RESOLUTIONS[index]

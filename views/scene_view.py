@@ -75,10 +75,10 @@ class SceneView(QWidget):
             self.plotter.remove_actor(actor, render=False)
         self.frustum = vtk_convert.frustum_polydata(camera)
         self.screen = vtk_convert.screen_polydata(camera)
-        glyph_size = 0.04 * max(camera.distance, 1.0)
+        glyph_size = 0.07 * max(camera.distance, 1.0)
         add = self.plotter.add_mesh
         self._observer_actors = [
-            add(self.frustum, color=FRUSTUM_COLOR, opacity=0.12, name="frustum", render=False),
+            add(self.frustum, color=FRUSTUM_COLOR, opacity=0.07, name="frustum", render=False),
             add(self.frustum.extract_all_edges(), color=FRUSTUM_COLOR, line_width=2,
                 name="frustum-edges", render=False),
             add(self.screen, color=SCREEN_COLOR, opacity=0.35, name="screen", render=False),
@@ -93,22 +93,31 @@ class SceneView(QWidget):
             self.plotter.render()
 
     def _frame(self, scene: Scene) -> None:
-        """Place the overview camera so the objects and the observer are in view."""
+        """Place the overview camera beside the observer, seeing it and the objects.
+
+        The far part of the frustum may leave the view; the objects, the eye
+        and the screen rectangle stay inside whatever the pane's shape.
+        """
         cam = scene.camera
-        points = [cam.eye, cam.target]
-        for actor in self._object_actors:
-            b = np.array(actor.GetBounds()).reshape(3, 2)
-            points += [b[:, 0], b[:, 1]]
+        points = [cam.eye, cam.target, *cam.screen_corners()]
+        for obj in scene.objects:
+            center, radius = vtk_convert.bounding_sphere(obj)
+            points += [center - radius, center + radius]
         points = np.array(points)
         center = (points.min(axis=0) + points.max(axis=0)) / 2
-        radius = np.linalg.norm(points.max(axis=0) - points.min(axis=0)) / 2
+        radius = np.linalg.norm(points - center, axis=1).max()
         side = np.cross(cam.forward, (0.0, 1.0, 0.0))
         side = side / (np.linalg.norm(side) or 1.0)
-        direction = side * 0.9 + np.array([0.0, 0.6, 0.0]) - cam.forward * 0.4
+        direction = side + np.array([0.0, 0.7, 0.0]) - cam.forward * 0.35
         direction /= np.linalg.norm(direction)
+        view_angle = np.radians(30.0)
+        aspect = max(self.plotter.width(), 1) / max(self.plotter.height(), 1)
+        half = min(view_angle / 2, np.arctan(np.tan(view_angle / 2) * aspect))
+        distance = radius / np.sin(half) * 1.05
         self.plotter.camera_position = [
-            tuple(center + direction * radius * 2.6), tuple(center), (0.0, 1.0, 0.0)
+            tuple(center + direction * distance), tuple(center), (0.0, 1.0, 0.0)
         ]
+        self.plotter.camera.view_angle = np.degrees(view_angle)
         self.plotter.reset_camera_clipping_range()
 
     def close(self) -> bool:

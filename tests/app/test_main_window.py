@@ -69,6 +69,8 @@ def test_wider_viewing_angle_widens_the_frustum(qtbot, window):
 
 
 def test_keyboard_p_switches_to_orthographic(qtbot, window):
+    window.activateWindow()
+    qtbot.waitUntil(window.isActiveWindow)
     _move_and_wait(qtbot, window, lambda: qtbot.keyClick(window, Qt.Key.Key_P))
     assert window.model.camera.projection == "orthographic"
     corners = _drawn_frustum(window)
