@@ -10,7 +10,7 @@ from __future__ import annotations
 import sys
 from pathlib import Path
 
-from PySide6.QtCore import Qt
+from PySide6.QtCore import Qt, QTimer
 from PySide6.QtGui import QAction, QFont, QKeySequence
 from PySide6.QtWidgets import (
     QApplication,
@@ -85,10 +85,13 @@ class MainWindow(QMainWindow):
 
         dock = QDockWidget("Controls", self)
         dock.setFeatures(QDockWidget.DockWidgetFeature.DockWidgetMovable)
-        scroll = QScrollArea()
-        scroll.setWidgetResizable(True)
-        scroll.setWidget(self.camera_panel)
-        dock.setWidget(scroll)
+        dock.setTitleBarWidget(QWidget())  # the group boxes carry the titles
+        self._controls = QScrollArea()
+        self._controls.setWidgetResizable(True)
+        self._controls.setHorizontalScrollBarPolicy(Qt.ScrollBarPolicy.ScrollBarAlwaysOff)
+        self._controls.setWidget(self.camera_panel)
+        dock.setWidget(self._controls)
+        self._fit_controls()
         self.addDockWidget(Qt.DockWidgetArea.LeftDockWidgetArea, dock)
         self._build_menus()
 
@@ -168,6 +171,13 @@ class MainWindow(QMainWindow):
         font = QFont(app.font())
         font.setPointSizeF(max(7.0, min(40.0, font.pointSizeF() * factor)))
         app.setFont(font)
+        QTimer.singleShot(0, self._fit_controls)  # after the new font reached every widget
+
+    def _fit_controls(self) -> None:
+        """Keep the whole control panel visible at any text size."""
+        self.camera_panel.adjustSize()
+        scrollbar = self._controls.verticalScrollBar().sizeHint().width()
+        self._controls.setMinimumWidth(self.camera_panel.sizeHint().width() + scrollbar + 4)
 
     # ------------------------------------------------------------- files
     def open_scene_dialog(self) -> None:
@@ -201,8 +211,8 @@ class MainWindow(QMainWindow):
 
     # ------------------------------------------------------------ render
     def _start_render(self, *_):
+        self.progress.setFormat("ray casting… %p%")
         self.progress.setValue(0)
-        self.progress.show()
         self.renderer.request(self.model.scene)
 
     def _render_progress(self, percent, partial):
@@ -215,6 +225,7 @@ class MainWindow(QMainWindow):
         self.image_view.set_image(result.color)
         h, w = result.t.shape
         ms = {k: v * 1000 for k, v in result.timings.items()}
+        self.progress.setFormat(f"done in {sum(ms.values()):.0f} ms")
         self.image_caption.setText(
             f"{w} × {h} pixels · {w * h:,} primary rays · {result.tests:,} intersection tests"
             f"<br>time: rays {ms['rays']:.0f} ms · intersections {ms['intersect']:.0f} ms · "
@@ -222,7 +233,7 @@ class MainWindow(QMainWindow):
         )
 
     def _render_failed(self, message: str):
-        self.progress.hide()
+        self.progress.setFormat("render failed")
         QMessageBox.warning(self, "Render failed", message)
 
     def closeEvent(self, event):

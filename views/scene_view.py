@@ -28,7 +28,7 @@ class SceneView(QWidget):
         super().__init__(parent)
         self.plotter = QtInteractor(self, auto_update=False)
         self.plotter.set_background("#1d2230", top="#3a4358")
-        self.plotter.enable_anti_aliasing("ssaa")
+        self.plotter.enable_anti_aliasing("fxaa")
         self.plotter.add_axes(line_width=3, labels_off=False)
         layout = QVBoxLayout(self)
         layout.setContentsMargins(0, 0, 0, 0)

@@ -97,3 +97,14 @@ def test_bad_scene_file_shows_a_dialog_and_keeps_the_scene(qtbot, window, tmp_pa
     assert not window.open_scene(bad)
     assert window.model.scene == before
     assert "objects[0].radius" in shown[0]
+
+
+def test_arrow_keys_walk_around_the_target(qtbot, window):
+    window.activateWindow()
+    qtbot.waitUntil(window.isActiveWindow)
+    before = window.model.camera
+    _move_and_wait(qtbot, window, lambda: qtbot.keyClick(window, Qt.Key.Key_Left))
+    assert window.model.camera.yaw_deg == pytest.approx(before.yaw_deg - 5.0)
+    _move_and_wait(qtbot, window, lambda: qtbot.keyClick(window, Qt.Key.Key_Up))
+    assert window.model.camera.pitch_deg == pytest.approx(before.pitch_deg + 5.0)
+    assert window.model.camera.distance == pytest.approx(before.distance)
