@@ -15,7 +15,9 @@ class UsageError(Exception):
 
 
 def build_parser() -> argparse.ArgumentParser:
-    from app import intersect_command
+    from app import bench_raster, intersect_command, render_command
+
+    benchmarks = {"raster": bench_raster}
 
     parser = argparse.ArgumentParser(
         prog="python -m app",
@@ -25,12 +27,19 @@ def build_parser() -> argparse.ArgumentParser:
     gui = sub.add_parser("gui", help="open the window (the default when no command is given)")
     gui.add_argument("scene", nargs="?", help="a scene JSON file (default: the lecture scene)")
     intersect_command.add_parser(sub)
+    render_command.add_parser(sub)
+    bench = sub.add_parser("bench", help="time our pipelines against VTK / Embree (a benchmark, not a test)")
+    kinds = bench.add_subparsers(dest="bench", metavar="KIND", required=True)
+    for name, module in benchmarks.items():
+        p = kinds.add_parser(name, help=module.__doc__.split("\n")[0].split(": ", 1)[-1])
+        module.add_arguments(p)
+        p.set_defaults(run=module.run)
     return parser
 
 
 def main(argv: list[str] | None = None) -> int:
     argv = list(sys.argv[1:] if argv is None else argv)
-    if not argv or argv[0] not in {"gui", "intersect", "-h", "--help"}:
+    if not argv or argv[0] not in {"gui", "intersect", "render", "bench", "-h", "--help"}:
         argv.insert(0, "gui")
     parser = build_parser()
     args = parser.parse_args(argv)

@@ -10,7 +10,7 @@ from __future__ import annotations
 import sys
 from pathlib import Path
 
-from PySide6.QtCore import Qt, QTimer
+from PySide6.QtCore import Qt, QThreadPool, QTimer
 from PySide6.QtGui import QAction, QFont, QKeySequence
 from PySide6.QtWidgets import (
     QApplication,
@@ -22,18 +22,20 @@ from PySide6.QtWidgets import (
     QProgressBar,
     QScrollArea,
     QSplitter,
+    QTabWidget,
     QVBoxLayout,
     QWidget,
 )
 
 from app.mesh_files import read_mesh
 from app.state import SceneModel
-from app.workers import Renderer, RenderResult
+from app.tabs import CompareTab, FourViewsTab, ImageOrderTab, ObjectOrderTab
+from app.workers import Renderer
 from core import presets, scene_file
 from core.camera import camera_problems
 from core.scene import Scene
+from views import vtk_convert
 from views.camera_panel import CameraPanel
-from views.image_view import ImageView
 from views.scene_view import SceneView
 
 ORBIT_STEP_DEG = 5.0
@@ -49,38 +51,43 @@ class MainWindow(QMainWindow):
         self.model = SceneModel(scene, self)
         self.scene_path: Path | None = None
         self.scene_view = SceneView()
-        self.image_view = ImageView()
-        self.image_caption = QLabel()
-        self.image_caption.setWordWrap(True)
+        self.camera_panel = CameraPanel(scene.camera)
+        self.tabs = [ImageOrderTab(), ObjectOrderTab(), FourViewsTab(), CompareTab()]
+        self.tab_widget = QTabWidget()
+        self.renderers = []
+        for tab in self.tabs:
+            self.tab_widget.addTab(tab.widget, tab.title)
+            renderer = Renderer(self)
+            renderer.progress.connect(lambda pct, partial, t=tab: self._render_progress(t, pct, partial))
+            renderer.finished.connect(lambda result, t=tab: self._render_finished(t, result))
+            renderer.failed.connect(self._render_failed)
+            self.renderers.append(renderer)
+        self._stale = set(range(len(self.tabs)))
         self.progress = QProgressBar()
         self.progress.setRange(0, 100)
         self.progress.setTextVisible(True)
-        self.progress.setFormat("ray casting… %p%")
-        self.camera_panel = CameraPanel(scene.camera)
-        self.renderer = Renderer(self)
-        self.last_result: RenderResult | None = None
+        self.status_caption = QLabel()
+        self.status_caption.setWordWrap(True)
+        self.last_result = None
 
-        image_pane = QWidget()
-        image_layout = QVBoxLayout(image_pane)
-        image_layout.setContentsMargins(6, 6, 6, 6)
-        title = QLabel("<b>What the observer sees</b> — ray cast, one ray per pixel")
-        image_layout.addWidget(title)
-        image_layout.addWidget(self.image_view, 1)
-        image_layout.addWidget(self.progress)
-        image_layout.addWidget(self.image_caption)
+        right = QWidget()
+        right_layout = QVBoxLayout(right)
+        right_layout.setContentsMargins(0, 0, 0, 0)
+        right_layout.addWidget(self.tab_widget, 1)
+        right_layout.addWidget(self.progress)
+        right_layout.addWidget(self.status_caption)
         scene_pane = QWidget()
         scene_layout = QVBoxLayout(scene_pane)
         scene_layout.setContentsMargins(6, 6, 6, 6)
-        scene_layout.addWidget(QLabel(
-            "<b>The scene</b> — observer, viewing pyramid (frustum) and screen on the near plane"
-        ))
+        scene_title = QLabel(
+            "<b>The scene</b> — observer, viewing pyramid (frustum) and screen on the near plane")
+        scene_title.setWordWrap(True)
+        scene_layout.addWidget(scene_title)
         scene_layout.addWidget(self.scene_view, 1)
         splitter = QSplitter(Qt.Orientation.Horizontal)
         splitter.addWidget(scene_pane)
-        splitter.addWidget(image_pane)
-        splitter.setSizes([700, 500])
-        splitter.setStretchFactor(0, 3)
-        splitter.setStretchFactor(1, 2)
+        splitter.addWidget(right)
+        splitter.setSizes([600, 700])
         self.setCentralWidget(splitter)
 
         dock = QDockWidget("Controls", self)
@@ -98,15 +105,16 @@ class MainWindow(QMainWindow):
         self.camera_panel.camera_requested.connect(self._camera_requested)
         self.model.camera_changed.connect(self.camera_panel.set_camera)
         self.model.camera_changed.connect(self.scene_view.set_camera)
-        self.model.camera_changed.connect(self._start_render)
+        self.model.camera_changed.connect(self._scene_edited)
         self.model.scene_changed.connect(self.scene_view.set_scene)
-        self.model.scene_changed.connect(lambda s: self._start_render())
-        self.renderer.progress.connect(self._render_progress)
-        self.renderer.finished.connect(self._render_finished)
-        self.renderer.failed.connect(self._render_failed)
+        self.model.scene_changed.connect(self._scene_edited)
+        self.tab_widget.currentChanged.connect(self._tab_shown)
+        object_order = self.tabs[1].widget
+        object_order.settings_changed.connect(lambda _: self._rerender(1))
+        object_order.polygon_shown.connect(self._show_polygon)
 
         self.scene_view.set_scene(scene)
-        self._start_render()
+        self._render_current()
         self.resize(1400, 860)
 
     # ----------------------------------------------------------------- menus
@@ -128,6 +136,9 @@ class MainWindow(QMainWindow):
                      QKeySequence.StandardKey.SaveAs, "Save the scene and observer as JSON")
         self._action(file_menu, "&Lecture scene", self.reset_scene, "Ctrl+L",
                      "Back to the lecture's cube and cone on a plane")
+        examples = file_menu.addMenu("&Examples")
+        for key, (title, build) in presets.PRESETS.items():
+            self._action(examples, title, lambda _=False, b=build, k=key: self.load_preset(k, b))
         file_menu.addSeparator()
         self._action(file_menu, "&Quit", self.close, QKeySequence.StandardKey.Quit)
         observer = self.menuBar().addMenu("&Observer")
@@ -143,7 +154,10 @@ class MainWindow(QMainWindow):
                      QKeySequence.StandardKey.ZoomIn)
         self._action(view, "Smaller text", lambda: self.scale_text(0.8),
                      QKeySequence.StandardKey.ZoomOut)
-        self._action(view, "Re-render", self._start_render, "F5")
+        self._action(view, "Re-render", self._render_current, "F5")
+        for i, tab in enumerate(self.tabs):
+            self._action(view, tab.title, lambda _=False, i=i: self.tab_widget.setCurrentIndex(i),
+                         f"Ctrl+{i + 1}")
 
     # ----------------------------------------------------------- observer
     def _camera_requested(self, camera):
@@ -207,37 +221,73 @@ class MainWindow(QMainWindow):
                 QMessageBox.critical(self, "Cannot save scene", f"{path}:\n\n{exc}")
 
     def reset_scene(self) -> None:
-        self.model.set_scene(presets.lecture_scene())
+        self.load_preset("lecture", presets.lecture_scene)
+
+    def load_preset(self, key: str, build) -> None:
+        self.scene_path = None
+        self.setWindowTitle(f"Render Explorer — example: {key}")
+        self.model.set_scene(build())
 
     # ------------------------------------------------------------ render
-    def _start_render(self, *_):
-        self.progress.setFormat("ray casting… %p%")
+    @property
+    def current_tab(self) -> int:
+        return self.tab_widget.currentIndex()
+
+    def _scene_edited(self, *_):
+        """The scene or observer changed: every tab is stale; redraw the visible one now."""
+        self._stale = set(range(len(self.tabs)))
+        self._render_current()
+
+    def _rerender(self, index: int) -> None:
+        self._stale.add(index)
+        if index == self.current_tab:
+            self._render_current()
+
+    def _tab_shown(self, index: int) -> None:
+        self.scene_view.set_overlay("polygon", [])
+        if index in self._stale:
+            self._render_current()
+
+    def _render_current(self, *_):
+        index = self.current_tab
+        self._stale.discard(index)
+        tab = self.tabs[index]
+        self.progress.setFormat(f"{tab.title}: rendering… %p%")
         self.progress.setValue(0)
-        self.renderer.request(self.model.scene)
+        self.renderers[index].submit(tab.job(self.model.scene))
 
-    def _render_progress(self, percent, partial):
-        self.progress.setValue(percent)
-        self.image_view.set_image(partial)
+    def _render_progress(self, tab, percent, partial):
+        if tab is self.tabs[self.current_tab]:
+            self.progress.setValue(percent)
+        if partial is not None:
+            tab.show_progress(percent, partial)
 
-    def _render_finished(self, result: RenderResult):
+    def _render_finished(self, tab, result):
         self.last_result = result
-        self.progress.setValue(100)
-        self.image_view.set_image(result.color)
-        h, w = result.t.shape
-        ms = {k: v * 1000 for k, v in result.timings.items()}
-        self.progress.setFormat(f"done in {sum(ms.values()):.0f} ms")
-        self.image_caption.setText(
-            f"{w} × {h} pixels · {w * h:,} primary rays · {result.tests:,} intersection tests"
-            f"<br>time: rays {ms['rays']:.0f} ms · intersections {ms['intersect']:.0f} ms · "
-            f"shading {ms['shade']:.0f} ms"
-        )
+        caption = tab.show(result)
+        if tab is self.tabs[self.current_tab]:
+            self.progress.setValue(100)
+            self.progress.setFormat(f"{tab.title}: done")
+            self.status_caption.setText(caption)
 
     def _render_failed(self, message: str):
         self.progress.setFormat("render failed")
         QMessageBox.warning(self, "Render failed", message)
 
+    def _show_polygon(self, vertices) -> None:
+        """Highlight the polygon the object-order scrubber is at, in the 3D pane."""
+        if vertices is None:
+            self.scene_view.set_overlay("polygon", [])
+            return
+        poly = vtk_convert.polygon_polydata(vertices)
+        self.scene_view.set_overlay("polygon", [
+            (poly, {"color": "#ff2bd6", "opacity": 0.8}),
+            (poly.extract_all_edges(), {"color": "#ff2bd6", "line_width": 4}),
+        ])
+
     def closeEvent(self, event):
-        self.renderer.cancel()
+        for renderer in self.renderers:
+            renderer.cancel()
         self.scene_view.close()
         super().closeEvent(event)
 
@@ -255,4 +305,8 @@ def run(scene_path: str | None = None) -> int:
     app.setApplicationName("Render Explorer")
     window = MainWindow(scene)
     window.show()
-    return app.exec()
+    status = app.exec()
+    for renderer in window.renderers:
+        renderer.cancel()
+    QThreadPool.globalInstance().waitForDone()
+    return status

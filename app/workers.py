@@ -1,97 +1,63 @@
-"""Renders run off the GUI thread, band by band, with progress and cancel.
+"""Long work runs off the GUI thread, with progress and cancel.
 
-The GUI thread builds a :class:`RenderRequest` (everything the render needs,
-frozen) with an increasing id and hands it to :class:`Renderer`.  A worker on
-the thread pool renders the image in bands of rows, reports each band, and
-stops as soon as a newer request supersedes it.  Results come back through
-Qt signals, queued onto the GUI thread; results of superseded requests are
-dropped there too.
+A *job* is a plain function ``job(cancelled, progress) -> result``: it checks
+``cancelled`` (a :class:`threading.Event`) between pieces of work and returns
+``None`` once it is set, and calls ``progress(percent, partial)`` after each
+piece.  :class:`Renderer` runs jobs on the thread pool; a new job supersedes the
+running one, and results of superseded jobs are never delivered.  Signals are
+queued onto the GUI thread, so receivers may touch widgets and VTK.
 """
 
 from __future__ import annotations
 
 import threading
-from dataclasses import dataclass
+from collections.abc import Callable
 
-import numpy as np
 from PySide6.QtCore import QObject, QRunnable, QThreadPool, Signal
 
-from core import raycast
-from core.scene import Scene
-
-BAND_ROWS = 32
-
-
-@dataclass(frozen=True)
-class RenderRequest:
-    request_id: int
-    scene: Scene
-
-
-@dataclass(frozen=True)
-class RenderResult:
-    """A finished image with the time each stage took (seconds, summed over bands)."""
-
-    request_id: int
-    color: np.ndarray
-    t: np.ndarray
-    timings: dict[str, float]
-    tests: int
+Job = Callable[[threading.Event, Callable[[int, object], None]], object]
 
 
 class _Signals(QObject):
-    progress = Signal(int, int, object)  # request id, percent done, partial colour image
-    finished = Signal(object)  # RenderResult
-    failed = Signal(int, str)  # request id, message
+    progress = Signal(int, int, object)  # job id, percent done, partial result
+    finished = Signal(int, object)  # job id, result
+    failed = Signal(int, str)  # job id, message
 
 
-class _Job(QRunnable):
-    def __init__(self, request: RenderRequest, signals: _Signals, cancelled: threading.Event):
+class _Runnable(QRunnable):
+    def __init__(self, job_id: int, job: Job, signals: _Signals, cancelled: threading.Event):
         super().__init__()
-        self.request, self.signals, self.cancelled = request, signals, cancelled
+        self.job_id, self.job, self.signals, self.cancelled = job_id, job, signals, cancelled
 
     def run(self):
         try:
-            result = render(self.request, self.cancelled, self._progress)
-        except Exception as exc:  # reported in the window, never lost silently
-            self.signals.failed.emit(self.request.request_id, f"{type(exc).__name__}: {exc}")
+            result = self.job(self.cancelled, self._progress)
+        except Exception as exc:  # shown to the user by whoever listens to `failed`
+            self._emit("failed", self.job_id, f"{type(exc).__name__}: {exc}")
             return
         if result is not None:
-            self.signals.finished.emit(result)
+            self._emit("finished", self.job_id, result)
 
-    def _progress(self, percent, partial):
-        self.signals.progress.emit(self.request.request_id, percent, partial)
+    def _progress(self, percent: int, partial: object) -> None:
+        self._emit("progress", self.job_id, percent, partial)
 
-
-def render(request: RenderRequest, cancelled=None, progress=None) -> RenderResult | None:
-    """Render ``request`` band by band; ``None`` if ``cancelled`` got set."""
-    cam = request.scene.camera
-    color = np.empty((cam.height, cam.width, 3))
-    color[:] = request.scene.background
-    t = np.full((cam.height, cam.width), np.inf)
-    timings: dict[str, float] = {}
-    tests = 0
-    for first in range(0, cam.height, BAND_ROWS):
-        if cancelled is not None and cancelled.is_set():
-            return None
-        stop = min(first + BAND_ROWS, cam.height)
-        band = raycast.cast(request.scene, rows=(first, stop))
-        color[first:stop], t[first:stop] = band.color, band.t
-        tests += band.tests
-        for stage, seconds in band.timings.items():
-            timings[stage] = timings.get(stage, 0.0) + seconds
-        if progress is not None:
-            progress(round(100 * stop / cam.height), color.copy())
-    return RenderResult(request.request_id, color, t, timings, tests)
+    def _emit(self, name: str, *args) -> None:
+        """Report to the GUI thread, unless the job was cancelled or its window is gone."""
+        if self.cancelled.is_set():
+            return
+        try:
+            getattr(self.signals, name).emit(*args)
+        except RuntimeError:  # the Renderer was deleted while this job ran: nobody to tell
+            self.cancelled.set()
 
 
 class Renderer(QObject):
-    """Starts renders for the latest scene; older ones are cancelled and ignored.
+    """Runs one job at a time for its owner; the newest job wins.
 
     Signals
     -------
-    progress(int percent, ndarray partial_image)
-    finished(RenderResult)
+    progress(int percent, object partial)
+    finished(object result)
     failed(str message)
     """
 
@@ -113,30 +79,30 @@ class Renderer(QObject):
     def busy(self) -> bool:
         return self._cancel is not None
 
-    def request(self, scene: Scene) -> int:
-        """Render ``scene`` in the background; returns the request id."""
+    def submit(self, job: Job) -> int:
+        """Run ``job`` in the background, cancelling the running one; returns its id."""
         self.cancel()
         self._latest += 1
         self._cancel = threading.Event()
-        self._pool.start(_Job(RenderRequest(self._latest, scene), self._signals, self._cancel))
+        self._pool.start(_Runnable(self._latest, job, self._signals, self._cancel))
         return self._latest
 
     def cancel(self) -> None:
-        """Stop the running render, if any; its result will not be shown."""
+        """Stop the running job, if any; its result will not be delivered."""
         if self._cancel is not None:
             self._cancel.set()
             self._cancel = None
 
-    def _on_progress(self, request_id, percent, partial):
-        if request_id == self._latest and self._cancel is not None:
+    def _on_progress(self, job_id, percent, partial):
+        if job_id == self._latest and self._cancel is not None:
             self.progress.emit(percent, partial)
 
-    def _on_finished(self, result: RenderResult):
-        if result.request_id == self._latest:
+    def _on_finished(self, job_id, result):
+        if job_id == self._latest and self._cancel is not None:
             self._cancel = None
             self.finished.emit(result)
 
-    def _on_failed(self, request_id, message):
-        if request_id == self._latest:
+    def _on_failed(self, job_id, message):
+        if job_id == self._latest and self._cancel is not None:
             self._cancel = None
             self.failed.emit(message)

@@ -2,14 +2,21 @@
 
 :func:`lecture_scene` is the scene of the lecture's second question: "a cube
 and a cone placed on an opaque plane, wherein the cone partially obscures the
-cube from the observer's point of view".
+cube from the observer's point of view".  The others illustrate the object
+order pipeline (:mod:`core.object_order`): the z-buffer figure, piercing
+polygons, back-face culling on a convex and a non-convex solid, frustum
+culling, and transparency.  :data:`PRESETS` lists them all for a menu.
 """
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
+import numpy as np
+
 from core import shapes
 from core.camera import Camera
-from core.scene import Material, PointLight, Scene
+from core.scene import Material, Mesh, PointLight, Scene, Sphere
 
 CUBE_CENTER = (-1.7, 0.8, -1.1)
 CUBE_SIZE = 1.6
@@ -52,3 +59,113 @@ def lecture_scene() -> Scene:
         objects=(cube, cone, ground),
         lights=(PointLight((4.0, 8.0, 6.0)),),
     )
+
+
+def _flat(color) -> Material:
+    """A material shown in exactly its colour when the scene has no lights (k_a + k_d = 1)."""
+    return Material(color=color, ambient=0.2, diffuse=0.8)
+
+
+def _triangle(corners, material: Material, name: str) -> Mesh:
+    return Mesh(vertices=corners, triangles=[[0, 1, 2]], material=material, name=name)
+
+
+GREEN, BLUE, YELLOW = (0.2, 0.75, 0.3), (0.2, 0.4, 0.9), (0.95, 0.85, 0.2)
+ZBUFFER_CAMERA = Camera(eye=(0.0, 0.0, 6.0), target=(0.0, 0.0, 0.0), near=1.0, far=12.0,
+                        width=160, height=120)
+
+
+def zbuffer_three_polygons() -> Scene:
+    """The lecture's z-buffer figure: three overlapping polygons drawn green, blue, yellow.
+
+    Seen straight on, each one a single tilted triangle.  Green is farthest;
+    blue is nearest; yellow, drawn last, lies between them: its fragments pass
+    over green and fail behind blue.  No lights, so each keeps its flat colour.
+    """
+    green = _triangle([(-2.0, -1.4, -1.5), (1.2, -1.4, -0.5), (-0.6, 1.6, -1.0)], _flat(GREEN), "green")
+    blue = _triangle([(-0.6, -0.9, 0.8), (2.2, -0.6, 0.2), (1.0, 1.8, 0.5)], _flat(BLUE), "blue")
+    yellow = _triangle([(-1.6, -1.9, 0.2), (1.8, -1.7, 0.0), (0.0, 0.6, -0.2)], _flat(YELLOW), "yellow")
+    return Scene(camera=ZBUFFER_CAMERA, objects=(green, blue, yellow))
+
+
+def zbuffer_piercing() -> Scene:
+    """Two polygons that pierce each other along the line x = 0.
+
+    Green rises toward the observer to the right (z = 0.6 x), blue to the left
+    (z = -0.6 x): each is in front on one side of the crossing line, which the
+    z-buffer settles pixel by pixel, whatever the drawing order.
+    """
+    green = _triangle([(-2.0, -1.3, -1.2), (2.0, -1.3, 1.2), (0.0, 1.7, 0.0)], _flat(GREEN), "green")
+    blue = _triangle([(-2.0, -1.1, 1.2), (2.0, -1.1, -1.2), (0.2, 1.5, -0.12)], _flat(BLUE), "blue")
+    return Scene(camera=ZBUFFER_CAMERA, objects=(green, blue))
+
+
+CULLING_CAMERA = Camera(eye=(2.5, 3.2, 6.5), target=(0.0, 0.7, 0.0), near=1.0, far=20.0)
+
+
+def culling_pyramid() -> Scene:
+    """A convex pyramid (Fig. VII.4a): back-face culling alone decides what is seen."""
+    pyramid = shapes.pyramid((0.0, 0.0, 0.0), 2.4, 2.2, Material(color=(0.9, 0.6, 0.25)), "pyramid")
+    return Scene(camera=CULLING_CAMERA, objects=(pyramid,), lights=(PointLight((3.0, 6.0, 5.0)),))
+
+
+def culling_notched() -> Scene:
+    """The non-convex notched prism (Fig. VII.4b): a front face partly hidden by the solid itself.
+
+    The notch's inner wall facing +z passes back-face culling, yet the L's
+    other arm hides part of it; the z-buffer resolves the rest.
+    """
+    prism = shapes.notched_prism((0.0, 0.0, 0.0), (2.6, 1.6, 2.2), (1.2, 1.0),
+                                 Material(color=(0.35, 0.75, 0.4)), "notched prism")
+    return Scene(camera=CULLING_CAMERA, objects=(prism,), lights=(PointLight((3.0, 6.0, 5.0)),))
+
+
+def frustum_cases() -> Scene:
+    """The lecture's cube and cone, plus a sphere half outside the frustum and a box behind the observer.
+
+    From the default camera: the cube and the cone lie inside the frustum, the
+    sphere straddles its right plane (crossing), the box is behind the eye
+    (outside) and the large ground plane reaches behind the eye (crossing: its
+    polygons are clipped at the near plane).
+    """
+    base = lecture_scene()
+    cube, cone, _ = base.objects
+    ground = shapes.quad((0.0, 0.0, 0.0), 26.0, Material(color=(0.82, 0.82, 0.8)), "ground")
+    half_out = Sphere((4.9, 1.0, -0.5), 1.0, Material(color=(0.8, 0.3, 0.5)), "sphere half outside")
+    behind = shapes.box((7.5, 0.6, 12.0), 1.2, Material(color=(0.6, 0.6, 0.9)), "box behind the observer")
+    return Scene(camera=base.camera, objects=(cube, cone, ground, half_out, behind), lights=base.lights)
+
+
+def _pane(x0: float, x1: float, y0: float, y1: float, z: float, material: Material, name: str) -> Mesh:
+    """A vertical rectangle in the plane ``z``, facing +z."""
+    return Mesh(vertices=np.array([(x0, y0, z), (x1, y0, z), (x1, y1, z), (x0, y1, z)]),
+                triangles=[[0, 1, 2], [0, 2, 3]], material=material, name=name)
+
+
+def transparent_panes() -> Scene:
+    """Three half-transparent panes in front of an opaque box, listed nearest first.
+
+    Drawn in the listed order, the nearest pane is blended first and writes its
+    depth, so the panes behind it fail the depth test there and vanish; sorted
+    from the farthest to the closest (the lecture's rule), all three show.
+    """
+    box = shapes.box((-0.2, 0.9, -2.8), 1.8, Material(color=(0.9, 0.55, 0.2)), "opaque box")
+    red = _pane(-1.6, 0.4, 0.7, 2.1, 1.4, Material(color=(0.95, 0.2, 0.2), opacity=0.5), "red pane")
+    green = _pane(-1.0, 1.0, 0.1, 1.5, 0.2, Material(color=(0.2, 0.85, 0.3), opacity=0.5), "green pane")
+    blue = _pane(-0.4, 1.6, 0.6, 2.0, -1.0, Material(color=(0.2, 0.4, 0.95), opacity=0.5), "blue pane")
+    camera = Camera(eye=(1.2, 2.0, 5.2), target=(0.0, 1.0, -0.6), near=1.0, far=20.0)
+    return Scene(camera=camera, objects=(red, green, blue, box), lights=(PointLight((2.0, 6.0, 8.0)),),
+                 background=(0.8, 0.82, 0.85))
+
+
+PRESETS: dict[str, tuple[str, Callable[[], Scene]]] = {
+    "lecture": ("Cube and cone on a plane (the lecture's scene)", lecture_scene),
+    "zbuffer_three_polygons": ("Z-buffer: three polygons drawn green, blue, yellow",
+                               zbuffer_three_polygons),
+    "zbuffer_piercing": ("Z-buffer: two polygons piercing each other", zbuffer_piercing),
+    "culling_pyramid": ("Back-face culling: a convex pyramid", culling_pyramid),
+    "culling_notched": ("Back-face culling: a non-convex notched prism", culling_notched),
+    "frustum_cases": ("Frustum culling: inside, crossing, outside, behind the observer", frustum_cases),
+    "transparent_panes": ("Transparency: panes in front of an opaque box", transparent_panes),
+}
+"""Preset key -> (title for a menu, builder)."""

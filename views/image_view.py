@@ -2,14 +2,16 @@
 
 Pixels are drawn as crisp squares (nearest neighbour) so a student can see
 that the image is a grid of samples, scaled to fit the pane with its aspect
-ratio kept.
+ratio kept.  Clicking a pixel reports which one it was; a picked pixel and a
+set of highlighted pixels (for example one polygon's fragments) can be
+outlined on top.
 """
 
 from __future__ import annotations
 
 import numpy as np
-from PySide6.QtCore import QRectF, Qt
-from PySide6.QtGui import QColor, QImage, QPainter
+from PySide6.QtCore import QPointF, QRectF, Qt, Signal
+from PySide6.QtGui import QColor, QImage, QPainter, QPen
 from PySide6.QtWidgets import QSizePolicy, QWidget
 
 
@@ -20,20 +22,48 @@ def to_qimage(rgb: np.ndarray) -> QImage:
     return QImage(data.data, w, h, 3 * w, QImage.Format.Format_RGB888).copy()
 
 
-class ImageView(QWidget):
-    """Shows an RGB image scaled to fit, with its pixels kept square and sharp."""
+def _mask_image(mask: np.ndarray, color: QColor) -> QImage:
+    """A transparent image, ``color`` where ``mask`` is true."""
+    h, w = mask.shape
+    rgba = np.zeros((h, w, 4), np.uint8)
+    rgba[mask] = (color.red(), color.green(), color.blue(), color.alpha())
+    return QImage(rgba.data, w, h, 4 * w, QImage.Format.Format_RGBA8888).copy()
 
-    def __init__(self, parent: QWidget | None = None):
+
+class ImageView(QWidget):
+    """Shows an RGB image scaled to fit, with its pixels kept square and sharp.
+
+    Signals
+    -------
+    pixel_clicked(int x, int y) : column and row of the clicked pixel.
+    """
+
+    pixel_clicked = Signal(int, int)
+
+    def __init__(self, parent: QWidget | None = None, placeholder: str = "rendering…"):
         super().__init__(parent)
         self._image: QImage | None = None
+        self._highlight: QImage | None = None
         self.rgb: np.ndarray | None = None
-        self.setMinimumSize(160, 120)
+        self.picked: tuple[int, int] | None = None
+        self._placeholder = placeholder
+        self.setMinimumSize(120, 90)
         self.setSizePolicy(QSizePolicy.Policy.Expanding, QSizePolicy.Policy.Expanding)
 
     def set_image(self, rgb: np.ndarray) -> None:
         """Show ``rgb``, an (H, W, 3) float array in [0, 1] (row 0 at the top)."""
         self.rgb = rgb
         self._image = to_qimage(rgb)
+        self.update()
+
+    def set_highlight(self, mask: np.ndarray | None, color: str = "#ff2bd6") -> None:
+        """Tint the pixels where ``mask`` (H, W) is true; ``None`` clears it."""
+        self._highlight = None if mask is None else _mask_image(mask, QColor(color))
+        self.update()
+
+    def set_picked(self, pixel: tuple[int, int] | None) -> None:
+        """Outline one pixel ``(x, y)``; ``None`` clears it."""
+        self.picked = pixel
         self.update()
 
     def image_rect(self) -> QRectF:
@@ -44,13 +74,50 @@ class ImageView(QWidget):
         w, h = self._image.width() * scale, self._image.height() * scale
         return QRectF((self.width() - w) / 2, (self.height() - h) / 2, w, h)
 
+    def pixel_at(self, pos: QPointF) -> tuple[int, int] | None:
+        """The image pixel ``(x, y)`` under a widget position, or ``None`` outside the image."""
+        rect = self.image_rect()
+        if self._image is None or not rect.contains(pos):
+            return None
+        x = int((pos.x() - rect.x()) / rect.width() * self._image.width())
+        y = int((pos.y() - rect.y()) / rect.height() * self._image.height())
+        return min(x, self._image.width() - 1), min(y, self._image.height() - 1)
+
+    def widget_pos(self, x: int, y: int) -> QPointF:
+        """Widget position of the centre of pixel ``(x, y)``."""
+        rect = self.image_rect()
+        return QPointF(rect.x() + (x + 0.5) * rect.width() / self._image.width(),
+                       rect.y() + (y + 0.5) * rect.height() / self._image.height())
+
+    def mousePressEvent(self, event):
+        pixel = self.pixel_at(event.position())
+        if pixel is not None and event.button() == Qt.MouseButton.LeftButton:
+            self.set_picked(pixel)
+            self.pixel_clicked.emit(*pixel)
+
     def paintEvent(self, event):
         painter = QPainter(self)
         painter.fillRect(self.rect(), QColor("#15181f"))
-        if self._image is not None:
-            painter.setRenderHint(QPainter.RenderHint.SmoothPixmapTransform, False)
-            painter.drawImage(self.image_rect(), self._image)
-        else:
+        if self._image is None:
             painter.setPen(QColor("#8a93a6"))
-            painter.drawText(self.rect(), Qt.AlignmentFlag.AlignCenter, "rendering…")
+            painter.drawText(self.rect(), Qt.AlignmentFlag.AlignCenter, self._placeholder)
+            painter.end()
+            return
+        rect = self.image_rect()
+        painter.setRenderHint(QPainter.RenderHint.SmoothPixmapTransform, False)
+        painter.drawImage(rect, self._image)
+        if self._highlight is not None and self._highlight.size() == self._image.size():
+            painter.setOpacity(0.45)
+            painter.drawImage(rect, self._highlight)
+            painter.setOpacity(1.0)
+        if self.picked is not None:
+            sx = rect.width() / self._image.width()
+            sy = rect.height() / self._image.height()
+            x, y = self.picked
+            cell = QRectF(rect.x() + x * sx, rect.y() + y * sy, sx, sy)
+            pad = max(3.0, sx)
+            painter.setPen(QPen(QColor("#ffffff"), 2))
+            painter.drawRect(cell.adjusted(-pad, -pad, pad, pad))
+            painter.setPen(QPen(QColor("#000000"), 1))
+            painter.drawRect(cell.adjusted(-pad - 2, -pad - 2, pad + 2, pad + 2))
         painter.end()

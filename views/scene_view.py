@@ -35,6 +35,7 @@ class SceneView(QWidget):
         layout.addWidget(self.plotter)
         self._object_actors: list = []
         self._observer_actors: list = []
+        self._overlays: dict[str, list] = {}
         self.frustum: pv.PolyData | None = None
         self.screen: pv.PolyData | None = None
 
@@ -91,6 +92,25 @@ class SceneView(QWidget):
         ]
         if render:
             self.plotter.render()
+
+    def set_overlay(self, name: str, parts: list[tuple[pv.PolyData, dict]]) -> None:
+        """Show extra geometry under ``name`` (replacing what was there), e.g. a ray tree.
+
+        ``parts`` are ``(polydata, add_mesh keyword arguments)`` pairs; an empty
+        list removes the overlay.
+        """
+        for actor in self._overlays.pop(name, []):
+            self.plotter.remove_actor(actor, render=False)
+        actors = []
+        for i, (poly, style) in enumerate(parts):
+            if poly.n_points:
+                actors.append(self.plotter.add_mesh(poly, name=f"{name}:{i}", render=False, **style))
+        self._overlays[name] = actors
+        self.plotter.render()
+
+    def overlay_names(self) -> list[str]:
+        """Names of the overlays currently drawn (with at least one part)."""
+        return [name for name, actors in self._overlays.items() if actors]
 
     def _frame(self, scene: Scene) -> None:
         """Place the overview camera beside the observer, seeing it and the objects.

@@ -43,6 +43,12 @@ def object_polydata(obj: Mesh | Sphere) -> pv.PolyData:
     return sphere_polydata(obj) if isinstance(obj, Sphere) else mesh_polydata(obj)
 
 
+def polygon_polydata(vertices) -> pv.PolyData:
+    """One planar polygon, (N, 3) world-space vertices in order, as a single face."""
+    vertices = np.asarray(vertices, dtype=float)
+    return pv.PolyData(vertices, np.array([len(vertices), *range(len(vertices))]))
+
+
 def frustum_polydata(camera: Camera) -> pv.PolyData:
     """The viewing pyramid truncated by the near and far planes: 8 points, 6 quads."""
     quads = [[0, 1, 2, 3], [4, 7, 6, 5], [0, 4, 5, 1], [1, 5, 6, 2], [2, 6, 7, 3], [3, 7, 4, 0]]

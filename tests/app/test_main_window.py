@@ -22,12 +22,16 @@ def window(qtbot):
     return win
 
 
+def _image(win):
+    return win.tabs[0].widget.rgb
+
+
 def _drawn_frustum(win):
     return np.array(win.scene_view.frustum.points)
 
 
 def _move_and_wait(qtbot, win, action):
-    with qtbot.waitSignal(win.renderer.finished, timeout=RENDER_TIMEOUT_MS):
+    with qtbot.waitSignal(win.renderers[win.current_tab].finished, timeout=RENDER_TIMEOUT_MS):
         action()
     return win.last_result
 
@@ -35,16 +39,16 @@ def _move_and_wait(qtbot, win, action):
 def test_start_shows_the_lecture_scene_and_its_image(window):
     cam = window.model.camera
     assert np.allclose(_drawn_frustum(window), cam.frustum_corners())
-    image = window.image_view.rgb
+    image = _image(window)
     assert image.shape == (cam.height, cam.width, 3)
     # The cube, the cone and the plane are all in view: more than the background shows.
     colours = {tuple(c) for c in np.round(image.reshape(-1, 3), 1)}
     assert len(colours) > 5
-    assert "primary rays" in window.image_caption.text()
+    assert "primary rays" in window.status_caption.text()
 
 
 def test_yaw_slider_walks_the_observer_and_everything_follows(qtbot, window):
-    before_cam, before_img = window.model.camera, window.image_view.rgb.copy()
+    before_cam, before_img = window.model.camera, _image(window).copy()
     before_frustum = _drawn_frustum(window)
     _move_and_wait(qtbot, window, lambda: window.camera_panel.yaw.slider.setValue(
         round(before_cam.yaw_deg) + 40))
@@ -53,7 +57,7 @@ def test_yaw_slider_walks_the_observer_and_everything_follows(qtbot, window):
     assert cam.distance == pytest.approx(before_cam.distance)
     assert np.allclose(_drawn_frustum(window), cam.frustum_corners())
     assert not np.allclose(_drawn_frustum(window), before_frustum)
-    assert np.abs(window.image_view.rgb - before_img).mean() > 0.01
+    assert np.abs(_image(window) - before_img).mean() > 0.01
     assert window.camera_panel.eye[0].value() == pytest.approx(cam.eye[0], abs=0.01)
 
 
@@ -108,3 +112,50 @@ def test_arrow_keys_walk_around_the_target(qtbot, window):
     _move_and_wait(qtbot, window, lambda: qtbot.keyClick(window, Qt.Key.Key_Up))
     assert window.model.camera.pitch_deg == pytest.approx(before.pitch_deg + 5.0)
     assert window.model.camera.distance == pytest.approx(before.distance)
+
+
+def _show_tab(qtbot, win, index):
+    with qtbot.waitSignal(win.renderers[index].finished, timeout=RENDER_TIMEOUT_MS):
+        win.tab_widget.setCurrentIndex(index)
+
+
+def test_object_order_steps_through_the_z_buffer(qtbot, window):
+    _show_tab(qtbot, window, 1)
+    panel = window.tabs[1].widget
+    history = panel.result.history
+    assert panel.scrubber.step == history.n_steps > 0
+    panel.scrubber.first()
+    background = np.asarray(window.model.scene.background)
+    assert np.allclose(panel.image.rgb, background)  # step 0: image memory cleared
+    assert "polygon" not in window.scene_view.overlay_names()
+    panel.scrubber.set_step(5)
+    assert "Step 5" in panel.step_caption.text()
+    assert "polygon" in window.scene_view.overlay_names()  # the 4th polygon highlighted in 3D
+    # Click the pixel at the centre of the image memory: its history lists fragments in order.
+    panel.scrubber.last()
+    cam = window.model.camera
+    x, y = cam.width // 2, cam.height // 2
+    qtbot.mouseClick(panel.image, Qt.MouseButton.LeftButton, pos=panel.image.widget_pos(x, y).toPoint())
+    assert panel.picked == (x, y)
+    events = history.pixel_history(x, y)
+    assert panel.history.rowCount() == len(events) > 0
+    assert panel.history.item(0, 0).text() == str(events[0].polygon + 1)
+    assert "Nz" in panel.numbers.toPlainText()
+
+
+def test_switching_a_stage_off_rerenders_with_it_off(qtbot, window):
+    _show_tab(qtbot, window, 1)
+    panel = window.tabs[1].widget
+    with qtbot.waitSignal(window.renderers[1].finished, timeout=RENDER_TIMEOUT_MS):
+        panel.switches["back_face_culling"].setChecked(False)
+    assert panel.result.settings.back_face_culling is False
+    assert panel.result.stats["faces_culled"] == 0
+
+
+def test_four_views_show_front_side_top_and_observer(qtbot, window):
+    _show_tab(qtbot, window, 2)
+    grid = window.tabs[2].widget
+    images = {k: v.rgb for k, v in grid.views.items()}
+    assert set(images) == {"front", "side", "top", "observer"}
+    assert not np.allclose(images["front"], images["top"])
+    assert not np.allclose(images["front"], images["side"])

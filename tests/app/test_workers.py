@@ -1,44 +1,53 @@
-"""Background renders: the newest request wins, a cancelled one stops early."""
+"""Background jobs: the newest job wins, a cancelled one stops early, failures are reported."""
 
 import threading
-from dataclasses import replace
 
-import numpy as np
-
-from app.workers import Renderer, RenderRequest, render
-from core import presets, raycast
+from app.workers import Renderer
 
 
-def test_background_render_matches_the_direct_ray_cast():
-    scene = presets.lecture_scene()
-    bands = []
-    result = render(RenderRequest(1, scene), progress=lambda pct, img: bands.append(pct))
-    direct = raycast.cast(scene)
-    assert np.array_equal(result.color, direct.color)
-    assert np.array_equal(result.t, direct.t)
-    assert bands == sorted(bands) and bands[-1] == 100 and len(bands) > 1
-    assert set(result.timings) == {"rays", "intersect", "shade"}
+def _counting_job(value, release: threading.Event | None = None):
+    def job(cancelled, progress):
+        if release is not None:
+            release.wait(10)
+        for pct in (50, 100):
+            if cancelled.is_set():
+                return None
+            progress(pct, value)
+        return value
+
+    return job
 
 
-def test_cancelled_render_returns_nothing():
-    cancelled = threading.Event()
+def test_a_job_reports_progress_then_its_result(qtbot):
+    renderer = Renderer()
     seen = []
+    renderer.progress.connect(lambda pct, partial: seen.append((pct, partial)))
+    with qtbot.waitSignal(renderer.finished, timeout=10000) as blocker:
+        renderer.submit(_counting_job("image"))
+    assert blocker.args == ["image"]
+    qtbot.waitUntil(lambda: len(seen) == 2)
+    assert seen == [(50, "image"), (100, "image")]
+    assert not renderer.busy
 
-    def progress(pct, img):
-        seen.append(pct)
-        cancelled.set()  # the user moved on after the first band
 
-    assert render(RenderRequest(1, presets.lecture_scene()), cancelled, progress) is None
-    assert len(seen) == 1
-
-
-def test_only_the_newest_request_is_delivered(qtbot):
+def test_only_the_newest_job_is_delivered(qtbot):
     renderer = Renderer()
     delivered = []
     renderer.finished.connect(delivered.append)
-    scene = presets.lecture_scene()
-    renderer.request(scene)
-    moved = scene.camera.orbit(scene.camera.yaw_deg + 30, 20)
-    newest = renderer.request(replace(scene, camera=moved))
-    qtbot.waitUntil(lambda: not renderer.busy, timeout=20000)
-    assert [r.request_id for r in delivered] == [newest]
+    release = threading.Event()
+    renderer.submit(_counting_job("old", release))  # still waiting when superseded
+    renderer.submit(_counting_job("new"))
+    release.set()
+    qtbot.waitUntil(lambda: not renderer.busy, timeout=10000)
+    assert delivered == ["new"]
+
+
+def test_a_failing_job_is_reported_not_lost(qtbot):
+    renderer = Renderer()
+
+    def broken(cancelled, progress):
+        raise ValueError("scene has no camera")
+
+    with qtbot.waitSignal(renderer.failed, timeout=10000) as blocker:
+        renderer.submit(broken)
+    assert blocker.args == ["ValueError: scene has no camera"]

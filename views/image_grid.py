@@ -1,0 +1,38 @@
+"""Several images side by side, each with a title and a caption.
+
+Used for the lecture's four-view figure (front, side and top orthographic
+views next to the perspective view) and for comparing orthographic,
+perspective and ray-traced renders of the same scene.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from PySide6.QtWidgets import QGridLayout, QGroupBox, QLabel, QVBoxLayout, QWidget
+
+from views.image_view import ImageView
+
+
+class ImageGrid(QWidget):
+    """A grid of titled :class:`ImageView` panes addressed by key."""
+
+    def __init__(self, panes: list[tuple[str, str]], columns: int, parent: QWidget | None = None):
+        """``panes`` are ``(key, title)`` pairs, laid out row by row."""
+        super().__init__(parent)
+        self.views: dict[str, ImageView] = {}
+        self.captions: dict[str, QLabel] = {}
+        grid = QGridLayout(self)
+        grid.setContentsMargins(6, 6, 6, 6)
+        for i, (key, title) in enumerate(panes):
+            box = QGroupBox(title)
+            layout = QVBoxLayout(box)
+            self.views[key] = ImageView(placeholder="rendering…")
+            self.captions[key] = QLabel()
+            self.captions[key].setWordWrap(True)
+            layout.addWidget(self.views[key], 1)
+            layout.addWidget(self.captions[key])
+            grid.addWidget(box, i // columns, i % columns)
+
+    def set_image(self, key: str, rgb: np.ndarray, caption: str = "") -> None:
+        self.views[key].set_image(rgb)
+        self.captions[key].setText(caption)

@@ -1,0 +1,257 @@
+"""The object-order panel: the pipeline's stages, step by step, and one pixel's history.
+
+Polygons are processed one after another.  The scrubber moves through them:
+at step k the image memory and the z-buffer are shown exactly as they stand
+after the first k polygons, the polygon drawn at that step has its fragments
+tinted in both buffers, and a click on a pixel lists every fragment that
+reached it: which polygon, its depth against the stored depth, whether it
+passed, and for transparent polygons the blend.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from PySide6.QtCore import Qt, Signal
+from PySide6.QtGui import QColor, QFont
+from PySide6.QtWidgets import (
+    QCheckBox,
+    QGridLayout,
+    QGroupBox,
+    QLabel,
+    QPlainTextEdit,
+    QSplitter,
+    QTableWidget,
+    QTableWidgetItem,
+    QTabWidget,
+    QVBoxLayout,
+    QWidget,
+)
+
+from core import zbuffer
+from core.object_order import RasterResult, RasterSettings
+from core.scene import Scene
+from views.depth_view import DepthView
+from views.image_view import ImageView
+from views.step_scrubber import StepScrubber
+
+STAGES = [
+    ("back_face_culling", "Back-face culling",
+     "Skip faces whose normal points away from the eye (the sign of Nz).\n"
+     "Off: every face is rasterized; the z-buffer still hides the back ones, at a cost."),
+    ("frustum_culling", "Frustum culling",
+     "Skip whole objects whose bounding sphere lies outside the viewing pyramid."),
+    ("clipping", "Clipping",
+     "Cut polygons at the six frustum planes before the perspective divide.\n"
+     "Off: polygons reaching behind the eye are dropped whole, so geometry near the observer vanishes."),
+    ("sort_transparent", "Sort transparent far → near",
+     "Blend transparent polygons from the farthest to the nearest, after all opaque ones.\n"
+     "Off: they are blended in scene order, and the colours come out wrong."),
+]
+
+HISTORY_COLUMNS = ["step", "polygon", "depth", "stored depth", "z-test", "before", "after", "blend αs"]
+
+
+def _swatch(rgb) -> QTableWidgetItem:
+    item = QTableWidgetItem(" ".join(f"{c:.2f}" for c in rgb))
+    color = QColor.fromRgbF(*np.clip(rgb, 0, 1))
+    item.setBackground(color)
+    item.setForeground(QColor("black" if color.lightnessF() > 0.5 else "white"))
+    return item
+
+
+def _text_box() -> QPlainTextEdit:
+    """A read-only, scrollable, monospaced text area for numbers."""
+    box = QPlainTextEdit()
+    box.setReadOnly(True)
+    font = QFont("monospace")
+    font.setStyleHint(QFont.StyleHint.Monospace)
+    box.setFont(font)
+    box.setLineWrapMode(QPlainTextEdit.LineWrapMode.NoWrap)
+    return box
+
+
+class ObjectOrderPanel(QWidget):
+    """Stage switches, step scrubber, image memory and z-buffer, pixel history.
+
+    Signals
+    -------
+    settings_changed(RasterSettings) : the user switched a stage on or off.
+    polygon_shown(object) : world-space vertices (N, 3) of the polygon drawn at
+        the current step, or ``None`` at step 0, for the 3D pane to highlight.
+    """
+
+    settings_changed = Signal(object)
+    polygon_shown = Signal(object)
+
+    def __init__(self, parent: QWidget | None = None):
+        super().__init__(parent)
+        self.result: RasterResult | None = None
+        self.scene: Scene | None = None
+        self.picked: tuple[int, int] | None = None
+        self.switches: dict[str, QCheckBox] = {}
+        switches = QGridLayout()
+        switches.addWidget(QLabel("<b>Stages</b>"), 0, 0, 2, 1)
+        for i, (key, text, tip) in enumerate(STAGES):
+            box = QCheckBox(text)
+            box.setChecked(True)
+            box.setToolTip(tip)
+            box.toggled.connect(self._emit_settings)
+            switches.addWidget(box, i // 2, 1 + i % 2)
+            self.switches[key] = box
+        switches.setColumnStretch(3, 1)
+
+        self.scrubber = StepScrubber()
+        self.image = ImageView(placeholder="image memory")
+        self.depth = DepthView()
+        buffers = QSplitter(Qt.Orientation.Horizontal)
+        for title, widget in (("Image memory", self.image), ("z-buffer", self.depth)):
+            box = QGroupBox(title)
+            QVBoxLayout(box).addWidget(widget)
+            buffers.addWidget(box)
+        buffers.setMinimumHeight(200)
+        self.step_caption = QLabel()
+        self.step_caption.setWordWrap(True)
+
+        self.history = QTableWidget(0, len(HISTORY_COLUMNS))
+        self.history.setHorizontalHeaderLabels(HISTORY_COLUMNS)
+        self.history.verticalHeader().setVisible(False)
+        self.history.setEditTriggers(QTableWidget.EditTrigger.NoEditTriggers)
+        self.history_caption = QLabel("Click a pixel in either buffer to see its history.")
+        self.history_caption.setWordWrap(True)
+        history_page = QWidget()
+        hl = QVBoxLayout(history_page)
+        hl.addWidget(self.history_caption)
+        hl.addWidget(self.history, 1)
+        self.numbers = _text_box()
+        self.counts = _text_box()
+        self.details = QTabWidget()
+        self.details.addTab(history_page, "Pixel history")
+        self.details.addTab(self.numbers, "Numbers")
+        self.details.addTab(self.counts, "Counts and times")
+
+        split = QSplitter(Qt.Orientation.Vertical)
+        top = QWidget()
+        tl = QVBoxLayout(top)
+        tl.setContentsMargins(0, 0, 0, 0)
+        tl.addWidget(buffers, 1)
+        tl.addWidget(self.scrubber)
+        tl.addWidget(self.step_caption)
+        split.addWidget(top)
+        split.addWidget(self.details)
+        split.setStretchFactor(0, 3)
+        split.setStretchFactor(1, 1)
+        layout = QVBoxLayout(self)
+        layout.setContentsMargins(6, 6, 6, 6)
+        layout.addLayout(switches)
+        layout.addWidget(split, 1)
+
+        self.scrubber.step_changed.connect(self.show_step)
+        self.image.pixel_clicked.connect(self.pick_pixel)
+        self.depth.image.pixel_clicked.connect(self.pick_pixel)
+
+    @property
+    def settings(self) -> RasterSettings:
+        return RasterSettings(**{k: b.isChecked() for k, b in self.switches.items()},
+                              record_steps=True)
+
+    def _emit_settings(self) -> None:
+        self.settings_changed.emit(self.settings)
+
+    def show_result(self, result: RasterResult, scene: Scene) -> None:
+        """Show a finished recording render; the scrubber goes to its last step."""
+        self.result, self.scene = result, scene
+        self.counts.setPlainText(self._counts_text())
+        self.scrubber.blockSignals(True)
+        self.scrubber.set_count(result.history.n_steps)
+        self.scrubber.blockSignals(False)
+        self.show_step(self.scrubber.step)
+
+    def show_step(self, k: int) -> None:
+        """Buffers after the first ``k`` polygons, with polygon k's fragments tinted."""
+        history = self.result.history
+        color, zbuf = history.buffers(k)
+        distance = zbuffer.distance_from_window_depth(zbuf, history.near, history.far,
+                                                      history.orthographic)
+        self.image.set_image(color)
+        self.depth.set_depth(np.where(zbuf >= zbuffer.FAR_DEPTH, np.inf, distance),
+                             history.near, history.far)
+        if k == 0:
+            mask = None
+            self.step_caption.setText(
+                f"Step 0 of {history.n_steps}: image memory cleared to the background, "
+                f"z-buffer cleared to the far plane ({history.far:g}).")
+            self.polygon_shown.emit(None)
+        else:
+            p = k - 1
+            cols, rows, _, passed = history.polygon_fragments(p)
+            mask = np.zeros((history.height, history.width), bool)
+            mask[rows, cols] = True
+            draw = self.result.draw
+            kind = "transparent, blended" if draw.transparent[p] else "opaque"
+            self.step_caption.setText(
+                f"Step {k} of {history.n_steps}: polygon {p} — {self._polygon_name(p)} ({kind}): "
+                f"{len(cols)} fragments, {int(passed.sum())} passed the z-test, "
+                f"{int((~passed).sum())} failed.")
+            self.polygon_shown.emit(draw.polygons.world_vertices(p))
+        self.image.set_highlight(mask)
+        self.depth.image.set_highlight(mask)
+        if self.picked is not None:
+            self.pick_pixel(*self.picked)
+
+    def _polygon_name(self, p: int) -> str:
+        draw = self.result.draw
+        name = self.scene.objects[int(draw.object_index[p])].name
+        return f"{name}, triangle {int(draw.triangle_index[p])}"
+
+    def pick_pixel(self, x: int, y: int) -> None:
+        """List every fragment that reached pixel ``(x, y)`` up to the current step."""
+        self.picked = (x, y)
+        self.image.set_picked(self.picked)
+        self.depth.image.set_picked(self.picked)
+        events = [e for e in self.result.history.pixel_history(x, y)
+                  if e.polygon < self.scrubber.step]
+        self.history.setRowCount(len(events))
+        for row, e in enumerate(events):
+            cells = [QTableWidgetItem(str(e.polygon + 1)),
+                     QTableWidgetItem(self._polygon_name(e.polygon)),
+                     QTableWidgetItem(f"{e.distance:.4f}"),
+                     QTableWidgetItem(f"{e.stored_distance:.4f}"),
+                     QTableWidgetItem("pass: nearer" if e.passed else "fail: farther"),
+                     _swatch(e.color_before), _swatch(e.color_after),
+                     QTableWidgetItem("" if e.blend is None else
+                                      f"{e.blend.alpha:.2f}: c0 = αs·cs + (1 − αs)·cd")]
+            for col, cell in enumerate(cells):
+                self.history.setItem(row, col, cell)
+        self.history.resizeColumnsToContents()
+        self.history_caption.setText(
+            f"Pixel ({x}, {y}): {len(events)} fragments up to step {self.scrubber.step}. "
+            "Depths are distances along the viewing axis; a fragment passes when it is nearer "
+            "than the depth stored so far.")
+        self.numbers.setPlainText(self._numbers_text(events))
+
+    def _numbers_text(self, events) -> str:
+        r = self.result
+        m = r.clip_from_view
+        lines = ["clip_from_view (projection matrix in use):"]
+        lines += ["  [" + "  ".join(f"{v:9.4f}" for v in row) + " ]" for row in m]
+        visible = [e for e in events if e.passed]
+        if visible:
+            e = visible[-1]
+            face = r.face_index(e.object_index, e.triangle_index)
+            n = r.faces.normal[face]
+            lines += ["", f"face at pixel {self.picked}: {self._polygon_name(e.polygon)}",
+                      f"  camera-space normal N = ({n[0]:.3f}, {n[1]:.3f}, {n[2]:.3f})",
+                      f"  Nz = {r.faces.nz[face]:.3f} → "
+                      f"{'faces the observer' if r.faces.facing[face] else 'faces away (culled)'}"]
+        return "\n".join(lines)
+
+    def _counts_text(self) -> str:
+        s = self.result.stats
+        lines = ["per stage:"]
+        for key, value in s.items():
+            if isinstance(value, dict):
+                continue
+            lines.append(f"  {key.replace('_', ' ')}: {value}")
+        lines.append("time (ms):")
+        lines += [f"  {k}: {v * 1000:.1f}" for k, v in s.get("times", {}).items()]
+        return "\n".join(lines)
