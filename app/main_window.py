@@ -10,6 +10,8 @@ from __future__ import annotations
 import sys
 from pathlib import Path
 
+import numpy as np
+import pyvista as pv
 from PySide6.QtCore import Qt, QThreadPool, QTimer
 from PySide6.QtGui import QAction, QFont, QKeySequence
 from PySide6.QtWidgets import (
@@ -31,11 +33,17 @@ from app.mesh_files import read_mesh
 from app.state import SceneModel
 from app.tabs import CompareTab, FourViewsTab, ImageOrderTab, ObjectOrderTab
 from app.workers import Renderer
-from core import presets, scene_file
+from core import multiview, presets, scene_file
+from core.bounding_spheres import bounding_spheres
 from core.camera import camera_problems
+from core.grid import cells_on_ray
+from core.presets_trace import PRESETS_TRACE
+from core.ray_tree import trace_pixel
 from core.scene import Scene
-from views import vtk_convert
+from core.trace_scene import trace_scene
+from views import raytree_view, vtk_convert
 from views.camera_panel import CameraPanel
+from views.raytree_view import KIND_COLORS
 from views.scene_view import SceneView
 
 ORBIT_STEP_DEG = 5.0
@@ -87,6 +95,7 @@ class MainWindow(QMainWindow):
         splitter = QSplitter(Qt.Orientation.Horizontal)
         splitter.addWidget(scene_pane)
         splitter.addWidget(right)
+        scene_pane.setMinimumWidth(320)
         splitter.setSizes([600, 700])
         self.setCentralWidget(splitter)
 
@@ -109,9 +118,18 @@ class MainWindow(QMainWindow):
         self.model.scene_changed.connect(self.scene_view.set_scene)
         self.model.scene_changed.connect(self._scene_edited)
         self.tab_widget.currentChanged.connect(self._tab_shown)
+        image_order = self.tabs[0].widget
+        image_order.settings_changed.connect(lambda _: self._rerender(0))
+        image_order.pixel_picked.connect(self.pick_ray_tree)
+        image_order.overlays_changed.connect(self._show_accel_overlays)
+        self.ray_tree = None
+        self._tree_renderer = Renderer(self)
+        self._tree_renderer.finished.connect(self._show_ray_tree)
+        self._tree_renderer.failed.connect(self._render_failed)
         object_order = self.tabs[1].widget
         object_order.settings_changed.connect(lambda _: self._rerender(1))
         object_order.polygon_shown.connect(self._show_polygon)
+        object_order.clipped_shown.connect(self._show_clipped)
 
         self.scene_view.set_scene(scene)
         self._render_current()
@@ -137,8 +155,10 @@ class MainWindow(QMainWindow):
         self._action(file_menu, "&Lecture scene", self.reset_scene, "Ctrl+L",
                      "Back to the lecture's cube and cone on a plane")
         examples = file_menu.addMenu("&Examples")
-        for key, (title, build) in presets.PRESETS.items():
-            self._action(examples, title, lambda _=False, b=build, k=key: self.load_preset(k, b))
+        for group in (presets.PRESETS, PRESETS_TRACE):
+            for key, (title, build) in group.items():
+                self._action(examples, title, lambda _=False, b=build, k=key: self.load_preset(k, b))
+            examples.addSeparator()
         file_menu.addSeparator()
         self._action(file_menu, "&Quit", self.close, QKeySequence.StandardKey.Quit)
         observer = self.menuBar().addMenu("&Observer")
@@ -237,6 +257,9 @@ class MainWindow(QMainWindow):
         """The scene or observer changed: every tab is stale; redraw the visible one now."""
         self._stale = set(range(len(self.tabs)))
         self._render_current()
+        if self.ray_tree is not None:  # the picked pixel now sees something else
+            self.pick_ray_tree(*self.ray_tree[:2])
+        self._show_accel_overlays()
 
     def _rerender(self, index: int) -> None:
         self._stale.add(index)
@@ -244,7 +267,12 @@ class MainWindow(QMainWindow):
             self._render_current()
 
     def _tab_shown(self, index: int) -> None:
-        self.scene_view.set_overlay("polygon", [])
+        for name in ("polygon", "clipped", "ray-tree", "spheres", "grid", "walk"):
+            self.scene_view.set_overlay(name, [])
+        if index == 0:
+            self._show_accel_overlays()
+            if self.ray_tree is not None:
+                self._show_ray_tree(self.ray_tree)
         if index in self._stale:
             self._render_current()
 
@@ -273,6 +301,65 @@ class MainWindow(QMainWindow):
     def _render_failed(self, message: str):
         self.progress.setFormat("render failed")
         QMessageBox.warning(self, "Render failed", message)
+
+    # ------------------------------------------------------- image order
+    def pick_ray_tree(self, x: int, y: int) -> None:
+        """Trace pixel (x, y) again with every ray kept (in the background)."""
+        scene, settings = self.model.scene, self.tabs[0].widget.settings
+        cam = scene.camera
+        if not (0 <= x < cam.width and 0 <= y < cam.height):
+            self.ray_tree = None
+            self.scene_view.set_overlay("ray-tree", [])
+            return
+        self._tree_renderer.submit(lambda cancelled, progress: (x, y, trace_pixel(scene, x, y, settings)))
+
+    def _show_ray_tree(self, picked) -> None:
+        self.ray_tree = picked
+        x, y, root = picked
+        if self.current_tab != 0:
+            return
+        self.tabs[0].widget.show_tree(x, y, root)
+        low, high = multiview.scene_bounds(self.model.scene)
+        miss_length = 0.6 * float(np.linalg.norm(high - low)) + 1.0
+        self.scene_view.set_overlay("ray-tree", raytree_view.ray_tree_parts(root, miss_length))
+        self._show_accel_overlays()
+
+    def _show_accel_overlays(self) -> None:
+        """Bounding spheres, grid cells and the picked ray's cells, as the panel's switches say."""
+        panel, scene = self.tabs[0].widget, self.model.scene
+        if self.current_tab != 0:
+            return
+        spheres = []
+        if panel.show_spheres.isChecked():
+            spheres = [(pv.Sphere(radius=b.radius, center=b.center, theta_resolution=24,
+                                  phi_resolution=16).extract_all_edges(),
+                        {"color": "#9fd3ff", "opacity": 0.35, "line_width": 1})
+                       for b in bounding_spheres(scene) if not b.exact]
+        self.scene_view.set_overlay("spheres", spheres)
+        want_walk = panel.show_walk.isChecked() and self.ray_tree is not None
+        need_grid = panel.show_grid.isChecked() or want_walk
+        grid = trace_scene(scene).geometry.accel("grid")[0] if need_grid else None
+        cells = []
+        if panel.show_grid.isChecked():
+            cells = [(vtk_convert.boxes_polydata(grid.cell_boxes(grid.occupied_cells())),
+                      {"color": "#b0b0b0", "opacity": 0.25, "line_width": 1})]
+        self.scene_view.set_overlay("grid", cells)
+        walk = []
+        if want_walk:
+            root = self.ray_tree[2]
+            t_max = root.t if root.t is not None else np.inf
+            walked = cells_on_ray(grid, root.origin, root.direction, root.t_min, t_max)
+            if len(walked):
+                walk = [(vtk_convert.boxes_polydata(grid.cell_boxes(walked)),
+                         {"color": KIND_COLORS["primary"], "line_width": 3})]
+        self.scene_view.set_overlay("walk", walk)
+
+    # ------------------------------------------------------- object order
+    def _show_clipped(self, polygons) -> None:
+        """Outline, in the 3D pane, the polygons the frustum's planes cut."""
+        parts = [(vtk_convert.polygon_polydata(p).extract_all_edges(),
+                  {"color": "#7cff6b", "line_width": 3}) for p in polygons]
+        self.scene_view.set_overlay("clipped", parts)
 
     def _show_polygon(self, vertices) -> None:
         """Highlight the polygon the object-order scrubber is at, in the 3D pane."""

@@ -7,16 +7,16 @@ tab's job and marks the others stale until they are shown.
 
 from __future__ import annotations
 
-import time
 from dataclasses import replace
 
 import numpy as np
 
 from core import multiview
 from core.object_order import RasterSettings, render_raster
+from core.raytrace import TraceSettings, render_trace
 from core.scene import Scene
 from views.image_grid import ImageGrid
-from views.image_view import ImageView
+from views.image_order_panel import ImageOrderPanel
 from views.object_order_panel import ObjectOrderPanel
 
 BAND_ROWS = 32
@@ -27,45 +27,64 @@ def _ms(seconds: float) -> str:
 
 
 class ImageOrderTab:
-    """What the observer sees, ray cast band by band so the image fills in."""
+    """What the observer sees, traced in image order: a coarse image at once, then band by band."""
 
     title = "Image order"
+    COARSE_STEP = 4
 
     def __init__(self):
-        self.widget = ImageView()
+        self.widget = ImageOrderPanel()
 
     def job(self, scene: Scene):
-        from core import raycast
+        settings = self.widget.settings
 
         def run(cancelled, progress):
             cam = scene.camera
-            color = np.empty((cam.height, cam.width, 3))
-            color[:] = scene.background
-            timings: dict[str, float] = {}
-            tests = 0
+            coarse = render_trace(scene, settings, step=self.COARSE_STEP)
+            color = coarse.color.copy()
+            progress(0, color.copy())
+            bands = []
             for first in range(0, cam.height, BAND_ROWS):
                 if cancelled.is_set():
                     return None
-                stop = min(first + BAND_ROWS, cam.height)
-                band = raycast.cast(scene, rows=(first, stop))
-                color[first:stop] = band.color
-                tests += band.tests
-                for stage, seconds in band.timings.items():
-                    timings[stage] = timings.get(stage, 0.0) + seconds
-                progress(round(100 * stop / cam.height), color.copy())
-            return color, timings, tests
+                band = render_trace(scene, settings, rows=(first, min(first + BAND_ROWS, cam.height)))
+                color[first:first + len(band.color)] = band.color
+                bands.append(band)
+                progress(round(100 * (first + len(band.color)) / cam.height), color.copy())
+            return color, merge_band_stats([b.stats for b in bands])
 
         return run
 
     def show_progress(self, percent, partial) -> None:
-        self.widget.set_image(partial)
+        self.widget.image.set_image(partial)
 
     def show(self, result) -> str:
-        color, timings, tests = result
-        self.widget.set_image(color)
-        h, w, _ = color.shape
-        return (f"{w} × {h} pixels · {w * h:,} primary rays · {tests:,} intersection tests · "
-                + " · ".join(f"{k} {_ms(v)}" for k, v in timings.items()))
+        color, stats = result
+        self.widget.image.set_image(color)
+        self.widget.show_stats(stats)
+        w, h = stats["size"]
+        times = stats["times"]
+        return (f"{w} × {h} pixels · {stats['rays']['total']:,} rays · "
+                + " · ".join(f"{k} {_ms(v)}" for k, v in times.items() if k != "total")
+                + f" · total {_ms(times['total'])}")
+
+
+def merge_band_stats(parts: list[dict]) -> dict:
+    """One image's statistics from its bands': counts and times add up, per-ray figures are redone."""
+    merged = {**parts[0], "rays": {}, "times": {}, "accel": dict(parts[0]["accel"])}
+    for part in parts:
+        for group in ("rays", "times"):
+            for key, value in part[group].items():
+                merged[group][key] = merged[group].get(key, 0) + value
+    for key in ("prim_tests", "bounds_tests", "cells_visited"):
+        merged["accel"][key] = sum(p["accel"][key] for p in parts)
+    rays = max(merged["rays"]["total"], 1)
+    merged["accel"]["tests_per_ray"] = merged["accel"]["prim_tests"] / rays
+    merged["accel"]["bounds_tests_per_ray"] = merged["accel"]["bounds_tests"] / rays
+    merged["accel"]["cells_per_ray"] = merged["accel"]["cells_visited"] / rays
+    merged["rows"] = [0, parts[-1]["rows"][1]]
+    merged["pixels_traced"] = sum(p["pixels_traced"] for p in parts)
+    return merged
 
 
 class ObjectOrderTab:
@@ -129,14 +148,12 @@ class CompareTab:
 
     title = "Compare"
     PANES = [("orthographic", "Orthographic (z-buffer)"), ("perspective", "Perspective (z-buffer)"),
-             ("traced", "Ray cast (image order)")]
+             ("traced", "Ray traced (image order)")]
 
     def __init__(self):
         self.widget = ImageGrid(self.PANES, columns=3)
 
     def job(self, scene: Scene):
-        from core import raycast
-
         cam = scene.camera
         ortho_height = 2 * cam.distance * np.tan(np.radians(cam.fov_y_deg) / 2)
 
@@ -149,9 +166,10 @@ class CompareTab:
                 progress(33 if key == "orthographic" else 66, None)
                 if cancelled.is_set():
                     return None
-            start = time.perf_counter()
-            traced = raycast.cast(replace(scene, camera=cam.replace(projection="perspective")))
-            out["traced"] = (traced.color, time.perf_counter() - start, "ray casting")
+            traced = render_trace(replace(scene, camera=cam.replace(projection="perspective")),
+                                  TraceSettings())
+            rays = traced.stats["rays"]["total"]
+            out["traced"] = (traced.color, traced.stats["times"]["total"], f"ray tracing, {rays:,} rays,")
             return out
 
         return run

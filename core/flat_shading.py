@@ -1,8 +1,8 @@
 """Flat shading: one colour per polygon, lit by the scene's point lights.
 
 Object order draws each polygon with a single colour computed once, at the
-centroid of its face, with the same Lambert formula the ray caster uses per
-pixel (:mod:`core.raycast`), so both images look alike:
+centroid of its face, with the Lambert part of the formula the ray caster
+uses per pixel, so both images look alike:
 
     colour = base * (k_a + k_d * sum over lights of max(0, n . l) * intensity * light colour)
 

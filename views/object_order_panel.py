@@ -78,10 +78,13 @@ class ObjectOrderPanel(QWidget):
     settings_changed(RasterSettings) : the user switched a stage on or off.
     polygon_shown(object) : world-space vertices (N, 3) of the polygon drawn at
         the current step, or ``None`` at step 0, for the 3D pane to highlight.
+    clipped_shown(object) : list of (N, 3) world-space polygons the frustum cut,
+        for the 3D pane to outline.
     """
 
     settings_changed = Signal(object)
     polygon_shown = Signal(object)
+    clipped_shown = Signal(object)
 
     def __init__(self, parent: QWidget | None = None):
         super().__init__(parent)
@@ -161,6 +164,7 @@ class ObjectOrderPanel(QWidget):
         """Show a finished recording render; the scrubber goes to its last step."""
         self.result, self.scene = result, scene
         self.counts.setPlainText(self._counts_text())
+        self.clipped_shown.emit(result.clipping.clipped_polygons())
         self.scrubber.blockSignals(True)
         self.scrubber.set_count(result.history.n_steps)
         self.scrubber.blockSignals(False)

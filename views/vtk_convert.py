@@ -49,6 +49,17 @@ def polygon_polydata(vertices) -> pv.PolyData:
     return pv.PolyData(vertices, np.array([len(vertices), *range(len(vertices))]))
 
 
+def boxes_polydata(boxes) -> pv.PolyData:
+    """The edges of axis-aligned boxes, (K, 2, 3) world-space ``(lo, hi)`` corners, as lines."""
+    boxes = np.asarray(boxes, dtype=float).reshape(-1, 2, 3)
+    corner = np.array([[i, j, k] for k in (0, 1) for j in (0, 1) for i in (0, 1)])
+    edges = [(0, 1), (2, 3), (4, 5), (6, 7), (0, 2), (1, 3), (4, 6), (5, 7), (0, 4), (1, 5), (2, 6), (3, 7)]
+    points = (boxes[:, None, 0] + corner[None] * (boxes[:, None, 1] - boxes[:, None, 0])).reshape(-1, 3)
+    base = 8 * np.arange(len(boxes))[:, None, None]
+    lines = np.concatenate([np.full((len(boxes), 12, 1), 2), base + np.array(edges)], axis=2)
+    return pv.PolyData(points, lines=lines.ravel())
+
+
 def frustum_polydata(camera: Camera) -> pv.PolyData:
     """The viewing pyramid truncated by the near and far planes: 8 points, 6 quads."""
     quads = [[0, 1, 2, 3], [4, 7, 6, 5], [0, 4, 5, 1], [1, 5, 6, 2], [2, 6, 7, 3], [3, 7, 4, 0]]

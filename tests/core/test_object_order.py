@@ -4,10 +4,11 @@ from __future__ import annotations
 
 import json
 
+import brute_force
 import numpy as np
 import pytest
 
-from core import object_order, presets, raycast
+from core import object_order, presets
 from core.object_order import RasterSettings, render_raster
 from core.scene import Scene, Sphere
 
@@ -79,7 +80,7 @@ def test_notched_prism_front_face_survives_culling_and_the_zbuffer_hides_part_of
     assert result.draw.passed[drawn].sum() > 0  # partly seen
     assert result.draw.failed[drawn].sum() > 0  # partly hidden by the L's other arm
     # What is seen agrees with the ray caster (which knows nothing of culling).
-    cast = raycast.cast(scene)
+    cast = brute_force.cast(scene)
     hit = cast.object_index >= 0
     _, directions = scene.camera.primary_rays()
     cast_depth = cast.t * (directions @ scene.camera.forward)
@@ -95,7 +96,7 @@ def test_raster_and_ray_caster_agree_on_the_lecture_scene(projection):
                   lights=scene.lights)
     result = render_raster(scene)
     assert np.array_equal(result.clip_from_view, scene.camera.clip_from_view)
-    cast = raycast.cast(scene)
+    cast = brute_force.cast(scene)
     assert np.mean((cast.object_index >= 0) == np.isfinite(result.depth)) > 0.995
     # Flat shading per face is close to per-pixel Lambert: the same colours on the whole.
     assert np.median(np.abs(cast.color - result.color)) < 0.02

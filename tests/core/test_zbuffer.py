@@ -2,10 +2,11 @@
 
 from __future__ import annotations
 
+import brute_force
 import numpy as np
 import pytest
 
-from core import presets, raycast, zbuffer
+from core import presets, zbuffer
 from core.camera import Camera
 from core.object_order import RasterSettings, render_raster
 
@@ -32,7 +33,7 @@ def painter_reference(scene, k, jitter=0.0):
     best = np.full(len(o), np.inf)
     winner = np.full(len(o), -1)
     for index, obj in enumerate(scene.objects[:k]):
-        t = raycast.hit_triangle(o, d, *obj.corners[0])
+        t = brute_force.hit_triangle(o, d, *obj.corners[0])
         closer = t < best
         best[closer], winner[closer] = t[closer], index
     depth = best * (d @ cam.forward)

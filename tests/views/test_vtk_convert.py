@@ -1,11 +1,12 @@
 """Our camera against VTK's: the same frustum, and the same pixels covered."""
 
+import brute_force
 import numpy as np
 import pytest
 import pyvista as pv
 
-from core import raycast
 from core.camera import Camera
+from core.raytrace import TraceSettings, render_trace
 from core.scene import Mesh, Scene, Sphere
 from views import vtk_convert
 
@@ -42,10 +43,14 @@ def _scene(cam):
 
 
 @pytest.mark.parametrize("cam", CAMERAS)
-def test_ray_cast_coverage_matches_vtk_render(cam):
-    """Which pixels show an object: our ray caster against VTK's rasterizer."""
+@pytest.mark.parametrize("caster", ["brute force", "compiled tracer"])
+def test_ray_cast_coverage_matches_vtk_render(cam, caster):
+    """Which pixels show an object: our ray casters against VTK's rasterizer."""
     scene = _scene(cam)
-    ours = raycast.cast(scene).object_index >= 0
+    if caster == "brute force":
+        ours = brute_force.cast(scene).object_index >= 0
+    else:
+        ours = render_trace(scene, TraceSettings(mode="raycast")).object_index >= 0
     plotter = pv.Plotter(off_screen=True, window_size=(cam.width, cam.height))
     plotter.disable_anti_aliasing()
     plotter.set_background("black")

@@ -1,12 +1,9 @@
-"""Ray casting in image order: one ray per pixel, the closest hit wins.
+"""A brute-force ray caster in plain numpy: the tests' independent reference.
 
-This is the simplest image-order renderer in the lecture: from the eye (or,
-for the orthographic projection, from the screen plane) a ray goes through
-each pixel; the first object it meets gives the pixel its colour, Lambert
-shaded by the point lights.  Pixels whose ray meets nothing keep the
-background colour.  Shadow rays, reflection and refraction come later.
-
-The loops run over objects and triangles; the rays are numpy arrays.
+One ray per pixel, every object and every triangle tested, the closest hit
+wins, Lambert shading without shadows.  It shares no code with the compiled
+tracer (:mod:`core.raytrace`) or the rasterizer (:mod:`core.object_order`),
+so agreeing with it means something.
 """
 
 from __future__ import annotations

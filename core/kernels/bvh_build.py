@@ -1,0 +1,169 @@
+"""Compiled construction of a bounding volume hierarchy with the binned surface area heuristic.
+
+See :mod:`core.bvh` for what the hierarchy is and how it is laid out.  The
+build works top-down: a node's primitives are split in two by a plane
+perpendicular to one axis, and the plane is chosen by the *surface area
+heuristic* (SAH): a ray that hits a box hits a smaller box inside it with
+probability about (area of the small box) / (area of the big box), so the
+expected cost of a split is ::
+
+    C_traversal + (N_left A_left + N_right A_right) / A_node
+
+in units of one primitive test.  Candidate planes are the borders between
+``BINS`` equal bins of the primitives' centroids along each axis (Wald's
+binned SAH), so one pass over the primitives evaluates all of them.  A node
+becomes a leaf when splitting would cost more than testing its primitives
+(and it has at most ``MAX_LEAF`` of them) or when all centroids coincide.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from core.kernels.trace_jit import jit
+
+BINS = 16
+#: Cost of visiting a node, relative to one primitive test.
+TRAVERSAL_COST = 1.0
+#: A node with more primitives than this is always split.
+MAX_LEAF = 8
+
+
+@jit
+def _area(lx, ly, lz, hx, hy, hz):
+    dx, dy, dz = hx - lx, hy - ly, hz - lz
+    return 2.0 * (dx * dy + dy * dz + dz * dx)
+
+
+@jit
+def build_bvh(lo, hi):
+    """Build the hierarchy over primitives with bounding boxes ``lo``, ``hi``.
+
+    Parameters
+    ----------
+    lo, hi : (P, 3) float64
+        Corners of each primitive's axis-aligned bounding box, world space.
+
+    Returns
+    -------
+    nodes : (N, 8) float64
+        The root first; the two children of a node are always stored next to
+        each other, so one memory fetch brings both boxes.  Columns 0-5: the
+        node's box ``(lo, hi)``.  Column 7: for a leaf the number of
+        primitives (> 0) and column 6 the index of its first entry in
+        ``order``; for an inner node ``-(axis + 1)`` of its split axis and
+        column 6 the index of its first child (the second follows it).
+    order : (P,) int64
+        Primitive indices in leaf order.
+    depth : int
+        Number of levels (1 for a lone leaf): a traversal stack of this size suffices.
+    """
+    n_prims = lo.shape[0]
+    order = np.arange(n_prims)
+    nodes = np.zeros((max(2 * n_prims - 1, 0), 8))
+    if n_prims == 0:
+        return nodes, order, 0
+    centroid = 0.5 * (lo + hi)
+    # Pending nodes: (start, end, node index, level).
+    stack = np.empty((2 * n_prims + 2, 4), np.int64)
+    stack[0] = (0, n_prims, 0, 1)
+    depth = 1
+    max_level = 1
+    n_nodes = 1
+    bin_count = np.empty(BINS, np.int64)
+    bin_box = np.empty((BINS, 6))
+    right_area = np.empty(BINS)
+    right_count = np.empty(BINS, np.int64)
+    while depth > 0:
+        depth -= 1
+        start, end, node, level = stack[depth, 0], stack[depth, 1], stack[depth, 2], stack[depth, 3]
+        max_level = max(max_level, level)
+        # Bounds of the node and of its centroids.
+        box = nodes[node]
+        box[0:3] = np.inf
+        box[3:6] = -np.inf
+        cmin = np.full(3, np.inf)
+        cmax = np.full(3, -np.inf)
+        for k in range(start, end):
+            p = order[k]
+            for a in range(3):
+                box[a] = min(box[a], lo[p, a])
+                box[3 + a] = max(box[3 + a], hi[p, a])
+                cmin[a] = min(cmin[a], centroid[p, a])
+                cmax[a] = max(cmax[a], centroid[p, a])
+        count = end - start
+        node_area = _area(box[0], box[1], box[2], box[3], box[4], box[5])
+        best_cost, best_axis, best_bin = np.inf, -1, -1
+        if count > 1:
+            for a in range(3):
+                extent = cmax[a] - cmin[a]
+                if extent <= 0.0:
+                    continue
+                # Bin the centroids.
+                bin_count[:] = 0
+                bin_box[:, 0:3] = np.inf
+                bin_box[:, 3:6] = -np.inf
+                for k in range(start, end):
+                    p = order[k]
+                    b = min(int(BINS * (centroid[p, a] - cmin[a]) / extent), BINS - 1)
+                    bin_count[b] += 1
+                    for c in range(3):
+                        bin_box[b, c] = min(bin_box[b, c], lo[p, c])
+                        bin_box[b, 3 + c] = max(bin_box[b, 3 + c], hi[p, c])
+                # Sweep from the right, then from the left, to price every plane.
+                rl = np.full(3, np.inf)
+                rh = np.full(3, -np.inf)
+                n_right = 0
+                for b in range(BINS - 1, 0, -1):
+                    n_right += bin_count[b]
+                    for c in range(3):
+                        rl[c] = min(rl[c], bin_box[b, c])
+                        rh[c] = max(rh[c], bin_box[b, 3 + c])
+                    right_count[b] = n_right
+                    right_area[b] = _area(rl[0], rl[1], rl[2], rh[0], rh[1], rh[2]) if n_right else 0.0
+                ll = np.full(3, np.inf)
+                lh = np.full(3, -np.inf)
+                n_left = 0
+                for b in range(BINS - 1):
+                    n_left += bin_count[b]
+                    for c in range(3):
+                        ll[c] = min(ll[c], bin_box[b, c])
+                        lh[c] = max(lh[c], bin_box[b, 3 + c])
+                    if n_left == 0 or right_count[b + 1] == 0:
+                        continue
+                    left_area = _area(ll[0], ll[1], ll[2], lh[0], lh[1], lh[2])
+                    cost = TRAVERSAL_COST + (
+                        n_left * left_area + right_count[b + 1] * right_area[b + 1]
+                    ) / node_area
+                    if cost < best_cost:
+                        best_cost, best_axis, best_bin = cost, a, b
+        make_leaf = best_axis < 0 or (count <= MAX_LEAF and best_cost >= count)
+        if make_leaf and count > MAX_LEAF:
+            # All centroids coincide: split the list in the middle.
+            mid = (start + end) // 2
+            best_axis = 0
+            make_leaf = False
+        elif not make_leaf:
+            # Partition the primitives: bins <= best_bin go left.
+            a = best_axis
+            extent = cmax[a] - cmin[a]
+            i, j = start, end - 1
+            while i <= j:
+                b = min(int(BINS * (centroid[order[i], a] - cmin[a]) / extent), BINS - 1)
+                if b <= best_bin:
+                    i += 1
+                else:
+                    order[i], order[j] = order[j], order[i]
+                    j -= 1
+            mid = i
+        if make_leaf:
+            box[6] = start
+            box[7] = count
+            continue
+        box[6] = n_nodes
+        box[7] = -(best_axis + 1)
+        stack[depth] = (mid, end, n_nodes + 1, level + 1)
+        stack[depth + 1] = (start, mid, n_nodes, level + 1)
+        n_nodes += 2
+        depth += 2
+    return nodes[:n_nodes].copy(), order, max_level

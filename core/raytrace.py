@@ -1,0 +1,334 @@
+"""Ray casting and Whitted ray tracing in image order: render a scene, count every ray.
+
+The lecture's image order: for each pixel a *primary ray* from the eye (or,
+in parallel projection, from the screen plane) through the pixel; its first
+hit gives the pixel its colour.
+
+- **Ray casting** (``mode="raycast"``): from the hit point one *shadow ray*
+  towards each point light; a light contributes (Lambert + Phong,
+  :mod:`core.shading`) only if its shadow ray reaches it unblocked.
+- **Ray tracing** (``mode="raytrace"``, Whitted): in addition, at a reflective
+  surface a *reflected ray* (angle of reflection = angle of incidence), at a
+  transparent surface a *refracted ray* (Snell's law), the light split
+  between them by the Fresnel equations, and total internal reflection when
+  Snell's law has no solution (:mod:`core.optics`).  The rays form a tree per
+  pixel; its colour is combined from the last hits back to the first
+  (:mod:`core.ray_tree` shows one tree number by number).
+
+A ray is not traced when it would be deeper than ``max_depth`` generations
+(the primary ray is generation 0), or when its weight in the pixel (the
+product of the coefficients along its path) falls below ``min_weight``
+(default 0.01: a ray that could change the pixel by less than 1% of full
+brightness is dropped).
+
+Primary rays see only what lies between the near and the far plane, as the
+object-order pipeline does after clipping; ``depth`` is therefore comparable
+with the depth buffer.
+
+Acceleration (``accel``): ``"none"`` tests every primitive; ``"spheres"``
+puts bounding spheres around meshes; ``"grid"`` walks a uniform grid;
+``"grid+spheres"`` combines both, as the lecture suggests; ``"bvh"`` uses a
+bounding volume hierarchy.  All find exactly the same hits; only the work
+differs, and the statistics count it.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import threading
+import time
+from dataclasses import dataclass
+
+import numba
+import numpy as np
+
+from core.effects import MODES, EffectsPlan, effects_plan
+from core.kernels import trace_layout as lay
+from core.kernels import trace_render
+from core.kernels.trace_prims import (
+    BOUNDS_TESTS,
+    CELLS,
+    N_COUNTERS,
+    PRIM_TESTS,
+    PRIMARY,
+    REFLECTION,
+    REFRACTION,
+    SHADOW,
+)
+from core.scene import Scene
+from core.trace_scene import trace_scene
+
+OFFSETS = ("scaled", "fixed")
+
+
+@dataclass(frozen=True)
+class TraceSettings:
+    """How to render in image order.
+
+    Attributes
+    ----------
+    mode : ``"raycast"`` (first hits and shadow rays) or ``"raytrace"`` (Whitted).
+    max_depth : int >= 0, deepest generation of reflected/refracted rays.
+    min_weight : float >= 0, rays whose weight in the pixel is below this are not traced.
+    accel : one of ``"none"``, ``"spheres"``, ``"grid"``, ``"grid+spheres"``, ``"bvh"``.
+    offset : ``"scaled"`` (pbrt-style origin offset, robust at any scale) or
+        ``"fixed"`` (ignore crossings closer than ``epsilon``), see :mod:`core.ray_offset`.
+    epsilon : float >= 0, scene units, used when ``offset == "fixed"``.
+    """
+
+    mode: str = "raytrace"
+    max_depth: int = 5
+    min_weight: float = 0.01
+    accel: str = "bvh"
+    offset: str = "scaled"
+    epsilon: float = 1e-4
+
+    def __post_init__(self):
+        problems = []
+        if self.mode not in MODES:
+            problems.append(f"mode must be one of {list(MODES)}, got {self.mode!r}")
+        if self.accel not in lay.ACCEL_CODES:
+            problems.append(f"accel must be one of {list(lay.ACCEL_CODES)}, got {self.accel!r}")
+        if self.offset not in OFFSETS:
+            problems.append(f"offset must be one of {list(OFFSETS)}, got {self.offset!r}")
+        if not (isinstance(self.max_depth, int) and 0 <= self.max_depth <= 64):
+            problems.append(f"max_depth must be a whole number in [0, 64], got {self.max_depth!r}")
+        if not self.min_weight >= 0:
+            problems.append(f"min_weight must be >= 0, got {self.min_weight!r}")
+        if not self.epsilon >= 0:
+            problems.append(f"epsilon must be >= 0, got {self.epsilon!r}")
+        if problems:
+            raise ValueError("; ".join(problems))
+
+
+@dataclass(frozen=True, eq=False)
+class TraceResult:
+    """An image rendered in image order, with what it took.
+
+    Attributes
+    ----------
+    color : (H, W, 3) float64, RGB in [0, 1]; ``H = stop - first`` rows of the image.
+    depth : (H, W) float64, camera-space distance along the viewing axis of the
+        primary ray's hit (positive), ``+inf`` where it hits nothing.
+    object_index : (H, W) int64, index into ``scene.objects`` of the first hit, -1 for none.
+    stats : dict, JSON-serialisable: ``rays`` (counts by kind), ``plan``
+        (:meth:`EffectsPlan.to_dict`), ``accel`` (method, work per ray, build
+        time), ``times`` (seconds per kind of work), ``compile_s`` (compiling
+        or loading the kernels, not part of ``times``), ``settings``.
+    rows : (first, stop), the band of image rows rendered.
+    step : int, one ray per ``step x step`` block of pixels.
+    plan : EffectsPlan.
+    """
+
+    color: np.ndarray
+    depth: np.ndarray
+    object_index: np.ndarray
+    stats: dict
+    rows: tuple[int, int]
+    step: int
+    plan: EffectsPlan
+
+
+def render_trace(scene: Scene, settings: TraceSettings = TraceSettings(),
+                 rows: tuple[int, int] | None = None, step: int = 1) -> TraceResult:
+    """Render ``scene`` from its camera by ray casting or ray tracing.
+
+    Parameters
+    ----------
+    scene : Scene
+    settings : TraceSettings
+    rows : (first, stop), optional
+        Render only image rows ``first .. stop - 1`` (the window fills the
+        image band by band); default all rows.
+    step : int >= 1
+        Trace one ray per ``step x step`` block (through the block's top-left
+        pixel) and repeat its colour over the block: a coarse image, fast.
+
+    Returns
+    -------
+    TraceResult
+    """
+    cam = scene.camera
+    first, stop = rows if rows is not None else (0, cam.height)
+    if not (0 <= first < stop <= cam.height):
+        raise ValueError(f"rows must satisfy 0 <= first < stop <= {cam.height}, got {rows!r}")
+    if not (isinstance(step, int) and step >= 1):
+        raise ValueError(f"step must be a whole number >= 1, got {step!r}")
+    compile_s = ensure_compiled()
+    times = {}
+    start = time.perf_counter()
+    flat = trace_scene(scene)
+    geometry = flat.geometry
+    times["flatten"] = time.perf_counter() - start
+    structure, build_s, cached = geometry.accel(settings.accel)
+    times["build"] = 0.0 if cached else build_s
+    plan = effects_plan(scene, settings.mode)
+    xs = np.arange(0, cam.width, step, dtype=np.float64)
+    ys = np.arange(first, stop, step, dtype=np.float64)
+    inputs = kernel_inputs(scene, settings, plan, flat, structure)
+    color, depth, hits, counters = _run_passes(xs, ys, inputs, times)
+
+    prims = hits[..., 0].astype(np.int64)
+    object_index = np.where(prims >= 0, geometry.prim_object[np.maximum(prims, 0)], -1)
+    color = np.clip(color, 0.0, 1.0)
+    if step > 1:
+        h, w = stop - first, cam.width
+        color, depth, object_index = (np.repeat(np.repeat(a, step, 0), step, 1)[:h, :w]
+                                      for a in (color, depth, object_index))
+    times["total"] = sum(times.values())
+    stats = _stats(settings, plan, structure, build_s, cached, counters, times, compile_s,
+                   (first, stop), step, len(xs) * len(ys), geometry.n_prims, cam)
+    return TraceResult(np.ascontiguousarray(color), np.ascontiguousarray(depth),
+                       np.ascontiguousarray(object_index), stats, (first, stop), step, plan)
+
+
+@dataclass(frozen=True, eq=False)
+class KernelInputs:
+    """Everything the compiled passes read, as arrays (see :mod:`core.kernels.trace_layout`)."""
+
+    cam: np.ndarray
+    opts: np.ndarray
+    lights: np.ndarray
+    materials: np.ndarray
+    geo: tuple
+    grid: tuple
+    bvh: tuple
+    bvh_depth: int
+    method: int
+
+
+def kernel_inputs(scene: Scene, settings: TraceSettings, plan: EffectsPlan, flat, structure) -> KernelInputs:
+    """Lay out camera, settings, lights and structures for the kernels."""
+    from core.bvh import Bvh
+    from core.bvh import empty_kernel_tuple as no_bvh
+    from core.grid import UniformGrid
+    from core.grid import empty_kernel_tuple as no_grid
+
+    cam = scene.camera
+    c = np.zeros(lay.CAM_SIZE)
+    c[lay.CAM_EYE:lay.CAM_EYE + 3] = cam.eye
+    c[lay.CAM_ROTATION:lay.CAM_ROTATION + 9] = cam.world_from_view[:3, :3].ravel()
+    c[lay.CAM_FORWARD:lay.CAM_FORWARD + 3] = cam.forward
+    c[lay.CAM_HALF_WIDTH], c[lay.CAM_HALF_HEIGHT] = cam.half_extent(1.0)
+    c[lay.CAM_WIDTH], c[lay.CAM_HEIGHT] = cam.width, cam.height
+    c[lay.CAM_ORTHOGRAPHIC] = cam.projection == "orthographic"
+    c[lay.CAM_NEAR], c[lay.CAM_FAR] = cam.near, cam.far
+    opts = np.zeros(lay.OPT_SIZE)
+    opts[lay.OPT_ACCEL] = lay.ACCEL_CODES.index(settings.accel)
+    opts[lay.OPT_MAX_DEPTH] = settings.max_depth
+    opts[lay.OPT_MIN_WEIGHT] = settings.min_weight
+    opts[lay.OPT_SCALED_OFFSET] = settings.offset == "scaled"
+    opts[lay.OPT_EPSILON] = settings.epsilon
+    opts[lay.OPT_REFLECTION] = plan.reflection_rays
+    opts[lay.OPT_REFRACTION] = plan.refraction_rays
+    opts[lay.OPT_BACKGROUND:lay.OPT_BACKGROUND + 3] = scene.background
+    lights = np.zeros((len(scene.lights), lay.LIGHT_SIZE))
+    for i, (light, lp) in enumerate(zip(scene.lights, plan.lights, strict=True)):
+        lights[i, lay.LIGHT_POSITION:lay.LIGHT_POSITION + 3] = light.position
+        lights[i, lay.LIGHT_RGB:lay.LIGHT_RGB + 3] = np.multiply(light.color, light.intensity)
+        lights[i, lay.LIGHT_BLOCKABLE] = lp.blockable
+    grid = structure.kernel_tuple() if isinstance(structure, UniformGrid) else no_grid()
+    bvh = structure.kernel_tuple() if isinstance(structure, Bvh) else no_bvh()
+    depth = structure.depth if isinstance(structure, Bvh) else 0
+    return KernelInputs(c, opts, lights, flat.materials, flat.geometry.kernel_tuple(), grid, bvh, depth,
+                        int(opts[lay.OPT_ACCEL]))
+
+
+def _run_passes(xs, ys, k: KernelInputs, times: dict):
+    """The three compiled stages; fills ``times`` and returns colour, depth, hits and counters."""
+    n_chunks = max(1, min(len(ys), 4 * numba.get_num_threads()))
+    ny, nx = len(ys), len(xs)
+    hits = np.zeros((ny, nx, 5))
+    depth = np.full((ny, nx), np.inf)
+    color = np.zeros((ny, nx, 3))
+    children = np.zeros((ny, nx, 2, lay.CHILD_SIZE))
+    counters = np.zeros(N_COUNTERS, np.int64)
+    for stage, name in ((trace_render.PRIMARY_STAGE, "primary"), (trace_render.SHADE_STAGE, "shading"),
+                        (trace_render.SECONDARY_STAGE, "secondary")):
+        start = time.perf_counter()
+        spawned = children[..., lay.CHILD_STATUS] == lay.CHILD_TRACED
+        if stage != trace_render.SECONDARY_STAGE or np.any(spawned):
+            counters += trace_render.render_pass(stage, k.cam, xs, ys, hits, depth, color, children,
+                                                 k.materials, k.lights, k.opts, k.geo, k.grid, k.bvh,
+                                                 k.bvh_depth, n_chunks)
+        times[name] = time.perf_counter() - start
+    return color, depth, hits, counters
+
+
+def _stats(settings, plan, structure, build_s, cached, counters, times, compile_s, rows, step,
+           pixels, n_prims, cam) -> dict:
+    rays = {"primary": int(counters[PRIMARY]), "shadow": int(counters[SHADOW]),
+            "reflection": int(counters[REFLECTION]), "refraction": int(counters[REFRACTION])}
+    total = sum(rays.values())
+    per_ray = 1.0 / max(total, 1)
+    accel = {
+        "method": settings.accel,
+        "primitives": int(n_prims),
+        "build_s": float(build_s),
+        "cached": bool(cached),
+        "prim_tests": int(counters[PRIM_TESTS]),
+        "bounds_tests": int(counters[BOUNDS_TESTS]),
+        "cells_visited": int(counters[CELLS]),
+        "tests_per_ray": counters[PRIM_TESTS] * per_ray,
+        "bounds_tests_per_ray": counters[BOUNDS_TESTS] * per_ray,
+        "cells_per_ray": counters[CELLS] * per_ray,
+    }
+    accel.update(describe_structure(structure))
+    return {
+        "mode": settings.mode,
+        "size": [cam.width, cam.height],
+        "rows": list(rows),
+        "step": step,
+        "pixels_traced": int(pixels),
+        "rays": {**rays, "total": total},
+        "plan": plan.to_dict(),
+        "accel": {k: float(v) if isinstance(v, np.floating) else v for k, v in accel.items()},
+        "times": {k: float(v) for k, v in times.items()},
+        "compile_s": float(compile_s),
+        "settings": dataclasses.asdict(settings),
+    }
+
+
+def describe_structure(structure) -> dict:
+    """Size figures of an acceleration structure, for the statistics."""
+    from core.bvh import Bvh
+    from core.grid import UniformGrid
+
+    if isinstance(structure, UniformGrid):
+        return {"grid_resolution": [int(r) for r in structure.resolution],
+                "grid_cells": structure.n_cells, "grid_entries": int(len(structure.cell_prims))}
+    if isinstance(structure, Bvh):
+        return {"bvh_nodes": int(len(structure.nodes)), "bvh_depth": structure.depth,
+                "bvh_leaves": int(structure.is_leaf.sum())}
+    return {}
+
+
+_compiled = threading.Event()
+_compile_lock = threading.Lock()
+
+
+def ensure_compiled() -> float:
+    """Compile (or load from numba's disk cache) every tracer kernel once per process.
+
+    Returns the seconds it took, 0.0 when already done.  A tiny scene is
+    rendered so that the kernels see exactly the argument types of real renders.
+    """
+    if _compiled.is_set():
+        return 0.0
+    with _compile_lock:
+        if _compiled.is_set():
+            return 0.0
+        start = time.perf_counter()
+        from core.presets_trace import warm_up_scene
+        from core.ray_tree import trace_pixel
+
+        scene = warm_up_scene()
+        flat = trace_scene(scene)
+        for accel in ("grid", "bvh"):  # builds both structures, so build times exclude compiling
+            settings = TraceSettings(accel=accel)
+            structure, _, _ = flat.geometry.accel(accel)
+            inputs = kernel_inputs(scene, settings, effects_plan(scene), flat, structure)
+            _run_passes(np.arange(2.0), np.arange(2.0), inputs, {})
+            trace_pixel(scene, 1, 1, settings)
+        _compiled.set()
+        return time.perf_counter() - start

@@ -1,0 +1,200 @@
+"""The image-order panel: the traced image, the effects plan, and one pixel's ray tree.
+
+Every pixel is computed on its own: a ray from the eye through the pixel,
+its first hit, shadow rays toward the lights, and (in ray tracing) reflected
+and refracted rays.  Clicking a pixel traces it again with every ray kept,
+shows the tree in the 3D pane and lists it here with the colours combined
+from the last hits back to the first.
+"""
+
+from __future__ import annotations
+
+from PySide6.QtCore import Qt, Signal
+from PySide6.QtGui import QFont
+from PySide6.QtWidgets import (
+    QCheckBox,
+    QComboBox,
+    QDoubleSpinBox,
+    QGridLayout,
+    QLabel,
+    QPlainTextEdit,
+    QSpinBox,
+    QSplitter,
+    QTabWidget,
+    QVBoxLayout,
+    QWidget,
+)
+
+from core.ray_tree import RayNode
+from core.raytrace import TraceSettings
+from views.image_view import ImageView
+from views.raytree_view import KIND_COLORS, RayKindLegend, RayTreeWidget
+
+MODES = [("raytrace", "Ray tracing"), ("raycast", "Ray casting")]
+ACCELS = [("bvh", "BVH"), ("grid+spheres", "Grid + spheres"), ("grid", "Grid of cuboids"),
+          ("spheres", "Bounding spheres"), ("none", "None")]
+
+
+def _combo(items, tip):
+    box = QComboBox()
+    for key, text in items:
+        box.addItem(text, key)
+    box.setToolTip(tip)
+    return box
+
+
+class ImageOrderPanel(QWidget):
+    """Settings, traced image, effects plan with ray counts, and the picked pixel's ray tree.
+
+    Signals
+    -------
+    settings_changed(TraceSettings)
+    pixel_picked(int x, int y)
+    overlays_changed() : a "show in 3D" switch changed.
+    """
+
+    settings_changed = Signal(object)
+    pixel_picked = Signal(int, int)
+    overlays_changed = Signal()
+
+    def __init__(self, parent: QWidget | None = None):
+        super().__init__(parent)
+        self.mode = _combo(MODES, "Ray casting stops at the first hit and its shadow rays; ray tracing "
+                                  "follows reflected and refracted rays too")
+        self.depth = QSpinBox()
+        self.depth.setRange(0, 12)
+        self.depth.setValue(5)
+        self.depth.setToolTip("Deepest reflection / refraction followed (the ray tree's height)")
+        self.min_weight = QDoubleSpinBox()
+        self.min_weight.setRange(0.0, 0.5)
+        self.min_weight.setDecimals(3)
+        self.min_weight.setSingleStep(0.005)
+        self.min_weight.setValue(0.01)
+        self.min_weight.setToolTip("A ray contributing less than this to the pixel is not traced")
+        self.accel = _combo(ACCELS, "How a ray finds the objects it may hit: test every object, bounding "
+                                    "spheres first, a grid of cuboids walked along the ray, or a bounding "
+                                    "volume hierarchy (BVH).  The image is the same, the work differs")
+        self.offset = _combo([("scaled", "Scaled"), ("fixed", "Fixed ε")],
+                             "How far secondary rays start off the surface; a fixed tiny ε far from "
+                             "the origin gives shadow acne")
+        self.epsilon = QDoubleSpinBox()
+        self.epsilon.setDecimals(8)
+        self.epsilon.setRange(0.0, 1.0)
+        self.epsilon.setSingleStep(1e-4)
+        self.epsilon.setValue(1e-4)
+        self.epsilon.setToolTip("The fixed offset ε (used with 'Fixed ε')")
+        self.show_spheres = QCheckBox("bounding spheres")
+        self.show_grid = QCheckBox("grid cells")
+        self.show_walk = QCheckBox("cells the picked ray walks")
+        for box in (self.show_spheres, self.show_grid, self.show_walk):
+            box.setToolTip("Show in the 3D pane")
+            box.toggled.connect(self.overlays_changed)
+
+        form = QGridLayout()
+        form.addWidget(QLabel("Method"), 0, 0)
+        form.addWidget(self.mode, 0, 1)
+        form.addWidget(QLabel("Max depth"), 0, 2)
+        form.addWidget(self.depth, 0, 3)
+        form.addWidget(QLabel("Min weight"), 0, 4)
+        form.addWidget(self.min_weight, 0, 5)
+        form.addWidget(QLabel("Acceleration"), 1, 0)
+        form.addWidget(self.accel, 1, 1)
+        form.addWidget(QLabel("Ray offset"), 1, 2)
+        form.addWidget(self.offset, 1, 3)
+        form.addWidget(QLabel("ε"), 1, 4)
+        form.addWidget(self.epsilon, 1, 5)
+        shows = QWidget()
+        sl = QGridLayout(shows)
+        sl.setContentsMargins(0, 0, 0, 0)
+        sl.addWidget(QLabel("Show in 3D:"), 0, 0)
+        for i, box in enumerate((self.show_spheres, self.show_grid, self.show_walk)):
+            sl.addWidget(box, 0, i + 1)
+        sl.setColumnStretch(4, 1)
+        form.addWidget(shows, 2, 0, 1, 6)
+
+        self.image = ImageView()
+        self.rays = QLabel()
+        self.rays.setWordWrap(True)
+        self.rays.setTextFormat(Qt.TextFormat.RichText)
+        self.plan = QLabel()
+        self.plan.setWordWrap(True)
+        self.plan.setTextFormat(Qt.TextFormat.RichText)
+        self.plan.setAlignment(Qt.AlignmentFlag.AlignTop | Qt.AlignmentFlag.AlignLeft)
+        self.tree = RayTreeWidget()
+        self.explanation = QPlainTextEdit()
+        self.explanation.setReadOnly(True)
+        font = QFont("monospace")
+        font.setStyleHint(QFont.StyleHint.Monospace)
+        self.explanation.setFont(font)
+        self.explanation.setPlaceholderText(
+            "Click a pixel to trace it again with every ray kept: its ray tree appears in the "
+            "3D pane and here, with the colours computed from the last hits back to the first.")
+        self.tree_caption = QLabel()
+        tree_page = QWidget()
+        tl = QVBoxLayout(tree_page)
+        tl.setContentsMargins(0, 0, 0, 0)
+        tl.addWidget(self.tree_caption)
+        tl.addWidget(RayKindLegend())
+        tl.addWidget(self.tree, 2)
+        tl.addWidget(self.explanation, 1)
+        self.details = QTabWidget()
+        self.details.addTab(tree_page, "Ray tree")
+        self.details.addTab(self.plan, "Effects plan")
+        split = QSplitter(Qt.Orientation.Vertical)
+        top = QWidget()
+        top_layout = QVBoxLayout(top)
+        top_layout.setContentsMargins(0, 0, 0, 0)
+        top_layout.addWidget(self.image, 1)
+        top_layout.addWidget(self.rays)
+        split.addWidget(top)
+        split.addWidget(self.details)
+        split.setStretchFactor(0, 3)
+        split.setStretchFactor(1, 2)
+        split.setSizes([420, 260])
+        self.details.setMinimumHeight(120)
+        layout = QVBoxLayout(self)
+        layout.setContentsMargins(6, 6, 6, 6)
+        layout.addLayout(form)
+        layout.addWidget(split, 1)
+
+        for w in (self.mode, self.accel, self.offset):
+            w.currentIndexChanged.connect(self._emit_settings)
+        for w in (self.depth, self.min_weight, self.epsilon):
+            w.valueChanged.connect(self._emit_settings)
+        self.image.pixel_clicked.connect(self.pixel_picked)
+
+    @property
+    def settings(self) -> TraceSettings:
+        return TraceSettings(mode=self.mode.currentData(), max_depth=self.depth.value(),
+                             min_weight=self.min_weight.value(), accel=self.accel.currentData(),
+                             offset=self.offset.currentData(), epsilon=self.epsilon.value())
+
+    def _emit_settings(self) -> None:
+        self.epsilon.setEnabled(self.offset.currentData() == "fixed")
+        self.depth.setEnabled(self.mode.currentData() == "raytrace")
+        self.settings_changed.emit(self.settings)
+
+    def show_stats(self, stats: dict) -> None:
+        """The effects plan and the rays actually traced, by kind."""
+        rays = stats["rays"]
+        chips = " ".join(
+            f'<span style="background:{KIND_COLORS[k]}; color:black">&nbsp;{k} {rays[k]:,}&nbsp;</span>'
+            for k in KIND_COLORS)
+        accel = stats["accel"]
+        reasons = "<br>".join(f"• {r}" for r in stats["plan"]["reasons"])
+        self.rays.setText(
+            f"<b>Rays traced:</b> {chips} &nbsp; "
+            f"{accel['tests_per_ray']:.1f} intersection tests per ray"
+            + (f", {accel['cells_per_ray']:.1f} grid cells" if accel["cells_per_ray"] else ""))
+        self.plan.setText(f"<b>What this scene calls for</b> — only these effects are simulated:"
+                          f"<br>{reasons}")
+
+    def show_tree(self, x: int, y: int, root: RayNode) -> None:
+        self.image.set_picked((x, y))
+        self.tree.set_tree(root)
+        n = sum(1 for node in root.walk() if node.traced)
+        self.tree_caption.setText(f"<b>Ray tree of pixel ({x}, {y})</b>: {n} rays traced; "
+                                  f"pixel colour ({', '.join(f'{c:.3f}' for c in root.pixel_color)})")
+        self.explanation.setPlainText(
+            "Second stage: colours from the last hits back to the first\n"
+            + "\n".join(root.explain()))
