@@ -55,7 +55,8 @@ def run(args) -> int:
 
     from core import presets, presets_trace
     from core.effects import effects_plan
-    from core.kernels import trace_render
+    from core.kernels import trace_layout, trace_render
+    from core.kernels.trace_prims import BOUNDS_TESTS, PRIM_TESTS
     from core.raytrace import TraceSettings, ensure_compiled, kernel_inputs, render_trace
     from core.scene import PointLight, Scene
     from core.trace_scene import trace_scene
@@ -80,7 +81,7 @@ def run(args) -> int:
     n_chunks = min(args.height, 4 * numba.get_num_threads())
     shape = (args.height, args.width)
     hits, depth = np.zeros((*shape, 5)), np.zeros(shape)
-    color, children = np.zeros((*shape, 3)), np.zeros((*shape, 2, 8))
+    color, children = np.zeros((*shape, 3)), np.zeros((*shape, 2, trace_layout.CHILD_SIZE))
     counters = []
 
     def ours():
@@ -97,8 +98,8 @@ def run(args) -> int:
     per_ray = counters[0] / n_rays
     prims = hits[..., 0].reshape(-1)
     print(f"ours   (numba BVH, float64): {seconds['ours'] * 1e3:7.1f} ms  {ours_rate:6.2f} Mrays/s  "
-          f"({(prims >= 0).mean():.0%} of rays hit; per ray {per_ray[5]:.1f} box and "
-          f"{per_ray[4]:.1f} triangle tests)")
+          f"({(prims >= 0).mean():.0%} of rays hit; per ray {per_ray[BOUNDS_TESTS]:.1f} box and "
+          f"{per_ray[PRIM_TESTS]:.1f} triangle tests)")
 
     # 2. The same rays with Embree.
     if embree is not None:

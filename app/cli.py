@@ -15,9 +15,9 @@ class UsageError(Exception):
 
 
 def build_parser() -> argparse.ArgumentParser:
-    from app import bench_raster, intersect_command, render_command
+    from app import bench_raster, bench_trace, intersect_command, render_command
 
-    benchmarks = {"raster": bench_raster}
+    benchmarks = {"raster": bench_raster, "trace": bench_trace}
 
     parser = argparse.ArgumentParser(
         prog="python -m app",

@@ -18,10 +18,12 @@ from PySide6.QtWidgets import (
     QApplication,
     QDockWidget,
     QFileDialog,
+    QHBoxLayout,
     QLabel,
     QMainWindow,
     QMessageBox,
     QProgressBar,
+    QPushButton,
     QScrollArea,
     QSplitter,
     QTabWidget,
@@ -82,7 +84,15 @@ class MainWindow(QMainWindow):
         right_layout = QVBoxLayout(right)
         right_layout.setContentsMargins(0, 0, 0, 0)
         right_layout.addWidget(self.tab_widget, 1)
-        right_layout.addWidget(self.progress)
+        progress_row = QHBoxLayout()
+        progress_row.addWidget(self.progress, 1)
+        self.cancel_button = QPushButton("Cancel")
+        self.cancel_button.setToolTip("Stop the render in progress (Esc)")
+        self.cancel_button.setShortcut(QKeySequence("Esc"))
+        self.cancel_button.clicked.connect(self.cancel_render)
+        self.cancel_button.setEnabled(False)
+        progress_row.addWidget(self.cancel_button)
+        right_layout.addLayout(progress_row)
         right_layout.addWidget(self.status_caption)
         scene_pane = QWidget()
         scene_layout = QVBoxLayout(scene_pane)
@@ -133,6 +143,8 @@ class MainWindow(QMainWindow):
 
         self.scene_view.set_scene(scene)
         self._render_current()
+        self.progress.setFormat("compiling the renderers on first use (numba caches them), "
+                                "then rendering… %p%")
         self.resize(1400, 860)
 
     # ----------------------------------------------------------------- menus
@@ -283,6 +295,14 @@ class MainWindow(QMainWindow):
         self.progress.setFormat(f"{tab.title}: rendering… %p%")
         self.progress.setValue(0)
         self.renderers[index].submit(tab.job(self.model.scene))
+        self.cancel_button.setEnabled(True)
+
+    def cancel_render(self) -> None:
+        """Stop the visible tab's render; what was drawn so far stays on screen."""
+        self.renderers[self.current_tab].cancel()
+        self._stale.add(self.current_tab)
+        self.cancel_button.setEnabled(False)
+        self.progress.setFormat(f"{self.tabs[self.current_tab].title}: cancelled at %p% (F5 renders again)")
 
     def _render_progress(self, tab, percent, partial):
         if tab is self.tabs[self.current_tab]:
@@ -294,11 +314,13 @@ class MainWindow(QMainWindow):
         self.last_result = result
         caption = tab.show(result)
         if tab is self.tabs[self.current_tab]:
+            self.cancel_button.setEnabled(False)
             self.progress.setValue(100)
             self.progress.setFormat(f"{tab.title}: done")
             self.status_caption.setText(caption)
 
     def _render_failed(self, message: str):
+        self.cancel_button.setEnabled(False)
         self.progress.setFormat("render failed")
         QMessageBox.warning(self, "Render failed", message)
 

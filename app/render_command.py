@@ -87,6 +87,7 @@ def run(args) -> int:
         print(f"python -m app render: error: cannot write output: {exc}", file=sys.stderr)
         return 1
     h, w = result.depth.shape
-    total = sum(result.stats.get("times", {}).values())
+    times = result.stats["times"]
+    total = times["total"] if "total" in times else sum(times.values())
     print(f"{args.mode}: {w}x{h} pixels in {total * 1000:.1f} ms -> {args.out}")
     return 0

@@ -151,7 +151,7 @@ class CompareTab:
              ("traced", "Ray traced (image order)")]
 
     def __init__(self):
-        self.widget = ImageGrid(self.PANES, columns=3)
+        self.widget = ImageGrid(self.PANES, columns=2)
 
     def job(self, scene: Scene):
         cam = scene.camera

@@ -17,8 +17,10 @@ Conventions
   of the medium it enters; ``eta = n1 / n2``.  Snell's law reads
   ``n1 sin θ1 = n2 sin θ2``.
 
-The functions take plain numbers and tuples, so the compiled tracer
-(:mod:`core.kernels.trace_shade`) runs the very same code.
+The functions take plain numbers and tuples.  ``register_jitable`` leaves
+them ordinary Python functions when called from Python and compiles them
+into the tracer's kernels (:mod:`core.kernels.trace_shade`) when called from
+there, so the explanations and the renderer run the very same code.
 """
 
 from __future__ import annotations

@@ -26,6 +26,9 @@ Two remedies, selectable per render (``TraceSettings.offset``):
     The offset grows with the coordinates, so it works at any distance from the
     origin, and it stays far below anything visible (``3e-10`` for coordinates
     of ``10^4``).
+
+Both functions are compiled into the tracer's kernels where those call them
+(``register_jitable``, as in :mod:`core.optics`).
 """
 
 from __future__ import annotations

@@ -169,7 +169,8 @@ def render_trace(scene: Scene, settings: TraceSettings = TraceSettings(),
     color, depth, hits, counters = _run_passes(xs, ys, inputs, times)
 
     prims = hits[..., 0].astype(np.int64)
-    object_index = np.where(prims >= 0, geometry.prim_object[np.maximum(prims, 0)], -1)
+    object_of = np.append(geometry.prim_object, -1)  # prim -1 (nothing hit) -> object -1
+    object_index = object_of[prims]
     color = np.clip(color, 0.0, 1.0)
     if step > 1:
         h, w = stop - first, cam.width
@@ -204,15 +205,6 @@ def kernel_inputs(scene: Scene, settings: TraceSettings, plan: EffectsPlan, flat
     from core.grid import UniformGrid
     from core.grid import empty_kernel_tuple as no_grid
 
-    cam = scene.camera
-    c = np.zeros(lay.CAM_SIZE)
-    c[lay.CAM_EYE:lay.CAM_EYE + 3] = cam.eye
-    c[lay.CAM_ROTATION:lay.CAM_ROTATION + 9] = cam.world_from_view[:3, :3].ravel()
-    c[lay.CAM_FORWARD:lay.CAM_FORWARD + 3] = cam.forward
-    c[lay.CAM_HALF_WIDTH], c[lay.CAM_HALF_HEIGHT] = cam.half_extent(1.0)
-    c[lay.CAM_WIDTH], c[lay.CAM_HEIGHT] = cam.width, cam.height
-    c[lay.CAM_ORTHOGRAPHIC] = cam.projection == "orthographic"
-    c[lay.CAM_NEAR], c[lay.CAM_FAR] = cam.near, cam.far
     opts = np.zeros(lay.OPT_SIZE)
     opts[lay.OPT_ACCEL] = lay.ACCEL_CODES.index(settings.accel)
     opts[lay.OPT_MAX_DEPTH] = settings.max_depth
@@ -230,8 +222,21 @@ def kernel_inputs(scene: Scene, settings: TraceSettings, plan: EffectsPlan, flat
     grid = structure.kernel_tuple() if isinstance(structure, UniformGrid) else no_grid()
     bvh = structure.kernel_tuple() if isinstance(structure, Bvh) else no_bvh()
     depth = structure.depth if isinstance(structure, Bvh) else 0
-    return KernelInputs(c, opts, lights, flat.materials, flat.geometry.kernel_tuple(), grid, bvh, depth,
-                        int(opts[lay.OPT_ACCEL]))
+    return KernelInputs(camera_array(scene.camera), opts, lights, flat.materials,
+                        flat.geometry.kernel_tuple(), grid, bvh, depth, int(opts[lay.OPT_ACCEL]))
+
+
+def camera_array(cam) -> np.ndarray:
+    """The observer as the kernels read it, (CAM_SIZE,) float64 (see :mod:`core.kernels.trace_layout`)."""
+    c = np.zeros(lay.CAM_SIZE)
+    c[lay.CAM_EYE:lay.CAM_EYE + 3] = cam.eye
+    c[lay.CAM_ROTATION:lay.CAM_ROTATION + 9] = cam.world_from_view[:3, :3].ravel()
+    c[lay.CAM_FORWARD:lay.CAM_FORWARD + 3] = cam.forward
+    c[lay.CAM_HALF_WIDTH], c[lay.CAM_HALF_HEIGHT] = cam.half_extent(1.0)
+    c[lay.CAM_WIDTH], c[lay.CAM_HEIGHT] = cam.width, cam.height
+    c[lay.CAM_ORTHOGRAPHIC] = cam.projection == "orthographic"
+    c[lay.CAM_NEAR], c[lay.CAM_FAR] = cam.near, cam.far
+    return c
 
 
 def _run_passes(xs, ys, k: KernelInputs, times: dict):

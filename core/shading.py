@@ -21,8 +21,9 @@ highlight is not scaled: it is the mirror image of a point light, which a
 reflected ray can never hit, so a mirror and a glass ball keep their
 highlights.
 
-The functions take plain numbers and tuples, so the compiled tracer runs the
-same code (see :mod:`core.optics` for the conventions on vectors).
+The functions take plain numbers and tuples and, like :mod:`core.optics`, are
+compiled into the tracer's kernels where those call them (see there for the
+conventions on vectors).
 """
 
 from __future__ import annotations

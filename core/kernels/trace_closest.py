@@ -4,6 +4,11 @@
 :data:`core.kernels.trace_layout.ACCEL_CODES`; all methods call the same
 primitive tests, so they return bit-identical hits and differ only in the
 work counted in ``counters``.
+
+:func:`closest_hit` itself is inlined where it is called, so the common case
+(the BVH) goes straight into the traversal; the other methods share one
+compiled dispatcher (:func:`_closest_other`).  Passing the many arrays of the
+scene through one more call per ray costs more than a short traversal.
 """
 
 from __future__ import annotations
@@ -12,12 +17,22 @@ from core.kernels.accel_grid import grid_closest
 from core.kernels.accel_spheres import brute_closest, spheres_closest
 from core.kernels.bvh_traverse import bvh_closest
 from core.kernels.trace_intersect import ray_shear
-from core.kernels.trace_jit import jit
+from core.kernels.trace_jit import jit, jit_inline
 
 NONE, SPHERES, GRID, GRID_SPHERES, BVH = range(5)
 
 
 @jit
+def _closest_other(method, o, d, shear, t_min, t_max, any_hit, geo, grid, scratch, counters):
+    if method in (GRID, GRID_SPHERES):
+        return grid_closest(o, d, shear, t_min, t_max, any_hit, method == GRID_SPHERES, geo, grid,
+                            scratch[:4], counters)
+    if method == SPHERES:
+        return spheres_closest(o, d, shear, t_min, t_max, any_hit, geo, counters)
+    return brute_closest(o, d, shear, t_min, t_max, any_hit, geo, counters)
+
+
+@jit_inline
 def closest_hit(method, o, d, t_min, t_max, any_hit, geo, grid, bvh, scratch, counters):
     """The closest crossing of ``o + t d`` with ``t_min <= t < t_max``; with ``any_hit`` any crossing.
 
@@ -41,9 +56,4 @@ def closest_hit(method, o, d, t_min, t_max, any_hit, geo, grid, bvh, scratch, co
     if method == BVH:
         return bvh_closest(o, d, shear, t_min, t_max, any_hit, bvh, geo[1], scratch[4], scratch[5],
                            counters)
-    if method in (GRID, GRID_SPHERES):
-        return grid_closest(o, d, shear, t_min, t_max, any_hit, method == GRID_SPHERES, geo, grid,
-                            scratch[:4], counters)
-    if method == SPHERES:
-        return spheres_closest(o, d, shear, t_min, t_max, any_hit, geo, counters)
-    return brute_closest(o, d, shear, t_min, t_max, any_hit, geo, counters)
+    return _closest_other(method, o, d, shear, t_min, t_max, any_hit, geo, grid, scratch, counters)

@@ -19,9 +19,9 @@ depth first with a small stack, so no tree is ever stored.
 
 The pixels to trace are given as column and row coordinates ``xs`` and
 ``ys``; the work is split into ``n_chunks`` interleaved sets of rows, one
-scratch area per chunk.  Each parallel pass only hands its chunks to a
+scratch area per chunk.  The parallel kernel only hands its chunks to a
 plain compiled function: numba optimises the body of a ``prange`` loop less
-well than an ordinary function (about 1.5 times slower here).
+well than an ordinary function (about 1.3 times slower here).
 """
 
 from __future__ import annotations
@@ -32,9 +32,7 @@ import numpy as np
 from numba import prange
 
 from core.kernels import trace_layout as lay
-from core.kernels.bvh_traverse import bvh_closest
 from core.kernels.trace_closest import BVH, GRID, GRID_SPHERES, closest_hit
-from core.kernels.trace_intersect import ray_shear
 from core.kernels.trace_jit import jit, jit_parallel
 from core.kernels.trace_prims import N_COUNTERS, PRIMARY, REFLECTION, REFRACTION
 from core.kernels.trace_shade import shade_hit
@@ -100,16 +98,11 @@ def make_scratch(method, n_prims, n_objects, bvh_depth):
 @jit
 def _primary_rows(c, n_chunks, cam, xs, ys, opts, geo, grid, bvh, scratch, hits, depth, count):
     method = int(opts[lay.OPT_ACCEL])
-    n_spheres, stack, stack_t = geo[1], scratch[4], scratch[5]
     for j in range(c, ys.shape[0], n_chunks):
         for i in range(xs.shape[0]):
             o, d, t_min, t_max = primary_ray(cam, xs[i], ys[j])
             count[PRIMARY] += 1
-            if method == BVH:  # the common case, without the dispatch
-                h = bvh_closest(o, d, ray_shear(d[0], d[1], d[2]), t_min, t_max, False, bvh, n_spheres,
-                                stack, stack_t, count)
-            else:
-                h = closest_hit(method, o, d, t_min, t_max, False, geo, grid, bvh, scratch, count)
+            h = closest_hit(method, o, d, t_min, t_max, False, geo, grid, bvh, scratch, count)
             hits[j, i, 0], hits[j, i, 1] = h[0], h[1]
             hits[j, i, 2], hits[j, i, 3], hits[j, i, 4] = h[2], h[3], h[4]
             if h[0] >= 0:

@@ -189,3 +189,21 @@ def test_effects_plan_follows_the_scene(qtbot, window):
     assert "reflection rays:" in text and "refraction rays" in text
     counts = window.tabs[0].widget.rays.text()
     assert "reflection 0" not in counts and "refraction 0" not in counts
+
+
+def test_cancel_stops_a_render_and_keeps_the_window_usable(qtbot, window):
+    window.activateWindow()
+    qtbot.waitUntil(window.isActiveWindow)
+    window.tabs[0].widget.accel.setCurrentIndex(window.tabs[0].widget.accel.findData("none"))
+    renderer = window.renderers[0]
+    delivered = []
+    renderer.finished.connect(delivered.append)
+    window.camera_panel.resolution.setCurrentIndex(4)  # 960 x 720: a longer render starts
+    assert renderer.busy and window.cancel_button.isEnabled()
+    qtbot.mouseClick(window.cancel_button, Qt.MouseButton.LeftButton)
+    assert not renderer.busy
+    assert "cancelled" in window.progress.format()
+    with qtbot.waitSignal(renderer.finished, timeout=RENDER_TIMEOUT_MS):
+        qtbot.keyClick(window, Qt.Key.Key_F5)  # render again on demand
+    assert len(delivered) == 1  # only the re-render: the cancelled one never arrives
+    assert window.tabs[0].widget.image.rgb.shape == (720, 960, 3)

@@ -1,0 +1,176 @@
+"""Every acceleration method finds exactly the hits of brute force; only the work differs."""
+
+import math
+
+import numpy as np
+import pytest
+
+from core import shapes
+from core.bounding_spheres import bounding_spheres
+from core.effects import effects_plan
+from core.grid import cells_on_ray
+from core.kernels.trace_closest import closest_hit
+from core.kernels.trace_layout import ACCEL_CODES
+from core.kernels.trace_prims import BOUNDS_TESTS, CELLS, N_COUNTERS, PRIM_TESTS
+from core.kernels.trace_render import make_scratch
+from core.presets_trace import bumpy_ball
+from core.raytrace import TraceSettings, kernel_inputs
+from core.scene import Material, Scene, Sphere
+from core.trace_scene import trace_scene
+
+METHODS = ACCEL_CODES  # ("none", "spheres", "grid", "grid+spheres", "bvh")
+
+
+def mixed_scene() -> Scene:
+    """Analytic spheres, closed meshes, an open quad and a non-convex prism, some overlapping."""
+    m = Material()
+    return Scene(objects=(
+        shapes.quad((0.0, 0.0, 0.0), 10.0, m),
+        shapes.box((-1.5, 0.8, -1.0), 1.6, m),
+        shapes.cone((1.0, 0.0, 1.0), 1.0, 2.2, segments=24, material=m),
+        Sphere((2.5, 0.6, -1.5), 0.6, m),
+        Sphere((-0.4, 1.4, 1.2), 0.9, m),
+        shapes.uv_sphere((0.0, 2.5, -2.5), 1.0, rings=8, segments=12, material=m),
+        shapes.notched_prism((-3.0, 0.0, 2.0), (1.5, 1.0, 1.5), 0.7, m),
+    ))
+
+
+def random_rays(rng, n, spread=6.0):
+    """Rays from all around the scene, mostly aimed into it, some from inside objects."""
+    origins = rng.normal(size=(n, 3)) * spread + [0.0, 1.0, 0.0]
+    targets = rng.normal(size=(n, 3)) * 1.5 + [0.0, 1.0, 0.0]
+    directions = targets - origins
+    directions /= np.linalg.norm(directions, axis=1, keepdims=True)
+    return origins, directions
+
+
+class Query:
+    """closest_hit from Python with one method's structures."""
+
+    def __init__(self, scene, method):
+        flat = trace_scene(scene)
+        structure, _, _ = flat.geometry.accel(method)
+        self.k = kernel_inputs(scene, TraceSettings(accel=method), effects_plan(scene), flat, structure)
+        self.scratch = make_scratch(self.k.method, flat.geometry.n_prims, len(scene.objects),
+                                    self.k.bvh_depth)
+        self.counters = np.zeros(N_COUNTERS, np.int64)
+
+    def __call__(self, o, d, t_max=math.inf, any_hit=False):
+        k = self.k
+        return closest_hit(k.method, tuple(map(float, o)), tuple(map(float, d)), 0.0, t_max, any_hit, k.geo,
+                           k.grid, k.bvh, self.scratch, self.counters)
+
+
+@pytest.fixture(scope="module")
+def scene():
+    return mixed_scene()
+
+
+def test_every_method_finds_the_same_closest_hits_as_brute_force(scene):
+    rng = np.random.default_rng(2024)
+    origins, directions = random_rays(rng, 1500)
+    queries = {m: Query(scene, m) for m in METHODS}
+    hits = 0
+    for o, d in zip(origins, directions, strict=True):
+        reference = queries["none"](o, d)
+        hits += reference[0] >= 0
+        for method in METHODS[1:]:
+            assert queries[method](o, d) == reference, method
+    assert hits > 700
+
+
+def test_every_method_agrees_on_shadow_rays(scene):
+    rng = np.random.default_rng(99)
+    origins, directions = random_rays(rng, 1000)
+    lengths = rng.uniform(0.5, 12.0, size=len(origins))
+    queries = {m: Query(scene, m) for m in METHODS}
+    blocked = 0
+    for o, d, length in zip(origins, directions, lengths, strict=True):
+        reference = queries["none"](o, d, length, any_hit=False)[0] >= 0
+        blocked += reference
+        for method in METHODS:
+            assert (queries[method](o, d, length, any_hit=True)[0] >= 0) == reference, method
+    assert 200 < blocked < 900
+
+
+def test_grid_and_bvh_do_far_fewer_tests_on_a_big_mesh():
+    scene = Scene(objects=(bumpy_ball(20_000),))
+    rng = np.random.default_rng(1)
+    origins, directions = random_rays(rng, 200, spread=5.0)
+    per_ray = {}
+    for method in METHODS:
+        q = Query(scene, method)
+        results = [q(o, d) for o, d in zip(origins, directions, strict=True)]
+        per_ray[method] = q.counters / len(origins)
+        if method == "none":
+            reference = results
+        assert results == reference, method
+    n = 2 * 100 * 99  # triangles of the ball
+    assert per_ray["none"][PRIM_TESTS] == n
+    assert per_ray["spheres"][BOUNDS_TESTS] == 1
+    assert per_ray["grid"][PRIM_TESTS] < n / 50 and per_ray["grid"][CELLS] > 1
+    assert per_ray["grid+spheres"][PRIM_TESTS] <= per_ray["grid"][PRIM_TESTS]
+    assert per_ray["bvh"][PRIM_TESTS] < n / 500 and per_ray["bvh"][BOUNDS_TESTS] < 200
+
+
+def test_bounding_spheres_contain_their_meshes(scene):
+    for b in bounding_spheres(scene):
+        obj = scene.objects[b.object_index]
+        if b.exact:
+            assert (tuple(b.center), b.radius) == (obj.center, obj.radius)
+        else:
+            assert np.linalg.norm(obj.vertices - b.center, axis=1).max() <= b.radius
+
+
+def test_bvh_boxes_contain_what_is_below_them(scene):
+    geometry = trace_scene(scene).geometry
+    bvh, _, _ = geometry.accel("bvh")
+    nodes = bvh.nodes
+    assert sorted(bvh.order.tolist()) == list(range(geometry.n_prims))
+    packed = bvh.packed.astype(np.float64)
+    assert np.all(packed[:, :3] <= nodes[:, :3]) and np.all(packed[:, 3:6] >= nodes[:, 3:6])
+    for i, node in enumerate(nodes):
+        lo, hi = node[:3], node[3:6]
+        if node[7] > 0:
+            prims = bvh.order[int(node[6]):int(node[6] + node[7])]
+            assert np.all(geometry.lo[prims] >= lo) and np.all(geometry.hi[prims] <= hi), i
+        else:
+            for child in (int(node[6]), int(node[6]) + 1):
+                assert np.all(nodes[child, :3] >= lo) and np.all(nodes[child, 3:6] <= hi), i
+    levels = bvh.levels()
+    assert levels[0] == 0 and levels.max() == bvh.depth - 1
+    assert len(bvh.node_boxes(1)) == 2
+
+
+def test_grid_lists_every_primitive_in_the_cells_it_overlaps(scene):
+    geometry = trace_scene(scene).geometry
+    grid, _, _ = geometry.accel("grid")
+    nx, ny, nz = grid.resolution
+    assert grid.cell_counts().shape == (nz, ny, nx)
+    for p in range(geometry.n_prims):
+        first = np.floor((geometry.lo[p] - grid.lo) / grid.cell_size).clip(0, grid.resolution - 1)
+        last = np.floor((geometry.hi[p] - grid.lo) / grid.cell_size).clip(0, grid.resolution - 1)
+        for i, j, k in [first.astype(int), last.astype(int)]:
+            assert p in grid.prims_in_cell(i, j, k)
+
+
+def test_cells_on_ray_walk_neighbour_to_neighbour_along_the_ray(scene):
+    grid, _, _ = trace_scene(scene).geometry.accel("grid")
+    rng = np.random.default_rng(4)
+    origins, directions = random_rays(rng, 300)
+    walked = 0
+    for o, d in zip(origins, directions, strict=True):
+        cells = cells_on_ray(grid, o, d)
+        if len(cells) == 0:
+            continue
+        walked += 1
+        steps = np.abs(np.diff(cells, axis=0)).sum(axis=1)
+        assert np.all(steps == 1)  # each step crosses one wall
+        assert np.all(cells >= 0) and np.all(cells < grid.resolution)
+        for box in grid.cell_boxes(cells):  # the ray really passes through each cell (slab test)
+            with np.errstate(divide="ignore", invalid="ignore"):
+                t0, t1 = (box[0] - o) / d, (box[1] - o) / d
+            near = np.nanmax(np.minimum(t0, t1))
+            far = np.nanmin(np.maximum(t0, t1))
+            assert near <= far + 1e-9 and far >= -1e-9
+    assert walked > 100

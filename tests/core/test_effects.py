@@ -1,0 +1,78 @@
+"""The effects plan: only what the scene calls for is simulated."""
+
+import json
+from dataclasses import replace
+
+import pytest
+
+from core import presets, presets_trace, shapes
+from core.effects import effects_plan
+from core.scene import Material, PointLight, Scene, Sphere
+
+
+def test_lecture_scene_needs_shadow_rays_and_nothing_else():
+    plan = effects_plan(presets.lecture_scene())
+    assert not plan.reflection_rays and not plan.refraction_rays and not plan.fresnel
+    assert plan.shadow_rays and plan.lights[0].blockable
+    assert not plan.transparency_pass
+    json.dumps(plan.to_dict())
+
+
+def test_mirror_and_glass_needs_everything():
+    plan = effects_plan(presets_trace.mirror_and_glass())
+    assert plan.reflection_rays and plan.refraction_rays and plan.fresnel and plan.shadow_rays
+    assert plan.transparency_pass
+
+
+def test_a_mirror_alone_needs_reflection_but_no_refraction_or_fresnel():
+    scene = replace(presets.lecture_scene(), objects=(
+        *presets.lecture_scene().objects, Sphere((2.0, 1.0, 2.0), 0.5, Material(reflectivity=0.8))))
+    plan = effects_plan(scene)
+    assert plan.reflection_rays and not plan.refraction_rays and not plan.fresnel
+
+
+def test_ray_casting_mode_never_reflects_or_refracts():
+    plan = effects_plan(presets_trace.mirror_and_glass(), mode="raycast")
+    assert not plan.reflection_rays and not plan.refraction_rays
+    assert plan.shadow_rays
+
+
+def test_no_lights_no_shadow_rays():
+    plan = effects_plan(presets_trace.no_lights())
+    assert plan.lights == () and not plan.shadow_rays
+
+
+def test_a_lone_sphere_cannot_shadow_anything():
+    plan = effects_plan(presets_trace.lone_sphere())
+    assert not plan.lights[0].blockable and not plan.shadow_rays
+
+
+def test_a_convex_mesh_alone_cannot_shadow_itself_but_a_non_convex_one_can():
+    light = (PointLight((3.0, 5.0, 4.0)),)
+    box = Scene(objects=(shapes.box((0.0, 0.0, 0.0), 1.0),), lights=light)
+    prism = Scene(objects=(shapes.notched_prism((0.0, 0.0, 0.0), 2.0, 1.0),), lights=light)
+    assert not effects_plan(box).lights[0].blockable
+    assert effects_plan(prism).lights[0].blockable
+
+
+def test_a_sphere_above_the_ground_shadows_the_ground_but_not_the_other_way_round():
+    ground = shapes.quad((0.0, 0.0, 0.0), 10.0, name="ground")
+    ball = Sphere((0.0, 1.5, 0.0), 1.0, name="ball")
+    above = Scene(objects=(ground, ball), lights=(PointLight((0.0, 6.0, 0.0)),))
+    plan = effects_plan(above)
+    assert plan.lights[0].blockable and plan.lights[0].reason.startswith("ball may shadow ground")
+    # Light off to the side, the ball far from the line to it: nothing can block.
+    apart = Scene(objects=(Sphere((-5.0, 1.0, 0.0), 1.0, name="a"), Sphere((5.0, 1.0, 0.0), 1.0, name="b")),
+                  lights=(PointLight((0.0, 1.0, 20.0)),))
+    assert not effects_plan(apart).lights[0].blockable
+
+
+@pytest.mark.parametrize("opacity, expected", [(1.0, False), (0.5, True)])
+def test_transparency_pass_follows_opacity(opacity, expected):
+    scene = Scene(objects=(Sphere((0.0, 0.0, 0.0), 1.0, Material(opacity=opacity)),))
+    assert effects_plan(scene).transparency_pass is expected
+
+
+def test_bad_mode_is_refused():
+    with pytest.raises(ValueError, match="mode"):
+        effects_plan(Scene(), mode="pathtrace")
