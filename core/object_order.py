@@ -24,7 +24,6 @@ see what each one is for.  Analytic spheres are tessellated first
 
 from __future__ import annotations
 
-import threading
 import time
 from dataclasses import asdict, dataclass
 
@@ -33,6 +32,7 @@ import numpy as np
 from core import blending, clipping, culling, flat_shading, raster, shapes, zbuffer
 from core.clipping import ClipResult, Polygons
 from core.culling import FaceCulling, ObjectCulling
+from core.kernels import WarmUp
 from core.scene import Mesh, Scene, SceneObject, Sphere
 from core.step_history import StepHistory
 
@@ -166,27 +166,16 @@ class _Stopwatch:
 
 
 DEFAULT_SETTINGS = RasterSettings()
-_compiled = threading.Event()
-_compile_lock = threading.Lock()
 
 
-def ensure_compiled() -> float:
-    """Compile (or load from numba's disk cache) the raster kernels once per process.
+def _warm_up() -> None:
+    from core.presets import zbuffer_piercing
 
-    Returns the seconds it took, 0.0 when already done, so renders can report
-    compile time apart from the time of their stages.
-    """
-    if _compiled.is_set():
-        return 0.0
-    with _compile_lock:
-        if _compiled.is_set():
-            return 0.0
-        start = time.perf_counter()
-        _compiled.set()  # the warm-up render below must not come back here
-        from core.presets import zbuffer_piercing
+    render_raster(zbuffer_piercing(), RasterSettings(record_steps=True)).history.buffers(1)
 
-        render_raster(zbuffer_piercing(), RasterSettings(record_steps=True)).history.buffers(1)
-        return time.perf_counter() - start
+
+ensure_compiled = WarmUp(_warm_up)
+"""Compile the raster kernels once per process; returns the seconds it took (0.0 later)."""
 
 
 def render_raster(scene: Scene, settings: RasterSettings = DEFAULT_SETTINGS) -> RasterResult:

@@ -35,7 +35,6 @@ differs, and the statistics count it.
 from __future__ import annotations
 
 import dataclasses
-import threading
 import time
 from dataclasses import dataclass
 
@@ -43,8 +42,8 @@ import numba
 import numpy as np
 
 from core.effects import MODES, EffectsPlan, effects_plan
+from core.kernels import WarmUp, trace_render
 from core.kernels import trace_layout as lay
-from core.kernels import trace_render
 from core.kernels.trace_prims import (
     BOUNDS_TESTS,
     CELLS,
@@ -308,32 +307,20 @@ def describe_structure(structure) -> dict:
     return {}
 
 
-_compiled = threading.Event()
-_compile_lock = threading.Lock()
+def _warm_up() -> None:
+    """Render a tiny scene so the kernels see exactly the argument types of real renders."""
+    from core.presets_trace import warm_up_scene
+    from core.ray_tree import trace_pixel
+
+    scene = warm_up_scene()
+    flat = trace_scene(scene)
+    for accel in ("grid", "bvh"):  # builds both structures, so build times exclude compiling
+        settings = TraceSettings(accel=accel)
+        structure, _, _ = flat.geometry.accel(accel)
+        inputs = kernel_inputs(scene, settings, effects_plan(scene), flat, structure)
+        _run_passes(np.arange(2.0), np.arange(2.0), inputs, {})
+        trace_pixel(scene, 1, 1, settings)
 
 
-def ensure_compiled() -> float:
-    """Compile (or load from numba's disk cache) every tracer kernel once per process.
-
-    Returns the seconds it took, 0.0 when already done.  A tiny scene is
-    rendered so that the kernels see exactly the argument types of real renders.
-    """
-    if _compiled.is_set():
-        return 0.0
-    with _compile_lock:
-        if _compiled.is_set():
-            return 0.0
-        start = time.perf_counter()
-        from core.presets_trace import warm_up_scene
-        from core.ray_tree import trace_pixel
-
-        scene = warm_up_scene()
-        flat = trace_scene(scene)
-        for accel in ("grid", "bvh"):  # builds both structures, so build times exclude compiling
-            settings = TraceSettings(accel=accel)
-            structure, _, _ = flat.geometry.accel(accel)
-            inputs = kernel_inputs(scene, settings, effects_plan(scene), flat, structure)
-            _run_passes(np.arange(2.0), np.arange(2.0), inputs, {})
-            trace_pixel(scene, 1, 1, settings)
-        _compiled.set()
-        return time.perf_counter() - start
+ensure_compiled = WarmUp(_warm_up)
+"""Compile every tracer kernel once per process; returns the seconds it took (0.0 later)."""
