@@ -36,6 +36,8 @@ class SceneView(QWidget):
         self._object_actors: list = []
         self._observer_actors: list = []
         self._overlays: dict[str, list] = {}
+        self._scene: Scene | None = None
+        self._framed_at = None  # the overview camera _frame chose, until the user moves it
         self.frustum: pv.PolyData | None = None
         self.screen: pv.PolyData | None = None
 
@@ -67,8 +69,16 @@ class SceneView(QWidget):
             )
             self._object_actors.append(actor)
         self.set_camera(scene.camera, render=False)
+        self._scene = scene
         self._frame(scene)
         self.plotter.render()
+
+    def resizeEvent(self, event):
+        """Frame the scene again for the new shape, unless the user has moved the view."""
+        super().resizeEvent(event)
+        if self._scene is not None and self.plotter.camera_position == self._framed_at:
+            self._frame(self._scene)
+            self.plotter.render()
 
     def set_camera(self, camera: Camera, render: bool = True) -> None:
         """Redraw the observer, its frustum and its screen for ``camera``."""
@@ -128,7 +138,7 @@ class SceneView(QWidget):
         radius = np.linalg.norm(points - center, axis=1).max()
         side = np.cross(cam.forward, (0.0, 1.0, 0.0))
         side = side / (np.linalg.norm(side) or 1.0)
-        direction = side + np.array([0.0, 0.7, 0.0]) - cam.forward * 0.35
+        direction = side + np.array([0.0, 0.7, 0.0]) - cam.forward * 0.6
         direction /= np.linalg.norm(direction)
         view_angle = np.radians(30.0)
         aspect = max(self.plotter.width(), 1) / max(self.plotter.height(), 1)
@@ -139,6 +149,7 @@ class SceneView(QWidget):
         ]
         self.plotter.camera.view_angle = np.degrees(view_angle)
         self.plotter.reset_camera_clipping_range()
+        self._framed_at = self.plotter.camera_position
 
     def close(self) -> bool:
         self.plotter.close()
