@@ -134,4 +134,24 @@ def run(args) -> int:
           f"{nbytes / 1e6:.1f} MB)")
     print(f"goal plain <= VTK: {'met' if med['ours'] <= med['vtk'] else 'missed'}; "
           f"recording <= 2 x VTK: {'met' if med['recording'] <= 2 * med['vtk'] else 'missed'}")
+    _step_budget(args, render_raster, RasterSettings, np)
     return 0
+
+
+def _step_budget(args, render_raster, RasterSettings, np) -> None:
+    """The step-history budget: 10,000 triangles, memory per fragment and time to rebuild a step."""
+    scene = bench_scene(10_000, args.width, args.height)
+    no_culling = RasterSettings(back_face_culling=False, record_steps=True)
+    history = render_raster(scene, no_culling).history
+    rng = np.random.default_rng(0)
+    steps = rng.integers(0, history.n_steps + 1, size=max(args.runs, 5))
+    rebuild = []
+    for k in steps:
+        t = time.perf_counter()
+        history.buffers(int(k))
+        rebuild.append(time.perf_counter() - t)
+    fragments = len(history.fragments)
+    print(f"step history, {len(scene.objects[0].triangles):,} triangles, culling off: "
+          f"{fragments:,} fragments in {history.nbytes / 1e6:.1f} MB "
+          f"({history.nbytes / max(fragments, 1):.1f} bytes per fragment); rebuilding a random step: "
+          f"median {np.median(rebuild) * 1e3:.1f} ms, worst {max(rebuild) * 1e3:.1f} ms (goal < 50 ms)")
