@@ -125,6 +125,7 @@ class MainWindow(QMainWindow):
         self.model.camera_changed.connect(self.camera_panel.set_camera)
         self.model.camera_changed.connect(self.scene_view.set_camera)
         self.model.camera_changed.connect(self._scene_edited)
+        self.model.scene_changed.connect(lambda scene: self.camera_panel.set_camera(scene.camera))
         self.model.scene_changed.connect(self.scene_view.set_scene)
         self.model.scene_changed.connect(self._scene_edited)
         self.tab_widget.currentChanged.connect(self._tab_shown)

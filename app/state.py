@@ -21,7 +21,8 @@ class SceneModel(QObject):
     Signals
     -------
     camera_changed(Camera) : the observer moved or its lens changed.
-    scene_changed(Scene) : objects, lights or background changed (a new scene).
+    scene_changed(Scene) : a new scene (objects, lights, background and its own camera);
+        listeners of the camera read it from the scene: ``camera_changed`` does not fire too.
     """
 
     camera_changed = Signal(object)
@@ -55,8 +56,5 @@ class SceneModel(QObject):
         """Replace the whole scene (for example after opening a file)."""
         if scene == self._scene:
             return
-        old_camera = self._scene.camera
         self._scene = scene
         self.scene_changed.emit(scene)
-        if scene.camera != old_camera:
-            self.camera_changed.emit(scene.camera)
