@@ -207,3 +207,19 @@ def test_cancel_stops_a_render_and_keeps_the_window_usable(qtbot, window):
         qtbot.keyClick(window, Qt.Key.Key_F5)  # render again on demand
     assert len(delivered) == 1  # only the re-render: the cancelled one never arrives
     assert window.tabs[0].widget.image.rgb.shape == (720, 960, 3)
+
+
+def test_3d_pane_shows_bounding_spheres_grid_and_the_walked_cells(qtbot, window):
+    panel = window.tabs[0].widget
+    panel.show_spheres.setChecked(True)
+    panel.show_grid.setChecked(True)
+    assert {"spheres", "grid"} <= set(window.scene_view.overlay_names())
+    spheres = window.scene_view._overlays["spheres"]
+    assert len(spheres) == len(window.model.scene.objects)  # the lecture scene: three meshes
+    cam = window.model.camera
+    with qtbot.waitSignal(window._tree_renderer.finished, timeout=RENDER_TIMEOUT_MS):
+        window.pick_ray_tree(cam.width // 2, cam.height // 2)
+    panel.show_walk.setChecked(True)
+    assert "walk" in window.scene_view.overlay_names()
+    panel.show_grid.setChecked(False)
+    assert "grid" not in window.scene_view.overlay_names()
