@@ -143,7 +143,7 @@ class SceneView(QWidget):
         view_angle = np.radians(30.0)
         aspect = max(self.plotter.width(), 1) / max(self.plotter.height(), 1)
         half = min(view_angle / 2, np.arctan(np.tan(view_angle / 2) * aspect))
-        distance = radius / np.sin(half) * 1.05
+        distance = radius / np.sin(half) * 0.8  # the bounding sphere is loose: its box corners may leave
         self.plotter.camera_position = [
             tuple(center + direction * distance), tuple(center), (0.0, 1.0, 0.0)
         ]
