@@ -91,18 +91,12 @@ class ImageOrderPanel(QWidget):
             box.toggled.connect(self.overlays_changed)
 
         form = QGridLayout()
-        form.addWidget(QLabel("Method"), 0, 0)
-        form.addWidget(self.mode, 0, 1)
-        form.addWidget(QLabel("Max depth"), 0, 2)
-        form.addWidget(self.depth, 0, 3)
-        form.addWidget(QLabel("Min weight"), 0, 4)
-        form.addWidget(self.min_weight, 0, 5)
-        form.addWidget(QLabel("Acceleration"), 1, 0)
-        form.addWidget(self.accel, 1, 1)
-        form.addWidget(QLabel("Ray offset"), 1, 2)
-        form.addWidget(self.offset, 1, 3)
-        form.addWidget(QLabel("ε"), 1, 4)
-        form.addWidget(self.epsilon, 1, 5)
+        rows = [[("Method", self.mode), ("Max depth", self.depth), ("Min weight", self.min_weight)],
+                [("Acceleration", self.accel), ("Ray offset", self.offset), ("ε", self.epsilon)]]
+        for r, row in enumerate(rows):
+            for c, (label, widget) in enumerate(row):
+                form.addWidget(QLabel(label), r, 2 * c)
+                form.addWidget(widget, r, 2 * c + 1)
         shows = QWidget()
         sl = QGridLayout(shows)
         sl.setContentsMargins(0, 0, 0, 0)
