@@ -13,7 +13,7 @@ import numpy as np
 
 from core import multiview
 from core.object_order import RasterSettings, render_raster
-from core.raytrace import TraceSettings, render_trace
+from core.raytrace import TraceSettings, merge_band_stats, render_trace
 from core.scene import Scene
 from views.image_grid import ImageGrid
 from views.image_order_panel import ImageOrderPanel
@@ -67,24 +67,6 @@ class ImageOrderTab:
         return (f"{w} × {h} pixels · {stats['rays']['total']:,} rays · "
                 + " · ".join(f"{k} {_ms(v)}" for k, v in times.items() if k != "total")
                 + f" · total {_ms(times['total'])}")
-
-
-def merge_band_stats(parts: list[dict]) -> dict:
-    """One image's statistics from its bands': counts and times add up, per-ray figures are redone."""
-    merged = {**parts[0], "rays": {}, "times": {}, "accel": dict(parts[0]["accel"])}
-    for part in parts:
-        for group in ("rays", "times"):
-            for key, value in part[group].items():
-                merged[group][key] = merged[group].get(key, 0) + value
-    for key in ("prim_tests", "bounds_tests", "cells_visited"):
-        merged["accel"][key] = sum(p["accel"][key] for p in parts)
-    rays = max(merged["rays"]["total"], 1)
-    merged["accel"]["tests_per_ray"] = merged["accel"]["prim_tests"] / rays
-    merged["accel"]["bounds_tests_per_ray"] = merged["accel"]["bounds_tests"] / rays
-    merged["accel"]["cells_per_ray"] = merged["accel"]["cells_visited"] / rays
-    merged["rows"] = [0, parts[-1]["rows"][1]]
-    merged["pixels_traced"] = sum(p["pixels_traced"] for p in parts)
-    return merged
 
 
 class ObjectOrderTab:

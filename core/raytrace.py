@@ -324,3 +324,21 @@ def _warm_up() -> None:
 
 ensure_compiled = WarmUp(_warm_up)
 """Compile every tracer kernel once per process; returns the seconds it took (0.0 later)."""
+
+
+def merge_band_stats(parts: list[dict]) -> dict:
+    """One image's statistics from its bands': counts and times add up, per-ray figures are redone."""
+    merged = {**parts[0], "rays": {}, "times": {}, "accel": dict(parts[0]["accel"])}
+    for part in parts:
+        for group in ("rays", "times"):
+            for key, value in part[group].items():
+                merged[group][key] = merged[group].get(key, 0) + value
+    for key in ("prim_tests", "bounds_tests", "cells_visited"):
+        merged["accel"][key] = sum(p["accel"][key] for p in parts)
+    rays = max(merged["rays"]["total"], 1)
+    merged["accel"]["tests_per_ray"] = merged["accel"]["prim_tests"] / rays
+    merged["accel"]["bounds_tests_per_ray"] = merged["accel"]["bounds_tests"] / rays
+    merged["accel"]["cells_per_ray"] = merged["accel"]["cells_visited"] / rays
+    merged["rows"] = [0, parts[-1]["rows"][1]]
+    merged["pixels_traced"] = sum(p["pixels_traced"] for p in parts)
+    return merged

@@ -10,7 +10,7 @@ from core import presets, presets_trace, shapes
 from core.kernels.trace_render import primary_ray
 from core.presets_trace import GLASS, MIRROR, translated
 from core.ray_tree import trace_pixel
-from core.raytrace import TraceSettings, camera_array, render_trace
+from core.raytrace import TraceSettings, camera_array, merge_band_stats, render_trace
 from core.scene import Material, PointLight, Scene, Sphere
 
 
@@ -341,3 +341,15 @@ def test_an_empty_scene_is_all_background(accel):
     assert np.all(image.object_index == -1) and np.all(np.isinf(image.depth))
     np.testing.assert_array_equal(image.color, np.broadcast_to(scene.background, (6, 8, 3)))
     assert trace_pixel(scene, 3, 3, TraceSettings(accel=accel)).hit is None
+
+
+def test_band_statistics_add_up_to_the_whole_image():
+    scene = presets_trace.mirror_and_glass()
+    scene = replace(scene, camera=scene.camera.replace(width=64, height=48))
+    whole = render_trace(scene).stats
+    bands = [render_trace(scene, rows=(a, min(a + 16, 48))).stats for a in range(0, 48, 16)]
+    merged = merge_band_stats(bands)
+    assert merged["rays"] == whole["rays"]
+    for key in ("prim_tests", "bounds_tests", "cells_visited", "tests_per_ray"):
+        assert merged["accel"][key] == pytest.approx(whole["accel"][key])
+    assert merged["pixels_traced"] == whole["pixels_traced"] and merged["rows"] == [0, 48]
