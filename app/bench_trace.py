@@ -4,7 +4,8 @@ Three figures, each the median of several runs after a warm-up run:
 
 1. primary-ray throughput of our BVH on a bumpy ball of about 100,000
    triangles filling most of a 640 x 480 view (closest hit with ``t`` and
-   barycentrics per ray);
+   barycentrics per ray; four-wide tree, four boxes and four triangles per
+   vector instruction, see :mod:`core.bvh`);
 2. the same rays with Intel Embree through the ``embreex`` package (an
    optional extra: ``pip install -e '.[bench]'``).  ``run()`` of embreex
    traces on the calling thread only, so the rays are split over one Python
@@ -97,7 +98,7 @@ def run(args) -> int:
     ours_rate = n_rays / seconds["ours"] / 1e6
     per_ray = counters[0] / n_rays
     prims = hits[..., 0].reshape(-1)
-    print(f"ours   (numba BVH, float64): {seconds['ours'] * 1e3:7.1f} ms  {ours_rate:6.2f} Mrays/s  "
+    print(f"ours   (numba 4-wide BVH, float64): {seconds['ours'] * 1e3:7.1f} ms  {ours_rate:6.2f} Mrays/s  "
           f"({(prims >= 0).mean():.0%} of rays hit; per ray {per_ray[BOUNDS_TESTS]:.1f} box and "
           f"{per_ray[PRIM_TESTS]:.1f} triangle tests)")
 

@@ -13,7 +13,16 @@ The tree is built top-down with the binned surface area heuristic
 next to each other (a node stores the index of its first child), so one fetch
 from memory brings both boxes.  Leaves point into ``order``, and the
 primitive rows are copied in that order, so the triangles of one leaf lie
-next to each other in memory.  Traversal: :mod:`core.kernels.bvh_traverse`.
+next to each other in memory.
+
+The binary tree is what the app shows.  The traversal reads a four-wide
+form of it (:func:`core.kernels.bvh_build.widen`): every wide node holds the
+boxes of four children side by side, so one step tests all four at once
+with vector instructions (:mod:`core.kernels.bvh_slabs`) and a ray takes
+about half as many steps as in the binary tree.  The triangles of each leaf
+are copied in groups of four, tested four at a time the same way
+(:mod:`core.kernels.trace_triangle4`).  Traversal:
+:mod:`core.kernels.bvh_traverse`.
 """
 
 from __future__ import annotations
@@ -22,6 +31,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from core.kernels.bvh_build import WIDE_HI, WIDE_LO, WIDE_REFS, WIDE_SIZE, WIDTH, group_triangles, widen
 from core.kernels.bvh_build import build_bvh as _build
 
 
@@ -39,22 +49,32 @@ class Bvh:
     order : (P,) int64, primitive indices in leaf order.
     rows : (P, 9) float64, the primitive rows in leaf order.
     depth : int, number of levels.
-    packed : (N, 8) float32
-        What the traversal reads: the boxes rounded *outwards* to float32 and
-        the two integers of each node stored as int32 in columns 6 and 7 (read
-        through ``packed.view(np.int32)``).  A node takes 32 bytes, so the two
-        children of a node share one 64-byte cache line; the primitive tests
-        stay in float64, so the hits are exactly those of the float64 boxes.
+    wide : (M, WIDE_SIZE) float32
+        What the traversal reads: the four-wide tree (root first), per node
+        the children's boxes rounded *outwards* to float32 and their
+        references as int32 (read through ``wide.view(np.int32)``): a wide
+        node's index, or ``~leaf`` for a leaf.  The primitive tests stay in
+        float64, so the hits are exactly those of the float64 boxes.
+    leaves : (L, 3) int64
+        Per leaf of the wide tree: its first entry in ``order``, its number of
+        primitives, and its first triangle group (-1 when it holds an
+        analytic sphere: then its primitives are tested one by one).
+    groups : (G, GROUP_SIZE) float64
+        The leaves' triangles in groups of four (see
+        :func:`~core.kernels.bvh_build.group_triangles`).
     """
 
     nodes: np.ndarray
     order: np.ndarray
     rows: np.ndarray
     depth: int
-    packed: np.ndarray
+    wide: np.ndarray
+    leaves: np.ndarray
+    groups: np.ndarray
 
     def kernel_tuple(self) -> tuple:
-        return self.packed, self.packed.view(np.int32), self.order, self.rows
+        return (self.wide.reshape(-1), self.wide.view(np.int32), self.leaves, self.groups.reshape(-1),
+                self.order, self.rows)
 
     @property
     def is_leaf(self) -> np.ndarray:
@@ -82,23 +102,28 @@ class Bvh:
 
 def empty_kernel_tuple() -> tuple:
     """The kernels' stand-in when no BVH is used."""
-    packed = np.zeros((0, 8), np.float32)
-    return packed, packed.view(np.int32), np.zeros(0, np.int64), np.zeros((0, 9))
+    wide = np.zeros((0, WIDE_SIZE), np.float32)
+    return (wide.reshape(-1), wide.view(np.int32), np.zeros((0, 3), np.int64), np.zeros(0),
+            np.zeros(0, np.int64), np.zeros((0, 9)))
 
 
-def pack_nodes(nodes: np.ndarray) -> np.ndarray:
-    """The float32 form of ``nodes`` (see :attr:`Bvh.packed`)."""
-    lo, hi = nodes[:, 0:3], nodes[:, 3:6]
+def pack_wide(boxes: np.ndarray, refs: np.ndarray) -> np.ndarray:
+    """The float32 rows of :attr:`Bvh.wide` from :func:`~core.kernels.bvh_build.widen`'s output."""
+    lo, hi = boxes[:, 0:3, :], boxes[:, 3:6, :]
     lo32, hi32 = lo.astype(np.float32), hi.astype(np.float32)
     lo32 = np.where(lo32 > lo, np.nextafter(lo32, np.float32(-np.inf)), lo32)
     hi32 = np.where(hi32 < hi, np.nextafter(hi32, np.float32(np.inf)), hi32)
-    packed = np.zeros((len(nodes), 8), np.float32)
-    packed[:, 0:3], packed[:, 3:6] = lo32, hi32
-    packed.view(np.int32)[:, 6:8] = nodes[:, 6:8].astype(np.int32)
-    return packed
+    wide = np.zeros((len(boxes), WIDE_SIZE), np.float32)
+    wide[:, WIDE_LO:WIDE_HI] = lo32.reshape(len(boxes), WIDE_HI - WIDE_LO)
+    wide[:, WIDE_HI:WIDE_REFS] = hi32.reshape(len(boxes), WIDE_REFS - WIDE_HI)
+    wide.view(np.int32)[:, WIDE_REFS:WIDE_REFS + WIDTH] = refs
+    return wide
 
 
 def build_bvh(geometry) -> Bvh:
     """Build the BVH over every primitive of ``geometry`` (a :class:`core.trace_scene.Geometry`)."""
     nodes, order, depth = _build(geometry.lo, geometry.hi)
-    return Bvh(nodes, order, np.ascontiguousarray(geometry.rows[order]), int(depth), pack_nodes(nodes))
+    rows = np.ascontiguousarray(geometry.rows[order])
+    boxes, refs, leaves = widen(nodes)
+    groups = group_triangles(leaves, rows, order, geometry.n_spheres)
+    return Bvh(nodes, order, rows, int(depth), pack_wide(boxes, refs), leaves, groups)

@@ -16,6 +16,13 @@ becomes a leaf when splitting would cost more than testing its primitives
 and it holds at most ``MAX_LEAF`` of them; a node whose centroids all
 coincide (no plane separates them) is a leaf, or, above ``MAX_LEAF``, split
 in the middle of its list.
+
+:func:`widen` then collapses the binary tree into the four-wide one the
+traversal reads: a wide node takes the two children of a binary node and
+keeps replacing its largest inner child by that child's two children until
+it has four (Wald et al.'s collapse, as Embree builds its wide trees).
+:func:`group_triangles` lays out the triangles of every leaf in groups of
+four for the vector triangle test (:mod:`core.kernels.trace_triangle4`).
 """
 
 from __future__ import annotations
@@ -23,6 +30,7 @@ from __future__ import annotations
 import numpy as np
 
 from core.kernels.trace_jit import jit
+from core.kernels.trace_triangle4 import AXIS_STRIDE, CORNER_STRIDE, GROUP_SIZE, LANES
 
 BINS = 16
 #: Cost of visiting a node (testing its children's two boxes), relative to one
@@ -30,6 +38,11 @@ BINS = 16
 TRAVERSAL_COST = 2.0
 #: A node with more primitives than this is always split.
 MAX_LEAF = 8
+#: Children of a node of the wide tree.
+WIDTH = 4
+#: Columns of a row of the packed wide tree (:attr:`core.bvh.Bvh.wide`): the children's ``lo``
+#: sides (x, y, z rows of WIDTH), their ``hi`` sides, their references (int32), padding to 128 bytes.
+WIDE_LO, WIDE_HI, WIDE_REFS, WIDE_SIZE = 0, 3 * WIDTH, 6 * WIDTH, 8 * WIDTH
 
 
 @jit
@@ -170,3 +183,121 @@ def build_bvh(lo, hi):
         n_nodes += 2
         depth += 2
     return nodes[:n_nodes].copy(), order, max_level
+
+
+@jit
+def widen(nodes):
+    """Collapse the binary tree ``nodes`` (as returned by :func:`build_bvh`) into a four-wide tree.
+
+    Returns
+    -------
+    boxes : (M, 6, WIDTH) float64
+        Per wide node, rows ``lo x, lo y, lo z, hi x, hi y, hi z`` of its
+        children's boxes; unused slots hold the empty box (``lo = inf``,
+        ``hi = -inf``), which every ray misses.  The root is node 0.
+    refs : (M, WIDTH) int64
+        Per child: the index of a wide node (>= 0), or ``~leaf`` for a leaf.
+    leaves : (L, 3) int64
+        Per leaf: its first entry in ``order``, its number of primitives, and
+        a third column for :func:`group_triangles` to fill.
+    """
+    n_inner = 0
+    for i in range(nodes.shape[0]):
+        if nodes[i, 7] <= 0:
+            n_inner += 1
+    m = max(n_inner, 1)
+    boxes = np.empty((m, 6, WIDTH))
+    boxes[:, 0:3, :] = np.inf
+    boxes[:, 3:6, :] = -np.inf
+    refs = np.zeros((m, WIDTH), np.int64)
+    leaves = np.zeros((nodes.shape[0] - n_inner, 3), np.int64)
+    if nodes.shape[0] == 0:
+        return boxes[:0], refs[:0], leaves
+    pending = np.empty((m, 2), np.int64)  # (binary node, wide node)
+    pending[0] = (0, 0)
+    top = 1
+    n_wide = 1
+    n_leaves = 0
+    kids = np.empty(WIDTH, np.int64)
+    while top > 0:
+        top -= 1
+        binary, wide = pending[top, 0], pending[top, 1]
+        if nodes[binary, 7] > 0:  # the whole tree is one leaf
+            kids[0] = binary
+            n_kids = 1
+        else:
+            kids[0] = int(nodes[binary, 6])
+            kids[1] = kids[0] + 1
+            n_kids = 2
+        while n_kids < WIDTH:
+            largest, largest_area = -1, -1.0
+            for c in range(n_kids):
+                node = nodes[kids[c]]
+                if node[7] <= 0:
+                    area = _area(node[0], node[1], node[2], node[3], node[4], node[5])
+                    if area > largest_area:
+                        largest, largest_area = c, area
+            if largest < 0:
+                break
+            first = int(nodes[kids[largest], 6])
+            kids[largest] = first
+            kids[n_kids] = first + 1
+            n_kids += 1
+        for c in range(n_kids):
+            node = nodes[kids[c]]
+            for row in range(6):
+                boxes[wide, row, c] = node[row]
+            if node[7] > 0:
+                refs[wide, c] = ~n_leaves
+                leaves[n_leaves, 0] = int(node[6])
+                leaves[n_leaves, 1] = int(node[7])
+                n_leaves += 1
+            else:
+                refs[wide, c] = n_wide
+                pending[top] = (kids[c], n_wide)
+                top += 1
+                n_wide += 1
+    return boxes[:n_wide].copy(), refs[:n_wide].copy(), leaves
+
+
+@jit
+def group_triangles(leaves, rows, order, n_spheres):
+    """Copy the triangles of every leaf into groups of ``LANES`` for the vector test.
+
+    Fills ``leaves[:, 2]`` with the leaf's first group, or -1 for a leaf that
+    holds an analytic sphere (its primitives are tested one by one).  A leaf's
+    last group is padded with copies of its last triangle; the traversal
+    ignores the padding lanes.
+
+    Parameters
+    ----------
+    leaves : (L, 3) int64 from :func:`widen`.
+    rows : (P, 9) float64, the primitive rows in leaf order; ``order`` their primitive indices.
+    n_spheres : int, primitives below this index are spheres.
+
+    Returns
+    -------
+    (G, GROUP_SIZE) float64, laid out as :mod:`core.kernels.trace_triangle4` reads them.
+    """
+    n_groups = 0
+    for leaf in range(leaves.shape[0]):
+        first, count = leaves[leaf, 0], leaves[leaf, 1]
+        leaves[leaf, 2] = n_groups
+        for k in range(first, first + count):
+            if order[k] < n_spheres:
+                leaves[leaf, 2] = -1
+        if leaves[leaf, 2] >= 0:
+            n_groups += (count + LANES - 1) // LANES
+    groups = np.empty((n_groups, GROUP_SIZE))
+    for leaf in range(leaves.shape[0]):
+        first, count, group = leaves[leaf, 0], leaves[leaf, 1], leaves[leaf, 2]
+        if group < 0:
+            continue
+        for j in range(0, count, LANES):
+            for lane in range(LANES):
+                k = first + min(j + lane, count - 1)
+                for corner in range(3):
+                    for axis in range(3):
+                        groups[group + j // LANES, corner * CORNER_STRIDE + axis * AXIS_STRIDE + lane] = \
+                            rows[k, 3 * corner + axis]
+    return groups

@@ -1,56 +1,50 @@
 """Compiled traversal of the bounding volume hierarchy (see :mod:`core.bvh`).
 
-A ray walks the tree from the root with a small stack.  At an inner node it
-tests the boxes of both children, goes on into the nearer child it hits and
-pushes the farther one together with the distance where the ray enters it;
-a pushed subtree whose entry lies beyond the closest hit found meanwhile is
-dropped unvisited.  At a leaf it tests the primitives.  Boxes are only tested
-against the part of the ray before the closest hit so far, so far subtrees
-fall away quickly.
+A ray walks the four-wide tree from the root with a small stack.  At an
+inner node it tests the boxes of all four children at once
+(:func:`~core.kernels.bvh_slabs.slab_test4`), goes on into the nearest child
+it hits and pushes the others, farther first, each with the distance where
+the ray enters it; a pushed subtree whose entry lies beyond the closest hit
+found meanwhile is dropped unvisited.  At a leaf it tests the triangles four
+at a time (:func:`~core.kernels.trace_triangle4.triangle_test4`), or a leaf
+with a sphere primitive by primitive.  Boxes are only tested against the
+part of the ray before the closest hit so far, so far subtrees fall away
+quickly.
+
+:func:`bvh_closest` is inlined into the render's primary-ray loop, where a
+call passing the tree's arrays would cost about a fifth of the traversal
+itself; every other caller goes through one compiled copy
+(:mod:`core.kernels.trace_closest`).
 """
 
 from __future__ import annotations
 
 import math
 
-from core.kernels.trace_jit import jit
+from core.kernels.bvh_build import WIDE_HI, WIDE_LO, WIDE_REFS, WIDE_SIZE, WIDTH
+from core.kernels.bvh_slabs import slab_test4
+from core.kernels.trace_intersect import sphere_hit, triangle_hit
+from core.kernels.trace_jit import jit, jit_inline
 from core.kernels.trace_prims import BOUNDS_TESTS, PRIM_TESTS, no_hit, prim_hit
+from core.kernels.trace_triangle4 import GROUP_SIZE, LANES, UNSURE, triangle_test4
+
+_OTHER_SIDE = WIDE_LO + WIDE_HI
 
 
-@jit
-def box_entry(nodes, node, ox, oy, oz, ix, iy, iz, near, t_min, t_max):
-    """Where the ray enters the box ``(lo, hi)`` of ``nodes[node]`` in ``[t_min, t_max]`` (``inf``: misses).
-
-    ``ix, iy, iz`` are ``1 / d``; ``near`` holds the columns (0-5) of the
-    box's near and far sides per axis, ``(nx, ny, nz, fx, fy, fz)`` (``lo`` is
-    near where ``d >= 0``, ``hi`` where ``d < 0``).  A NaN from ``0 * inf`` (a
-    ray lying in a slab's plane) fails every comparison and leaves the bounds
-    unchanged (pbrt's rule); boxes are padded when built, so rounding never
-    loses a touching ray.
-    """
-    nx, ny, nz, fx, fy, fz = near
-    tx0 = (nodes[node, nx] - ox) * ix
-    tx1 = (nodes[node, fx] - ox) * ix
-    ty0 = (nodes[node, ny] - oy) * iy
-    ty1 = (nodes[node, fy] - oy) * iy
-    tz0 = (nodes[node, nz] - oz) * iz
-    tz1 = (nodes[node, fz] - oz) * iz
-    if tx0 > t_min:
-        t_min = tx0
-    if ty0 > t_min:
-        t_min = ty0
-    if tz0 > t_min:
-        t_min = tz0
-    if tx1 < t_max:
-        t_max = tx1
-    if ty1 < t_max:
-        t_max = ty1
-    if tz1 < t_max:
-        t_max = tz1
-    return t_min if t_min <= t_max else math.inf
+@jit_inline
+def _push(stack, stack_t, bottom, top, ref, t):
+    """Put ``ref`` entered at ``t`` on the stack above ``bottom`` so that nearer entries lie higher."""
+    at = top
+    while at > bottom and stack_t[at - 1] < t:
+        stack[at] = stack[at - 1]
+        stack_t[at] = stack_t[at - 1]
+        at -= 1
+    stack[at] = ref
+    stack_t[at] = t
+    return top + 1
 
 
-@jit
+@jit_inline
 def bvh_closest(o, d, shear, t_min, t_max, any_hit, bvh, n_spheres, stack, stack_t, counters):
     """The closest crossing with ``t_min <= t < t_max`` (or any, for shadow rays), through the BVH.
 
@@ -59,63 +53,101 @@ def bvh_closest(o, d, shear, t_min, t_max, any_hit, bvh, n_spheres, stack, stack
     o, d : (3,) tuples, the ray; ``shear`` its :func:`~core.kernels.trace_intersect.ray_shear`.
     t_min, t_max : float, the admissible range of ``t``.
     any_hit : bool, stop at the first crossing found (shadow rays).
-    bvh : tuple ``(boxes, links, order, rows)`` of :meth:`core.bvh.Bvh.kernel_tuple`.
+    bvh : tuple ``(wide, refs, leaves, groups, order, rows)`` of :meth:`core.bvh.Bvh.kernel_tuple`.
     n_spheres : int, primitives below this index are spheres.
-    stack : (D,) int64 and ``stack_t`` (D,) float64 scratch, ``D >=`` the tree's depth.
+    stack : (D,) int64 and ``stack_t`` (D,) float64 scratch, ``D >= 3 * depth + 2``.
     counters : (N_COUNTERS,) int64, box and primitive tests are added.
 
     Returns
     -------
     (prim, t, b0, b1, b2) : the primitive index (-1 for none) and the crossing.
     """
-    nodes, links, order, rows = bvh
-    best = no_hit()
-    if nodes.shape[0] == 0:
-        return best
+    wide, refs, leaves, groups, order, rows = bvh
+    if wide.shape[0] == 0:
+        return no_hit()
     ox, oy, oz = o
+    kx, ky, kz, sx, sy, sz = shear
+    okx, oky, okz = o[kx], o[ky], o[kz]
     ix, iy, iz = 1.0 / d[0], 1.0 / d[1], 1.0 / d[2]
-    nx = 3 if ix < 0.0 else 0
-    ny = 4 if iy < 0.0 else 1
-    nz = 5 if iz < 0.0 else 2
-    near = (nx, ny, nz, 3 - nx, 5 - ny, 7 - nz)
+    # Rows of the near and far sides per axis: lo is near where the direction is positive.
+    side_x = WIDE_HI if ix < 0.0 else WIDE_LO
+    side_y = WIDE_HI if iy < 0.0 else WIDE_LO
+    side_z = WIDE_HI if iz < 0.0 else WIDE_LO
+    nx, ny, nz = side_x, side_y + WIDTH, side_z + 2 * WIDTH
+    fx, fy, fz = _OTHER_SIDE - side_x, _OTHER_SIDE - side_y + WIDTH, _OTHER_SIDE - side_z + 2 * WIDTH
     best_t = t_max
-    boxes = 1
+    best_k = -1
+    boxes = 0
     tests = 0
     top = 0
     node = 0
-    enter = box_entry(nodes, 0, ox, oy, oz, ix, iy, iz, near, t_min, best_t)
+    enter = t_min  # the root's own box is never tested, its children's are
     while True:
         if enter < best_t:
-            info = links[node, 7]
-            if info > 0:
-                first = links[node, 6]
-                for k in range(first, first + info):
-                    tests += 1
-                    prim = order[k]
-                    t, b0, b1, b2 = prim_hit(rows, k, prim < n_spheres, o, d, shear, t_min, best_t)
-                    if t < best_t:
-                        best_t = t
-                        best = (prim, t, b0, b1, b2)
-                        if any_hit:
-                            top = 0
-                            break
+            if node >= 0:
+                at = node * WIDE_SIZE
+                entries = slab_test4(wide, at + nx, at + ny, at + nz, at + fx, at + fy, at + fz, ox, oy, oz,
+                                     ix, iy, iz, t_min, best_t)
+                boxes += WIDTH
+                near, near_t = 0, entries[0]
+                for c in range(1, WIDTH):
+                    if entries[c] < near_t:
+                        near, near_t = c, entries[c]
+                if near_t < math.inf:
+                    bottom = top
+                    for c in range(WIDTH):
+                        if c != near and entries[c] < math.inf:
+                            top = _push(stack, stack_t, bottom, top, refs[node, WIDE_REFS + c], entries[c])
+                    node, enter = refs[node, WIDE_REFS + near], near_t
+                    continue
             else:
-                a = links[node, 6]
-                b = a + 1
-                ta = box_entry(nodes, a, ox, oy, oz, ix, iy, iz, near, t_min, best_t)
-                tb = box_entry(nodes, b, ox, oy, oz, ix, iy, iz, near, t_min, best_t)
-                boxes += 2
-                if tb < ta:
-                    a, b, ta, tb = b, a, tb, ta
-                if tb < math.inf:
-                    stack[top] = b
-                    stack_t[top] = tb
-                    top += 1
-                node, enter = a, ta
-                continue
+                first, count, group = leaves[~node, 0], leaves[~node, 1], leaves[~node, 2]
+                tests += count
+                if group >= 0:
+                    for j in range(0, count, LANES):
+                        start = (group + j // LANES) * GROUP_SIZE
+                        lanes = triangle_test4(groups, start, kx, ky, kz, okx, oky, okz, sx, sy, sz, t_min,
+                                               best_t)
+                        for lane in range(min(LANES, count - j)):
+                            t = lanes[lane]
+                            if t == UNSURE:
+                                t = triangle_hit(o, shear, rows, first + j + lane, t_min, best_t)[0]
+                            if t < best_t:
+                                best_t, best_k = t, first + j + lane
+                else:
+                    best_t, best_k = _leaf_one_by_one(rows, order, n_spheres, first, count, o, d, shear,
+                                                      t_min, best_t, best_k)
+                if any_hit and best_k >= 0:
+                    top = 0
         if top == 0:
-            counters[BOUNDS_TESTS] += boxes
-            counters[PRIM_TESTS] += tests
-            return best
+            break
         top -= 1
         node, enter = stack[top], stack_t[top]
+    counters[BOUNDS_TESTS] += boxes
+    counters[PRIM_TESTS] += tests
+    if best_k < 0:
+        return no_hit()
+    prim = order[best_k]
+    if prim < n_spheres:
+        return _sphere_crossing(rows, best_k, prim, o, d, t_min)
+    t, b0, b1, b2 = triangle_hit(o, shear, rows, best_k, t_min, math.inf)
+    return prim, t, b0, b1, b2
+
+
+# The rare cases stay out of line, so that the hot loop above stays small.
+@jit
+def _leaf_one_by_one(rows, order, n_spheres, first, count, o, d, shear, t_min, best_t, best_k):
+    """Test the primitives of a leaf holding a sphere one by one: ``(best_t, best_k)`` updated."""
+    for k in range(first, first + count):
+        t = prim_hit(rows, k, order[k] < n_spheres, o, d, shear, t_min, best_t)[0]
+        if t < best_t:
+            best_t, best_k = t, k
+    return best_t, best_k
+
+
+@jit
+def _sphere_crossing(rows, k, prim, o, d, t_min):
+    """The hit record of sphere ``rows[k]`` (primitive ``prim``), known to be crossed after ``t_min``."""
+    t = sphere_hit(o[0], o[1], o[2], d[0], d[1], d[2], rows[k, 0], rows[k, 1], rows[k, 2], rows[k, 3], t_min,
+                   math.inf)
+    return prim, t, 0.0, 0.0, 0.0

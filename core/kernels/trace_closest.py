@@ -5,10 +5,9 @@
 primitive tests, so they return bit-identical hits and differ only in the
 work counted in ``counters``.
 
-:func:`closest_hit` itself is inlined where it is called, so the common case
-(the BVH) goes straight into the traversal; the other methods share one
-compiled dispatcher (:func:`_closest_other`).  Passing the many arrays of the
-scene through one more call per ray costs more than a short traversal.
+:func:`closest_hit` itself is inlined where it is called; the traversal of
+each method is compiled once and called from there (the render's primary
+rays inline the BVH traversal, see :mod:`core.kernels.trace_render`).
 """
 
 from __future__ import annotations
@@ -20,6 +19,11 @@ from core.kernels.trace_intersect import ray_shear
 from core.kernels.trace_jit import jit, jit_inline
 
 NONE, SPHERES, GRID, GRID_SPHERES, BVH = range(5)
+
+
+@jit
+def _bvh_closest(o, d, shear, t_min, t_max, any_hit, bvh, n_spheres, stack, stack_t, counters):
+    return bvh_closest(o, d, shear, t_min, t_max, any_hit, bvh, n_spheres, stack, stack_t, counters)
 
 
 @jit
@@ -54,6 +58,6 @@ def closest_hit(method, o, d, t_min, t_max, any_hit, geo, grid, bvh, scratch, co
     """
     shear = ray_shear(d[0], d[1], d[2])
     if method == BVH:
-        return bvh_closest(o, d, shear, t_min, t_max, any_hit, bvh, geo[1], scratch[4], scratch[5],
-                           counters)
+        return _bvh_closest(o, d, shear, t_min, t_max, any_hit, bvh, geo[1], scratch[4], scratch[5],
+                            counters)
     return _closest_other(method, o, d, shear, t_min, t_max, any_hit, geo, grid, scratch, counters)

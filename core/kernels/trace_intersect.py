@@ -29,8 +29,8 @@ from core.kernels.trace_jit import jit, jit_inline
 
 _UNIT_ROUNDOFF = 2.0**-53
 #: A rounded ``a*b - c*d`` is trusted when bigger than this times ``|ab| + |cd|``.
-_EDGE_ERROR = 4 * _UNIT_ROUNDOFF
-_UNDERFLOW = 2.0**-1070
+EDGE_ERROR = 4 * _UNIT_ROUNDOFF
+UNDERFLOW = 2.0**-1070
 #: Veltkamp's splitter 2^27 + 1: cuts a double into two halves of 26 bits.
 _SPLITTER = 134217729.0
 
@@ -61,7 +61,7 @@ def difference_of_products(a, b, c, d):
     left = a * b
     right = c * d
     value = left - right
-    if abs(value) > _EDGE_ERROR * (abs(left) + abs(right)) + _UNDERFLOW:
+    if abs(value) > EDGE_ERROR * (abs(left) + abs(right)) + UNDERFLOW:
         return value
     l_hi, l_lo = two_product(a, b)
     r_hi, r_lo = two_product(c, d)
@@ -105,7 +105,7 @@ def sphere_hit(ox, oy, oz, dx, dy, dz, cx, cy, cz, r, t_min, t_max):
     return math.inf
 
 
-@jit
+@jit_inline
 def ray_shear(dx, dy, dz):
     """The per-ray constants of the watertight test: ``(kx, ky, kz, sx, sy, sz)``.
 

@@ -32,8 +32,10 @@ import numpy as np
 from numba import prange
 
 from core.kernels import trace_layout as lay
+from core.kernels.bvh_traverse import bvh_closest
 from core.kernels.trace_closest import BVH, GRID, GRID_SPHERES, closest_hit
-from core.kernels.trace_jit import jit, jit_parallel
+from core.kernels.trace_intersect import ray_shear
+from core.kernels.trace_jit import jit, jit_inline, jit_parallel
 from core.kernels.trace_prims import N_COUNTERS, PRIMARY, REFLECTION, REFRACTION
 from core.kernels.trace_shade import shade_hit
 
@@ -42,7 +44,7 @@ _COUNTER_STRIDE = 8
 PRIMARY_STAGE, SHADE_STAGE, SECONDARY_STAGE = range(3)
 
 
-@jit
+@jit_inline
 def primary_ray(cam, x, y):
     """The ray through the centre of pixel ``(x, y)``: ``(origin, direction, t_min, t_max)``.
 
@@ -73,7 +75,7 @@ def primary_ray(cam, x, y):
     return (ex, ey, ez), d, near / along, far / along
 
 
-@jit
+@jit_inline
 def view_depth(cam, o, d, t):
     """Distance along the viewing axis of the point ``o + t d`` (camera space, positive ahead)."""
     f = lay.CAM_FORWARD
@@ -86,7 +88,7 @@ def view_depth(cam, o, d, t):
 def make_scratch(method, n_prims, n_objects, bvh_depth):
     """Per-thread work arrays for :func:`core.kernels.trace_closest.closest_hit`."""
     grid = method in (GRID, GRID_SPHERES)
-    stack_size = bvh_depth + 2 if method == BVH else 1
+    stack_size = 3 * bvh_depth + 2 if method == BVH else 1
     return (np.zeros(n_prims if grid else 1, np.int64),
             np.zeros(n_objects if grid else 1, np.int64),
             np.zeros((n_objects if grid else 1, 2)),
@@ -98,11 +100,19 @@ def make_scratch(method, n_prims, n_objects, bvh_depth):
 @jit
 def _primary_rows(c, n_chunks, cam, xs, ys, opts, geo, grid, bvh, scratch, hits, depth, count):
     method = int(opts[lay.OPT_ACCEL])
+    n_spheres, stack, stack_t = geo[1], scratch[4], scratch[5]
     for j in range(c, ys.shape[0], n_chunks):
         for i in range(xs.shape[0]):
             o, d, t_min, t_max = primary_ray(cam, xs[i], ys[j])
             count[PRIMARY] += 1
-            h = closest_hit(method, o, d, t_min, t_max, False, geo, grid, bvh, scratch, count)
+            # BVH rays go straight to the traversal.  Through closest_hit, every array of every
+            # structure would be bound anew for each ray, and numba updates the reference count of
+            # each array it binds: a quarter of a primary ray's time.
+            if method == BVH:
+                h = bvh_closest(o, d, ray_shear(d[0], d[1], d[2]), t_min, t_max, False, bvh, n_spheres, stack,
+                                stack_t, count)
+            else:
+                h = closest_hit(method, o, d, t_min, t_max, False, geo, grid, bvh, scratch, count)
             hits[j, i, 0], hits[j, i, 1] = h[0], h[1]
             hits[j, i, 2], hits[j, i, 3], hits[j, i, 4] = h[2], h[3], h[4]
             if h[0] >= 0:

@@ -1,6 +1,7 @@
 """Every acceleration method finds exactly the hits of brute force; only the work differs."""
 
 import math
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -113,6 +114,20 @@ def test_grid_and_bvh_do_far_fewer_tests_on_a_big_mesh():
     assert per_ray["bvh"][PRIM_TESTS] < n / 500 and per_ray["bvh"][BOUNDS_TESTS] < 200
 
 
+def test_bvh_rays_aimed_at_edges_and_vertices_from_inside_a_closed_mesh_always_hit():
+    """Watertight through the BVH: its four-at-a-time triangle test must defer exactly these rays."""
+    ball = shapes.uv_sphere((0.0, 0.0, 0.0), 1.0, rings=12, segments=16, material=Material())
+    rng = np.random.default_rng(5)
+    bumpy = replace(ball, vertices=ball.vertices * (1 + 0.05 * rng.standard_normal((len(ball.vertices), 1))))
+    query = Query(Scene(objects=(bumpy,)), "bvh")
+    corners = bumpy.vertices[bumpy.triangles]
+    for _ in range(400):
+        o = rng.normal(size=3) * 0.2
+        tri = corners[rng.integers(len(corners))]
+        target = tri[0] if rng.random() < 0.5 else (tri[0] + tri[1]) / 2
+        assert query(o, target - o)[0] >= 0
+
+
 def test_bounding_spheres_contain_their_meshes(scene):
     for b in bounding_spheres(scene):
         obj = scene.objects[b.object_index]
@@ -127,8 +142,6 @@ def test_bvh_boxes_contain_what_is_below_them(scene):
     bvh, _, _ = geometry.accel("bvh")
     nodes = bvh.nodes
     assert sorted(bvh.order.tolist()) == list(range(geometry.n_prims))
-    packed = bvh.packed.astype(np.float64)
-    assert np.all(packed[:, :3] <= nodes[:, :3]) and np.all(packed[:, 3:6] >= nodes[:, 3:6])
     for i, node in enumerate(nodes):
         lo, hi = node[:3], node[3:6]
         if node[7] > 0:
@@ -140,6 +153,43 @@ def test_bvh_boxes_contain_what_is_below_them(scene):
     levels = bvh.levels()
     assert levels[0] == 0 and levels.max() == bvh.depth - 1
     assert len(bvh.node_boxes(1)) == 2
+
+
+def test_wide_bvh_reaches_every_primitive_once_inside_its_float32_boxes(scene):
+    """The four-wide float32 form the traversal reads holds the same primitives, in boxes rounded outwards,
+    and each leaf's triangle groups hold exactly its triangles."""
+    geometry = trace_scene(scene).geometry
+    bvh, _, _ = geometry.accel("bvh")
+    boxes = bvh.wide[:, :24].astype(np.float64).reshape(-1, 2, 3, 4)  # node, lo/hi, axis, child
+    refs = bvh.wide.view(np.int32)[:, 24:28]
+    reached = []
+    pending = [0]
+    while pending:
+        node = pending.pop()
+        for c in range(4):
+            lo, hi = boxes[node, 0, :, c], boxes[node, 1, :, c]
+            if np.all(lo > hi):  # an unused slot
+                continue
+            ref = int(refs[node, c])
+            if ref >= 0:
+                child = boxes[ref]
+                used = ~np.all(child[0] > child[1], axis=0)
+                assert np.all(child[0][:, used] >= lo[:, None]) and np.all(child[1][:, used] <= hi[:, None])
+                pending.append(ref)
+                continue
+            first, count, group = bvh.leaves[~ref]
+            prims = bvh.order[first:first + count]
+            assert 0 < count <= 8
+            assert np.all(geometry.lo[prims] >= lo) and np.all(geometry.hi[prims] <= hi)
+            reached.extend(prims.tolist())
+            if np.any(prims < geometry.n_spheres):
+                assert group == -1
+                continue
+            # groups[g] holds corner, axis, lane: triangle j of the leaf is lane j % 4 of group j // 4.
+            lanes = bvh.groups[group:group + (count + 3) // 4].reshape(-1, 3, 3, 4).transpose(0, 3, 1, 2)
+            assert np.array_equal(lanes.reshape(-1, 9)[:count], geometry.rows[prims])
+    assert sorted(reached) == list(range(geometry.n_prims))
+    assert len(bvh.wide) < len(bvh.nodes) / 2
 
 
 def test_grid_lists_every_primitive_in_the_cells_it_overlaps(scene):

@@ -5,11 +5,19 @@ from fractions import Fraction
 
 import numpy as np
 import pytest
+from numba import njit
 
 from core import shapes
 from core.intersect_sphere import intersect_sphere
 from core.intersect_triangle import intersect_triangle
 from core.kernels.trace_intersect import difference_of_products, ray_shear, sphere_hit, triangle_hit
+from core.kernels.trace_triangle4 import UNSURE, triangle_test4
+
+
+@njit
+def four_at_a_time(o, d, groups, start):
+    kx, ky, kz, sx, sy, sz = ray_shear(d[0], d[1], d[2])
+    return triangle_test4(groups, start, kx, ky, kz, o[kx], o[ky], o[kz], sx, sy, sz, 0.0, math.inf)
 
 
 def kernel_triangle(o, d, tri):
@@ -98,3 +106,32 @@ def test_rays_from_inside_a_closed_mesh_always_hit():
         shear = ray_shear(*map(float, d))
         best = min(triangle_hit(o, shear, rows, k, 0.0, math.inf)[0] for k in range(len(rows)))
         assert best < math.inf
+
+
+def test_four_triangles_at_a_time_give_the_scalar_test_bit_for_bit_or_defer_to_it():
+    """The vector test either computes exactly the scalar test's t (inf for a miss) or marks the
+    lane UNSURE; rays aimed exactly at vertices and edge midpoints need the exact fallback."""
+    ball = shapes.uv_sphere((0.0, 0.0, 0.0), 1.0, rings=12, segments=16)
+    rng = np.random.default_rng(9)
+    corners = (ball.vertices * (1 + 0.05 * rng.standard_normal((len(ball.vertices), 1))))[ball.triangles]
+    corners = corners[: len(corners) // 4 * 4]
+    rows = corners.reshape(-1, 9)
+    # Group g, corner v, axis a, lane q at g * 36 + v * 12 + a * 4 + q.
+    groups = np.ascontiguousarray(corners.reshape(-1, 4, 3, 3).transpose(0, 2, 3, 1)).reshape(-1)
+    unsure = decided = 0
+    for _ in range(300):
+        o = rng.normal(size=3) * 0.2
+        g = int(rng.integers(len(rows) // 4))
+        tri = corners[4 * g + int(rng.integers(4))]
+        target = (tri[0], (tri[0] + tri[1]) / 2, tri.mean(axis=0))[int(rng.integers(3))]
+        d = target - o
+        lanes = four_at_a_time(tuple(o), tuple(d), groups, g * 36)
+        shear = ray_shear(*map(float, d))
+        for q in range(4):
+            scalar = triangle_hit(tuple(o), shear, rows, 4 * g + q, 0.0, math.inf)[0]
+            if lanes[q] == UNSURE:
+                unsure += 1
+            else:
+                decided += 1
+                assert lanes[q] == scalar or (math.isinf(lanes[q]) and math.isinf(scalar))
+    assert unsure > 0 and decided > 3 * unsure
