@@ -79,7 +79,6 @@ def run(args) -> int:
     k = kernel_inputs(scene, settings, effects_plan(scene), flat, bvh)
     xs = np.arange(float(args.width))
     ys = np.arange(float(args.height))
-    n_chunks = min(args.height, 4 * numba.get_num_threads())
     shape = (args.height, args.width)
     hits, depth = np.zeros((*shape, 5)), np.zeros(shape)
     color, children = np.zeros((*shape, 3)), np.zeros((*shape, 2, trace_layout.CHILD_SIZE))
@@ -88,7 +87,7 @@ def run(args) -> int:
     def ours():
         counters[:] = [trace_render.render_pass(trace_render.PRIMARY_STAGE, k.cam, xs, ys, hits, depth, color,
                                                 children, k.materials, k.lights, k.opts, k.geo, k.grid, k.bvh,
-                                                k.bvh_depth, n_chunks)]
+                                                k.bvh_depth, numba.get_num_threads())]
 
     print(f"mesh: {len(mesh.triangles)} triangles; BVH build {build_s:.3f} s, {len(bvh.nodes)} nodes, "
           f"depth {bvh.depth}")

@@ -240,7 +240,6 @@ def camera_array(cam) -> np.ndarray:
 
 def _run_passes(xs, ys, k: KernelInputs, times: dict):
     """The three compiled stages; fills ``times`` and returns colour, depth, hits and counters."""
-    n_chunks = max(1, min(len(ys), 4 * numba.get_num_threads()))
     ny, nx = len(ys), len(xs)
     hits = np.zeros((ny, nx, 5))
     depth = np.full((ny, nx), np.inf)
@@ -254,7 +253,7 @@ def _run_passes(xs, ys, k: KernelInputs, times: dict):
         if stage != trace_render.SECONDARY_STAGE or np.any(spawned):
             counters += trace_render.render_pass(stage, k.cam, xs, ys, hits, depth, color, children,
                                                  k.materials, k.lights, k.opts, k.geo, k.grid, k.bvh,
-                                                 k.bvh_depth, n_chunks)
+                                                 k.bvh_depth, numba.get_num_threads())
         times[name] = time.perf_counter() - start
     return color, depth, hits, counters
 

@@ -18,10 +18,11 @@ times its local colour.  The passes add those terms as the rays are traced,
 depth first with a small stack, so no tree is ever stored.
 
 The pixels to trace are given as column and row coordinates ``xs`` and
-``ys``; the work is split into ``n_chunks`` interleaved sets of rows, one
-scratch area per chunk.  The parallel kernel only hands its chunks to a
-plain compiled function: numba optimises the body of a ``prange`` loop less
-well than an ordinary function (about 1.3 times slower here).
+``ys``.  Each thread gets one scratch area and takes bands of neighbouring
+rows until none are left (:mod:`core.kernels.trace_bands`).  The parallel
+kernel only starts one worker per thread, a plain compiled function: numba
+optimises the body of a ``prange`` loop less well than an ordinary function
+(about 1.3 times slower here).
 """
 
 from __future__ import annotations
@@ -33,6 +34,7 @@ from numba import prange
 
 from core.kernels import trace_layout as lay
 from core.kernels.bvh_traverse import bvh_closest
+from core.kernels.trace_bands import BAND_ROWS, take_band
 from core.kernels.trace_closest import BVH, GRID, GRID_SPHERES, closest_hit
 from core.kernels.trace_intersect import ray_shear
 from core.kernels.trace_jit import jit, jit_inline, jit_parallel
@@ -98,10 +100,10 @@ def make_scratch(method, n_prims, n_objects, bvh_depth):
 
 
 @jit
-def _primary_rows(c, n_chunks, cam, xs, ys, opts, geo, grid, bvh, scratch, hits, depth, count):
+def _primary_rows(first, last, cam, xs, ys, opts, geo, grid, bvh, scratch, hits, depth, count):
     method = int(opts[lay.OPT_ACCEL])
     n_spheres, stack, stack_t = geo[1], scratch[4], scratch[5]
-    for j in range(c, ys.shape[0], n_chunks):
+    for j in range(first, last):
         for i in range(xs.shape[0]):
             o, d, t_min, t_max = primary_ray(cam, xs[i], ys[j])
             count[PRIMARY] += 1
@@ -125,9 +127,9 @@ def _as_hit(row):
 
 
 @jit
-def _shade_rows(c, n_chunks, cam, xs, ys, hits, color, children, materials, lights, opts, geo, grid, bvh,
+def _shade_rows(first, last, cam, xs, ys, hits, color, children, materials, lights, opts, geo, grid, bvh,
                 scratch, rec, count):
-    for j in range(c, ys.shape[0], n_chunks):
+    for j in range(first, last):
         for i in range(xs.shape[0]):
             if hits[j, i, 0] < 0:
                 for a in range(3):
@@ -144,13 +146,13 @@ def _shade_rows(c, n_chunks, cam, xs, ys, hits, color, children, materials, ligh
 
 
 @jit
-def _secondary_rows(c, n_chunks, color, children, materials, lights, opts, geo, grid, bvh, scratch, rec,
+def _secondary_rows(first, last, color, children, materials, lights, opts, geo, grid, bvh, scratch, rec,
                     count):
     method = int(opts[lay.OPT_ACCEL])
     max_depth = int(opts[lay.OPT_MAX_DEPTH])
     t_start = 0.0 if opts[lay.OPT_SCALED_OFFSET] > 0.0 else opts[lay.OPT_EPSILON]
     stack = np.empty((2 * max_depth + 4, lay.CHILD_SIZE + 2))
-    for j in range(c, color.shape[0], n_chunks):
+    for j in range(first, last):
         for i in range(color.shape[1]):
             top = 0
             for kind in range(2):
@@ -187,23 +189,28 @@ def _secondary_rows(c, n_chunks, color, children, materials, lights, opts, geo, 
 
 
 @jit
-def _chunk(stage, c, n_chunks, cam, xs, ys, hits, depth, color, children, materials, lights, opts, geo, grid,
-           bvh, bvh_depth, count):
+def _worker(stage, queue, cam, xs, ys, hits, depth, color, children, materials, lights, opts, geo, grid, bvh,
+            bvh_depth, count):
     scratch = make_scratch(int(opts[lay.OPT_ACCEL]), geo[0].shape[0], materials.shape[0], bvh_depth)
     rec = np.empty(lay.record_size(lights.shape[0]))
-    if stage == PRIMARY_STAGE:
-        _primary_rows(c, n_chunks, cam, xs, ys, opts, geo, grid, bvh, scratch, hits, depth, count)
-    elif stage == SHADE_STAGE:
-        _shade_rows(c, n_chunks, cam, xs, ys, hits, color, children, materials, lights, opts, geo, grid, bvh,
-                    scratch, rec, count)
-    else:
-        _secondary_rows(c, n_chunks, color, children, materials, lights, opts, geo, grid, bvh, scratch, rec,
-                        count)
+    while True:
+        first = take_band(queue) * BAND_ROWS
+        if first >= ys.shape[0]:
+            break
+        last = min(first + BAND_ROWS, ys.shape[0])
+        if stage == PRIMARY_STAGE:
+            _primary_rows(first, last, cam, xs, ys, opts, geo, grid, bvh, scratch, hits, depth, count)
+        elif stage == SHADE_STAGE:
+            _shade_rows(first, last, cam, xs, ys, hits, color, children, materials, lights, opts, geo, grid,
+                        bvh, scratch, rec, count)
+        else:
+            _secondary_rows(first, last, color, children, materials, lights, opts, geo, grid, bvh, scratch,
+                            rec, count)
 
 
 @jit_parallel
 def render_pass(stage, cam, xs, ys, hits, depth, color, children, materials, lights, opts, geo, grid, bvh,
-                bvh_depth, n_chunks):
+                bvh_depth, n_workers):
     """Run one stage of the render over the pixels ``xs`` x ``ys``, in parallel; return its counters.
 
     Parameters
@@ -221,14 +228,16 @@ def render_pass(stage, cam, xs, ys, hits, depth, color, children, materials, lig
     xs, ys : (nx,) and (ny,) float64, pixel columns and rows.
     geo, grid, bvh : kernel tuples of the geometry and its structures.
     bvh_depth : int, depth of the BVH (size of the traversal stack).
-    n_chunks : int, the rows are dealt out to this many interleaved chunks.
+    n_workers : int, threads to share the bands (``numba.get_num_threads()``; asked
+        by the caller, as a compiled call to it would keep this kernel out of the cache).
 
     Returns
     -------
     (N_COUNTERS,) int64, rays by kind and work done.
     """
-    counters = np.zeros((n_chunks, _COUNTER_STRIDE), np.int64)
-    for c in prange(n_chunks):
-        _chunk(stage, c, n_chunks, cam, xs, ys, hits, depth, color, children, materials, lights, opts, geo,
-               grid, bvh, bvh_depth, counters[c])
+    queue = np.zeros(1, np.int64)
+    counters = np.zeros((n_workers, _COUNTER_STRIDE), np.int64)
+    for w in prange(n_workers):
+        _worker(stage, queue, cam, xs, ys, hits, depth, color, children, materials, lights, opts, geo, grid,
+                bvh, bvh_depth, counters[w])
     return counters.sum(axis=0)[:N_COUNTERS]

@@ -3,6 +3,7 @@
 import json
 from dataclasses import replace
 
+import numba
 import numpy as np
 import pytest
 
@@ -285,6 +286,19 @@ def test_a_band_of_rows_equals_those_rows_of_the_whole_image():
     assert band.color.shape == (17, 64, 3) and band.rows == (10, 27)
     assert np.array_equal(band.color, whole.color[10:27]) and np.array_equal(band.depth, whole.depth[10:27])
     assert band.stats["rays"]["primary"] == 17 * 64
+
+
+def test_the_image_does_not_depend_on_how_many_threads_share_it():
+    scene = small(presets_trace.mirror_and_glass(), width=50, height=37)  # 37 rows: the last band is short
+    threads = numba.get_num_threads()
+    numba.set_num_threads(1)
+    try:
+        alone = render_trace(scene)
+    finally:
+        numba.set_num_threads(threads)
+    shared = render_trace(scene)
+    assert np.array_equal(shared.color, alone.color) and np.array_equal(shared.depth, alone.depth)
+    assert shared.stats["rays"] == alone.stats["rays"] and shared.stats["rays"]["primary"] == 50 * 37
 
 
 def test_a_coarse_image_repeats_one_ray_per_block():
