@@ -146,7 +146,8 @@ class MainWindow(QMainWindow):
         self._render_current()
         self.progress.setFormat("compiling the renderers on first use (numba caches them), "
                                 "then rendering… %p%")
-        self.resize(1400, 860)
+        available = self.screen().availableGeometry()
+        self.resize(min(1400, available.width()), min(860, available.height()))
 
     # ----------------------------------------------------------------- menus
     def _action(self, menu, text, slot, shortcut=None, tip=""):

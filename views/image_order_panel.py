@@ -91,8 +91,9 @@ class ImageOrderPanel(QWidget):
             box.toggled.connect(self.overlays_changed)
 
         form = QGridLayout()
-        rows = [[("Method", self.mode), ("Max depth", self.depth), ("Min weight", self.min_weight)],
-                [("Acceleration", self.accel), ("Ray offset", self.offset), ("ε", self.epsilon)]]
+        rows = [[("Method", self.mode), ("Acceleration", self.accel)],
+                [("Max depth", self.depth), ("Min weight", self.min_weight)],
+                [("Ray offset", self.offset), ("ε", self.epsilon)]]
         for r, row in enumerate(rows):
             for c, (label, widget) in enumerate(row):
                 form.addWidget(QLabel(label), r, 2 * c)
@@ -102,9 +103,11 @@ class ImageOrderPanel(QWidget):
         sl.setContentsMargins(0, 0, 0, 0)
         sl.addWidget(QLabel("Show in 3D:"), 0, 0)
         for i, box in enumerate((self.show_spheres, self.show_grid, self.show_walk)):
-            sl.addWidget(box, 0, i + 1)
-        sl.setColumnStretch(4, 1)
-        form.addWidget(shows, 2, 0, 1, 6)
+            sl.addWidget(box, i // 2, 1 + i % 2)
+        sl.setColumnStretch(3, 1)
+        form.addWidget(shows, len(rows), 0, 1, 4)
+        form.setColumnStretch(1, 1)
+        form.setColumnStretch(3, 1)
 
         self.image = ImageView()
         self.rays = QLabel()
@@ -145,7 +148,6 @@ class ImageOrderPanel(QWidget):
         split.setStretchFactor(0, 3)
         split.setStretchFactor(1, 2)
         split.setSizes([420, 260])
-        self.details.setMinimumHeight(120)
         layout = QVBoxLayout(self)
         layout.setContentsMargins(6, 6, 6, 6)
         layout.addLayout(form)

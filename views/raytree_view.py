@@ -12,7 +12,7 @@ from __future__ import annotations
 import numpy as np
 import pyvista as pv
 from PySide6.QtGui import QColor
-from PySide6.QtWidgets import QHBoxLayout, QLabel, QTreeWidget, QTreeWidgetItem, QWidget
+from PySide6.QtWidgets import QGridLayout, QLabel, QTreeWidget, QTreeWidgetItem, QWidget
 
 from core.ray_tree import RayNode
 
@@ -62,19 +62,22 @@ def ray_tree_parts(root: RayNode, miss_length: float) -> list[tuple[pv.PolyData,
 
 
 class RayKindLegend(QWidget):
-    """One coloured swatch per kind of ray."""
+    """One coloured swatch per kind of ray, three to a line (so a narrow pane keeps them all)."""
+
+    PER_LINE = 3
 
     def __init__(self, parent: QWidget | None = None):
         super().__init__(parent)
-        layout = QHBoxLayout(self)
+        layout = QGridLayout(self)
         layout.setContentsMargins(0, 0, 0, 0)
-        for kind, color in [*KIND_COLORS.items(), ("blocked shadow", BLOCKED_COLOR)]:
+        for i, (kind, color) in enumerate([*KIND_COLORS.items(), ("blocked shadow", BLOCKED_COLOR)]):
             swatch = QLabel()
             swatch.setFixedSize(22, 8)
             swatch.setStyleSheet(f"background: {color}; border: 1px solid #333;")
-            layout.addWidget(swatch)
-            layout.addWidget(QLabel(kind))
-        layout.addStretch(1)
+            row, column = divmod(i, self.PER_LINE)
+            layout.addWidget(swatch, row, 2 * column)
+            layout.addWidget(QLabel(kind), row, 2 * column + 1)
+        layout.setColumnStretch(2 * self.PER_LINE, 1)
 
 
 def _rgb(c) -> str:

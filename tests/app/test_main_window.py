@@ -5,7 +5,7 @@ import json
 import numpy as np
 import pytest
 from PySide6.QtCore import Qt
-from PySide6.QtWidgets import QMessageBox
+from PySide6.QtWidgets import QApplication, QMessageBox
 
 from app.main_window import MainWindow
 from core import presets
@@ -223,3 +223,15 @@ def test_3d_pane_shows_bounding_spheres_grid_and_the_walked_cells(qtbot, window)
     assert "walk" in window.scene_view.overlay_names()
     panel.show_grid.setChecked(False)
     assert "grid" not in window.scene_view.overlay_names()
+
+
+def test_the_whole_window_fits_a_1280_by_720_laptop_screen_also_with_larger_text(window):
+    # Qt cannot shrink a window below its minimum size: a wider minimum would push panels off the screen.
+    for larger in (False, True):
+        if larger:
+            window.scale_text(1.25)
+            QApplication.processEvents()  # the controls are refitted once the new font has arrived
+        hint = window.minimumSizeHint()
+        assert hint.width() <= 1280 and hint.height() <= 720, (larger, hint)
+    available = window.screen().availableGeometry()
+    assert window.width() <= available.width() and window.height() <= available.height()
