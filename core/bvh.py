@@ -2,8 +2,8 @@
 
 The lecture's bounding spheres put one simple solid around each object; a
 BVH carries the idea on: a box around the whole scene holds two smaller
-boxes, each holds two smaller ones, down to leaves of a few primitives
-(triangles and analytic spheres alike).  A ray that misses a box skips
+boxes, each holds two smaller ones, down to leaves of at most four
+primitives (triangles and analytic spheres alike).  A ray that misses a box skips
 everything inside it, so a ray typically tests a few dozen boxes and a handful
 of triangles instead of every triangle.
 
@@ -20,7 +20,7 @@ form of it (:func:`core.kernels.bvh_build.widen`): every wide node holds the
 boxes of four children side by side, so one step tests all four at once
 with vector instructions (:mod:`core.kernels.bvh_slabs`) and a ray takes
 about half as many steps as in the binary tree.  The triangles of each leaf
-are copied in groups of four, tested four at a time the same way
+are copied side by side into one group of four, tested at once the same way
 (:mod:`core.kernels.trace_triangle4`).  Traversal:
 :mod:`core.kernels.bvh_traverse`.
 """
