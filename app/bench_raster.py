@@ -1,7 +1,7 @@
 """``python -m app bench raster``: our object-order pipeline against VTK's renderer, frame for frame.
 
 Renders one mesh of about 100,000 triangles (a bumpy sphere) at 640 x 480
-with :func:`core.object_order.render_raster` and with VTK (pyvista off
+with :func:`core.object_order.pipeline.render_raster` and with VTK (pyvista off
 screen, multisampling off, colour and depth read back from the render
 window), from the same camera, in the same process.  The runs are
 interleaved (ours, VTK, ours recording, ours, ...) so that a noisy machine
@@ -24,9 +24,10 @@ import time
 COLD_COMPILE = """
 import time
 t = time.perf_counter()
-from core import object_order, presets
-result = object_order.render_raster(presets.zbuffer_piercing(),
-                                    object_order.RasterSettings(record_steps=True))
+from core.object_order import pipeline
+from core import presets
+result = pipeline.render_raster(presets.zbuffer_piercing(),
+                                pipeline.RasterSettings(record_steps=True))
 result.history.buffers(1)
 print(time.perf_counter() - t)
 """
@@ -87,8 +88,8 @@ def run(args) -> int:
     import numpy as np
     import pyvista as pv
 
-    from core.kernels import raster as kernels
-    from core.object_order import RasterSettings, render_raster
+    from core.object_order.kernels import raster as kernels
+    from core.object_order.pipeline import RasterSettings, render_raster
     from views import vtk_convert
 
     scene = bench_scene(args.triangles, args.width, args.height)

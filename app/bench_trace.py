@@ -5,7 +5,7 @@ Three figures, each the median of several runs after a warm-up run:
 1. primary-ray throughput of our BVH on a bumpy ball of about 100,000
    triangles filling most of a 640 x 480 view (closest hit with ``t`` and
    barycentrics per ray; four-wide tree, four boxes and four triangles per
-   vector instruction, see :mod:`core.bvh`);
+   vector instruction, see :mod:`core.image_order.bvh`);
 2. the same rays with Intel Embree through the ``embreex`` package (an
    optional extra: ``pip install -e '.[bench]'``).  ``run()`` of embreex
    traces on the calling thread only, so the rays are split over one Python
@@ -55,12 +55,12 @@ def run(args) -> int:
     import numpy as np
 
     from core import presets, presets_trace
-    from core.effects import effects_plan
-    from core.kernels import trace_layout, trace_render
-    from core.kernels.trace_prims import BOUNDS_TESTS, PRIM_TESTS
-    from core.raytrace import TraceSettings, ensure_compiled, kernel_inputs, render_trace
+    from core.image_order.effects_plan import effects_plan
+    from core.image_order.flat_scene import TraceSettings, kernel_inputs, trace_scene
+    from core.image_order.kernels import layout, render
+    from core.image_order.kernels.primitives import BOUNDS_TESTS, PRIM_TESTS
+    from core.image_order.ray_tracing import ensure_compiled, render_trace
     from core.scene import PointLight, Scene
-    from core.trace_scene import trace_scene
 
     size = (args.width, args.height)
     n_rays = args.width * args.height
@@ -81,11 +81,11 @@ def run(args) -> int:
     ys = np.arange(float(args.height))
     shape = (args.height, args.width)
     hits, depth = np.zeros((*shape, 5)), np.zeros(shape)
-    color, children = np.zeros((*shape, 3)), np.zeros((*shape, 2, trace_layout.CHILD_SIZE))
+    color, children = np.zeros((*shape, 3)), np.zeros((*shape, 2, layout.CHILD_SIZE))
     counters = []
 
     def ours():
-        counters[:] = [trace_render.render_pass(trace_render.PRIMARY_STAGE, k.cam, xs, ys, hits, depth, color,
+        counters[:] = [render.render_pass(render.PRIMARY_STAGE, k.cam, xs, ys, hits, depth, color,
                                                 children, k.materials, k.lights, k.opts, k.geo, k.grid, k.bvh,
                                                 k.bvh_depth, numba.get_num_threads())]
 
@@ -122,10 +122,10 @@ def run(args) -> int:
         whitted = TraceSettings(mode="raytrace", max_depth=5, accel="bvh")
         stats = {}
 
-        def render(frame=frame, whitted=whitted, stats=stats):
+        def whitted_frame(frame=frame, whitted=whitted, stats=stats):
             stats.update(render_trace(frame, whitted).stats)
 
-        frame_s = _median_time(render, args.repeats)
+        frame_s = _median_time(whitted_frame, args.repeats)
         rays = stats["rays"]
         print(f"Whitted frame, {title}, depth 5: {frame_s * 1e3:7.1f} ms (goal < 250 ms); "
               f"{rays['total']} rays = {rays['primary']} primary + {rays['shadow']} shadow + "

@@ -9,14 +9,11 @@ from __future__ import annotations
 import argparse
 import sys
 
-
-class UsageError(Exception):
-    """A bad command-line argument; the message names the argument."""
+from app import bench_raster, bench_trace, intersect_command, render_command
+from app.usage import UsageError
 
 
 def build_parser() -> argparse.ArgumentParser:
-    from app import bench_raster, bench_trace, intersect_command, render_command
-
     benchmarks = {"raster": bench_raster, "trace": bench_trace}
 
     parser = argparse.ArgumentParser(

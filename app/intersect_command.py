@@ -18,9 +18,9 @@ import json
 import math
 import re
 
-from app.cli import UsageError
-from core import intersect_sphere as sphere_mod
-from core import intersect_triangle as triangle_mod
+from app.usage import UsageError
+from core.image_order import intersect_sphere as sphere_mod
+from core.image_order import intersect_triangle as triangle_mod
 
 VEC = "X,Y,Z"
 

@@ -35,14 +35,15 @@ from app.mesh_files import read_mesh
 from app.state import SceneModel
 from app.tabs import CompareTab, FourViewsTab, ImageOrderTab, ObjectOrderTab
 from app.workers import Renderer
-from core import multiview, presets, scene_file
-from core.bounding_spheres import bounding_spheres
+from core import presets, scene_file
 from core.camera import camera_problems
-from core.grid import cells_on_ray
+from core.image_order.bounding_spheres import bounding_spheres
+from core.image_order.flat_scene import trace_scene
+from core.image_order.grid_of_cuboids import cells_on_ray
+from core.image_order.ray_tree import trace_pixel
+from core.object_order import three_views
 from core.presets_trace import PRESETS_TRACE
-from core.ray_tree import trace_pixel
 from core.scene import Scene
-from core.trace_scene import trace_scene
 from views import raytree_view, vtk_convert
 from views.camera_panel import CameraPanel
 from views.raytree_view import KIND_COLORS
@@ -343,7 +344,7 @@ class MainWindow(QMainWindow):
         if self.current_tab != 0:
             return
         self.tabs[0].widget.show_tree(x, y, root)
-        low, high = multiview.scene_bounds(self.model.scene)
+        low, high = three_views.scene_bounds(self.model.scene)
         miss_length = 0.6 * float(np.linalg.norm(high - low)) + 1.0
         self.scene_view.set_overlay("ray-tree", raytree_view.ray_tree_parts(root, miss_length))
         self._show_accel_overlays()

@@ -39,7 +39,7 @@ def add_parser(sub) -> None:
 
 
 def _camera_overrides(args) -> dict:
-    from app.cli import UsageError
+    from app.usage import UsageError
 
     changes = {}
     for key in ("width", "height"):
@@ -67,11 +67,11 @@ def run(args) -> int:
         return 2
     scene = replace(scene, camera=scene.camera.replace(**changes))
     if args.mode == "raster":
-        from core.object_order import RasterSettings, render_raster
+        from core.object_order.pipeline import RasterSettings, render_raster
 
         result = render_raster(scene, RasterSettings())
     else:
-        from core.raytrace import TraceSettings, render_trace
+        from core.image_order.ray_tracing import TraceSettings, render_trace
 
         settings = TraceSettings(mode=args.mode, max_depth=args.max_depth, accel=args.accel)
         result = render_trace(scene, settings)

@@ -11,9 +11,9 @@ from dataclasses import replace
 
 import numpy as np
 
-from core import multiview
-from core.object_order import RasterSettings, render_raster
-from core.raytrace import TraceSettings, merge_band_stats, render_trace
+from core.image_order.ray_tracing import TraceSettings, merge_band_stats, render_trace
+from core.object_order import three_views
+from core.object_order.pipeline import RasterSettings, render_raster
 from core.scene import Scene
 from views.image_grid import ImageGrid
 from views.image_order_panel import ImageOrderPanel
@@ -105,7 +105,7 @@ class FourViewsTab:
 
     def job(self, scene: Scene):
         cam = scene.camera
-        cameras = {**multiview.orthographic_views(scene, cam.width, cam.height), "observer": cam}
+        cameras = {**three_views.orthographic_views(scene, cam.width, cam.height), "observer": cam}
 
         def run(cancelled, progress):
             images = {}

@@ -3,7 +3,7 @@
 :func:`lecture_scene` is the scene of the lecture's second question: "a cube
 and a cone placed on an opaque plane, wherein the cone partially obscures the
 cube from the observer's point of view".  The others illustrate the object
-order pipeline (:mod:`core.object_order`): the z-buffer figure, piercing
+order pipeline (:mod:`core.object_order.pipeline`): the z-buffer figure, piercing
 polygons, back-face culling on a convex and a non-convex solid, frustum
 culling, and transparency.  :data:`PRESETS` lists them all for a menu.
 """

@@ -2,7 +2,7 @@
 
 One ray per pixel, every object and every triangle tested, the closest hit
 wins, Lambert shading without shadows.  It shares no code with the compiled
-tracer (:mod:`core.raytrace`) or the rasterizer (:mod:`core.object_order`),
+tracer (:mod:`core.image_order.ray_tracing`) or the rasterizer (:mod:`core.object_order.pipeline`),
 so agreeing with it means something.
 """
 

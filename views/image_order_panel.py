@@ -25,8 +25,8 @@ from PySide6.QtWidgets import (
     QWidget,
 )
 
-from core.ray_tree import RayNode
-from core.raytrace import TraceSettings
+from core.image_order.ray_tracing import TraceSettings
+from core.image_order.ray_tree import RayNode
 from views.image_view import ImageView
 from views.raytree_view import KIND_COLORS, RayKindLegend, RayTreeWidget
 

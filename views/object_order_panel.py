@@ -27,8 +27,8 @@ from PySide6.QtWidgets import (
     QWidget,
 )
 
-from core import zbuffer
-from core.object_order import RasterResult, RasterSettings
+from core.object_order import zbuffer
+from core.object_order.pipeline import RasterResult, RasterSettings
 from core.scene import Scene
 from views.depth_view import DepthView
 from views.image_view import ImageView

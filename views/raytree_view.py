@@ -14,7 +14,7 @@ import pyvista as pv
 from PySide6.QtGui import QColor
 from PySide6.QtWidgets import QGridLayout, QLabel, QTreeWidget, QTreeWidgetItem, QWidget
 
-from core.ray_tree import RayNode
+from core.image_order.ray_tree import RayNode
 
 # Okabe & Ito (2008), "Color Universal Design": distinguishable with colour-vision deficiencies.
 KIND_COLORS = {

@@ -7,17 +7,16 @@ import numpy as np
 import pytest
 
 from core import shapes
-from core.bounding_spheres import bounding_spheres
-from core.effects import effects_plan
-from core.grid import cells_on_ray
-from core.kernels.trace_closest import closest_hit
-from core.kernels.trace_layout import ACCEL_CODES
-from core.kernels.trace_prims import BOUNDS_TESTS, CELLS, N_COUNTERS, PRIM_TESTS
-from core.kernels.trace_render import make_scratch
+from core.image_order.bounding_spheres import bounding_spheres
+from core.image_order.effects_plan import effects_plan
+from core.image_order.flat_scene import TraceSettings, kernel_inputs, trace_scene
+from core.image_order.grid_of_cuboids import cells_on_ray
+from core.image_order.kernels.closest_hit import closest_hit
+from core.image_order.kernels.layout import ACCEL_CODES
+from core.image_order.kernels.primitives import BOUNDS_TESTS, CELLS, N_COUNTERS, PRIM_TESTS
+from core.image_order.kernels.render import make_scratch
 from core.presets_trace import bumpy_ball
-from core.raytrace import TraceSettings, kernel_inputs
 from core.scene import Material, Scene, Sphere
-from core.trace_scene import trace_scene
 
 METHODS = ACCEL_CODES  # ("none", "spheres", "grid", "grid+spheres", "bvh")
 

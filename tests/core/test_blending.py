@@ -4,8 +4,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from core import blending, presets
-from core.object_order import RasterSettings, render_raster
+from core import presets
+from core.object_order import blending
+from core.object_order.pipeline import RasterSettings, render_raster
 
 
 def test_blend_over_is_the_lecture_formula():

@@ -5,9 +5,9 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from core import clipping
 from core.camera import Camera
-from core.object_order import RasterSettings, render_raster
+from core.object_order import clipping
+from core.object_order.pipeline import RasterSettings, render_raster
 from core.scene import Mesh, Scene
 
 CAM = Camera(eye=(0.0, 1.0, 0.0), target=(0.0, 1.0, -5.0), fov_y_deg=60, near=0.5, far=20,

@@ -5,8 +5,9 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from core import culling, shapes
+from core import shapes
 from core.camera import Camera
+from core.object_order import culling
 
 CORNER_VIEW = [
     Camera(eye=(5.0, 4.0, 6.0), target=(0.0, 0.0, 0.0)),

@@ -6,7 +6,7 @@ from dataclasses import replace
 import pytest
 
 from core import presets, presets_trace, shapes
-from core.effects import effects_plan
+from core.image_order.effects_plan import effects_plan
 from core.scene import Material, PointLight, Scene, Sphere
 
 

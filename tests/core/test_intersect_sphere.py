@@ -9,7 +9,7 @@ import pytest
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
-from core.intersect_sphere import intersect_sphere, intersect_sphere_segment
+from core.image_order.intersect_sphere import intersect_sphere, intersect_sphere_segment
 
 
 def exact_quadratic(origin, direction, center, radius):

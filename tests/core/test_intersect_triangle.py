@@ -8,7 +8,7 @@ import pytest
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
-from core.intersect_triangle import cramer_solve, intersect_triangle
+from core.image_order.intersect_triangle import cramer_solve, intersect_triangle
 
 
 def exact_solve(origin, direction, a, b, c):

@@ -8,8 +8,9 @@ import brute_force
 import numpy as np
 import pytest
 
-from core import object_order, presets
-from core.object_order import RasterSettings, render_raster
+from core import presets
+from core.object_order import pipeline
+from core.object_order.pipeline import RasterSettings, render_raster
 from core.scene import Scene, Sphere
 
 
@@ -107,7 +108,7 @@ def test_analytic_spheres_are_tessellated_and_faces_are_addressed_per_object():
     result = render_raster(scene)
     sphere_index = next(i for i, o in enumerate(scene.objects) if isinstance(o, Sphere))
     mesh = result.meshes[sphere_index]
-    assert len(mesh.triangles) == 2 * object_order.SPHERE_SEGMENTS * (object_order.SPHERE_RINGS - 1)
+    assert len(mesh.triangles) == 2 * pipeline.SPHERE_SEGMENTS * (pipeline.SPHERE_RINGS - 1)
     assert np.allclose(np.linalg.norm(mesh.vertices - scene.objects[sphere_index].center, axis=1), 1.0)
     face = result.face_index(sphere_index, 7)
     assert face == sum(len(m.triangles) for m in result.meshes[:sphere_index]) + 7

@@ -5,8 +5,8 @@ import math
 import numpy as np
 import pytest
 
-from core.optics import critical_angle_deg, dot, fresnel_dielectric, reflect, refract
-from core.shading import lambert, phong, surface_split
+from core.image_order.optics import critical_angle_deg, dot, fresnel_dielectric, reflect, refract
+from core.image_order.shading import lambert, phong, surface_split
 
 PAIRS = [(1.0, 1.5), (1.5, 1.0), (1.0, 1.33), (1.33, 1.0), (1.0, 2.42), (2.42, 1.0), (1.2, 1.7)]
 

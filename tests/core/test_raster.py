@@ -5,9 +5,9 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from core import raster, zbuffer
 from core.camera import Camera
-from core.object_order import render_raster
+from core.object_order import rasterization, zbuffer
+from core.object_order.pipeline import render_raster
 from core.scene import Mesh, Scene
 
 
@@ -85,14 +85,14 @@ def test_kernel_matches_reference_coverage(seed):
         if rng.random() < 0.3:  # corners on pixel centres and edges through them
             tri = np.floor(tri) + 0.5
         kernel = coverage_counts([tri], width, height)
-        reference = raster.coverage(raster.snap(tri), width, height)
+        reference = rasterization.coverage(rasterization.snap(tri), width, height)
         assert np.array_equal(kernel, reference.astype(int))
 
 
 def test_is_top_left_agrees_with_coverage_of_edge_pixels():
     # A right triangle with a vertical left edge and a horizontal top edge through centres.
     tri = np.array([[1.5, 1.5], [1.5, 6.5], [6.5, 1.5]])
-    cov = raster.coverage(raster.snap(tri), 10, 10)
+    cov = rasterization.coverage(rasterization.snap(tri), 10, 10)
     assert cov[1, 1] and cov[5, 1] and cov[1, 5]  # top and left edges owned
     assert not cov[6, 1] and not cov[1, 6]  # the far corners are not
 
@@ -101,7 +101,7 @@ def test_depth_planes_reproduce_corner_depths():
     rng = np.random.default_rng(7)
     xy = rng.uniform(0, 100, (20, 3, 2))
     z = rng.uniform(0, 1, (20, 3))
-    planes = raster.depth_planes(xy, z)
+    planes = rasterization.depth_planes(xy, z)
     for k in range(3):
         p = xy[:, k] - xy[:, 0]
         assert np.allclose(planes[:, 0] + p[:, 0] * planes[:, 1] + p[:, 1] * planes[:, 2], z[:, k])
@@ -134,12 +134,12 @@ def test_depth_is_exact_on_the_triangle_plane(cam):
 def test_window_coordinates_map_the_frustum_corners_to_the_image_corners():
     cam = Camera(width=200, height=100)
     clip = (cam.clip_from_world @ np.c_[cam.frustum_corners(), np.ones(8)].T).T
-    xy, z = raster.window_coordinates(clip, 200, 100)
+    xy, z = rasterization.window_coordinates(clip, 200, 100)
     assert np.allclose(xy[:4], [[0, 100], [200, 100], [200, 0], [0, 0]])
     assert np.allclose(z, [0, 0, 0, 0, 1, 1, 1, 1])
 
 
 def test_fan_triangles_keep_polygons_in_drawing_order():
-    corners, position = raster.fan_triangles(np.array([0, 4, 7, 7]), np.array([2, 1, 0]))
+    corners, position = rasterization.fan_triangles(np.array([0, 4, 7, 7]), np.array([2, 1, 0]))
     assert corners.tolist() == [[4, 5, 6], [0, 1, 2], [0, 2, 3]]
     assert position.tolist() == [1, 2, 2]

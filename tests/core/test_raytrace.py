@@ -8,10 +8,11 @@ import numpy as np
 import pytest
 
 from core import presets, presets_trace, shapes
-from core.kernels.trace_render import primary_ray
+from core.image_order.flat_scene import TraceSettings, camera_array
+from core.image_order.kernels.render import primary_ray
+from core.image_order.ray_tracing import merge_band_stats, render_trace
+from core.image_order.ray_tree import trace_pixel
 from core.presets_trace import GLASS, MIRROR, translated
-from core.ray_tree import trace_pixel
-from core.raytrace import TraceSettings, camera_array, merge_band_stats, render_trace
 from core.scene import Material, PointLight, Scene, Sphere
 
 

@@ -5,9 +5,10 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from core import presets, shapes, zbuffer
+from core import presets, shapes
 from core.camera import Camera
-from core.object_order import RasterSettings, render_raster
+from core.object_order import zbuffer
+from core.object_order.pipeline import RasterSettings, render_raster
 from core.scene import Material, Mesh, PointLight, Scene
 
 RECORD = RasterSettings(record_steps=True)

@@ -4,7 +4,7 @@ import numba
 import numpy as np
 from numba import njit, prange
 
-from core.kernels.trace_bands import take_band
+from core.image_order.kernels.intrinsics.bands import take_band
 
 
 @njit(parallel=True)

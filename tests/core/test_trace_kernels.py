@@ -2,16 +2,17 @@
 
 import math
 from fractions import Fraction
+from pathlib import Path
 
 import numpy as np
 import pytest
 from numba import njit
 
 from core import shapes
-from core.intersect_sphere import intersect_sphere
-from core.intersect_triangle import intersect_triangle
-from core.kernels.trace_intersect import difference_of_products, ray_shear, sphere_hit, triangle_hit
-from core.kernels.trace_triangle4 import UNSURE, triangle_test4
+from core.image_order.intersect_sphere import intersect_sphere
+from core.image_order.intersect_triangle import intersect_triangle
+from core.image_order.kernels.intersect import difference_of_products, ray_shear, sphere_hit, triangle_hit
+from core.image_order.kernels.intrinsics.triangle4 import UNSURE, triangle_test4
 
 
 @njit
@@ -135,3 +136,26 @@ def test_four_triangles_at_a_time_give_the_scalar_test_bit_for_bit_or_defer_to_i
                 decided += 1
                 assert lanes[q] == scalar or (math.isinf(lanes[q]) and math.isinf(scalar))
     assert unsure > 0 and decided > 3 * unsure
+
+
+def test_the_stale_cache_guard_hashes_every_core_module_a_kernel_compiles_in():
+    """numba checks a cached kernel only against its own file; ``SOURCES`` must name the rest."""
+    import ast
+
+    from core.image_order.kernels import jit as kernel_jit
+
+    listed = {p.resolve() for p in kernel_jit.SOURCES}
+    kernel_files = sorted(Path(kernel_jit.__file__).resolve().parent.rglob("*.py"))
+    assert kernel_files and set(kernel_files) <= listed
+    root = Path(kernel_jit.__file__).resolve().parents[3]
+    for path in kernel_files:
+        for node in ast.walk(ast.parse(path.read_text())):
+            if isinstance(node, ast.ImportFrom) and (node.module or "").startswith("core."):
+                target = root / (node.module.replace(".", "/") + ".py")
+                if not target.exists():  # a package: the names imported are its modules
+                    target = None
+                    for alias in node.names:
+                        module = root / node.module.replace(".", "/") / f"{alias.name}.py"
+                        assert module.resolve() in listed, f"{path.name} compiles in {module}"
+                if target is not None:
+                    assert target.resolve() in listed, f"{path.name} compiles in {target}, not in SOURCES"

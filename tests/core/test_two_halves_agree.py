@@ -6,9 +6,9 @@ import numpy as np
 import pytest
 
 from core import presets
-from core.object_order import SPHERE_RINGS, render_raster
+from core.image_order.ray_tracing import TraceSettings, render_trace
+from core.object_order.pipeline import SPHERE_RINGS, render_raster
 from core.presets_trace import PRESETS_TRACE
-from core.raytrace import TraceSettings, render_trace
 from core.scene import Sphere
 
 SCENES = {**{k: b for k, (_, b) in presets.PRESETS.items()},

@@ -6,9 +6,10 @@ import brute_force
 import numpy as np
 import pytest
 
-from core import presets, zbuffer
+from core import presets
 from core.camera import Camera
-from core.object_order import RasterSettings, render_raster
+from core.object_order import zbuffer
+from core.object_order.pipeline import RasterSettings, render_raster
 
 
 def _rays(cam, jitter=0.0):

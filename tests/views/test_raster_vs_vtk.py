@@ -17,7 +17,7 @@ from vtk.util.numpy_support import vtk_to_numpy
 
 from core import presets, shapes
 from core.camera import Camera
-from core.object_order import render_raster
+from core.object_order.pipeline import render_raster
 from core.scene import Material, Scene
 from views import vtk_convert
 

@@ -6,7 +6,7 @@ import pytest
 import pyvista as pv
 
 from core.camera import Camera
-from core.raytrace import TraceSettings, render_trace
+from core.image_order.ray_tracing import TraceSettings, render_trace
 from core.scene import Mesh, Scene, Sphere
 from views import vtk_convert
 

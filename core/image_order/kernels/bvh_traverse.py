@@ -1,0 +1,154 @@
+"""Compiled traversal of the bounding volume hierarchy (see :mod:`core.image_order.bvh`).
+
+A ray walks the four-wide tree from the root with a small stack.  At an
+inner node it tests the boxes of all four children at once
+(:func:`~core.image_order.kernels.intrinsics.slabs4.slab_test4`), goes on into the nearest child
+it hits and pushes the others, farther first, each with the distance where
+the ray enters it; a pushed subtree whose entry lies beyond the closest hit
+found meanwhile is dropped unvisited.  At a leaf it tests the triangles four
+at a time (:func:`~core.image_order.kernels.intrinsics.triangle4.triangle_test4`), or a leaf
+with a sphere primitive by primitive.  Boxes are only tested against the
+part of the ray before the closest hit so far, so far subtrees fall away
+quickly.
+
+:func:`bvh_closest` is inlined into the render's primary-ray loop, where a
+call passing the tree's arrays would cost about a fifth of the traversal
+itself; every other caller goes through one compiled copy
+(:mod:`core.image_order.kernels.closest_hit`).
+"""
+
+from __future__ import annotations
+
+import math
+
+from core.image_order.kernels.bvh_build import WIDE_HI, WIDE_LO, WIDE_REFS, WIDE_SIZE, WIDTH
+from core.image_order.kernels.intersect import sphere_hit, triangle_hit
+from core.image_order.kernels.intrinsics.slabs4 import slab_test4
+from core.image_order.kernels.intrinsics.triangle4 import GROUP_SIZE, LANES, UNSURE, triangle_test4
+from core.image_order.kernels.jit import jit, jit_inline
+from core.image_order.kernels.primitives import BOUNDS_TESTS, PRIM_TESTS, no_hit, prim_hit
+
+_OTHER_SIDE = WIDE_LO + WIDE_HI
+
+
+@jit_inline
+def _push(stack, stack_t, bottom, top, ref, t):
+    """Put ``ref`` entered at ``t`` on the stack above ``bottom`` so that nearer entries lie higher."""
+    at = top
+    while at > bottom and stack_t[at - 1] < t:
+        stack[at] = stack[at - 1]
+        stack_t[at] = stack_t[at - 1]
+        at -= 1
+    stack[at] = ref
+    stack_t[at] = t
+    return top + 1
+
+
+@jit_inline
+def bvh_closest(o, d, shear, t_min, t_max, any_hit, bvh, n_spheres, stack, stack_t, counters):
+    """The closest crossing with ``t_min <= t < t_max`` (or any, for shadow rays), through the BVH.
+
+    Parameters
+    ----------
+    o, d : (3,) tuples, the ray; ``shear`` its :func:`~core.image_order.kernels.intersect.ray_shear`.
+    t_min, t_max : float, the admissible range of ``t``.
+    any_hit : bool, stop at the first crossing found (shadow rays).
+    bvh : tuple ``(wide, refs, leaves, groups, order, rows)`` of
+        :meth:`core.image_order.bvh.Bvh.kernel_tuple`.
+    n_spheres : int, primitives below this index are spheres.
+    stack : (D,) int64 and ``stack_t`` (D,) float64 scratch, ``D >= 3 * depth + 2``.
+    counters : (N_COUNTERS,) int64, box and primitive tests are added.
+
+    Returns
+    -------
+    (prim, t, b0, b1, b2) : the primitive index (-1 for none) and the crossing.
+    """
+    wide, refs, leaves, groups, order, rows = bvh
+    if wide.shape[0] == 0:
+        return no_hit()
+    ox, oy, oz = o
+    kx, ky, kz, sx, sy, sz = shear
+    okx, oky, okz = o[kx], o[ky], o[kz]
+    ix, iy, iz = 1.0 / d[0], 1.0 / d[1], 1.0 / d[2]
+    # Rows of the near and far sides per axis: lo is near where the direction is positive.
+    side_x = WIDE_HI if ix < 0.0 else WIDE_LO
+    side_y = WIDE_HI if iy < 0.0 else WIDE_LO
+    side_z = WIDE_HI if iz < 0.0 else WIDE_LO
+    nx, ny, nz = side_x, side_y + WIDTH, side_z + 2 * WIDTH
+    fx, fy, fz = _OTHER_SIDE - side_x, _OTHER_SIDE - side_y + WIDTH, _OTHER_SIDE - side_z + 2 * WIDTH
+    best_t = t_max
+    best_k = -1
+    boxes = 0
+    tests = 0
+    top = 0
+    node = 0
+    enter = t_min  # the root's own box is never tested, its children's are
+    while True:
+        if enter < best_t:
+            if node >= 0:
+                at = node * WIDE_SIZE
+                entries = slab_test4(wide, at + nx, at + ny, at + nz, at + fx, at + fy, at + fz, ox, oy, oz,
+                                     ix, iy, iz, t_min, best_t)
+                boxes += WIDTH
+                near, near_t = 0, entries[0]
+                for c in range(1, WIDTH):
+                    if entries[c] < near_t:
+                        near, near_t = c, entries[c]
+                if near_t < math.inf:
+                    bottom = top
+                    for c in range(WIDTH):
+                        if c != near and entries[c] < math.inf:
+                            top = _push(stack, stack_t, bottom, top, refs[node, WIDE_REFS + c], entries[c])
+                    node, enter = refs[node, WIDE_REFS + near], near_t
+                    continue
+            else:
+                first, count, group = leaves[~node, 0], leaves[~node, 1], leaves[~node, 2]
+                tests += count
+                if group >= 0:
+                    for j in range(0, count, LANES):
+                        start = (group + j // LANES) * GROUP_SIZE
+                        lanes = triangle_test4(groups, start, kx, ky, kz, okx, oky, okz, sx, sy, sz, t_min,
+                                               best_t)
+                        for lane in range(min(LANES, count - j)):
+                            t = lanes[lane]
+                            if t == UNSURE:
+                                t = triangle_hit(o, shear, rows, first + j + lane, t_min, best_t)[0]
+                            if t < best_t:
+                                best_t, best_k = t, first + j + lane
+                else:
+                    best_t, best_k = _leaf_one_by_one(rows, order, n_spheres, first, count, o, d, shear,
+                                                      t_min, best_t, best_k)
+                if any_hit and best_k >= 0:
+                    top = 0
+        if top == 0:
+            break
+        top -= 1
+        node, enter = stack[top], stack_t[top]
+    counters[BOUNDS_TESTS] += boxes
+    counters[PRIM_TESTS] += tests
+    if best_k < 0:
+        return no_hit()
+    prim = order[best_k]
+    if prim < n_spheres:
+        return _sphere_crossing(rows, best_k, prim, o, d, t_min)
+    t, b0, b1, b2 = triangle_hit(o, shear, rows, best_k, t_min, math.inf)
+    return prim, t, b0, b1, b2
+
+
+# The rare cases stay out of line, so that the hot loop above stays small.
+@jit
+def _leaf_one_by_one(rows, order, n_spheres, first, count, o, d, shear, t_min, best_t, best_k):
+    """Test the primitives of a leaf holding a sphere one by one: ``(best_t, best_k)`` updated."""
+    for k in range(first, first + count):
+        t = prim_hit(rows, k, order[k] < n_spheres, o, d, shear, t_min, best_t)[0]
+        if t < best_t:
+            best_t, best_k = t, k
+    return best_t, best_k
+
+
+@jit
+def _sphere_crossing(rows, k, prim, o, d, t_min):
+    """The hit record of sphere ``rows[k]`` (primitive ``prim``), known to be crossed after ``t_min``."""
+    t = sphere_hit(o[0], o[1], o[2], d[0], d[1], d[2], rows[k, 0], rows[k, 1], rows[k, 2], rows[k, 3], t_min,
+                   math.inf)
+    return prim, t, 0.0, 0.0, 0.0

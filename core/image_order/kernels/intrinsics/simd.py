@@ -1,0 +1,53 @@
+"""The few LLVM vector helpers behind the tracer's SIMD intrinsics.
+
+numba has no vector type of its own, so the tests that run on four boxes
+or four triangles at once (:mod:`core.image_order.kernels.intrinsics.slabs4`,
+:mod:`core.image_order.kernels.intrinsics.triangle4`) are written as numba intrinsics: short
+functions that emit LLVM IR on ``<4 x double>`` values.  LLVM turns them into
+whatever vector instructions the machine has (SSE2, AVX2, AVX-512).  No
+fast-math flags are set, so every lane rounds exactly as the scalar code
+does.
+"""
+
+from __future__ import annotations
+
+from llvmlite import ir
+from numba.core import cgutils
+
+LANES = 4
+F64 = ir.DoubleType()
+I32 = ir.IntType(32)
+FOUR_F32 = ir.VectorType(ir.FloatType(), LANES)
+FOUR_F64 = ir.VectorType(F64, LANES)
+
+
+def splat(builder, value):
+    """A vector with ``value`` (a double) in every lane."""
+    vector = ir.Constant(FOUR_F64, ir.Undefined)
+    for lane in range(LANES):
+        vector = builder.insert_element(vector, value, ir.Constant(I32, lane))
+    return vector
+
+
+def constant(value: float):
+    """A constant vector with ``value`` in every lane."""
+    return ir.Constant(FOUR_F64, [ir.Constant(F64, value)] * LANES)
+
+
+def load(builder, data, index, vector_type):
+    """The ``LANES`` numbers at ``data[index]`` onwards as one vector (aligned as one number)."""
+    pointer = builder.bitcast(builder.gep(data, [index]), vector_type.as_pointer())
+    return builder.load(pointer, align=4 if vector_type is FOUR_F32 else 8)
+
+
+def fabs(builder, vector):
+    """``|vector|`` lane by lane."""
+    signature = ir.FunctionType(FOUR_F64, [FOUR_F64])
+    fn = cgutils.get_or_insert_function(builder.module, signature, "llvm.fabs.v4f64")
+    return builder.call(fn, [vector])
+
+
+def lanes(context, builder, return_type, vector):
+    """The lanes of ``vector`` as a numba tuple of floats."""
+    values = [builder.extract_element(vector, ir.Constant(I32, lane)) for lane in range(LANES)]
+    return context.make_tuple(builder, return_type, values)

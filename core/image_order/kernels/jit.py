@@ -1,0 +1,90 @@
+"""How the tracer's kernels are compiled: one place for numba's options.
+
+``jit`` compiles a helper (called from other kernels, or from Python for a
+single ray); ``jit_parallel`` compiles an entry kernel whose ``prange`` loops
+run on all cores.  Both
+
+- cache the machine code on disk (``cache=True``), so only the first run on a
+  machine pays the compile time;
+- release the GIL (``nogil=True``), so a worker thread renders while the GUI
+  thread keeps running;
+- follow IEEE 754 for division by zero (``error_model="numpy"``): ``1 / 0``
+  is ``inf`` rather than an exception, which the slab test relies on.
+
+``fastmath`` stays off: the watertight triangle test needs ``a*b - c*d`` to be
+evaluated exactly as written (no fused multiply-add, no reassociation).
+
+Stale caches
+------------
+numba checks a cached kernel only against the file that defines it, not
+against the files of the functions it calls (and compiles into itself).
+After an edit of, say, :mod:`core.image_order.optics`, the cached shading kernel would
+silently keep the old code.  So on import this module hashes every source
+file the tracer's kernels are made of (:data:`SOURCES`) and, when the hash
+changed, deletes the tracer's cache files before any kernel is loaded.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import os
+from pathlib import Path
+
+from numba import config, njit
+
+_OPTIONS = {"cache": True, "nogil": True, "error_model": "numpy"}
+_KERNELS = Path(__file__).resolve().parent
+_IMAGE_ORDER = _KERNELS.parent
+#: Every file whose code ends up inside the tracer's compiled kernels: the kernels
+#: themselves (this folder and its sub-folders) and the lecture modules whose
+#: ``register_jitable`` formulas they compile in.  ``tests/core/test_trace_kernels.py``
+#: checks that every ``core`` module a kernel imports is listed here.
+SOURCES = sorted(_KERNELS.rglob("*.py")) + [
+    _IMAGE_ORDER / name for name in ("optics.py", "shading.py", "ray_offset.py", "intersect_sphere.py")]
+
+
+def _cache_dirs() -> list[Path]:
+    folders = sorted({p.parent for p in _KERNELS.rglob("*.py")})
+    dirs = [f / "__pycache__" for f in folders]
+    if config.CACHE_DIR:
+        dirs += [Path(config.CACHE_DIR) / str(f).lstrip(os.sep) for f in folders]
+    return dirs
+
+
+def drop_stale_cache() -> bool:
+    """Delete the tracer's cached kernels if any of :data:`SOURCES` changed; True if it did."""
+    digest = hashlib.sha1(b"".join(p.read_bytes() for p in SOURCES)).hexdigest()[:16]
+    dropped = False
+    for folder in _cache_dirs():
+        stamp = folder / f"trace_sources.{digest}"
+        try:
+            folder.mkdir(parents=True, exist_ok=True)
+            if stamp.exists():
+                continue
+            for f in folder.iterdir():
+                if f.suffix in (".nbi", ".nbc") or f.name.startswith("trace_sources."):
+                    f.unlink(missing_ok=True)
+                    dropped = True
+            stamp.touch()
+        except OSError:  # a read-only install: numba caches elsewhere, nothing to do here
+            continue
+    return dropped
+
+
+drop_stale_cache()
+
+
+def jit(func):
+    """Compile ``func`` with the tracer's options (serial)."""
+    return njit(**_OPTIONS)(func)
+
+
+def jit_inline(func):
+    """Compile ``func`` with the tracer's options, inlined into every caller (for the
+    innermost tests, where the cost of a call would exceed the work)."""
+    return njit(inline="always", **_OPTIONS)(func)
+
+
+def jit_parallel(func):
+    """Compile ``func`` with the tracer's options, ``prange`` loops in parallel."""
+    return njit(parallel=True, **_OPTIONS)(func)

@@ -1,0 +1,202 @@
+"""Compiled shading of one hit: shadow rays, local Phong colour, and the rays it spawns.
+
+:func:`shade_hit` is the heart of Whitted ray tracing, shared by the full
+render (:mod:`core.image_order.kernels.render`) and by the ray tree of one pixel
+(:mod:`core.image_order.ray_tree`), so both compute exactly the same numbers.  For a hit
+it
+
+1. rebuilds the hit point and the surface normal (see :mod:`core.image_order.ray_offset`
+   for why the point is recomputed in the ``scaled`` mode);
+2. sends one shadow ray towards every light in front of the surface (unless
+   the effects plan says nothing can block that light) and adds the light's
+   Lambert and Phong terms if the ray reaches it (:mod:`core.image_order.shading`);
+3. prepares the reflected ray (mirror direction) at a reflective or
+   transparent surface and the refracted ray (Snell's law) at a transparent
+   one, with their coefficients (Fresnel's split, :mod:`core.image_order.optics`) and
+   whether they will be traced (depth limit, minimum weight).
+
+Everything is written into a flat record (:mod:`core.image_order.kernels.layout`).
+"""
+
+from __future__ import annotations
+
+import math
+
+from core.image_order.kernels import layout as lay
+from core.image_order.kernels.closest_hit import closest_hit
+from core.image_order.kernels.jit import jit
+from core.image_order.kernels.primitives import SHADOW
+from core.image_order.optics import dot, fresnel_dielectric, reflect, refract
+from core.image_order.ray_offset import error_bound, offset_ray_origin
+from core.image_order.shading import lambert, phong, surface_split
+
+
+@jit
+def _unit(v):
+    length = math.sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2])
+    return v[0] / length, v[1] / length, v[2] / length
+
+
+@jit
+def surface_point(o, d, hit, scaled, geo):
+    """The hit point and the outward unit normal there: ``(point, normal, error)``.
+
+    ``scaled``: the point is rebuilt from the surface (barycentric
+    combination, or projection onto the sphere) and ``error`` is the offset
+    distance for rays leaving it; otherwise the point is ``o + t d`` and
+    ``error`` is 0.
+    """
+    prim, t, b0, b1, b2 = hit
+    rows, n_spheres, _, _, _, normals, magnitude = geo
+    p = (o[0] + t * d[0], o[1] + t * d[1], o[2] + t * d[2])
+    if prim < n_spheres:
+        cx, cy, cz, r = rows[prim, 0], rows[prim, 1], rows[prim, 2], rows[prim, 3]
+        u = (p[0] - cx, p[1] - cy, p[2] - cz)
+        length = math.sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2])
+        n = (u[0] / length, u[1] / length, u[2] / length) if length > 0.0 else _unit((-d[0], -d[1], -d[2]))
+        if scaled:
+            p = (cx + r * n[0], cy + r * n[1], cz + r * n[2])
+    else:
+        k = prim - n_spheres
+        n = (normals[k, 0], normals[k, 1], normals[k, 2])
+        if scaled:
+            p = (b0 * rows[prim, 0] + b1 * rows[prim, 3] + b2 * rows[prim, 6],
+                 b0 * rows[prim, 1] + b1 * rows[prim, 4] + b2 * rows[prim, 7],
+                 b0 * rows[prim, 2] + b1 * rows[prim, 5] + b2 * rows[prim, 8])
+    error = error_bound(magnitude[prim]) if scaled else 0.0
+    return p, n, error
+
+
+@jit
+def _write3(rec, at, v):
+    rec[at], rec[at + 1], rec[at + 2] = v[0], v[1], v[2]
+
+
+@jit
+def _child(rec, at, origin, direction, weight, k, depth, opts):
+    """Record a spawned ray and whether it will be traced."""
+    _write3(rec, at + lay.CHILD_ORIGIN, origin)
+    _write3(rec, at + lay.CHILD_DIRECTION, direction)
+    rec[at + lay.CHILD_WEIGHT] = weight * k
+    if k <= 0.0:
+        status = lay.CHILD_NONE
+    elif depth >= opts[lay.OPT_MAX_DEPTH]:
+        status = lay.CHILD_DEPTH_LIMIT
+    elif weight * k < opts[lay.OPT_MIN_WEIGHT]:
+        status = lay.CHILD_TOO_WEAK
+    else:
+        status = lay.CHILD_TRACED
+    rec[at + lay.CHILD_STATUS] = status
+
+
+@jit
+def shade_hit(o, d, hit, weight, depth, materials, lights, opts, geo, grid, bvh, scratch, counters,
+              rec):
+    """Shade the hit ``hit`` of the unit ray ``o + t d`` and fill the record ``rec``.
+
+    Parameters
+    ----------
+    o, d : (3,) float tuples, the ray (``d`` unit length), world space.
+    hit : ``(prim, t, b0, b1, b2)`` from :func:`core.image_order.kernels.closest_hit.closest_hit`.
+    weight : float, the ray's weight in the pixel (1 for a primary ray).
+    depth : int, generation of the ray (0 for a primary ray).
+    materials, lights, opts : arrays laid out as in :mod:`core.image_order.kernels.layout`.
+    geo, grid, bvh, scratch, counters : as for ``closest_hit`` (shadow rays).
+    rec : (record_size(L),) float64, written.
+    """
+    prim = hit[0]
+    ob = geo[2][prim]
+    scaled = opts[lay.OPT_SCALED_OFFSET] > 0.0
+    t_start = 0.0 if scaled else opts[lay.OPT_EPSILON]
+    method = int(opts[lay.OPT_ACCEL])
+    p, n_out, error = surface_point(o, d, hit, scaled, geo)
+    front = dot(d, n_out) < 0.0
+    n = n_out if front else (-n_out[0], -n_out[1], -n_out[2])
+    to_eye = (-d[0], -d[1], -d[2])
+    kr = materials[ob, lay.MAT_REFLECTIVITY] if opts[lay.OPT_REFLECTION] > 0.0 else 0.0
+    kt = materials[ob, lay.MAT_TRANSPARENCY] if opts[lay.OPT_REFRACTION] > 0.0 else 0.0
+    w_local, kr, kt = surface_split(kr, kt)
+    color = (materials[ob, lay.MAT_COLOR], materials[ob, lay.MAT_COLOR + 1], materials[ob, lay.MAT_COLOR + 2])
+    ambient = w_local * materials[ob, lay.MAT_AMBIENT]
+    lr, lg, lb = ambient * color[0], ambient * color[1], ambient * color[2]
+    rec[lay.REC_PRIM] = prim
+    rec[lay.REC_OBJECT] = ob
+    rec[lay.REC_T] = hit[1]
+    _write3(rec, lay.REC_POINT, p)
+    _write3(rec, lay.REC_NORMAL, n)
+    rec[lay.REC_FRONT] = 1.0 if front else 0.0
+    rec[lay.REC_W_LOCAL] = w_local
+    _write3(rec, lay.REC_AMBIENT, (lr, lg, lb))
+
+    # Shadow rays and local shading, light by light.
+    for i in range(lights.shape[0]):
+        at = lay.REC_LIGHTS + i * lay.LIGHT_REC_SIZE
+        lx, ly, lz = lights[i, 0], lights[i, 1], lights[i, 2]
+        to_light = (lx - p[0], ly - p[1], lz - p[2])
+        distance = math.sqrt(dot(to_light, to_light))
+        to_light = (to_light[0] / distance, to_light[1] / distance, to_light[2] / distance)
+        rec[at + lay.LR_DISTANCE] = distance
+        rec[at + lay.LR_BLOCKER] = -1.0
+        rec[at + lay.LR_BLOCKER_T] = math.inf
+        _write3(rec, at + lay.LR_ORIGIN, p)
+        _write3(rec, at + lay.LR_DIRECTION, to_light)
+        _write3(rec, at + lay.LR_CONTRIBUTION, (0.0, 0.0, 0.0))
+        if dot(n, to_light) <= 0.0:
+            rec[at + lay.LR_STATUS] = lay.LIGHT_BEHIND
+            continue
+        status = lay.LIGHT_UNBLOCKABLE
+        if lights[i, lay.LIGHT_BLOCKABLE] > 0.0:
+            so = offset_ray_origin(p, n_out, error, to_light) if scaled else p
+            sd = (lx - so[0], ly - so[1], lz - so[2])
+            s_dist = math.sqrt(dot(sd, sd))
+            sd = (sd[0] / s_dist, sd[1] / s_dist, sd[2] / s_dist)
+            counters[SHADOW] += 1
+            blocker = closest_hit(method, so, sd, t_start, s_dist, True, geo, grid, bvh, scratch,
+                                  counters)
+            _write3(rec, at + lay.LR_ORIGIN, so)
+            _write3(rec, at + lay.LR_DIRECTION, sd)
+            rec[at + lay.LR_DISTANCE] = s_dist
+            rec[at + lay.LR_BLOCKER] = blocker[0]
+            rec[at + lay.LR_BLOCKER_T] = blocker[1]
+            status = lay.LIGHT_BLOCKED if blocker[0] >= 0 else lay.LIGHT_REACHED
+        rec[at + lay.LR_STATUS] = status
+        if status == lay.LIGHT_BLOCKED:
+            continue
+        diffuse = w_local * materials[ob, lay.MAT_DIFFUSE] * lambert(n, to_light)
+        shininess = materials[ob, lay.MAT_SHININESS]
+        highlight = materials[ob, lay.MAT_SPECULAR] * phong(n, to_light, to_eye, shininess)
+        cr = lights[i, lay.LIGHT_RGB] * (diffuse * color[0] + highlight)
+        cg = lights[i, lay.LIGHT_RGB + 1] * (diffuse * color[1] + highlight)
+        cb = lights[i, lay.LIGHT_RGB + 2] * (diffuse * color[2] + highlight)
+        _write3(rec, at + lay.LR_CONTRIBUTION, (cr, cg, cb))
+        lr += cr
+        lg += cg
+        lb += cb
+    _write3(rec, lay.REC_LOCAL, (lr, lg, lb))
+
+    # Reflected and refracted rays: directions, Fresnel split, whether they go on.
+    k_reflect, k_refract = kr, 0.0
+    rec[lay.REC_FRESNEL_R] = math.nan
+    rec[lay.REC_FRESNEL_T] = math.nan
+    rec[lay.REC_TIR] = 0.0
+    refracted = (0.0, 0.0, 0.0)
+    if kt > 0.0:
+        ior = materials[ob, lay.MAT_IOR]
+        n1, n2 = (1.0, ior) if front else (ior, 1.0)
+        ok, bent = refract(d, n, n1 / n2)
+        if not ok:
+            fr, ft = 1.0, 0.0
+            rec[lay.REC_TIR] = 1.0
+        else:
+            fr, ft = fresnel_dielectric(min(1.0, -dot(d, n)), n1, n2)
+            refracted = _unit(bent)
+        rec[lay.REC_FRESNEL_R] = fr
+        rec[lay.REC_FRESNEL_T] = ft
+        k_reflect, k_refract = kr + kt * fr, kt * ft
+    rec[lay.REC_K_REFLECT] = k_reflect
+    rec[lay.REC_K_REFRACT] = k_refract
+    mirrored = _unit(reflect(d, n)) if k_reflect > 0.0 else (0.0, 0.0, 0.0)
+    origin = offset_ray_origin(p, n_out, error, mirrored) if scaled and k_reflect > 0.0 else p
+    _child(rec, lay.REC_REFLECT, origin, mirrored, weight, k_reflect, depth, opts)
+    origin = offset_ray_origin(p, n_out, error, refracted) if scaled and k_refract > 0.0 else p
+    _child(rec, lay.REC_REFRACT, origin, refracted, weight, k_refract, depth, opts)

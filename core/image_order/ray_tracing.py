@@ -1,0 +1,244 @@
+"""Ray casting and Whitted ray tracing in image order: render a scene, count every ray.
+
+The lecture's image order: for each pixel a *primary ray* from the eye (or,
+in parallel projection, from the screen plane) through the pixel; its first
+hit gives the pixel its colour.
+
+- **Ray casting** (``mode="raycast"``): from the hit point one *shadow ray*
+  towards each point light; a light contributes (Lambert + Phong,
+  :mod:`core.image_order.shading`) only if its shadow ray reaches it unblocked.
+- **Ray tracing** (``mode="raytrace"``, Whitted): in addition, at a reflective
+  surface a *reflected ray* (angle of reflection = angle of incidence), at a
+  transparent surface a *refracted ray* (Snell's law), the light split
+  between them by the Fresnel equations, and total internal reflection when
+  Snell's law has no solution (:mod:`core.image_order.optics`).  The rays form a tree per
+  pixel; its colour is combined from the last hits back to the first
+  (:mod:`core.image_order.ray_tree` shows one tree number by number).
+
+A ray is not traced when it would be deeper than ``max_depth`` generations
+(the primary ray is generation 0), or when its weight in the pixel (the
+product of the coefficients along its path) falls below ``min_weight``
+(default 0.01: a ray that could change the pixel by less than 1% of full
+brightness is dropped).
+
+Primary rays see only what lies between the near and the far plane, as the
+object-order pipeline does after clipping; ``depth`` is therefore comparable
+with the depth buffer.
+
+Acceleration (``accel``): ``"none"`` tests every primitive; ``"spheres"``
+puts bounding spheres around meshes; ``"grid"`` walks a uniform grid;
+``"grid+spheres"`` combines both, as the lecture suggests; ``"bvh"`` uses a
+bounding volume hierarchy.  All find exactly the same hits; only the work
+differs, and the statistics count it.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import time
+from dataclasses import dataclass
+
+import numba
+import numpy as np
+
+from core.image_order.bvh import Bvh
+from core.image_order.effects_plan import EffectsPlan, effects_plan
+from core.image_order.flat_scene import KernelInputs, TraceSettings, kernel_inputs, trace_scene
+from core.image_order.grid_of_cuboids import UniformGrid
+from core.image_order.kernels import layout as lay
+from core.image_order.kernels import render as trace_render
+from core.image_order.kernels.primitives import (
+    BOUNDS_TESTS,
+    CELLS,
+    N_COUNTERS,
+    PRIM_TESTS,
+    PRIMARY,
+    REFLECTION,
+    REFRACTION,
+    SHADOW,
+)
+from core.image_order.ray_tree import trace_pixel
+from core.presets_trace import warm_up_scene
+from core.scene import Scene
+from core.warm_up import WarmUp
+
+
+@dataclass(frozen=True, eq=False)
+class TraceResult:
+    """An image rendered in image order, with what it took.
+
+    Attributes
+    ----------
+    color : (H, W, 3) float64, RGB in [0, 1]; ``H = stop - first`` rows of the image.
+    depth : (H, W) float64, camera-space distance along the viewing axis of the
+        primary ray's hit (positive), ``+inf`` where it hits nothing.
+    object_index : (H, W) int64, index into ``scene.objects`` of the first hit, -1 for none.
+    stats : dict, JSON-serialisable: ``rays`` (counts by kind), ``plan``
+        (:meth:`EffectsPlan.to_dict`), ``accel`` (method, work per ray, build
+        time), ``times`` (seconds per kind of work), ``compile_s`` (compiling
+        or loading the kernels, not part of ``times``), ``settings``.
+    rows : (first, stop), the band of image rows rendered.
+    step : int, one ray per ``step x step`` block of pixels.
+    plan : EffectsPlan.
+    """
+
+    color: np.ndarray
+    depth: np.ndarray
+    object_index: np.ndarray
+    stats: dict
+    rows: tuple[int, int]
+    step: int
+    plan: EffectsPlan
+
+
+def render_trace(scene: Scene, settings: TraceSettings = TraceSettings(),
+                 rows: tuple[int, int] | None = None, step: int = 1) -> TraceResult:
+    """Render ``scene`` from its camera by ray casting or ray tracing.
+
+    Parameters
+    ----------
+    scene : Scene
+    settings : TraceSettings
+    rows : (first, stop), optional
+        Render only image rows ``first .. stop - 1`` (the window fills the
+        image band by band); default all rows.
+    step : int >= 1
+        Trace one ray per ``step x step`` block (through the block's top-left
+        pixel) and repeat its colour over the block: a coarse image, fast.
+
+    Returns
+    -------
+    TraceResult
+    """
+    cam = scene.camera
+    first, stop = rows if rows is not None else (0, cam.height)
+    if not (0 <= first < stop <= cam.height):
+        raise ValueError(f"rows must satisfy 0 <= first < stop <= {cam.height}, got {rows!r}")
+    if not (isinstance(step, int) and step >= 1):
+        raise ValueError(f"step must be a whole number >= 1, got {step!r}")
+    compile_s = ensure_compiled()
+    times = {}
+    start = time.perf_counter()
+    flat = trace_scene(scene)
+    geometry = flat.geometry
+    times["flatten"] = time.perf_counter() - start
+    structure, build_s, cached = geometry.accel(settings.accel)
+    times["build"] = 0.0 if cached else build_s
+    plan = effects_plan(scene, settings.mode)
+    xs = np.arange(0, cam.width, step, dtype=np.float64)
+    ys = np.arange(first, stop, step, dtype=np.float64)
+    inputs = kernel_inputs(scene, settings, plan, flat, structure)
+    color, depth, hits, counters = _run_passes(xs, ys, inputs, times)
+
+    prims = hits[..., 0].astype(np.int64)
+    object_of = np.append(geometry.prim_object, -1)  # prim -1 (nothing hit) -> object -1
+    object_index = object_of[prims]
+    color = np.clip(color, 0.0, 1.0)
+    if step > 1:
+        h, w = stop - first, cam.width
+        color, depth, object_index = (np.repeat(np.repeat(a, step, 0), step, 1)[:h, :w]
+                                      for a in (color, depth, object_index))
+    times["total"] = sum(times.values())
+    stats = _stats(settings, plan, structure, build_s, cached, counters, times, compile_s,
+                   (first, stop), step, len(xs) * len(ys), geometry.n_prims, cam)
+    return TraceResult(np.ascontiguousarray(color), np.ascontiguousarray(depth),
+                       np.ascontiguousarray(object_index), stats, (first, stop), step, plan)
+
+
+def _run_passes(xs, ys, k: KernelInputs, times: dict):
+    """The three compiled stages; fills ``times`` and returns colour, depth, hits and counters."""
+    ny, nx = len(ys), len(xs)
+    hits = np.zeros((ny, nx, 5))
+    depth = np.full((ny, nx), np.inf)
+    color = np.zeros((ny, nx, 3))
+    children = np.zeros((ny, nx, 2, lay.CHILD_SIZE))
+    counters = np.zeros(N_COUNTERS, np.int64)
+    for stage, name in ((trace_render.PRIMARY_STAGE, "primary"), (trace_render.SHADE_STAGE, "shading"),
+                        (trace_render.SECONDARY_STAGE, "secondary")):
+        start = time.perf_counter()
+        spawned = children[..., lay.CHILD_STATUS] == lay.CHILD_TRACED
+        if stage != trace_render.SECONDARY_STAGE or np.any(spawned):
+            counters += trace_render.render_pass(stage, k.cam, xs, ys, hits, depth, color, children,
+                                                 k.materials, k.lights, k.opts, k.geo, k.grid, k.bvh,
+                                                 k.bvh_depth, numba.get_num_threads())
+        times[name] = time.perf_counter() - start
+    return color, depth, hits, counters
+
+
+def _stats(settings, plan, structure, build_s, cached, counters, times, compile_s, rows, step,
+           pixels, n_prims, cam) -> dict:
+    rays = {"primary": int(counters[PRIMARY]), "shadow": int(counters[SHADOW]),
+            "reflection": int(counters[REFLECTION]), "refraction": int(counters[REFRACTION])}
+    total = sum(rays.values())
+    per_ray = 1.0 / max(total, 1)
+    accel = {
+        "method": settings.accel,
+        "primitives": int(n_prims),
+        "build_s": float(build_s),
+        "cached": bool(cached),
+        "prim_tests": int(counters[PRIM_TESTS]),
+        "bounds_tests": int(counters[BOUNDS_TESTS]),
+        "cells_visited": int(counters[CELLS]),
+        "tests_per_ray": counters[PRIM_TESTS] * per_ray,
+        "bounds_tests_per_ray": counters[BOUNDS_TESTS] * per_ray,
+        "cells_per_ray": counters[CELLS] * per_ray,
+    }
+    accel.update(describe_structure(structure))
+    return {
+        "mode": settings.mode,
+        "size": [cam.width, cam.height],
+        "rows": list(rows),
+        "step": step,
+        "pixels_traced": int(pixels),
+        "rays": {**rays, "total": total},
+        "plan": plan.to_dict(),
+        "accel": {k: float(v) if isinstance(v, np.floating) else v for k, v in accel.items()},
+        "times": {k: float(v) for k, v in times.items()},
+        "compile_s": float(compile_s),
+        "settings": dataclasses.asdict(settings),
+    }
+
+
+def describe_structure(structure) -> dict:
+    """Size figures of an acceleration structure, for the statistics."""
+    if isinstance(structure, UniformGrid):
+        return {"grid_resolution": [int(r) for r in structure.resolution],
+                "grid_cells": structure.n_cells, "grid_entries": int(len(structure.cell_prims))}
+    if isinstance(structure, Bvh):
+        return {"bvh_nodes": int(len(structure.nodes)), "bvh_depth": structure.depth,
+                "bvh_leaves": int(structure.is_leaf.sum())}
+    return {}
+
+
+def _warm_up() -> None:
+    """Render a tiny scene so the kernels see exactly the argument types of real renders."""
+    scene = warm_up_scene()
+    flat = trace_scene(scene)
+    for accel in ("grid", "bvh"):  # builds both structures, so build times exclude compiling
+        settings = TraceSettings(accel=accel)
+        structure, _, _ = flat.geometry.accel(accel)
+        inputs = kernel_inputs(scene, settings, effects_plan(scene), flat, structure)
+        _run_passes(np.arange(2.0), np.arange(2.0), inputs, {})
+        trace_pixel(scene, 1, 1, settings)
+
+
+ensure_compiled = WarmUp(_warm_up)
+"""Compile every tracer kernel once per process; returns the seconds it took (0.0 later)."""
+
+
+def merge_band_stats(parts: list[dict]) -> dict:
+    """One image's statistics from its bands': counts and times add up, per-ray figures are redone."""
+    merged = {**parts[0], "rays": {}, "times": {}, "accel": dict(parts[0]["accel"])}
+    for part in parts:
+        for group in ("rays", "times"):
+            for key, value in part[group].items():
+                merged[group][key] = merged[group].get(key, 0) + value
+    for key in ("prim_tests", "bounds_tests", "cells_visited"):
+        merged["accel"][key] = sum(p["accel"][key] for p in parts)
+    rays = max(merged["rays"]["total"], 1)
+    merged["accel"]["tests_per_ray"] = merged["accel"]["prim_tests"] / rays
+    merged["accel"]["bounds_tests_per_ray"] = merged["accel"]["bounds_tests"] / rays
+    merged["accel"]["cells_per_ray"] = merged["accel"]["cells_visited"] / rays
+    merged["rows"] = [0, parts[-1]["rows"][1]]
+    merged["pixels_traced"] = sum(p["pixels_traced"] for p in parts)
+    return merged

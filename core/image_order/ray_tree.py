@@ -1,0 +1,284 @@
+"""The ray tree of one pixel: every ray, what it hit, and how the colours combine.
+
+The lecture's ray tracing has two stages.  First the rays: the primary ray
+hits A, is reflected to B, refracted there to C...  Then the colours, from
+the last hits back to the first: "at first find the colour of point C, then
+the colour of point B (including the refracted ray) and finally the colour of
+point A".  :func:`trace_pixel` records both stages as a tree of
+:class:`RayNode`: each node's colour is its local colour plus its children's
+colours times their coefficients, and :meth:`RayNode.explain` writes that
+combination out number by number.
+
+The tree is computed with the very kernels of the full render
+(:func:`core.image_order.kernels.closest_hit.closest_hit`,
+:func:`core.image_order.kernels.shade.shade_hit`), so the root's colour clipped to
+``[0, 1]`` equals the rendered pixel.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+from dataclasses import dataclass
+
+import numpy as np
+
+from core.image_order.effects_plan import effects_plan
+from core.image_order.flat_scene import TraceSettings, kernel_inputs, trace_scene
+from core.image_order.grid_of_cuboids import cells_on_ray
+from core.image_order.kernels import layout as lay
+from core.image_order.kernels.closest_hit import GRID, GRID_SPHERES, closest_hit
+from core.image_order.kernels.primitives import BOUNDS_TESTS, PRIM_TESTS
+from core.image_order.kernels.render import make_scratch, primary_ray
+from core.image_order.kernels.shade import shade_hit
+from core.scene import Scene
+
+KINDS = ("primary", "shadow", "reflection", "refraction")
+
+_LIGHT_STATUS = {
+    lay.LIGHT_BEHIND: "light behind the surface: no shadow ray",
+    lay.LIGHT_UNBLOCKABLE: "nothing can block this light: no shadow ray needed",
+    lay.LIGHT_REACHED: "reached the light",
+    lay.LIGHT_BLOCKED: "blocked: in shadow",
+}
+_CHILD_STATUS = {
+    lay.CHILD_DEPTH_LIMIT: "not traced: depth limit reached",
+    lay.CHILD_TOO_WEAK: "not traced: weight below min_weight",
+}
+
+
+@dataclass(frozen=True, eq=False)
+class RayNode:
+    """One ray of a pixel's ray tree.
+
+    Attributes
+    ----------
+    kind : ``"primary"``, ``"shadow"``, ``"reflection"`` or ``"refraction"``.
+    generation : int, 0 for the primary ray, +1 per reflection or refraction
+        (a shadow ray has its parent's generation).
+    traced : bool, the ray was really traced (False for rays the depth limit,
+        the minimum weight or the effects plan left out; they are listed so the
+        reason can be shown).
+    status : str, what happened, in words.
+    origin, direction : (3,) float64, world space; ``direction`` is unit length.
+    t_min, t_max : float, the part of the ray searched (``t_max`` is the
+        distance to the light for a shadow ray, the far plane for a primary ray).
+    hit : int or None, index into ``scene.objects`` of the first object met.
+    hit_name : str or None, its name.
+    t : float or None, distance to that hit along the ray.
+    point : (3,) float64 or None, the hit point (on the surface).
+    normal : (3,) float64 or None, unit surface normal there, facing the ray.
+    front_face : bool or None, the ray arrived from outside the object.
+    local_color : (3,) float64 or None, Phong colour of the hit from the
+        unblocked lights (the sum of the shadow children's colours plus ``ambient``).
+    ambient : (3,) float64 or None, the ambient part of ``local_color``.
+    fresnel : (R, T) or None, reflectance and transmittance at a transparent surface.
+    total_internal_reflection : bool.
+    k_reflect, k_refract : float, coefficients of the reflected and refracted
+        children's colours.
+    coefficient : float, this ray's factor in its parent's colour (1 for the
+        primary ray; for a shadow ray 1: its colour is already a part of the
+        parent's local colour).
+    weight : float, this ray's weight in the pixel (product of the
+        coefficients from the root).
+    color : (3,) float64, the colour this ray returns, not clipped: the
+        background on a miss, else ``local + k_reflect C_reflect + k_refract C_refract``;
+        for a shadow ray the light's contribution to the local colour (0 when blocked).
+    light : int or None, the light a shadow ray goes to.
+    tests, bounds_tests : int, primitive and bounding-volume tests this ray took.
+    cells : (K, 3) int64 or None, grid cells the ray walked (grid methods).
+    children : tuple of RayNode, shadow rays first, then reflection, then refraction.
+    """
+
+    kind: str
+    generation: int
+    traced: bool
+    status: str
+    origin: np.ndarray
+    direction: np.ndarray
+    t_min: float
+    t_max: float
+    hit: int | None = None
+    hit_name: str | None = None
+    t: float | None = None
+    point: np.ndarray | None = None
+    normal: np.ndarray | None = None
+    front_face: bool | None = None
+    local_color: np.ndarray | None = None
+    ambient: np.ndarray | None = None
+    fresnel: tuple[float, float] | None = None
+    total_internal_reflection: bool = False
+    k_reflect: float = 0.0
+    k_refract: float = 0.0
+    coefficient: float = 1.0
+    weight: float = 1.0
+    color: np.ndarray = None
+    light: int | None = None
+    tests: int = 0
+    bounds_tests: int = 0
+    cells: np.ndarray | None = None
+    children: tuple[RayNode, ...] = ()
+
+    @property
+    def pixel_color(self) -> np.ndarray:
+        """``color`` clipped to ``[0, 1]``: for the root, the pixel's colour."""
+        return np.clip(self.color, 0.0, 1.0)
+
+    def walk(self) -> Iterator[RayNode]:
+        """This node and all below it, depth first."""
+        yield self
+        for child in self.children:
+            yield from child.walk()
+
+    def explain(self) -> list[str]:
+        """The second stage of ray tracing: colours from the last hits back to the first.
+
+        One line per traced ray that hit something, deepest first, e.g.
+        ``reflection (gen 1) at mirror ball: C = local (0.1, 0.1, 0.1) +
+        0.85 x (0.5, 0.2, 0.1) = (0.525, 0.27, 0.185)``.
+        """
+        lines = []
+        for child in self.children:
+            lines += child.explain()
+        if self.kind == "shadow" or not self.traced:
+            return lines
+        label = f"{self.kind} (gen {self.generation})"
+        if self.hit is None:
+            return lines + [f"{label} hits nothing: C = background {_rgb(self.color)}"]
+        terms = [f"local {_rgb(self.local_color)}"]
+        for child in self.children:
+            if child.kind != "shadow" and child.traced:
+                terms.append(f"{child.coefficient:.3g} x {_rgb(child.color)}")
+        return lines + [f"{label} at {self.hit_name}: C = " + " + ".join(terms) + f" = {_rgb(self.color)}"]
+
+
+def _rgb(c) -> str:
+    return "(" + ", ".join(f"{v:.3g}" for v in c) + ")"
+
+
+def trace_pixel(scene: Scene, x: int, y: int, settings=None) -> RayNode:
+    """The ray tree of pixel ``(x, y)`` (column, row from the top-left) of ``scene``'s camera.
+
+    Parameters
+    ----------
+    scene : Scene
+    x, y : int, pixel coordinates (``0 <= x < width``, ``0 <= y < height``).
+    settings : core.image_order.ray_tracing.TraceSettings, optional (the default settings).
+
+    Returns
+    -------
+    RayNode, the primary ray with everything below it.
+    """
+
+    settings = settings or TraceSettings()
+    cam = scene.camera
+    if not (0 <= x < cam.width and 0 <= y < cam.height):
+        raise ValueError(f"pixel ({x}, {y}) lies outside the {cam.width} x {cam.height} image")
+    flat = trace_scene(scene)
+    structure, _, _ = flat.geometry.accel(settings.accel)
+    plan = effects_plan(scene, settings.mode)
+    k = kernel_inputs(scene, settings, plan, flat, structure)
+    tracer = _Tracer(scene, settings, flat, structure, k)
+    o, d, t_min, t_max = primary_ray(k.cam, float(x), float(y))
+    return tracer.trace("primary", o, d, t_min, t_max, 0, 1.0, 1.0)
+
+
+class _Tracer:
+    """Follows one pixel's rays with the render's kernels, building :class:`RayNode` s."""
+
+    def __init__(self, scene, settings, flat, structure, k):
+        self.scene, self.k, self.structure, self.names = scene, k, structure, flat.names
+        self.prim_object = flat.geometry.prim_object
+        self.scratch = make_scratch(k.method, flat.geometry.n_prims, k.materials.shape[0], k.bvh_depth)
+        self.counters = np.zeros(8, np.int64)
+        self.rec = np.empty(lay.record_size(k.lights.shape[0]))
+        self.t_start = 0.0 if settings.offset == "scaled" else settings.epsilon
+        self.background = np.asarray(scene.background, dtype=float)
+
+    def _work(self, before) -> dict:
+        delta = self.counters - before
+        return {"tests": int(delta[PRIM_TESTS]), "bounds_tests": int(delta[BOUNDS_TESTS])}
+
+    def _cells(self, o, d, t_min, t_end):
+        if self.k.method not in (GRID, GRID_SPHERES):
+            return None
+
+        return cells_on_ray(self.structure, o, d, t_min, t_end)
+
+    def trace(self, kind, o, d, t_min, t_max, generation, coefficient, weight) -> RayNode:
+        k = self.k
+        before = self.counters.copy()
+        h = closest_hit(k.method, o, d, t_min, t_max, False, k.geo, k.grid, k.bvh, self.scratch,
+                        self.counters)
+        work = self._work(before)
+        base = dict(kind=kind, generation=generation, traced=True, origin=np.array(o), direction=np.array(d),
+                    t_min=t_min, t_max=t_max, coefficient=coefficient, weight=weight, **work)
+        if h[0] < 0:
+            return RayNode(status="hits nothing: background", color=self.background.copy(),
+                           cells=self._cells(o, d, t_min, t_max), **base)
+        cells = self._cells(o, d, t_min, h[1])
+        rec = self.rec
+        shade_hit(o, d, h, weight, generation, k.materials, k.lights, k.opts, k.geo, k.grid, k.bvh,
+                  self.scratch, self.counters, rec)
+        rec = rec.copy()
+        children = [self._shadow(rec, i, generation, weight) for i in range(k.lights.shape[0])]
+        local = rec[lay.REC_LOCAL:lay.REC_LOCAL + 3].copy()
+        color = local.copy()
+        for child_kind, at, coef in (("reflection", lay.REC_REFLECT, rec[lay.REC_K_REFLECT]),
+                                     ("refraction", lay.REC_REFRACT, rec[lay.REC_K_REFRACT])):
+            child = self._child(child_kind, rec, at, coef, generation, weight)
+            if child is not None:
+                children.append(child)
+                if child.traced:
+                    color = color + coef * child.color
+        obj = int(rec[lay.REC_OBJECT])
+        fresnel = None
+        if not np.isnan(rec[lay.REC_FRESNEL_R]):
+            fresnel = (float(rec[lay.REC_FRESNEL_R]), float(rec[lay.REC_FRESNEL_T]))
+        return RayNode(
+            status=f"hits {self.names[obj]}", hit=obj, hit_name=self.names[obj], t=float(h[1]),
+            point=rec[lay.REC_POINT:lay.REC_POINT + 3].copy(),
+            normal=rec[lay.REC_NORMAL:lay.REC_NORMAL + 3].copy(),
+            front_face=bool(rec[lay.REC_FRONT] > 0), local_color=local,
+            ambient=rec[lay.REC_AMBIENT:lay.REC_AMBIENT + 3].copy(), fresnel=fresnel,
+            total_internal_reflection=bool(rec[lay.REC_TIR] > 0),
+            k_reflect=float(rec[lay.REC_K_REFLECT]), k_refract=float(rec[lay.REC_K_REFRACT]),
+            color=color, cells=cells, children=tuple(children), **base)
+
+    def _child(self, kind, rec, at, coef, generation, weight):
+        status = rec[at + lay.CHILD_STATUS]
+        if status == lay.CHILD_NONE:
+            return None
+        o = tuple(float(v) for v in rec[at + lay.CHILD_ORIGIN:at + lay.CHILD_ORIGIN + 3])
+        d = tuple(float(v) for v in rec[at + lay.CHILD_DIRECTION:at + lay.CHILD_DIRECTION + 3])
+        child_weight = float(rec[at + lay.CHILD_WEIGHT])
+        if status == lay.CHILD_TRACED:
+            return self.trace(kind, o, d, self.t_start, np.inf, generation + 1, float(coef), child_weight)
+        return RayNode(kind=kind, generation=generation + 1, traced=False, status=_CHILD_STATUS[int(status)],
+                       origin=np.array(o), direction=np.array(d), t_min=self.t_start, t_max=np.inf,
+                       coefficient=float(coef), weight=child_weight, color=np.zeros(3))
+
+    def _shadow(self, rec, i, generation, weight) -> RayNode:
+        at = lay.REC_LIGHTS + i * lay.LIGHT_REC_SIZE
+        status = int(rec[at + lay.LR_STATUS])
+        traced = status in (lay.LIGHT_REACHED, lay.LIGHT_BLOCKED)
+        blocker = int(rec[at + lay.LR_BLOCKER])
+        hit = int(self.prim_object[blocker]) if blocker >= 0 else None
+        origin = rec[at + lay.LR_ORIGIN:at + lay.LR_ORIGIN + 3].copy()
+        direction = rec[at + lay.LR_DIRECTION:at + lay.LR_DIRECTION + 3].copy()
+        distance = float(rec[at + lay.LR_DISTANCE])
+        t = float(rec[at + lay.LR_BLOCKER_T]) if hit is not None else None
+        work, cells = {"tests": 0, "bounds_tests": 0}, None
+        if traced:  # the same query again, to count its work and list its cells
+            k, before = self.k, self.counters.copy()
+            o, d = tuple(float(v) for v in origin), tuple(float(v) for v in direction)
+            closest_hit(k.method, o, d, self.t_start, distance, True, k.geo, k.grid, k.bvh, self.scratch,
+                        self.counters)
+            work = self._work(before)
+            cells = self._cells(o, d, self.t_start, t if t is not None else distance)
+        return RayNode(
+            kind="shadow", generation=generation, traced=traced, status=_LIGHT_STATUS[status],
+            origin=origin, direction=direction, t_min=self.t_start, t_max=distance, hit=hit,
+            hit_name=self.names[hit] if hit is not None else None, t=t,
+            point=origin + t * direction if t is not None else None,
+            weight=weight, color=rec[at + lay.LR_CONTRIBUTION:at + lay.LR_CONTRIBUTION + 3].copy(),
+            light=i, cells=cells, **work)

@@ -1,0 +1,1 @@
+"""Compiled (numba) hot loops of the object-order pipeline."""

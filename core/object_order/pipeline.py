@@ -1,0 +1,343 @@
+"""Object order rendering: polygon after polygon through the lecture's pipeline.
+
+The first half of the lecture renders a scene by taking its polygons one at a
+time and finding the pixels each one covers; a z-buffer decides which polygon
+is seen at every pixel.  :func:`render_raster` runs these stages, each with its
+own module, and keeps what every stage did in a :class:`RasterResult`:
+
+1. transform: world -> view (camera) space -> clip space;
+2. back-face culling by the faces' normals (:mod:`core.object_order.culling`);
+3. frustum culling of whole objects by bounding spheres (:mod:`core.object_order.culling`);
+4. clipping of the polygons that cross the frustum, in clip space
+   (:mod:`core.object_order.clipping`);
+5. projection: perspective divide and viewport mapping (:mod:`core.object_order.rasterization`);
+6. flat shading of every polygon (:mod:`core.object_order.flat_shading`);
+7. drawing order: opaque first, then transparent far to near (:mod:`core.object_order.blending`);
+8. rasterization with the top-left rule and the z-buffer test
+   (:mod:`core.object_order.rasterization`, :mod:`core.object_order.zbuffer`, compiled in
+   :mod:`core.object_order.kernels.raster`),
+   optionally recording every fragment (:mod:`core.object_order.step_history`).
+
+Culling, clipping and sorting can be switched off (:class:`RasterSettings`) to
+see what each one is for.  Analytic spheres are tessellated first
+(``SPHERE_RINGS`` x ``SPHERE_SEGMENTS``).  Conventions: :mod:`core.projection`.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import asdict, dataclass
+
+import numpy as np
+
+from core import shapes
+from core.object_order import blending, clipping, culling, flat_shading, rasterization, zbuffer
+from core.object_order.clipping import ClipResult, Polygons
+from core.object_order.culling import FaceCulling, ObjectCulling
+from core.object_order.step_history import StepHistory
+from core.presets import zbuffer_piercing
+from core.scene import Mesh, Scene, SceneObject, Sphere
+from core.warm_up import WarmUp
+
+SPHERE_RINGS, SPHERE_SEGMENTS = 32, 64
+"""Tessellation of an analytic sphere for object order: 4,032 triangles."""
+
+
+@dataclass(frozen=True)
+class RasterSettings:
+    """Which optional stages run.
+
+    Attributes
+    ----------
+    back_face_culling : drop faces turned away from the observer.
+    frustum_culling : drop objects whose bounding sphere is outside the frustum,
+        and skip clipping for those entirely inside.
+    clipping : clip polygons to the frustum before the divide; off, a polygon
+        reaching behind the eye is projected mirrored.
+    sort_transparent : draw transparent polygons from the farthest to the closest.
+    record_steps : keep every fragment for step and pixel history.
+    """
+
+    back_face_culling: bool = True
+    frustum_culling: bool = True
+    clipping: bool = True
+    sort_transparent: bool = True
+    record_steps: bool = False
+
+
+@dataclass(frozen=True, eq=False)
+class DrawList:
+    """The polygons in the order they were drawn, and what each one did.
+
+    Attributes
+    ----------
+    polygons : the (possibly clipped) polygons in drawing order; their world
+        vertices are what the 3D view highlights at each step.
+    object_index : (P,) int64, index into ``scene.objects``.
+    triangle_index : (P,) int64, the face's triangle within the object's mesh
+        (``RasterResult.meshes[object_index]``).
+    transparent : (P,) bool, drawn with blending (alpha_s < 1).
+    color : (P, 3) float64, flat colour.
+    alpha : (P,) float64, opacity alpha_s.
+    depth : (P,) float64, distance of the face's centroid along the viewing
+        axis (scene units), the key transparent polygons are sorted by.
+    generated, passed : (P,) int64, fragments per polygon.
+    """
+
+    polygons: Polygons
+    object_index: np.ndarray
+    triangle_index: np.ndarray
+    transparent: np.ndarray
+    color: np.ndarray
+    alpha: np.ndarray
+    depth: np.ndarray
+    generated: np.ndarray
+    passed: np.ndarray
+
+    def __len__(self) -> int:
+        return len(self.alpha)
+
+    @property
+    def failed(self) -> np.ndarray:
+        """(P,) int64, fragments per polygon that failed the depth test."""
+        return self.generated - self.passed
+
+
+@dataclass(frozen=True, eq=False)
+class RasterResult:
+    """The rendered image and everything each stage did.
+
+    Attributes
+    ----------
+    color : (H, W, 3) float64, image memory, RGB in [0, 1].
+    depth : (H, W) float64, distance along the viewing axis (scene units,
+        positive) of the surface seen at each pixel, +inf for background.
+    zbuffer : (H, W) float64, the z-buffer's window depths (1 = far plane).
+    stats : JSON-serialisable counts per stage and ``times`` (seconds per stage).
+    settings : the settings used.
+    meshes : the objects as the triangle meshes that were drawn (analytic
+        spheres tessellated).
+    face_offsets : (O + 1,) int64, object ``o``'s faces are global faces
+        ``face_offsets[o] : face_offsets[o + 1]``.
+    faces : the back-face test of every global face (view space).
+    objects : frustum culling per object, ``None`` when switched off.
+    clipping : the clipping stage's result (the clipped polygons in world space).
+    view_from_world, clip_from_view : (4, 4) float64, the matrices used.
+    draw : the polygons in drawing order.
+    history : fragment record for step and pixel history (``record_steps``).
+    """
+
+    color: np.ndarray
+    depth: np.ndarray
+    zbuffer: np.ndarray
+    stats: dict
+    settings: RasterSettings
+    meshes: tuple[Mesh, ...]
+    face_offsets: np.ndarray
+    faces: FaceCulling
+    objects: ObjectCulling | None
+    clipping: ClipResult
+    view_from_world: np.ndarray
+    clip_from_view: np.ndarray
+    draw: DrawList
+    history: StepHistory | None
+
+    def face_index(self, object_index: int, triangle_index: int) -> int:
+        """The global face number of a triangle of an object (index into ``faces``)."""
+        return int(self.face_offsets[object_index] + triangle_index)
+
+
+def object_mesh(obj: SceneObject) -> Mesh:
+    """The object as triangles: meshes as they are, analytic spheres tessellated."""
+    if isinstance(obj, Sphere):
+        return shapes.uv_sphere(obj.center, obj.radius, SPHERE_RINGS, SPHERE_SEGMENTS,
+                                material=obj.material, name=obj.name)
+    return obj
+
+
+class _Stopwatch:
+    """Seconds spent per stage, read with :meth:`lap` at the end of each stage."""
+
+    def __init__(self):
+        self.times: dict[str, float] = {}
+        self._last = time.perf_counter()
+
+    def lap(self, stage: str) -> None:
+        now = time.perf_counter()
+        self.times[stage] = now - self._last
+        self._last = now
+
+
+DEFAULT_SETTINGS = RasterSettings()
+
+
+def _warm_up() -> None:
+
+    render_raster(zbuffer_piercing(), RasterSettings(record_steps=True)).history.buffers(1)
+
+
+ensure_compiled = WarmUp(_warm_up)
+"""Compile the raster kernels once per process; returns the seconds it took (0.0 later)."""
+
+
+def render_raster(scene: Scene, settings: RasterSettings = DEFAULT_SETTINGS) -> RasterResult:
+    """Render ``scene`` in object order from its camera.
+
+    Parameters
+    ----------
+    scene : objects, lights, background and the observer (its image size and
+        projection are used).
+    settings : which optional stages run.
+
+    Returns
+    -------
+    RasterResult
+    """
+    compile_s = ensure_compiled()
+    cam = scene.camera
+    ortho = cam.projection == "orthographic"
+    watch = _Stopwatch()
+    meshes = tuple(object_mesh(obj) for obj in scene.objects)
+    face_counts = np.array([len(m.triangles) for m in meshes], dtype=np.int64)
+    face_offsets = np.concatenate([[0], np.cumsum(face_counts)]).astype(np.int64)
+    vertex_offsets = np.cumsum([0] + [len(m.vertices) for m in meshes])
+    world = np.vstack([m.vertices for m in meshes] + [np.empty((0, 3))])
+    triangles = np.vstack([m.triangles + v for m, v in zip(meshes, vertex_offsets[:-1], strict=True)]
+                          + [np.empty((0, 3), np.int64)])
+    face_object = np.repeat(np.arange(len(meshes)), face_counts)
+    watch.lap("setup")
+
+    # 1. World -> view (camera) space -> clip space, once per vertex.
+    view_from_world, clip_from_view = cam.view_from_world, cam.clip_from_view
+    view = _transform(world, view_from_world, 3)
+    clip = _transform(view, clip_from_view, 4)
+    watch.lap("transform")
+
+    # 2. Back-face culling.
+    faces = culling.back_face_culling(view, triangles, ortho)
+    candidate = faces.visible.copy() if settings.back_face_culling else np.ones(len(triangles), bool)
+    watch.lap("back_face_culling")
+
+    # 3. Frustum culling of whole objects; objects inside skip the clipper's tests.
+    objects, may_cross, outside_faces = None, np.ones(len(triangles), dtype=bool), 0
+    if settings.frustum_culling and meshes:
+        spheres = [_bounding_sphere(obj, mesh) for obj, mesh in zip(scene.objects, meshes, strict=True)]
+        objects = culling.frustum_culling(np.array([c for c, _ in spheres]),
+                                          np.array([r for _, r in spheres]), cam.frustum_planes())
+        state = np.array(objects.state)
+        candidate &= (state != culling.OUTSIDE)[face_object]
+        may_cross = (state == culling.CROSSING)[face_object]
+        outside_faces = int(face_counts[state == culling.OUTSIDE].sum())
+    watch.lap("frustum_culling")
+
+    # 4. Clipping in homogeneous clip space (switched off: every triangle passes whole).
+    face_ids = np.flatnonzero(candidate)
+    test = may_cross[face_ids] if settings.clipping else np.zeros(len(face_ids), dtype=bool)
+    clipped = clipping.clip_triangles(face_ids, triangles[face_ids], clip, world, test)
+    polygons = clipped.polygons
+    watch.lap("clipping")
+
+    # 5. Projection: perspective divide and viewport mapping of every vertex.
+    xy, z_win = rasterization.window_coordinates(polygons.clip, cam.width, cam.height)
+    watch.lap("projection")
+
+    # 6. Flat shading, one colour per polygon, in view space.
+    poly_object = face_object[polygons.face]
+    materials = [m.material for m in meshes]
+    base = np.array([m.color for m in materials], dtype=float).reshape(-1, 3)[poly_object]
+    ambient = np.array([m.ambient for m in materials], dtype=float)[poly_object]
+    diffuse = np.array([m.diffuse for m in materials], dtype=float)[poly_object]
+    alpha = np.array([m.opacity for m in materials], dtype=float)[poly_object]
+    centroid = faces.centroid[polygons.face]
+    lights = np.array([(*light.position, 1.0) for light in scene.lights]).reshape(-1, 4)
+    colors = flat_shading.face_colors(
+        centroid, faces.normal[polygons.face], (0.0, 0.0, 1.0) if ortho else -centroid, base, ambient,
+        diffuse, (lights @ view_from_world.T)[:, :3],
+        np.array([np.multiply(light.color, light.intensity) for light in scene.lights]).reshape(-1, 3),
+    )
+    watch.lap("shading")
+
+    # 7. Drawing order: opaque first, then transparent (sorted far to near by face centroid).
+    transparent = alpha < 1.0
+    depth_key = -centroid[:, 2]
+    order = blending.draw_order(transparent, depth_key, settings.sort_transparent)
+    watch.lap("sorting")
+
+    # 8. Rasterization and the z-buffer.
+    fan, position = rasterization.fan_triangles(polygons.offsets, order)
+    zpass = zbuffer.draw(xy, z_win, polygons.vertex[fan], position, colors[order], alpha[order],
+                         cam.width, cam.height, scene.background, settings.record_steps)
+    watch.lap("rasterization")
+
+    covered = zpass.zbuf < zbuffer.FAR_DEPTH
+    distance = zbuffer.distance_from_window_depth(zpass.zbuf, cam.near, cam.far, ortho)
+    depth = np.where(covered, distance, np.inf)
+    object_index = poly_object[order]
+    triangle_index = polygons.face[order] - face_offsets[object_index]
+    draw = DrawList(polygons.take(order), object_index, triangle_index, transparent[order],
+                    colors[order], alpha[order], depth_key[order], zpass.generated, zpass.passed)
+    history = None
+    if settings.record_steps:
+        history = StepHistory(
+            cam.width, cam.height, np.asarray(scene.background, dtype=float), cam.near, cam.far, ortho,
+            np.concatenate([[0], np.cumsum(zpass.generated)]).astype(np.int64), zpass.fragments,
+            draw.color, draw.alpha, object_index, triangle_index,
+        )
+    watch.lap("output")
+
+    stats = _stats(settings, cam.projection, faces, outside_faces, objects, clipped, len(fan),
+                   zpass.out_of_range, draw, history, len(meshes), watch.times)
+    stats["compile_s"] = compile_s  # compiling or loading the kernels; not part of ``times``
+    return RasterResult(zpass.color, depth, zpass.zbuf, stats, settings, meshes, face_offsets, faces,
+                        objects, clipped, view_from_world, clip_from_view, draw, history)
+
+
+def _transform(points: np.ndarray, matrix: np.ndarray, rows: int) -> np.ndarray:
+    """``(matrix @ [p, 1])[:rows]`` for every point, (N, 3) -> (N, rows).
+
+    Written per coordinate: for a 4x4 matrix this is several times faster than
+    a matrix product, which hands three-wide rows to a threaded BLAS.
+    """
+    x, y, z = points[:, 0], points[:, 1], points[:, 2]
+    out = np.empty((len(points), rows))
+    for k in range(rows):
+        out[:, k] = matrix[k, 0] * x + matrix[k, 1] * y + matrix[k, 2] * z + matrix[k, 3]
+    return out
+
+
+def _bounding_sphere(obj: SceneObject, mesh: Mesh) -> tuple[np.ndarray, float]:
+    if isinstance(obj, Sphere):
+        return np.asarray(obj.center, dtype=float), float(obj.radius)
+    return culling.bounding_sphere(mesh.vertices)
+
+
+def _stats(settings, projection_name, faces, outside_faces, objects, clipped, n_triangles, out_of_range,
+           draw, history, n_objects, times) -> dict:
+    """Counts per stage as plain ints (JSON-serialisable)."""
+    generated, passed = int(draw.generated.sum()), int(draw.passed.sum())
+    back = int(faces.culled.sum())
+    return {
+        "projection": projection_name,
+        "settings": asdict(settings),
+        "objects": n_objects,
+        "faces": len(faces.visible),
+        "faces_back_facing": back,
+        "faces_culled": back if settings.back_face_culling else 0,
+        "objects_outside": objects.count(culling.OUTSIDE) if objects else 0,
+        "objects_inside": objects.count(culling.INSIDE) if objects else 0,
+        "objects_crossing": objects.count(culling.CROSSING) if objects else 0,
+        "objects_not_tested": 0 if objects else n_objects,
+        "faces_in_objects_outside": outside_faces,
+        "triangles_accepted_whole": clipped.accepted,
+        "triangles_rejected_by_clipping": clipped.rejected,
+        "polygons_clipped": clipped.clipped,
+        "polygons_drawn": len(draw),
+        "triangles_rasterized": n_triangles - out_of_range,
+        "triangles_out_of_range": out_of_range,
+        "fragments_generated": generated,
+        "fragments_passed": passed,
+        "fragments_failed": generated - passed,
+        "blends": int(draw.passed[draw.transparent].sum()),
+        "recorded_bytes": history.nbytes if history else 0,
+        "times": {k: float(v) for k, v in times.items()},
+    }

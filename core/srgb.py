@@ -1,0 +1,33 @@
+"""Linear RGB to sRGB: the one place colours are encoded for a screen or a file.
+
+Shading adds and scales light, so every colour in the scene and in the
+renderers is *linear* RGB (twice the value, twice the light).  Screens and
+image files expect *sRGB*, whose values follow the eye's response instead;
+writing linear values straight to 8 bits makes an image too dark with its
+shadows crushed.  Every pane and every exported image converts here.
+
+The transfer curve is the sRGB standard's (IEC 61966-2-1): linear below
+0.0031308, a 1/2.4 power above it.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+
+def linear_to_srgb(rgb: np.ndarray) -> np.ndarray:
+    """Encode linear RGB in [0, 1] (clipped) as sRGB in [0, 1], float64, same shape."""
+    c = np.clip(np.asarray(rgb, dtype=np.float64), 0.0, 1.0)
+    encoded = np.where(c <= 0.0031308, 12.92 * c, 1.055 * np.power(c, 1 / 2.4) - 0.055)
+    return np.where(c >= 1.0, 1.0, encoded)  # exactly white, not 1 - 1e-16
+
+
+def srgb_to_linear(srgb: np.ndarray) -> np.ndarray:
+    """Decode sRGB in [0, 1] (clipped) to linear RGB, float64, same shape."""
+    c = np.clip(np.asarray(srgb, dtype=np.float64), 0.0, 1.0)
+    return np.where(c <= 0.04045, c / 12.92, np.power((c + 0.055) / 1.055, 2.4))
+
+
+def to_srgb8(rgb: np.ndarray) -> np.ndarray:
+    """Linear RGB in [0, 1] to 8-bit sRGB (uint8), rounded to nearest, for display and files."""
+    return np.round(linear_to_srgb(rgb) * 255.0).astype(np.uint8)
