@@ -21,17 +21,24 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from numba.extending import register_jitable
 
 
+@register_jitable
 def blend_over(alpha, source, destination):
     """The lecture's blend ``c0 = alpha cs + (1 - alpha) cd`` (RGB in [0, 1]).
+
+    Written once: the rasterizer's kernel applies it channel by channel
+    (:mod:`core.object_order.kernels.raster`), the pixel history to whole
+    colours; ``source`` and ``destination`` may be numbers or (3,) arrays.
+    With ``alpha = 1`` (opaque) it writes ``cs`` unchanged.
 
     Examples
     --------
     >>> blend_over(0.25, np.array([1.0, 0.0, 0.0]), np.array([0.0, 0.0, 1.0])).tolist()
     [0.25, 0.0, 0.75]
     """
-    return alpha * np.asarray(source, dtype=float) + (1.0 - alpha) * np.asarray(destination, dtype=float)
+    return alpha * source + (1.0 - alpha) * destination
 
 
 @dataclass(frozen=True)

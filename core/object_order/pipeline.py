@@ -14,12 +14,13 @@ own module, and keeps what every stage did in a :class:`RasterResult`:
 6. flat shading of every polygon (:mod:`core.object_order.flat_shading`);
 7. drawing order: opaque first, then transparent far to near (:mod:`core.object_order.blending`);
 8. rasterization with the top-left rule and the z-buffer test
-   (:mod:`core.object_order.rasterization`, :mod:`core.object_order.zbuffer`, compiled in
-   :mod:`core.object_order.kernels.raster`),
+   (:mod:`core.object_order.rasterization`, :mod:`core.object_order.zbuffer`, run by
+   :mod:`core.object_order.fragments`, compiled in :mod:`core.object_order.kernels.raster`),
    optionally recording every fragment (:mod:`core.object_order.step_history`).
 
-Culling, clipping and sorting can be switched off (:class:`RasterSettings`) to
-see what each one is for.  Analytic spheres are tessellated first
+Culling, clipping, sorting and the z-test itself can be switched off
+(:class:`RasterSettings`) to see what each one is for, and the z-buffer's
+number format chosen (:mod:`core.object_order.depth_formats`).  Analytic spheres are tessellated first
 (``SPHERE_RINGS`` x ``SPHERE_SEGMENTS``).  Conventions: :mod:`core.projection`.
 """
 
@@ -31,7 +32,16 @@ from dataclasses import asdict, dataclass
 import numpy as np
 
 from core import shapes
-from core.object_order import blending, clipping, culling, flat_shading, rasterization, zbuffer
+from core.object_order import (
+    blending,
+    clipping,
+    culling,
+    depth_formats,
+    flat_shading,
+    fragments,
+    rasterization,
+    zbuffer,
+)
 from core.object_order.clipping import ClipResult, Polygons
 from core.object_order.culling import FaceCulling, ObjectCulling
 from core.object_order.step_history import StepHistory
@@ -45,7 +55,7 @@ SPHERE_RINGS, SPHERE_SEGMENTS = 32, 64
 
 @dataclass(frozen=True)
 class RasterSettings:
-    """Which optional stages run.
+    """Which optional stages run, and the z-buffer's number format.
 
     Attributes
     ----------
@@ -56,6 +66,16 @@ class RasterSettings:
         reaching behind the eye is projected mirrored.
     sort_transparent : draw transparent polygons from the farthest to the closest.
     record_steps : keep every fragment for step and pixel history.
+    z_test : compare each fragment's depth with the z-buffer's; off, fragments
+        are written in drawing order (the painter without sorting), so back-face
+        culling alone decides what is seen.
+    depth_format : the z-buffer's number format, one of
+        :data:`core.object_order.depth_formats.DEPTH_FORMATS`.
+
+    Raises
+    ------
+    ValueError
+        For a ``depth_format`` that is not one of the formats (naming them).
     """
 
     back_face_culling: bool = True
@@ -63,6 +83,11 @@ class RasterSettings:
     clipping: bool = True
     sort_transparent: bool = True
     record_steps: bool = False
+    z_test: bool = True
+    depth_format: str = "float64"
+
+    def __post_init__(self):
+        depth_formats.format_code(self.depth_format)
 
 
 @dataclass(frozen=True, eq=False)
@@ -111,9 +136,12 @@ class RasterResult:
     ----------
     color : (H, W, 3) float64, image memory, RGB in [0, 1].
     depth : (H, W) float64, distance along the viewing axis (scene units,
-        positive) of the surface seen at each pixel, +inf for background.
-    zbuffer : (H, W) float64, the z-buffer's window depths (1 = far plane).
-    stats : JSON-serialisable counts per stage and ``times`` (seconds per stage).
+        positive) of the surface seen at each pixel (as the z-buffer's format
+        stores its depth), +inf for background.
+    zbuffer : (H, W) float64, the z-buffer's depth keys: window depths as the
+        format stores them (1 = far plane).
+    stats : JSON-serialisable counts per stage, ``zbuffer_bytes`` (the z-buffer's
+        size in its format) and ``times`` (seconds per stage).
     settings : the settings used.
     meshes : the objects as the triangle meshes that were drawn (analytic
         spheres tessellated).
@@ -259,14 +287,15 @@ def render_raster(scene: Scene, settings: RasterSettings = DEFAULT_SETTINGS) -> 
 
     # 7. Drawing order: opaque first, then transparent (sorted far to near by face centroid).
     transparent = alpha < 1.0
-    depth_key = -centroid[:, 2]
-    order = blending.draw_order(transparent, depth_key, settings.sort_transparent)
+    sort_depth = -centroid[:, 2]
+    order = blending.draw_order(transparent, sort_depth, settings.sort_transparent)
     watch.lap("sorting")
 
     # 8. Rasterization and the z-buffer.
     fan, position = rasterization.fan_triangles(polygons.offsets, order)
-    zpass = zbuffer.draw(xy, z_win, polygons.vertex[fan], position, colors[order], alpha[order],
-                         cam.width, cam.height, scene.background, settings.record_steps)
+    zpass = fragments.draw(xy, z_win, polygons.vertex[fan], position, colors[order], alpha[order],
+                           cam.width, cam.height, scene.background, settings.record_steps,
+                           settings.depth_format, settings.z_test)
     watch.lap("rasterization")
 
     covered = zpass.zbuf < zbuffer.FAR_DEPTH
@@ -275,18 +304,19 @@ def render_raster(scene: Scene, settings: RasterSettings = DEFAULT_SETTINGS) -> 
     object_index = poly_object[order]
     triangle_index = polygons.face[order] - face_offsets[object_index]
     draw = DrawList(polygons.take(order), object_index, triangle_index, transparent[order],
-                    colors[order], alpha[order], depth_key[order], zpass.generated, zpass.passed)
+                    colors[order], alpha[order], sort_depth[order], zpass.generated, zpass.passed)
     history = None
     if settings.record_steps:
         history = StepHistory(
             cam.width, cam.height, np.asarray(scene.background, dtype=float), cam.near, cam.far, ortho,
             np.concatenate([[0], np.cumsum(zpass.generated)]).astype(np.int64), zpass.fragments,
-            draw.color, draw.alpha, object_index, triangle_index,
+            draw.color, draw.alpha, object_index, triangle_index, settings.depth_format,
+            settings.z_test,
         )
     watch.lap("output")
 
     stats = _stats(settings, cam.projection, faces, outside_faces, objects, clipped, len(fan),
-                   zpass.out_of_range, draw, history, len(meshes), watch.times)
+                   zpass.out_of_range, draw, history, len(meshes), cam.width, cam.height, watch.times)
     stats["compile_s"] = compile_s  # compiling or loading the kernels; not part of ``times``
     return RasterResult(zpass.color, depth, zpass.zbuf, stats, settings, meshes, face_offsets, faces,
                         objects, clipped, view_from_world, clip_from_view, draw, history)
@@ -312,7 +342,7 @@ def _bounding_sphere(obj: SceneObject, mesh: Mesh) -> tuple[np.ndarray, float]:
 
 
 def _stats(settings, projection_name, faces, outside_faces, objects, clipped, n_triangles, out_of_range,
-           draw, history, n_objects, times) -> dict:
+           draw, history, n_objects, width, height, times) -> dict:
     """Counts per stage as plain ints (JSON-serialisable)."""
     generated, passed = int(draw.generated.sum()), int(draw.passed.sum())
     back = int(faces.culled.sum())
@@ -339,5 +369,6 @@ def _stats(settings, projection_name, faces, outside_faces, objects, clipped, n_
         "fragments_failed": generated - passed,
         "blends": int(draw.passed[draw.transparent].sum()),
         "recorded_bytes": history.nbytes if history else 0,
+        "zbuffer_bytes": depth_formats.BYTES_PER_PIXEL[settings.depth_format] * width * height,
         "times": {k: float(v) for k, v in times.items()},
     }

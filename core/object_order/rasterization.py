@@ -23,23 +23,30 @@ perspective it is affine in ``1 / w``, which is itself affine on the screen),
 so the plane through the three unsnapped corners gives the exact depth at
 every pixel centre.  Conventions are those of :mod:`core.projection`: pixel
 ``x`` to the right, ``y`` down, pixel ``(i, j)`` centred at
-``(i + 0.5, j + 0.5)``.  The hot loop is :func:`core.object_order.kernels.raster.draw_triangles`;
-:func:`snap`, :func:`coverage` and :func:`depth_planes` are its plain reference.
-A corner farther than ``MAX_PIXEL`` from the image (possible only with
-clipping switched off) would overflow the integer edge functions, so such
-triangles are not drawn.
+``(i + 0.5, j + 0.5)``.
+
+Every formula here is written once, as a small function that numba compiles
+into the hot loop (:func:`core.object_order.kernels.raster.draw_triangles`)
+and that plain Python calls too: :func:`to_fixed`, :func:`edge_function`,
+:func:`is_top_left` with :func:`fill_rule_offset`, :func:`edge_steps`,
+:func:`depth_plane` and :func:`plane_depth`.  :func:`coverage` is the loop
+written plainly for one triangle.  A corner farther than ``MAX_PIXEL`` from
+the image (possible only with clipping switched off) would overflow the
+integer edge functions, so such triangles are not drawn.
 """
 
 from __future__ import annotations
 
 import numpy as np
+from numba.extending import register_jitable
 
 from core import projection
-from core.object_order.kernels.raster import MAX_PIXEL as MAX_PIXEL
-from core.object_order.kernels.raster import SUBPIXEL_BITS
 
+SUBPIXEL_BITS = 8
 SUBPIXEL = 1 << SUBPIXEL_BITS
 """Fixed-point steps per pixel (corners are snapped to 1/256 pixel, as on GPUs)."""
+MAX_PIXEL = float(1 << 20)
+"""Largest pixel coordinate the int64 edge functions handle without overflow."""
 
 
 def window_coordinates(clip: np.ndarray, width: int, height: int) -> tuple[np.ndarray, np.ndarray]:
@@ -66,22 +73,36 @@ def window_coordinates(clip: np.ndarray, width: int, height: int) -> tuple[np.nd
     return projection.pixel_from_ndc(ndc[:, :2], width, height), (ndc[:, 2] + 1.0) * 0.5
 
 
-def snap(xy: np.ndarray) -> np.ndarray:
-    """Pixel coordinates to fixed point: integer multiples of 1/``SUBPIXEL`` pixel.
+@register_jitable
+def to_fixed(x):
+    """One pixel coordinate to fixed point: the nearest multiple of 1/``SUBPIXEL`` pixel.
 
     Examples
     --------
-    >>> snap(np.array([0.5, 1.25])).tolist()
-    [128, 320]
+    >>> int(to_fixed(0.5)), int(to_fixed(1.25))
+    (128, 320)
     """
-    return np.rint(np.asarray(xy, dtype=float) * SUBPIXEL).astype(np.int64)
+    return np.int64(np.rint(x * SUBPIXEL))
 
 
+def snap(xy: np.ndarray) -> np.ndarray:
+    """:func:`to_fixed` over an array of pixel coordinates (int64, same shape)."""
+    return np.vectorize(to_fixed, otypes=[np.int64])(np.asarray(xy, dtype=float))
+
+
+@register_jitable
+def pixel_centre_fixed(i):
+    """The centre of pixel column (or row) ``i`` in fixed point: ``(i + 1/2) SUBPIXEL``."""
+    return i * SUBPIXEL + SUBPIXEL // 2
+
+
+@register_jitable
 def edge_function(a, b, p):
     """``E_ab(p) = (b - a) x (p - a)``: twice the signed area of the triangle ``a, b, p``.
 
     With y pointing down, ``E > 0`` means ``p`` lies clockwise from the edge as
-    seen on the screen.  ``p`` may be a tuple of coordinate arrays.
+    seen on the screen.  In fixed point (integers) it is exact.  The
+    coordinates of ``p`` may be arrays (a grid of pixel centres).
 
     Examples
     --------
@@ -91,13 +112,33 @@ def edge_function(a, b, p):
     return (b[0] - a[0]) * (p[1] - a[1]) - (b[1] - a[1]) * (p[0] - a[0])
 
 
-def is_top_left(a, b) -> bool:
-    """Does the edge ``a -> b`` own the pixel centres lying exactly on it?
+@register_jitable
+def edge_steps(a, b):
+    """How ``E_ab`` changes from one pixel centre to the next: ``(per column, per row)``.
+
+    ``E_ab`` is linear in ``p``, so stepping it by these fixed-point amounts
+    gives exactly the value :func:`edge_function` would compute afresh.
+
+    Examples
+    --------
+    >>> [int(s) for s in edge_steps((0, 0), (4, 0))]
+    [0, 1024]
+    """
+    return (a[1] - b[1]) * SUBPIXEL, (b[0] - a[0]) * SUBPIXEL
+
+
+@register_jitable
+def is_top_left(a, b):
+    """Does the edge ``a -> b`` own the pixel centres lying exactly on it?  The tie rule.
 
     For a triangle whose corners run so that its inside has ``E > 0`` on every
     edge, the inward normal of ``a -> b`` is ``(-(by - ay), bx - ax)``.  The
     edge is a *left* edge when that normal points right (``by < ay``) and a
     *top* edge when it is horizontal with the normal pointing down (``bx > ax``).
+    Two triangles sharing an edge run it in opposite directions, so exactly
+    one of them owns its centres.  Equivalently: a centre on the edge belongs
+    to the triangle that holds the point an infinitesimal step to its right
+    (and, on a horizontal edge, a smaller step down).
 
     Examples
     --------
@@ -107,11 +148,55 @@ def is_top_left(a, b) -> bool:
     (True, False)
     """
     dx, dy = b[0] - a[0], b[1] - a[1]
-    return bool(dy < 0 or (dy == 0 and dx > 0))
+    return dy < 0 or (dy == 0 and dx > 0)
+
+
+@register_jitable
+def fill_rule_offset(a, b):
+    """0 for a top-left edge, -1 otherwise: added to the integer ``E_ab``, the test
+    ``E + offset >= 0`` keeps centres inside and those on owned edges."""
+    return 0 if is_top_left(a, b) else -1
+
+
+@register_jitable
+def depth_plane(a, b, c, za, zb, zc):
+    """The plane of window depth over the screen through a triangle's three corners.
+
+    Parameters
+    ----------
+    a, b, c : (x, y) float, corners in pixels (unsnapped).
+    za, zb, zc : float, their window depths.
+
+    Returns
+    -------
+    (z_a, dz/dx, dz/dy) : the depth at ``a`` and its change per pixel to the
+        right and down (Cramer's rule on the two edge vectors from ``a``).  A
+        triangle with no area on screen gets a constant depth ``z_a``.
+    """
+    det = edge_function(a, b, c)
+    if det == 0:
+        return za, 0.0, 0.0
+    dzb, dzc = zb - za, zc - za
+    dzdx = (dzb * (c[1] - a[1]) - dzc * (b[1] - a[1])) / det
+    dzdy = (dzc * (b[0] - a[0]) - dzb * (c[0] - a[0])) / det
+    return za, dzdx, dzdy
+
+
+@register_jitable
+def plane_depth(plane, a, px, py):
+    """The depth of a fragment: the plane ``(z_a, dz/dx, dz/dy)`` anchored at corner
+    ``a`` evaluated at pixel position ``(px, py)`` (a pixel centre).
+
+    Examples
+    --------
+    >>> plane_depth((0.5, 0.01, -0.02), (10.0, 20.0), 12.5, 20.5)
+    0.515
+    """
+    return plane[0] + (py - a[1]) * plane[2] + (px - a[0]) * plane[1]
 
 
 def coverage(corners_fixed, width: int, height: int) -> np.ndarray:
-    """Pixels whose centres one triangle covers: the reference for the compiled kernel.
+    """Pixels whose centres one triangle covers: the kernel's test written plainly.
 
     Parameters
     ----------
@@ -124,38 +209,14 @@ def coverage(corners_fixed, width: int, height: int) -> np.ndarray:
     """
     a, b, c = (tuple(int(v) for v in corner) for corner in corners_fixed)
     area = edge_function(a, b, c)
-    if area < 0:
+    if area < 0:  # make the corners run so that inside means E > 0 for every edge
         b, c = c, b
-    px = np.arange(width, dtype=np.int64)[None, :] * SUBPIXEL + SUBPIXEL // 2
-    py = np.arange(height, dtype=np.int64)[:, None] * SUBPIXEL + SUBPIXEL // 2
+    px = pixel_centre_fixed(np.arange(width, dtype=np.int64))[None, :]
+    py = pixel_centre_fixed(np.arange(height, dtype=np.int64))[:, None]
     inside = np.full((height, width), area != 0)
     for u, v in ((b, c), (c, a), (a, b)):
-        e = edge_function(u, v, (px, py))
-        inside &= (e > 0) | ((e == 0) & is_top_left(u, v))
+        inside &= edge_function(u, v, (px, py)) + fill_rule_offset(u, v) >= 0
     return inside
-
-
-def depth_planes(xy: np.ndarray, z: np.ndarray) -> np.ndarray:
-    """The plane of window depth over the screen through each triangle's corners.
-
-    Parameters
-    ----------
-    xy : (T, 3, 2) float64, corners in pixels (unsnapped).
-    z : (T, 3) float64, window depth of the corners.
-
-    Returns
-    -------
-    (T, 3) float64, ``(z_a, dz/dx, dz/dy)`` so that at pixel position ``p``
-    ``z = z_a + (p_x - a_x) dz/dx + (p_y - a_y) dz/dy`` with ``a`` the first
-    corner.  A triangle with no area on screen gets a constant depth ``z_a``.
-    """
-    ab, ac = xy[:, 1] - xy[:, 0], xy[:, 2] - xy[:, 0]
-    dzb, dzc = z[:, 1] - z[:, 0], z[:, 2] - z[:, 0]
-    det = ab[:, 0] * ac[:, 1] - ac[:, 0] * ab[:, 1]
-    safe = np.where(det != 0, det, 1.0)
-    dzdx = np.where(det != 0, (dzb * ac[:, 1] - dzc * ab[:, 1]) / safe, 0.0)
-    dzdy = np.where(det != 0, (dzc * ab[:, 0] - dzb * ac[:, 0]) / safe, 0.0)
-    return np.stack([z[:, 0], dzdx, dzdy], axis=1)
 
 
 def fan_triangles(offsets: np.ndarray, order: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

@@ -3,8 +3,9 @@
 The lecture's z-buffer figure shows image memory and z-buffer after each
 polygon.  Keeping a copy of both buffers per step would cost ``32 W H`` bytes a
 step (10,000 polygons at 640 x 480: about 98 GB).  Instead a recording render
-keeps what each polygon *did*: its fragments, each a pixel number, a window
-depth and the depth-test result (13 bytes).  The state after the first ``k``
+keeps what each polygon *did*: its fragments, each a pixel number, a depth
+key (the window depth as the z-buffer's format stores it) and the depth-test
+result (13 bytes).  The state after the first ``k``
 polygons is rebuilt on demand by replaying the passed fragments of those
 polygons into cleared buffers (compiled: :func:`core.object_order.kernels.raster.replay`),
 with exactly the arithmetic of the render, so a rebuilt step is bit-identical
@@ -23,8 +24,8 @@ import numpy as np
 
 from core.object_order import zbuffer
 from core.object_order.blending import Blend, blend_over
+from core.object_order.fragments import Fragments
 from core.object_order.kernels import raster as kernels
-from core.object_order.zbuffer import Fragments
 
 
 @dataclass(frozen=True)
@@ -37,12 +38,14 @@ class PixelEvent:
         are step ``polygon + 1``).
     object_index : index of its object in ``scene.objects``.
     triangle_index : its face's triangle index within the object's mesh.
-    z : its window depth in [0, 1].
+    z : its depth key: the window depth in [0, 1] as the z-buffer's format
+        stores it (the window depth itself in ``float64``).
     distance : the same depth as distance along the viewing axis (scene units).
-    stored_z : the window depth in the z-buffer it was compared with.
+    stored_z : the depth key in the z-buffer it was compared with.
     stored_distance : the same as distance along the viewing axis (the far
         plane's distance while nothing has passed there).
-    passed : the depth test's result, ``z < stored_z``.
+    passed : the depth test's result, :func:`core.object_order.zbuffer.depth_test`
+        of ``z`` against ``stored_z``; always True with the z-test switched off.
     color_before, color_after : (3,) image memory at the pixel before and after.
     blend : the blend terms, for a passed fragment of a transparent polygon.
     """
@@ -76,6 +79,9 @@ class StepHistory:
     color : (P, 3) float64, each polygon's flat colour.
     alpha : (P,) float64, each polygon's opacity alpha_s.
     object_index, triangle_index : (P,) int64, where each polygon came from.
+    depth_format : the z-buffer's number format
+        (:data:`core.object_order.depth_formats.DEPTH_FORMATS`).
+    z_test : whether fragments were depth-tested (False: drawn in order).
     """
 
     width: int
@@ -90,6 +96,8 @@ class StepHistory:
     alpha: np.ndarray
     object_index: np.ndarray
     triangle_index: np.ndarray
+    depth_format: str = "float64"
+    z_test: bool = True
 
     @property
     def n_steps(self) -> int:
@@ -103,16 +111,17 @@ class StepHistory:
         return self.fragments.nbytes + sum(a.nbytes for a in per_polygon)
 
     def buffers(self, k: int) -> tuple[np.ndarray, np.ndarray]:
-        """Image memory (H, W, 3) and z-buffer (H, W, window depth) after ``k`` polygons."""
+        """Image memory (H, W, 3) and z-buffer (H, W, depth keys) after ``k`` polygons."""
         if not 0 <= k <= self.n_steps:
             raise ValueError(f"step must be in [0, {self.n_steps}], got {k}")
-        color, zbuf = zbuffer.cleared_buffers(self.width, self.height, self.background)
+        color, zbuf = zbuffer.cleared_buffers(self.width, self.height, self.background,
+                                              self.depth_format)
         f = self.fragments
         kernels.replay(self.offsets, f.pixel, f.z, f.passed, self.color, self.alpha, k, color, zbuf)
         return color, zbuf
 
     def polygon_fragments(self, p: int) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-        """The fragments of polygon ``p`` (drawn at step ``p``): columns, rows, window depths, passed."""
+        """The fragments of polygon ``p`` (drawn at step ``p``): columns, rows, depth keys, passed."""
         part = slice(self.offsets[p], self.offsets[p + 1])
         rows, cols = np.divmod(self.fragments.pixel[part], self.width)
         return cols, rows, self.fragments.z[part], self.fragments.passed[part]
@@ -123,7 +132,8 @@ class StepHistory:
             raise ValueError(f"pixel ({x}, {y}) is outside the {self.width} x {self.height} image")
         index = np.flatnonzero(self.fragments.pixel == y * self.width + x)
         polygons = np.searchsorted(self.offsets, index, side="right") - 1
-        color, stored = np.asarray(self.background, dtype=float), zbuffer.FAR_DEPTH
+        color, cleared = zbuffer.cleared_buffers(1, 1, self.background, self.depth_format)
+        color, stored = color[0, 0], float(cleared[0, 0])
         events = []
         for f, p in zip(index.tolist(), polygons.tolist(), strict=True):
             z, passed = float(self.fragments.z[f]), bool(self.fragments.passed[f])

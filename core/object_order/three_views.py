@@ -44,8 +44,8 @@ def orthographic_views(scene: Scene, width: int = 320, height: int = 240) -> dic
     --------
     >>> from core.presets import lecture_scene
     >>> views = orthographic_views(lecture_scene())
-    >>> views["top"].projection, views["top"].forward.round(6).tolist()
-    ('orthographic', [-0.0, -1.0, -0.0])
+    >>> views["top"].projection, (views["top"].forward.round(6) + 0.0).tolist()   # + 0.0: no -0.0
+    ('orthographic', [0.0, -1.0, 0.0])
     """
     low, high = scene_bounds(scene)
     center = (low + high) / 2
