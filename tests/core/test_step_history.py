@@ -12,6 +12,8 @@ from core.object_order.pipeline import RasterSettings, render_raster
 from core.scene import Material, Mesh, PointLight, Scene
 
 RECORD = RasterSettings(record_steps=True)
+VARIANTS = {"float64": {}, "int16": {"depth_format": "int16"}, "float32-reversed":
+            {"depth_format": "float32-reversed"}, "no z-test": {"z_test": False}}
 
 
 def _small_lecture_scene() -> Scene:
@@ -32,9 +34,10 @@ def _first_polygons(scene: Scene, result, k: int) -> Scene:
                  background=scene.background)
 
 
-def test_step_zero_is_the_cleared_buffers_and_the_last_step_the_image():
+@pytest.mark.parametrize("variant", VARIANTS)
+def test_step_zero_is_the_cleared_buffers_and_the_last_step_the_image(variant):
     scene = _small_lecture_scene()
-    result = render_raster(scene, RECORD)
+    result = render_raster(scene, RasterSettings(record_steps=True, **VARIANTS[variant]))
     color, zbuf = result.history.buffers(0)
     assert np.all(color == scene.background) and np.all(zbuf == zbuffer.FAR_DEPTH)
     color, zbuf = result.history.buffers(result.history.n_steps)
@@ -43,13 +46,14 @@ def test_step_zero_is_the_cleared_buffers_and_the_last_step_the_image():
         result.history.buffers(result.history.n_steps + 1)
 
 
-def test_rebuilt_step_equals_a_fresh_render_of_only_the_first_polygons():
+@pytest.mark.parametrize("variant", VARIANTS)
+def test_rebuilt_step_equals_a_fresh_render_of_only_the_first_polygons(variant):
     scene = _small_lecture_scene()
-    result = render_raster(scene, RECORD)
+    result = render_raster(scene, RasterSettings(record_steps=True, **VARIANTS[variant]))
     n = result.history.n_steps
     for k in sorted({1, 5, n // 3, n // 2, n - 3, n - 1}):
         color, zbuf = result.history.buffers(k)
-        fresh = render_raster(_first_polygons(scene, result, k))
+        fresh = render_raster(_first_polygons(scene, result, k), RasterSettings(**VARIANTS[variant]))
         assert len(fresh.draw) == k
         assert np.array_equal(color, fresh.color)
         assert np.array_equal(zbuf, fresh.zbuffer)
@@ -96,7 +100,7 @@ def test_pixel_history_lists_every_fragment_in_order_with_its_depth_test():
     color = np.asarray(scene.background)
     for e in events:
         assert e.stored_z == stored
-        assert e.passed == (e.z < stored)
+        assert e.passed == (e.z < stored)  # the lecture's test: nearer than what is stored
         assert np.array_equal(e.color_before, color)
         if e.passed:
             stored, color = e.z, e.color_after
@@ -132,3 +136,23 @@ def test_pixel_history_of_a_transparent_pixel_gives_the_blend_terms():
     by_hand = [0.3 * 1.0 + 0.7 * 0.2, 0.3 * 0.5 + 0.7 * 0.4, 0.3 * 0.0 + 0.7 * 0.6]
     assert np.allclose(blend.result, by_hand)
     assert np.allclose(result.color[15, 20], by_hand)
+
+
+@pytest.mark.parametrize("fmt", ["int16", "int24", "float32", "float32-reversed"])
+def test_pixel_history_replays_the_z_test_on_the_formats_keys(fmt):
+    """Every event's result is the strict test of its key against the stored key, and the
+    stored key after a pass is the incoming one, so the story adds up to the image."""
+    scene = _small_lecture_scene()
+    result = render_raster(scene, RasterSettings(depth_format=fmt, record_steps=True))
+    history = result.history
+    crowded = np.bincount(history.fragments.pixel).argmax()  # the pixel most fragments reached
+    y, x = divmod(int(crowded), history.width)
+    events = history.pixel_history(x, y)
+    assert len(events) >= 2
+    stored = zbuffer.FAR_DEPTH
+    for e in events:
+        assert e.stored_z == stored and e.passed == (e.z < stored)
+        if e.passed:
+            stored = e.z
+    assert stored == result.zbuffer[y, x]
+    assert np.array_equal(events[-1].color_after, result.color[y, x])

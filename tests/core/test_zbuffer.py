@@ -9,7 +9,9 @@ import pytest
 from core import presets
 from core.camera import Camera
 from core.object_order import zbuffer
+from core.object_order.depth_formats import DEPTH_FORMATS
 from core.object_order.pipeline import RasterSettings, render_raster
+from core.scene import Material, Mesh, Scene
 
 
 def _rays(cam, jitter=0.0):
@@ -41,10 +43,11 @@ def painter_reference(scene, k, jitter=0.0):
     return winner.reshape(cam.height, cam.width), depth.reshape(cam.height, cam.width)
 
 
-def test_cleared_buffers_hold_background_and_far_plane():
-    color, zbuf = zbuffer.cleared_buffers(4, 3, (0.1, 0.2, 0.3))
+@pytest.mark.parametrize("fmt", DEPTH_FORMATS)
+def test_cleared_buffers_hold_background_and_far_plane(fmt):
+    color, zbuf = zbuffer.cleared_buffers(4, 3, (0.1, 0.2, 0.3), fmt)
     assert color.shape == (3, 4, 3) and np.all(color == [0.1, 0.2, 0.3])
-    assert zbuf.shape == (3, 4) and np.all(zbuf == zbuffer.FAR_DEPTH)
+    assert zbuf.shape == (3, 4) and np.all(zbuf == zbuffer.FAR_DEPTH)  # 1.0 is exact in every format
 
 
 @pytest.mark.parametrize("projection", ["perspective", "orthographic"])
@@ -116,3 +119,22 @@ def test_piercing_polygons_are_resolved_pixel_by_pixel_in_either_order():
 def test_depth_test_is_strict():
     assert zbuffer.depth_test(0.2, 0.3)
     assert not zbuffer.depth_test(0.3, 0.3)
+
+
+@pytest.mark.parametrize("fmt", DEPTH_FORMATS)
+def test_of_two_fragments_at_the_same_depth_the_one_drawn_first_stays(fmt):
+    """The tie rule: the z-test is strict, so an equal depth fails."""
+    corners = [(-1.0, -1.0, 0.0), (1.0, -1.0, 0.0), (0.0, 1.0, 0.0)]
+    red, green = (Mesh(corners, [[0, 1, 2]], Material(color=c), n)
+                  for c, n in (((1.0, 0.0, 0.0), "red"), ((0.0, 1.0, 0.0), "green")))
+    cam = Camera(eye=(0.0, 0.0, 4.0), target=(0.0, 0.0, 0.0), width=40, height=30)
+    for first, second in ((red, green), (green, red)):
+        result = render_raster(Scene(camera=cam, objects=(first, second)),
+                               RasterSettings(depth_format=fmt, record_steps=True))
+        covered = np.isfinite(result.depth)
+        assert covered.sum() > 100
+        assert np.all(result.draw.failed == [0, covered.sum()])
+        winner = np.argmax(first.material.color)
+        assert np.all(np.argmax(result.color[covered], axis=-1) == winner)
+        kept, tied = result.history.pixel_history(20, 15)
+        assert kept.passed and not tied.passed and tied.z == tied.stored_z == kept.z
