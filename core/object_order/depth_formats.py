@@ -37,6 +37,8 @@ from numba.extending import register_jitable
 
 #: The formats, in the order of their codes (the kernels take the index).
 DEPTH_FORMATS = ("float64", "float32", "float32-reversed", "int24", "int16")
+#: The kernels' codes of the formats, by name (``DEPTH_FORMATS[FLOAT32] == "float32"``).
+FLOAT64, FLOAT32, FLOAT32_REVERSED, INT24, INT16 = range(len(DEPTH_FORMATS))
 #: Bytes one pixel of the z-buffer takes in each format.
 BYTES_PER_PIXEL = {"float64": 8, "float32": 4, "float32-reversed": 4, "int24": 3, "int16": 2}
 
@@ -56,15 +58,15 @@ def depth_key(z: float, code: int) -> float:
     same key.  For ``float32-reversed`` the key is ``1 - stored`` so that it
     still grows with distance.
     """
-    if code == 1:
+    if code == FLOAT32:
         return float(np.float32(z))
-    if code == 2:
+    if code == FLOAT32_REVERSED:
         return 1.0 - float(np.float32(1.0 - z))
-    if code == 3:
-        steps = 16777215.0
+    if code == INT24:
+        steps = float((1 << 24) - 1)
         return np.floor(min(max(z, 0.0), 1.0) * steps + 0.5) / steps
-    if code == 4:
-        steps = 65535.0
+    if code == INT16:
+        steps = float((1 << 16) - 1)
         return np.floor(min(max(z, 0.0), 1.0) * steps + 0.5) / steps
     return z
 
