@@ -56,19 +56,16 @@ def depth_key(z: float, code: int) -> float:
 
     Smaller keys are nearer; two depths the format cannot tell apart get the
     same key.  For ``float32-reversed`` the key is ``1 - stored`` so that it
-    still grows with distance.
+    still grows with distance.  ``code`` comes from :func:`format_code`.
     """
+    if code == FLOAT64:
+        return z
     if code == FLOAT32:
         return float(np.float32(z))
     if code == FLOAT32_REVERSED:
         return 1.0 - float(np.float32(1.0 - z))
-    if code == INT24:
-        steps = float((1 << 24) - 1)
-        return np.floor(min(max(z, 0.0), 1.0) * steps + 0.5) / steps
-    if code == INT16:
-        steps = float((1 << 16) - 1)
-        return np.floor(min(max(z, 0.0), 1.0) * steps + 0.5) / steps
-    return z
+    steps = float((1 << (24 if code == INT24 else 16)) - 1)  # INT24 or INT16: fixed point
+    return np.floor(min(max(z, 0.0), 1.0) * steps + 0.5) / steps
 
 
 def depth_keys(z: np.ndarray, name: str) -> np.ndarray:
