@@ -20,8 +20,9 @@ own module, and keeps what every stage did in a :class:`RasterResult`:
 
 Culling, clipping, sorting and the z-test itself can be switched off
 (:class:`RasterSettings`) to see what each one is for, and the z-buffer's
-number format chosen (:mod:`core.object_order.depth_formats`).  Analytic spheres are tessellated first
-(``SPHERE_RINGS`` x ``SPHERE_SEGMENTS``).  Conventions: :mod:`core.projection`.
+number format chosen (:mod:`core.object_order.depth_formats`).  Analytic
+spheres are tessellated first (``SPHERE_RINGS`` x ``SPHERE_SEGMENTS``).
+Conventions: :mod:`core.projection`.
 """
 
 from __future__ import annotations
