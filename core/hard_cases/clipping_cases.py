@@ -57,12 +57,12 @@ def behind_the_eye(behind: float = 2.0) -> CaseResult:
     divided = (CAMERA.clip_from_world @ np.append(corners[2], 1.0))
     ndc = divided[:3] / divided[3]
     rows = (
+        Row("pixels wrong (against the ray caster)", wrong["naive"], wrong["robust"], 0),
         Row("w of the corner behind the eye", w_behind, w_behind, w_behind),
         Row("that corner divided by w: NDC x, y", f"({ndc[0]:.3g}, {ndc[1]:.3g})",
             "cut off before the divide", "none: no ray from the eye reaches it"),
         Row("pixels covered", int((naive.zbuffer < FAR_DEPTH).sum()),
             int((robust.zbuffer < FAR_DEPTH).sum()), int(should.sum())),
-        Row("pixels wrong (against the ray caster)", wrong["naive"], wrong["robust"], 0),
         Row("polygons after clipping", len(naive.draw), len(robust.draw), 1),
     )
     return CaseResult(

@@ -111,9 +111,9 @@ def non_convex_culling(yaw_deg: float = 45.0) -> CaseResult:
     view = mesh.vertices @ camera.view_from_world[:3, :3].T + camera.view_from_world[:3, 3]
     faces = back_face_culling(view, mesh.triangles, False)
     rows = (
+        Row("pixels showing the wrong wall", int(wrong_naive.sum()), int(wrong_robust.sum()), 0),
         Row("faces drawn (front faces)", int(faces.visible.sum()), int(faces.visible.sum()),
             int(faces.visible.sum())),
-        Row("pixels showing the wrong wall", int(wrong_naive.sum()), int(wrong_robust.sum()), 0),
         Row("pixels covered", int((naive >= 0).sum()), int((robust >= 0).sum()), int((truth >= 0).sum())),
     )
     return CaseResult(

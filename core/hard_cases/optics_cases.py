@@ -93,10 +93,10 @@ def total_internal_reflection(angle_deg: float = 60.0) -> CaseResult:
     errors = (_distance(naive, exact_dir), _distance(robust, exact_dir))
     naive_kind = "NaN" if np.isnan(naive).any() else "refracted"
     rows = (
-        Row("1 - sin² θ2 (the radicand)", radicand, radicand,
-            float(1 - eta**2 * (1 - mpmath.mpf(cos_i) ** 2))),
         Row("the ray that continues", naive_kind, "refracted" if ok else "reflected (total)",
             "reflected (total)" if total else "refracted"),
+        Row("1 - sin² θ2 (the radicand)", radicand, radicand,
+            float(1 - eta**2 * (1 - mpmath.mpf(cos_i) ** 2))),
         Row("its direction", _vec(naive), _vec(robust), _vec(exact_dir)),
         Row("direction error", errors[0], errors[1], 0.0),
         Row("reflected fraction R (Fresnel)", None, reflectance, float(exact_r)),

@@ -108,7 +108,7 @@ def tangent_rays(offset: float = 3e-11) -> CaseResult:
     center, r = np.array(TANGENT_CENTER), 1.0
     d = TANGENT_DIRECTION
     side = _unit(np.cross(d, (0.0, 0.0, 1.0)))
-    rows, wrong_naive, wrong_robust = [], 0, 0
+    rows, verdicts, wrong_naive, wrong_robust = [], ([], [], []), 0, 0
     for name, s in (("outside by offset", 1.0), ("tangent", 0.0), ("inside by offset", -1.0)):
         o = center - TANGENT_BACK * d + r * (1.0 + s * offset) * side
         naive_disc, *_ = textbook_discriminant(o, d, center, r)
@@ -117,6 +117,8 @@ def tangent_rays(offset: float = 3e-11) -> CaseResult:
         naive_verdict = textbook_classify(naive_disc)
         wrong_naive += naive_verdict != truth
         wrong_robust += robust.classification != truth
+        for column, verdict in zip(verdicts, (naive_verdict, robust.classification, truth), strict=True):
+            column.append(verdict)
         rows += [Row(f"ray {name}: verdict", naive_verdict, robust.classification, truth),
                  Row(f"ray {name}: Δ", float(naive_disc), robust.discriminant,
                      float(exact_discriminant(o, d, center, r)))]
@@ -127,7 +129,8 @@ def tangent_rays(offset: float = 3e-11) -> CaseResult:
         naive_method="sign of b² - 4ac (float64)",
         robust_method="intersect_sphere: |v| against r",
         reference_method="exact rationals of the same inputs",
-        rows=tuple(rows), naive_error=float(wrong_naive), robust_error=float(wrong_robust),
+        rows=(Row("verdicts: outside, tangent, inside", *(", ".join(v) for v in verdicts)), *rows),
+        naive_error=float(wrong_naive), robust_error=float(wrong_robust),
         error_unit=VERDICT, tolerance=0.0, tolerance_reason="a verdict is right or wrong",
         explanation=(
             "Seen from 1234.5 radii away, b² and 4ac are both about 6 million and the rounding of "
@@ -171,10 +174,10 @@ def lecture_segment() -> CaseResult:
     robust_verdict = f"crosses at t = {robust.t:.4f}" if robust.hit else "no crossing"
     exact_verdict = "no crossing" if not exact_hit else "crosses"
     rows = (
-        Row("Δ = b² - 4ac", float(disc), robust.discriminant, float(delta)),
-        Row("t_near", t0, robust.t_near, float(roots[0])),
-        Row("t_far", t1, robust.t_far, float(roots[1])),
         Row("first crossing in 0 <= t <= 1", naive_verdict, robust_verdict, exact_verdict),
+        Row("Δ = b² - 4ac", float(disc), robust.discriminant, float(delta)),
+        Row("t_near", float(t0), robust.t_near, float(roots[0])),
+        Row("t_far", float(t1), robust.t_far, float(roots[1])),
     )
     return CaseResult(
         name="lecture_segment", title="2. The lecture's exercise: both ends inside the sphere",

@@ -238,7 +238,7 @@ def parallel_rays(angle_deg: float = 1e-8) -> CaseResult:
         ("in the plane", centroid - 3.0 * along, along),
         (f"grazing at {angle_deg:g}°", centroid - 3.0 * grazing, grazing),
     )
-    rows, wrong_naive, wrong_robust = [], 0, 0
+    rows, verdicts, wrong_naive, wrong_robust = [], ([], [], []), 0, 0
     for name, o, d in rays:
         hit, t = textbook_moller_trumbore(o[None], d[None], A[None], B[None], C[None])
         naive_hit, naive_t = bool(hit[0, 0]), float(t[0, 0])
@@ -246,6 +246,8 @@ def parallel_rays(angle_deg: float = 1e-8) -> CaseResult:
         exact_hit, exact_t = _exact_hit(o, d, A, B, C)
         wrong_naive += naive_hit != exact_hit
         wrong_robust += robust.hit != exact_hit
+        for column, hit in zip(verdicts, (naive_hit, robust.hit, exact_hit), strict=True):
+            column.append("hit" if hit else "miss")
         rows += [
             Row(f"{name}: verdict", _verdict(naive_hit, naive_t), _verdict(robust.hit, robust.t),
                 _verdict(exact_hit, exact_t)),
@@ -259,7 +261,8 @@ def parallel_rays(angle_deg: float = 1e-8) -> CaseResult:
         naive_method=f"Möller–Trumbore, |det| < {MT_EPSILON:g} is 'parallel'",
         robust_method="watertight test (intersect_triangle)",
         reference_method="exact rationals of the same inputs",
-        rows=tuple(rows), naive_error=float(wrong_naive), robust_error=float(wrong_robust),
+        rows=(Row("verdicts: parallel, in the plane, grazing", *(", ".join(v) for v in verdicts)), *rows),
+        naive_error=float(wrong_naive), robust_error=float(wrong_robust),
         error_unit="wrong verdicts", tolerance=0.0, tolerance_reason="a verdict is right or wrong",
         explanation=(
             "Dividing by det without a check gives inf or NaN for a ray parallel to the plane (det = 0), "
