@@ -49,7 +49,7 @@ def lit_square(distance: float):
     Returns
     -------
     triangles : (2, 3, 3) float64, world space, counter-clockwise seen from the light's side.
-    camera : Camera looking at the square's centre from 4 units away.
+    camera : Camera looking at the square's centre from 6.5 units away.
     light : (3,) float64, world space.
     """
     n = _unit(NORMAL)
@@ -59,7 +59,7 @@ def lit_square(distance: float):
     a, b, c, d = (center + 3.0 * (su * u + sv * v) for su, sv in ((-1, -1), (1, -1), (1, 1), (-1, 1)))
     triangles = np.array([(a, c, b), (a, d, c)]) if np.dot(np.cross(c - a, b - a), n) > 0 \
         else np.array([(a, b, c), (a, c, d)])
-    eye = center + 4.0 * _unit(n + 0.9 * u - 0.4 * v)
+    eye = center + 6.5 * _unit(n + 0.9 * u - 0.4 * v)
     camera = Camera(eye=tuple(eye), target=tuple(center), up=tuple(n), fov_y_deg=70.0, near=0.1,
                     far=50.0, width=WIDTH, height=HEIGHT)
     light = center + 5.0 * _unit(n - 0.5 * u + 0.3 * v)
