@@ -367,8 +367,10 @@ class HardCasesPanel(QWidget):
     def _fill_table(self, r: CaseResult) -> None:
         while self.table.count():
             item = self.table.takeAt(0)
-            if item.widget() is not None:
-                item.widget().deleteLater()
+            widget = item.widget()
+            if widget is not None:
+                widget.setParent(None)  # off screen now, not at the next event loop pass
+                widget.deleteLater()
         headers = ("", f"textbook: {r.naive_method}", f"robust: {r.robust_method}",
                    f"reference: {r.reference_method}")
         for col, text in enumerate(headers):
@@ -377,8 +379,9 @@ class HardCasesPanel(QWidget):
             self.table.addWidget(label, 0, col)
         self.table_cells = []
         for i, row in enumerate(r.rows, start=1):
-            cells = [QLabel(html.escape(row.label)), QLabel(highlight_digits(row.naive, row.exact)),
-                     QLabel(highlight_digits(row.robust, row.exact)),
+            exact = row.exact if row.compare else None
+            cells = [QLabel(html.escape(row.label)), QLabel(highlight_digits(row.naive, exact)),
+                     QLabel(highlight_digits(row.robust, exact)),
                      QLabel(html.escape(format_value(row.exact)))]
             for col, cell in enumerate(cells):
                 cell.setTextFormat(Qt.TextFormat.RichText)

@@ -60,7 +60,7 @@ def behind_the_eye(behind: float = 2.0) -> CaseResult:
         Row("pixels wrong (against the ray caster)", wrong["naive"], wrong["robust"], 0),
         Row("w of the corner behind the eye", w_behind, w_behind, w_behind),
         Row("that corner divided by w: NDC x, y", f"({ndc[0]:.3g}, {ndc[1]:.3g})",
-            "cut off before the divide", "none: no ray from the eye reaches it"),
+            "cut off before the divide", "none: no ray from the eye reaches it", compare=False),
         Row("pixels covered", int((naive.zbuffer < FAR_DEPTH).sum()),
             int((robust.zbuffer < FAR_DEPTH).sum()), int(should.sum())),
         Row("polygons after clipping", len(naive.draw), len(robust.draw), 1),

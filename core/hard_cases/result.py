@@ -53,15 +53,17 @@ class Parameter:
 class Row:
     """One quantity three ways: textbook method, robust method, exact reference.
 
-    Values are floats (shown with all 17 significant digits, so the digits
-    that differ can be marked), strings (verdicts such as ``"misses"``) or
-    ``None`` (the method has no such value).
+    Values are floats (shown with 16 significant digits, so the digits that
+    differ can be marked), strings (verdicts such as ``"misses"``) or
+    ``None`` (the method has no such value).  ``compare`` is False for rows
+    that describe rather than answer (the three columns need not agree).
     """
 
     label: str
     naive: float | str | None
     robust: float | str | None
     exact: float | str | None
+    compare: bool = True
 
 
 @dataclass(frozen=True)

@@ -252,7 +252,8 @@ def parallel_rays(angle_deg: float = 1e-8) -> CaseResult:
             Row(f"{name}: verdict", _verdict(naive_hit, naive_t), _verdict(robust.hit, robust.t),
                 _verdict(exact_hit, exact_t)),
             Row(f"{name}: t (Cramer's rule with no check of det)", _cramer_no_check(o, d, A, B, C),
-                robust.t if robust.hit else None, exact_t if exact_hit else None),
+                robust.t if robust.hit else None,
+                exact_t if exact_hit else "none: det = 0" if exact_t is None else "none: a miss"),
         ]
     return CaseResult(
         name="parallel", title="5. Rays parallel to a triangle, in its plane, and grazing it",
