@@ -11,9 +11,9 @@ fail.
 
 Cases are computed on a :class:`~PySide6.QtCore.QThreadPool` thread, one
 request at a time; a result that arrives after a newer request was made is
-dropped, so the window never waits and never shows a stale case.  At start
-every case is also computed once at its defaults, at a lower priority, so the
-list can mark which robust methods pass.
+dropped, so the window never waits and never shows a stale case.  When the
+panel is first shown every case is also computed once at its defaults, at a
+lower priority, so the list can mark which robust methods pass.
 """
 
 from __future__ import annotations
@@ -250,9 +250,15 @@ class HardCasesPanel(QWidget):
         layout = QVBoxLayout(self)
         layout.setContentsMargins(4, 4, 4, 4)
         layout.addWidget(splitter)
+        self._prefetched = False
         self.cases.setCurrentRow(0)
-        for i, name in enumerate(hard_cases.CASES):
-            self._pool.start(_CaseJob(-1 - i, name, None, {}, self._relay), PREFETCH_PRIORITY)
+
+    def showEvent(self, event):
+        super().showEvent(event)
+        if not self._prefetched:
+            self._prefetched = True
+            for i, name in enumerate(hard_cases.CASES):
+                self._pool.start(_CaseJob(-1 - i, name, None, {}, self._relay), PREFETCH_PRIORITY)
 
     # -- requests ---------------------------------------------------------------------------
 
