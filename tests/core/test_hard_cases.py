@@ -216,3 +216,30 @@ def test_zbuffer_resolves_the_non_convex_solid(yaw):
 
 def test_culling_alone_shows_the_hidden_part_of_the_notch():
     assert culling_cases.non_convex_culling(45.0).naive_error > 100
+
+
+def test_ray_cast_reference_sees_a_screen_filling_triangle_and_nothing_before_the_near_plane():
+    from core.camera import Camera
+    from core.hard_cases.ray_cast_reference import reference
+
+    cam = Camera(eye=(0.0, 0.0, 0.0), target=(0.0, 0.0, -1.0), fov_y_deg=60.0, near=1.0, far=10.0,
+                 width=20, height=10)
+    # At depth 5 the view is 2·5·tan 30° ≈ 5.8 high and 11.5 wide: this triangle covers it all.
+    big = np.array([[[-40.0, -20.0, -5.0], [40.0, -20.0, -5.0], [0.0, 40.0, -5.0]]])
+    seen, certain = reference(cam, big)
+    assert (seen == 0).all() and certain.all()
+    too_near = big.copy()
+    too_near[..., 2] = -0.5  # in front of the near plane: clipped away, so nothing is seen
+    seen, _ = reference(cam, too_near)
+    assert (seen == -1).all()
+    # Two triangles sharing the diagonal of a square 3 units in front of the eye (16 x 16 pixels,
+    # 60°): the square spans view x, y in [-1, 1] against a half-extent 3 tan 30° ≈ 1.73, so pixel
+    # columns 4..11 lie well inside it, and the centres with i + j = 15 lie exactly on the diagonal.
+    a, b, c, d = (-1.0, -1.0, -3.0), (1.0, -1.0, -3.0), (1.0, 1.0, -3.0), (-1.0, 1.0, -3.0)
+    pair = np.array([[a, b, c], [a, c, d]])
+    seen, certain = reference(Camera(eye=(0.0, 0.0, 0.0), target=(0.0, 0.0, -1.0), fov_y_deg=60.0,
+                                     near=1.0, far=10.0, width=16, height=16), pair)
+    assert {0, 1} <= set(seen[certain].tolist())
+    i = np.arange(4, 12)
+    assert not certain[15 - i, i].any()
+    assert certain[15 - i, i - 1].all() and certain[15 - i, np.minimum(i + 1, 15)].all()
