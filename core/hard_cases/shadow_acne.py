@@ -146,12 +146,12 @@ def shadow_acne(distance: float = 1e11, epsilon: float = 1e-6) -> CaseResult:
         error_unit="self-shadowed pixels", tolerance=0.0,
         tolerance_reason="nothing can shadow a lone lit plane",
         explanation=(
-            "The hit point is rounded to the coordinate grid, which at this distance is about "
-            f"{rounding:.0e} units fine; half the points land just behind the surface, and a shadow ray "
-            "from there meets the surface itself. A fixed ε hides those crossings only while ε is "
-            "larger than the rounding, so the same ε that works near the origin fails far away. The "
-            "scaled offset recomputes the point from the triangle's corners and pushes it off the "
-            "surface by 256 units of rounding of the coordinates, wherever the scene is."
+            f"The computed hit point o + t d is rounded by up to about {rounding:.0e} units at this "
+            "distance; about half the points land just behind the surface, and a shadow ray from there "
+            "meets the surface itself. A fixed ε hides those crossings only while ε is larger than the "
+            "rounding, so the same ε that works near the origin fails far away. The scaled offset "
+            "recomputes the point from the triangle's corners and pushes it off the surface by 256 units "
+            "of rounding of the coordinates, wherever the scene is."
         ),
         images=(CaseImage("the lit square: dark pixels are self-shadowed",
                           _picture(masks["on_square"], masks["fixed"]),

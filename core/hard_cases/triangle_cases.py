@@ -171,12 +171,12 @@ def shared_edges(distance: float = 1e4) -> CaseResult:
         error_unit="rays through a crack", tolerance=0.0,
         tolerance_reason="a closed mesh has no holes: no ray may pass",
         explanation=(
-            "A ray aimed exactly at an edge that two triangles share has u = 0 on one and v = 0 on the "
-            "other in exact arithmetic; Möller–Trumbore computes the two from different cross "
-            "products, and when both round to a tiny negative number the ray misses both triangles and "
-            "slips through the surface (red squares). The watertight test looks along the ray and "
-            "decides the side of each edge with one edge function whose sign is exact and which is "
-            "exactly the negative for the neighbour, so exactly one side, or both, owns the ray."
+            "A ray aimed exactly at an edge that two triangles share has, in exact arithmetic, one "
+            "barycentric weight exactly 0 in each of them; Möller–Trumbore computes the two weights from "
+            "different cross products, and when both round to a tiny negative number the ray misses both "
+            "triangles and slips through the surface (red squares). The watertight test looks along the "
+            "ray and decides the side of each edge with one edge function whose sign is exact and which "
+            "is exactly the negative for the neighbour, so exactly one side, or both, owns the ray."
         ),
         images=(CaseImage("rays aimed at edges and vertices (blue); through a crack (red)", naive_img,
                           robust_img),),
