@@ -18,6 +18,7 @@ lower priority, so the list can mark which robust methods pass.
 
 from __future__ import annotations
 
+import contextlib
 import html
 import inspect
 import math
@@ -140,9 +141,14 @@ class _CaseJob(QRunnable):
         try:
             result = hard_cases.run_case(self.name, self.value, **self.options)
         except Exception as exc:  # shown in the panel's status line
-            self.relay.failed.emit(self.request_id, f"{type(exc).__name__}: {exc}")
+            self._emit("failed", f"{type(exc).__name__}: {exc}")
             return
-        self.relay.finished.emit(self.request_id, result)
+        self._emit("finished", result)
+
+    def _emit(self, signal: str, payload) -> None:
+        # RuntimeError: the panel was deleted while this case ran, so there is nobody to tell.
+        with contextlib.suppress(RuntimeError):
+            getattr(self.relay, signal).emit(self.request_id, payload)
 
 
 class HardCasesPanel(QWidget):
