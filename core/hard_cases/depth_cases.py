@@ -25,9 +25,8 @@ from core.hard_cases.result import CaseImage, CaseResult, Parameter, Row
 from core.object_order import rasterization
 from core.object_order.depth_formats import DEPTH_FORMATS, depth_keys
 
-FAR = 100.0
-GAP = 0.01
-EYE_HEIGHT = 2.0
+#: Far plane distance, gap between the floors and the eye's height above them (scene units).
+FAR, GAP, EYE_HEIGHT = 100.0, 0.01, 2.0
 WIDTH, HEIGHT = 160, 100
 RED, BLUE, BACKGROUND = (0.85, 0.15, 0.1), (0.15, 0.35, 0.9), (0.04, 0.05, 0.08)
 
