@@ -115,7 +115,7 @@ class WorkedMath(QScrollArea):
 
     def _heading(self, text: str) -> None:
         label = QLabel(text)
-        font = QFont(label.font())
+        font = QFont()  # only the weight: the size follows the window (presentation scale)
         font.setBold(True)
         label.setFont(font)
         label.setWordWrap(True)
@@ -189,8 +189,9 @@ class WorkedMath(QScrollArea):
         self._row("sphere", rf"$(x {_signed(-c[0])})^2 + (y {_signed(-c[1])})^2 + (z {_signed(-c[2])})^2"
                             rf" = {_g(r)}^2$")
         limits = r"0 \leq t \leq 1" if s.is_segment else r"t \geq 0"
-        self._row("ray", rf"$x = {_g(o[0])} {_signed(d[0])}t,\ y = {_g(o[1])} {_signed(d[1])}t,\ "
-                         rf"z = {_g(o[2])} {_signed(d[2])}t,\ \ {limits}$")
+        for k, axis in enumerate("xyz"):
+            self._row("ray" if k == 0 else "", rf"${axis} = {_g(o[k])} {_signed(d[k])}t$")
+        self._row("", rf"${limits}$")
         self._row("a", rf"$a = i^2 + j^2 + k^2 = {_g(s.a)}$")
         self._row("b", rf"$b = 2[i(x_1-l) + j(y_1-m) + k(z_1-n)] = {_g(s.b)}$")
         self._row("c", rf"$c = (x_1-l)^2 + (y_1-m)^2 + (z_1-n)^2 - r^2 = {_g(s.c)}$")
@@ -204,7 +205,8 @@ class WorkedMath(QScrollArea):
             self._row("t_far", rf"$t_2 = \dfrac{{-b + \sqrt{{\Delta}}}}{{2a}} = {_g(s.t_far)}$")
         self._row("choice", text=s.reason + ".")
         if s.hit:
-            self._row("hit point", rf"$P = \mathbf{{o}} + t\,\mathbf{{d}} = {_v(s.point)},\ \ t = {_g(s.t)}$")
+            self._row("t", rf"$t = {_g(s.t)}$")
+            self._row("hit point", rf"$P = \mathbf{{o}} + t\,\mathbf{{d}} = {_v(s.point)}$")
         if s.is_segment and s.ray_hit_t is not None and not s.hit:
             p = o + s.ray_hit_t * d
             self._row("ray beyond", rf"$t = {_g(s.ray_hit_t)}:\ \ P = {_v(p)}$")
