@@ -25,7 +25,7 @@ CONE_RADIUS = 1.0
 CONE_HEIGHT = 2.2
 #: Upper left and in front of the objects: seen from the default observer, the
 #: cone's and the cube's shadows fall to their right on the ground.
-LECTURE_LIGHT = (-5.0, 6.0, 4.0)
+LECTURE_LIGHT = (-10.0, 12.0, 8.0)
 
 
 def lecture_scene() -> Scene:
