@@ -222,3 +222,27 @@ def test_the_ray_casting_lessons_pixel_lies_in_the_cones_shadow():
     assert root.hit_name == "ground"
     shadow = [c for c in root.children if c.kind == "shadow"]
     assert len(shadow) == 1 and shadow[0].hit_name == "cone"
+
+
+def test_steps_and_highlighted_polygons_exist_in_the_drawing_order():
+    for lesson in LESSONS:
+        for step in lesson.steps:
+            polygon = step.highlight.get("polygon_step")
+            if step.zbuffer_step is None and polygon is None:
+                continue
+            drawn = len(render_raster(step.scene, replace(step.object_order, record_steps=True)).draw)
+            assert (step.zbuffer_step or 0) <= drawn, (lesson.id, step.title, drawn)
+            assert polygon is None or polygon < drawn, (lesson.id, step.title, drawn)
+
+
+def test_the_culling_lesson_highlights_a_culled_face_then_a_front_face_of_the_notch():
+    convex, notched = BY_ID["back_faces"].steps
+    for step, visible in ((convex, False), (notched, True)):
+        face = step.highlight["face"]
+        index = [o.name for o in step.scene.objects].index(face["object"])
+        result = render_raster(step.scene, step.object_order)
+        assert result.faces.visible[result.face_index(index, face["triangle"])] == visible
+    prism = notched.scene.objects[0]
+    corners = prism.vertices[prism.triangles[notched.highlight["face"]["triangle"]]]
+    normal = np.cross(corners[1] - corners[0], corners[2] - corners[0])
+    assert np.allclose(normal / np.linalg.norm(normal), (0, 0, 1))  # the notch's inner wall facing +z

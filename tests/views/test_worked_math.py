@@ -1,7 +1,11 @@
 """The worked math of a picked ray or vertex shows numbers equal to an independent computation."""
 
+import json
 import math
+import os
 import re
+import subprocess
+import sys
 from fractions import Fraction
 
 import mpmath
@@ -138,3 +142,21 @@ def test_formulas_grow_with_the_scale(math_pane, qtbot):
     math_pane.set_scale(2.0)
     after = view.pixmap().deviceIndependentSize().height()
     assert after == pytest.approx(2 * before, rel=0.15)
+
+
+def test_the_pane_shows_the_numbers_the_intersect_command_prints(math_pane):
+    """The same ray through ``python -m app intersect`` (a separate process) and the pane."""
+    step = LESSONS["ray_tracing"].steps[0]
+    root = trace_pixel(step.scene, *step.pixel, step.image_order)
+    math_pane.show_ray(step.scene, root)
+    ball = next(o for o in step.scene.objects if o.name == "glass ball")
+    vec = ",".join
+    args = ["--origin", vec(repr(float(v)) for v in root.origin),
+            "--direction", vec(repr(float(v)) for v in root.direction),
+            "--center", vec(repr(float(v)) for v in ball.center), "--radius", repr(ball.radius), "--json"]
+    out = subprocess.run([sys.executable, "-m", "app", "intersect", "sphere", *args], capture_output=True,
+                         text=True, check=True, env={**os.environ, "PYTHONPATH": os.getcwd()}).stdout
+    printed = json.loads(out)
+    for label, key in (("a", "a"), ("b", "b"), ("c", "c"), ("Δ", "discriminant"), ("t_near", "t_near"),
+                       ("t_far", "t_far"), ("t", "t")):
+        assert _close(_last_number(math_pane.value(label)), printed[key]), (label, printed[key])
