@@ -19,12 +19,14 @@ from PySide6.QtGui import QFont
 from PySide6.QtWidgets import (
     QApplication,
     QFileDialog,
+    QFrame,
     QHBoxLayout,
     QLabel,
     QListWidget,
     QListWidgetItem,
     QMessageBox,
     QPushButton,
+    QScrollArea,
     QSizePolicy,
     QSplitter,
     QVBoxLayout,
@@ -102,17 +104,26 @@ class LessonPanel(QWidget):
         controls.addWidget(self.position, 1)
         controls.addWidget(self.next_button)
 
+        words = QWidget()
+        words_layout = QVBoxLayout(words)
+        words_layout.setContentsMargins(0, 0, 0, 0)
+        words_layout.addWidget(self.lesson_title)
+        words_layout.addWidget(self.step_title)
+        words_layout.addWidget(self.text)
+        words_layout.addLayout(self.formulas)
+        words_layout.addStretch(1)
+        self.scroll = QScrollArea()  # long text at a large scale scrolls; the controls stay in view
+        self.scroll.setWidgetResizable(True)
+        self.scroll.setFrameShape(QFrame.Shape.NoFrame)
+        self.scroll.setHorizontalScrollBarPolicy(Qt.ScrollBarPolicy.ScrollBarAlwaysOff)
+        self.scroll.setWidget(words)
         step = QWidget()
         step_layout = QVBoxLayout(step)
         step_layout.setContentsMargins(0, 0, 0, 0)
-        step_layout.addWidget(self.lesson_title)
-        step_layout.addWidget(self.step_title)
-        step_layout.addWidget(self.text)
-        step_layout.addLayout(self.formulas)
-        step_layout.addStretch(1)
+        step_layout.addWidget(self.scroll, 1)
         step_layout.addLayout(controls)
 
-        top = QWidget()
+        self.list_area = top = QWidget()
         top_layout = QVBoxLayout(top)
         top_layout.setContentsMargins(0, 0, 0, 0)
         top_layout.addWidget(self.list, 1)
@@ -123,12 +134,17 @@ class LessonPanel(QWidget):
         self.splitter.addWidget(step)
         self.splitter.setStretchFactor(0, 2)
         self.splitter.setStretchFactor(1, 3)
+        self.splitter.setSizes([300, 450])  # the step's words get more room than the list
         self.splitter.setChildrenCollapsible(False)
         layout = QVBoxLayout(self)
         layout.setContentsMargins(4, 4, 4, 4)
         layout.addWidget(self.splitter)
 
         self.set_lessons(shipped_lessons() if lessons is None else lessons)
+
+    def set_compact(self, compact: bool) -> None:
+        """Hide the lesson list (presentation mode: the room sees only the lesson)."""
+        self.list_area.setVisible(not compact)
 
     # --- the lessons --------------------------------------------------------
 

@@ -24,7 +24,6 @@ from PySide6.QtWidgets import QLabel, QSizePolicy, QWidget
 _PARSER = MathTextParser("path")
 
 
-@lru_cache(maxsize=512)
 def render_mathtext(text: str, size_pt: float, color: str, dpi: float) -> QImage:
     """``text`` typeset by mathtext as an image with a transparent background.
 
@@ -40,6 +39,14 @@ def render_mathtext(text: str, size_pt: float, color: str, dpi: float) -> QImage
     ValueError
         ``text`` is not valid mathtext (the message says where).
     """
+    rgba = _typeset(text, float(size_pt), color, float(dpi))
+    h, w, _ = rgba.shape
+    return QImage(rgba.data, w, h, 4 * w, QImage.Format.Format_RGBA8888).copy()
+
+
+@lru_cache(maxsize=512)
+def _typeset(text: str, size_pt: float, color: str, dpi: float) -> np.ndarray:
+    """(H, W, 4) uint8 RGBA of the typeset ``text`` (cached: plain arrays, no Qt objects)."""
     prop = FontProperties(size=size_pt)
     width, height, depth, _, _ = _PARSER.parse(text, dpi=72, prop=prop)
     pad = 0.25 * size_pt  # room for glyphs that reach past the parser's box (brackets, accents)
@@ -49,17 +56,19 @@ def render_mathtext(text: str, size_pt: float, color: str, dpi: float) -> QImage
     fig.text(pad / w, (depth + pad) / h, text, fontproperties=prop, color=color)
     canvas = FigureCanvasAgg(fig)
     canvas.draw()
-    rgba = np.ascontiguousarray(canvas.buffer_rgba())
-    h, w, _ = rgba.shape
-    return QImage(rgba.data, w, h, 4 * w, QImage.Format.Format_RGBA8888).copy()
+    rgba = np.array(canvas.buffer_rgba(), dtype=np.uint8)
+    rgba.setflags(write=False)
+    return rgba
 
 
 class MathView(QLabel):
     """A label showing one mathtext formula, typeset.
 
     The formula is drawn at ``font size x scale`` points in the label's text
-    colour unless :meth:`set_color` gave another.  An invalid formula is shown
-    as its plain text, with the parser's complaint in the tooltip.
+    colour unless :meth:`set_color` gave another, and smaller when the label
+    is given less width than that, so a long formula never widens the window.
+    An invalid formula is shown as its plain text, with the parser's complaint
+    in the tooltip.
     """
 
     def __init__(self, formula: str = "", parent: QWidget | None = None, *, size_pt: float | None = None):
@@ -68,6 +77,7 @@ class MathView(QLabel):
         self._size_pt = size_pt
         self._scale = 1.0
         self._color: QColor | None = None
+        self._natural: QSize | None = None
         self.error: str | None = None
         self.setSizePolicy(QSizePolicy.Policy.Preferred, QSizePolicy.Policy.Fixed)
         self._render()
@@ -100,23 +110,56 @@ class MathView(QLabel):
         if event.type() in (event.Type.FontChange, event.Type.PaletteChange, event.Type.StyleChange):
             self._render()
 
+    def sizeHint(self) -> QSize:
+        """The formula's full size (a narrower label shrinks it to fit)."""
+        return self._natural if self._natural is not None else super().sizeHint()
+
+    def minimumSizeHint(self) -> QSize:
+        hint = self.sizeHint()
+        return QSize(min(hint.width(), 40), hint.height() // 2)
+
+    def resizeEvent(self, event) -> None:
+        super().resizeEvent(event)
+        self._show(fit=True)
+
     def _render(self) -> None:
         self.error = None
+        self._natural = None
         if not self._formula:
             self.clear()
             return
-        color = self._color or self.palette().color(self.foregroundRole())
-        ratio = max(1.0, self.devicePixelRatioF())
         try:
-            image = render_mathtext(self._formula, self.size_pt(), color.name(), 96.0 * ratio)
+            image = self._image(self.size_pt())
         except ValueError as exc:
             self.error = str(exc).strip().splitlines()[-1] if str(exc).strip() else "invalid mathtext"
             self.setToolTip(f"cannot typeset: {self.error}")
             self.setText(self._formula)
             return
-        pixmap = QPixmap.fromImage(image)
-        pixmap.setDevicePixelRatio(ratio)
+        ratio = self._ratio()
+        self._natural = QSize(int(image.width() / ratio + 0.999), int(image.height() / ratio + 0.999))
         self.setToolTip("")
+        self.updateGeometry()
+        self._show(fit=False, image=image)
+
+    def _ratio(self) -> float:
+        return max(1.0, self.devicePixelRatioF())
+
+    def _image(self, size_pt: float) -> QImage:
+        color = self._color or self.palette().color(self.foregroundRole())
+        return render_mathtext(self._formula, size_pt, color.name(), 96.0 * self._ratio())
+
+    def _show(self, fit: bool, image: QImage | None = None) -> None:
+        """Show the formula at full size, or smaller when the label is narrower than that."""
+        if self._natural is None:
+            return
+        size = self.size_pt()
+        if fit and 0 < self.width() < self._natural.width():
+            size = max(1.0, size * self.width() / self._natural.width() * 0.98)
+            image = self._image(size)
+        elif image is None:
+            image = self._image(size)
+        pixmap = QPixmap.fromImage(image)
+        pixmap.setDevicePixelRatio(self._ratio())
         self.setPixmap(pixmap)
 
 

@@ -11,7 +11,8 @@
 - ``.`` and ``B`` (what clickers send for "blank") black the window out and
   bring it back, while presenting;
 - with a :class:`views.lesson_panel.LessonPanel`, the arrow keys join
-  PageDown/PageUp in moving through the steps while presenting.
+  PageDown/PageUp in moving through the steps while presenting, and the
+  panel hides its lesson list so the step's text and formulas get the room.
 
 :class:`PresenterWindow` is the lecturer's screen: the current lesson's notes,
 the next step and a clock, shown on the second screen when there is one.
@@ -189,6 +190,7 @@ class Presentation(QObject):
                 self.window.showNormal()
         if self.clicker is not None:
             self.clicker.arrows = on
+            self.panel.set_compact(on)
         self.actions["blank"].setEnabled(on)
         self.actions["leave"].setEnabled(on)
         if self.actions["present"].isChecked() != on:

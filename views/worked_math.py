@@ -130,7 +130,7 @@ class WorkedMath(QScrollArea):
     def _row(self, label: str, formula: str = "", text: str = "", matrix=None) -> None:
         r = self._grid.rowCount()
         name = QLabel(label)
-        name.setAlignment(Qt.AlignmentFlag.AlignRight | Qt.AlignmentFlag.AlignTop)
+        name.setAlignment(Qt.AlignmentFlag.AlignRight | Qt.AlignmentFlag.AlignVCenter)
         self._grid.addWidget(name, r, 0)
         if formula:
             view = MathView(formula)
@@ -252,7 +252,8 @@ class WorkedMath(QScrollArea):
         cos_i = -optics.dot(d, n)
         self._heading("Reflection")
         self._row("rule", r"$\mathbf{r} = \mathbf{d} - 2(\mathbf{d}\cdot\mathbf{n})\,\mathbf{n}$")
-        self._row("d, n", rf"$\mathbf{{d}} = {_v(d)},\ \ \mathbf{{n}} = {_v(n)}$")
+        self._row("d", rf"$\mathbf{{d}} = {_v(d)}$")
+        self._row("n", rf"$\mathbf{{n}} = {_v(n)}$")
         self._row("r", rf"$\mathbf{{r}} = {_v(r)}$")
         angle = math.degrees(math.acos(max(-1.0, min(1.0, cos_i))))
         self._row("angles", rf"$\theta_{{in}} = \theta_{{out}} = {_g(angle)}^\circ$")

@@ -103,3 +103,12 @@ def test_the_presenter_window_shows_notes_the_next_step_and_a_clock(hall, qtbot)
     panel.next()
     assert "step 2 of 4" in presenter.current.text()
     assert lesson.steps[2].title in presenter.upcoming.text()
+
+
+def test_presenting_hides_the_lesson_list_and_leaving_brings_it_back(hall, qtbot):
+    window, panel, presentation = hall
+    assert panel.list.isVisible()
+    presentation.set_presenting(True)
+    assert not panel.list.isVisible() and panel.text.isVisible() and panel.next_button.isVisible()
+    presentation.set_presenting(False)
+    assert panel.list.isVisible()
