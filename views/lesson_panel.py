@@ -8,6 +8,20 @@ camera, panes, settings, highlight) is the window's job.
 
 :class:`ClickerKeys` makes PageDown/PageUp (what presentation clickers send)
 move through the steps from anywhere in the application, and nothing else.
+
+Wiring it into a window::
+
+    panel = LessonPanel()                      # loads the shipped lessons
+    panel.step_selected.connect(window.apply_lesson_step)
+    presentation = Presentation(window, panel) # views.presentation; installs ClickerKeys
+    file_menu.addAction("Open lesson file…", panel.open_lesson_file)
+    for action in presentation.actions.values(): view_menu.addAction(action)
+
+where ``apply_lesson_step(step)`` loads ``step.scene``, shows ``step.panes``
+(the first in front) and hides the others, applies ``step.image_order`` /
+``step.object_order``, ``step.view``, ``step.overlays``, sets the scrubber to
+``step.zbuffer_step`` and picks ``step.pixel`` when they are not None, and
+marks ``step.highlight``; see :class:`core.lessons.LessonStep`.
 """
 
 from __future__ import annotations

@@ -13,15 +13,14 @@ from __future__ import annotations
 from functools import lru_cache
 
 import numpy as np
-from matplotlib.backends.backend_agg import FigureCanvasAgg
-from matplotlib.figure import Figure
+from matplotlib.colors import to_rgb
 from matplotlib.font_manager import FontProperties
 from matplotlib.mathtext import MathTextParser
 from PySide6.QtCore import QRectF, QSize, Qt
 from PySide6.QtGui import QColor, QFont, QFontMetricsF, QImage, QPainter, QPen, QPixmap
 from PySide6.QtWidgets import QLabel, QSizePolicy, QWidget
 
-_PARSER = MathTextParser("path")
+_PARSER = MathTextParser("agg")  # typesets straight into an 8-bit coverage image
 
 
 def render_mathtext(text: str, size_pt: float, color: str, dpi: float) -> QImage:
@@ -47,16 +46,12 @@ def render_mathtext(text: str, size_pt: float, color: str, dpi: float) -> QImage
 @lru_cache(maxsize=512)
 def _typeset(text: str, size_pt: float, color: str, dpi: float) -> np.ndarray:
     """(H, W, 4) uint8 RGBA of the typeset ``text`` (cached: plain arrays, no Qt objects)."""
-    prop = FontProperties(size=size_pt)
-    width, height, depth, _, _ = _PARSER.parse(text, dpi=72, prop=prop)
-    pad = 0.25 * size_pt  # room for glyphs that reach past the parser's box (brackets, accents)
-    w, h = width + 2 * pad, height + 2 * pad
-    fig = Figure(figsize=(w / 72.0, h / 72.0), dpi=dpi)
-    fig.patch.set_alpha(0.0)
-    fig.text(pad / w, (depth + pad) / h, text, fontproperties=prop, color=color)
-    canvas = FigureCanvasAgg(fig)
-    canvas.draw()
-    rgba = np.array(canvas.buffer_rgba(), dtype=np.uint8)
+    ink = np.asarray(_PARSER.parse(text, dpi=dpi, prop=FontProperties(size=size_pt)).image)
+    pad = max(2, int(round(0.15 * size_pt * dpi / 72.0)))  # room for glyphs at the box's edge
+    alpha = np.pad(ink, pad)
+    rgba = np.empty((*alpha.shape, 4), np.uint8)
+    rgba[..., :3] = np.round(np.array(to_rgb(color)) * 255).astype(np.uint8)
+    rgba[..., 3] = alpha
     rgba.setflags(write=False)
     return rgba
 

@@ -271,7 +271,7 @@ class WorkedMath(QScrollArea):
         self._row("θ1", rf"$\theta_1 = {_g(theta1)}^\circ$")
         if ok:
             theta2 = math.degrees(math.asin(min(1.0, n1 / n2 * math.sin(math.radians(theta1)))))
-            self._row("θ2", rf"$\theta_2 = \arcsin(\frac{{n_1}}{{n_2}}\sin\theta_1) = {_g(theta2)}^\circ$")
+            self._row("θ2", rf"$\theta_2 = \arcsin(\dfrac{{n_1}}{{n_2}}\sin\theta_1) = {_g(theta2)}^\circ$")
             self._row("t", rf"$\mathbf{{t}} = {_v(t_dir)}$")
         else:
             critical = optics.critical_angle_deg(n1, n2)

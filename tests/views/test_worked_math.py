@@ -12,7 +12,9 @@ import mpmath
 import numpy as np
 import pytest
 
+from core import presets
 from core.image_order.intersect_sphere import intersect_sphere_segment
+from core.image_order.intersect_triangle import intersect_triangle
 from core.image_order.ray_tree import trace_pixel
 from core.lessons import shipped_lessons
 from views.math_view import MathView, MatrixView
@@ -160,3 +162,16 @@ def test_the_pane_shows_the_numbers_the_intersect_command_prints(math_pane):
     for label, key in (("a", "a"), ("b", "b"), ("c", "c"), ("Δ", "discriminant"), ("t_near", "t_near"),
                        ("t_far", "t_far"), ("t", "t")):
         assert _close(_last_number(math_pane.value(label)), printed[key]), (label, printed[key])
+
+
+def test_the_triangle_shown_is_the_nearest_one_the_ray_crosses(math_pane):
+    """On the cube (12 triangles) the pane works out the triangle a brute-force search finds first."""
+    scene = presets.lecture_scene()
+    cube = scene.objects[0]
+    root = trace_pixel(scene, 120, 95)
+    assert root.hit_name == "cube"
+    math_pane.show_ray(scene, root)
+    hits = [(h.t, k) for k, tri in enumerate(cube.triangles)
+            if (h := intersect_triangle(root.origin, root.direction, *cube.vertices[tri])).hit]
+    nearest = min(hits)[1]
+    assert math_pane.rows()[0][1].endswith(f"cube, triangle {nearest}")
