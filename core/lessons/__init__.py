@@ -38,7 +38,7 @@ from core.object_order.pipeline import RasterSettings
 from core.presets import PRESETS
 from core.presets_trace import PRESETS_TRACE
 from core.scene import Scene, Sphere
-from core.scene_file import SceneFileError, _json_object, _Reader, _show
+from core.scene_file import SceneFileError, _join, _json_object, _Reader, _show
 
 FORMAT = "render-explorer-lesson"
 VERSION = 1
@@ -311,9 +311,9 @@ def _formulas(r: _Reader, value, path: str) -> tuple[str, ...]:
 def _text(r: _Reader, d: dict, key: str, path: str, required: bool) -> str:
     if key not in d:
         return ""
-    got = r.string(d[key], f"{path}.{key}")
+    got = r.string(d[key], _join(path, key))
     if got is not None and required and not got.strip():
-        r.add(f"{path}.{key}", "must not be empty")
+        r.add(_join(path, key), "must not be empty")
     return got or ""
 
 
@@ -416,11 +416,12 @@ def from_dict(d, path: Path | None = None) -> Lesson:
     for k, v in enumerate(raw_steps):
         previous = _read_step(r, v, f"steps[{k}]", previous)
         steps.append(previous)
+    summary = _text(r, data, "summary", "", False)
     if r.problems:
         raise LessonFileError(r.problems)
     resolved = tuple(LessonStep(**{**_STEP_DEFAULTS, **s}) for s in steps)
     return Lesson(id=lesson_id, title=title, figures=tuple(figures), questions=tuple(questions),
-                  summary=_text(r, data, "summary", "", False), steps=resolved, path=path)
+                  summary=summary, steps=resolved, path=path)
 
 
 def load_lesson(path) -> Lesson:

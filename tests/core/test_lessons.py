@@ -159,7 +159,7 @@ def _problems(d) -> list[str]:
 def test_a_broken_lesson_reports_every_problem_with_its_field_path():
     bad_scene = {"objects": [{"type": "sphere", "center": [0, 0, 0], "radius": -1}]}
     problems = _problems(_lesson(
-        version=2, figures=["VII.15"], questions=[7],
+        version=2, figures=["VII.15"], questions=[7], summary=3,
         steps=[
             {"title": "a", "text": "b", "scene": "lecture", "panes": ["object order", "zbufer"],
              "pixel": [999, 0]},
@@ -171,6 +171,7 @@ def test_a_broken_lesson_reports_every_problem_with_its_field_path():
         "version: unsupported version 2",
         "figures[0]: expected a lecture figure VII.1 to VII.14",
         "questions[0]: the lecture has questions 1 to 6, got 7",
+        "summary: expected a string, got 3",
         "steps[0].panes[1]: unknown pane 'zbufer'",
         "steps[0].pixel: pixel (999, 0) lies outside the 320 x 240 image",
         "steps[1].scene.objects[0].radius: must be > 0, got -1",
@@ -246,3 +247,12 @@ def test_the_culling_lesson_highlights_a_culled_face_then_a_front_face_of_the_no
     corners = prism.vertices[prism.triangles[notched.highlight["face"]["triangle"]]]
     normal = np.cross(corners[1] - corners[0], corners[2] - corners[0])
     assert np.allclose(normal / np.linalg.norm(normal), (0, 0, 1))  # the notch's inner wall facing +z
+
+
+def test_top_level_text_fields_are_checked_too():
+    problems = _problems(_lesson(title="  ", id="has space", format="render-explorer-scene"))
+    assert problems == ['format: expected "render-explorer-lesson", got "render-explorer-scene"',
+                        "id: use letters, digits, '_' and '-' only, got \"has space\"",
+                        "title: must not be empty"]
+    assert _problems([1, 2]) == ["top level: expected an object {...}, got [1, 2]"]
+    assert _problems(_lesson(steps=[])) == ["steps: a lesson needs at least one step"]
