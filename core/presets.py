@@ -23,6 +23,9 @@ CUBE_SIZE = 1.6
 CONE_BASE = (0.6, 0.0, 1.0)
 CONE_RADIUS = 1.0
 CONE_HEIGHT = 2.2
+#: Upper left and in front of the objects: seen from the default observer, the
+#: cone's and the cube's shadows fall to their right on the ground.
+LECTURE_LIGHT = (-10.0, 12.0, 8.0)
 
 
 def lecture_scene() -> Scene:
@@ -32,7 +35,8 @@ def lecture_scene() -> Scene:
     looking at ``(0, 0.8, 0)``) the cube stands behind the cone, shifted to the
     left, so part of the cube is hidden by the cone and part of it is seen.
     The ground is a 14 x 14 quad at ``y = 0``; one point light shines from
-    above, in front of the objects.
+    the upper left, in front of the objects, so both shadows fall to the right
+    on the ground, where the observer sees them.
     """
     cube = shapes.box(
         CUBE_CENTER,
@@ -57,7 +61,7 @@ def lecture_scene() -> Scene:
     return Scene(
         camera=Camera(),
         objects=(cube, cone, ground),
-        lights=(PointLight((4.0, 8.0, 6.0)),),
+        lights=(PointLight(LECTURE_LIGHT),),
     )
 
 
@@ -158,6 +162,54 @@ def transparent_panes() -> Scene:
                  background=(0.8, 0.82, 0.85))
 
 
+#: Observers A and B of :func:`observers_top_view`.
+OBSERVER_A = Camera(eye=(0.0, 1.0, 8.0), target=(0.0, 1.0, 0.0), near=0.5, far=20.0)
+OBSERVER_B = Camera(eye=(10.0, 1.2, -3.0), target=(-1.0, 1.0, 1.0), near=0.5, far=20.0)
+
+
+def observers_top_view() -> Scene:
+    """Fig. VII.1: objects 1 to 5 on the ground, seen by observer A (observer B in :data:`OBSERVER_B`).
+
+    From A, object 5 lies outside the viewing angle, object 3 is hidden behind
+    object 2, and objects 1, 2 and 4 are seen in part (1 and 4 cross the edges
+    of the view).  From B, object 5 is again outside and 1 to 4 are seen in part.
+    Flat colours and no lights, so each object keeps its colour.
+    """
+    def block(center, size, color, number):
+        return shapes.box(center, size, _flat(color), f"object {number}")
+
+    objects = (
+        block((-2.7, 0.8, 2.0), (1.2, 1.6, 1.2), (0.85, 0.3, 0.3), 1),
+        block((0.9, 0.9, 3.0), (1.8, 1.8, 1.0), (0.3, 0.7, 0.35), 2),
+        block((0.8, 0.6, -2.0), (1.0, 1.2, 1.0), (0.3, 0.45, 0.9), 3),
+        block((4.0, 0.7, 0.0), (1.4, 1.4, 1.4), (0.9, 0.75, 0.2), 4),
+        block((-5.5, 0.7, 6.5), (1.2, 1.4, 1.2), (0.7, 0.35, 0.8), 5),
+        shapes.quad((0.0, 0.0, 1.0), 18.0, _flat((0.75, 0.75, 0.72)), "ground"),
+    )
+    return Scene(camera=OBSERVER_A, objects=objects, background=(0.85, 0.88, 0.92))
+
+
+def flat_cuboids_scene() -> Scene:
+    """Fig. VII.12 in (nearly) two dimensions: low objects scattered on a plane, one lit.
+
+    All objects are at most 0.5 high, so a grid of cuboids over them is one
+    layer deep and reads like the lecture's 2D drawing when seen from above.
+    The observer stands low at the left edge, so its rays run almost level
+    across the grid's cells.
+    """
+    objects = (
+        Sphere((-2.5, 0.25, -1.5), 0.25, Material(color=(0.85, 0.3, 0.3)), "ball 1"),
+        shapes.box((-0.8, 0.2, 1.6), (1.4, 0.4, 0.6), Material(color=(0.3, 0.7, 0.35)), "slab 1"),
+        Sphere((0.6, 0.3, -0.4), 0.3, Material(color=(0.3, 0.45, 0.9)), "ball 2"),
+        shapes.pyramid((2.4, 0.0, 1.2), 0.9, 0.5, Material(color=(0.9, 0.75, 0.2)), "pyramid"),
+        shapes.box((3.0, 0.15, -2.2), (0.8, 0.3, 1.2), Material(color=(0.7, 0.35, 0.8)), "slab 2"),
+        Sphere((-1.0, 0.2, -3.0), 0.2, Material(color=(0.3, 0.75, 0.75)), "ball 3"),
+    )
+    camera = Camera(eye=(-6.0, 0.6, 0.5), target=(4.0, 0.1, -0.5), near=0.5, far=30.0)
+    return Scene(camera=camera, objects=objects, lights=(PointLight((-3.0, 5.0, 3.0)),),
+                 background=(0.85, 0.88, 0.92))
+
+
 PRESETS: dict[str, tuple[str, Callable[[], Scene]]] = {
     "lecture": ("Cube and cone on a plane (the lecture's scene)", lecture_scene),
     "zbuffer_three_polygons": ("Z-buffer: three polygons drawn green, blue, yellow",
@@ -167,5 +219,7 @@ PRESETS: dict[str, tuple[str, Callable[[], Scene]]] = {
     "culling_notched": ("Back-face culling: a non-convex notched prism", culling_notched),
     "frustum_cases": ("Frustum culling: inside, crossing, outside, behind the observer", frustum_cases),
     "transparent_panes": ("Transparency: panes in front of an opaque box", transparent_panes),
+    "observers_top_view": ("Observers A and B and objects 1 to 5 (Fig. VII.1)", observers_top_view),
+    "flat_cuboids": ("Low objects on a plane: the grid of cuboids in 2D (Fig. VII.12)", flat_cuboids_scene),
 }
 """Preset key -> (title for a menu, builder)."""

@@ -1,0 +1,457 @@
+"""Lessons: the lecture told figure by figure, as data.
+
+A lesson is a short sequence of steps.  Each step names a scene (a preset or
+an inline scene in the scene-file format), the observer's camera, the panes
+to show, the render settings, what to highlight, and a few sentences of
+explanation with typeset formulas.  The window applies a step; this package
+only reads, checks and resolves lesson files, so it stays free of Qt.
+
+A lesson file is a JSON object::
+
+    {"format": "render-explorer-lesson", "version": 1,
+     "id": "zbuffer", "title": "...", "figures": ["VII.5"], "questions": [4],
+     "summary": "...", "steps": [{...}, ...]}
+
+Every step has a ``title`` and a ``text``.  ``formulas``, ``notes`` and
+``highlight`` belong to the step they are written in; every other field, left
+out, keeps the previous step's value (so the first step must give ``scene``
+and ``panes``).  The loader resolves this, so each :class:`LessonStep` is
+complete.  Loading reports *every* problem at once, each with its field path
+(``steps[2].panes[0]: unknown pane 'zbufer' (did you mean 'object order'?)``),
+as one :class:`LessonFileError`, in the style of :mod:`core.scene_file`.  The
+README's "Lesson files" section documents the fields.
+"""
+
+from __future__ import annotations
+
+import difflib
+import json
+import re
+from dataclasses import dataclass, fields
+from pathlib import Path
+from types import MappingProxyType
+
+from core import scene_file
+from core.image_order.flat_scene import TraceSettings
+from core.image_order.ray_tree import KINDS
+from core.object_order.pipeline import RasterSettings
+from core.presets import PRESETS
+from core.presets_trace import PRESETS_TRACE
+from core.scene import Scene, Sphere
+from core.scene_file import SceneFileError, _join, _json_object, _Reader, _show
+
+FORMAT = "render-explorer-lesson"
+VERSION = 1
+#: The panes a step can show, by the names the window gives them.
+PANES = ("scene 3D", "image order", "object order", "four views", "compare", "hard cases", "cost")
+#: The 3D overlays a step can switch on.
+OVERLAYS = ("frustum", "bounding spheres", "grid cells")
+#: What a step can highlight; see :class:`LessonStep`.
+HIGHLIGHTS = ("polygon_step", "pixel", "face", "vertex", "ray", "object")
+#: Lecture figures a lesson may name: ``VII.1`` to ``VII.14``, optionally with a part letter.
+FIGURE = re.compile(r"^VII\.(1[0-4]|[1-9])[a-d]?$")
+QUESTIONS = range(1, 7)
+FILES = Path(__file__).with_name("files")
+
+_ALL_PRESETS = {**PRESETS, **PRESETS_TRACE}
+_LESSON_FIELDS = ("format", "version", "id", "title", "figures", "questions", "summary", "steps")
+_STEP_FIELDS = ("title", "text", "formulas", "notes", "scene", "camera", "view", "panes",
+                "image_order", "object_order", "highlight", "zbuffer_step", "pixel", "overlays")
+_VIEW_FIELDS = ("position", "focal_point", "up")
+
+
+class LessonFileError(ValueError):
+    """A lesson file that cannot be loaded.
+
+    Attributes
+    ----------
+    problems : every problem found, each ``"<field path>: <what is wrong>"``.
+    where : the file, if the lesson came from one.
+    """
+
+    def __init__(self, problems: list[str], where: str | None = None):
+        self.problems = list(problems)
+        self.where = where
+        head = f"lesson file {where}" if where else "lesson"
+        if len(self.problems) == 1:
+            super().__init__(f"{head}: {self.problems[0]}")
+        else:
+            lines = "\n".join(f"  {p}" for p in self.problems)
+            super().__init__(f"{head}: {len(self.problems)} problems:\n{lines}")
+
+
+@dataclass(frozen=True, eq=False)
+class LessonStep:
+    """One step of a lesson, resolved: everything the window needs to show it.
+
+    Attributes
+    ----------
+    title : str, a few words shown above the text.
+    text : str, the explanation (plain text, our own words).
+    formulas : tuple of str, matplotlib mathtext, each wrapped in ``$...$``.
+    notes : str, presenter notes (shown only in the presenter window).
+    preset : str or None, the preset key of the scene (``core.presets.PRESETS``
+        or ``core.presets_trace.PRESETS_TRACE``); None for an inline scene.
+    scene : Scene, the scene to load, with the camera overrides applied.
+    camera : mapping, the camera fields this lesson overrides (already in ``scene``).
+    view : mapping, the 3D pane's viewpoint: ``position``, ``focal_point``, ``up``
+        (world space, scene units); empty for the pane's own framing.
+    panes : tuple of str, names from :data:`PANES`; show these, hide the rest.
+        The first is the one to bring to the front.
+    image_order : TraceSettings for the image-order pane.
+    object_order : RasterSettings for the object-order pane.
+    highlight : mapping with at most these keys (see :data:`HIGHLIGHTS`):
+        ``polygon_step`` (int, polygon drawn at that step, 0-based),
+        ``pixel`` ((x, y), column and row from the top left),
+        ``face`` ({"object": name, "triangle": index}),
+        ``vertex`` ({"object": name, "index": vertex index}, the object-order path to show),
+        ``ray`` (a ray kind of ``core.image_order.ray_tree.KINDS``),
+        ``object`` (an object name).
+    zbuffer_step : int or None, the z-buffer scrubber's step (after that many polygons).
+    pixel : (x, y) or None, the picked pixel (ray tree, pixel history, worked math).
+    overlays : tuple of str, names from :data:`OVERLAYS` to show in the 3D pane.
+    """
+
+    title: str
+    text: str
+    formulas: tuple[str, ...]
+    notes: str
+    preset: str | None
+    scene: Scene
+    camera: MappingProxyType
+    view: MappingProxyType
+    panes: tuple[str, ...]
+    image_order: TraceSettings
+    object_order: RasterSettings
+    highlight: MappingProxyType
+    zbuffer_step: int | None
+    pixel: tuple[int, int] | None
+    overlays: tuple[str, ...]
+
+
+@dataclass(frozen=True, eq=False)
+class Lesson:
+    """A lesson: a title, the lecture's figures and questions it shows, its steps.
+
+    Attributes
+    ----------
+    id : str, short unique name (letters, digits, ``_`` and ``-``).
+    title : str
+    figures : tuple of str, lecture figures shown (``"VII.4a"``).
+    questions : tuple of int, the lecture's end-of-chapter questions answered (1 to 6).
+    summary : str, one sentence for the lesson list.
+    steps : tuple of LessonStep, at least one.
+    path : Path or None, the file it was read from.
+    """
+
+    id: str
+    title: str
+    figures: tuple[str, ...]
+    questions: tuple[int, ...]
+    summary: str
+    steps: tuple[LessonStep, ...]
+    path: Path | None = None
+
+
+def _choice(r: _Reader, value, path: str, names, what: str) -> str | None:
+    if not isinstance(value, str):
+        r.add(path, f"expected a string, got {_show(value)}")
+        return None
+    if value not in names:
+        close = difflib.get_close_matches(value, list(names), n=1)
+        hint = f"did you mean {close[0]!r}?" if close else f"known: {', '.join(names)}"
+        r.add(path, f"unknown {what} {value!r} ({hint})")
+        return None
+    return value
+
+
+def _names(r: _Reader, value, path: str, names, what: str) -> tuple[str, ...] | None:
+    if not isinstance(value, list):
+        r.add(path, f"expected a list [...], got {_show(value)}")
+        return None
+    items = value
+    got = [_choice(r, v, f"{path}[{k}]", names, what) for k, v in enumerate(items)]
+    return None if None in got else tuple(got)
+
+
+def _scene(r: _Reader, value, path: str) -> tuple[str | None, Scene | None]:
+    if isinstance(value, str):
+        key = _choice(r, value, path, tuple(_ALL_PRESETS), "preset")
+        return key, (_ALL_PRESETS[key][1]() if key else None)
+    if isinstance(value, dict):
+        try:
+            return None, scene_file.from_dict(value)
+        except SceneFileError as exc:
+            for problem in exc.problems:
+                r.problems.append(f"{path}.{problem}" if not problem.startswith("top level")
+                                  else f"{path}{problem[len('top level'):]}")
+            return None, None
+    r.add(path, f"expected a preset name or an inline scene object, got {_show(value)}")
+    return None, None
+
+
+def _camera(r: _Reader, value, path: str, scene: Scene) -> dict | None:
+    if not isinstance(value, dict):
+        r.add(path, f"expected an object {{...}}, got {_show(value)}")
+        return None
+    before = len(r.problems)
+    merged = {**scene_file.to_dict(scene)["camera"], **value}
+    camera = scene_file._read_camera(r, merged, path)
+    return None if len(r.problems) > before else {"camera": camera, "overrides": dict(value)}
+
+
+def _settings(r: _Reader, value, path: str, kind):
+    known = [f.name for f in fields(kind)]
+    d = r.fields(value, path, known)
+    if d is None:
+        return None
+    before = len(r.problems)
+    for key, v in d.items():
+        if key not in known:
+            continue
+        default = getattr(kind(), key)
+        if isinstance(default, bool) and not isinstance(v, bool):
+            r.add(f"{path}.{key}", f"expected true or false, got {_show(v)}")
+        elif isinstance(default, (int, float)) and not isinstance(default, bool) and (
+            isinstance(v, bool) or not isinstance(v, (int, float))
+        ):
+            r.add(f"{path}.{key}", f"expected a number, got {_show(v)}")
+        elif isinstance(default, str) and not isinstance(v, str):
+            r.add(f"{path}.{key}", f"expected a string, got {_show(v)}")
+    if len(r.problems) > before:
+        return None
+    try:
+        return kind(**{k: v for k, v in d.items() if k in known})
+    except ValueError as exc:  # the settings' own checks, e.g. an unknown mode
+        for message in str(exc).split("; "):
+            r.add(path, message)
+        return None
+
+
+def _pixel(r: _Reader, value, path: str, scene: Scene | None) -> tuple[int, int] | None:
+    if not (isinstance(value, list) and len(value) == 2 and all(scene_file._is_integer(v) for v in value)):
+        r.add(path, f"expected two whole numbers [x, y], got {_show(value)}")
+        return None
+    x, y = value
+    if scene is not None:
+        w, h = scene.camera.width, scene.camera.height
+        if not (0 <= x < w and 0 <= y < h):
+            r.add(path, f"pixel ({x}, {y}) lies outside the {w} x {h} image")
+            return None
+    return int(x), int(y)
+
+
+def _object_part(r: _Reader, value, path: str, scene: Scene | None, index_key: str):
+    d = r.fields(value, path, ["object", index_key], ["object", index_key])
+    if d is None or "object" not in d or index_key not in d:
+        return None
+    name = r.string(d["object"], f"{path}.object")
+    index = r.integer(d[index_key], f"{path}.{index_key}")
+    if name is None or index is None or scene is None:
+        return None
+    objects = {o.name: o for o in scene.objects}
+    if name not in objects:
+        r.add(f"{path}.object", f"no object {name!r} in the scene (objects: {', '.join(objects)})")
+        return None
+    obj = objects[name]
+    if isinstance(obj, Sphere):
+        r.add(f"{path}.object", f"{name!r} is an analytic sphere: it has no {index_key}s")
+        return None
+    count = len(obj.triangles) if index_key == "triangle" else len(obj.vertices)
+    if not 0 <= index < count:
+        r.add(f"{path}.{index_key}", f"must be in [0, {count - 1}] ({name!r} has {count}), got {index}")
+        return None
+    return MappingProxyType({"object": name, index_key: index})
+
+
+def _highlight(r: _Reader, value, path: str, scene: Scene | None) -> MappingProxyType:
+    d = r.fields(value, path, HIGHLIGHTS) or {}
+    out = {}
+    for key, v in d.items():
+        p = f"{path}.{key}"
+        if key == "polygon_step":
+            got = r.integer(v, p)
+            if got is not None and got < 0:
+                r.add(p, f"must be >= 0, got {got}")
+                got = None
+        elif key == "pixel":
+            got = _pixel(r, v, p, scene)
+        elif key == "face":
+            got = _object_part(r, v, p, scene, "triangle")
+        elif key == "vertex":
+            got = _object_part(r, v, p, scene, "index")
+        elif key == "ray":
+            got = _choice(r, v, p, KINDS, "ray kind")
+        elif key == "object":
+            got = r.string(v, p)
+            names = [o.name for o in scene.objects] if scene is not None else None
+            if got is not None and names is not None and got not in names:
+                r.add(p, f"no object {got!r} in the scene (objects: {', '.join(names)})")
+                got = None
+        else:
+            continue
+        if got is not None:
+            out[key] = got
+    return MappingProxyType(out)
+
+
+def _formulas(r: _Reader, value, path: str) -> tuple[str, ...]:
+    out = []
+    for k, v in enumerate(r.listing(value, path)):
+        text = r.string(v, f"{path}[{k}]")
+        if text is None:
+            continue
+        if not (text.count("$") >= 2 and text.count("$") % 2 == 0):
+            r.add(f"{path}[{k}]", f"a formula is mathtext between $ signs, got {_show(text)}")
+            continue
+        out.append(text)
+    return tuple(out)
+
+
+def _text(r: _Reader, d: dict, key: str, path: str, required: bool) -> str:
+    if key not in d:
+        return ""
+    got = r.string(d[key], _join(path, key))
+    if got is not None and required and not got.strip():
+        r.add(_join(path, key), "must not be empty")
+    return got or ""
+
+
+def _read_step(r: _Reader, value, path: str, previous: dict) -> dict:
+    """The step's fields, resolved against ``previous`` (the last step's values)."""
+    first = not previous
+    required = ["title", "text", *(["scene", "panes"] if first else [])]
+    d = r.fields(value, path, _STEP_FIELDS, required)
+    if d is None:
+        return previous
+    out = dict(previous)
+    out.update(title=_text(r, d, "title", path, True), text=_text(r, d, "text", path, True),
+               notes=_text(r, d, "notes", path, False),
+               formulas=_formulas(r, d["formulas"], f"{path}.formulas") if "formulas" in d else ())
+    if "scene" in d:
+        out["preset"], out["scene"] = _scene(r, d["scene"], f"{path}.scene")
+        out["camera"] = MappingProxyType({})
+    scene = out.get("scene")
+    if "camera" in d and scene is not None:
+        got = _camera(r, d["camera"], f"{path}.camera", scene)
+        if got is not None:
+            out["scene"] = Scene(camera=got["camera"], objects=scene.objects, lights=scene.lights,
+                                 background=scene.background)
+            out["camera"] = MappingProxyType(got["overrides"])
+            scene = out["scene"]
+    if "view" in d:
+        needed = ["position", "focal_point"] if d["view"] != {} else []  # {} resets the framing
+        v = r.fields(d["view"], f"{path}.view", _VIEW_FIELDS, needed) or {}
+        got = {k: r.vector(v[k], f"{path}.view.{k}") for k in _VIEW_FIELDS if k in v}
+        out["view"] = MappingProxyType({k: x for k, x in got.items() if x is not None})
+    if "panes" in d:
+        panes = _names(r, d["panes"], f"{path}.panes", PANES, "pane")
+        if panes is not None and not panes:
+            r.add(f"{path}.panes", "name at least one pane to show")
+        out["panes"] = panes or ()
+    if "overlays" in d:
+        out["overlays"] = _names(r, d["overlays"], f"{path}.overlays", OVERLAYS, "overlay") or ()
+    for key, kind in (("image_order", TraceSettings), ("object_order", RasterSettings)):
+        if key in d:
+            out[key] = _settings(r, d[key], f"{path}.{key}", kind) or kind()
+    if "zbuffer_step" in d:
+        got = r.integer(d["zbuffer_step"], f"{path}.zbuffer_step")
+        if got is not None and got < 0:
+            r.add(f"{path}.zbuffer_step", f"must be >= 0, got {got}")
+        out["zbuffer_step"] = got
+    if "pixel" in d:
+        out["pixel"] = _pixel(r, d["pixel"], f"{path}.pixel", scene)
+    elif "scene" in d or "camera" in d:
+        out["pixel"] = None  # a picked pixel belongs to one image
+    out["highlight"] = _highlight(r, d["highlight"], f"{path}.highlight", scene) if "highlight" in d \
+        else MappingProxyType({})
+    return out
+
+
+_STEP_DEFAULTS = dict(view=MappingProxyType({}), overlays=(), zbuffer_step=None, pixel=None,
+                      image_order=TraceSettings(), object_order=RasterSettings(),
+                      camera=MappingProxyType({}), preset=None, scene=None, panes=())
+
+
+def from_dict(d, path: Path | None = None) -> Lesson:
+    """Build a :class:`Lesson` from the parsed JSON of a lesson file.
+
+    Raises
+    ------
+    LessonFileError
+        Listing every problem found, each with its field path.
+    """
+    r = _Reader()
+    data = r.fields(d, "", _LESSON_FIELDS, ["format", "version", "id", "title", "steps"])
+    if data is None:
+        raise LessonFileError(r.problems)
+    if "format" in data and data["format"] != FORMAT:
+        r.add("format", f"expected {json.dumps(FORMAT)}, got {_show(data['format'])}")
+    if "version" in data and (not scene_file._is_integer(data["version"]) or data["version"] != VERSION):
+        r.add("version", f"unsupported version {_show(data['version'])}; "
+                         f"this program reads version {VERSION}")
+    lesson_id = r.string(data["id"], "id") if "id" in data else None
+    if lesson_id is not None and not re.fullmatch(r"[A-Za-z0-9_-]+", lesson_id):
+        r.add("id", f"use letters, digits, '_' and '-' only, got {_show(lesson_id)}")
+    title = _text(r, data, "title", "", True)
+    figures = []
+    for k, v in enumerate(r.listing(data.get("figures", []), "figures")):
+        text = r.string(v, f"figures[{k}]")
+        if text is not None and not FIGURE.match(text):
+            r.add(f"figures[{k}]",
+                  f"expected a lecture figure VII.1 to VII.14 (e.g. \"VII.4a\"), got {_show(v)}")
+        elif text is not None:
+            figures.append(text)
+    questions = []
+    for k, v in enumerate(r.listing(data.get("questions", []), "questions")):
+        q = r.integer(v, f"questions[{k}]")
+        if q is not None and q not in QUESTIONS:
+            r.add(f"questions[{k}]", f"the lecture has questions 1 to 6, got {q}")
+        elif q is not None:
+            questions.append(q)
+    steps, previous = [], {}
+    raw_steps = r.listing(data.get("steps", []), "steps")
+    if "steps" in data and isinstance(data["steps"], list) and not raw_steps:
+        r.add("steps", "a lesson needs at least one step")
+    for k, v in enumerate(raw_steps):
+        previous = _read_step(r, v, f"steps[{k}]", previous)
+        steps.append(previous)
+    summary = _text(r, data, "summary", "", False)
+    if r.problems:
+        raise LessonFileError(r.problems)
+    resolved = tuple(LessonStep(**{**_STEP_DEFAULTS, **s}) for s in steps)
+    return Lesson(id=lesson_id, title=title, figures=tuple(figures), questions=tuple(questions),
+                  summary=summary, steps=resolved, path=path)
+
+
+def load_lesson(path) -> Lesson:
+    """Load and check one lesson file.
+
+    Raises :class:`LessonFileError` for anything wrong: a missing or unreadable
+    file, invalid JSON (with its line and column), or invalid content.
+    """
+    path = Path(path)
+    try:
+        text = path.read_text(encoding="utf-8")
+    except FileNotFoundError:
+        raise LessonFileError(["file not found"], str(path)) from None
+    except UnicodeDecodeError:
+        raise LessonFileError(["not a text file (UTF-8 JSON expected)"], str(path)) from None
+    except OSError as exc:
+        raise LessonFileError([f"cannot read the file: {exc.strerror or exc}"], str(path)) from None
+    try:
+        data = json.loads(text, object_pairs_hook=_json_object)
+    except json.JSONDecodeError as exc:
+        raise LessonFileError([f"line {exc.lineno}, column {exc.colno}: invalid JSON: {exc.msg}"],
+                              str(path)) from None
+    except RecursionError:
+        raise LessonFileError(["invalid JSON: nested too deeply"], str(path)) from None
+    try:
+        return from_dict(data, path)
+    except LessonFileError as exc:
+        raise LessonFileError(exc.problems, str(path)) from None
+
+
+def shipped_lessons() -> list[Lesson]:
+    """The lessons that come with the program, in the lecture's order (file names sort so)."""
+    return [load_lesson(p) for p in sorted(FILES.glob("*.json"))]

@@ -1,0 +1,114 @@
+"""Presentation mode: full screen, scaled text, high contrast, blanking, clicker keys, presenter window."""
+
+import pytest
+from PySide6.QtCore import Qt
+from PySide6.QtWidgets import QLabel, QMainWindow, QSplitter
+
+from views.lesson_panel import LessonPanel
+from views.math_view import MathView
+from views.presentation import PRESENTING_SCALE, Presentation
+
+
+@pytest.fixture
+def hall(qtbot):
+    window = QMainWindow()
+    panel = LessonPanel()
+    other = QLabel("an image pane")
+    split = QSplitter()
+    split.addWidget(panel)
+    split.addWidget(other)
+    window.setCentralWidget(split)
+    qtbot.addWidget(window)
+    window.resize(1280, 720)
+    window.show()
+    window.activateWindow()
+    qtbot.waitActive(window)  # window shortcuts (F11, Esc, ".", "B") need the active window
+    presentation = Presentation(window, panel)
+    yield window, panel, presentation
+    presentation.clicker.remove()
+
+
+def _formula_height(panel: LessonPanel) -> float:
+    view = panel.formula_views()[0]
+    return view.pixmap().deviceIndependentSize().height()
+
+
+def test_presentation_mode_goes_full_screen_and_scales_the_text(hall, qtbot):
+    window, panel, presentation = hall
+    panel.select(4, 1)  # the z-buffer lesson has a formula
+    base_pt = panel.text.font().pointSizeF()
+    base_formula = _formula_height(panel)
+    qtbot.keyClick(window, Qt.Key.Key_F11)
+    qtbot.waitUntil(window.isFullScreen)
+    assert presentation.presenting() and presentation.scale() == PRESENTING_SCALE
+    assert panel.text.font().pointSizeF() == pytest.approx(base_pt * PRESENTING_SCALE)
+    assert panel.formula_views()[0].size_pt() == pytest.approx(
+        MathView().size_pt() * PRESENTING_SCALE, rel=0.01)
+    presentation.set_scale(2.0)
+    assert panel.text.font().pointSizeF() == pytest.approx(base_pt * 2)
+    assert _formula_height(panel) == pytest.approx(2 * base_formula, rel=0.15)
+    assert presentation.high_contrast() and "#000000" in window.styleSheet()
+    qtbot.keyClick(window, Qt.Key.Key_Escape)
+    qtbot.waitUntil(lambda: not window.isFullScreen())
+    assert not presentation.presenting() and panel.text.font().pointSizeF() == pytest.approx(base_pt)
+    with pytest.raises(ValueError, match="scale must be one of 1, 1.5, 2"):
+        presentation.set_scale(3.0)
+
+
+def test_blank_and_unblank_with_the_clicker_keys(hall, qtbot):
+    window, panel, presentation = hall
+    qtbot.keyClick(window, Qt.Key.Key_Period)
+    assert not presentation.blanked()  # only while presenting: "." and "B" are ordinary keys otherwise
+    presentation.set_presenting(True)
+    qtbot.waitUntil(window.isFullScreen)
+    with qtbot.waitSignal(presentation.blanked_changed) as signal:
+        qtbot.keyClick(window, Qt.Key.Key_Period)
+    assert signal.args == [True] and presentation.blanked()
+    sheet = presentation._blank
+    assert sheet.isVisible() and sheet.geometry() == window.rect()
+    image = window.grab().toImage()
+    assert image.pixelColor(image.width() // 2, image.height() // 2).name() == "#000000"
+    with qtbot.waitSignal(presentation.blanked_changed) as signal:
+        qtbot.keyClick(window, Qt.Key.Key_B)
+    assert signal.args == [False] and not sheet.isVisible()
+
+
+def test_page_down_advances_the_step_and_arrows_do_too_while_presenting(hall, qtbot):
+    window, panel, presentation = hall
+    other = window.centralWidget().widget(1)
+    other.setFocusPolicy(Qt.FocusPolicy.StrongFocus)
+    other.setFocus()
+    qtbot.keyClick(other, Qt.Key.Key_PageDown)
+    assert panel.step_index() == (0, 1)
+    qtbot.keyClick(other, Qt.Key.Key_Right)
+    assert panel.step_index() == (0, 1)  # not presenting: the arrows are the widget's
+    presentation.set_presenting(True)
+    qtbot.keyClick(other, Qt.Key.Key_Right)
+    assert panel.step_index() == (1, 0)
+    qtbot.keyClick(other, Qt.Key.Key_PageUp)
+    assert panel.step_index() == (0, 1)
+
+
+def test_the_presenter_window_shows_notes_the_next_step_and_a_clock(hall, qtbot):
+    window, panel, presentation = hall
+    k = next(i for i, lesson in enumerate(panel.lessons()) if lesson.id == "zbuffer")
+    panel.select(k, 0)
+    presenter = presentation.show_presenter()
+    qtbot.addWidget(presenter)
+    qtbot.waitExposed(presenter)
+    lesson = panel.lessons()[k]
+    assert lesson.steps[0].notes in presenter.notes.text()
+    assert lesson.steps[1].title in presenter.upcoming.text()
+    assert presenter.clock.text().count(":") == 2
+    panel.next()
+    assert "step 2 of 4" in presenter.current.text()
+    assert lesson.steps[2].title in presenter.upcoming.text()
+
+
+def test_presenting_hides_the_lesson_list_and_leaving_brings_it_back(hall, qtbot):
+    window, panel, presentation = hall
+    assert panel.list.isVisible()
+    presentation.set_presenting(True)
+    assert not panel.list.isVisible() and panel.text.isVisible() and panel.next_button.isVisible()
+    presentation.set_presenting(False)
+    assert panel.list.isVisible()

@@ -1,0 +1,294 @@
+"""Presentation mode: the window made readable from the back of a lecture hall.
+
+:class:`Presentation` works on any QMainWindow:
+
+- F11 enters presentation mode (full screen, text scaled, high contrast) and
+  leaves it again; Esc leaves it;
+- the scale is 1, 1.5 or 2 times the normal text size; every widget that
+  takes its size from the window's font (labels, check boxes, typeset
+  formulas, matrices) follows, and ``scale_changed`` tells the 3D panes to
+  widen their lines;
+- ``.`` and ``B`` (what clickers send for "blank") black the window out and
+  bring it back, while presenting;
+- with a :class:`views.lesson_panel.LessonPanel`, the arrow keys join
+  PageDown/PageUp in moving through the steps while presenting, and the
+  panel hides its lesson list so the step's text and formulas get the room.
+
+:class:`PresenterWindow` is the lecturer's screen: the current lesson's notes,
+the next step and a clock, shown on the second screen when there is one.
+"""
+
+from __future__ import annotations
+
+from PySide6.QtCore import QEvent, QObject, Qt, QTime, QTimer, Signal
+from PySide6.QtGui import QAction, QActionGroup, QFont, QGuiApplication, QKeySequence
+from PySide6.QtWidgets import QLabel, QMainWindow, QVBoxLayout, QWidget
+
+from views.lesson_panel import ClickerKeys, LessonPanel
+
+#: The text scales offered (1 is the normal size).
+SCALES = (1.0, 1.5, 2.0)
+#: The scale presentation mode starts with.
+PRESENTING_SCALE = 1.5
+
+#: Black and white with a yellow accent; colours only, so the font scale stays the window's.
+HIGH_CONTRAST = """
+QWidget { background-color: #000000; color: #ffffff; }
+QAbstractButton, QComboBox, QSpinBox, QDoubleSpinBox, QLineEdit {
+    border: 2px solid #ffffff; padding: 3px; }
+QAbstractButton:checked, QAbstractButton:pressed { background-color: #ffd400; color: #000000; }
+QListView::item:selected, QTreeView::item:selected, QTableView::item:selected {
+    background-color: #ffd400; color: #000000; }
+QTabBar::tab:selected { background-color: #ffd400; color: #000000; }
+QToolTip { background-color: #ffffff; color: #000000; }
+"""
+
+
+class _Blank(QWidget):
+    """A black sheet over the whole window."""
+
+    def __init__(self, parent: QWidget):
+        super().__init__(parent)
+        self.setAutoFillBackground(True)
+        self.setStyleSheet("background-color: #000000;")
+        self.setAttribute(Qt.WidgetAttribute.WA_StyledBackground, True)
+        self.hide()
+
+
+class Presentation(QObject):
+    """Presentation mode for ``window``; optional ``panel`` for clicker navigation.
+
+    Signals
+    -------
+    scale_changed(float) : the text scale now applied (1, 1.5 or 2).
+    presenting_changed(bool)
+    blanked_changed(bool)
+
+    Attributes
+    ----------
+    actions : dict of QAction, added to the window so their keys work without
+        a menu; put them in a View menu: ``"present"`` (F11, checkable),
+        ``"leave"`` (Esc), ``"blank"`` (``.`` and ``B``), ``"contrast"``
+        (checkable), ``"presenter"`` (the presenter window) and
+        ``"scale 1"``, ``"scale 1.5"``, ``"scale 2"`` (an exclusive group).
+    """
+
+    scale_changed = Signal(float)
+    presenting_changed = Signal(bool)
+    blanked_changed = Signal(bool)
+
+    def __init__(self, window: QMainWindow, panel: LessonPanel | None = None):
+        super().__init__(window)
+        self.window = window
+        self.panel = panel
+        self._scale = 1.0
+        self._presenting = False
+        self._high_contrast = False
+        self._base_font = QFont(window.font())
+        self._base_style = window.styleSheet()
+        self._was_maximized = False
+        self._blank = _Blank(window)
+        window.installEventFilter(self)
+        self.clicker = None
+        if panel is not None:
+            self.clicker = ClickerKeys(panel, self)
+            self.clicker.install()
+        self.presenter: PresenterWindow | None = None
+        self.actions = self._make_actions()
+
+    def _make_actions(self) -> dict[str, QAction]:
+        w = self.window
+        acts = {}
+
+        def add(key, text, slot, shortcuts=(), checkable=False, toggles=True):
+            a = QAction(text, w)
+            a.setCheckable(checkable)
+            a.setShortcuts([QKeySequence(s) for s in shortcuts])
+            a.setShortcutContext(Qt.ShortcutContext.WindowShortcut)
+            (a.toggled if checkable and toggles else a.triggered).connect(slot)
+            w.addAction(a)
+            acts[key] = a
+            return a
+
+        add("present", "Presentation mode", self.set_presenting, ["F11"], checkable=True)
+        add("leave", "Leave presentation mode", lambda: self.set_presenting(False), ["Esc"])
+        add("blank", "Blank the screen", self.toggle_blank, [".", "B"])
+        add("contrast", "High contrast", self.set_high_contrast, checkable=True)
+        add("presenter", "Presenter window", self.show_presenter)
+        group = QActionGroup(w)
+        for s in SCALES:
+            a = add(f"scale {s:g}", f"Text size ×{s:g}", lambda _=False, s=s: self.set_scale(s),
+                    checkable=True, toggles=False)
+            group.addAction(a)
+        acts["scale 1"].setChecked(True)
+        acts["blank"].setEnabled(False)
+        acts["leave"].setEnabled(False)
+        return acts
+
+    # --- state --------------------------------------------------------------
+
+    def scale(self) -> float:
+        return self._scale
+
+    def presenting(self) -> bool:
+        return self._presenting
+
+    def blanked(self) -> bool:
+        return self._blank.isVisible()
+
+    def high_contrast(self) -> bool:
+        return self._high_contrast
+
+    def set_scale(self, scale: float) -> None:
+        """Scale the window's text (and all that follows its font) to ``scale`` times normal."""
+        if scale not in SCALES:
+            raise ValueError(f"scale must be one of {', '.join(f'{s:g}' for s in SCALES)}, got {scale!r}")
+        self._scale = float(scale)
+        self._apply_style()
+        action = self.actions[f"scale {scale:g}"]
+        if not action.isChecked():
+            action.setChecked(True)
+        self.scale_changed.emit(self._scale)
+
+    def set_high_contrast(self, on: bool) -> None:
+        self._high_contrast = bool(on)
+        self._apply_style()
+        if self.actions["contrast"].isChecked() != self._high_contrast:
+            self.actions["contrast"].setChecked(self._high_contrast)
+
+    def text_size_pt(self) -> float:
+        """The window's text size now, in points."""
+        return (self._base_font.pointSizeF() or 10.0) * self._scale
+
+    def _apply_style(self) -> None:
+        # A style sheet stops font changes from reaching the widgets below it, so
+        # the size goes into the sheet too (widgets keep their own weight).
+        font = QFont(self._base_font)
+        font.setPointSizeF(self.text_size_pt())
+        self.window.setFont(font)
+        size = f"QWidget {{ font-size: {self.text_size_pt():g}pt; }}\n" if self._scale != 1.0 else ""
+        self.window.setStyleSheet(self._base_style + size + (HIGH_CONTRAST if self._high_contrast else ""))
+
+    def set_presenting(self, on: bool) -> None:
+        """Enter (full screen, ×1.5 text, high contrast, arrow keys step) or leave presentation mode."""
+        on = bool(on)
+        if on == self._presenting:
+            return
+        self._presenting = on
+        if on:
+            self._was_maximized = self.window.isMaximized()
+            self.set_scale(max(self._scale, PRESENTING_SCALE))
+            self.set_high_contrast(True)
+            self.window.showFullScreen()
+        else:
+            self.set_blanked(False)
+            self.set_scale(1.0)
+            self.set_high_contrast(False)
+            if self._was_maximized:
+                self.window.showMaximized()
+            else:
+                self.window.showNormal()
+        if self.clicker is not None:
+            self.clicker.arrows = on
+            self.panel.set_compact(on)
+        self.actions["blank"].setEnabled(on)
+        self.actions["leave"].setEnabled(on)
+        if self.actions["present"].isChecked() != on:
+            self.actions["present"].setChecked(on)
+        self.presenting_changed.emit(on)
+
+    def set_blanked(self, on: bool) -> None:
+        """Black the window out (``on``) or bring it back."""
+        if on == self.blanked():
+            return
+        if on:
+            self._blank.setGeometry(self.window.rect())
+            self._blank.raise_()
+            self._blank.show()
+        else:
+            self._blank.hide()
+        self.blanked_changed.emit(bool(on))
+
+    def toggle_blank(self) -> None:
+        self.set_blanked(not self.blanked())
+
+    def eventFilter(self, watched, event) -> bool:
+        if watched is self.window and event.type() == QEvent.Type.Resize and self.blanked():
+            self._blank.setGeometry(self.window.rect())
+        return False
+
+    # --- the presenter's screen ---------------------------------------------
+
+    def show_presenter(self) -> PresenterWindow:
+        """Open the presenter window, on the second screen if there is one."""
+        if self.presenter is None:
+            self.presenter = PresenterWindow(self.panel)
+        screens = QGuiApplication.screens()
+        mine = self.window.screen()
+        others = [s for s in screens if s is not mine]
+        if others:
+            self.presenter.setGeometry(others[0].availableGeometry())
+        self.presenter.show()
+        return self.presenter
+
+
+class PresenterWindow(QWidget):
+    """The lecturer's view: this step's notes, the next step, and the time."""
+
+    def __init__(self, panel: LessonPanel | None, parent: QWidget | None = None):
+        super().__init__(parent, Qt.WindowType.Window)
+        self.setWindowTitle("Render Explorer — presenter")
+        self.panel = panel
+        self.clock = QLabel()
+        big = QFont(self.clock.font())
+        big.setPointSizeF((big.pointSizeF() or 10.0) * 2.5)
+        big.setBold(True)
+        self.clock.setFont(big)
+        self.current = QLabel()
+        self.current.setWordWrap(True)
+        bold = QFont(self.current.font())
+        bold.setPointSizeF((bold.pointSizeF() or 10.0) * 1.5)
+        bold.setBold(True)
+        self.current.setFont(bold)
+        self.notes = QLabel()
+        self.notes.setWordWrap(True)
+        notes_font = QFont(self.notes.font())
+        notes_font.setPointSizeF((notes_font.pointSizeF() or 10.0) * 1.4)
+        self.notes.setFont(notes_font)
+        self.upcoming = QLabel()
+        self.upcoming.setWordWrap(True)
+        layout = QVBoxLayout(self)
+        for w in (self.clock, self.current, self.notes):
+            layout.addWidget(w)
+        layout.addStretch(1)
+        layout.addWidget(QLabel("Next:"))
+        layout.addWidget(self.upcoming)
+        self._timer = QTimer(self)
+        self._timer.timeout.connect(self._tick)
+        self._timer.start(1000)
+        self._tick()
+        if panel is not None:
+            panel.step_selected.connect(lambda _step: self.refresh())
+        self.refresh()
+
+    def _tick(self) -> None:
+        self.clock.setText(QTime.currentTime().toString("HH:mm:ss"))
+
+    def refresh(self) -> None:
+        """Show the panel's current step and the one after it."""
+        if self.panel is None or self.panel.current_lesson() is None:
+            self.current.setText("No lesson open")
+            self.notes.clear()
+            self.upcoming.clear()
+            return
+        lesson, step = self.panel.current_lesson(), self.panel.current_step()
+        k = self.panel.step_index()[1]
+        self.current.setText(f"{lesson.title} — step {k + 1} of {len(lesson.steps)}: {step.title}")
+        self.notes.setText(step.notes or "(no notes for this step)")
+        following = self.panel.next_step()
+        if following is None:
+            self.upcoming.setText("(the end of the last lesson)")
+        else:
+            nxt_lesson, nxt = following
+            prefix = "" if nxt_lesson is lesson else f"{nxt_lesson.title}: "
+            self.upcoming.setText(f"{prefix}{nxt.title}\n{nxt.text}")
