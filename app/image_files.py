@@ -7,8 +7,8 @@ with imageio: PNG for ``.png``, JPEG (quality 95) for ``.jpg`` and ``.jpeg``.
 An :class:`Outputs` set checks its paths *before* the work (the folder exists
 and is writable, the extension matches the format, no output names an input
 or another output), so a bad path does not waste a long render, and then
-writes every file atomically with :func:`core.safe_files.write_atomic`: a
-failed write, or Ctrl-C, leaves each old file byte-for-byte as it was.
+writes all files at once with :func:`core.safe_files.write_atomic_all`: a
+failed write, or Ctrl-C, leaves every old file byte-for-byte as it was.
 """
 
 from __future__ import annotations
@@ -19,7 +19,7 @@ from pathlib import Path
 
 import numpy as np
 
-from core.safe_files import OutputError, write_atomic
+from core.safe_files import OutputError, write_atomic, write_atomic_all
 from core.srgb import to_srgb8
 
 IMAGE_EXTENSIONS = {".png": "PNG", ".jpg": "JPEG", ".jpeg": "JPEG"}
@@ -117,8 +117,6 @@ class Outputs:
         Raises
         ------
         OutputError
-            Naming the file that failed; it and every file not yet written keep
-            their old contents.
+            Naming the file that failed; then every file keeps its old contents.
         """
-        for option, data in contents.items():
-            write_atomic(self.paths[option], data)
+        write_atomic_all({self.paths[option]: data for option, data in contents.items()})

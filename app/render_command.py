@@ -1,9 +1,9 @@
 """``python -m app render``: render a scene file headless, in object order or image order.
 
 Writes the image as sRGB PNG (or JPEG for ``.jpg``/``.jpeg``) and, on request,
-the depth of the visible surface per pixel (``.npy``: camera-space distance along the viewing axis, +inf where only
-background is seen) and the render's statistics (JSON: counts and times per
-stage).  Imports neither Qt nor VTK.
+the depth of the visible surface per pixel (``.npy``: camera-space distance
+along the viewing axis, +inf where only background is seen) and the render's
+statistics (JSON: counts and times per stage).  Imports neither Qt nor VTK.
 
 Before any work it checks every output path, loads the scene, and estimates
 the render's memory (:mod:`core.budget`): a render over the budget (half of

@@ -79,6 +79,60 @@ def _mode_for_new_file() -> int:
     return 0o666 & ~umask
 
 
+def _stage(path: Path, data: bytes) -> str:
+    """Write ``data`` to a new temporary file beside ``path``; its name."""
+    try:
+        mode = stat.S_IMODE(os.stat(path).st_mode)
+    except OSError:
+        mode = _mode_for_new_file()
+    fd, temp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".part")
+    try:
+        with os.fdopen(fd, "wb") as f:
+            f.write(data)
+            f.flush()
+            os.fsync(f.fileno())
+        os.chmod(temp, mode)
+    except BaseException:
+        with contextlib.suppress(OSError):
+            os.unlink(temp)
+        raise
+    return temp
+
+
+def write_atomic_all(contents: dict) -> None:
+    """Write ``{path: bytes}``: every file is either left as it was or replaced whole.
+
+    All files are first written to temporary files; only when every one of
+    them is complete are they renamed over their targets.  So a failure (or
+    Ctrl-C) while writing leaves *all* the old files unchanged.
+
+    Raises
+    ------
+    OutputError
+        Naming the file that failed and the reason; no temporary file is left.
+    """
+    staged: list[tuple[str, Path]] = []
+    try:
+        for path, data in contents.items():
+            path = Path(path)
+            try:
+                staged.append((_stage(path, data), path))
+            except OSError as exc:
+                raise OutputError(f"cannot write {path}: {exc.strerror or exc}; "
+                                  "any previous file there is unchanged") from None
+        while staged:
+            temp, path = staged[0]
+            try:
+                os.replace(temp, path)
+            except OSError as exc:
+                raise OutputError(f"cannot write {path}: {exc.strerror or exc}") from None
+            staged.pop(0)
+    finally:
+        for temp, _ in staged:
+            with contextlib.suppress(OSError):
+                os.unlink(temp)
+
+
 def write_atomic(path, data: bytes) -> None:
     """Write ``data`` to ``path`` so that ``path`` is either the old file or the whole new one.
 
@@ -88,26 +142,4 @@ def write_atomic(path, data: bytes) -> None:
         Naming ``path`` and the reason, if the write fails (the old file is
         then unchanged and no temporary file is left behind).
     """
-    path = Path(path)
-    folder = path.parent
-    try:
-        mode = stat.S_IMODE(os.stat(path).st_mode)
-    except OSError:
-        mode = _mode_for_new_file()
-    temp = None
-    try:
-        fd, temp = tempfile.mkstemp(dir=folder, prefix=f".{path.name}.", suffix=".part")
-        with os.fdopen(fd, "wb") as f:
-            f.write(data)
-            f.flush()
-            os.fsync(f.fileno())
-        os.chmod(temp, mode)
-        os.replace(temp, path)
-        temp = None
-    except OSError as exc:
-        raise OutputError(f"cannot write {path}: {exc.strerror or exc}; "
-                          "any previous file there is unchanged") from None
-    finally:
-        if temp is not None:
-            with contextlib.suppress(OSError):
-                os.unlink(temp)
+    write_atomic_all({path: data})
