@@ -102,13 +102,18 @@ def _fan(polygons: list[list[int]]) -> np.ndarray:
     return np.array(tris, dtype=np.int64).reshape(-1, 3)
 
 
-def _check_indices(faces: np.ndarray, n_vertices: int, where) -> None:
-    """Refuse a face index outside ``[0, n_vertices)``; ``where(k)`` names face k."""
+def _check_indices(faces: np.ndarray, n_vertices: int, where, base: int = 0) -> None:
+    """Refuse a face index outside ``[0, n_vertices)``; ``where(k)`` names face k.
+
+    ``base`` is where the file's own numbering starts (OBJ counts from 1), so
+    the message shows the index as the file wrote it.
+    """
     bad = np.flatnonzero(((faces < 0) | (faces >= n_vertices)).any(axis=1))
     if len(bad):
         k = int(bad[0])
-        raise _DamagedError(f"{where(k)} refers to vertex {_first_bad(faces[k], n_vertices)}, but the "
-                       f"file has {n_vertices:,} vertices (valid: 0 to {n_vertices - 1})"
+        raise _DamagedError(f"{where(k)} refers to vertex {_first_bad(faces[k], n_vertices) + base}, "
+                       f"but the file has {n_vertices:,} vertices (valid: {base} to "
+                       f"{n_vertices - 1 + base})"
                        + (f"; {len(bad) - 1:,} more faces like it" if len(bad) > 1 else ""))
 
 
@@ -157,7 +162,7 @@ def _parse_obj(data: bytes) -> tuple[np.ndarray, np.ndarray]:
             _check_count(len(polygons), "faces")
     faces = _fan(polygons)
     corner_line = np.repeat(lines, [len(p) - 2 for p in polygons]) if polygons else []
-    _check_indices(faces, len(vertices), lambda k: f"line {corner_line[k]}: face")
+    _check_indices(faces, len(vertices), lambda k: f"line {corner_line[k]}: face", base=1)
     return np.array(vertices, dtype=np.float64).reshape(-1, 3), faces
 
 
@@ -332,7 +337,8 @@ def _ply_binary_lists(data: bytes, offset: int, name: str, count: int, props, or
         for prop, t, c in props:
             dt = np.dtype(order + (c or t))
             if offset + dt.itemsize > len(data):
-                raise _DamagedError(f"{name} {row}: the file ends inside it")
+                raise _DamagedError(f"the header declares {count:,} {name} elements, but the "
+                                    f"file ends inside {name} {row}")
             value = np.frombuffer(data, dt, 1, offset)[0]
             offset += dt.itemsize
             if c is None:
@@ -341,7 +347,8 @@ def _ply_binary_lists(data: bytes, offset: int, name: str, count: int, props, or
             k = int(value)
             item = np.dtype(order + t)
             if k < 0 or offset + k * item.itemsize > len(data):
-                raise _DamagedError(f"{name} {row}: a list of {k} values runs past the end of the file")
+                raise _DamagedError(f"the header declares {count:,} {name} elements, but the "
+                                    f"file ends inside {name} {row} (a list of {k} values)")
             columns[prop].append(np.frombuffer(data, item, k, offset).astype(np.int64).tolist())
             offset += k * item.itemsize
     return {k: (v if any(p[0] == k and p[2] for p in props) else np.array(v))
