@@ -149,8 +149,10 @@ class _Reader:
     def count_triangles(self, path: str, n: int, what: str) -> bool:
         """Add ``n`` triangles to the scene's total; False (and a problem) if over the limit."""
         if self.triangles + n > MAX_TRIANGLES:
-            self.add(path, f"{what} has {n:,} triangles, which takes the scene past its limit of "
-                           f"{MAX_TRIANGLES:,} ({self.triangles:,} before it)")
+            if self.triangles <= MAX_TRIANGLES:  # reported once, at the first object past it
+                self.add(path, f"{what} has {n:,} triangles, which takes the scene past its "
+                               f"limit of {MAX_TRIANGLES:,} ({self.triangles:,} before it)")
+            self.triangles = MAX_TRIANGLES + 1
             return False
         self.triangles += n
         return True
