@@ -46,6 +46,9 @@ def add_parser(sub) -> None:
     p.add_argument("--out", required=True, help="image file to write: .png, or .jpg/.jpeg (JPEG)")
     p.add_argument("--depth-out", help="write the depth per pixel as .npy")
     p.add_argument("--stats-out", help="write counts and times per stage as JSON")
+    p.add_argument("--dry-run", action="store_true",
+                   help="check the scene and the output paths, print the estimated cost, "
+                        "and stop before rendering")
     p.add_argument("--memory-limit", metavar="SIZE",
                    help="refuse a render estimated to need more memory, e.g. 8G or 512M "
                         "(default: half of the memory available)")
@@ -96,7 +99,7 @@ def _budget(args) -> tuple[int, str]:
 
 
 def _check_cost(scene, args, limit: int, limit_source: str) -> None:
-    """Refuse a render over the memory budget; say so when it will be slow."""
+    """Refuse a render over the memory budget; say so when it will be slow (or asked to)."""
     from core import budget
 
     cost = budget.estimate(scene, args.mode, args.accel, args.max_depth)
@@ -108,7 +111,11 @@ def _check_cost(scene, args, limit: int, limit_source: str) -> None:
             f"{budget.format_bytes(cost.bytes)} ({parts}); the budget is "
             f"{budget.format_bytes(limit)} ({limit_source}); use a smaller image "
             "(--width/--height), fewer objects or triangles, or --memory-limit")
-    if cost.seconds > SLOW_SECONDS:
+    if args.dry_run:
+        print(f"{args.mode}: {cam.width}x{cam.height} pixels, {len(scene.objects)} objects: "
+              f"about {budget.format_bytes(cost.bytes)} of memory and "
+              f"{budget.format_seconds(cost.seconds)}; nothing rendered (--dry-run)")
+    elif cost.seconds > SLOW_SECONDS:
         why = f": {cost.slow_because}" if cost.slow_because else ""
         print(f"python -m app render: estimated time about {budget.format_seconds(cost.seconds)}"
               f" and {budget.format_bytes(cost.bytes)} of memory{why}", file=sys.stderr, flush=True)
@@ -140,6 +147,8 @@ def run(args) -> int:
         key, message = problems[0]
         raise UsageError(f"{args.scene}: with the options given, camera.{key}: {message}")
     _check_cost(scene, args, limit, limit_source)
+    if args.dry_run:
+        return 0
 
     if args.mode == "raster":
         from core.object_order.pipeline import RasterSettings, render_raster

@@ -128,7 +128,9 @@ def format_bytes(n: float) -> str:
 
 
 def format_seconds(s: float) -> str:
-    """A duration for people: ``"40 s"``, ``"12 min"``, ``"3.5 hours"``."""
+    """A duration for people: ``"under a second"``, ``"40 s"``, ``"12 min"``, ``"3.5 hours"``."""
+    if s < 1:
+        return "under a second"
     if s < 120:
         return f"{s:.0f} s"
     if s < 7200:
