@@ -96,8 +96,13 @@ def _check_count(n: int, what: str, limit: int = MAX_TRIANGLES) -> None:
                        f"{MAX_TRIANGLES:,} triangles)")
 
 
-def _fan(polygons: list[list[int]]) -> np.ndarray:
+def _fan(polygons) -> np.ndarray:
     """Triangles of polygons (lists of vertex indices), each as a fan from its first corner."""
+    if isinstance(polygons, np.ndarray):  # (F, k) polygons of k corners each
+        k = polygons.shape[1]
+        fans = [polygons[:, [0, i, i + 1]] for i in range(1, k - 1)]
+        return np.stack(fans, axis=1).reshape(-1, 3).astype(np.int64) if fans else \
+            np.zeros((0, 3), np.int64)
     tris = [(p[0], p[i], p[i + 1]) for p in polygons for i in range(1, len(p) - 1)]
     return np.array(tris, dtype=np.int64).reshape(-1, 3)
 
@@ -132,6 +137,9 @@ def _parse_obj(data: bytes) -> tuple[np.ndarray, np.ndarray]:
     from the last vertex read so far, as the format says.
     """
     text = data.decode("utf-8", errors="replace")
+    fast = _parse_obj_triangles(text)
+    if fast is not None:
+        return fast
     vertices: list[tuple[float, float, float]] = []
     polygons: list[list[int]] = []
     lines: list[int] = []
@@ -164,6 +172,29 @@ def _parse_obj(data: bytes) -> tuple[np.ndarray, np.ndarray]:
     corner_line = np.repeat(lines, [len(p) - 2 for p in polygons]) if polygons else []
     _check_indices(faces, len(vertices), lambda k: f"line {corner_line[k]}: face", base=1)
     return np.array(vertices, dtype=np.float64).reshape(-1, 3), faces
+
+
+def _parse_obj_triangles(text: str):
+    """The common OBJ read with numpy: ``v x y z`` lines and triangles with positive indices.
+
+    None when the file is anything else (or damaged), so that the line-by-line
+    reader handles it and names the line that is wrong.
+    """
+    rows = [line.split() for line in text.splitlines() if line.startswith(("v ", "f "))]
+    v_rows = [r[1:] for r in rows if r[0] == "v"]
+    f_rows = [r[1:] for r in rows if r[0] == "f"]
+    if len(f_rows) > MAX_TRIANGLES or any(len(r) != 3 for r in v_rows) or any(
+            len(r) != 3 for r in f_rows):
+        return None
+    try:  # Python's float() and int() per token: far faster than numpy's string parsing
+        vertices = np.array([float(c) for r in v_rows for c in r], dtype=np.float64).reshape(-1, 3)
+        faces = np.array([int(c.split("/")[0]) for r in f_rows for c in r], dtype=np.int64)
+    except ValueError:
+        return None
+    faces = faces.reshape(-1, 3) - 1
+    if faces.size and not ((faces >= 0) & (faces < len(vertices))).all():
+        return None
+    return vertices, faces
 
 
 # --- STL -----------------------------------------------------------------------
@@ -262,6 +293,11 @@ def _parse_ply(data: bytes) -> tuple[np.ndarray, np.ndarray]:
     if "face" not in values:
         return vertices, np.zeros((0, 3), np.int64)
     lists = values["face"].get("vertex_indices", values["face"].get("vertex_index"))
+    if isinstance(lists, np.ndarray):  # every face has the same number of corners
+        faces = _fan(lists) if lists.shape[1] >= 3 else np.zeros((0, 3), np.int64)
+        k = max(lists.shape[1] - 2, 1)
+        _check_indices(faces, n_vertices, lambda i: f"face {i // k}")
+        return vertices, faces
     faces = _fan([list(p) for p in lists if len(p) >= 3])
     first_face = np.repeat(np.flatnonzero([len(p) >= 3 for p in lists]),
                            [len(p) - 2 for p in lists if len(p) >= 3]) if len(faces) else []
@@ -367,4 +403,4 @@ def _ply_fixed_lists(data: bytes, offset: int, count: int, props, order: str):
     table = np.frombuffer(data, dtype, count, offset)
     if not (table["k"] == k).all():
         return None
-    return {prop: table["i"].astype(np.int64).tolist()}, offset + count * dtype.itemsize
+    return {prop: table["i"].astype(np.int64)}, offset + count * dtype.itemsize
