@@ -78,6 +78,8 @@ def read_mesh(path) -> tuple[np.ndarray, np.ndarray]:
         vertices, faces = parse(data)
     except _DamagedError as exc:
         raise MeshFileError(f"cannot read mesh file {path}: {exc}") from None
+    except (ValueError, OverflowError, IndexError) as exc:  # a damage no check above foresaw
+        raise MeshFileError(f"cannot read mesh file {path}: the file is damaged ({exc})") from None
     if len(faces) and not np.isfinite(vertices).all():
         raise MeshFileError(f"cannot read mesh file {path}: vertices are not finite numbers")
     triangles = faces[~degenerate(vertices, faces)] if len(faces) else faces
@@ -262,7 +264,8 @@ def _ply_header(data: bytes):
         elif parts[0] == "property" and elements and len(parts) == 3 and parts[1] in _PLY_TYPES:
             elements[-1][2].append((parts[2], _PLY_TYPES[parts[1]], None))
         elif (parts[0] == "property" and elements and len(parts) == 5 and parts[1] == "list"
-              and parts[2] in _PLY_TYPES and parts[3] in _PLY_TYPES):
+              and parts[2] in _PLY_TYPES and parts[3] in _PLY_TYPES
+              and _PLY_TYPES[parts[2]][0] in "iu"):  # a list's length is a whole number
             elements[-1][2].append((parts[4], _PLY_TYPES[parts[3]], _PLY_TYPES[parts[2]]))
         else:
             raise _DamagedError(f"header line {number}: not understood: {line.strip()[:60]!r}")
@@ -396,10 +399,13 @@ def _ply_fixed_lists(data: bytes, offset: int, count: int, props, order: str):
     if len(props) != 1 or count == 0:
         return None
     prop, t, c = props[0]
-    k = int(np.frombuffer(data, order + c, 1, offset)[0])
-    dtype = np.dtype([("k", order + c), ("i", order + t, (k,))])
-    if k < 1 or offset + count * dtype.itemsize > len(data):
+    if offset + np.dtype(c).itemsize > len(data):
         return None
+    k = int(np.frombuffer(data, order + c, 1, offset)[0])
+    row_bytes = np.dtype(c).itemsize + k * np.dtype(t).itemsize
+    if k < 1 or offset + count * row_bytes > len(data):
+        return None
+    dtype = np.dtype([("k", order + c), ("i", order + t, (k,))])
     table = np.frombuffer(data, dtype, count, offset)
     if not (table["k"] == k).all():
         return None
