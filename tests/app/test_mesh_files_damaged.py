@@ -91,6 +91,11 @@ def test_valid_binary_stl_reads_as_vtk_reads_it(tmp_path):
                       "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n",
          ["5 vertex", "1 face", "only 4 lines"]),
         ("no_end.ply", "ply\nformat ascii 1.0\nelement vertex 3\n", ["end_header"]),
+        ("float_count.ply", "ply\nformat binary_little_endian 1.0\nelement face 1\n"
+                            "property list float int vertex_indices\nend_header\n",
+         ["header line 4", "not understood"]),
+        ("huge_list.ply", binary_ply(TETRA_V, []).replace(b"element face 0", b"element face 1")
+         + b"\xff" * 5, ["1 face", "ends inside face 0"]),
         ("past.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 99\n",
          ["line 4", "vertex 99", "3 vertices", "valid: 1 to 3"]),
         ("short.stl", binary_stl(TETRA_V[TETRA_F], declared=1000), ["1,000 triangles", "bytes"]),
