@@ -117,6 +117,8 @@ def _show(value) -> str:
 
 
 def _join(path: str, key: str) -> str:
+    if not key.isprintable() or not key:  # control characters are not echoed to a terminal
+        key = json.dumps(key)
     return f"{path}.{key}" if path else key
 
 

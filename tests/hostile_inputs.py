@@ -28,8 +28,9 @@ ROOT = Path(__file__).resolve().parents[1]
 #: file-level reason.
 _PREFIX = re.compile(r"^python -m app( \w+)?: error: (scene file .+?: )?(\d+ problems:\s+)?")
 _NAMED = re.compile(
-    r"([A-Za-z_][\w]*(\[\d+\])?(\.[A-Za-z_]\w*(\[\d+\])?)*: |--[a-z-]+: |line \d+, column \d+: "
-    r"|top level: |file not found$|cannot read the file: |too large: |not a text file"
+    r"((top level|format|version|camera|background|lights|objects)([.\[][^\n]*?)?: "
+    r"|[^\n]*?: unknown field |--[a-z-]+: |line \d+, column \d+: |invalid JSON: "
+    r"|file not found$|cannot read the file: |too large: |not a text file"
     r"|\d+ × \d+ \w+ of \d+ objects needs about)"
 )
 

@@ -567,3 +567,9 @@ def test_save_into_a_missing_folder_names_the_file(tmp_path):
     target = tmp_path / "nowhere" / "scene.json"
     with pytest.raises(OSError, match="nowhere/scene.json"):
         scene_file.save(presets.lecture_scene(), target)
+
+
+def test_a_field_name_with_control_characters_is_shown_escaped():
+    problems = problems_of({"camera": {"\x1b[31mred": 1}})
+    assert problems[0].startswith('camera."\\u001b[31mred": unknown field')
+    assert "\x1b" not in problems[0]  # no terminal escape sequence reaches the user's screen
