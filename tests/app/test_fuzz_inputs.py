@@ -19,7 +19,7 @@ from hostile_inputs import mesh_cases, path_cases, run_case, scene_cases, verdic
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-FUZZ = settings(max_examples=25, derandomize=True, deadline=None, database=None,
+FUZZ = settings(max_examples=40, derandomize=True, deadline=None, database=None,
                 suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large])
 
 
@@ -49,9 +49,9 @@ def test_paths_that_never_end_are_refused(case):
     assert _handled(case, "--dry-run") == 2
 
 
-@settings(max_examples=3, derandomize=True, deadline=None, database=None,
-          suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large,
-                                 HealthCheck.filter_too_much])
+@settings(max_examples=20, derandomize=True, deadline=None, database=None,
+          suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large])
 @given(st.one_of(scene_cases(), mesh_cases()), st.sampled_from(["raster", "raycast", "raytrace"]))
 def test_generated_inputs_that_pass_the_checks_also_render(case, mode):
-    _handled(case, "--mode", mode, "--width", "16", "--height", "12")
+    if _handled(case, "--dry-run", "--mode", mode) == 0:  # about one in six: render those
+        assert _handled(case, "--mode", mode, "--width", "16", "--height", "12") == 0
