@@ -7,6 +7,7 @@ loading Qt or VTK.
 from __future__ import annotations
 
 import argparse
+import signal
 import sys
 
 from app import bench_raster, bench_trace, hardcases_command, intersect_command, render_command
@@ -39,6 +40,8 @@ def main(argv: list[str] | None = None) -> int:
     argv = list(sys.argv[1:] if argv is None else argv)
     if not argv or argv[0] not in {"gui", "intersect", "render", "bench", "hardcases", "-h", "--help"}:
         argv.insert(0, "gui")
+    if hasattr(signal, "SIGXFSZ"):  # over a file-size limit a write fails; the process lives
+        signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
     parser = build_parser()
     args = parser.parse_args(argv)
     try:
@@ -49,4 +52,11 @@ def main(argv: list[str] | None = None) -> int:
         return args.run(args)
     except UsageError as exc:
         print(f"{parser.prog}: error: {exc}", file=sys.stderr)
+        return 2
+    except KeyboardInterrupt:
+        print(f"{parser.prog}: interrupted; no output file was written or changed", file=sys.stderr)
+        return 130
+    except MemoryError:
+        print(f"{parser.prog}: error: out of memory; use a smaller image (--width/--height), "
+              "fewer objects, or a lower --memory-limit", file=sys.stderr)
         return 2

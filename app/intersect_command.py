@@ -86,7 +86,8 @@ def _parse_radius(text: str) -> float:
     if not (math.isfinite(radius) and radius > 0):
         raise UsageError(f"--radius: expected a finite number > 0, got {text!r}")
     if not 1 / sphere_mod.LIMIT <= radius <= sphere_mod.LIMIT:
-        raise UsageError(f"--radius: must be between 1e-60 and 1e60, got {text!r}")
+        # The bound is 1 / 1e60, one rounding step above the float 1e-60 itself.
+        raise UsageError(f"--radius: must be > 1e-60 and <= 1e60, got {text!r}")
     return radius
 
 
@@ -98,7 +99,7 @@ def _parse_direction(text: str, option: str = "--direction") -> tuple[float, flo
 
 
 def _num(x) -> float | None:
-    return None if x is None else float(x)
+    return None if x is None else float(x) + 0.0  # -0.0 (a start on the surface) printed as 0
 
 
 def _list(v) -> list[float] | None:

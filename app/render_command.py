@@ -1,22 +1,33 @@
 """``python -m app render``: render a scene file headless, in object order or image order.
 
-Writes the image as PNG and, on request, the depth of the visible surface per
-pixel (``.npy``: camera-space distance along the viewing axis, +inf where only
-background is seen) and the render's statistics (JSON: counts and times per
-stage).  Imports neither Qt nor VTK unless the scene names a mesh file.
+Writes the image as sRGB PNG (or JPEG for ``.jpg``/``.jpeg``) and, on request,
+the depth of the visible surface per pixel (``.npy``: camera-space distance
+along the viewing axis, +inf where only background is seen) and the render's
+statistics (JSON: counts and times per stage).  Imports neither Qt nor VTK.
+
+Before any work it checks every output path, loads the scene, and estimates
+the render's memory (:mod:`core.budget`): a render over the budget (half of
+the available memory unless ``--memory-limit`` says otherwise) is refused,
+and one estimated to take long says so before starting.  Every output is
+written atomically, after the render (:mod:`app.image_files`).
 """
 
 from __future__ import annotations
 
+import io
 import json
+import os
 import sys
 from dataclasses import replace
-from pathlib import Path
 
 import numpy as np
 
+from app.usage import UsageError
+
 MODES = ("raster", "raycast", "raytrace")
 ACCELS = ("none", "spheres", "grid", "grid+spheres", "bvh")
+MAX_DEPTH = 64
+SLOW_SECONDS = 5.0  # an estimate above this is printed before starting
 
 
 def add_parser(sub) -> None:
@@ -32,15 +43,19 @@ def add_parser(sub) -> None:
     p.add_argument("--max-depth", type=int, default=5, help="ray tracing: deepest bounce (default 5)")
     p.add_argument("--accel", choices=ACCELS, default="bvh",
                    help="image order: how rays find objects (default bvh)")
-    p.add_argument("--out", required=True, help="PNG file to write")
+    p.add_argument("--out", required=True, help="image file to write: .png, or .jpg/.jpeg (JPEG)")
     p.add_argument("--depth-out", help="write the depth per pixel as .npy")
     p.add_argument("--stats-out", help="write counts and times per stage as JSON")
+    p.add_argument("--dry-run", action="store_true",
+                   help="check the scene and the output paths, print the estimated cost, "
+                        "and stop before rendering")
+    p.add_argument("--memory-limit", metavar="SIZE",
+                   help="refuse a render estimated to need more memory, e.g. 8G or 512M "
+                        "(default: half of the memory available)")
     p.set_defaults(run=run)
 
 
 def _camera_overrides(args) -> dict:
-    from app.usage import UsageError
-
     changes = {}
     for key in ("width", "height"):
         value = getattr(args, key)
@@ -50,22 +65,91 @@ def _camera_overrides(args) -> dict:
             changes[key] = value
     if args.projection:
         changes["projection"] = args.projection
-    if args.max_depth < 0:
-        raise UsageError(f"--max-depth: must be >= 0, got {args.max_depth}")
+    if not 0 <= args.max_depth <= MAX_DEPTH:
+        raise UsageError(f"--max-depth: must be a whole number in [0, {MAX_DEPTH}], "
+                         f"got {args.max_depth}")
     return changes
+
+
+def _outputs(args):
+    from app.image_files import IMAGE_EXTENSIONS, Outputs
+
+    outputs = Outputs(inputs=[args.scene])
+    try:
+        outputs.add("--out", args.out, tuple(IMAGE_EXTENSIONS))
+        if args.depth_out:
+            outputs.add("--depth-out", args.depth_out, (".npy",))
+        if args.stats_out:
+            outputs.add("--stats-out", args.stats_out, (".json",))
+    except ValueError as exc:
+        raise UsageError(str(exc)) from None
+    return outputs
+
+
+def _budget(args) -> tuple[int, str]:
+    from core import budget
+
+    if args.memory_limit is None:
+        return budget.default_budget(), (
+            f"half of the {budget.format_bytes(budget.available_memory())} available")
+    try:
+        return budget.parse_size(args.memory_limit), "--memory-limit"
+    except ValueError as exc:
+        raise UsageError(f"--memory-limit: {exc}") from None
+
+
+def _check_cost(scene, args, limit: int, limit_source: str) -> None:
+    """Refuse a render over the memory budget; say so when it will be slow (or asked to)."""
+    from core import budget
+
+    cost = budget.estimate(scene, args.mode, args.accel, args.max_depth)
+    cam = scene.camera
+    if cost.bytes > limit:
+        parts = ", ".join(f"{k} {budget.format_bytes(v)}" for k, v in cost.parts.items())
+        raise UsageError(
+            f"{cam.width} × {cam.height} {args.mode} of {len(scene.objects)} objects needs about "
+            f"{budget.format_bytes(cost.bytes)} ({parts}); the budget is "
+            f"{budget.format_bytes(limit)} ({limit_source}); use a smaller image "
+            "(--width/--height), fewer objects or triangles, or --memory-limit")
+    if args.dry_run:
+        print(f"{args.mode}: {cam.width}x{cam.height} pixels, {len(scene.objects)} objects: "
+              f"about {budget.format_bytes(cost.bytes)} of memory and "
+              f"{budget.format_seconds(cost.seconds)}; nothing rendered (--dry-run)")
+    elif cost.seconds > SLOW_SECONDS:
+        why = f": {cost.slow_because}" if cost.slow_because else ""
+        print(f"python -m app render: estimated time about {budget.format_seconds(cost.seconds)}"
+              f" and {budget.format_bytes(cost.bytes)} of memory{why}", file=sys.stderr, flush=True)
 
 
 def run(args) -> int:
     from app.mesh_files import read_mesh
     from core import scene_file
+    from core.camera import camera_problems
 
     changes = _camera_overrides(args)
+    limit, limit_source = _budget(args)
+    outputs = _outputs(args)
     try:
         scene = scene_file.load(args.scene, read_mesh=read_mesh)
     except scene_file.SceneFileError as exc:
         print(f"python -m app render: error: {exc}", file=sys.stderr)
         return 2
+    meshes = [o.source["resolved_path"] for o in scene.objects
+              if getattr(o, "source", None) and "resolved_path" in o.source]
+    try:
+        for option, path in outputs.paths.items():
+            outputs.check_inputs(option, path, meshes)
+    except ValueError as exc:
+        raise UsageError(str(exc)) from None
     scene = replace(scene, camera=scene.camera.replace(**changes))
+    problems = camera_problems(scene.camera)
+    if problems:
+        key, message = problems[0]
+        raise UsageError(f"{args.scene}: with the options given, camera.{key}: {message}")
+    _check_cost(scene, args, limit, limit_source)
+    if args.dry_run:
+        return 0
+
     if args.mode == "raster":
         from core.object_order.pipeline import RasterSettings, render_raster
 
@@ -75,19 +159,24 @@ def run(args) -> int:
 
         settings = TraceSettings(mode=args.mode, max_depth=args.max_depth, accel=args.accel)
         result = render_trace(scene, settings)
-    try:
-        from app.png import write_png
 
-        write_png(args.out, result.color)
-        if args.depth_out:
-            np.save(args.depth_out, result.depth)
-        if args.stats_out:
-            Path(args.stats_out).write_text(json.dumps(result.stats, indent=2) + "\n")
-    except OSError as exc:
-        print(f"python -m app render: error: cannot write output: {exc}", file=sys.stderr)
+    from app.image_files import OutputError, encode_image
+
+    contents = {"--out": encode_image(result.color, os.path.splitext(outputs.paths["--out"])[1])}
+    if args.depth_out:
+        buffer = io.BytesIO()
+        np.save(buffer, result.depth)
+        contents["--depth-out"] = buffer.getvalue()
+    if args.stats_out:
+        contents["--stats-out"] = (json.dumps(result.stats, indent=2) + "\n").encode()
+    try:
+        outputs.write(contents)
+    except OutputError as exc:
+        print(f"python -m app render: error: {exc}", file=sys.stderr)
         return 1
     h, w = result.depth.shape
     times = result.stats["times"]
     total = times["total"] if "total" in times else sum(times.values())
     print(f"{args.mode}: {w}x{h} pixels in {total * 1000:.1f} ms -> {args.out}")
     return 0
+

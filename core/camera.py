@@ -184,25 +184,102 @@ class Camera:
         return origins, directions
 
 
-def camera_problems(camera: Camera) -> list[tuple[str, str]]:
-    """What makes a camera unusable, as ``(field, message)`` pairs (empty if fine)."""
+#: The smallest pixel a camera may have, in radians of viewing angle (perspective)
+#: or relative to the size of the coordinates (orthographic), and the smallest
+#: ``near / far``.  float64 resolves about 2.2e-16, so 1e-10 keeps neighbouring
+#: pixels a million rounding steps apart: below it the rasterizer's depths and
+#: pixel positions collapse while rays still differ, so the two renderers
+#: would disagree.
+MIN_PIXEL = 1e-10
+MIN_NEAR_RATIO = 1e-10
+
+
+def _finite_problems(camera: Camera) -> list[tuple[str, str]]:
     problems = []
+    for key in ("eye", "target", "up", "fov_y_deg", "near", "far", "ortho_height"):
+        value = getattr(camera, key)
+        if not np.isfinite(np.asarray(value, dtype=float)).all():
+            problems.append((key, f"must be finite, got {value!r}"))
+    return problems
+
+
+def _view_problems(camera: Camera) -> list[tuple[str, str]]:
+    """Problems of the viewing direction and of the basis computed from it."""
     view = np.subtract(camera.target, camera.eye)
-    if not np.any(view):
-        problems.append(("target", f"must differ from eye, both are {list(camera.eye)}"))
-    elif np.linalg.norm(np.cross(view / np.linalg.norm(view), camera.up)) < 1e-9:
-        problems.append(("up", f"must not be parallel to the viewing direction, got {list(camera.up)}"))
+    scale = max(1.0, float(np.abs(camera.eye).max()), float(np.abs(camera.target).max()))
+    distance = float(np.max(np.abs(view)))
+    if distance == 0.0:
+        return [("target", f"must differ from eye, both are {list(camera.eye)}")]
+    if distance < 1e-9 * scale:
+        return [("target", f"too close to eye ({distance:.3g} apart) to give a viewing "
+                           f"direction; keep them at least {1e-9 * scale:.3g} apart")]
+    unit = view / distance
+    if np.linalg.norm(np.cross(unit / np.linalg.norm(unit), camera.up)) < 1e-9:
+        return [("up", f"must not be parallel to the viewing direction, got {list(camera.up)}")]
+    with np.errstate(all="ignore"):
+        basis = projection.look_at(camera.eye, camera.target, camera.up)
+    if not np.isfinite(basis).all():
+        return [("target", "eye, target and up give no finite viewing basis")]
+    return []
+
+
+def _precision_problems(camera: Camera) -> list[tuple[str, str]]:
+    """A frustum too thin for the rasterizer's float64 arithmetic."""
+    problems = []
+    h = camera.height
+    if np.radians(camera.fov_y_deg) / h < MIN_PIXEL:
+        least = np.degrees(MIN_PIXEL * h)
+        problems.append(("fov_y_deg", f"too small for a {h}-pixel-high image: at least "
+                                      f"{least:.3g} degrees, got {camera.fov_y_deg}"))
+    if camera.near < MIN_NEAR_RATIO * camera.far:
+        problems.append(("near", f"too small for far = {camera.far}: at least "
+                                 f"{MIN_NEAR_RATIO * camera.far:.3g} (far / 1e10), got {camera.near}"))
+    scale = max(1.0, float(np.abs(camera.eye).max()), camera.far)
+    if camera.ortho_height / h < MIN_PIXEL * scale:
+        problems.append(("ortho_height", f"too small for a {h}-pixel-high image at coordinates "
+                                         f"this size: at least {MIN_PIXEL * scale * h:.3g}, "
+                                         f"got {camera.ortho_height}"))
+    if not problems:
+        with np.errstate(all="ignore"):
+            clip = camera.clip_from_view
+        if not np.isfinite(clip).all():
+            problems.append(("projection", "the projection matrix is not finite"))
+    return problems
+
+
+def camera_problems(camera: Camera) -> list[tuple[str, str]]:
+    """What makes a camera unusable, as ``(field, message)`` pairs (empty if fine).
+
+    Besides the ranges of its fields, a camera is judged by what it computes:
+    its viewing basis and projection matrix must be finite, and its pixels and
+    depth range wide enough for float64 (:data:`MIN_PIXEL`,
+    :data:`MIN_NEAR_RATIO`), so that the rasterizer and the ray caster either
+    both render it or both refuse it.
+    """
+    problems = _finite_problems(camera)
+    if problems:
+        return problems
+    problems = _view_problems(camera)
+    range_ok = True
     if not 0.0 < camera.fov_y_deg < 180.0:
         problems.append(("fov_y_deg", f"must be in (0, 180) degrees, got {camera.fov_y_deg}"))
+        range_ok = False
     if camera.near <= 0:
         problems.append(("near", f"must be > 0, got {camera.near}"))
+        range_ok = False
     elif camera.near >= camera.far:
         problems.append(("far", f"must be > near ({camera.near}), got {camera.far}"))
+        range_ok = False
     if camera.projection not in PROJECTIONS:
         problems.append(("projection", f"must be one of {list(PROJECTIONS)}, got {camera.projection!r}"))
+        range_ok = False
     if camera.ortho_height <= 0:
         problems.append(("ortho_height", f"must be > 0, got {camera.ortho_height}"))
+        range_ok = False
     for key in ("width", "height"):
         if getattr(camera, key) < 1:
             problems.append((key, f"must be >= 1 pixel, got {getattr(camera, key)}"))
+            range_ok = False
+    if range_ok:
+        problems += _precision_problems(camera)
     return problems

@@ -11,6 +11,14 @@ reports *every* problem at once, each with the path of its field
 (``objects[2].radius: must be > 0, got -1``), as one :class:`SceneFileError`.
 The README's "Scene files" section documents the schema.
 
+Limits keep a small file from making a huge scene: at most
+:data:`MAX_OBJECTS` objects, :data:`MAX_LIGHTS` lights and
+:data:`MAX_TRIANGLES` triangles in all (counted from a primitive's parameters
+*before* it is built), JSON nested at most :data:`MAX_NESTING` deep, and a
+file of at most :data:`MAX_FILE_BYTES`.  Only a regular file is read (never a
+FIFO or a device, see :mod:`core.safe_files`), and :func:`save` writes
+atomically: a failed save leaves the old file as it was.
+
 ``core`` does not read mesh files (OBJ, STL, PLY) itself: the application
 passes a ``read_mesh(path) -> (vertices, triangles)`` callable, e.g.
 :func:`app.mesh_files.read_mesh`.
@@ -29,7 +37,7 @@ from pathlib import Path, PurePath
 
 import numpy as np
 
-from core import shapes
+from core import safe_files, shapes
 from core.camera import PROJECTIONS, Camera, camera_problems
 from core.scene import Material, Mesh, PointLight, Scene, Sphere
 
@@ -39,6 +47,12 @@ OBJECT_TYPES = ("sphere", *shapes.PRIMITIVES, "mesh", "mesh_file")
 MAX_IMAGE_SIZE = 16384
 MAX_MAGNITUDE = 1e6  # of any number, so that squares and products stay finite
 MAX_LISTED = 5  # problems listed per array of a mesh; the rest are counted
+MAX_OBJECTS = 1000
+MAX_LIGHTS = 100
+MAX_TRIANGLES = 2_000_000  # of the whole scene: primitives, inline meshes and mesh files
+MAX_NESTING = 32  # levels of JSON arrays and objects; a scene needs 5
+MAX_FILE_BYTES = 100_000_000
+MAX_DIGITS = 100  # of a whole number in the JSON text; any longer one is out of range anyway
 
 MeshReader = Callable[[str], tuple[np.ndarray, np.ndarray]]
 
@@ -94,12 +108,17 @@ def _show(value) -> str:
     """A value as the file wrote it, shortened."""
     try:
         text = json.dumps(value)
-    except (TypeError, ValueError):
-        text = repr(value)
+    except (TypeError, ValueError, RecursionError):
+        try:
+            text = repr(value)
+        except (ValueError, RecursionError):  # an int too long to print, or nested too deeply
+            text = f"a {type(value).__name__} too large to show"
     return text if len(text) <= 60 else text[:56] + " ..."
 
 
 def _join(path: str, key: str) -> str:
+    if not key.isprintable() or not key:  # control characters are not echoed to a terminal
+        key = json.dumps(key)
     return f"{path}.{key}" if path else key
 
 
@@ -127,6 +146,18 @@ class _Reader:
 
     def __init__(self):
         self.problems: list[str] = []
+        self.triangles = 0  # so far, of the objects read
+
+    def count_triangles(self, path: str, n: int, what: str) -> bool:
+        """Add ``n`` triangles to the scene's total; False (and a problem) if over the limit."""
+        if self.triangles + n > MAX_TRIANGLES:
+            if self.triangles <= MAX_TRIANGLES:  # reported once, at the first object past it
+                self.add(path, f"{what} has {n:,} triangles, which takes the scene past its "
+                               f"limit of {MAX_TRIANGLES:,} ({self.triangles:,} before it)")
+            self.triangles = MAX_TRIANGLES + 1
+            return False
+        self.triangles += n
+        return True
 
     def add(self, path: str, message: str) -> None:
         self.problems.append(f"{path}: {message}")
@@ -168,9 +199,12 @@ class _Reader:
         return None
 
     def integer(self, v, path) -> int | None:
-        if _is_integer(v):
+        if not _is_integer(v):
+            self.add(path, f"expected a whole number, got {_show(v)}")
+        elif _too_big([v]):
+            self.add(path, f"must be within ±{MAX_MAGNITUDE:,.0f}, got {_show(v)}")
+        else:
             return int(v)
-        self.add(path, f"expected a whole number, got {_show(v)}")
         return None
 
     def string(self, v, path) -> str | None:
@@ -235,7 +269,7 @@ def _read_camera(r: _Reader, value, path="camera") -> Camera:
         elif key in ("width", "height"):
             got = r.integer(v, p)
             if got is not None and got > MAX_IMAGE_SIZE:
-                r.add(p, f"must be <= {MAX_IMAGE_SIZE} pixels, got {got}")
+                r.add(p, f"must be <= {MAX_IMAGE_SIZE} pixels, got {_show(got)}")
                 got = None
         else:
             continue  # unknown, already reported
@@ -352,6 +386,8 @@ def _read_inline_mesh(r: _Reader, d: dict, path: str):
     r.capped(f"{path}.triangles", sorted(bad_t))
     if bad_v or bad_t or len(vs) < 3 or not ts:
         return None
+    if not r.count_triangles(f"{path}.triangles", len(triangles), "this mesh"):
+        return None
     return vertices, triangles
 
 
@@ -389,7 +425,7 @@ def _read_mesh_file(r: _Reader, d: dict, path: str, base_dir, read_mesh):
             r.add(p, f"mesh file {name!r}, triangle {k}: {message}")
         if len(bad) > MAX_LISTED:
             r.add(p, f"mesh file {name!r}: ... and {len(bad) - MAX_LISTED} more bad triangles")
-        if not bad:
+        if not bad and r.count_triangles(p, len(triangles), f"mesh file {name!r}"):
             source = {"type": "mesh_file", "path": name, "resolved_path": resolved}
             return vertices, triangles, source
     return None
@@ -416,6 +452,15 @@ def _read_primitive(r: _Reader, type_name: str, d: dict, path: str) -> dict:
     for key, message in shapes.param_problems(type_name, values):
         r.add(_join(path, key), message)
     return values
+
+
+def _primitive_triangles(type_name: str, values: dict) -> int:
+    """How many triangles a primitive will have, from its checked parameters alone."""
+    if type_name == "uv_sphere":
+        return 2 * values["segments"] * (values["rings"] - 1)
+    if type_name == "cone":
+        return 2 * values["segments"]
+    return 24  # box, pyramid, quad, notched_prism: a fixed handful
 
 
 def _read_object(r: _Reader, value, path, base_dir, read_mesh):
@@ -457,7 +502,9 @@ def _read_object(r: _Reader, value, path, base_dir, read_mesh):
             return Mesh(vertices, triangles, material, name, source)
     else:
         values = _read_primitive(r, type_name, d, path)
-        if len(r.problems) == before:
+        if len(r.problems) == before and r.count_triangles(
+            path, _primitive_triangles(type_name, values), f"this {type_name}"
+        ):
             try:
                 mesh = shapes.PRIMITIVES[type_name].builder(**values, material=material, name=name)
             except ValueError as exc:  # not expected: the parameters were checked
@@ -468,6 +515,35 @@ def _read_object(r: _Reader, value, path, base_dir, read_mesh):
                 return None
             return mesh
     return None
+
+
+def _limited(r: _Reader, value, path: str, limit: int) -> list:
+    """The list at ``path``, or an empty one (and a problem) if it holds more than ``limit``."""
+    items = r.listing(value, path)
+    if len(items) > limit:
+        r.add(path, f"at most {limit:,} are allowed, got {len(items):,}")
+        return []
+    return items
+
+
+def _nesting_depth(value) -> int:
+    """How deeply JSON arrays and objects nest in ``value`` (without recursion)."""
+    deepest, stack = 0, [(value, 0)]
+    while stack:
+        v, depth = stack.pop()
+        if isinstance(v, (dict, list)):
+            depth += 1
+            deepest = max(deepest, depth)
+            if depth <= MAX_NESTING:
+                stack.extend((c, depth) for c in (v.values() if isinstance(v, dict) else v))
+    return deepest
+
+
+def _parse_int(text: str) -> int:
+    if len(text.lstrip("-")) > MAX_DIGITS:
+        raise ValueError(f"a whole number with {len(text.lstrip('-')):,} digits "
+                         f"(numbers must be within ±{MAX_MAGNITUDE:,.0f})")
+    return int(text)
 
 
 def from_dict(d, base_dir=None, read_mesh: MeshReader | None = None) -> Scene:
@@ -488,6 +564,9 @@ def from_dict(d, base_dir=None, read_mesh: MeshReader | None = None) -> Scene:
         Listing every problem found.
     """
     r = _Reader()
+    if _nesting_depth(d) > MAX_NESTING:
+        raise SceneFileError([f"top level: arrays and objects nested more than {MAX_NESTING} "
+                              "levels deep (a scene needs 5)"])
     known = ["format", "version", "camera", "background", "lights", "objects"]
     data = r.fields(d, "", known)
     if data is None:
@@ -503,11 +582,11 @@ def from_dict(d, base_dir=None, read_mesh: MeshReader | None = None) -> Scene:
         background = r.color(data["background"], "background") or background
     lights = [
         _read_light(r, v, f"lights[{k}]")
-        for k, v in enumerate(r.listing(data.get("lights", []), "lights"))
+        for k, v in enumerate(_limited(r, data.get("lights", []), "lights", MAX_LIGHTS))
     ]
     objects = [
         _read_object(r, v, f"objects[{k}]", base_dir, read_mesh)
-        for k, v in enumerate(r.listing(data.get("objects", []), "objects"))
+        for k, v in enumerate(_limited(r, data.get("objects", []), "objects", MAX_OBJECTS))
     ]
     if r.problems:
         raise SceneFileError(r.problems)
@@ -525,21 +604,24 @@ def load(path_or_dict, read_mesh: MeshReader | None = None) -> Scene:
     if isinstance(path_or_dict, dict):
         return from_dict(path_or_dict, read_mesh=read_mesh)
     path = Path(path_or_dict)
+    problem = safe_files.input_file_problem(path, MAX_FILE_BYTES)
+    if problem is not None:
+        raise SceneFileError([problem], str(path))
     try:
-        text = path.read_text(encoding="utf-8")
-    except FileNotFoundError:
-        raise SceneFileError(["file not found"], str(path)) from None
+        text = safe_files.read_bytes_limited(path, MAX_FILE_BYTES).decode("utf-8-sig")
     except UnicodeDecodeError:
         raise SceneFileError(["not a text file (UTF-8 JSON expected)"], str(path)) from None
     except OSError as exc:
         raise SceneFileError([f"cannot read the file: {exc.strerror or exc}"], str(path)) from None
     try:
-        data = json.loads(text, object_pairs_hook=_json_object)
+        data = json.loads(text, object_pairs_hook=_json_object, parse_int=_parse_int)
     except json.JSONDecodeError as exc:
         problem = f"line {exc.lineno}, column {exc.colno}: invalid JSON: {exc.msg}"
         raise SceneFileError([problem], str(path)) from None
     except RecursionError:
         raise SceneFileError(["invalid JSON: nested too deeply"], str(path)) from None
+    except ValueError as exc:  # from _parse_int
+        raise SceneFileError([f"invalid JSON: {exc}"], str(path)) from None
     try:
         return from_dict(data, base_dir=path.parent, read_mesh=read_mesh)
     except SceneFileError as exc:
@@ -640,6 +722,16 @@ def dumps(d: dict, indent: int = 0) -> str:
 
 
 def save(scene: Scene, path) -> None:
-    """Write ``scene`` to a JSON scene file; :func:`load` gives back an equal scene."""
+    """Write ``scene`` to a JSON scene file; :func:`load` gives back an equal scene.
+
+    The file is replaced only once the new text is completely written.
+
+    Raises
+    ------
+    core.safe_files.OutputError
+        An ``OSError`` naming the file, when it cannot be written; the old
+        file is then unchanged.
+    """
     path = Path(path)
-    path.write_text(dumps(to_dict(scene, base_dir=path.parent)) + "\n", encoding="utf-8")
+    text = dumps(to_dict(scene, base_dir=path.parent)) + "\n"
+    safe_files.write_atomic(path, text.encode("utf-8"))

@@ -1,9 +1,15 @@
 """The observer's frustum, planes, rays and orbit controls."""
 
+import math
+
 import numpy as np
 import pytest
 
-from core.camera import Camera, camera_problems
+from core.camera import MIN_NEAR_RATIO, MIN_PIXEL, Camera, camera_problems
+from core.image_order.ray_tracing import TraceSettings, render_trace
+from core.object_order.pipeline import render_raster
+from core.scene import Scene
+from core.shapes import box
 
 CAMERAS = [
     Camera(),
@@ -69,3 +75,49 @@ def test_orbit_keeps_distance_and_target():
 def test_degenerate_cameras_are_named(changes, field):
     problems = camera_problems(Camera().replace(**changes))
     assert [f for f, _ in problems] == [field]
+
+
+@pytest.mark.parametrize(
+    ("changes", "field"),
+    [
+        # closer than ~1e-162 the squared distance underflows: once a NaN camera was accepted
+        ({"eye": (0, 0, 1e-170), "target": (0, 0, 0)}, "target"),
+        ({"eye": (1e5, 0, 0), "target": (1e5, 0, 1e-6)}, "target"),
+        ({"near": 1e-15}, "near"),
+        ({"fov_y_deg": 1e-15}, "fov_y_deg"),
+        ({"ortho_height": 1e-20}, "ortho_height"),
+        ({"eye": (float("nan"), 0, 0)}, "eye"),
+        ({"far": float("inf")}, "far"),
+    ],
+)
+def test_cameras_are_judged_by_what_they_compute(changes, field):
+    problems = camera_problems(Camera().replace(**changes))
+    assert [f for f, _ in problems] == [field]
+    assert "nan" not in problems[0][1].lower() or field == "eye"
+
+
+def _extreme(projection: str, **changes) -> Scene:
+    """A box seen head-on, with one camera setting pushed towards its limit."""
+    cam = Camera(eye=(0, 0, 5), target=(0, 0, 0), width=48, height=36, projection=projection)
+    scene = Scene(camera=cam.replace(**changes), objects=(box((0, 0, 0), 1.0),))
+    assert camera_problems(scene.camera) == []
+    return scene
+
+
+@pytest.mark.parametrize(
+    "projection, changes",
+    [
+        # just above each limit: both renderers must still agree
+        ("perspective", {"near": 3 * MIN_NEAR_RATIO * 30.0}),
+        ("perspective", {"fov_y_deg": 3 * math.degrees(MIN_PIXEL * 36), "eye": (0, 0, 5)}),
+        ("orthographic", {"ortho_height": 3 * MIN_PIXEL * 36 * 30.0}),
+    ],
+)
+def test_rasterizer_and_ray_caster_agree_at_the_accepted_extremes(projection, changes):
+    scene = _extreme(projection, **changes)
+    raster = render_raster(scene)
+    traced = render_trace(scene, TraceSettings(mode="raycast"))
+    # Each camera sees only the box's front face (z = 0.5) or all of it: the same either way.
+    seen_r, seen_t = np.isfinite(raster.depth), np.isfinite(traced.depth)
+    assert np.mean(seen_r == seen_t) > 0.97
+    assert np.allclose(raster.depth[seen_r & seen_t], 4.5, rtol=1e-6)

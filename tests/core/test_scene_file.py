@@ -470,3 +470,106 @@ def test_any_damage_to_a_valid_file_gives_scene_file_error_or_a_scene(data):
 def test_any_json_value_gives_scene_file_error_or_a_scene(d):
     with contextlib.suppress(SceneFileError):
         scene_file.from_dict(d)
+
+
+# --- limits: a small file cannot make a huge scene (issue 11) ------------------------
+
+
+def test_too_many_objects_and_lights_are_refused_without_reading_them():
+    sphere = {"type": "sphere", "center": [0, 0, 0], "radius": 1}
+    d = {"objects": [sphere] * (scene_file.MAX_OBJECTS + 1),
+         "lights": [{"position": [0, 0, 0]}] * (scene_file.MAX_LIGHTS + 1)}
+    assert problems_of(d) == [
+        f"lights: at most {scene_file.MAX_LIGHTS} are allowed, got {scene_file.MAX_LIGHTS + 1}",
+        f"objects: at most {scene_file.MAX_OBJECTS:,} are allowed, got "
+        f"{scene_file.MAX_OBJECTS + 1:,}",
+    ]
+
+
+@pytest.mark.parametrize(
+    "obj, count, limit",
+    [
+        # uv_sphere: 2 x segments x (rings - 1) triangles (see shapes.uv_sphere); the second
+        # sphere of 1000 x 1000 is refused before it is built
+        ({"type": "uv_sphere", "center": [0, 0, 0], "radius": 1, "rings": 1000, "segments": 1000},
+         2 * 1000 * 999, None),
+        ({"type": "uv_sphere", "center": [0, 0, 0], "radius": 1, "rings": 7, "segments": 5},
+         2 * 5 * 6, 100),
+        ({"type": "cone", "base_center": [0, 0, 0], "radius": 1, "height": 1, "segments": 1000},
+         2 * 1000, 5000),
+    ],
+)
+def test_primitives_are_counted_before_they_are_built(monkeypatch, obj, count, limit):
+    if limit is not None:
+        monkeypatch.setattr(scene_file, "MAX_TRIANGLES", limit)
+        built = shapes.PRIMITIVES[obj["type"]].builder(**{k: v for k, v in obj.items() if k != "type"})
+        assert len(built.triangles) == count  # the count the limit uses is the real one
+    copies = scene_file.MAX_TRIANGLES // count + 1
+    problems = problems_of({"objects": [obj] * copies})
+    assert len(problems) == 1
+    assert problems[0].startswith(f"objects[{copies - 1}]: this {obj['type']} has {count:,} triangles")
+
+
+def test_inline_meshes_count_towards_the_triangle_limit(monkeypatch):
+    monkeypatch.setattr(scene_file, "MAX_TRIANGLES", 6)
+    mesh = {"type": "mesh", "vertices": TETRA_V, "triangles": TETRA_T}
+    assert problems_of({"objects": [mesh, mesh]}) == [
+        "objects[1].triangles: this mesh has 4 triangles, which takes the scene past its limit "
+        "of 6 (4 before it)"]
+
+
+def test_nesting_deeper_than_the_limit_is_one_problem():
+    deep = 0
+    for _ in range(scene_file.MAX_NESTING + 5):
+        deep = [deep]
+    problems = problems_of({"camera": {"eye": deep}})
+    assert len(problems) == 1 and "nested more than" in problems[0]
+
+
+def test_nesting_near_the_recursion_limit_in_a_file_is_one_problem(tmp_path):
+    import sys
+
+    depth = sys.getrecursionlimit() - 20
+    path = tmp_path / "deep.json"
+    path.write_text('{"background": ' + "[" * depth + "]" * depth + "}")
+    with pytest.raises(SceneFileError, match="nested"):
+        scene_file.load(path)
+
+
+def test_a_whole_number_of_5000_digits_is_named_not_converted(tmp_path):
+    path = tmp_path / "big.json"
+    path.write_text('{"camera": {"width": ' + "7" * 5000 + "}}")
+    with pytest.raises(SceneFileError, match="5,000 digits"):
+        scene_file.load(path)
+    # Given as a dict, such an int is out of range, and the message does not print it whole.
+    problems = problems_of({"camera": {"width": 10**5000}})
+    assert problems[0].startswith("camera.width: must be within ±1,000,000")
+    assert len(problems[0]) < 200
+
+
+def test_a_utf8_byte_order_mark_is_accepted(tmp_path):
+    path = tmp_path / "bom.json"
+    path.write_bytes(b"\xef\xbb\xbf" + json.dumps({"background": [0, 0, 0]}).encode())
+    assert scene_file.load(path).background == (0.0, 0.0, 0.0)
+
+
+def test_save_replaces_the_file_whole_and_keeps_its_permissions(tmp_path):
+    path = tmp_path / "scene.json"
+    path.write_text("old")
+    path.chmod(0o640)
+    scene_file.save(presets.lecture_scene(), path)
+    assert scene_file.load(path) == presets.lecture_scene()
+    assert path.stat().st_mode & 0o777 == 0o640
+    assert [p.name for p in tmp_path.iterdir()] == ["scene.json"]  # no temporary file left
+
+
+def test_save_into_a_missing_folder_names_the_file(tmp_path):
+    target = tmp_path / "nowhere" / "scene.json"
+    with pytest.raises(OSError, match="nowhere/scene.json"):
+        scene_file.save(presets.lecture_scene(), target)
+
+
+def test_a_field_name_with_control_characters_is_shown_escaped():
+    problems = problems_of({"camera": {"\x1b[31mred": 1}})
+    assert problems[0].startswith('camera."\\u001b[31mred": unknown field')
+    assert "\x1b" not in problems[0]  # no terminal escape sequence reaches the user's screen

@@ -1,0 +1,122 @@
+"""Output files: images encoded as sRGB, and every output written atomically.
+
+Renderers produce *linear* RGB; :func:`encode_image` turns it into 8-bit sRGB
+with :func:`core.srgb.to_srgb8` (the one place that happens) and encodes it
+with imageio: PNG for ``.png``, JPEG (quality 95) for ``.jpg`` and ``.jpeg``.
+
+An :class:`Outputs` set checks its paths *before* the work (the folder exists
+and is writable, the extension matches the format, no output names an input
+or another output), so a bad path does not waste a long render, and then
+writes all files at once with :func:`core.safe_files.write_atomic_all`: a
+failed write, or Ctrl-C, leaves every old file byte-for-byte as it was.
+"""
+
+from __future__ import annotations
+
+import io
+import os
+from pathlib import Path
+
+import numpy as np
+
+from core.safe_files import OutputError, write_atomic, write_atomic_all
+from core.srgb import to_srgb8
+
+IMAGE_EXTENSIONS = {".png": "PNG", ".jpg": "JPEG", ".jpeg": "JPEG"}
+
+__all__ = ["IMAGE_EXTENSIONS", "OutputError", "Outputs", "encode_image", "write_image"]
+
+
+def encode_image(rgb: np.ndarray, extension: str) -> bytes:
+    """The bytes of an image file holding ``rgb``.
+
+    Parameters
+    ----------
+    rgb : (H, W, 3) float, linear RGB in [0, 1] (clipped), row 0 at the top.
+    extension : ``".png"``, ``".jpg"`` or ``".jpeg"``.
+
+    Returns
+    -------
+    bytes
+        An 8-bit sRGB PNG or JPEG file.
+    """
+    import imageio.v3 as iio
+
+    kind = IMAGE_EXTENSIONS[extension.lower()]
+    pixels = to_srgb8(rgb)
+    options = {"quality": 95} if kind == "JPEG" else {}
+    buffer = io.BytesIO()
+    iio.imwrite(buffer, pixels, extension=extension.lower(), **options)
+    return buffer.getvalue()
+
+
+def write_image(path, rgb: np.ndarray) -> None:
+    """Write ``rgb`` (linear RGB) as an sRGB PNG or JPEG, chosen by the extension, atomically."""
+    write_atomic(path, encode_image(rgb, Path(path).suffix))
+
+
+def _same_file(a: str, b: str) -> bool:
+    try:
+        return os.path.samefile(a, b)
+    except OSError:
+        return os.path.realpath(a) == os.path.realpath(b)
+
+
+class Outputs:
+    """The output files of one command: checked up front, written atomically.
+
+    Parameters
+    ----------
+    inputs : paths the command reads; no output may name one of them.
+
+    Examples
+    --------
+    >>> outputs = Outputs(inputs=["scene.json"])
+    >>> outputs.add("--out", "scene.json", (".png",))
+    Traceback (most recent call last):
+    ...
+    ValueError: --out: scene.json is an input of this command; writing it would destroy it
+    """
+
+    def __init__(self, inputs=()):
+        self.inputs = [os.fspath(p) for p in inputs]
+        self.paths: dict[str, str] = {}
+
+    def add(self, option: str, path, extensions: tuple[str, ...]) -> None:
+        """Check the output ``path`` given by ``option``; raises ``ValueError`` naming both."""
+        path = os.fspath(path)
+        self.check_inputs(option, path, self.inputs)
+        ext = os.path.splitext(path)[1].lower()
+        if ext not in extensions:
+            raise ValueError(f"{option}: {path} must end in {' or '.join(extensions)}"
+                             f" (got {ext or 'no extension'!r})")
+        for other_option, other in self.paths.items():
+            if _same_file(path, other):
+                raise ValueError(f"{option}: {path} is also given to {other_option}")
+        folder = os.path.dirname(os.path.abspath(path))
+        if not os.path.isdir(folder):
+            raise ValueError(f"{option}: the folder {folder} does not exist")
+        if not os.access(folder, os.W_OK | os.X_OK):
+            raise ValueError(f"{option}: the folder {folder} is not writable")
+        if os.path.isdir(path):
+            raise ValueError(f"{option}: {path} is a folder")
+        if os.path.exists(path) and not os.access(path, os.W_OK):
+            raise ValueError(f"{option}: {path} exists and is read-only")
+        self.paths[option] = path
+
+    def check_inputs(self, option: str, path: str, inputs) -> None:
+        """Refuse an output that is one of ``inputs`` (also called once the mesh files are known)."""
+        for source in inputs:
+            if _same_file(path, source):
+                raise ValueError(f"{option}: {path} is an input of this command; "
+                                 "writing it would destroy it")
+
+    def write(self, contents: dict[str, bytes]) -> None:
+        """Write ``{option: bytes}`` to the checked paths, each atomically.
+
+        Raises
+        ------
+        OutputError
+            Naming the file that failed; then every file keeps its old contents.
+        """
+        write_atomic_all({self.paths[option]: data for option, data in contents.items()})
