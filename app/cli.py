@@ -9,7 +9,7 @@ from __future__ import annotations
 import argparse
 import sys
 
-from app import bench_raster, bench_trace, intersect_command, render_command
+from app import bench_raster, bench_trace, cost_command, intersect_command, render_command
 from app.usage import UsageError
 
 
@@ -25,6 +25,7 @@ def build_parser() -> argparse.ArgumentParser:
     gui.add_argument("scene", nargs="?", help="a scene JSON file (default: the lecture scene)")
     intersect_command.add_parser(sub)
     render_command.add_parser(sub)
+    cost_command.add_parser(sub)
     bench = sub.add_parser("bench", help="time our pipelines against VTK / Embree (a benchmark, not a test)")
     kinds = bench.add_subparsers(dest="bench", metavar="KIND", required=True)
     for name, module in benchmarks.items():
@@ -36,7 +37,7 @@ def build_parser() -> argparse.ArgumentParser:
 
 def main(argv: list[str] | None = None) -> int:
     argv = list(sys.argv[1:] if argv is None else argv)
-    if not argv or argv[0] not in {"gui", "intersect", "render", "bench", "-h", "--help"}:
+    if not argv or argv[0] not in {"gui", "intersect", "render", "bench", "cost", "-h", "--help"}:
         argv.insert(0, "gui")
     parser = build_parser()
     args = parser.parse_args(argv)
