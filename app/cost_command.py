@@ -42,6 +42,8 @@ def add_parser(sub) -> None:
                    help="samples per axis per pixel of the reference (default 16)")
     p.add_argument("--runs", type=int, default=3, help="timed renders per setting, after a warm-up (>= 3)")
     p.add_argument("--seed", type=int, default=0, help="seed of the sample patterns")
+    p.add_argument("--budget", type=float,
+                   help="equal time: also print each knob's most accurate setting within this many seconds")
     p.add_argument("--out", required=True, help="folder for cost.csv, cost.png and cost.svg")
     p.set_defaults(run=run)
 
@@ -53,6 +55,8 @@ def _check(args) -> None:
         value = getattr(args, key)
         if value is not None and not 1 <= value <= 4096:
             raise UsageError(f"--{key}: must be a whole number of pixels in [1, 4096], got {value}")
+    if args.budget is not None and not args.budget > 0:
+        raise UsageError(f"--budget: must be a number of seconds > 0, got {args.budget}")
     if not 1 <= args.reference_spp <= 32:
         raise UsageError(f"--reference-spp: must be in [1, 32], got {args.reference_spp}")
     if not 3 <= args.runs <= 100:
@@ -132,6 +136,11 @@ def run(args) -> int:
     except OSError as exc:
         raise UsageError(f"--out: cannot write into {out}: {exc.strerror or exc}") from None
     print(_table(rows, job.skipped))
+    if args.budget is not None:
+        best = sweep.best_within(rows, args.budget)
+        print(f"equal time, at most {args.budget:g} s: " + (", ".join(
+            f"{k} {r.value} (FLIP {r.reference_flip:.4f}, {r.seconds:.3f} s)" for k, r in best.items())
+            or "no setting is that fast"))
     spp = args.reference_spp
     print(f"{len(rows)} settings, {width}x{height} pixels, reference {spp}x{spp} per pixel"
           f" -> {out / 'cost.csv'}, cost.png, cost.svg")

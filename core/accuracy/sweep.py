@@ -293,6 +293,10 @@ class Sweep:
         knee_at = set(self._knees.values())
         return [replace(p.row, knee=i in knee_at) for i, p in sorted(self.points.items())]
 
+    def knee_indices(self) -> dict[str, int]:
+        """Knob name -> setting index of its knee, for the knobs finished so far."""
+        return dict(self._knees)
+
     def knees(self) -> dict[str, Row]:
         """Knob name -> its knee row, for the knobs finished so far."""
         return {k: replace(self.points[i].row, knee=True) for k, i in self._knees.items()}
