@@ -138,6 +138,7 @@ class CostPanel(QWidget):
         for name in KNOB_NAMES:
             self.knob.addItem(KNOBS[name].title, name)
         self.knob.setToolTip("The setting to sweep; everything else stays at its default")
+        self.knob.setMaximumWidth(260)
         self.mode = QComboBox()
         for key, text in MODES:
             self.mode.addItem(text, key)

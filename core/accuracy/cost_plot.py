@@ -15,6 +15,8 @@ from core.accuracy.sweep import KNOB_NAMES, KNOBS, Row
 
 #: Smallest error drawn: log axes cannot show 0.
 ERROR_FLOOR = 1e-5
+#: One fixed colour per knob, so a knob keeps its colour from plot to plot.
+KNOB_COLORS = {name: f"C{i}" for i, name in enumerate(KNOB_NAMES)}
 
 
 def draw_cost_plot(figure: Figure, rows: list[Row], indices: list[int] | None = None) -> dict:
@@ -39,15 +41,19 @@ def draw_cost_plot(figure: Figure, rows: list[Row], indices: list[int] | None = 
             continue
         xs = [max(r.seconds, 1e-6) for _, r in mine]
         ys = [max(r.reference_flip, ERROR_FLOOR) for _, r in mine]
-        label = KNOBS[name].title + (" (time only)" if KNOBS[name].time_only else "")
-        (line,) = ax.plot(xs, ys, "o-", markersize=5, label=label, picker=True, pickradius=6)
+        knob = KNOBS[name]
+        label = knob.title + (" (time only)" if knob.time_only else "")
+        color = KNOB_COLORS[name]
+        (line,) = ax.plot(xs, ys, "o-", color=color, markersize=5, label=label, picker=True, pickradius=6)
         lines[line] = [i for i, _ in mine]
-        for (_, r), x, y in zip(mine, xs, ys, strict=True):
-            ax.annotate(r.value, (x, y), textcoords="offset points", xytext=(4, 4), fontsize=7,
-                        color=line.get_color())
+        for k, ((_, r), x, y) in enumerate(zip(mine, xs, ys, strict=True)):
+            # the methods of a time-only knob share one error: their names go below, slanted, alternating
+            offset, rotation = ((0, -10 - 10 * (k % 2)), -30) if knob.time_only else ((4, 4), 0)
+            ax.annotate(r.value, (x, y), textcoords="offset points", xytext=offset, fontsize=7,
+                        color=color, rotation=rotation, ha="left", va="top" if knob.time_only else "bottom")
             if r.knee:
                 ax.plot([x], [y], "o", markersize=13, markerfacecolor="none",
-                        markeredgecolor=line.get_color(), markeredgewidth=2)
+                        markeredgecolor=color, markeredgewidth=2)
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.set_xlabel("render time (s, median)")

@@ -99,7 +99,7 @@ def reference_steps(scene: Scene, mode: str, spp: int = REFERENCE_SPP,
         for first, stop, band in supersampling.trace_bands(scene, settings, pattern):
             color[first:stop] = band
             yield stop / cam.height
-        visible = traced_surface(scene, TraceSettings(mode=mode, accel="none"))
+        visible = traced_surface(scene, TraceSettings(mode=mode))
     return Reference(mode, spp, color, visible, exact, time.perf_counter() - start)
 
 

@@ -39,6 +39,7 @@ from __future__ import annotations
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass, replace
 
+import numba
 import numpy as np
 
 from core.camera import Camera
@@ -48,7 +49,7 @@ from core.object_order.pipeline import RasterResult, RasterSettings, render_rast
 from core.scene import Scene
 
 #: Pixel rows that share one draw of the sample columns' jitter.
-JITTER_ROWS = 16
+JITTER_ROWS = 64
 #: Most samples traced in one call of the compiled tracer (bounds its work arrays, about 200 bytes each).
 MAX_SAMPLES_PER_CALL = 1 << 18
 
@@ -197,10 +198,17 @@ def trace_adaptive(scene: Scene, settings: TraceSettings, threshold: float, n: i
     color = quad.mean(axis=0)
     # 2. Pixels whose corners differ by more than the threshold get n x n samples.
     refined = (quad.max(axis=0) - quad.min(axis=0)).max(axis=-1) > threshold
-    for row in np.flatnonzero(refined.any(axis=1)):
-        cols = np.flatnonzero(refined[row])
-        samples, _, _ = trace(pattern.xs(row, cols) - 0.5, pattern.ys(row, row + 1) - 0.5)
-        color[row, cols] = _box(samples, n)[0]
+    # One call of the tracer per pixel row with refined pixels.  Each call is small, and waking a
+    # second thread for it costs more than it saves (on a busy machine, far more), so they run on one.
+    threads = numba.get_num_threads()
+    numba.set_num_threads(1)
+    try:
+        for row in np.flatnonzero(refined.any(axis=1)):
+            cols = np.flatnonzero(refined[row])
+            samples, _, _ = trace(pattern.xs(row, cols) - 0.5, pattern.ys(row, row + 1) - 0.5)
+            color[row, cols] = _box(samples, n)[0]
+    finally:
+        numba.set_num_threads(threads)
     heat = np.where(refined, 1 + n * n, 1).astype(np.int64)
     traced = (width + 1) * (height + 1) + n * n * int(refined.sum())
     return AdaptiveImage(color, heat, refined, traced)

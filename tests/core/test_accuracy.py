@@ -126,8 +126,8 @@ def test_adaptive_reaches_4x4_with_under_half_the_samples(exact_edge):
 
 
 def test_jitter_puts_one_sample_in_every_stratum():
-    pattern = supersampling.jitter(5, 20, 4, np.random.default_rng(3))
-    for row in (0, 17):
+    pattern = supersampling.jitter(5, 80, 4, np.random.default_rng(3))
+    for row in (0, 70):
         xs, ys = pattern.xs(row, np.array([2])), pattern.ys(row, row + 1)
         cells_x = np.floor((xs - 2) * 4).astype(int)
         cells_y = np.floor((ys - row) * 4).astype(int)
