@@ -297,10 +297,6 @@ class Sweep:
         """Knob name -> setting index of its knee, for the knobs finished so far."""
         return dict(self._knees)
 
-    def knees(self) -> dict[str, Row]:
-        """Knob name -> its knee row, for the knobs finished so far."""
-        return {k: replace(self.points[i].row, knee=True) for k, i in self._knees.items()}
-
     def _units(self) -> float:
         """Total work in renders: each setting warm-up + runs (+1 for its visible surface); references 10."""
         modes = {s.mode for s in self.settings}
