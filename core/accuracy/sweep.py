@@ -226,10 +226,11 @@ def knee_index(rows: list[Row], tolerance: float = DEFAULT_TOLERANCE) -> int:
 
 
 def best_within(rows: list[Row], budget: float) -> dict[str, Row]:
-    """Equal time: for each knob, its most accurate row (lowest FLIP) taking at most ``budget`` seconds."""
+    """Equal time: per knob, its most accurate row (lowest FLIP, then fastest) within ``budget`` seconds."""
     best: dict[str, Row] = {}
     for r in rows:
-        if r.seconds <= budget and (r.knob not in best or r.reference_flip < best[r.knob].reference_flip):
+        if r.seconds <= budget and (r.knob not in best or (r.reference_flip, r.seconds)
+                                    < (best[r.knob].reference_flip, best[r.knob].seconds)):
             best[r.knob] = r
     return best
 
