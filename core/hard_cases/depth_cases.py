@@ -11,7 +11,7 @@ strict test ``z < stored`` then keeps the red floor (*z-fighting*).
 Window depth is computed per pixel the way the rasterizer does it: the
 corners go through ``clip_from_world`` and the perspective divide, and the
 plane of window depth through a triangle's three corners is evaluated at
-each pixel centre it covers (:func:`core.object_order.rasterization.depth_planes`);
+each pixel centre it covers (:func:`core.object_order.rasterization.depth_plane`);
 :func:`core.object_order.depth_formats.depth_key` then rounds it as each
 format stores it.
 """
@@ -56,13 +56,13 @@ def window_depth(triangles: np.ndarray, camera: Camera) -> np.ndarray:
     clip = np.column_stack([corners, np.ones(len(corners))]) @ camera.clip_from_world.T
     xy, z = rasterization.window_coordinates(clip, camera.width, camera.height)
     xy, z = xy.reshape(-1, 3, 2), z.reshape(-1, 3)
-    planes = rasterization.depth_planes(xy, z)
     px, py = np.meshgrid(np.arange(camera.width) + 0.5, np.arange(camera.height) + 0.5)
     depth = np.full((camera.height, camera.width), np.nan)
     for k in range(len(triangles)):
         covered = rasterization.coverage(rasterization.snap(xy[k]), camera.width, camera.height)
-        za, dzdx, dzdy = planes[k]
-        depth[covered] = (za + (px - xy[k, 0, 0]) * dzdx + (py - xy[k, 0, 1]) * dzdy)[covered]
+        a, b, c = (tuple(corner) for corner in xy[k])
+        plane = rasterization.depth_plane(a, b, c, *z[k])
+        depth[covered] = rasterization.plane_depth(plane, a, px, py)[covered]
     return depth
 
 

@@ -242,3 +242,33 @@ def merge_band_stats(parts: list[dict]) -> dict:
     merged["rows"] = [0, parts[-1]["rows"][1]]
     merged["pixels_traced"] = sum(p["pixels_traced"] for p in parts)
     return merged
+
+
+def sample_tracer(scene: Scene, settings: TraceSettings = TraceSettings()):
+    """Prepare ``scene`` once and return a function that traces any grid of sample positions.
+
+    Supersampling traces many sub-pixel positions per pixel; this skips the
+    preparation :func:`render_trace` repeats on every call.
+
+    Returns
+    -------
+    trace(xs, ys) -> (color, depth, object_index)
+        ``xs`` (nx,) and ``ys`` (ny,) float64 are sample positions in pixels,
+        measured so that ``k`` is the centre of pixel column (row) ``k``: a
+        pixel's top-left corner is at ``k - 0.5``.  The ray through every
+        ``(xs[i], ys[j])`` is traced; ``color`` (ny, nx, 3) float64 RGB in
+        [0, 1], ``depth`` (ny, nx) as :attr:`TraceResult.depth`,
+        ``object_index`` (ny, nx) int64 as :attr:`TraceResult.object_index`.
+    """
+    ensure_compiled()
+    flat = trace_scene(scene)
+    structure, _, _ = flat.geometry.accel(settings.accel)
+    inputs = kernel_inputs(scene, settings, effects_plan(scene, settings.mode), flat, structure)
+    object_of = np.append(flat.geometry.prim_object, -1)  # prim -1 (nothing hit) -> object -1
+
+    def trace(xs, ys):
+        color, depth, hits, _ = _run_passes(np.asarray(xs, dtype=np.float64),
+                                            np.asarray(ys, dtype=np.float64), inputs, {})
+        return np.clip(color, 0.0, 1.0), depth, object_of[hits[..., 0].astype(np.int64)]
+
+    return trace

@@ -25,7 +25,7 @@ from core.image_order.intersect_sphere import TANGENT_TOLERANCE, intersect_spher
 from core.image_order.intersect_triangle import intersect_triangle
 from core.image_order.ray_offset import error_bound, offset_ray_origin
 from core.image_order.ray_tracing import render_trace
-from core.object_order import zbuffer
+from core.object_order import fragments
 from core.object_order.pipeline import RasterSettings, render_raster
 from core.scene import Material, Mesh, PointLight, Scene, Sphere
 
@@ -232,7 +232,7 @@ def test_quads_split_into_triangle_pairs_cover_each_pixel_exactly_once(seed, nx,
     corners = np.array(tris, dtype=np.int64)
     flat = xy.reshape(-1, 2)
     n = len(corners)
-    zpass = zbuffer.draw(flat, np.full(len(flat), 0.5), corners, np.arange(n), np.ones((n, 3)), np.ones(n),
+    zpass = fragments.draw(flat, np.full(len(flat), 0.5), corners, np.arange(n), np.ones((n, 3)), np.ones(n),
                          width, height, (0.0, 0.0, 0.0), record=True)
     count = np.bincount(zpass.fragments.pixel, minlength=width * height).reshape(height, width)
     outline = np.vstack([xy[0, :], xy[1:, -1], xy[-1, -2::-1], xy[-2:0:-1, 0]])

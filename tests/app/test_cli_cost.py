@@ -1,0 +1,105 @@
+"""``python -m app cost``: the CSV, the plot files and the one-line errors, run as a user would."""
+
+import csv
+import subprocess
+import sys
+from pathlib import Path
+
+import imageio.v3 as iio
+import numpy as np
+import pytest
+
+from core import scene_file
+from core.accuracy.sweep import CSV_COLUMNS, KNOBS, unavailable
+from core.presets_trace import mirror_and_glass
+
+ROOT = Path(__file__).resolve().parents[2]
+
+
+def _run(*args):
+    return subprocess.run([sys.executable, "-m", "app", "cost", *args], cwd=ROOT, capture_output=True,
+                          text=True, timeout=600)
+
+
+@pytest.fixture(scope="module")
+def mirror_scene(tmp_path_factory):
+    path = tmp_path_factory.mktemp("scene") / "mirror.json"
+    scene_file.save(mirror_and_glass(), path)
+    return path
+
+
+def _rows(folder):
+    with open(folder / "cost.csv", newline="") as f:
+        return list(csv.DictReader(f))
+
+
+def test_all_knobs_give_one_row_per_setting_a_knee_each_and_a_plot(tmp_path, mirror_scene):
+    out = tmp_path / "out"
+    result = _run(str(mirror_scene), "--knob", "all", "--width", "32", "--reference-spp", "2",
+                  "--out", str(out))
+    assert result.returncode == 0, result.stderr
+    rows = _rows(out)
+    assert tuple(rows[0]) == CSV_COLUMNS
+    offered = [k for k in KNOBS if unavailable(k, mirror_and_glass()) is None]
+    assert [(r["knob"], r["value"]) for r in rows] == [
+        (k, KNOBS[k].label(v)) for k in offered for v in KNOBS[k].values]
+    for knob in offered:
+        assert sum(int(r["knee"]) for r in rows if r["knob"] == knob) == 1
+    for r in rows:
+        if r["knob"] == "accel":
+            assert float(r["rmse"]) == 0.0 and float(r["wrong_pixel_fraction"]) == 0.0
+    assert "changes time only" in result.stdout and "<-- knee" in result.stdout
+    image = iio.imread(out / "cost.png")
+    assert image.ndim == 3 and image.shape[0] > 200 and image[..., :3].std() > 10  # not blank
+    assert (out / "cost.svg").read_text().lstrip().startswith("<?xml")
+    assert not list(out.glob(".*.tmp"))  # temporary files were renamed into place
+    assert "%" in result.stderr  # the progress bar
+
+
+def test_one_knob_on_the_tracer(tmp_path, mirror_scene):
+    out = tmp_path / "depth"
+    result = _run(str(mirror_scene), "--knob", "depth", "--mode", "raycast", "--width", "24",
+                  "--reference-spp", "2", "--tolerance", "0.5", "--out", str(out))
+    assert result.returncode == 0, result.stderr
+    rows = _rows(out)
+    assert {r["mode"] for r in rows} == {"raytrace"}  # ray depth belongs to ray tracing
+    # with a huge tolerance every setting is "as good", so the knee is the fastest one
+    knee = next(r for r in rows if r["knee"] == "1")
+    assert float(knee["seconds"]) == min(float(r["seconds"]) for r in rows)
+    assert np.isfinite([float(r["flip"]) for r in rows]).all()
+
+
+@pytest.mark.parametrize(("args", "names"), [
+    (["missing.json"], "missing.json"),
+    (["{scene}", "--tolerance", "-1"], "--tolerance"),
+    (["{scene}", "--tolerance", "nan"], "--tolerance"),
+    (["{scene}", "--width", "0"], "--width"),
+    (["{scene}", "--runs", "2"], "--runs"),
+    (["{scene}", "--reference-spp", "0"], "--reference-spp"),
+    (["{lecture}", "--knob", "tessellation"], "no analytic spheres"),
+    (["{bad}"], "bad.json"),
+    (["{scene}", "--out-is-a-file"], "--out"),
+])
+def test_bad_arguments_exit_2_with_one_line(tmp_path, mirror_scene, args, names):
+    from core.presets import lecture_scene
+
+    lecture = tmp_path / "lecture.json"
+    scene_file.save(lecture_scene(), lecture)
+    bad = tmp_path / "bad.json"
+    bad.write_text('{"objects": [{"type": "sphere", "radius": -1}]')
+    a_file = tmp_path / "a_file"
+    a_file.write_text("x")
+    argv = [a.format(scene=mirror_scene, lecture=lecture, bad=bad) for a in args]
+    out = str(a_file) if "--out-is-a-file" in argv else str(tmp_path / "out")
+    argv = [a for a in argv if a != "--out-is-a-file"]
+    result = _run(*argv, "--out", out)
+    assert result.returncode == 2
+    lines = result.stderr.strip().splitlines()
+    assert len(lines) == 1, result.stderr
+    assert names in lines[0] and "Traceback" not in result.stderr
+
+
+def test_unknown_knob_is_refused_by_name(tmp_path, mirror_scene):
+    result = _run(str(mirror_scene), "--knob", "fastness", "--out", str(tmp_path))
+    assert result.returncode == 2
+    assert "--knob" in result.stderr and "Traceback" not in result.stderr

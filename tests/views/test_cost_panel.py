@@ -1,0 +1,106 @@
+"""The Cost panel: a tiny sweep in the background fills the plot point by point; a click shows a point."""
+
+from dataclasses import replace
+
+import numpy as np
+import pytest
+from PySide6.QtCore import QPoint, Qt
+
+from core.accuracy.sweep import KNOBS
+from core.presets_trace import mirror_and_glass
+from core.srgb import to_srgb8
+from views.cost_panel import CostPanel
+
+TIMEOUT_MS = 240_000
+
+
+@pytest.fixture
+def panel(qtbot):
+    widget = CostPanel()
+    qtbot.addWidget(widget)
+    widget.resize(1280, 720)
+    widget.show()
+    scene = mirror_and_glass()
+    widget.set_scene(replace(scene, camera=scene.camera.replace(width=320, height=240)))
+    widget.width_px.setValue(32)
+    widget.reference_spp.setValue(2)
+    yield widget
+    widget.cancel()
+    qtbot.waitUntil(lambda: widget._sweep_lock.acquire(blocking=False), timeout=TIMEOUT_MS)
+    widget._sweep_lock.release()
+
+
+def _pick(panel, name):
+    panel.knob.setCurrentIndex(panel.knob.findData(name))
+
+
+def _plotted_points(panel):
+    return sum(len(indices) for indices in panel._lines.values())
+
+
+def test_sweep_fills_the_plot_and_a_click_shows_the_point(qtbot, panel):
+    _pick(panel, "depth")
+    qtbot.mouseClick(panel.run_button, Qt.MouseButton.LeftButton)
+    assert panel.running
+    with qtbot.waitSignal(panel.sweep_finished, timeout=TIMEOUT_MS) as finished:
+        pass
+    assert finished.args == [True]
+    n = len(KNOBS["depth"].values)
+    assert _plotted_points(panel) == n
+    rows = panel.rows()
+    assert len(rows) == n and sum(r.knee for r in rows) == 1
+    assert "Knees: depth" in panel.status.text()
+
+    panel.canvas.draw()
+    x, y = panel.point_position(0)
+    with qtbot.waitSignal(panel.point_selected, timeout=5000) as picked:
+        qtbot.mouseClick(panel.canvas, Qt.MouseButton.LeftButton, pos=QPoint(round(x), round(y)))
+    assert picked.args == [0]
+    setting, reference, error_map = panel.shown_images()
+    point = panel._points[0]
+    assert np.array_equal(setting, to_srgb8(point.color))  # shown in sRGB
+    assert np.array_equal(reference, to_srgb8(panel.sweep.references["raytrace"].color))
+    assert error_map.shape == (24, 32)
+    assert float(np.mean(error_map)) == pytest.approx(point.row.flip, rel=1e-4)
+    assert "ray depth" in panel.explanation.text()
+
+
+def test_cancel_stops_between_renders_and_run_resumes(qtbot, panel):
+    _pick(panel, "spp")
+    panel.run()
+    qtbot.waitUntil(lambda: len(panel._points) >= 1, timeout=TIMEOUT_MS)
+    panel.cancel()
+    assert not panel.running and panel.run_button.text() == "Resume"
+    stopped_at = len(panel._points)
+    assert stopped_at < len(KNOBS["spp"].values)
+    panel.run()
+    with qtbot.waitSignal(panel.sweep_finished, timeout=TIMEOUT_MS):
+        pass
+    assert panel.finished and _plotted_points(panel) == len(KNOBS["spp"].values)
+    assert sorted(panel._points) == list(range(len(KNOBS["spp"].values)))
+
+
+def test_adaptive_point_shows_its_samples_heat_map_and_exports(qtbot, panel, tmp_path):
+    _pick(panel, "adaptive")
+    panel.run()
+    with qtbot.waitSignal(panel.sweep_finished, timeout=TIMEOUT_MS):
+        pass
+    panel.show_point(len(KNOBS["adaptive"].values) - 1)
+    images = panel.shown_images()
+    assert len(images) == 4
+    heat = images[3]
+    assert heat.shape == (24, 32) and heat.min() == 1 and heat.max() == 17
+    panel.export_csv(tmp_path / "cost.csv")
+    panel.export_plot(tmp_path / "cost.png")
+    lines = (tmp_path / "cost.csv").read_text().splitlines()
+    assert lines[0].startswith("knob,value,mode,seconds,rmse,flip,wrong_pixel_fraction")
+    assert len(lines) == 1 + len(KNOBS["adaptive"].values)
+    assert (tmp_path / "cost.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_knobs_the_scene_cannot_use_are_disabled(panel):
+    from core.presets import lecture_scene
+
+    panel.set_scene(lecture_scene())
+    item = panel.knob.model().item(panel.knob.findData("tessellation"))
+    assert not item.isEnabled() and "no analytic spheres" in item.toolTip()

@@ -1,0 +1,448 @@
+"""The Cost panel: what accuracy costs in time, swept knob by knob, point by point.
+
+Pick a knob (or all), run: the sweep (:class:`core.accuracy.sweep.Sweep`)
+runs on the thread pool, one render at a time, and every finished setting
+becomes a point on the error-against-time plot as it arrives.  Cancel stops
+between renders; Run again resumes where it stopped.  Clicking a point shows
+that setting's image, the reference and the FLIP error map side by side (and
+the samples per pixel for adaptive supersampling), with a sentence on why the
+knob's curve has its shape.  The CSV and the plot can be exported.
+
+Images are encoded to sRGB in :mod:`core.srgb` before they are shown.
+"""
+
+from __future__ import annotations
+
+import threading
+from dataclasses import replace
+
+import numpy as np
+from matplotlib.backends.backend_qtagg import FigureCanvasQTAgg
+from matplotlib.figure import Figure
+from PySide6.QtCore import QObject, QRunnable, Qt, QThreadPool, Signal
+from PySide6.QtWidgets import (
+    QComboBox,
+    QDoubleSpinBox,
+    QFileDialog,
+    QHBoxLayout,
+    QLabel,
+    QProgressBar,
+    QPushButton,
+    QSizePolicy,
+    QSpinBox,
+    QSplitter,
+    QVBoxLayout,
+    QWidget,
+)
+
+from core.accuracy import cost_files
+from core.accuracy.cost_plot import draw_cost_plot
+from core.accuracy.explanations import EXPLANATIONS
+from core.accuracy.reference import REFERENCE_SPP
+from core.accuracy.sweep import (
+    DEFAULT_TOLERANCE,
+    KNOB_NAMES,
+    KNOBS,
+    Knee,
+    Point,
+    Progress,
+    Sweep,
+    unavailable,
+)
+from core.scene import Scene
+from core.srgb import to_srgb8
+
+MODES = [("raytrace", "Ray tracing"), ("raycast", "Ray casting"), ("raster", "Rasterization")]
+#: The sweep's image is at most this wide (the scene's aspect kept), so a sweep takes minutes, not hours.
+DEFAULT_WIDTH = 160
+
+
+class _Signals(QObject):
+    event = Signal(int, object)  # run id, Progress | Point | Knee
+    done = Signal(int, bool)  # run id, finished (False: cancelled)
+    failed = Signal(int, str)
+
+
+class _SweepRun(QRunnable):
+    """Runs a sweep's events off the GUI thread, stopping between renders when cancelled."""
+
+    def __init__(self, run_id: int, sweep: Sweep, signals: _Signals, cancelled: threading.Event,
+                 lock: threading.Lock):
+        super().__init__()
+        self.run_id, self.sweep, self.signals, self.cancelled = run_id, sweep, signals, cancelled
+        self.lock = lock
+
+    def run(self):
+        with self.lock:  # a stopped run finishes its render before the resumed one starts
+            if not self.cancelled.is_set():
+                self._run()
+
+    def _run(self):
+        # Settings a stopped run finished after it was cancelled were never shown: report them first.
+        for point in list(self.sweep.points.values()):
+            self._emit("event", self.run_id, point)
+        for knob, index in self.sweep.knee_indices().items():
+            self._emit("event", self.run_id, Knee(knob, index))
+        events = self.sweep.events()
+        try:
+            for event in events:
+                if self.cancelled.is_set():
+                    break
+                self._emit("event", self.run_id, event)
+        except Exception as exc:  # shown in the panel's status line
+            self._emit("failed", self.run_id, f"{type(exc).__name__}: {exc}")
+            return
+        finally:
+            events.close()
+        self._emit("done", self.run_id, self.sweep.finished)
+
+    def _emit(self, name, *args):
+        try:
+            getattr(self.signals, name).emit(*args)
+        except RuntimeError:  # the panel was deleted while the sweep ran
+            self.cancelled.set()
+
+
+class CostPanel(QWidget):
+    """Sweeps of the accuracy knobs of a scene, plotted as they run.
+
+    Signals
+    -------
+    point_selected(int) : the setting index of the clicked point.
+    sweep_finished(bool) : a run ended, ``True`` when every setting is done.
+    """
+
+    point_selected = Signal(int)
+    sweep_finished = Signal(bool)
+
+    def __init__(self, parent: QWidget | None = None, pool: QThreadPool | None = None):
+        super().__init__(parent)
+        self._pool = pool or QThreadPool.globalInstance()
+        self._scene: Scene | None = None
+        self.sweep: Sweep | None = None
+        self._points: dict[int, Point] = {}
+        self._knees: dict[str, int] = {}
+        self._lines: dict = {}
+        self._run_id = 0
+        self._cancel: threading.Event | None = None
+        self.selected: int | None = None
+        self._swept_with: tuple | None = None
+        self._sweep_lock = threading.Lock()  # one run at a time, even just after a cancel
+        self._signals = _Signals()
+        self._signals.event.connect(self._on_event)
+        self._signals.done.connect(self._on_done)
+        self._signals.failed.connect(self._on_failed)
+
+        self.knob = QComboBox()
+        self.knob.addItem("all knobs", "all")
+        for name in KNOB_NAMES:
+            self.knob.addItem(KNOBS[name].title, name)
+        self.knob.setToolTip("The setting to sweep; everything else stays at its default")
+        self.knob.setMaximumWidth(260)
+        self.mode = QComboBox()
+        for key, text in MODES:
+            self.mode.addItem(text, key)
+        self.mode.setToolTip("The pipeline for knobs both pipelines have (supersampling, resolution); "
+                             "the others always use their own")
+        self.width_px = QSpinBox()
+        self.width_px.setRange(16, 640)
+        self.width_px.setValue(DEFAULT_WIDTH)
+        self.width_px.setSuffix(" px")
+        self.width_px.setToolTip("Width of the swept images (the scene's aspect is kept)")
+        self.reference_spp = QSpinBox()
+        self.reference_spp.setRange(1, 16)
+        self.reference_spp.setValue(REFERENCE_SPP)
+        self.reference_spp.setPrefix("reference ")
+        self.reference_spp.setSuffix("² spp")
+        self.reference_spp.setToolTip("Samples per pixel of the reference, along each axis")
+        self.tolerance = QDoubleSpinBox()
+        self.tolerance.setRange(0.0, 1.0)
+        self.tolerance.setDecimals(3)
+        self.tolerance.setSingleStep(0.005)
+        self.tolerance.setValue(DEFAULT_TOLERANCE)
+        self.tolerance.setPrefix("knee ±")
+        self.tolerance.setToolTip("The knee: the cheapest setting whose FLIP is within this of the best's")
+        self.run_button = QPushButton("Run")
+        self.cancel_button = QPushButton("Cancel")
+        self.cancel_button.setEnabled(False)
+        self.export_csv_button = QPushButton("Export CSV…")
+        self.export_plot_button = QPushButton("Export plot…")
+        self.progress = QProgressBar()
+        self.progress.setRange(0, 1000)
+        self.progress.setTextVisible(False)
+        self.status = QLabel("Set a scene, pick a knob and press Run.")
+        self.status.setWordWrap(True)
+        self.explanation = QLabel()
+        self.explanation.setWordWrap(True)
+        self.explanation.setTextFormat(Qt.TextFormat.RichText)
+        self.explanation.setAlignment(Qt.AlignmentFlag.AlignTop | Qt.AlignmentFlag.AlignLeft)
+        self.explanation.setSizePolicy(QSizePolicy.Policy.Preferred, QSizePolicy.Policy.Minimum)
+
+        self.plot_figure = Figure(layout="constrained")
+        self.canvas = FigureCanvasQTAgg(self.plot_figure)
+        self.canvas.setMinimumSize(320, 240)
+        self.canvas.mpl_connect("pick_event", self._on_pick)
+        self.image_figure = Figure(layout="constrained")
+        self.image_canvas = FigureCanvasQTAgg(self.image_figure)
+        self.image_canvas.setMinimumSize(280, 200)
+
+        controls = QHBoxLayout()
+        for w in (self.knob, self.mode, self.width_px, self.reference_spp, self.tolerance, self.run_button,
+                  self.cancel_button, self.export_csv_button, self.export_plot_button):
+            controls.addWidget(w)
+        controls.addStretch(1)
+        right = QWidget()
+        right_layout = QVBoxLayout(right)
+        right_layout.setContentsMargins(0, 0, 0, 0)
+        right_layout.addWidget(self.image_canvas, 1)
+        right_layout.addWidget(self.explanation)
+        split = QSplitter(Qt.Orientation.Horizontal)
+        split.addWidget(self.canvas)
+        split.addWidget(right)
+        split.setStretchFactor(0, 3)
+        split.setStretchFactor(1, 2)
+        layout = QVBoxLayout(self)
+        layout.addLayout(controls)
+        status_row = QHBoxLayout()
+        status_row.addWidget(self.progress, 1)
+        status_row.addWidget(self.status, 3)
+        layout.addLayout(status_row)
+        layout.addWidget(split, 1)
+
+        self.run_button.clicked.connect(self.run)
+        self.cancel_button.clicked.connect(self.cancel)
+        self.export_csv_button.clicked.connect(self._ask_export_csv)
+        self.export_plot_button.clicked.connect(self._ask_export_plot)
+        self.knob.currentIndexChanged.connect(self._show_explanation)
+        self._show_explanation()
+        self._draw_plot()
+        self._update_buttons()
+
+    # -- inputs ---------------------------------------------------------------
+
+    def set_scene(self, scene: Scene) -> None:
+        """Sweep ``scene`` from now on (a running sweep is cancelled, found points are cleared)."""
+        self.cancel()
+        self._scene = scene
+        self._reset()
+        for i in range(1, self.knob.count()):
+            reason = unavailable(self.knob.itemData(i), scene)
+            item = self.knob.model().item(i)
+            item.setEnabled(reason is None)
+            item.setToolTip(reason or "")
+        if not self.knob.model().item(self.knob.currentIndex()).isEnabled():
+            self.knob.setCurrentIndex(0)
+        self.status.setText("Pick a knob and press Run.")
+        self._update_buttons()
+
+    def _sweep_scene(self) -> Scene:
+        cam = self._scene.camera
+        width = min(cam.width, self.width_px.value())
+        height = max(1, round(width * cam.height / cam.width))
+        return replace(self._scene, camera=cam.replace(width=width, height=height))
+
+    def _parameters(self) -> tuple:
+        return (self.knob.currentData(), self.mode.currentData(), self.width_px.value(),
+                self.reference_spp.value(), round(self.tolerance.value(), 6))
+
+    # -- running --------------------------------------------------------------
+
+    @property
+    def running(self) -> bool:
+        return self._cancel is not None
+
+    @property
+    def finished(self) -> bool:
+        """Every setting of the current sweep is done."""
+        return self.sweep is not None and len(self._points) == len(self.sweep.settings)
+
+    def run(self) -> None:
+        """Start the sweep, or resume it if it was stopped with the same choices."""
+        if self._scene is None or self.running:
+            return
+        if self.sweep is None or self._swept_with != self._parameters():
+            self._reset()
+            knob, mode, _, spp, tolerance = self._parameters()
+            self.sweep = Sweep(self._sweep_scene(), (knob,), mode, tolerance, reference_spp=spp)
+            self._swept_with = self._parameters()
+        if not self.sweep.settings:
+            self.status.setText("Nothing to sweep: " + "; ".join(f"{k}: {r}" for k, r in
+                                                                 self.sweep.skipped.items()))
+            return
+        self._run_id += 1
+        self._cancel = threading.Event()
+        self._pool.start(_SweepRun(self._run_id, self.sweep, self._signals, self._cancel, self._sweep_lock))
+        self.status.setText("Starting…")
+        self._update_buttons()
+
+    def cancel(self) -> None:
+        """Stop the running sweep after its current render (Run resumes it)."""
+        if self._cancel is not None:
+            self._cancel.set()
+            self._cancel = None
+            self._run_id += 1  # whatever the stopped run still reports is dropped
+            self.status.setText(f"Stopped after {len(self._points)} of {len(self.sweep.settings)} "
+                                "settings; Run resumes.")
+            self._update_buttons()
+
+    def _reset(self) -> None:
+        self.sweep, self._swept_with = None, None
+        self._points, self._knees, self.selected = {}, {}, None
+        self.progress.setValue(0)
+        self._draw_plot()
+        self.image_figure.clear()
+        self.image_canvas.draw_idle()
+
+    def _on_event(self, run_id: int, event) -> None:
+        if run_id != self._run_id:
+            return
+        if isinstance(event, Progress):
+            self.progress.setValue(round(1000 * event.done / max(event.total, 1)))
+            self.status.setText(event.what)
+        elif isinstance(event, Point):
+            self._points[event.index] = event
+            self._draw_plot()
+            if self.selected is None:
+                self.show_point(event.index)
+        elif isinstance(event, Knee):
+            self._knees[event.knob] = event.index
+            self._draw_plot()
+
+    def _on_done(self, run_id: int, finished: bool) -> None:
+        if run_id != self._run_id:
+            return
+        self._cancel = None
+        if finished:
+            self.progress.setValue(1000)
+            skipped = "; ".join(f"{k} not swept: {r}" for k, r in self.sweep.skipped.items())
+            knees = ", ".join(f"{k} {self._points[i].row.value}" for k, i in self._knees.items())
+            self.status.setText(f"Done. Knees: {knees}." + (f"  ({skipped})" if skipped else ""))
+        self._update_buttons()
+        self.sweep_finished.emit(finished)
+
+    def _on_failed(self, run_id: int, message: str) -> None:
+        if run_id != self._run_id:
+            return
+        self._cancel = None
+        self.status.setText(f"The sweep failed: {message}")
+        self._update_buttons()
+
+    def _update_buttons(self) -> None:
+        self.run_button.setEnabled(self._scene is not None and not self.running)
+        resumable = self.sweep is not None and not self.finished and bool(self._points)
+        self.run_button.setText("Resume" if resumable else "Run")
+        self.cancel_button.setEnabled(self.running)
+        self.export_csv_button.setEnabled(bool(self._points))
+        self.export_plot_button.setEnabled(bool(self._points))
+
+    def closeEvent(self, event) -> None:  # noqa: N802 (Qt's name)
+        self.cancel()
+        super().closeEvent(event)
+
+    # -- what was found -------------------------------------------------------
+
+    def rows(self) -> list:
+        """The rows received so far, in setting order, knees marked."""
+        knee_at = set(self._knees.values())
+        return [replace(p.row, knee=i in knee_at) for i, p in sorted(self._points.items())]
+
+    def _draw_plot(self) -> None:
+        rows = self.rows()
+        self._lines = draw_cost_plot(self.plot_figure, rows, sorted(self._points))
+        ax = self.plot_figure.axes[0]
+        if self.selected is not None and self.selected in self._points:
+            r = self._points[self.selected].row
+            ax.plot([max(r.seconds, 1e-6)], [max(r.reference_flip, 1e-5)], "x", color="black",
+                    markersize=10, markeredgewidth=2)
+        if not rows:
+            ax.text(0.5, 0.5, "the curves fill in here, point by point", transform=ax.transAxes,
+                    ha="center", va="center", color="gray")
+        self.canvas.draw_idle()
+
+    def _on_pick(self, event) -> None:
+        indices = self._lines.get(event.artist)
+        if indices is None or not len(event.ind):
+            return
+        self.show_point(indices[int(event.ind[0])])
+
+    def point_position(self, index: int) -> tuple[float, float]:
+        """Where setting ``index``'s point is drawn on the plot canvas, in widget pixels (x right, y down)."""
+        r = self._points[index].row
+        ax = self.plot_figure.axes[0]
+        x, y = ax.transData.transform((max(r.seconds, 1e-6), max(r.reference_flip, 1e-5)))
+        ratio = self.canvas.device_pixel_ratio or 1.0
+        return x / ratio, self.canvas.height() - y / ratio
+
+    def show_point(self, index: int) -> None:
+        """Show setting ``index``'s image, the reference and the error map side by side."""
+        point = self._points[index]
+        self.selected = index
+        reference = self.sweep.references[point.row.mode]
+        panels = [(to_srgb8(point.color), f"{point.row.knob} = {point.row.value}\n"
+                   f"{point.row.seconds * 1000:.1f} ms", None),
+                  (to_srgb8(reference.color), f"reference\n{reference.spp}x{reference.spp} per pixel", None),
+                  (point.error_map, f"FLIP against {point.row.compared_with}\nmean {point.row.flip:.4f}",
+                   "magma")]
+        if point.samples is not None:
+            panels.append((point.samples, f"samples per pixel\n{point.row.samples_per_pixel:.2f} on average",
+                           "viridis"))
+        self.image_figure.clear()
+        cols = 2
+        for k, (image, title, cmap) in enumerate(panels):
+            ax = self.image_figure.add_subplot(2, cols, k + 1)
+            if cmap == "magma":
+                shown = ax.imshow(image, cmap=cmap, vmin=0.0, vmax=1.0, interpolation="nearest")
+            elif cmap:
+                shown = ax.imshow(image, cmap=cmap, interpolation="nearest")
+            else:
+                shown = ax.imshow(image, interpolation="nearest")
+            if cmap:
+                self.image_figure.colorbar(shown, ax=ax, shrink=0.8)
+            ax.set_title(title, fontsize=9)
+            ax.set_xticks([])
+            ax.set_yticks([])
+        self.image_canvas.draw_idle()
+        self._draw_plot()
+        self._show_explanation(point.row.knob)
+        self.point_selected.emit(index)
+
+    def shown_images(self) -> list[np.ndarray]:
+        """The arrays currently shown beside the plot (setting, reference, error map, samples)."""
+        return [ax.images[0].get_array() for ax in self.image_figure.axes if ax.images]
+
+    def _show_explanation(self, knob: str | None = None) -> None:
+        name = knob if isinstance(knob, str) else self.knob.currentData()
+        if name == "all":
+            self.explanation.setText("<b>Every knob</b>: each curve is one setting swept with everything "
+                                     "else at its default; the ringed point is its knee, the cheapest "
+                                     "setting you cannot tell from the best.  Click a point to see it.")
+            return
+        self.explanation.setText(f"<b>{KNOBS[name].title}</b>: {EXPLANATIONS[name]}")
+
+    # -- export ---------------------------------------------------------------
+
+    def export_csv(self, path) -> None:
+        """Write the rows found so far as CSV (atomically)."""
+        cost_files.write_csv(self.rows(), path)
+
+    def export_plot(self, path) -> None:
+        """Write the plot as PNG or SVG, after the suffix (atomically)."""
+        cost_files.save_figure(self.plot_figure, path)
+
+    def _ask_export_csv(self) -> None:
+        path, _ = QFileDialog.getSaveFileName(self, "Export the sweep as CSV", "cost.csv", "CSV (*.csv)")
+        if path:
+            self._export(self.export_csv, path)
+
+    def _ask_export_plot(self) -> None:
+        path, _ = QFileDialog.getSaveFileName(self, "Export the plot", "cost.png", "PNG (*.png);;SVG (*.svg)")
+        if path:
+            self._export(self.export_plot, path)
+
+    def _export(self, write, path) -> None:
+        try:
+            write(path)
+        except (OSError, ValueError) as exc:
+            self.status.setText(f"Cannot write {path}: {exc}")
+            return
+        self.status.setText(f"Wrote {path}")
