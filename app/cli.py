@@ -37,9 +37,13 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+#: The first words the command line understands; anything else opens the window on it.
+COMMANDS = {"gui", "intersect", "render", "bench", "hardcases", "cost", "-h", "--help"}
+
+
 def main(argv: list[str] | None = None) -> int:
     argv = list(sys.argv[1:] if argv is None else argv)
-    if not argv or argv[0] not in {"gui", "intersect", "render", "bench", "hardcases", "cost", "-h", "--help"}:
+    if not argv or argv[0] not in COMMANDS:
         argv.insert(0, "gui")
     if hasattr(signal, "SIGXFSZ"):  # over a file-size limit a write fails; the process lives
         signal.signal(signal.SIGXFSZ, signal.SIG_IGN)

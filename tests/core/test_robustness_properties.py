@@ -25,7 +25,7 @@ from core.image_order.intersect_sphere import TANGENT_TOLERANCE, intersect_spher
 from core.image_order.intersect_triangle import intersect_triangle
 from core.image_order.ray_offset import error_bound, offset_ray_origin
 from core.image_order.ray_tracing import render_trace
-from core.object_order import fragments
+from core.object_order import fragments, zbuffer
 from core.object_order.pipeline import RasterSettings, render_raster
 from core.scene import Material, Mesh, PointLight, Scene, Sphere
 
