@@ -32,6 +32,7 @@ from core.image_order.effects_plan import MODES, EffectsPlan
 from core.image_order.grid_of_cuboids import UniformGrid, build_grid
 from core.image_order.grid_of_cuboids import empty_kernel_tuple as no_grid
 from core.image_order.kernels import layout as lay
+from core.image_order.ray_casting import camera_array
 from core.scene import Scene, Sphere
 
 #: How many distinct geometries stay cached.
@@ -305,15 +306,3 @@ def kernel_inputs(scene: Scene, settings: TraceSettings, plan: EffectsPlan, flat
     return KernelInputs(camera_array(scene.camera), opts, lights, flat.materials,
                         flat.geometry.kernel_tuple(), grid, bvh, depth, int(opts[lay.OPT_ACCEL]))
 
-
-def camera_array(cam) -> np.ndarray:
-    """The observer as the kernels read it, (CAM_SIZE,) float64 (see :mod:`.kernels.layout`)."""
-    c = np.zeros(lay.CAM_SIZE)
-    c[lay.CAM_EYE:lay.CAM_EYE + 3] = cam.eye
-    c[lay.CAM_ROTATION:lay.CAM_ROTATION + 9] = cam.world_from_view[:3, :3].ravel()
-    c[lay.CAM_FORWARD:lay.CAM_FORWARD + 3] = cam.forward
-    c[lay.CAM_HALF_WIDTH], c[lay.CAM_HALF_HEIGHT] = cam.half_extent(1.0)
-    c[lay.CAM_WIDTH], c[lay.CAM_HEIGHT] = cam.width, cam.height
-    c[lay.CAM_ORTHOGRAPHIC] = cam.projection == "orthographic"
-    c[lay.CAM_NEAR], c[lay.CAM_FAR] = cam.near, cam.far
-    return c

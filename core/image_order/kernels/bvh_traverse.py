@@ -26,7 +26,8 @@ from core.image_order.kernels.intersect import sphere_hit, triangle_hit
 from core.image_order.kernels.intrinsics.slabs4 import slab_test4
 from core.image_order.kernels.intrinsics.triangle4 import GROUP_SIZE, LANES, UNSURE, triangle_test4
 from core.image_order.kernels.jit import jit, jit_inline
-from core.image_order.kernels.primitives import BOUNDS_TESTS, PRIM_TESTS, no_hit, prim_hit
+from core.image_order.kernels.layout import BOUNDS_TESTS, PRIM_TESTS
+from core.image_order.kernels.primitives import no_hit, prim_hit
 
 _OTHER_SIDE = WIDE_LO + WIDE_HI
 
@@ -50,7 +51,7 @@ def bvh_closest(o, d, shear, t_min, t_max, any_hit, bvh, n_spheres, stack, stack
 
     Parameters
     ----------
-    o, d : (3,) tuples, the ray; ``shear`` its :func:`~core.image_order.kernels.intersect.ray_shear`.
+    o, d : (3,) tuples, the ray; ``shear`` its :func:`~core.image_order.intersect_triangle.ray_shear`.
     t_min, t_max : float, the admissible range of ``t``.
     any_hit : bool, stop at the first crossing found (shadow rays).
     bvh : tuple ``(wide, refs, leaves, groups, order, rows)`` of

@@ -12,10 +12,10 @@ rays inline the BVH traversal, see :mod:`core.image_order.kernels.render`).
 
 from __future__ import annotations
 
+from core.image_order.intersect_triangle import ray_shear
 from core.image_order.kernels.accel_grid import grid_closest
 from core.image_order.kernels.accel_spheres import brute_closest, spheres_closest
 from core.image_order.kernels.bvh_traverse import bvh_closest
-from core.image_order.kernels.intersect import ray_shear
 from core.image_order.kernels.jit import jit, jit_inline
 
 NONE, SPHERES, GRID, GRID_SPHERES, BVH = range(5)

@@ -15,10 +15,6 @@ import math
 from core.image_order.kernels.intersect import sphere_hit, triangle_hit
 from core.image_order.kernels.jit import jit, jit_inline
 
-#: Indices into a per-thread counter array (see :mod:`core.image_order.kernels.render`).
-PRIMARY, SHADOW, REFLECTION, REFRACTION, PRIM_TESTS, BOUNDS_TESTS, CELLS = range(7)
-N_COUNTERS = 7
-
 
 @jit_inline
 def prim_hit(rows, k, is_sphere, o, d, shear, t_min, t_max):
@@ -36,5 +32,5 @@ def prim_hit(rows, k, is_sphere, o, d, shear, t_min, t_max):
 
 @jit
 def no_hit():
-    """The result of a query that found nothing: ``(prim, t, b0, b1, b2)``."""
+    """The result of a query that found nothing: ``(prim, t, b0, b1, b2)`` (see ``layout.HIT_*``)."""
     return -1, math.inf, 0.0, 0.0, 0.0
