@@ -80,7 +80,7 @@ class Geometry:
         return self.rows.shape[0]
 
     def kernel_tuple(self) -> tuple:
-        """The arrays the kernels read, in the order they expect."""
+        """The arrays the kernels read, at the positions ``GEO_*`` of :mod:`.kernels.layout`."""
         return (self.rows, self.n_spheres, self.prim_object, self.object_prims,
                 self.bounding, self.normals, self.magnitude)
 
@@ -181,10 +181,11 @@ def _flatten(objects, key: bytes) -> Geometry:
     spheres = [(i, o) for i, o in enumerate(objects) if isinstance(o, Sphere)]
     meshes = [(i, o) for i, o in enumerate(objects) if not isinstance(o, Sphere)]
     n_spheres = len(spheres)
-    sphere_rows = np.zeros((n_spheres, 9))
+    sphere_rows = np.zeros((n_spheres, lay.ROW_SIZE))
     for k, (_, s) in enumerate(spheres):
-        sphere_rows[k, :4] = (*s.center, s.radius)
-    tri_rows = [m.corners.reshape(-1, 9) for _, m in meshes]
+        sphere_rows[k, lay.ROW_CENTER:lay.ROW_CENTER + 3] = s.center
+        sphere_rows[k, lay.ROW_RADIUS] = s.radius
+    tri_rows = [m.corners.reshape(-1, lay.ROW_SIZE) for _, m in meshes]  # corners A, B, C
     rows = np.ascontiguousarray(np.vstack([sphere_rows, *tri_rows]))
     counts = [len(t) for t in tri_rows]
     prim_object = np.concatenate(
@@ -204,7 +205,8 @@ def _flatten(objects, key: bytes) -> Geometry:
         bounding[i, :3], bounding[i, 3] = center, radius
 
     corners = rows[n_spheres:].reshape(-1, 3, 3)
-    centers, radii = sphere_rows[:, :3], sphere_rows[:, 3:4]
+    centers = sphere_rows[:, lay.ROW_CENTER:lay.ROW_CENTER + 3]
+    radii = sphere_rows[:, lay.ROW_RADIUS:lay.ROW_RADIUS + 1]
     magnitude = np.concatenate([np.abs(centers).max(axis=1, initial=0.0) + radii[:, 0],
                                 np.abs(corners).max(axis=(1, 2), initial=0.0)])
     lo = np.vstack([centers - radii, corners.min(axis=1)])

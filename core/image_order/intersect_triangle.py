@@ -68,6 +68,8 @@ from fractions import Fraction
 import numpy as np
 from numba.extending import register_jitable
 
+from core.image_order.kernels.layout import ROW_A, ROW_B, ROW_C
+
 _UNIT_ROUNDOFF = 2.0**-53
 #: A rounded ``p*q - r*s`` is trusted when bigger than this times ``|pq| + |rs|``
 #: (the true error bound is below 3 unit roundoffs); the tiny absolute term
@@ -134,12 +136,11 @@ def ray_shear(dx, dy, dz):
     ((2, 0, 1), (0, 1, 2))
     """
     ax, ay, az = abs(dx), abs(dy), abs(dz)
-    if ax > ay and ax > az:
-        kz = 0
-    elif ay > az:
-        kz = 1
-    else:
-        kz = 2
+    # x only when strictly the largest, else y when strictly larger than z, else z.  (Written
+    # without branches: numba's inliner mislays a variable assigned on several branches.)
+    x_largest = (ax > ay) & (ax > az)
+    y_largest = (ay > az) & (ax <= ay)
+    kz = 2 - 1 * y_largest - 2 * x_largest
     kx = (kz + 1) % 3
     ky = (kx + 1) % 3
     d = (dx, dy, dz)
@@ -167,16 +168,24 @@ def to_ray_space(rows, k, o, shear):
     """
     kx, ky, kz, sx, sy, _ = shear
     okx, oky, okz = o[kx], o[ky], o[kz]
-    z0 = rows[k, kz] - okz
-    z1 = rows[k, 3 + kz] - okz
-    z2 = rows[k, 6 + kz] - okz
-    x0 = rows[k, kx] - okx + sx * z0
-    y0 = rows[k, ky] - oky + sy * z0
-    x1 = rows[k, 3 + kx] - okx + sx * z1
-    y1 = rows[k, 3 + ky] - oky + sy * z1
-    x2 = rows[k, 6 + kx] - okx + sx * z2
-    y2 = rows[k, 6 + ky] - oky + sy * z2
+    z0 = rows[k, ROW_A + kz] - okz
+    z1 = rows[k, ROW_B + kz] - okz
+    z2 = rows[k, ROW_C + kz] - okz
+    x0 = rows[k, ROW_A + kx] - okx + sx * z0
+    y0 = rows[k, ROW_A + ky] - oky + sy * z0
+    x1 = rows[k, ROW_B + kx] - okx + sx * z1
+    y1 = rows[k, ROW_B + ky] - oky + sy * z1
+    x2 = rows[k, ROW_C + kx] - okx + sx * z2
+    y2 = rows[k, ROW_C + ky] - oky + sy * z2
     return x0, y0, z0, x1, y1, z1, x2, y2, z2
+
+
+@register_jitable(inline="always")
+def barycentric_point(rows, k, b0, b1, b2):
+    """The point ``b0 A + b1 B + b2 C`` of triangle ``rows[k]`` (as :func:`to_ray_space`), world space."""
+    return (b0 * rows[k, ROW_A] + b1 * rows[k, ROW_B] + b2 * rows[k, ROW_C],
+            b0 * rows[k, ROW_A + 1] + b1 * rows[k, ROW_B + 1] + b2 * rows[k, ROW_C + 1],
+            b0 * rows[k, ROW_A + 2] + b1 * rows[k, ROW_B + 2] + b2 * rows[k, ROW_C + 2])
 
 
 @register_jitable(inline="always")
@@ -196,7 +205,9 @@ def edge_functions(x0, y0, x1, y1, x2, y2):
 @register_jitable(inline="always")
 def straddles(e0, e1, e2):
     """The edge functions have mixed signs: the ray passes outside the triangle."""
-    return (e0 < 0.0 or e1 < 0.0 or e2 < 0.0) and (e0 > 0.0 or e1 > 0.0 or e2 > 0.0)
+    negative = (e0 < 0.0) | (e1 < 0.0) | (e2 < 0.0)
+    positive = (e0 > 0.0) | (e1 > 0.0) | (e2 > 0.0)
+    return negative & positive
 
 
 @register_jitable(inline="always")
@@ -421,9 +432,11 @@ def intersect_triangle(origin, direction, a, b, c) -> TriangleIntersection:
     lecture = _cramer(o, d, *vertices)
     A, B, C = vertices
 
+    rows = vertices.reshape(1, 9)
+
     def result(hit, reason, e=(0.0, 0.0, 0.0), solved=(None, None, None, None)):
         t, alpha, beta, gamma = solved
-        point = alpha * A + beta * B + gamma * C if hit else None
+        point = np.array(barycentric_point(rows, 0, alpha, beta, gamma)) if hit else None
         return TriangleIntersection(o, d, vertices, lecture.det, tuple(map(float, e)), hit,
                                     t, alpha, beta, gamma, point, reason)
 
@@ -433,7 +446,7 @@ def intersect_triangle(origin, direction, a, b, c) -> TriangleIntersection:
     # The watertight test, with the tracer's own functions: ray space, edge functions, crossing.
     shear = ray_shear(*d.tolist())
     x0, y0, z0, x1, y1, z1, x2, y2, z2 = (
-        float(v) for v in to_ray_space(vertices.reshape(1, 9), 0, tuple(o.tolist()), shear))
+        float(v) for v in to_ray_space(rows, 0, tuple(o.tolist()), shear))
     e = edge_functions(x0, y0, x1, y1, x2, y2)
     outside = straddles(*e)
     if outside:  # where the ray meets the plane, to say which weights are negative

@@ -1,8 +1,8 @@
 """Ray casting and Whitted ray tracing in image order: render a scene, count every ray.
 
 The lecture's image order: for each pixel a *primary ray* from the eye (or,
-in parallel projection, from the screen plane) through the pixel; its first
-hit gives the pixel its colour.
+in parallel projection, from the screen plane) through the pixel
+(:mod:`core.image_order.ray_casting`); its first hit gives the pixel its colour.
 
 - **Ray casting** (``mode="raycast"``): from the hit point one *shadow ray*
   towards each point light; a light contributes (Lambert + Phong,

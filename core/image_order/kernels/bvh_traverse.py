@@ -26,7 +26,7 @@ from core.image_order.kernels.intersect import sphere_hit, triangle_hit
 from core.image_order.kernels.intrinsics.slabs4 import slab_test4
 from core.image_order.kernels.intrinsics.triangle4 import GROUP_SIZE, LANES, UNSURE, triangle_test4
 from core.image_order.kernels.jit import jit, jit_inline
-from core.image_order.kernels.layout import BOUNDS_TESTS, PRIM_TESTS
+from core.image_order.kernels.layout import BOUNDS_TESTS, PRIM_TESTS, ROW_CENTER, ROW_RADIUS
 from core.image_order.kernels.primitives import no_hit, prim_hit
 
 _OTHER_SIDE = WIDE_LO + WIDE_HI
@@ -150,6 +150,7 @@ def _leaf_one_by_one(rows, order, n_spheres, first, count, o, d, shear, t_min, b
 @jit
 def _sphere_crossing(rows, k, prim, o, d, t_min):
     """The hit record of sphere ``rows[k]`` (primitive ``prim``), known to be crossed after ``t_min``."""
-    t = sphere_hit(o[0], o[1], o[2], d[0], d[1], d[2], rows[k, 0], rows[k, 1], rows[k, 2], rows[k, 3], t_min,
-                   math.inf)
+    c = ROW_CENTER
+    t = sphere_hit(o[0], o[1], o[2], d[0], d[1], d[2], rows[k, c], rows[k, c + 1], rows[k, c + 2],
+                   rows[k, ROW_RADIUS], t_min, math.inf)
     return prim, t, 0.0, 0.0, 0.0

@@ -62,6 +62,25 @@ HIT_T = 1  # ray parameter of the crossing
 HIT_B0, HIT_B1, HIT_B2 = 2, 3, 4  # a triangle's barycentric weights of its corners A, B, C
 HIT_SIZE = 5
 
+# --- primitives: (P, ROW_SIZE), see core.image_order.kernels.primitives ----------------------
+ROW_CENTER = 0  # a sphere: 3 columns, its centre, world space
+ROW_RADIUS = 3  # and its radius (the rest of the row is 0)
+ROW_A, ROW_B, ROW_C = 0, 3, 6  # a triangle: 3 columns per corner, world space
+ROW_SIZE = 9
+
+# --- the kernel tuples: positions in core.image_order.flat_scene.Geometry.kernel_tuple() ------
+GEO_ROWS = 0  # (P, 9) primitive rows
+GEO_N_SPHERES = 1  # primitives below this index are analytic spheres
+GEO_PRIM_OBJECT = 2  # (P,) object of each primitive
+GEO_OBJECT_PRIMS = 3  # (O, 2) first primitive and count per object
+GEO_BOUNDING = 4  # (O, 4) bounding sphere per object
+GEO_NORMALS = 5  # (T, 3) outward unit normal per triangle
+GEO_MAGNITUDE = 6  # (P,) largest coordinate magnitude per primitive
+# ... and in the per-thread scratch of core.image_order.kernels.render.make_scratch
+SCRATCH_GRID = 4  # the first four: the grid walk's mailbox, object stamps, object spans, stamp
+SCRATCH_STACK = 4  # the BVH traversal's stack of nodes
+SCRATCH_STACK_T = 5  # and the distances where the ray enters them
+
 # --- work counters: (N_COUNTERS,) int64, one array per thread ------------------------------
 PRIMARY, SHADOW, REFLECTION, REFRACTION = 0, 1, 2, 3  # rays traced, by kind
 PRIM_TESTS = 4  # ray-primitive tests

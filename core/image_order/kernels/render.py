@@ -48,7 +48,11 @@ PRIMARY_STAGE, SHADE_STAGE, SECONDARY_STAGE = range(3)
 
 @jit
 def make_scratch(method, n_prims, n_objects, bvh_depth):
-    """Per-thread work arrays for :func:`core.image_order.kernels.closest_hit.closest_hit`."""
+    """Per-thread work arrays for :func:`core.image_order.kernels.closest_hit.closest_hit`.
+
+    ``(mailbox, object_stamp, object_span, stamp, stack, stack_t)``, at the positions
+    ``SCRATCH_*`` of :mod:`core.image_order.kernels.layout`.
+    """
     grid = method in (GRID, GRID_SPHERES)
     stack_size = 3 * bvh_depth + 2 if method == BVH else 1
     return (np.zeros(n_prims if grid else 1, np.int64),
@@ -62,7 +66,8 @@ def make_scratch(method, n_prims, n_objects, bvh_depth):
 @jit
 def _primary_rows(first, last, cam, xs, ys, opts, geo, grid, bvh, scratch, hits, depth, count):
     method = int(opts[lay.OPT_ACCEL])
-    n_spheres, stack, stack_t = geo[1], scratch[4], scratch[5]
+    n_spheres = geo[lay.GEO_N_SPHERES]
+    stack, stack_t = scratch[lay.SCRATCH_STACK], scratch[lay.SCRATCH_STACK_T]
     for j in range(first, last):
         for i in range(xs.shape[0]):
             o, d, t_min, t_max = primary_ray(cam, xs[i], ys[j])
@@ -154,7 +159,8 @@ def _secondary_rows(first, last, color, children, materials, lights, opts, geo, 
 @jit
 def _worker(stage, queue, cam, xs, ys, hits, depth, color, children, materials, lights, opts, geo, grid, bvh,
             bvh_depth, count):
-    scratch = make_scratch(int(opts[lay.OPT_ACCEL]), geo[0].shape[0], materials.shape[0], bvh_depth)
+    scratch = make_scratch(int(opts[lay.OPT_ACCEL]), geo[lay.GEO_ROWS].shape[0], materials.shape[0],
+                           bvh_depth)
     rec = np.empty(lay.record_size(lights.shape[0]))
     while True:
         first = take_band(queue) * BAND_ROWS

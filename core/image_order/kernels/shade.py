@@ -23,6 +23,7 @@ from __future__ import annotations
 import math
 
 from core.image_order.intersect_sphere import outward_normal
+from core.image_order.intersect_triangle import barycentric_point
 from core.image_order.kernels import layout as lay
 from core.image_order.kernels.closest_hit import closest_hit
 from core.image_order.kernels.jit import jit
@@ -50,7 +51,8 @@ def surface_point(o, d, hit, scaled, geo):
     rows, n_spheres, _, _, _, normals, magnitude = geo
     p = (o[0] + t * d[0], o[1] + t * d[1], o[2] + t * d[2])
     if prim < n_spheres:
-        cx, cy, cz, r = rows[prim, 0], rows[prim, 1], rows[prim, 2], rows[prim, 3]
+        c = lay.ROW_CENTER
+        cx, cy, cz, r = rows[prim, c], rows[prim, c + 1], rows[prim, c + 2], rows[prim, lay.ROW_RADIUS]
         n = outward_normal(p[0], p[1], p[2], cx, cy, cz, d[0], d[1], d[2])
         if scaled:
             p = (cx + r * n[0], cy + r * n[1], cz + r * n[2])
@@ -58,9 +60,7 @@ def surface_point(o, d, hit, scaled, geo):
         k = prim - n_spheres
         n = (normals[k, 0], normals[k, 1], normals[k, 2])
         if scaled:
-            p = (b0 * rows[prim, 0] + b1 * rows[prim, 3] + b2 * rows[prim, 6],
-                 b0 * rows[prim, 1] + b1 * rows[prim, 4] + b2 * rows[prim, 7],
-                 b0 * rows[prim, 2] + b1 * rows[prim, 5] + b2 * rows[prim, 8])
+            p = barycentric_point(rows, prim, b0, b1, b2)
     error = error_bound(magnitude[prim]) if scaled else 0.0
     return p, n, error
 
@@ -103,7 +103,7 @@ def shade_hit(o, d, hit, weight, depth, materials, lights, opts, geo, grid, bvh,
     rec : (record_size(L),) float64, written.
     """
     prim = hit[lay.HIT_PRIM]
-    ob = geo[2][prim]
+    ob = geo[lay.GEO_PRIM_OBJECT][prim]
     scaled = opts[lay.OPT_SCALED_OFFSET] > 0.0
     t_start = 0.0 if scaled else opts[lay.OPT_EPSILON]
     method = int(opts[lay.OPT_ACCEL])
