@@ -239,9 +239,16 @@ def crossing(e0, e1, e2, x0, y0, z0, x1, y1, z1, x2, y2, z2, sz):
       distance of corner ``i`` from the ray in ray space (L1), the weights are
       ``n_k / (n_j + n_k)`` for ``j`` and ``n_j / (n_j + n_k)`` for ``k``.
     """
-    det = e0 + e1 + e2
-    if det == 0.0 or (e0 != 0.0 and e1 != 0.0 and e2 != 0.0):
+    if (e0 != 0.0 and e1 != 0.0 and e2 != 0.0) or e0 + e1 + e2 == 0.0:
         return plane_crossing(e0, e1, e2, z0, z1, z2, sz)
+    return _through_edge_or_corner(e0, e1, e2, x0, y0, z0, x1, y1, z1, x2, y2, z2, sz)
+
+
+# The rare case stays out of line, so that the tracer's hot loops stay small.
+@register_jitable(error_model="numpy")
+def _through_edge_or_corner(e0, e1, e2, x0, y0, z0, x1, y1, z1, x2, y2, z2, sz):
+    """:func:`crossing` where an edge function is exactly 0 (and ``e0 + e1 + e2 != 0``)."""
+    det = e0 + e1 + e2
     if e1 == 0.0 and e2 == 0.0:
         return det, z0 * sz, 1.0, 0.0, 0.0
     if e2 == 0.0 and e0 == 0.0:
