@@ -58,7 +58,7 @@ def run(args) -> int:
     from core.image_order.effects_plan import effects_plan
     from core.image_order.flat_scene import TraceSettings, kernel_inputs, trace_scene
     from core.image_order.kernels import layout, render
-    from core.image_order.kernels.primitives import BOUNDS_TESTS, PRIM_TESTS
+    from core.image_order.kernels.layout import BOUNDS_TESTS, HIT_PRIM, HIT_SIZE, PRIM_TESTS
     from core.image_order.ray_tracing import ensure_compiled, render_trace
     from core.scene import PointLight, Scene
 
@@ -80,7 +80,7 @@ def run(args) -> int:
     xs = np.arange(float(args.width))
     ys = np.arange(float(args.height))
     shape = (args.height, args.width)
-    hits, depth = np.zeros((*shape, 5)), np.zeros(shape)
+    hits, depth = np.zeros((*shape, HIT_SIZE)), np.zeros(shape)
     color, children = np.zeros((*shape, 3)), np.zeros((*shape, 2, layout.CHILD_SIZE))
     counters = []
 
@@ -97,7 +97,7 @@ def run(args) -> int:
     seconds = {name: statistics.median(times) for name, times in runs.items()}
     ours_rate = n_rays / seconds["ours"] / 1e6
     per_ray = counters[0] / n_rays
-    prims = hits[..., 0].reshape(-1)
+    prims = hits[..., HIT_PRIM].reshape(-1)
     print(f"ours   (numba 4-wide BVH, float64): {seconds['ours'] * 1e3:7.1f} ms  {ours_rate:6.2f} Mrays/s  "
           f"({(prims >= 0).mean():.0%} of rays hit; per ray {per_ray[BOUNDS_TESTS]:.1f} box and "
           f"{per_ray[PRIM_TESTS]:.1f} triangle tests)")

@@ -11,6 +11,7 @@ from __future__ import annotations
 from dataclasses import dataclass, replace
 
 import numpy as np
+from numba.extending import register_jitable
 
 from core import projection
 
@@ -157,31 +158,79 @@ class Camera:
         )
 
     def primary_rays(self, rows: tuple[int, int] | None = None) -> tuple[np.ndarray, np.ndarray]:
-        """One ray per pixel centre: origins and unit directions, (H, W, 3) each.
+        """One ray per pixel centre: origins and unit directions, (H, W, 3) each, world space.
 
-        Perspective rays start at the eye and pass through the pixel centre on
-        the near plane; orthographic rays are parallel to the viewing axis and
-        start on the near plane.  ``rows = (first, stop)`` gives only those
-        image rows.
+        The rays of :func:`pixel_ray`, the very ones the image-order kernels
+        trace (:mod:`core.image_order.ray_casting`): perspective rays start at
+        the eye and pass through the pixel centre; orthographic rays are
+        parallel to the viewing axis and start on the near plane.
+        ``rows = (first, stop)`` gives only those image rows.
         """
-        w, h = self.width, self.height
-        first, stop = rows if rows is not None else (0, h)
-        hw, hh = self.half_extent(1.0)
-        xs = ((np.arange(w) + 0.5) / w * 2.0 - 1.0) * hw
-        ys = (1.0 - (np.arange(first, stop) + 0.5) / h * 2.0) * hh
-        px, py = np.meshgrid(xs, ys)
-        rot = self.world_from_view[:3, :3]
-        eye = np.asarray(self.eye, dtype=float)
-        if self.projection == "orthographic":
-            view_pts = np.stack([px, py, np.full_like(px, -self.near)], axis=-1)
-            origins = view_pts @ rot.T + eye
-            directions = np.broadcast_to(self.forward, origins.shape).copy()
-        else:
-            view_dirs = np.stack([px, py, -np.ones_like(px)], axis=-1)
-            directions = view_dirs @ rot.T
-            directions /= np.linalg.norm(directions, axis=-1, keepdims=True)
-            origins = np.broadcast_to(eye, directions.shape).copy()
+        first, stop = rows if rows is not None else (0, self.height)
+        x, y = np.meshgrid(np.arange(self.width, dtype=float), np.arange(first, stop, dtype=float))
+        half_w, half_h = self.half_extent(1.0)
+        origin, direction, _, _ = pixel_ray(
+            x, y, float(self.width), float(self.height), half_w, half_h, tuple(map(float, self.eye)),
+            tuple(self.world_from_view[:3, :3].ravel().tolist()), tuple(self.forward.tolist()), self.near,
+            self.far, self.projection == "orthographic")
+        origins = np.stack([np.broadcast_to(c, x.shape) for c in origin], axis=-1)
+        directions = np.stack([np.broadcast_to(c, x.shape) for c in direction], axis=-1)
         return origins, directions
+
+
+@register_jitable(inline="always")
+def pixel_ray(x, y, width, height, half_width, half_height, eye, rotation, forward, near, far, orthographic):
+    """The primary ray through the centre of pixel ``(x, y)``: ``(origin, direction, t_min, t_max)``.
+
+    The lecture's ray "from the eye of the observer through the pixel".  One
+    formula for the tracer's kernels (compiled in, per pixel) and for
+    :meth:`Camera.primary_rays` (plain numpy, ``x`` and ``y`` arrays of pixels).
+
+    Parameters
+    ----------
+    x, y : float or array, pixels
+        Column and row, from the top-left corner of the image; the ray goes
+        through the pixel's centre ``(x + 0.5, y + 0.5)``.
+    width, height : float, pixels
+        Image size.
+    half_width, half_height : float
+        :meth:`Camera.half_extent` at distance 1 (perspective) or the view
+        volume's half size (orthographic), scene units.
+    eye : (3,) float tuple, world space
+    rotation : (9,) float tuple
+        ``world_from_view[:3, :3]`` row by row (view space looks down -z, +y up).
+    forward : (3,) float tuple, world space, the unit viewing direction.
+    near, far : float, scene units, the frustum's front and end planes.
+    orthographic : bool, parallel projection.
+
+    Returns
+    -------
+    origin, direction : (3,) tuples of floats (or arrays), world space
+        Perspective: from the eye, through the pixel's point on the image
+        plane at distance 1; orthographic: from the pixel's point on the near
+        plane, along ``forward``.  ``direction`` is unit length.
+    t_min, t_max : float (or arrays)
+        The part of the ray between the near and the far plane, so the ray
+        sees what the frustum holds.
+    """
+    px = ((x + 0.5) / width * 2.0 - 1.0) * half_width
+    py = (1.0 - (y + 0.5) / height * 2.0) * half_height
+    r = rotation
+    ex, ey, ez = eye
+    fx, fy, fz = forward
+    if orthographic:
+        vz = -near
+        o = (ex + r[0] * px + r[1] * py + r[2] * vz,
+             ey + r[3] * px + r[4] * py + r[5] * vz,
+             ez + r[6] * px + r[7] * py + r[8] * vz)
+        return o, (fx, fy, fz), 0.0, far - near
+    dx = r[0] * px + r[1] * py - r[2]
+    dy = r[3] * px + r[4] * py - r[5]
+    dz = r[6] * px + r[7] * py - r[8]
+    length = np.sqrt(dx * dx + dy * dy + dz * dz)
+    d = (dx / length, dy / length, dz / length)
+    along = d[0] * fx + d[1] * fy + d[2] * fz
+    return (ex, ey, ez), d, near / along, far / along
 
 
 #: The smallest pixel a camera may have, in radians of viewing angle (perspective)

@@ -1,16 +1,23 @@
-"""A brute-force ray caster in plain numpy: the tests' independent reference.
+"""The tests' independent references: a brute-force ray caster, and exact crossings.
 
-One ray per pixel, every object and every triangle tested, the closest hit
-wins, Lambert shading without shadows.  It shares no code with the compiled
-tracer (:mod:`core.image_order.ray_tracing`) or the rasterizer (:mod:`core.object_order.pipeline`),
-so agreeing with it means something.
+:func:`cast`: one ray per pixel, every object and every triangle tested, the
+closest hit wins, Lambert shading without shadows.  Apart from the camera's
+primary rays (:meth:`core.camera.Camera.primary_rays`) it shares no code with
+the compiled tracer (:mod:`core.image_order.ray_tracing`) or the rasterizer
+(:mod:`core.object_order.pipeline`), so agreeing with it means something.
+
+:func:`exact_sphere_roots` and :func:`exact_triangle_solve` solve the
+lecture's equations for one ray in exact rationals (and ``mpmath`` at 50
+digits for the square root), with none of the tracer's formulas.
 """
 
 from __future__ import annotations
 
 import time
 from dataclasses import dataclass, field
+from fractions import Fraction
 
+import mpmath
 import numpy as np
 
 from core.scene import Scene, Sphere
@@ -76,6 +83,52 @@ def hit_triangle(origins, directions, a, b, c):
         t = (q @ e2) * inv
     ok = (det != 0) & (alpha >= 0) & (beta >= 0) & (alpha + beta <= 1) & (t >= 0)
     return np.where(ok, t, np.inf)
+
+
+def exact_sphere_roots(origin, direction, center, radius):
+    """The roots ``t_near <= t_far`` of ``|o + t d - centre|² = r²`` to 50 digits, ``None`` on a miss.
+
+    The coefficients ``a, b, c`` and ``Δ = b² - 4ac`` are exact rationals of
+    the float inputs; only the square root and the division are rounded, at
+    50 significant digits.  Returns ``(t_near, t_far, line_distance)`` as
+    floats, ``line_distance`` being the exact distance from the centre to the
+    line, rounded.
+    """
+    f = [Fraction(o) - Fraction(c) for o, c in zip(origin, center, strict=True)]
+    d = [Fraction(x) for x in direction]
+    a = sum(x * x for x in d)
+    b = 2 * sum(fi * di for fi, di in zip(f, d, strict=True))
+    c = sum(fi * fi for fi in f) - Fraction(radius) ** 2
+    disc = b * b - 4 * a * c
+    with mpmath.workdps(50):
+        distance = float(mpmath.sqrt(mpmath.mpf(sum(fi * fi for fi in f) - (b / 2) ** 2 / a)))
+        if disc < 0:
+            return None
+        root = mpmath.sqrt(mpmath.mpf(disc))
+        near = (-mpmath.mpf(b) - root) / (2 * mpmath.mpf(a))
+        far = (-mpmath.mpf(b) + root) / (2 * mpmath.mpf(a))
+        return float(near), float(far), distance
+
+
+def exact_triangle_solve(origin, direction, a, b, c):
+    """``(alpha, beta, gamma, t)`` of ``o + t d = αA + βB + γC``, ``α + β + γ = 1``, as Fractions.
+
+    Gauss-Jordan elimination in exact rationals; ``None`` when the system is
+    singular (the ray is parallel to the triangle's plane).
+    """
+    o, d, A, B, C = ([Fraction(x) for x in v] for v in (origin, direction, a, b, c))
+    rows = [[A[k] - C[k], B[k] - C[k], -d[k], o[k] - C[k]] for k in range(3)]
+    for col in range(3):
+        pivot = next((r for r in range(col, 3) if rows[r][col] != 0), None)
+        if pivot is None:
+            return None
+        rows[col], rows[pivot] = rows[pivot], rows[col]
+        rows[col] = [x / rows[col][col] for x in rows[col]]
+        for r in range(3):
+            if r != col:
+                rows[r] = [x - rows[r][col] * y for x, y in zip(rows[r], rows[col], strict=True)]
+    alpha, beta, t = (row[3] for row in rows)
+    return alpha, beta, 1 - alpha - beta, t
 
 
 def cast(scene: Scene, rows: tuple[int, int] | None = None) -> RaycastImage:

@@ -32,6 +32,7 @@ from core.image_order.effects_plan import MODES, EffectsPlan
 from core.image_order.grid_of_cuboids import UniformGrid, build_grid
 from core.image_order.grid_of_cuboids import empty_kernel_tuple as no_grid
 from core.image_order.kernels import layout as lay
+from core.image_order.ray_casting import camera_array
 from core.scene import Scene, Sphere
 
 #: How many distinct geometries stay cached.
@@ -79,7 +80,7 @@ class Geometry:
         return self.rows.shape[0]
 
     def kernel_tuple(self) -> tuple:
-        """The arrays the kernels read, in the order they expect."""
+        """The arrays the kernels read, at the positions ``GEO_*`` of :mod:`.kernels.layout`."""
         return (self.rows, self.n_spheres, self.prim_object, self.object_prims,
                 self.bounding, self.normals, self.magnitude)
 
@@ -180,10 +181,11 @@ def _flatten(objects, key: bytes) -> Geometry:
     spheres = [(i, o) for i, o in enumerate(objects) if isinstance(o, Sphere)]
     meshes = [(i, o) for i, o in enumerate(objects) if not isinstance(o, Sphere)]
     n_spheres = len(spheres)
-    sphere_rows = np.zeros((n_spheres, 9))
+    sphere_rows = np.zeros((n_spheres, lay.ROW_SIZE))
     for k, (_, s) in enumerate(spheres):
-        sphere_rows[k, :4] = (*s.center, s.radius)
-    tri_rows = [m.corners.reshape(-1, 9) for _, m in meshes]
+        sphere_rows[k, lay.ROW_CENTER:lay.ROW_CENTER + 3] = s.center
+        sphere_rows[k, lay.ROW_RADIUS] = s.radius
+    tri_rows = [m.corners.reshape(-1, lay.ROW_SIZE) for _, m in meshes]  # corners A, B, C
     rows = np.ascontiguousarray(np.vstack([sphere_rows, *tri_rows]))
     counts = [len(t) for t in tri_rows]
     prim_object = np.concatenate(
@@ -203,7 +205,8 @@ def _flatten(objects, key: bytes) -> Geometry:
         bounding[i, :3], bounding[i, 3] = center, radius
 
     corners = rows[n_spheres:].reshape(-1, 3, 3)
-    centers, radii = sphere_rows[:, :3], sphere_rows[:, 3:4]
+    centers = sphere_rows[:, lay.ROW_CENTER:lay.ROW_CENTER + 3]
+    radii = sphere_rows[:, lay.ROW_RADIUS:lay.ROW_RADIUS + 1]
     magnitude = np.concatenate([np.abs(centers).max(axis=1, initial=0.0) + radii[:, 0],
                                 np.abs(corners).max(axis=(1, 2), initial=0.0)])
     lo = np.vstack([centers - radii, corners.min(axis=1)])
@@ -305,15 +308,3 @@ def kernel_inputs(scene: Scene, settings: TraceSettings, plan: EffectsPlan, flat
     return KernelInputs(camera_array(scene.camera), opts, lights, flat.materials,
                         flat.geometry.kernel_tuple(), grid, bvh, depth, int(opts[lay.OPT_ACCEL]))
 
-
-def camera_array(cam) -> np.ndarray:
-    """The observer as the kernels read it, (CAM_SIZE,) float64 (see :mod:`.kernels.layout`)."""
-    c = np.zeros(lay.CAM_SIZE)
-    c[lay.CAM_EYE:lay.CAM_EYE + 3] = cam.eye
-    c[lay.CAM_ROTATION:lay.CAM_ROTATION + 9] = cam.world_from_view[:3, :3].ravel()
-    c[lay.CAM_FORWARD:lay.CAM_FORWARD + 3] = cam.forward
-    c[lay.CAM_HALF_WIDTH], c[lay.CAM_HALF_HEIGHT] = cam.half_extent(1.0)
-    c[lay.CAM_WIDTH], c[lay.CAM_HEIGHT] = cam.width, cam.height
-    c[lay.CAM_ORTHOGRAPHIC] = cam.projection == "orthographic"
-    c[lay.CAM_NEAR], c[lay.CAM_FAR] = cam.near, cam.far
-    return c

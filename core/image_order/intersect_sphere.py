@@ -30,6 +30,15 @@ root whose numerator cancels.  As pbrt does, this module
 - calls the ray *tangent* when ``|v|`` equals ``r`` to within the rounding
   error of computing ``v`` (relative to ``|f| + r``); then both roots are
   ``-b / 2a``.
+
+One formula, two users
+----------------------
+:func:`sphere_roots` is that arithmetic, once.  ``register_jitable`` leaves it
+a plain Python function when :func:`intersect_sphere` calls it for the
+worked solution, and compiles it into the tracer's kernels
+(:mod:`core.image_order.kernels.intersect`) when they call it, so the
+explanation and the rendered image cross every sphere with the very same
+operations in the same order.
 """
 
 from __future__ import annotations
@@ -38,6 +47,7 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+from numba.extending import register_jitable
 
 #: Coordinates may be at most this big, and the radius and ``|d|`` at least its
 #: inverse, so that no square or product in the solution over- or underflows.
@@ -46,6 +56,79 @@ LIMIT = 1e60
 #: ``| |v| - r |`` below this times ``|f| + r`` counts as tangent: a few units of
 #: rounding in ``f = o - centre`` and in the projection that gives ``v``.
 TANGENT_TOLERANCE = 8 * np.finfo(float).eps
+
+#: How the line meets the sphere, as :func:`sphere_roots` reports it (index into ``CLASSIFICATIONS``).
+MISSES, TANGENT, CROSSES = 0, 1, 2
+CLASSIFICATIONS = ("misses", "tangent", "crosses")
+
+
+@register_jitable(inline="always")
+def sphere_roots(ox, oy, oz, dx, dy, dz, cx, cy, cz, r):
+    """The quadratic of the line ``o + t d`` and a sphere, and its two roots, without cancellation.
+
+    Parameters
+    ----------
+    ox, oy, oz, dx, dy, dz : float, world space
+        The line's start point ``o`` and direction ``d`` (not zero, any length;
+        ``t`` is in units of ``|d|``).
+    cx, cy, cz, r : float, world space
+        The sphere's centre and radius (``r > 0``).
+
+    Returns
+    -------
+    (a, half_b, c, line_distance, discriminant, kind, t_near, t_far) : floats and an int
+        ``a = d·d``, ``half_b = f·d`` and ``c = f·f - r²`` with ``f = o - centre``;
+        ``line_distance = |v|``, the distance from the centre to the line;
+        ``discriminant = b² - 4ac``, computed as ``4a (r + |v|)(r - |v|)``;
+        ``kind`` is ``MISSES``, ``TANGENT`` or ``CROSSES``; the roots
+        ``t_near <= t_far`` (both ``-half_b / a`` when tangent, both ``inf``
+        when the line misses).
+
+    Examples
+    --------
+    >>> sphere_roots(0.0, 0.0, 5.0, 0.0, 0.0, -1.0, 0.0, 0.0, 0.0, 1.0)
+    (1.0, -5.0, 24.0, 0.0, 4.0, 2, 4.0, 6.0)
+    """
+    fx, fy, fz = ox - cx, oy - cy, oz - cz
+    a = dx * dx + dy * dy + dz * dz
+    half_b = fx * dx + fy * dy + fz * dz
+    c = fx * fx + fy * fy + fz * fz - r * r
+    # The perpendicular offset v from the centre to the line, and its length |v|.
+    k = half_b / a
+    vx, vy, vz = fx - k * dx, fy - k * dy, fz - k * dz
+    dist = math.sqrt(vx * vx + vy * vy + vz * vz)
+    discriminant = 4.0 * a * (r + dist) * (r - dist)
+    # Decide from the discriminant, then find the roots: q / a and c / q, no cancellation.
+    if abs(dist - r) <= TANGENT_TOLERANCE * (math.sqrt(fx * fx + fy * fy + fz * fz) + r):
+        t = -half_b / a
+        return a, half_b, c, dist, discriminant, TANGENT, t, t
+    if dist > r:
+        return a, half_b, c, dist, discriminant, MISSES, math.inf, math.inf
+    q = -(half_b + math.copysign(math.sqrt(discriminant / 4.0), half_b))
+    t0, t1 = q / a, c / q
+    if t0 > t1:
+        return a, half_b, c, dist, discriminant, CROSSES, t1, t0
+    return a, half_b, c, dist, discriminant, CROSSES, t0, t1
+
+
+@register_jitable(inline="always")
+def outward_normal(px, py, pz, cx, cy, cz, dx, dy, dz):
+    """The unit normal ``(p - centre) / |p - centre|`` at a point ``p`` of a sphere, pointing out.
+
+    A sphere smaller than the rounding of its hit point (``p == centre``)
+    has no usable normal; it then faces the ray that found it, ``-d / |d|``.
+
+    Examples
+    --------
+    >>> outward_normal(0.0, 0.0, 2.0, 0.0, 0.0, 0.0, 0.0, 0.0, -1.0)
+    (0.0, 0.0, 1.0)
+    """
+    ux, uy, uz = px - cx, py - cy, pz - cz
+    length = math.sqrt(ux * ux + uy * uy + uz * uz)
+    if length > 0.0:
+        return ux / length, uy / length, uz / length
+    length = math.sqrt(dx * dx + dy * dy + dz * dz)
+    return -dx / length, -dy / length, -dz / length
 
 
 @dataclass(frozen=True)
@@ -225,27 +308,13 @@ def _intersect(origin, direction, end, center, radius) -> SphereIntersection:
     if np.max(np.abs(d)) < 1 / LIMIT:
         raise ValueError("direction must not be the zero vector (nor shorter than 1e-60)")
 
-    # Compute the quadratic's coefficients from f = o - centre.
+    # The quadratic's coefficients, its discriminant and roots: the tracer's own arithmetic.
     f = o - centre
-    a = float(d @ d)
-    half_b = float(f @ d)
-    c = float(f @ f) - r * r
-    # Distance from the centre to the line, via the perpendicular offset v.
-    v = f - (half_b / a) * d
-    dist = float(np.linalg.norm(v))
-    discriminant = 4.0 * a * (r + dist) * (r - dist)
-
-    # Decide from the discriminant, then find the roots.
-    if abs(dist - r) <= TANGENT_TOLERANCE * (float(np.linalg.norm(f)) + r):
-        classification = "tangent"
-        t_near = t_far = -half_b / a
-    elif dist > r:
-        classification = "misses"
+    a, half_b, c, dist, discriminant, kind, t_near, t_far = sphere_roots(
+        *o.tolist(), *d.tolist(), *centre.tolist(), r)
+    classification = CLASSIFICATIONS[kind]
+    if kind == MISSES:
         t_near = t_far = None
-    else:
-        classification = "crosses"
-        q = -(half_b + math.copysign(math.sqrt(discriminant / 4.0), half_b))
-        t_near, t_far = sorted((q / a, c / q))
 
     t_max = 1.0 if end is not None else math.inf
     t, chosen, reason = _choose(classification, t_near, t_far, t_max)
@@ -253,10 +322,7 @@ def _intersect(origin, direction, end, center, radius) -> SphereIntersection:
     point = normal = None
     if t is not None:
         point = o + t * d
-        outward = f + t * d
-        length = np.linalg.norm(outward)
-        # (length is 0 only for a sphere smaller than the rounding of f: face the ray)
-        normal = outward / length if length > 0 else -d / np.linalg.norm(d)
+        normal = np.array(outward_normal(*point.tolist(), *centre.tolist(), *d.tolist()))
     return SphereIntersection(
         origin=o, direction=d, end=end, center=centre, radius=r, offset=f,
         a=a, b=2.0 * half_b, c=c, half_b=half_b, line_distance=dist,

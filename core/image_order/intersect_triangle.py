@@ -18,38 +18,66 @@ Rounding can make a ray that passes exactly through an edge shared by two
 triangles miss *both* (a crack in a closed mesh).  :func:`intersect_triangle`
 therefore decides with pbrt-v4's watertight test (Woop, Benthin and Wald,
 2013): move the vertices so the ray starts at the origin, rename the axes so
-the ray's largest direction component is z, shear so the ray becomes the
-+z axis, and look at the triangle from along the ray in 2D.  The edge
-functions ``e0, e1, e2`` (twice the signed areas of the triangles the ray
+the ray's largest direction component is z (:func:`ray_shear`), shear so the
+ray becomes the +z axis, and look at the triangle from along the ray in 2D
+(:func:`to_ray_space`).  The edge functions ``e0, e1, e2``
+(:func:`edge_functions`: twice the signed areas of the triangles the ray
 makes with each edge) are computed so that
 
 - an edge evaluated from its other end gives exactly the negated value (a
   ray is on exactly one side of a shared edge), and
 - their sign is exact: when the rounded value is too small to trust, it is
-  recomputed exactly with :class:`fractions.Fraction`.
+  recomputed with error-free products (:func:`difference_of_products`).
 
-The ray hits when the three values have the same sign, zeros included, and
-do not all vanish.  Then ``α = e0 / (e0 + e1 + e2)`` and so on, and ``t``
-follows the same way.  If an edge function is exactly zero (the ray passes
-through an edge or vertex) ``t`` and the weights are computed exactly, so
-neighbouring triangles report the very same ``t``.
+The ray hits when the three values have the same sign, zeros included
+(:func:`straddles` says when they do not), and do not all vanish.  Then
+``α = e0 / (e0 + e1 + e2)`` and so on, and ``t`` follows the same way
+(:func:`crossing`).
+
+Tie rules
+---------
+- *Axis*: when two direction components are equal in size, the later axis
+  becomes z (z before y before x, as pbrt's ``MaxComponentIndex``): for
+  ``d = (1, 1, 0)`` and ``(1, -1, 0)`` it is y, for ``(1, 1, 1)`` it is z.
+  Any axis with ``d_k != 0`` would do; this one is fixed so that the
+  explanation and the tracer always look at a triangle the same way.
+- *Shared edge*: triangles are closed (their edges and corners belong to
+  them), so a ray through the inside of an edge shared by two triangles that
+  lie on either side of it hits *both*, and a ray through a shared corner
+  hits every triangle around it.  Proof: the shared edge's function is
+  exactly ``0`` in both (exact sign, exact antisymmetry), and each
+  triangle's other two edge functions are the ray's barycentric weights of
+  that triangle's two ends of the edge times its determinant, so they share
+  its sign.  There ``t`` and the weights come from the edge alone (see
+  :func:`crossing`), so both triangles report the very same ``t`` and point,
+  bit for bit.  The tracer's closest-hit search keeps the first of equal
+  crossings it meets.
+
+These functions are ``register_jitable``: plain Python when
+:func:`intersect_triangle` calls them for the worked solution, compiled into
+the tracer (:mod:`core.image_order.kernels.intersect`) when a kernel calls
+them, so both compute every crossing with the same operations.
 """
 
 from __future__ import annotations
 
-import contextlib
 import math
 from dataclasses import dataclass
 from fractions import Fraction
 
 import numpy as np
+from numba.extending import register_jitable
+
+from core.image_order.kernels.layout import ROW_A, ROW_B, ROW_C
 
 _UNIT_ROUNDOFF = 2.0**-53
 #: A rounded ``p*q - r*s`` is trusted when bigger than this times ``|pq| + |rs|``
 #: (the true error bound is below 3 unit roundoffs); the tiny absolute term
 #: covers products that underflow.
-_EDGE_ERROR = 4 * _UNIT_ROUNDOFF
-_UNDERFLOW = 2.0**-1070
+EDGE_ERROR = 4 * _UNIT_ROUNDOFF
+UNDERFLOW = 2.0**-1070
+#: Veltkamp's splitter 2^27 + 1: cuts a double into two halves of 26 bits.
+_SPLITTER = 134217729.0
 #: Coordinates may be at most this big and ``|d|`` at least its inverse, so that
 #: no product below over- or underflows.
 LIMIT = 1e60
@@ -57,6 +85,185 @@ LIMIT = 1e60
 PARALLEL_TOLERANCE = 1e-12
 
 NAMES = ("alpha", "beta", "gamma")
+
+
+@register_jitable
+def two_product(a, b):
+    """``a * b`` as an unevaluated sum ``p + e`` that is exact (Dekker, 1971)."""
+    p = a * b
+    s = _SPLITTER * a
+    a_hi = s - (s - a)
+    a_lo = a - a_hi
+    s = _SPLITTER * b
+    b_hi = s - (s - b)
+    b_lo = b - b_hi
+    e = ((a_hi * b_hi - p) + a_hi * b_lo + a_lo * b_hi) + a_lo * b_lo
+    return p, e
+
+
+@register_jitable
+def difference_of_products(a, b, c, d):
+    """``a*b - c*d`` with the exact sign; swapping the products negates it exactly.
+
+    Near zero the rounded difference may have the wrong sign; there the two
+    products are formed exactly with :func:`two_product`.  The high parts are
+    then within a factor two of each other, so their difference is exact
+    (Sterbenz), and adding the difference of the low parts keeps the sign.
+    An exact zero stays ``0.0``.
+    """
+    left = a * b
+    right = c * d
+    value = left - right
+    if abs(value) > EDGE_ERROR * (abs(left) + abs(right)) + UNDERFLOW:
+        return value
+    l_hi, l_lo = two_product(a, b)
+    r_hi, r_lo = two_product(c, d)
+    return (l_hi - r_hi) + (l_lo - r_lo)
+
+
+@register_jitable(inline="always")
+def ray_shear(dx, dy, dz):
+    """The per-ray constants of the watertight test: ``(kx, ky, kz, sx, sy, sz)``.
+
+    ``kz`` is the axis of the largest ``|d|`` component (on a tie the later
+    axis: z before y before x), ``kx, ky`` the next two in cyclic order; the
+    shear ``(sx, sy, sz) = (-d_kx/d_kz, -d_ky/d_kz, 1/d_kz)`` maps the ray
+    direction to +z.
+
+    Examples
+    --------
+    >>> ray_shear(1.0, 1.0, 0.0)[:3], ray_shear(1.0, 1.0, 1.0)[:3]
+    ((2, 0, 1), (0, 1, 2))
+    """
+    ax, ay, az = abs(dx), abs(dy), abs(dz)
+    # x only when strictly the largest, else y when strictly larger than z, else z.  (Written
+    # without branches: numba's inliner mislays a variable assigned on several branches.)
+    x_largest = (ax > ay) & (ax > az)
+    y_largest = (ay > az) & (ax <= ay)
+    kz = 2 - 1 * y_largest - 2 * x_largest
+    kx = (kz + 1) % 3
+    ky = (kx + 1) % 3
+    d = (dx, dy, dz)
+    return kx, ky, kz, -d[kx] / d[kz], -d[ky] / d[kz], 1.0 / d[kz]
+
+
+@register_jitable(inline="always")
+def to_ray_space(rows, k, o, shear):
+    """The corners of triangle ``rows[k]`` seen from along the ray: translate, permute, shear.
+
+    Parameters
+    ----------
+    rows : (n, 9) float64 array, k : int
+        Row ``k`` holds the corners ``A, B, C`` one after the other, world
+        space.  (Indexed in place: in the kernels a row view would cost a
+        reference count update per test.)
+    o : (3,) float tuple, world space, the ray origin.
+    shear : the ray's :func:`ray_shear`.
+
+    Returns
+    -------
+    (x0, y0, z0, x1, y1, z1, x2, y2, z2) : floats
+        Corner ``i`` in ray space, where the ray is the +z axis from the
+        origin; ``z`` is not yet scaled by ``sz`` (``t = z * sz`` on the ray).
+    """
+    kx, ky, kz, sx, sy, _ = shear
+    okx, oky, okz = o[kx], o[ky], o[kz]
+    z0 = rows[k, ROW_A + kz] - okz
+    z1 = rows[k, ROW_B + kz] - okz
+    z2 = rows[k, ROW_C + kz] - okz
+    x0 = rows[k, ROW_A + kx] - okx + sx * z0
+    y0 = rows[k, ROW_A + ky] - oky + sy * z0
+    x1 = rows[k, ROW_B + kx] - okx + sx * z1
+    y1 = rows[k, ROW_B + ky] - oky + sy * z1
+    x2 = rows[k, ROW_C + kx] - okx + sx * z2
+    y2 = rows[k, ROW_C + ky] - oky + sy * z2
+    return x0, y0, z0, x1, y1, z1, x2, y2, z2
+
+
+@register_jitable(inline="always")
+def barycentric_point(rows, k, b0, b1, b2):
+    """The point ``b0 A + b1 B + b2 C`` of triangle ``rows[k]`` (as :func:`to_ray_space`), world space."""
+    return (b0 * rows[k, ROW_A] + b1 * rows[k, ROW_B] + b2 * rows[k, ROW_C],
+            b0 * rows[k, ROW_A + 1] + b1 * rows[k, ROW_B + 1] + b2 * rows[k, ROW_C + 1],
+            b0 * rows[k, ROW_A + 2] + b1 * rows[k, ROW_B + 2] + b2 * rows[k, ROW_C + 2])
+
+
+@register_jitable(inline="always")
+def edge_functions(x0, y0, x1, y1, x2, y2):
+    """``(e0, e1, e2)``: the edge functions of edges BC, CA, AB at the ray (the 2D origin).
+
+    ``e0 = x1 y2 - y1 x2`` and cyclically, each with the exact sign
+    (:func:`difference_of_products`); ``e0`` is the weight of corner A times
+    ``e0 + e1 + e2``.
+    """
+    e0 = difference_of_products(x1, y2, y1, x2)
+    e1 = difference_of_products(x2, y0, y2, x0)
+    e2 = difference_of_products(x0, y1, y0, x1)
+    return e0, e1, e2
+
+
+@register_jitable(inline="always")
+def straddles(e0, e1, e2):
+    """The edge functions have mixed signs: the ray passes outside the triangle."""
+    negative = (e0 < 0.0) | (e1 < 0.0) | (e2 < 0.0)
+    positive = (e0 > 0.0) | (e1 > 0.0) | (e2 > 0.0)
+    return negative & positive
+
+
+@register_jitable(inline="always")
+def plane_crossing(e0, e1, e2, z0, z1, z2, sz):
+    """``(det, t, b0, b1, b2)`` where the ray meets the triangle's plane, from the edge functions.
+
+    ``det = e0 + e1 + e2``; ``b_i = e_i / det`` weights corner ``i`` and ``t``
+    is the same mix of the corners' ``z * sz``.  ``det == 0`` (the ray is
+    parallel to the plane, or lies in it) gives NaN for the rest.
+    """
+    det = e0 + e1 + e2
+    if det == 0.0:
+        return det, math.nan, math.nan, math.nan, math.nan
+    t = (e0 * (z0 * sz) + e1 * (z1 * sz) + e2 * (z2 * sz)) / det
+    return det, t, e0 / det, e1 / det, e2 / det
+
+
+@register_jitable(inline="always")
+def crossing(e0, e1, e2, x0, y0, z0, x1, y1, z1, x2, y2, z2, sz):
+    """``(det, t, b0, b1, b2)`` of a ray that does not straddle the triangle.
+
+    As :func:`plane_crossing`, except where the ray passes exactly through an
+    edge or a corner (an edge function is exactly 0).  There the crossing is
+    computed from that edge alone, symmetrically in its two ends, so that the
+    neighbouring triangle sharing the edge gets the very same ``t`` and weights:
+
+    - corner ``i`` (two edge functions are 0): ``t = z_i sz``, weight 1;
+    - edge from corner ``j`` to ``k``: with ``n_i = |x_i| + |y_i|``, the
+      distance of corner ``i`` from the ray in ray space (L1), the weights are
+      ``n_k / (n_j + n_k)`` for ``j`` and ``n_j / (n_j + n_k)`` for ``k``.
+    """
+    if (e0 != 0.0 and e1 != 0.0 and e2 != 0.0) or e0 + e1 + e2 == 0.0:
+        return plane_crossing(e0, e1, e2, z0, z1, z2, sz)
+    return _through_edge_or_corner(e0, e1, e2, x0, y0, z0, x1, y1, z1, x2, y2, z2, sz)
+
+
+# The rare case stays out of line, so that the tracer's hot loops stay small.
+@register_jitable(error_model="numpy")
+def _through_edge_or_corner(e0, e1, e2, x0, y0, z0, x1, y1, z1, x2, y2, z2, sz):
+    """:func:`crossing` where an edge function is exactly 0 (and ``e0 + e1 + e2 != 0``)."""
+    det = e0 + e1 + e2
+    if e1 == 0.0 and e2 == 0.0:
+        return det, z0 * sz, 1.0, 0.0, 0.0
+    if e2 == 0.0 and e0 == 0.0:
+        return det, z1 * sz, 0.0, 1.0, 0.0
+    if e0 == 0.0 and e1 == 0.0:
+        return det, z2 * sz, 0.0, 0.0, 1.0
+    n0, n1, n2 = abs(x0) + abs(y0), abs(x1) + abs(y1), abs(x2) + abs(y2)
+    if e0 == 0.0:  # on edge BC
+        s = n1 + n2
+        return det, (n2 * (z1 * sz) + n1 * (z2 * sz)) / s, 0.0, n2 / s, n1 / s
+    if e1 == 0.0:  # on edge CA
+        s = n2 + n0
+        return det, (n0 * (z2 * sz) + n2 * (z0 * sz)) / s, n2 / s, 0.0, n0 / s
+    s = n0 + n1  # on edge AB
+    return det, (n1 * (z0 * sz) + n0 * (z1 * sz)) / s, n1 / s, n0 / s, 0.0
 
 
 @dataclass(frozen=True)
@@ -198,19 +405,6 @@ def _degenerate(A, B, C) -> bool:
                           [q - p for q, p in zip(c, a, strict=True)]))
 
 
-def _edge(p, q) -> float:
-    """``p.x q.y - p.y q.x`` with the exact sign; ``_edge(q, p) == -_edge(p, q)`` exactly."""
-    left, right = p[0] * q[1], p[1] * q[0]
-    value = left - right
-    if abs(value) > _EDGE_ERROR * (abs(left) + abs(right)) + _UNDERFLOW:
-        return value
-    return float(_edge_exact(p, q))
-
-
-def _edge_exact(p, q) -> Fraction:
-    return Fraction(p[0]) * Fraction(q[1]) - Fraction(p[1]) * Fraction(q[0])
-
-
 def intersect_triangle(origin, direction, a, b, c) -> TriangleIntersection:
     """Cross the ray ``o + t d`` (``t >= 0``) with the triangle ``(A, B, C)``, watertight.
 
@@ -245,50 +439,39 @@ def intersect_triangle(origin, direction, a, b, c) -> TriangleIntersection:
     lecture = _cramer(o, d, *vertices)
     A, B, C = vertices
 
+    rows = vertices.reshape(1, 9)
+
     def result(hit, reason, e=(0.0, 0.0, 0.0), solved=(None, None, None, None)):
         t, alpha, beta, gamma = solved
-        point = alpha * A + beta * B + gamma * C if hit else None
+        point = np.array(barycentric_point(rows, 0, alpha, beta, gamma)) if hit else None
         return TriangleIntersection(o, d, vertices, lecture.det, tuple(map(float, e)), hit,
                                     t, alpha, beta, gamma, point, reason)
 
     if _degenerate(A, B, C):
         return result(False, "degenerate triangle: its vertices are collinear, so it has no plane")
 
-    # Transform the vertices to ray space: translate, permute (largest |d| is z), shear.
-    kz = int(np.argmax(np.abs(d)))
-    kx, ky = (kz + 1) % 3, (kz + 2) % 3
-    dx, dy, dz = float(d[kx]), float(d[ky]), float(d[kz])
-    sx, sy, sz = -dx / dz, -dy / dz, 1.0 / dz
-    pts = []
-    for vertex in vertices:
-        rel = vertex - o
-        x, y, z = float(rel[kx]), float(rel[ky]), float(rel[kz])
-        pts.append((x + sx * z, y + sy * z, z * sz))
-    p0, p1, p2 = pts
-
-    # Compute the edge functions (exact sign, exactly antisymmetric).
-    e = [_edge(p1, p2), _edge(p2, p0), _edge(p0, p1)]
-    z = [p[2] for p in pts]
-    if 0.0 in e:  # through an edge or vertex: finish in exact arithmetic
-        e = [_edge_exact(p1, p2), _edge_exact(p2, p0), _edge_exact(p0, p1)]
-        z = [Fraction(zi) for zi in z]
-    det = sum(e)
-    solved = (None, None, None, None)
-    if det != 0:
-        t_scaled = e[0] * z[0] + e[1] * z[1] + e[2] * z[2]
-        with contextlib.suppress(OverflowError):  # an exact ratio beyond float64: ~parallel
-            solved = tuple(float(x / det) for x in (t_scaled, *e))
+    # The watertight test, with the tracer's own functions: ray space, edge functions, crossing.
+    shear = ray_shear(*d.tolist())
+    x0, y0, z0, x1, y1, z1, x2, y2, z2 = (
+        float(v) for v in to_ray_space(rows, 0, tuple(o.tolist()), shear))
+    e = edge_functions(x0, y0, x1, y1, x2, y2)
+    outside = straddles(*e)
+    if outside:  # where the ray meets the plane, to say which weights are negative
+        det, *solved = plane_crossing(*e, z0, z1, z2, shear[5])
+    else:
+        det, *solved = crossing(*e, x0, y0, z0, x1, y1, z1, x2, y2, z2, shear[5])
+    if det == 0.0 or not all(map(math.isfinite, solved)):  # no crossing, or one beyond float64
+        solved = (None, None, None, None)
     scale = math.hypot(*d) * math.hypot(*(A - C)) * math.hypot(*(B - C))
-    parallel = (solved[0] is None or not all(map(math.isfinite, solved))
-                or abs(lecture.det) <= PARALLEL_TOLERANCE * scale)
+    parallel = solved[0] is None or abs(lecture.det) <= PARALLEL_TOLERANCE * scale
 
     # Perform the triangle edge and determinant tests.
-    if min(e) < 0 < max(e):
+    if outside:
         if parallel:
             return result(False, "parallel to the triangle's plane", e)
-        outside = [name for name, ei in zip(NAMES, e, strict=True) if ei * det < 0]
-        return result(False, "outside: " + " and ".join(f"{n} < 0" for n in outside), e, solved)
-    if det == 0 or solved[0] is None:
+        negative = [name for name, ei in zip(NAMES, e, strict=True) if ei * det < 0]
+        return result(False, "outside: " + " and ".join(f"{n} < 0" for n in negative), e, solved)
+    if solved[0] is None:
         return result(False, "parallel to the triangle's plane (the ray lies in it)", e)
     if solved[0] < 0:
         return result(False, "behind the origin: t < 0", e, solved)

@@ -1,8 +1,8 @@
 """Ray casting and Whitted ray tracing in image order: render a scene, count every ray.
 
 The lecture's image order: for each pixel a *primary ray* from the eye (or,
-in parallel projection, from the screen plane) through the pixel; its first
-hit gives the pixel its colour.
+in parallel projection, from the screen plane) through the pixel
+(:mod:`core.image_order.ray_casting`); its first hit gives the pixel its colour.
 
 - **Ray casting** (``mode="raycast"``): from the hit point one *shadow ray*
   towards each point light; a light contributes (Lambert + Phong,
@@ -47,16 +47,6 @@ from core.image_order.flat_scene import KernelInputs, TraceSettings, kernel_inpu
 from core.image_order.grid_of_cuboids import UniformGrid
 from core.image_order.kernels import layout as lay
 from core.image_order.kernels import render as trace_render
-from core.image_order.kernels.primitives import (
-    BOUNDS_TESTS,
-    CELLS,
-    N_COUNTERS,
-    PRIM_TESTS,
-    PRIMARY,
-    REFLECTION,
-    REFRACTION,
-    SHADOW,
-)
 from core.image_order.ray_tree import trace_pixel
 from core.presets_trace import warm_up_scene
 from core.scene import Scene
@@ -130,7 +120,7 @@ def render_trace(scene: Scene, settings: TraceSettings = TraceSettings(),
     inputs = kernel_inputs(scene, settings, plan, flat, structure)
     color, depth, hits, counters = _run_passes(xs, ys, inputs, times)
 
-    prims = hits[..., 0].astype(np.int64)
+    prims = hits[..., lay.HIT_PRIM].astype(np.int64)
     object_of = np.append(geometry.prim_object, -1)  # prim -1 (nothing hit) -> object -1
     object_index = object_of[prims]
     color = np.clip(color, 0.0, 1.0)
@@ -148,11 +138,11 @@ def render_trace(scene: Scene, settings: TraceSettings = TraceSettings(),
 def _run_passes(xs, ys, k: KernelInputs, times: dict):
     """The three compiled stages; fills ``times`` and returns colour, depth, hits and counters."""
     ny, nx = len(ys), len(xs)
-    hits = np.zeros((ny, nx, 5))
+    hits = np.zeros((ny, nx, lay.HIT_SIZE))
     depth = np.full((ny, nx), np.inf)
     color = np.zeros((ny, nx, 3))
-    children = np.zeros((ny, nx, 2, lay.CHILD_SIZE))
-    counters = np.zeros(N_COUNTERS, np.int64)
+    children = np.zeros((ny, nx, lay.N_SPAWNED, lay.CHILD_SIZE))
+    counters = np.zeros(lay.N_COUNTERS, np.int64)
     for stage, name in ((trace_render.PRIMARY_STAGE, "primary"), (trace_render.SHADE_STAGE, "shading"),
                         (trace_render.SECONDARY_STAGE, "secondary")):
         start = time.perf_counter()
@@ -167,8 +157,8 @@ def _run_passes(xs, ys, k: KernelInputs, times: dict):
 
 def _stats(settings, plan, structure, build_s, cached, counters, times, compile_s, rows, step,
            pixels, n_prims, cam) -> dict:
-    rays = {"primary": int(counters[PRIMARY]), "shadow": int(counters[SHADOW]),
-            "reflection": int(counters[REFLECTION]), "refraction": int(counters[REFRACTION])}
+    rays = {"primary": int(counters[lay.PRIMARY]), "shadow": int(counters[lay.SHADOW]),
+            "reflection": int(counters[lay.REFLECTION]), "refraction": int(counters[lay.REFRACTION])}
     total = sum(rays.values())
     per_ray = 1.0 / max(total, 1)
     accel = {
@@ -176,12 +166,12 @@ def _stats(settings, plan, structure, build_s, cached, counters, times, compile_
         "primitives": int(n_prims),
         "build_s": float(build_s),
         "cached": bool(cached),
-        "prim_tests": int(counters[PRIM_TESTS]),
-        "bounds_tests": int(counters[BOUNDS_TESTS]),
-        "cells_visited": int(counters[CELLS]),
-        "tests_per_ray": counters[PRIM_TESTS] * per_ray,
-        "bounds_tests_per_ray": counters[BOUNDS_TESTS] * per_ray,
-        "cells_per_ray": counters[CELLS] * per_ray,
+        "prim_tests": int(counters[lay.PRIM_TESTS]),
+        "bounds_tests": int(counters[lay.BOUNDS_TESTS]),
+        "cells_visited": int(counters[lay.CELLS]),
+        "tests_per_ray": counters[lay.PRIM_TESTS] * per_ray,
+        "bounds_tests_per_ray": counters[lay.BOUNDS_TESTS] * per_ray,
+        "cells_per_ray": counters[lay.CELLS] * per_ray,
     }
     accel.update(describe_structure(structure))
     return {

@@ -27,9 +27,9 @@ from core.image_order.flat_scene import TraceSettings, kernel_inputs, trace_scen
 from core.image_order.grid_of_cuboids import cells_on_ray
 from core.image_order.kernels import layout as lay
 from core.image_order.kernels.closest_hit import GRID, GRID_SPHERES, closest_hit
-from core.image_order.kernels.primitives import BOUNDS_TESTS, PRIM_TESTS
-from core.image_order.kernels.render import make_scratch, primary_ray
+from core.image_order.kernels.render import make_scratch
 from core.image_order.kernels.shade import shade_hit
+from core.image_order.ray_casting import primary_ray
 from core.scene import Scene
 
 KINDS = ("primary", "shadow", "reflection", "refraction")
@@ -189,14 +189,14 @@ class _Tracer:
         self.scene, self.k, self.structure, self.names = scene, k, structure, flat.names
         self.prim_object = flat.geometry.prim_object
         self.scratch = make_scratch(k.method, flat.geometry.n_prims, k.materials.shape[0], k.bvh_depth)
-        self.counters = np.zeros(8, np.int64)
+        self.counters = np.zeros(lay.N_COUNTERS, np.int64)
         self.rec = np.empty(lay.record_size(k.lights.shape[0]))
         self.t_start = 0.0 if settings.offset == "scaled" else settings.epsilon
         self.background = np.asarray(scene.background, dtype=float)
 
     def _work(self, before) -> dict:
         delta = self.counters - before
-        return {"tests": int(delta[PRIM_TESTS]), "bounds_tests": int(delta[BOUNDS_TESTS])}
+        return {"tests": int(delta[lay.PRIM_TESTS]), "bounds_tests": int(delta[lay.BOUNDS_TESTS])}
 
     def _cells(self, o, d, t_min, t_end):
         if self.k.method not in (GRID, GRID_SPHERES):
@@ -212,10 +212,10 @@ class _Tracer:
         work = self._work(before)
         base = dict(kind=kind, generation=generation, traced=True, origin=np.array(o), direction=np.array(d),
                     t_min=t_min, t_max=t_max, coefficient=coefficient, weight=weight, **work)
-        if h[0] < 0:
+        if h[lay.HIT_PRIM] < 0:
             return RayNode(status="hits nothing: background", color=self.background.copy(),
                            cells=self._cells(o, d, t_min, t_max), **base)
-        cells = self._cells(o, d, t_min, h[1])
+        cells = self._cells(o, d, t_min, h[lay.HIT_T])
         rec = self.rec
         shade_hit(o, d, h, weight, generation, k.materials, k.lights, k.opts, k.geo, k.grid, k.bvh,
                   self.scratch, self.counters, rec)
@@ -235,7 +235,7 @@ class _Tracer:
         if not np.isnan(rec[lay.REC_FRESNEL_R]):
             fresnel = (float(rec[lay.REC_FRESNEL_R]), float(rec[lay.REC_FRESNEL_T]))
         return RayNode(
-            status=f"hits {self.names[obj]}", hit=obj, hit_name=self.names[obj], t=float(h[1]),
+            status=f"hits {self.names[obj]}", hit=obj, hit_name=self.names[obj], t=float(h[lay.HIT_T]),
             point=rec[lay.REC_POINT:lay.REC_POINT + 3].copy(),
             normal=rec[lay.REC_NORMAL:lay.REC_NORMAL + 3].copy(),
             front_face=bool(rec[lay.REC_FRONT] > 0), local_color=local,

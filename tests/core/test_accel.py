@@ -12,8 +12,7 @@ from core.image_order.effects_plan import effects_plan
 from core.image_order.flat_scene import TraceSettings, kernel_inputs, trace_scene
 from core.image_order.grid_of_cuboids import cells_on_ray
 from core.image_order.kernels.closest_hit import closest_hit
-from core.image_order.kernels.layout import ACCEL_CODES
-from core.image_order.kernels.primitives import BOUNDS_TESTS, CELLS, N_COUNTERS, PRIM_TESTS
+from core.image_order.kernels.layout import ACCEL_CODES, BOUNDS_TESTS, CELLS, N_COUNTERS, PRIM_TESTS
 from core.image_order.kernels.render import make_scratch
 from core.presets_trace import bumpy_ball
 from core.scene import Material, Scene, Sphere

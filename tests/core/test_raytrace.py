@@ -8,8 +8,8 @@ import numpy as np
 import pytest
 
 from core import presets, presets_trace, shapes
-from core.image_order.flat_scene import TraceSettings, camera_array
-from core.image_order.kernels.render import primary_ray
+from core.image_order.flat_scene import TraceSettings
+from core.image_order.ray_casting import camera_array, primary_ray
 from core.image_order.ray_tracing import merge_band_stats, render_trace
 from core.image_order.ray_tree import trace_pixel
 from core.presets_trace import GLASS, MIRROR, translated
@@ -29,18 +29,28 @@ def pixel_of(scene: Scene, point) -> tuple[int, int]:
 
 
 @pytest.mark.parametrize("projection", ["perspective", "orthographic"])
-def test_primary_rays_are_the_cameras_rays(projection):
+def test_primary_rays_pass_through_their_pixel_centres_from_near_to_far(projection):
+    """The ray of pixel (x, y), followed through the object-order projection, lands on (x + 0.5, y + 0.5)."""
     scene = small(presets.lecture_scene(), 16, 12, projection=projection)
-    cam = camera_array(scene.camera)
-    origins, directions = scene.camera.primary_rays()
+    camera = scene.camera
+    cam = camera_array(camera)
+    origins, directions = camera.primary_rays()
     for y in range(12):
         for x in range(16):
             o, d, t_min, t_max = primary_ray(cam, float(x), float(y))
-            np.testing.assert_allclose(o, origins[y, x], rtol=0, atol=1e-14)
-            np.testing.assert_allclose(d, directions[y, x], rtol=0, atol=1e-15)
-            for t, plane in ((t_min, scene.camera.near), (t_max, scene.camera.far)):  # near to far plane
-                depth = np.dot(np.add(o, np.multiply(t, d)) - scene.camera.eye, scene.camera.forward)
+            # The camera's rays are the kernels' rays, bit for bit: one formula (core.camera.pixel_ray).
+            assert (tuple(origins[y, x]), tuple(directions[y, x])) == (tuple(o), tuple(d))
+            assert np.linalg.norm(d) == pytest.approx(1.0, rel=1e-15)
+            for t in (t_min, 0.5 * (t_min + t_max), t_max):
+                pixel = camera.project(np.add(o, np.multiply(t, d))).pixel
+                np.testing.assert_allclose(pixel, (x + 0.5, y + 0.5), rtol=0, atol=1e-9)
+            for t, plane in ((t_min, camera.near), (t_max, camera.far)):  # near to far plane
+                depth = np.dot(np.add(o, np.multiply(t, d)) - camera.eye, camera.forward)
                 assert depth == pytest.approx(plane, rel=1e-14)
+            if projection == "perspective":
+                assert tuple(o) == camera.eye
+            else:
+                np.testing.assert_array_equal(d, camera.forward)
 
 
 def test_a_pixel_that_sees_nothing_returns_the_background():

@@ -18,7 +18,8 @@ import math
 
 from core.image_order.kernels.intersect import sphere_roots
 from core.image_order.kernels.jit import jit
-from core.image_order.kernels.primitives import BOUNDS_TESTS, CELLS, PRIM_TESTS, no_hit, prim_hit
+from core.image_order.kernels.layout import BOUNDS_TESTS, CELLS, PRIM_TESTS
+from core.image_order.kernels.primitives import no_hit, prim_hit
 
 
 @jit

@@ -13,7 +13,8 @@ from __future__ import annotations
 
 from core.image_order.kernels.intersect import sphere_roots
 from core.image_order.kernels.jit import jit
-from core.image_order.kernels.primitives import BOUNDS_TESTS, PRIM_TESTS, no_hit, prim_hit
+from core.image_order.kernels.layout import BOUNDS_TESTS, GEO_N_SPHERES, GEO_ROWS, PRIM_TESTS
+from core.image_order.kernels.primitives import no_hit, prim_hit
 
 
 @jit
@@ -22,7 +23,7 @@ def brute_closest(o, d, shear, t_min, t_max, any_hit, geo, counters):
 
     Returns ``(prim, t, b0, b1, b2)`` as :func:`core.image_order.kernels.bvh_traverse.bvh_closest`.
     """
-    rows, n_spheres = geo[0], geo[1]
+    rows, n_spheres = geo[GEO_ROWS], geo[GEO_N_SPHERES]
     best = no_hit()
     best_t = t_max
     tests = 0

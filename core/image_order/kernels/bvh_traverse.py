@@ -26,7 +26,8 @@ from core.image_order.kernels.intersect import sphere_hit, triangle_hit
 from core.image_order.kernels.intrinsics.slabs4 import slab_test4
 from core.image_order.kernels.intrinsics.triangle4 import GROUP_SIZE, LANES, UNSURE, triangle_test4
 from core.image_order.kernels.jit import jit, jit_inline
-from core.image_order.kernels.primitives import BOUNDS_TESTS, PRIM_TESTS, no_hit, prim_hit
+from core.image_order.kernels.layout import BOUNDS_TESTS, PRIM_TESTS, ROW_CENTER, ROW_RADIUS
+from core.image_order.kernels.primitives import no_hit, prim_hit
 
 _OTHER_SIDE = WIDE_LO + WIDE_HI
 
@@ -50,7 +51,7 @@ def bvh_closest(o, d, shear, t_min, t_max, any_hit, bvh, n_spheres, stack, stack
 
     Parameters
     ----------
-    o, d : (3,) tuples, the ray; ``shear`` its :func:`~core.image_order.kernels.intersect.ray_shear`.
+    o, d : (3,) tuples, the ray; ``shear`` its :func:`~core.image_order.intersect_triangle.ray_shear`.
     t_min, t_max : float, the admissible range of ``t``.
     any_hit : bool, stop at the first crossing found (shadow rays).
     bvh : tuple ``(wide, refs, leaves, groups, order, rows)`` of
@@ -149,6 +150,7 @@ def _leaf_one_by_one(rows, order, n_spheres, first, count, o, d, shear, t_min, b
 @jit
 def _sphere_crossing(rows, k, prim, o, d, t_min):
     """The hit record of sphere ``rows[k]`` (primitive ``prim``), known to be crossed after ``t_min``."""
-    t = sphere_hit(o[0], o[1], o[2], d[0], d[1], d[2], rows[k, 0], rows[k, 1], rows[k, 2], rows[k, 3], t_min,
-                   math.inf)
+    c = ROW_CENTER
+    t = sphere_hit(o[0], o[1], o[2], d[0], d[1], d[2], rows[k, c], rows[k, c + 1], rows[k, c + 2],
+                   rows[k, ROW_RADIUS], t_min, math.inf)
     return prim, t, 0.0, 0.0, 0.0

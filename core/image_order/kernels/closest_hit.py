@@ -12,10 +12,11 @@ rays inline the BVH traversal, see :mod:`core.image_order.kernels.render`).
 
 from __future__ import annotations
 
+from core.image_order.intersect_triangle import ray_shear
+from core.image_order.kernels import layout as lay
 from core.image_order.kernels.accel_grid import grid_closest
 from core.image_order.kernels.accel_spheres import brute_closest, spheres_closest
 from core.image_order.kernels.bvh_traverse import bvh_closest
-from core.image_order.kernels.intersect import ray_shear
 from core.image_order.kernels.jit import jit, jit_inline
 
 NONE, SPHERES, GRID, GRID_SPHERES, BVH = range(5)
@@ -30,7 +31,7 @@ def _bvh_closest(o, d, shear, t_min, t_max, any_hit, bvh, n_spheres, stack, stac
 def _closest_other(method, o, d, shear, t_min, t_max, any_hit, geo, grid, scratch, counters):
     if method in (GRID, GRID_SPHERES):
         return grid_closest(o, d, shear, t_min, t_max, any_hit, method == GRID_SPHERES, geo, grid,
-                            scratch[:4], counters)
+                            scratch[:lay.SCRATCH_GRID], counters)
     if method == SPHERES:
         return spheres_closest(o, d, shear, t_min, t_max, any_hit, geo, counters)
     return brute_closest(o, d, shear, t_min, t_max, any_hit, geo, counters)
@@ -58,6 +59,7 @@ def closest_hit(method, o, d, t_min, t_max, any_hit, geo, grid, bvh, scratch, co
     """
     shear = ray_shear(d[0], d[1], d[2])
     if method == BVH:
-        return _bvh_closest(o, d, shear, t_min, t_max, any_hit, bvh, geo[1], scratch[4], scratch[5],
+        return _bvh_closest(o, d, shear, t_min, t_max, any_hit, bvh, geo[lay.GEO_N_SPHERES],
+                            scratch[lay.SCRATCH_STACK], scratch[lay.SCRATCH_STACK_T],
                             counters)
     return _closest_other(method, o, d, shear, t_min, t_max, any_hit, geo, grid, scratch, counters)

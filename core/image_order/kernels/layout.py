@@ -1,9 +1,10 @@
 """How the tracer's inputs and per-hit records are laid out in flat float64 arrays.
 
 Compiled kernels take plain arrays, so every structured value the tracer
-needs (a material, a light, the camera, the settings, the record of one hit)
-is a row of numbers.  The column names live here, once, for both the Python
-side that fills and reads them and the kernels that use them.
+needs (a material, a light, the camera, the settings, a closest hit, the
+record of one shaded hit, the work counters) is a row of numbers.  The
+column names live here, once, for both the Python side that fills and reads
+them and the kernels that use them.
 """
 
 from __future__ import annotations
@@ -54,6 +55,43 @@ OPT_SIZE = 10
 #: Acceleration method names in the order of their codes in ``OPT_ACCEL``.
 ACCEL_CODES = ("none", "spheres", "grid", "grid+spheres", "bvh")
 
+# --- the closest hit of a ray: ``(prim, t, b0, b1, b2)`` as the kernels return it, and one row
+# of the render's hits array (ny, nx, HIT_SIZE) ------------------------------------------------
+HIT_PRIM = 0  # primitive index (see core.image_order.kernels.primitives), -1: nothing hit
+HIT_T = 1  # ray parameter of the crossing
+HIT_B0, HIT_B1, HIT_B2 = 2, 3, 4  # a triangle's barycentric weights of its corners A, B, C
+HIT_SIZE = 5
+
+# --- primitives: (P, ROW_SIZE), see core.image_order.kernels.primitives ----------------------
+ROW_CENTER = 0  # a sphere: 3 columns, its centre, world space
+ROW_RADIUS = 3  # and its radius (the rest of the row is 0)
+ROW_A, ROW_B, ROW_C = 0, 3, 6  # a triangle: 3 columns per corner, world space
+ROW_SIZE = 9
+
+# --- the kernel tuples: positions in core.image_order.flat_scene.Geometry.kernel_tuple() ------
+GEO_ROWS = 0  # (P, 9) primitive rows
+GEO_N_SPHERES = 1  # primitives below this index are analytic spheres
+GEO_PRIM_OBJECT = 2  # (P,) object of each primitive
+GEO_OBJECT_PRIMS = 3  # (O, 2) first primitive and count per object
+GEO_BOUNDING = 4  # (O, 4) bounding sphere per object
+GEO_NORMALS = 5  # (T, 3) outward unit normal per triangle
+GEO_MAGNITUDE = 6  # (P,) largest coordinate magnitude per primitive
+# ... and in the per-thread scratch of core.image_order.kernels.render.make_scratch
+SCRATCH_GRID = 4  # the first four: the grid walk's mailbox, object stamps, object spans, stamp
+SCRATCH_STACK = 4  # the BVH traversal's stack of nodes
+SCRATCH_STACK_T = 5  # and the distances where the ray enters them
+
+# --- work counters: (N_COUNTERS,) int64, one array per thread ------------------------------
+PRIMARY, SHADOW, REFLECTION, REFRACTION = 0, 1, 2, 3  # rays traced, by kind
+PRIM_TESTS = 4  # ray-primitive tests
+BOUNDS_TESTS = 5  # bounding-sphere or box tests
+CELLS = 6  # grid cells walked
+N_COUNTERS = 7
+
+# --- the rays a hit spawns: the render's children array (ny, nx, N_SPAWNED, CHILD_SIZE) --------
+SPAWN_REFLECT, SPAWN_REFRACT = 0, 1
+N_SPAWNED = 2
+
 # --- the record of one hit, written by core.image_order.kernels.shade.shade_hit ----------------
 REC_PRIM = 0
 REC_OBJECT = 1
@@ -90,6 +128,11 @@ LR_BLOCKER_T = 9
 LR_CONTRIBUTION = 10
 LIGHT_REC_SIZE = 13
 LIGHT_BEHIND, LIGHT_UNBLOCKABLE, LIGHT_REACHED, LIGHT_BLOCKED = 0, 1, 2, 3
+
+# --- a secondary ray waiting on the render's stack: a child ray, then its generation and kind --
+STACK_GENERATION = CHILD_SIZE
+STACK_KIND = CHILD_SIZE + 1  # SPAWN_REFLECT or SPAWN_REFRACT
+STACK_SIZE = CHILD_SIZE + 2
 
 
 @register_jitable

@@ -3,7 +3,8 @@
 The flattened scene (:mod:`core.image_order.flat_scene`) numbers its primitives with the
 analytic spheres first and the triangles after them, and stores each as one
 row of nine numbers: ``(cx, cy, cz, r, 0, 0, 0, 0, 0)`` for a sphere, the
-corners ``A, B, C`` for a triangle.  Every acceleration method ends in
+corners ``A, B, C`` for a triangle (columns ``ROW_*`` of
+:mod:`core.image_order.kernels.layout`).  Every acceleration method ends in
 :func:`prim_hit` on such a row, so all of them compute bit-identical crossings
 and differ only in how many rows they test.
 """
@@ -14,10 +15,7 @@ import math
 
 from core.image_order.kernels.intersect import sphere_hit, triangle_hit
 from core.image_order.kernels.jit import jit, jit_inline
-
-#: Indices into a per-thread counter array (see :mod:`core.image_order.kernels.render`).
-PRIMARY, SHADOW, REFLECTION, REFRACTION, PRIM_TESTS, BOUNDS_TESTS, CELLS = range(7)
-N_COUNTERS = 7
+from core.image_order.kernels.layout import ROW_CENTER, ROW_RADIUS
 
 
 @jit_inline
@@ -28,13 +26,14 @@ def prim_hit(rows, k, is_sphere, o, d, shear, t_min, t_max):
     for a sphere).
     """
     if is_sphere:
-        t = sphere_hit(o[0], o[1], o[2], d[0], d[1], d[2], rows[k, 0], rows[k, 1], rows[k, 2], rows[k, 3],
-                       t_min, t_max)
+        c = ROW_CENTER
+        t = sphere_hit(o[0], o[1], o[2], d[0], d[1], d[2], rows[k, c], rows[k, c + 1], rows[k, c + 2],
+                       rows[k, ROW_RADIUS], t_min, t_max)
         return t, 0.0, 0.0, 0.0
     return triangle_hit(o, shear, rows, k, t_min, t_max)
 
 
 @jit
 def no_hit():
-    """The result of a query that found nothing: ``(prim, t, b0, b1, b2)``."""
+    """The result of a query that found nothing: ``(prim, t, b0, b1, b2)`` (see ``layout.HIT_*``)."""
     return -1, math.inf, 0.0, 0.0, 0.0

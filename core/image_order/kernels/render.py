@@ -32,63 +32,27 @@ import math
 import numpy as np
 from numba import prange
 
+from core.image_order.intersect_triangle import ray_shear
 from core.image_order.kernels import layout as lay
 from core.image_order.kernels.bvh_traverse import bvh_closest
 from core.image_order.kernels.closest_hit import BVH, GRID, GRID_SPHERES, closest_hit
-from core.image_order.kernels.intersect import ray_shear
 from core.image_order.kernels.intrinsics.bands import BAND_ROWS, take_band
-from core.image_order.kernels.jit import jit, jit_inline, jit_parallel
-from core.image_order.kernels.primitives import N_COUNTERS, PRIMARY, REFLECTION, REFRACTION
+from core.image_order.kernels.jit import jit, jit_parallel
 from core.image_order.kernels.shade import shade_hit
+from core.image_order.ray_casting import primary_ray, view_depth
 
 #: Counter rows are padded to a cache line so threads do not share one.
 _COUNTER_STRIDE = 8
 PRIMARY_STAGE, SHADE_STAGE, SECONDARY_STAGE = range(3)
 
 
-@jit_inline
-def primary_ray(cam, x, y):
-    """The ray through the centre of pixel ``(x, y)``: ``(origin, direction, t_min, t_max)``.
-
-    Perspective: from the eye through the pixel's point on the image plane;
-    orthographic: from the pixel's point on the near plane along the viewing
-    axis.  ``[t_min, t_max]`` is the part of the ray between the near and the
-    far plane, so the ray sees what the frustum holds (as
-    :meth:`core.camera.Camera.primary_rays`, with the same directions).
-    """
-    px = ((x + 0.5) / cam[lay.CAM_WIDTH] * 2.0 - 1.0) * cam[lay.CAM_HALF_WIDTH]
-    py = (1.0 - (y + 0.5) / cam[lay.CAM_HEIGHT] * 2.0) * cam[lay.CAM_HALF_HEIGHT]
-    r = lay.CAM_ROTATION
-    ex, ey, ez = cam[lay.CAM_EYE], cam[lay.CAM_EYE + 1], cam[lay.CAM_EYE + 2]
-    fx, fy, fz = cam[lay.CAM_FORWARD], cam[lay.CAM_FORWARD + 1], cam[lay.CAM_FORWARD + 2]
-    near, far = cam[lay.CAM_NEAR], cam[lay.CAM_FAR]
-    if cam[lay.CAM_ORTHOGRAPHIC] > 0.0:
-        vz = -near
-        o = (ex + cam[r] * px + cam[r + 1] * py + cam[r + 2] * vz,
-             ey + cam[r + 3] * px + cam[r + 4] * py + cam[r + 5] * vz,
-             ez + cam[r + 6] * px + cam[r + 7] * py + cam[r + 8] * vz)
-        return o, (fx, fy, fz), 0.0, far - near
-    dx = cam[r] * px + cam[r + 1] * py - cam[r + 2]
-    dy = cam[r + 3] * px + cam[r + 4] * py - cam[r + 5]
-    dz = cam[r + 6] * px + cam[r + 7] * py - cam[r + 8]
-    length = math.sqrt(dx * dx + dy * dy + dz * dz)
-    d = (dx / length, dy / length, dz / length)
-    along = d[0] * fx + d[1] * fy + d[2] * fz
-    return (ex, ey, ez), d, near / along, far / along
-
-
-@jit_inline
-def view_depth(cam, o, d, t):
-    """Distance along the viewing axis of the point ``o + t d`` (camera space, positive ahead)."""
-    f = lay.CAM_FORWARD
-    e = lay.CAM_EYE
-    return ((o[0] - cam[e]) * cam[f] + (o[1] - cam[e + 1]) * cam[f + 1] + (o[2] - cam[e + 2]) * cam[f + 2]
-            + t * (d[0] * cam[f] + d[1] * cam[f + 1] + d[2] * cam[f + 2]))
-
-
 @jit
 def make_scratch(method, n_prims, n_objects, bvh_depth):
-    """Per-thread work arrays for :func:`core.image_order.kernels.closest_hit.closest_hit`."""
+    """Per-thread work arrays for :func:`core.image_order.kernels.closest_hit.closest_hit`.
+
+    ``(mailbox, object_stamp, object_span, stamp, stack, stack_t)``, at the positions
+    ``SCRATCH_*`` of :mod:`core.image_order.kernels.layout`.
+    """
     grid = method in (GRID, GRID_SPHERES)
     stack_size = 3 * bvh_depth + 2 if method == BVH else 1
     return (np.zeros(n_prims if grid else 1, np.int64),
@@ -102,11 +66,12 @@ def make_scratch(method, n_prims, n_objects, bvh_depth):
 @jit
 def _primary_rows(first, last, cam, xs, ys, opts, geo, grid, bvh, scratch, hits, depth, count):
     method = int(opts[lay.OPT_ACCEL])
-    n_spheres, stack, stack_t = geo[1], scratch[4], scratch[5]
+    n_spheres = geo[lay.GEO_N_SPHERES]
+    stack, stack_t = scratch[lay.SCRATCH_STACK], scratch[lay.SCRATCH_STACK_T]
     for j in range(first, last):
         for i in range(xs.shape[0]):
             o, d, t_min, t_max = primary_ray(cam, xs[i], ys[j])
-            count[PRIMARY] += 1
+            count[lay.PRIMARY] += 1
             # BVH rays go straight to the traversal.  Through closest_hit, every array of every
             # structure would be bound anew for each ray, and numba updates the reference count of
             # each array it binds: a quarter of a primary ray's time.
@@ -115,15 +80,17 @@ def _primary_rows(first, last, cam, xs, ys, opts, geo, grid, bvh, scratch, hits,
                                 stack_t, count)
             else:
                 h = closest_hit(method, o, d, t_min, t_max, False, geo, grid, bvh, scratch, count)
-            hits[j, i, 0], hits[j, i, 1] = h[0], h[1]
-            hits[j, i, 2], hits[j, i, 3], hits[j, i, 4] = h[2], h[3], h[4]
-            if h[0] >= 0:
-                depth[j, i] = view_depth(cam, o, d, h[1])
+            prim, t, b0, b1, b2 = h
+            hits[j, i, lay.HIT_PRIM], hits[j, i, lay.HIT_T] = prim, t
+            hits[j, i, lay.HIT_B0], hits[j, i, lay.HIT_B1], hits[j, i, lay.HIT_B2] = b0, b1, b2
+            if prim >= 0:
+                depth[j, i] = view_depth(cam, o, d, t)
 
 
 @jit
 def _as_hit(row):
-    return int(row[0]), row[1], row[2], row[3], row[4]
+    """A row of the hits array as the closest-hit tuple ``(prim, t, b0, b1, b2)``."""
+    return int(row[lay.HIT_PRIM]), row[lay.HIT_T], row[lay.HIT_B0], row[lay.HIT_B1], row[lay.HIT_B2]
 
 
 @jit
@@ -131,7 +98,7 @@ def _shade_rows(first, last, cam, xs, ys, hits, color, children, materials, ligh
                 scratch, rec, count):
     for j in range(first, last):
         for i in range(xs.shape[0]):
-            if hits[j, i, 0] < 0:
+            if hits[j, i, lay.HIT_PRIM] < 0:
                 for a in range(3):
                     color[j, i, a] = opts[lay.OPT_BACKGROUND + a]
                 continue
@@ -141,8 +108,8 @@ def _shade_rows(first, last, cam, xs, ys, hits, color, children, materials, ligh
             for a in range(3):
                 color[j, i, a] = rec[lay.REC_LOCAL + a]
             for a in range(lay.CHILD_SIZE):
-                children[j, i, 0, a] = rec[lay.REC_REFLECT + a]
-                children[j, i, 1, a] = rec[lay.REC_REFRACT + a]
+                children[j, i, lay.SPAWN_REFLECT, a] = rec[lay.REC_REFLECT + a]
+                children[j, i, lay.SPAWN_REFRACT, a] = rec[lay.REC_REFRACT + a]
 
 
 @jit
@@ -151,26 +118,27 @@ def _secondary_rows(first, last, color, children, materials, lights, opts, geo, 
     method = int(opts[lay.OPT_ACCEL])
     max_depth = int(opts[lay.OPT_MAX_DEPTH])
     t_start = 0.0 if opts[lay.OPT_SCALED_OFFSET] > 0.0 else opts[lay.OPT_EPSILON]
-    stack = np.empty((2 * max_depth + 4, lay.CHILD_SIZE + 2))
+    stack = np.empty((2 * max_depth + 4, lay.STACK_SIZE))
+    o_at, d_at = lay.CHILD_ORIGIN, lay.CHILD_DIRECTION
     for j in range(first, last):
         for i in range(color.shape[1]):
             top = 0
-            for kind in range(2):
+            for kind in range(lay.N_SPAWNED):
                 if children[j, i, kind, lay.CHILD_STATUS] == lay.CHILD_TRACED:
                     for a in range(lay.CHILD_SIZE):
                         stack[top, a] = children[j, i, kind, a]
-                    stack[top, lay.CHILD_SIZE] = 1.0
-                    stack[top, lay.CHILD_SIZE + 1] = kind
+                    stack[top, lay.STACK_GENERATION] = 1.0
+                    stack[top, lay.STACK_KIND] = kind
                     top += 1
             while top > 0:
                 top -= 1
-                o = (stack[top, 0], stack[top, 1], stack[top, 2])
-                d = (stack[top, 3], stack[top, 4], stack[top, 5])
+                o = (stack[top, o_at], stack[top, o_at + 1], stack[top, o_at + 2])
+                d = (stack[top, d_at], stack[top, d_at + 1], stack[top, d_at + 2])
                 weight = stack[top, lay.CHILD_WEIGHT]
-                depth, kind = int(stack[top, lay.CHILD_SIZE]), stack[top, lay.CHILD_SIZE + 1]
-                count[REFLECTION if kind == 0 else REFRACTION] += 1
+                depth, kind = int(stack[top, lay.STACK_GENERATION]), stack[top, lay.STACK_KIND]
+                count[lay.REFLECTION if kind == lay.SPAWN_REFLECT else lay.REFRACTION] += 1
                 h = closest_hit(method, o, d, t_start, math.inf, False, geo, grid, bvh, scratch, count)
-                if h[0] < 0:
+                if h[lay.HIT_PRIM] < 0:
                     for a in range(3):
                         color[j, i, a] += weight * opts[lay.OPT_BACKGROUND + a]
                     continue
@@ -178,20 +146,21 @@ def _secondary_rows(first, last, color, children, materials, lights, opts, geo, 
                           rec)
                 for a in range(3):
                     color[j, i, a] += weight * rec[lay.REC_LOCAL + a]
-                for kind2 in range(2):
-                    at = lay.REC_REFLECT if kind2 == 0 else lay.REC_REFRACT
+                for kind2 in range(lay.N_SPAWNED):
+                    at = lay.REC_REFLECT if kind2 == lay.SPAWN_REFLECT else lay.REC_REFRACT
                     if rec[at + lay.CHILD_STATUS] == lay.CHILD_TRACED:
                         for a in range(lay.CHILD_SIZE):
                             stack[top, a] = rec[at + a]
-                        stack[top, lay.CHILD_SIZE] = depth + 1
-                        stack[top, lay.CHILD_SIZE + 1] = kind2
+                        stack[top, lay.STACK_GENERATION] = depth + 1
+                        stack[top, lay.STACK_KIND] = kind2
                         top += 1
 
 
 @jit
 def _worker(stage, queue, cam, xs, ys, hits, depth, color, children, materials, lights, opts, geo, grid, bvh,
             bvh_depth, count):
-    scratch = make_scratch(int(opts[lay.OPT_ACCEL]), geo[0].shape[0], materials.shape[0], bvh_depth)
+    scratch = make_scratch(int(opts[lay.OPT_ACCEL]), geo[lay.GEO_ROWS].shape[0], materials.shape[0],
+                           bvh_depth)
     rec = np.empty(lay.record_size(lights.shape[0]))
     while True:
         first = take_band(queue) * BAND_ROWS
@@ -217,11 +186,11 @@ def render_pass(stage, cam, xs, ys, hits, depth, color, children, materials, lig
     ----------
     stage : int
         ``PRIMARY_STAGE``: closest hit of every pixel's primary ray into
-        ``hits`` (ny, nx, 5) ``(prim, t, b0, b1, b2)`` (prim -1: nothing hit) and
+        ``hits`` (ny, nx, HIT_SIZE) ``(prim, t, b0, b1, b2)`` (prim -1: nothing hit) and
         its camera-space depth into ``depth`` (ny, nx) (left ``inf`` on a miss).
         ``SHADE_STAGE``: local colour of each hit into ``color`` (ny, nx, 3)
         (the background on a miss) and the reflected and refracted rays it
-        spawns into ``children`` (ny, nx, 2, CHILD_SIZE).
+        spawns into ``children`` (ny, nx, N_SPAWNED, CHILD_SIZE).
         ``SECONDARY_STAGE``: trace those rays and all their descendants, adding
         ``weight * colour`` of every hit (or of the background) to ``color``.
     cam, opts, materials, lights : arrays laid out as in :mod:`core.image_order.kernels.layout`.
@@ -240,4 +209,4 @@ def render_pass(stage, cam, xs, ys, hits, depth, color, children, materials, lig
     for w in prange(n_workers):
         _worker(stage, queue, cam, xs, ys, hits, depth, color, children, materials, lights, opts, geo, grid,
                 bvh, bvh_depth, counters[w])
-    return counters.sum(axis=0)[:N_COUNTERS]
+    return counters.sum(axis=0)[:lay.N_COUNTERS]

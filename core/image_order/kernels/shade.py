@@ -22,10 +22,11 @@ from __future__ import annotations
 
 import math
 
+from core.image_order.intersect_sphere import outward_normal
+from core.image_order.intersect_triangle import barycentric_point
 from core.image_order.kernels import layout as lay
 from core.image_order.kernels.closest_hit import closest_hit
 from core.image_order.kernels.jit import jit
-from core.image_order.kernels.primitives import SHADOW
 from core.image_order.optics import dot, fresnel_dielectric, reflect, refract
 from core.image_order.ray_offset import error_bound, offset_ray_origin
 from core.image_order.shading import lambert, phong, surface_split
@@ -50,19 +51,16 @@ def surface_point(o, d, hit, scaled, geo):
     rows, n_spheres, _, _, _, normals, magnitude = geo
     p = (o[0] + t * d[0], o[1] + t * d[1], o[2] + t * d[2])
     if prim < n_spheres:
-        cx, cy, cz, r = rows[prim, 0], rows[prim, 1], rows[prim, 2], rows[prim, 3]
-        u = (p[0] - cx, p[1] - cy, p[2] - cz)
-        length = math.sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2])
-        n = (u[0] / length, u[1] / length, u[2] / length) if length > 0.0 else _unit((-d[0], -d[1], -d[2]))
+        c = lay.ROW_CENTER
+        cx, cy, cz, r = rows[prim, c], rows[prim, c + 1], rows[prim, c + 2], rows[prim, lay.ROW_RADIUS]
+        n = outward_normal(p[0], p[1], p[2], cx, cy, cz, d[0], d[1], d[2])
         if scaled:
             p = (cx + r * n[0], cy + r * n[1], cz + r * n[2])
     else:
         k = prim - n_spheres
         n = (normals[k, 0], normals[k, 1], normals[k, 2])
         if scaled:
-            p = (b0 * rows[prim, 0] + b1 * rows[prim, 3] + b2 * rows[prim, 6],
-                 b0 * rows[prim, 1] + b1 * rows[prim, 4] + b2 * rows[prim, 7],
-                 b0 * rows[prim, 2] + b1 * rows[prim, 5] + b2 * rows[prim, 8])
+            p = barycentric_point(rows, prim, b0, b1, b2)
     error = error_bound(magnitude[prim]) if scaled else 0.0
     return p, n, error
 
@@ -104,8 +102,8 @@ def shade_hit(o, d, hit, weight, depth, materials, lights, opts, geo, grid, bvh,
     geo, grid, bvh, scratch, counters : as for ``closest_hit`` (shadow rays).
     rec : (record_size(L),) float64, written.
     """
-    prim = hit[0]
-    ob = geo[2][prim]
+    prim = hit[lay.HIT_PRIM]
+    ob = geo[lay.GEO_PRIM_OBJECT][prim]
     scaled = opts[lay.OPT_SCALED_OFFSET] > 0.0
     t_start = 0.0 if scaled else opts[lay.OPT_EPSILON]
     method = int(opts[lay.OPT_ACCEL])
@@ -121,7 +119,7 @@ def shade_hit(o, d, hit, weight, depth, materials, lights, opts, geo, grid, bvh,
     lr, lg, lb = ambient * color[0], ambient * color[1], ambient * color[2]
     rec[lay.REC_PRIM] = prim
     rec[lay.REC_OBJECT] = ob
-    rec[lay.REC_T] = hit[1]
+    rec[lay.REC_T] = hit[lay.HIT_T]
     _write3(rec, lay.REC_POINT, p)
     _write3(rec, lay.REC_NORMAL, n)
     rec[lay.REC_FRONT] = 1.0 if front else 0.0
@@ -131,7 +129,8 @@ def shade_hit(o, d, hit, weight, depth, materials, lights, opts, geo, grid, bvh,
     # Shadow rays and local shading, light by light.
     for i in range(lights.shape[0]):
         at = lay.REC_LIGHTS + i * lay.LIGHT_REC_SIZE
-        lx, ly, lz = lights[i, 0], lights[i, 1], lights[i, 2]
+        lp = lay.LIGHT_POSITION
+        lx, ly, lz = lights[i, lp], lights[i, lp + 1], lights[i, lp + 2]
         to_light = (lx - p[0], ly - p[1], lz - p[2])
         distance = math.sqrt(dot(to_light, to_light))
         to_light = (to_light[0] / distance, to_light[1] / distance, to_light[2] / distance)
@@ -150,15 +149,15 @@ def shade_hit(o, d, hit, weight, depth, materials, lights, opts, geo, grid, bvh,
             sd = (lx - so[0], ly - so[1], lz - so[2])
             s_dist = math.sqrt(dot(sd, sd))
             sd = (sd[0] / s_dist, sd[1] / s_dist, sd[2] / s_dist)
-            counters[SHADOW] += 1
+            counters[lay.SHADOW] += 1
             blocker = closest_hit(method, so, sd, t_start, s_dist, True, geo, grid, bvh, scratch,
                                   counters)
             _write3(rec, at + lay.LR_ORIGIN, so)
             _write3(rec, at + lay.LR_DIRECTION, sd)
             rec[at + lay.LR_DISTANCE] = s_dist
-            rec[at + lay.LR_BLOCKER] = blocker[0]
-            rec[at + lay.LR_BLOCKER_T] = blocker[1]
-            status = lay.LIGHT_BLOCKED if blocker[0] >= 0 else lay.LIGHT_REACHED
+            rec[at + lay.LR_BLOCKER] = blocker[lay.HIT_PRIM]
+            rec[at + lay.LR_BLOCKER_T] = blocker[lay.HIT_T]
+            status = lay.LIGHT_BLOCKED if blocker[lay.HIT_PRIM] >= 0 else lay.LIGHT_REACHED
         rec[at + lay.LR_STATUS] = status
         if status == lay.LIGHT_BLOCKED:
             continue

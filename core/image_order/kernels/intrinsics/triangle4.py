@@ -27,7 +27,7 @@ from llvmlite import ir
 from numba import types
 from numba.extending import intrinsic
 
-from core.image_order.kernels.intersect import EDGE_ERROR, UNDERFLOW
+from core.image_order.intersect_triangle import EDGE_ERROR, UNDERFLOW
 from core.image_order.kernels.intrinsics.simd import FOUR_F64, LANES, constant, fabs, lanes, load, splat
 
 AXIS_STRIDE = LANES
@@ -45,7 +45,7 @@ def triangle_test4(typingctx, groups, start, kx, ky, kz, okx, oky, okz, sx, sy, 
     Parameters
     ----------
     groups : 1-D float64 array of triangle groups, ``start`` the flat index of this one.
-    kx, ky, kz, sx, sy, sz : the ray's :func:`~core.image_order.kernels.intersect.ray_shear`.
+    kx, ky, kz, sx, sy, sz : the ray's :func:`~core.image_order.intersect_triangle.ray_shear`.
     okx, oky, okz : float, the ray origin's coordinates on the axes ``kx, ky, kz``.
     t_min, t_max : float, the admissible range of ``t``.
 
