@@ -10,7 +10,14 @@ import argparse
 import signal
 import sys
 
-from app import bench_raster, bench_trace, hardcases_command, intersect_command, render_command
+from app import (
+    bench_raster,
+    bench_trace,
+    export_command,
+    hardcases_command,
+    intersect_command,
+    render_command,
+)
 from app.usage import UsageError
 
 
@@ -27,6 +34,7 @@ def build_parser() -> argparse.ArgumentParser:
     intersect_command.add_parser(sub)
     render_command.add_parser(sub)
     hardcases_command.add_parser(sub)
+    export_command.add_parser(sub)
     bench = sub.add_parser("bench", help="time our pipelines against VTK / Embree (a benchmark, not a test)")
     kinds = bench.add_subparsers(dest="bench", metavar="KIND", required=True)
     for name, module in benchmarks.items():
@@ -38,7 +46,8 @@ def build_parser() -> argparse.ArgumentParser:
 
 def main(argv: list[str] | None = None) -> int:
     argv = list(sys.argv[1:] if argv is None else argv)
-    if not argv or argv[0] not in {"gui", "intersect", "render", "bench", "hardcases", "-h", "--help"}:
+    if not argv or argv[0] not in {"gui", "intersect", "render", "export", "bench", "hardcases",
+                                      "-h", "--help"}:
         argv.insert(0, "gui")
     if hasattr(signal, "SIGXFSZ"):  # over a file-size limit a write fails; the process lives
         signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
