@@ -291,23 +291,25 @@ def _picture(scene, args) -> np.ndarray:
     if args.what == "image":
         return render(scene, args)
     if args.what == "zbuffer":
-        return compose([_zbuffer_panel(scene)], 1)
+        return _zbuffer_sheet(scene)
     if args.what == "four-views":
         return _four_views(scene, args)
     return _comparison(scene, args)
 
 
-def _zbuffer_panel(scene) -> Panel:
+def _zbuffer_sheet(scene) -> np.ndarray:
     from core.object_order.pipeline import render_raster
 
     cam = scene.camera
     result = render_raster(scene)
     seen = result.depth[np.isfinite(result.depth)]
-    span = f", seen {seen.min():.3g} to {seen.max():.3g}" if seen.size else ", nothing seen"
+    span = (f"the surfaces seen lie between {seen.min():.3g} and {seen.max():.3g}" if seen.size
+            else "no surface is seen")
     ramp = depth_grey(np.linspace(cam.near, cam.far, cam.width)[None].repeat(10, 0), cam.near, cam.far)
-    return Panel(f"z-buffer: distance along the viewing axis (scene units{span})",
-                 depth_grey(result.depth, cam.near, cam.far), ramp,
-                 (f"near {cam.near:g}", f"far plane {cam.far:g}"))
+    panel = Panel("z-buffer", depth_grey(result.depth, cam.near, cam.far), ramp,
+                  (f"near {cam.near:g}", f"far {cam.far:g}"))
+    return compose([panel], 1, [f"Grey: distance along the viewing axis in scene units, from the near "
+                                f"plane (black) to the far plane (white); {span}."])
 
 
 def _four_views(scene, args) -> np.ndarray:

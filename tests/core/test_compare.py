@@ -67,17 +67,13 @@ def test_the_same_pixel_in_every_output_finds_the_nearest_polygon():
     # In the lecture's z-buffer figure blue is nearest wherever it overlaps the others.
     scene = zbuffer_three_polygons()
     blue = scene.objects[1]
-    x, y = np.floor(scene.camera.project(blue.vertices.mean(axis=0)).pixel).astype(int)
     for name in OUTPUTS:
         output = render_output(scene, name)
-        if name == "orthographic":
-            x0, y0 = np.floor(output.scene.camera.project(blue.vertices.mean(axis=0)).pixel).astype(int)
-            report = probe(output, int(x0), int(y0))
-        else:
-            report = probe(output, int(x), int(y))
+        # The pixel under blue's centroid, in this output's own projection.
+        x, y = (int(v) for v in np.floor(output.scene.camera.project(blue.vertices.mean(axis=0)).pixel))
+        report = probe(output, x, y)
         assert "blue" in report.found
-        px, py = (int(x0), int(y0)) if name == "orthographic" else (int(x), int(y))
-        np.testing.assert_array_equal(report.color, output.color[py, px])
+        np.testing.assert_array_equal(report.color, output.color[y, x])
         if output.raster is not None:
             assert report.events and report.events[-1].passed
             assert scene.objects[report.events[-1].object_index].name == "blue"
