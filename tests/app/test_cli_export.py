@@ -135,3 +135,27 @@ def test_a_missing_scene_file_exits_2_with_one_line(tmp_path):
     result = _run(str(tmp_path / "nothing.json"), "--what", "image", "--out", str(tmp_path / "x.png"))
     assert result.returncode == 2
     assert len(result.stderr.strip().splitlines()) == 1 and "nothing.json" in result.stderr
+
+
+def test_zbuffer_grey_is_the_distance_between_near_and_far(tmp_path):
+    # Looking straight down from height 5 at a ground plane: every covered pixel is 5 units away.
+    from core.camera import Camera
+    from core.scene import Scene
+    from core.shapes import quad
+
+    cam = Camera(eye=(0, 5, 0), target=(0, 0, 0), up=(0, 0, -1), near=1, far=20, width=40, height=30)
+    scene = tmp_path / "ground.json"
+    scene_file.save(Scene(camera=cam, objects=(quad((0, 0, 0), 100.0),)), scene)
+    out = tmp_path / "z.png"
+    result = _run(str(scene), "--what", "zbuffer", "--out", str(out))
+    assert result.returncode == 0, result.stderr
+    panel = iio.imread(out)[MARGIN + TITLE_ROW:MARGIN + TITLE_ROW + 30, MARGIN:MARGIN + 40]
+    assert (np.abs(panel.astype(int) - round((5 - 1) / (20 - 1) * 255)) <= 1).all()
+
+
+def test_dry_run_checks_and_writes_nothing(tmp_path, lecture):
+    out = tmp_path / "orbit.mp4"
+    result = _run(str(lecture), "--what", "orbit", "--dry-run", "--out", str(out))
+    assert result.returncode == 0, result.stderr
+    assert "nothing rendered" in result.stdout
+    assert not out.exists()
