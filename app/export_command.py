@@ -132,7 +132,7 @@ def run(args) -> int:
         print(f"python -m app export: error: {exc}", file=sys.stderr)
         return 2
     for mode in _modes(args):
-        check_cost(scene, replace_args(args, mode=mode), limit, limit_source)
+        check_cost(scene, _with_mode(args, mode), limit, limit_source)
     if args.dry_run:
         return 0
     path = outputs.paths["--out"]
@@ -156,11 +156,10 @@ def run(args) -> int:
     return 0
 
 
-def replace_args(args, **changes):
-    """A copy of the parsed arguments with some of them changed."""
+def _with_mode(args, mode: str):
+    """A copy of the parsed arguments with ``--mode`` changed (for the cost check of each pipeline)."""
     other = copy.copy(args)
-    for key, value in changes.items():
-        setattr(other, key, value)
+    other.mode = mode
     return other
 
 
