@@ -261,11 +261,14 @@ def _projection_sentences(scene: Scene, pa: str, pb: str) -> list[str]:
 
 def _zbuffer_against_tracer(scene: Scene, raster: Output, tracer: Output) -> list[str]:
     stats = raster.raster.stats
+    same = raster.projection == tracer.projection
     sentences = [
         f"The z-buffer removes hidden surfaces by drawing all {stats['polygons_drawn']:,} polygons and "
         f"keeping at each pixel the nearest fragment ({stats['fragments_failed']:,} of "
         f"{stats['fragments_generated']:,} fragments failed the z-test); the tracer stops each primary "
-        "ray at its first hit instead, so both find the same visible surfaces and part only along edges."]
+        "ray at its first hit instead, so " + (
+            "both find the same visible surfaces and part only along edges." if same else
+            "with one projection they would find the same visible surfaces.")]
     spheres = [i for i, o in enumerate(scene.objects) if isinstance(o, Sphere)]
     if spheres:
         facets = len(raster.raster.meshes[spheres[0]].triangles)

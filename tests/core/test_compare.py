@@ -120,3 +120,16 @@ def test_the_projection_sentence_appears_only_when_the_projections_differ():
     scene = _small(lecture_scene())
     assert "parallel rays" in _text(scene, "orthographic", "raytrace")
     assert "parallel rays" not in _text(scene, "perspective", "raytrace")
+
+
+def test_a_picked_pixel_is_read_in_both_outputs_of_a_comparison():
+    scene = zbuffer_three_polygons()
+    result = compare(scene, "perspective", "raytrace")
+    x, y = (int(v) for v in np.floor(scene.camera.project(scene.objects[1].vertices.mean(axis=0)).pixel))
+    first, second = result.pixel(x, y)
+    assert (first.output, second.output) == ("perspective", "raytrace")
+    np.testing.assert_array_equal(first.color, result.a.color[y, x])
+    np.testing.assert_array_equal(second.color, result.b.color[y, x])
+    corner = result.pixel(0, 0)  # no polygon reaches the image corner: background in both
+    assert all("background" in report.found for report in corner)
+    assert corner[0].events == () and corner[1].ray_tree.hit is None
