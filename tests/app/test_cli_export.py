@@ -159,3 +159,18 @@ def test_dry_run_checks_and_writes_nothing(tmp_path, lecture):
     assert result.returncode == 0, result.stderr
     assert "nothing rendered" in result.stdout
     assert not out.exists()
+
+
+def test_ctrl_c_during_an_animation_stops_cleanly_and_writes_nothing(tmp_path, lecture):
+    import signal
+
+    out = tmp_path / "orbit.gif"
+    proc = subprocess.Popen([sys.executable, "-m", "app", "export", str(lecture), "--what", "orbit",
+                             "--frames", "1000", "--out", str(out)], cwd=ROOT, stderr=subprocess.PIPE,
+                            stdout=subprocess.PIPE, text=True)
+    assert "orbit" in proc.stderr.read(40)  # the progress bar has started: frames are being rendered
+    proc.send_signal(signal.SIGINT)
+    _, err = proc.communicate(timeout=120)
+    assert proc.returncode == 130
+    assert "interrupted" in err and "Traceback" not in err
+    assert list(tmp_path.iterdir()) == [lecture]
