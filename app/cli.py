@@ -10,7 +10,15 @@ import argparse
 import signal
 import sys
 
-from app import bench_raster, bench_trace, cost_command, hardcases_command, intersect_command, render_command
+from app import (
+    bench_raster,
+    bench_trace,
+    cost_command,
+    export_command,
+    hardcases_command,
+    intersect_command,
+    render_command,
+)
 from app.usage import UsageError
 
 
@@ -28,6 +36,7 @@ def build_parser() -> argparse.ArgumentParser:
     render_command.add_parser(sub)
     hardcases_command.add_parser(sub)
     cost_command.add_parser(sub)
+    export_command.add_parser(sub)
     bench = sub.add_parser("bench", help="time our pipelines against VTK / Embree (a benchmark, not a test)")
     kinds = bench.add_subparsers(dest="bench", metavar="KIND", required=True)
     for name, module in benchmarks.items():
@@ -38,7 +47,7 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 #: The first words the command line understands; anything else opens the window on it.
-COMMANDS = {"gui", "intersect", "render", "bench", "hardcases", "cost", "-h", "--help"}
+COMMANDS = {"gui", "intersect", "render", "export", "bench", "hardcases", "cost", "-h", "--help"}
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -55,7 +55,7 @@ def add_parser(sub) -> None:
     p.set_defaults(run=run)
 
 
-def _camera_overrides(args) -> dict:
+def camera_overrides(args) -> dict:
     changes = {}
     for key in ("width", "height"):
         value = getattr(args, key)
@@ -86,7 +86,7 @@ def _outputs(args):
     return outputs
 
 
-def _budget(args) -> tuple[int, str]:
+def budget_limit(args) -> tuple[int, str]:
     from core import budget
 
     if args.memory_limit is None:
@@ -98,7 +98,7 @@ def _budget(args) -> tuple[int, str]:
         raise UsageError(f"--memory-limit: {exc}") from None
 
 
-def _check_cost(scene, args, limit: int, limit_source: str) -> None:
+def check_cost(scene, args, limit: int, limit_source: str) -> None:
     """Refuse a render over the memory budget; say so when it will be slow (or asked to)."""
     from core import budget
 
@@ -117,23 +117,26 @@ def _check_cost(scene, args, limit: int, limit_source: str) -> None:
               f"{budget.format_seconds(cost.seconds)}; nothing rendered (--dry-run)")
     elif cost.seconds > SLOW_SECONDS:
         why = f": {cost.slow_because}" if cost.slow_because else ""
-        print(f"python -m app render: estimated time about {budget.format_seconds(cost.seconds)}"
+        print(f"python -m app {args.command}: estimated time about {budget.format_seconds(cost.seconds)}"
               f" and {budget.format_bytes(cost.bytes)} of memory{why}", file=sys.stderr, flush=True)
 
 
-def run(args) -> int:
+def load_scene(args, outputs, changes: dict):
+    """The scene of ``args.scene`` with the camera ``changes``, checked against ``outputs``.
+
+    Raises
+    ------
+    core.scene_file.SceneFileError
+        For a scene file that cannot be read or is invalid.
+    UsageError
+        For an output that names one of the scene's mesh files, or options
+        that make the camera invalid.
+    """
     from app.mesh_files import read_mesh
     from core import scene_file
     from core.camera import camera_problems
 
-    changes = _camera_overrides(args)
-    limit, limit_source = _budget(args)
-    outputs = _outputs(args)
-    try:
-        scene = scene_file.load(args.scene, read_mesh=read_mesh)
-    except scene_file.SceneFileError as exc:
-        print(f"python -m app render: error: {exc}", file=sys.stderr)
-        return 2
+    scene = scene_file.load(args.scene, read_mesh=read_mesh)
     meshes = [o.source["resolved_path"] for o in scene.objects
               if getattr(o, "source", None) and "resolved_path" in o.source]
     try:
@@ -146,7 +149,21 @@ def run(args) -> int:
     if problems:
         key, message = problems[0]
         raise UsageError(f"{args.scene}: with the options given, camera.{key}: {message}")
-    _check_cost(scene, args, limit, limit_source)
+    return scene
+
+
+def run(args) -> int:
+    from core import scene_file
+
+    changes = camera_overrides(args)
+    limit, limit_source = budget_limit(args)
+    outputs = _outputs(args)
+    try:
+        scene = load_scene(args, outputs, changes)
+    except scene_file.SceneFileError as exc:
+        print(f"python -m app render: error: {exc}", file=sys.stderr)
+        return 2
+    check_cost(scene, args, limit, limit_source)
     if args.dry_run:
         return 0
 
