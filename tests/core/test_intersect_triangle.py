@@ -5,29 +5,11 @@ from fractions import Fraction
 
 import numpy as np
 import pytest
+from brute_force import exact_triangle_solve
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
 from core.image_order.intersect_triangle import cramer_solve, intersect_triangle
-
-
-def exact_solve(origin, direction, a, b, c):
-    """``(alpha, beta, t)`` from o + t d = αA + βB + (1 - α - β)C by Gauss-Jordan in Fractions.
-
-    Returns ``None`` when the system is singular (the ray is parallel to the plane).
-    """
-    o, d, A, B, C = ([Fraction(x) for x in v] for v in (origin, direction, a, b, c))
-    rows = [[A[k] - C[k], B[k] - C[k], -d[k], o[k] - C[k]] for k in range(3)]
-    for col in range(3):
-        pivot = next((r for r in range(col, 3) if rows[r][col] != 0), None)
-        if pivot is None:
-            return None
-        rows[col], rows[pivot] = rows[pivot], rows[col]
-        rows[col] = [x / rows[col][col] for x in rows[col]]
-        for r in range(3):
-            if r != col:
-                rows[r] = [x - rows[r][col] * y for x, y in zip(rows[r], rows[col], strict=True)]
-    return tuple(row[3] for row in rows)
 
 
 @pytest.fixture
@@ -157,14 +139,13 @@ def length(v) -> float:
 def test_matches_the_exact_barycentric_solution(origin, direction, a, b, c):
     assume(np.linalg.norm(direction) > 1e-3)
     assume(np.linalg.norm(np.cross(np.subtract(b, a), np.subtract(c, a))) > 1e-3)
-    exact = exact_solve(origin, direction, a, b, c)
+    exact = exact_triangle_solve(origin, direction, a, b, c)
     assume(exact is not None)
     # Well conditioned only: far from parallel (|det M| relative to its columns' lengths).
     det = cramer_solve(origin, direction, a, b, c).det
     size = length(direction) * length(np.subtract(a, c)) * length(np.subtract(b, c))
     assume(abs(det) > 1e-4 * size)
-    alpha, beta, t = exact
-    gamma = 1 - alpha - beta
+    alpha, beta, gamma, t = exact
     h = intersect_triangle(origin, direction, a, b, c)
     assert h.t is not None
     margin = Fraction(1, 10**6)
@@ -301,10 +282,10 @@ def test_shared_edge_hits_one_triangle_or_both_at_the_same_t(corners, origin, s)
     target = P + s * (Q - P)
     direction = target - origin
     assume(np.linalg.norm(direction) > 1e-3)
-    first = exact_solve(origin, direction, P, Q, R)
-    second = exact_solve(origin, direction, Q, P, S)
+    first = exact_triangle_solve(origin, direction, P, Q, R)
+    second = exact_triangle_solve(origin, direction, Q, P, S)
     assume(first is not None and second is not None)
-    assume(first[2] > Fraction(1, 1000) and second[2] > Fraction(1, 1000))  # t > 0 for both
+    assume(first[3] > Fraction(1, 1000) and second[3] > Fraction(1, 1000))  # t > 0 for both
     # Equal signs of det M (same winding as seen along the ray): R and S project on
     # opposite sides of the edge, the hinge is not folded over.
     det1 = cramer_solve(origin, direction, P, Q, R).det
