@@ -347,6 +347,11 @@ def _choose(classification, t_near, t_far, t_max):
     if 0 <= t_near <= t_max:
         return t_near, "t_near", "t_near >= 0: the smaller root lies ahead, where the ray enters the sphere"
     if t_near < 0 <= t_far:
+        if t_far == 0:
+            return t_far, "t_far", (
+                "t_far = 0: the start point lies on the sphere (c = 0) and the ray heads out, "
+                "so it leaves the surface where it starts"
+            )
         if t_far <= t_max:
             return t_far, "t_far", (
                 "t_near < 0 because the start point is inside the sphere, "

@@ -130,3 +130,15 @@ def test_intersect_loads_no_qt_or_vtk():
                          timeout=60)
     assert out.returncode == 0, out.stderr
     assert out.stdout.strip().splitlines()[-1] == "[]"
+
+
+def test_a_ray_starting_on_the_sphere_and_heading_out_leaves_at_its_start():
+    # From (1, 0, 0) outwards on the unit sphere: c = |o - centre|² - r² = 0 exactly, so the
+    # roots are t = -2 and t = 0; the start is on the surface, not inside it.
+    out = subprocess.run([sys.executable, "-m", "app", "intersect", "sphere", "--origin", "1,0,0",
+                          "--direction", "1,0,0", "--center", "0,0,0", "--radius", "1", "--json"],
+                         capture_output=True, text=True, cwd=ROOT)
+    answer = json.loads(out.stdout)
+    assert answer["origin_inside"] is False
+    assert answer["t"] == 0.0 and str(answer["t"]) == "0.0"
+    assert "inside" not in answer["reason"] and "on the sphere" in answer["reason"]
