@@ -4,18 +4,23 @@ A *job* is a plain function ``job(cancelled, progress) -> result``: it checks
 ``cancelled`` (a :class:`threading.Event`) between pieces of work and returns
 ``None`` once it is set, and calls ``progress(percent, partial)`` after each
 piece.  :class:`Renderer` runs jobs on the thread pool; a new job supersedes the
-running one, and results of superseded jobs are never delivered.  Signals are
-queued onto the GUI thread, so receivers may touch widgets and VTK.
+running one (it stops at its next piece), and results of superseded jobs are
+never delivered.  Partial results reach the GUI thread at most
+:data:`PROGRESS_PER_SECOND` times a second; the ones in between are dropped
+(the next one shows more anyway).  Signals are queued onto the GUI thread, so
+receivers may touch widgets and VTK.
 """
 
 from __future__ import annotations
 
 import threading
+import time
 from collections.abc import Callable
 
 from PySide6.QtCore import QObject, QRunnable, QThreadPool, Signal
 
 Job = Callable[[threading.Event, Callable[[int, object], None]], object]
+PROGRESS_PER_SECOND = 30
 
 
 class _Signals(QObject):
@@ -28,6 +33,7 @@ class _Runnable(QRunnable):
     def __init__(self, job_id: int, job: Job, signals: _Signals, cancelled: threading.Event):
         super().__init__()
         self.job_id, self.job, self.signals, self.cancelled = job_id, job, signals, cancelled
+        self._last_progress = -float("inf")
 
     def run(self):
         try:
@@ -39,7 +45,10 @@ class _Runnable(QRunnable):
             self._emit("finished", self.job_id, result)
 
     def _progress(self, percent: int, partial: object) -> None:
-        self._emit("progress", self.job_id, percent, partial)
+        now = time.perf_counter()
+        if now - self._last_progress >= 1.0 / PROGRESS_PER_SECOND:
+            self._last_progress = now
+            self._emit("progress", self.job_id, percent, partial)
 
     def _emit(self, name: str, *args) -> None:
         """Report to the GUI thread, unless the job was cancelled or its window is gone."""

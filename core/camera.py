@@ -15,6 +15,7 @@ import numpy as np
 from core import projection
 
 PROJECTIONS = ("perspective", "orthographic")
+PITCH_LIMIT_DEG = 89.0  # orbit pitch stays within ±this, so the view never lines up with "up"
 
 Vec3 = tuple[float, float, float]
 
