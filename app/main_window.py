@@ -373,8 +373,8 @@ class MainWindow(QMainWindow):
                 return  # a preview is on its way; when it ends, the next one starts from the newest camera
             if self._preview_shown.get(tab.title) is not scene or force:
                 self._submit(tab, preview=True)
-        elif running is not None and running[0] is scene and not running[1] and not force:
-            return  # the full render of this scene is under way
+        elif running is not None and running[0] is scene and not force:
+            return  # this scene's full render is under way, or its preview, after which the full one starts
         elif self._full_shown.get(tab.title) is not scene or force:
             self._submit(tab, preview=False)
 

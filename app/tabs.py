@@ -46,6 +46,15 @@ PREVIEW_STEP = 2
 PREVIEW = "preview"
 SLOW_TESTS = 2e9
 """Ray–object tests above which a full render without acceleration gets a warning (minutes here)."""
+BAND_TESTS = 5e7
+"""Without acceleration, a band holds at most about this many ray–object tests (a fraction of a
+second), so that a newer camera or Cancel stops the render soon."""
+
+
+def _tests_per_row(scene: Scene) -> int:
+    """Ray–object tests one image row costs when every ray tests every primitive."""
+    primitives = sum(len(o.triangles) if isinstance(o, Mesh) else 1 for o in scene.objects)
+    return scene.camera.width * max(primitives, 1) * (1 + len(scene.lights))
 
 
 @dataclass(frozen=True)
@@ -103,8 +112,7 @@ class ImageOrderTab:
         if settings.accel != "none":
             return None
         triangles = sum(len(o.triangles) if isinstance(o, Mesh) else 1 for o in scene.objects)
-        cam = scene.camera
-        tests = cam.width * cam.height * triangles * (1 + len(scene.lights))
+        tests = scene.camera.height * _tests_per_row(scene)
         if tests < SLOW_TESTS:
             return None
         return (f"Acceleration 'None': every ray tests all {triangles:,} triangles, about "
@@ -121,6 +129,9 @@ class ImageOrderTab:
 
             return run
         shown = self._preview if self._preview is not None and self._preview.camera == cam else None
+        rows = BAND_ROWS
+        if settings.accel == "none":
+            rows = max(1, min(BAND_ROWS, int(BAND_TESTS // _tests_per_row(scene))))
 
         def run(cancelled, progress):
             if shown is not None:  # the bands replace the preview already on screen
@@ -129,10 +140,10 @@ class ImageOrderTab:
                 color = render_trace(scene, preview_trace_settings(settings), step=2 * PREVIEW_STEP).color
                 progress(0, display_image(color, PREVIEW))
             bands = []
-            for first in range(0, cam.height, BAND_ROWS):
+            for first in range(0, cam.height, rows):
                 if cancelled.is_set():
                     return None
-                band = render_trace(scene, settings, rows=(first, min(first + BAND_ROWS, cam.height)))
+                band = render_trace(scene, settings, rows=(first, min(first + rows, cam.height)))
                 color[first:first + len(band.color)] = band.color
                 bands.append(band)
                 done = first + len(band.color)

@@ -36,6 +36,8 @@ class _Runnable(QRunnable):
         self._last_progress = -float("inf")
 
     def run(self):
+        if self.cancelled.is_set():  # superseded while it waited for a thread: nothing to do
+            return
         try:
             result = self.job(self.cancelled, self._progress)
         except Exception as exc:  # shown to the user by whoever listens to `failed`

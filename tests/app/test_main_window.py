@@ -195,7 +195,8 @@ def test_effects_plan_follows_the_scene(qtbot, window):
 def test_cancel_stops_a_render_and_keeps_the_window_usable(qtbot, window):
     window.activateWindow()
     qtbot.waitUntil(window.isActiveWindow)
-    window.tab("image order").widget.accel.setCurrentIndex(window.tab("image order").widget.accel.findData("none"))
+    accel = window.tab("image order").widget.accel
+    accel.setCurrentIndex(accel.findData("none"))
     renderer = window.tab("image order").renderer
     delivered = []
     window.full_image_shown.connect(delivered.append)
