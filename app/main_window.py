@@ -411,7 +411,12 @@ class MainWindow(QMainWindow):
 
     def _show_status(self, tab) -> None:
         percent, text, caption = self._status[tab.title]
-        self.progress.setValue(percent)
+        if percent != self.progress.value():
+            # QProgressBar.setValue repaints at once, which composes the whole window
+            # (the 3D pane is an OpenGL widget); paint it with the next frame instead.
+            self.progress.setUpdatesEnabled(False)
+            self.progress.setValue(percent)
+            self.progress.setUpdatesEnabled(True)
         self.progress.setFormat(text)
         self.status_caption.setText(caption)
         self.cancel_button.setEnabled(tab.title in self._jobs)
