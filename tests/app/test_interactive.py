@@ -276,3 +276,35 @@ def test_a_minutes_long_unaccelerated_render_is_announced_and_does_not_block_pre
     qtbot.waitUntil(lambda: True in previews, timeout=60_000)
     mover.stop()
     window.cancel_render()
+
+
+def test_only_the_visible_tab_renders_while_the_observer_moves(qtbot, window):
+    started = {title: 0 for title in window.tab_titles()}
+    for tab in window.tabs:
+        def counting(scene, preview, job=tab.job, title=tab.title):
+            started[title] += 1
+            return job(scene, preview)
+        tab.job = counting
+    _burst(window, 30)
+    _wait_full(qtbot, window)
+    assert started["Image order"] >= 1
+    assert {t: n for t, n in started.items() if t != "Image order"} == {
+        "Object order": 0, "Four views": 0, "Compare": 0}
+    window.show_tab("compare")  # a hidden tab renders once it is shown
+    _wait_full(qtbot, window, "compare")
+    assert started["Compare"] == 1
+
+
+def test_the_object_order_step_lives_in_the_model(qtbot, window):
+    window.show_tab("object order")
+    _wait_full(qtbot, window, "object order")
+    panel = window.tab("object order").widget
+    assert window.model.step is None and panel.scrubber.step == panel.result.history.n_steps
+    panel.scrubber.set_step(3)
+    assert window.model.step == 3
+    window.model.set_step(5)
+    assert panel.scrubber.step == 5 and "Step 5" in panel.step_caption.text()
+    window.model.set_raster_settings(replace(window.model.raster_settings, back_face_culling=False))
+    assert not panel.switches["back_face_culling"].isChecked()  # the switch shows the model
+    _wait_full(qtbot, window, "object order")
+    assert panel.scrubber.step == 5  # the chosen step is kept across renders
