@@ -2,14 +2,8 @@
 
 No algorithms and no drawing live here.  The model (:class:`app.state.SceneModel`)
 holds the window's state; panels write to it and views follow its signals.
-This module decides only *when* each tab renders:
-
-- only the visible tab renders; the others render when they are shown;
-- while the observer moves (camera changes less than :data:`REST_MS` apart)
-  the visible tab shows previews, one at a time and always of the newest
-  camera, never a queue; once the observer rests, the full render starts;
-- a newer camera supersedes a running full render at its next band, and a
-  full result is shown only for the scene it was rendered from.
+When each tab renders (only the visible one; previews while the observer
+moves) is decided by :class:`app.workers.RenderSchedule`.
 
 Tabs are registered in :data:`app.tabs.TABS` and found by name,
 ``window.tab("image order")``.
@@ -48,7 +42,7 @@ from PySide6.QtWidgets import (
 from app.mesh_files import read_mesh
 from app.state import SceneModel
 from app.tabs import TABS
-from app.workers import Renderer
+from app.workers import Renderer, RenderSchedule
 from core import presets, scene_file
 from core.image_order.ray_tree import trace_pixel
 from core.presets_trace import PRESETS_TRACE
@@ -58,8 +52,6 @@ from views.observer_keys import MOUSE_GESTURES, OBSERVER_KEYS
 from views.scene_overlays import SceneOverlays
 from views.scene_view import SceneView
 
-REST_MS = 250
-"""The observer counts as resting once the camera has not changed for this long (ms)."""
 EDITORS = (QAbstractSpinBox, QLineEdit, QAbstractSlider, QComboBox, QTextEdit, QPlainTextEdit)
 """Widgets that keep their keys: a focused one edits itself instead of moving the observer."""
 
@@ -103,21 +95,12 @@ class MainWindow(QMainWindow):
         self.camera_panel = CameraPanel(self.model)
         self.tab_widget = QTabWidget()
         self.tabs: list = []
-        self._jobs: dict[str, tuple[Scene, bool]] = {}  # title -> (scene, preview) of the running job
-        self._full_shown: dict[str, Scene] = {}  # title -> the scene whose full image the tab shows
-        self._preview_shown: dict[str, Scene] = {}
-        self._status: dict[str, tuple[int, str, str]] = {}  # title -> percent, progress text, caption
-        self._moving = False
-        self._rest = QTimer(self)
-        self._rest.setSingleShot(True)
-        self._rest.setInterval(REST_MS)
-        self._rest.timeout.connect(self._rested)
+        self.renders = RenderSchedule(self.model, self)
         self.progress = QProgressBar()
         self.progress.setRange(0, 100)
         self.progress.setTextVisible(True)
         self.status_caption = QLabel()
         self.status_caption.setWordWrap(True)
-        self.last_result = None
         for cls in TABS:
             self.add_tab(cls(self.model))
 
@@ -167,12 +150,17 @@ class MainWindow(QMainWindow):
         self._editor_keys = _EditorsKeepTheirKeys(keys, self)
         QApplication.instance().installEventFilter(self._editor_keys)
 
-        self.model.camera_changed.connect(self._camera_moved)
         self.model.camera_refused.connect(
             lambda why: self.statusBar().showMessage(f"Observer not moved — {why}", 6000))
-        self.model.scene_changed.connect(self._scene_replaced)
-        self.model.trace_settings_changed.connect(lambda _: self._settings_changed("image order"))
-        self.model.raster_settings_changed.connect(lambda _: self._settings_changed("object order"))
+        self.model.trace_settings_changed.connect(
+            lambda _: self.renders.settings_changed(self.tab("image order")))
+        self.model.raster_settings_changed.connect(
+            lambda _: self.renders.settings_changed(self.tab("object order")))
+        self.renders.status_changed.connect(self._show_status)
+        self.renders.image_shown.connect(self.image_shown)
+        self.renders.full_image_shown.connect(self.full_image_shown)
+        self.renders.warned.connect(lambda warning: self.statusBar().showMessage(warning, 10000))
+        self.renders.rested.connect(self._observer_rested)
         self.model.ray_pixel_changed.connect(self._ray_pixel_changed)
         self.tab_widget.currentChanged.connect(self._tab_shown)
         self.ray_tree = None
@@ -194,11 +182,7 @@ class MainWindow(QMainWindow):
         """Show ``tab`` (see :mod:`app.tabs` for what a tab provides) as the last tab."""
         self.tabs.append(tab)
         self.tab_widget.addTab(tab.widget, tab.title)
-        tab.renderer = Renderer(self)
-        tab.renderer.progress.connect(lambda pct, partial, t=tab: self._render_progress(t, pct, partial))
-        tab.renderer.finished.connect(lambda result, t=tab: self._render_finished(t, result))
-        tab.renderer.failed.connect(lambda message, t=tab: self._render_failed(t, message))
-        self._status[tab.title] = (0, f"{tab.title}: not rendered yet", "")
+        self.renders.add(tab)
 
     def tab(self, name: str):
         """The tab titled ``name`` (case does not matter)."""
@@ -221,7 +205,7 @@ class MainWindow(QMainWindow):
 
     def showing_full(self, name: str) -> bool:
         """Whether tab ``name`` shows the full render of the current scene and settings."""
-        return self._full_shown.get(self.tab(name).title) is self.model.scene
+        return self.renders.showing_full(self.tab(name))
 
     # ----------------------------------------------------------------- menus
     def _action(self, menu, text, slot, shortcut=None, tip=""):
@@ -326,91 +310,29 @@ class MainWindow(QMainWindow):
         self.model.set_scene(build())
 
     # ------------------------------------------------------------ render
-    def _camera_moved(self, _camera) -> None:
-        """The observer moved: previews while it keeps moving, the full render once it rests."""
-        self._moving = True
-        self._rest.start()
-        self._update_current()
-
-    def _rested(self) -> None:
-        self._moving = False
-        self._update_current()
-        if self.model.ray_pixel is not None:  # the picked pixel now sees something else
-            self._trace_picked(self.model.ray_pixel)
-
-    def _scene_replaced(self, _scene) -> None:
-        self._moving = False
-        self._rest.stop()
-        self._update_current()
-
-    def _settings_changed(self, name: str) -> None:
-        self._full_shown.pop(self.tab(name).title, None)
-        if self.current is self.tab(name):
-            self._update_current(force=True)
+    @property
+    def last_result(self):
+        """The result a tab showed last (preview or full)."""
+        return self.renders.last_result
 
     def rerender(self) -> None:
         """Render the visible tab again in full (F5)."""
-        self._full_shown.pop(self.current.title, None)
-        self._update_current(force=True)
-
-    def _tab_shown(self, *_) -> None:
-        tab = self.current
-        for other in self.tabs:  # only the visible tab renders
-            if other is not tab and other.title in self._jobs:
-                other.renderer.cancel()
-                del self._jobs[other.title]
-                self._set_status(other, 0, f"{other.title}: not rendered yet")
-        self.scene_view.show_overlays_only(tab.overlays)
-        self._show_status(tab)
-        self._update_current()
-
-    def _update_current(self, force: bool = False) -> None:
-        """Start what the visible tab needs next for the current scene, if anything."""
-        tab, scene = self.current, self.model.scene
-        running = self._jobs.get(tab.title)
-        if self._moving:
-            if running is not None and running[1]:
-                return  # a preview is on its way; when it ends, the next one starts from the newest camera
-            if self._preview_shown.get(tab.title) is not scene or force:
-                self._submit(tab, preview=True)
-        elif running is not None and running[0] is scene and not force:
-            return  # this scene's full render is under way, or its preview, after which the full one starts
-        elif self._full_shown.get(tab.title) is not scene or force:
-            self._submit(tab, preview=False)
-
-    def _submit(self, tab, preview: bool) -> None:
-        scene = self.model.scene
-        job = tab.job(scene, preview)
-        if job is None:
-            return
-        self._jobs[tab.title] = (scene, preview)
-        tab.renderer.submit(job)
-        warning = None if preview else getattr(tab, "warning", lambda _: None)(scene)
-        what = "preview while the observer moves" if preview else "rendering"
-        self._set_status(tab, 0, f"{tab.title}: {what}… %p%", warning)
-        if warning:
-            self.statusBar().showMessage(warning, 10000)
-        self.cancel_button.setEnabled(True)
+        self.renders.rerender()
 
     def cancel_render(self) -> None:
         """Stop the visible tab's render; what was drawn so far stays on screen."""
-        tab = self.current
-        tab.renderer.cancel()
-        self._jobs.pop(tab.title, None)
-        self.cancel_button.setEnabled(False)
-        self._set_status(tab, self.progress.value(), f"{tab.title}: cancelled at %p% (F5 renders again)")
+        self.renders.cancel()
 
-    def _set_status(self, tab, percent: int | None = None, text: str | None = None,
-                    caption: str | None = None) -> None:
-        """Remember ``tab``'s progress and status line; show them if it is the visible tab."""
-        old = self._status[tab.title]
-        self._status[tab.title] = (old[0] if percent is None else percent, old[1] if text is None else text,
-                                   old[2] if caption is None else caption)
-        if tab is self.current:
-            self._show_status(tab)
+    def _tab_shown(self, *_) -> None:
+        tab = self.current
+        self.scene_view.show_overlays_only(tab.overlays)
+        self.renders.show_tab(tab)
+        self._show_status(tab)
 
     def _show_status(self, tab) -> None:
-        percent, text, caption = self._status[tab.title]
+        if tab is not self.current:
+            return
+        percent, text, caption = self.renders.status(tab)
         if percent != self.progress.value():
             # QProgressBar.setValue repaints at once, which composes the whole window
             # (the 3D pane is an OpenGL widget); paint it with the next frame instead.
@@ -419,40 +341,16 @@ class MainWindow(QMainWindow):
             self.progress.setUpdatesEnabled(True)
         self.progress.setFormat(text)
         self.status_caption.setText(caption)
-        self.cancel_button.setEnabled(tab.title in self._jobs)
-
-    def _render_progress(self, tab, percent, partial):
-        self._set_status(tab, percent)
-        if partial is not None and hasattr(tab, "show_progress"):
-            tab.show_progress(partial)
-
-    def _render_finished(self, tab, result):
-        scene, preview = self._jobs.pop(tab.title)
-        if not preview and scene is not self.model.scene:
-            return  # a full image of a superseded scene is never shown
-        self.last_result = result
-        caption = tab.show(result)
-        if preview:
-            self._preview_shown[tab.title] = scene
-            self._set_status(tab, 100, f"{tab.title}: preview (observer moving)", caption)
-        else:
-            self._full_shown[tab.title] = scene
-            self._set_status(tab, 100, f"{tab.title}: done", caption)
-        self.image_shown.emit(tab.title, preview)
-        if not preview:
-            self.full_image_shown.emit(tab.title)
-        if tab is self.current:
-            self._update_current()
-
-    def _render_failed(self, tab, message: str):
-        self._jobs.pop(tab.title, None)
-        self._set_status(tab, 0, f"{tab.title}: render failed", f"Render failed — {message}")
-        self.statusBar().showMessage(f"{tab.title}: render failed — {message}", 10000)
+        self.cancel_button.setEnabled(self.renders.busy(tab))
 
     # ------------------------------------------------------- image order
     def pick_ray_tree(self, x: int, y: int) -> None:
         """Pick pixel (x, y) of the traced image: its ray tree is traced with every ray kept."""
         self.model.set_ray_pixel((x, y))
+
+    def _observer_rested(self) -> None:
+        if self.model.ray_pixel is not None:  # the picked pixel now sees something else
+            self._trace_picked(self.model.ray_pixel)
 
     def _ray_pixel_changed(self, pixel) -> None:
         if pixel is None:
@@ -478,9 +376,7 @@ class MainWindow(QMainWindow):
 
     def closeEvent(self, event):
         QApplication.instance().removeEventFilter(self._editor_keys)
-        self._rest.stop()
-        for tab in self.tabs:
-            tab.renderer.cancel()
+        self.renders.stop()
         self._tree_renderer.cancel()
         self.scene_view.close()
         super().closeEvent(event)
