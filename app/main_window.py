@@ -14,27 +14,21 @@ from __future__ import annotations
 import sys
 from pathlib import Path
 
-from PySide6.QtCore import QEvent, QObject, Qt, QThreadPool, QTimer, Signal
+from PySide6.QtCore import Qt, QThreadPool, QTimer, Signal
 from PySide6.QtGui import QAction, QFont, QKeySequence
 from PySide6.QtWidgets import (
-    QAbstractSlider,
-    QAbstractSpinBox,
     QApplication,
-    QComboBox,
     QDockWidget,
     QFileDialog,
     QHBoxLayout,
     QLabel,
-    QLineEdit,
     QMainWindow,
     QMessageBox,
-    QPlainTextEdit,
     QProgressBar,
     QPushButton,
     QScrollArea,
     QSplitter,
     QTabWidget,
-    QTextEdit,
     QVBoxLayout,
     QWidget,
 )
@@ -48,29 +42,9 @@ from core.image_order.ray_tree import trace_pixel
 from core.presets_trace import PRESETS_TRACE
 from core.scene import Scene
 from views.camera_panel import CameraPanel
-from views.observer_keys import MOUSE_GESTURES, OBSERVER_KEYS
+from views.observer_keys import MOUSE_GESTURES, OBSERVER_KEYS, EditorsKeepTheirKeys
 from views.scene_overlays import SceneOverlays
 from views.scene_view import SceneView
-
-EDITORS = (QAbstractSpinBox, QLineEdit, QAbstractSlider, QComboBox, QTextEdit, QPlainTextEdit)
-"""Widgets that keep their keys: a focused one edits itself instead of moving the observer."""
-
-
-class _EditorsKeepTheirKeys(QObject):
-    """Lets a focused editor take the observer keys (arrows, W/A/S/D...) before the shortcuts do."""
-
-    def __init__(self, keys: set, parent: QObject):
-        super().__init__(parent)
-        self.keys = keys
-
-    def eventFilter(self, obj, event):
-        if (event.type() == QEvent.Type.ShortcutOverride and isinstance(obj, EDITORS)
-                and event.key() in self.keys
-                and not event.modifiers() & (Qt.KeyboardModifier.ControlModifier
-                                             | Qt.KeyboardModifier.AltModifier)):
-            event.accept()
-            return True
-        return False
 
 
 class MainWindow(QMainWindow):
@@ -146,8 +120,7 @@ class MainWindow(QMainWindow):
         self.addDockWidget(Qt.DockWidgetArea.LeftDockWidgetArea, dock)
         self._keyed_actions: list[QAction] = []
         self._build_menus()
-        keys = {QKeySequence(key)[0].key() for key, _, _ in OBSERVER_KEYS}
-        self._editor_keys = _EditorsKeepTheirKeys(keys, self)
+        self._editor_keys = EditorsKeepTheirKeys(self)
         QApplication.instance().installEventFilter(self._editor_keys)
 
         self.model.camera_refused.connect(

@@ -20,6 +20,16 @@ the arrow keys for itself.
 from __future__ import annotations
 
 import numpy as np
+from PySide6.QtCore import QEvent, QObject, Qt
+from PySide6.QtGui import QKeySequence
+from PySide6.QtWidgets import (
+    QAbstractSlider,
+    QAbstractSpinBox,
+    QComboBox,
+    QLineEdit,
+    QPlainTextEdit,
+    QTextEdit,
+)
 
 from core.camera import PITCH_LIMIT_DEG, Camera
 
@@ -84,3 +94,28 @@ MOUSE_GESTURES = [
     ("Drag elsewhere in the 3D pane", "turn the overview (not the observer)"),
     ("Click a pixel", "trace it (image order) or list its fragments (object order)"),
 ]
+
+EDITORS = (QAbstractSpinBox, QLineEdit, QAbstractSlider, QComboBox, QTextEdit, QPlainTextEdit)
+"""Widgets that keep their keys: a focused one edits itself instead of moving the observer."""
+
+
+class EditorsKeepTheirKeys(QObject):
+    """An application event filter: a focused editor takes the observer keys before the shortcuts do.
+
+    Qt asks the focused widget first (a ShortcutOverride event) whether it
+    wants a key that is also a shortcut; accepting it there keeps, say, the
+    arrow keys in a number box instead of orbiting the observer.
+    """
+
+    def __init__(self, parent: QObject | None = None):
+        super().__init__(parent)
+        self.keys = {QKeySequence(key)[0].key() for key, _, _ in OBSERVER_KEYS}
+
+    def eventFilter(self, obj, event):
+        if (event.type() == QEvent.Type.ShortcutOverride and isinstance(obj, EDITORS)
+                and event.key() in self.keys
+                and not event.modifiers() & (Qt.KeyboardModifier.ControlModifier
+                                             | Qt.KeyboardModifier.AltModifier)):
+            event.accept()
+            return True
+        return False
