@@ -15,9 +15,10 @@ The pane follows the model (:class:`app.state.SceneModel`): when the camera
 changes, the observer's actors keep their identity and only their points or
 transform change, and several changes within one frame are drawn once
 (:data:`FRAME_MS`), so moving the observer never queues up renders.  While
-it moves, the pane is drawn without anti-aliasing (a software OpenGL draws
-it about twice as fast); once it rests for :data:`SMOOTH_AFTER_MS`, once
-more with smoothed edges.
+it moves, the pane is drawn without anti-aliasing and the frustum by its
+edges only (its translucent faces cover much of the pane and cost a
+software OpenGL more than the rest of the scene together); once it rests
+for :data:`SMOOTH_AFTER_MS`, it is drawn once more with both.
 """
 
 from __future__ import annotations
@@ -40,7 +41,8 @@ TARGET_COLOR = "#ff8c42"
 FRAME_MS = 33
 """Shortest time between two draws of the pane (about 30 per second)."""
 SMOOTH_AFTER_MS = 300
-"""After this long without a change the pane is drawn again with anti-aliasing (FXAA)."""
+"""After this long without a change the pane is drawn again with anti-aliasing (FXAA) and the
+frustum's translucent faces."""
 GRAB_RADIUS_PX = 14
 """How close (pixels) the mouse must be to the eye or target to grab it."""
 FOV_STEP_DEG = 2.0
@@ -123,7 +125,8 @@ class SceneView(QWidget):
         self._screen_edges = pv.PolyData(four.copy(), lines=_lines([(0, 1), (1, 2), (2, 3), (3, 0)]))
         self._sight = pv.PolyData(np.zeros((2, 3)), lines=np.array([2, 0, 1]))
         add = self.plotter.add_mesh
-        add(self.frustum, color=FRUSTUM_COLOR, opacity=0.07, name="frustum", render=False)
+        self._frustum_faces = add(self.frustum, color=FRUSTUM_COLOR, opacity=0.07, name="frustum",
+                                  render=False)
         add(self._frustum_edges, color=FRUSTUM_COLOR, line_width=2, name="frustum-edges", render=False)
         add(self.screen, color=SCREEN_COLOR, opacity=0.35, name="screen", render=False)
         add(self._screen_edges, color=SCREEN_COLOR, line_width=3, name="screen-edges", render=False)
@@ -136,6 +139,7 @@ class SceneView(QWidget):
         """Draw the pane soon, at most once per FRAME_MS; requests meanwhile share one draw."""
         self._changed = True
         self.plotter.renderer.SetUseFXAA(False)
+        self._frustum_faces.SetVisibility(False)
         self._smooth_timer.start()
         if self._render_timer.isActive():
             return
@@ -160,6 +164,7 @@ class SceneView(QWidget):
 
     def _smooth(self) -> None:
         self.plotter.renderer.SetUseFXAA(True)
+        self._frustum_faces.SetVisibility(True)
         self._draw()
 
     def set_scene(self, scene: Scene) -> None:

@@ -308,3 +308,13 @@ def test_the_object_order_step_lives_in_the_model(qtbot, window):
     assert not panel.switches["back_face_culling"].isChecked()  # the switch shows the model
     _wait_full(qtbot, window, "object order")
     assert panel.scrubber.step == 5  # the chosen step is kept across renders
+
+
+def test_the_frustum_shows_its_edges_while_moving_and_its_faces_once_at_rest(qtbot, window):
+    view = window.scene_view
+    faces = view.plotter.renderer.actors["frustum"]
+    edges = view.plotter.renderer.actors["frustum-edges"]
+    _burst(window, 5)
+    assert edges.GetVisibility() and not faces.GetVisibility()
+    qtbot.waitUntil(lambda: faces.GetVisibility(), timeout=5000)
+    assert view.plotter.renderer.GetUseFXAA()
