@@ -141,7 +141,7 @@ class RenderSchedule(QObject):
     rested() : the observer stopped moving.
     """
 
-    REST_MS = 250
+    REST_MS = 150
 
     status_changed = Signal(object)
     image_shown = Signal(str, bool)
