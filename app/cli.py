@@ -10,12 +10,20 @@ import argparse
 import signal
 import sys
 
-from app import bench_raster, bench_trace, cost_command, hardcases_command, intersect_command, render_command
+from app import (
+    bench_gui,
+    bench_raster,
+    bench_trace,
+    cost_command,
+    hardcases_command,
+    intersect_command,
+    render_command,
+)
 from app.usage import UsageError
 
 
 def build_parser() -> argparse.ArgumentParser:
-    benchmarks = {"raster": bench_raster, "trace": bench_trace}
+    benchmarks = {"raster": bench_raster, "trace": bench_trace, "gui": bench_gui}
 
     parser = argparse.ArgumentParser(
         prog="python -m app",

@@ -30,6 +30,7 @@ from PySide6.QtWidgets import (
 from core.object_order import zbuffer
 from core.object_order.pipeline import RasterResult, RasterSettings
 from core.scene import Scene
+from core.srgb import linear_to_srgb
 from views.depth_view import DepthView
 from views.image_view import ImageView
 from views.step_scrubber import StepScrubber
@@ -53,7 +54,7 @@ HISTORY_COLUMNS = ["step", "polygon", "depth", "stored depth", "z-test", "before
 
 def _swatch(rgb) -> QTableWidgetItem:
     item = QTableWidgetItem(" ".join(f"{c:.2f}" for c in rgb))
-    color = QColor.fromRgbF(*np.clip(rgb, 0, 1))
+    color = QColor.fromRgbF(*linear_to_srgb(rgb))
     item.setBackground(color)
     item.setForeground(QColor("black" if color.lightnessF() > 0.5 else "white"))
     return item
@@ -73,24 +74,26 @@ def _text_box() -> QPlainTextEdit:
 class ObjectOrderPanel(QWidget):
     """Stage switches, step scrubber, image memory and z-buffer, pixel history.
 
+    The stage switches, the scrubber and a click in the buffers write to the
+    model (``set_raster_settings``, ``set_step``, ``set_buffer_pixel``); the
+    panel shows what the model holds.
+
     Signals
     -------
-    settings_changed(RasterSettings) : the user switched a stage on or off.
     polygon_shown(object) : world-space vertices (N, 3) of the polygon drawn at
         the current step, or ``None`` at step 0, for the 3D pane to highlight.
     clipped_shown(object) : list of (N, 3) world-space polygons the frustum cut,
         for the 3D pane to outline.
     """
 
-    settings_changed = Signal(object)
     polygon_shown = Signal(object)
     clipped_shown = Signal(object)
 
-    def __init__(self, parent: QWidget | None = None):
+    def __init__(self, model, parent: QWidget | None = None):
         super().__init__(parent)
+        self.model = model
         self.result: RasterResult | None = None
         self.scene: Scene | None = None
-        self.picked: tuple[int, int] | None = None
         self.switches: dict[str, QCheckBox] = {}
         switches = QGridLayout()
         switches.addWidget(QLabel("<b>Stages</b>"), 0, 0, 2, 1)
@@ -98,7 +101,7 @@ class ObjectOrderPanel(QWidget):
             box = QCheckBox(text)
             box.setChecked(True)
             box.setToolTip(tip)
-            box.toggled.connect(self._emit_settings)
+            box.toggled.connect(self._settings_edited)
             switches.addWidget(box, i // 2, 1 + i % 2)
             self.switches[key] = box
         switches.setColumnStretch(3, 1)
@@ -148,30 +151,63 @@ class ObjectOrderPanel(QWidget):
         layout.addLayout(switches)
         layout.addWidget(split, 1)
 
-        self.scrubber.step_changed.connect(self.show_step)
+        self.scrubber.step_changed.connect(self._step_edited)
         self.image.pixel_clicked.connect(self.pick_pixel)
         self.depth.image.pixel_clicked.connect(self.pick_pixel)
+        model.raster_settings_changed.connect(self.show_settings)
+        model.step_changed.connect(lambda _: self.show_step(self._model_step()))
+        model.buffer_pixel_changed.connect(self._show_pixel)
+        self.show_settings(model.raster_settings)
 
     @property
-    def settings(self) -> RasterSettings:
-        return RasterSettings(**{k: b.isChecked() for k, b in self.switches.items()},
-                              record_steps=True)
+    def picked(self) -> tuple[int, int] | None:
+        """The pixel whose history is listed (the model's)."""
+        return self.model.buffer_pixel
 
-    def _emit_settings(self) -> None:
-        self.settings_changed.emit(self.settings)
+    def _settings_edited(self) -> None:
+        self.model.set_raster_settings(RasterSettings(
+            **{k: b.isChecked() for k, b in self.switches.items()}, record_steps=True))
+
+    def show_settings(self, settings: RasterSettings) -> None:
+        """Show ``settings`` in the stage switches without writing them back."""
+        for key, box in self.switches.items():
+            box.blockSignals(True)
+            box.setChecked(getattr(settings, key))
+            box.blockSignals(False)
+
+    def _step_edited(self, k: int) -> None:
+        self.model.set_step(None if k >= self.scrubber.slider.maximum() else k)
+
+    def _model_step(self) -> int:
+        """The model's step, within the current render's steps (``None``: the last)."""
+        count = self.result.history.n_steps if self.result is not None else 0
+        step = self.model.step
+        return count if step is None else min(step, count)
+
+    def show_preview(self, image) -> None:
+        """While the observer moves: a coarse image memory (a :class:`DisplayImage`) only."""
+        self.image.set_image(image)
+        self.step_caption.setText("Preview while the observer moves: the steps and the "
+                                  "z-buffer follow once it rests.")
 
     def show_result(self, result: RasterResult, scene: Scene) -> None:
-        """Show a finished recording render; the scrubber goes to its last step."""
+        """Show a finished recording render at the model's step (the last, unless one was chosen)."""
         self.result, self.scene = result, scene
         self.counts.setPlainText(self._counts_text())
         self.clipped_shown.emit(result.clipping.clipped_polygons())
         self.scrubber.blockSignals(True)
         self.scrubber.set_count(result.history.n_steps)
+        self.scrubber.set_step(self._model_step())
         self.scrubber.blockSignals(False)
         self.show_step(self.scrubber.step)
 
     def show_step(self, k: int) -> None:
         """Buffers after the first ``k`` polygons, with polygon k's fragments tinted."""
+        if self.result is None:
+            return
+        self.scrubber.blockSignals(True)
+        self.scrubber.set_step(k)
+        self.scrubber.blockSignals(False)
         history = self.result.history
         color, zbuf = history.buffers(k)
         distance = zbuffer.distance_from_window_depth(zbuf, history.near, history.far,
@@ -199,8 +235,7 @@ class ObjectOrderPanel(QWidget):
             self.polygon_shown.emit(draw.polygons.world_vertices(p))
         self.image.set_highlight(mask)
         self.depth.image.set_highlight(mask)
-        if self.picked is not None:
-            self.pick_pixel(*self.picked)
+        self._show_pixel(self.picked)
 
     def _polygon_name(self, p: int) -> str:
         draw = self.result.draw
@@ -208,10 +243,23 @@ class ObjectOrderPanel(QWidget):
         return f"{name}, triangle {int(draw.triangle_index[p])}"
 
     def pick_pixel(self, x: int, y: int) -> None:
-        """List every fragment that reached pixel ``(x, y)`` up to the current step."""
-        self.picked = (x, y)
-        self.image.set_picked(self.picked)
-        self.depth.image.set_picked(self.picked)
+        """Pick pixel ``(x, y)``: its fragments up to the current step are listed."""
+        self.model.set_buffer_pixel((x, y))
+
+    def _show_pixel(self, pixel) -> None:
+        """List every fragment that reached ``pixel`` up to the current step (``None``: clear)."""
+        history = None if self.result is None else self.result.history
+        if pixel is not None and history is not None and not (
+                pixel[0] < history.width and pixel[1] < history.height):
+            pixel = None  # the pick belongs to a newer image than this render's
+        self.image.set_picked(pixel)
+        self.depth.image.set_picked(pixel)
+        if pixel is None or history is None:
+            self.history.setRowCount(0)
+            self.history_caption.setText("Click a pixel in either buffer to see its history.")
+            self.numbers.clear()
+            return
+        x, y = pixel
         events = [e for e in self.result.history.pixel_history(x, y)
                   if e.polygon < self.scrubber.step]
         self.history.setRowCount(len(events))
@@ -238,12 +286,13 @@ class ObjectOrderPanel(QWidget):
         m = r.clip_from_view
         lines = ["clip_from_view (projection matrix in use):"]
         lines += ["  [" + "  ".join(f"{v:9.4f}" for v in row) + " ]" for row in m]
+        x, y = self.picked
         visible = [e for e in events if e.passed]
         if visible:
             e = visible[-1]
             face = r.face_index(e.object_index, e.triangle_index)
             n = r.faces.normal[face]
-            lines += ["", f"face at pixel {self.picked}: {self._polygon_name(e.polygon)}",
+            lines += ["", f"face at pixel ({x}, {y}): {self._polygon_name(e.polygon)}",
                       f"  camera-space normal N = ({n[0]:.3f}, {n[1]:.3f}, {n[2]:.3f})",
                       f"  Nz = {r.faces.nz[face]:.3f} → "
                       f"{'faces the observer' if r.faces.facing[face] else 'faces away (culled)'}"]
