@@ -9,12 +9,12 @@ from __future__ import annotations
 import argparse
 import sys
 
-from app import bench_raster, bench_trace, intersect_command, render_command
+from app import bench_raster, bench_startup, bench_trace, intersect_command, render_command
 from app.usage import UsageError
 
 
 def build_parser() -> argparse.ArgumentParser:
-    benchmarks = {"raster": bench_raster, "trace": bench_trace}
+    benchmarks = {"raster": bench_raster, "trace": bench_trace, "startup": bench_startup}
 
     parser = argparse.ArgumentParser(
         prog="python -m app",
