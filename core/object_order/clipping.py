@@ -242,15 +242,10 @@ def clip_triangles(face: np.ndarray, triangles: np.ndarray, clip: np.ndarray, wo
     k = len(face)
     test = np.ones(k, dtype=bool) if test is None else np.asarray(test, dtype=bool)
     triangles = np.ascontiguousarray(triangles, dtype=np.int64)
-    outcome, counts, new = kernels.clip_triangles(triangles, np.ascontiguousarray(clip, dtype=float),
-                                                  np.ascontiguousarray(world, dtype=float), test)
-    accept = outcome == kernels.ACCEPTED
-    keep = np.flatnonzero(counts)
-    offsets = np.concatenate([[0], np.cumsum(counts[keep])]).astype(np.int64)
-    vertex = np.empty(offsets[-1], dtype=np.int64)
-    whole = accept[keep]
-    vertex[(offsets[:-1][whole][:, None] + np.arange(3)).ravel()] = triangles[keep[whole]].ravel()
-    vertex[np.repeat(~whole, counts[keep])] = len(clip) + np.arange(len(new))
-    clip, world = np.vstack([clip, new[:, :4]]), np.vstack([world, new[:, 4:]])
-    polygons = Polygons(offsets, vertex, clip, world, face[keep], ~whole)
-    return ClipResult(polygons, int(accept.sum()), k - len(keep), int((outcome == kernels.CUT).sum()))
+    outcome, keep, offsets, vertex, new = kernels.clip_triangles(
+        triangles, np.ascontiguousarray(clip, dtype=float), np.ascontiguousarray(world, dtype=float), test)
+    if len(new):
+        clip, world = np.vstack([clip, new[:, :4]]), np.vstack([world, new[:, 4:]])
+    polygons = Polygons(offsets, vertex, clip, world, face[keep], outcome[keep] != kernels.ACCEPTED)
+    accepted = int(np.count_nonzero(outcome == kernels.ACCEPTED))
+    return ClipResult(polygons, accepted, k - len(keep), int(np.count_nonzero(outcome == kernels.CUT)))

@@ -40,9 +40,13 @@ def clip_triangles(triangles, clip, world, test):
     Returns
     -------
     outcome : (K,) int8, ``ACCEPTED``, ``REJECTED``, ``CUT`` or ``CUT_AWAY``.
-    counts : (K,) int64, vertices of what is left (3 when accepted, 0 when
-        nothing is).
-    new : (V, 7) float64, the vertices of the cut polygons, triangle after
+    keep : (P,) int64, the triangles with something left, in order.
+    offsets : (P + 1,) int64, polygon ``p`` (of triangle ``keep[p]``) has the
+        vertices ``vertex[offsets[p] : offsets[p + 1]]``.
+    vertex : (V,) int64, vertex numbers: a whole triangle keeps its corners'
+        numbers, a cut one gets new vertices numbered from ``N`` on, in the
+        order of ``new``.
+    new : (V', 7) float64, the vertices of the cut polygons, triangle after
         triangle, each in order around its polygon: clip ``(x, y, z, w)`` then
         world ``(x, y, z)``.
     """
@@ -86,4 +90,18 @@ def clip_triangles(triangles, clip, world, test):
         new[n_new:n_new + m] = poly[:m]
         n_new += m
         outcome[k], counts[k] = CUT, m
-    return outcome, counts, new[:n_new].copy()
+    keep = np.flatnonzero(counts)
+    offsets = np.zeros(keep.shape[0] + 1, np.int64)
+    for p in range(keep.shape[0]):
+        offsets[p + 1] = offsets[p] + counts[keep[p]]
+    vertex = np.empty(offsets[-1], np.int64)
+    next_new = clip.shape[0]
+    for p in range(keep.shape[0]):
+        k = keep[p]
+        for corner in range(counts[k]):
+            if outcome[k] == ACCEPTED:
+                vertex[offsets[p] + corner] = triangles[k, corner]
+            else:
+                vertex[offsets[p] + corner] = next_new
+                next_new += 1
+    return outcome, keep, offsets, vertex, new[:n_new].copy()
