@@ -23,7 +23,8 @@ _OBJECT_ORDER = _KERNELS.parent
 #: checks that every ``core`` module a kernel imports is listed here.
 SOURCES = sorted(_KERNELS.glob("*.py")) + [
     _OBJECT_ORDER / name for name in ("rasterization.py", "zbuffer.py", "blending.py", "depth_formats.py",
-                                  "clipping.py", "culling.py")]
+                                  "clipping.py", "culling.py",
+                                  "flat_shading.py")]
 
 
 def _cache_dirs() -> list[Path]:
