@@ -187,6 +187,10 @@ def _figure(times: list[float]) -> str:
 def run(args) -> int:
     """Run the benchmark and print its figures; returns the exit status."""
     sizes = parse_sizes(args.triangles)
+    for name, value, low in (("--runs", args.runs, 1), ("--warmup", args.warmup, 0),
+                             ("--width", args.width, 16), ("--height", args.height, 16)):
+        if value < low:
+            raise UsageError(f"{name} must be at least {low}, got {value}")
     if not os.environ.get("DISPLAY"):  # before VTK loads: render off screen through EGL
         os.environ.setdefault("VTK_DEFAULT_OPENGL_WINDOW", "vtkEGLRenderWindow")
     import numba
