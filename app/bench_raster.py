@@ -230,14 +230,17 @@ def run(args) -> int:
         window_class = vtk_frame.window_class
         vtk_frame.close()
         cut = render_raster(crossing, plain).stats
-        rec = render_raster(scene, recording).stats
+        recorded = render_raster(scene, recording)
+        rec, history = recorded.stats, recorded.history
         med = {name: float(np.median(ts)) for name, ts in times.items()}
         triangles = len(scene.objects[0].triangles)
         print(f"\n{triangles:,} triangles ({rec['fragments_generated']:,} fragments):")
         print(f"  ours, plain frame:                    {_figure(times['ours'])}")
         print(f"  VTK frame ({window_class}): {_figure(times['vtk'])}")
+        per_fragment = max(len(history.fragments), 1)
         print(f"  ours, recording steps:                {_figure(times['recording'])}  "
-              f"({rec['recorded_bytes'] / max(rec['fragments_generated'], 1):.1f} bytes per fragment)")
+              f"({history.fragments.nbytes / per_fragment:.1f} bytes per fragment; "
+              f"{history.nbytes / per_fragment:.1f} with the polygons' colours and origins)")
         print(f"  ours, near + 2 side planes cut it:    {_figure(times['clipped'])}  "
               f"({cut['polygons_clipped']:,} polygons clipped, {cut['fragments_generated']:,} fragments)")
         rows.append((triangles, med))
