@@ -13,6 +13,7 @@ import sys
 from app import (
     bench_gui,
     bench_raster,
+    bench_startup,
     bench_trace,
     cost_command,
     hardcases_command,
@@ -23,7 +24,7 @@ from app.usage import UsageError
 
 
 def build_parser() -> argparse.ArgumentParser:
-    benchmarks = {"raster": bench_raster, "trace": bench_trace, "gui": bench_gui}
+    benchmarks = {"raster": bench_raster, "trace": bench_trace, "gui": bench_gui, "startup": bench_startup}
 
     parser = argparse.ArgumentParser(
         prog="python -m app",
