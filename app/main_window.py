@@ -33,6 +33,7 @@ from PySide6.QtWidgets import (
     QWidget,
 )
 
+from app.lesson_runner import LESSON_OVERLAY, LessonRunner
 from app.mesh_files import read_mesh
 from app.state import SceneModel
 from app.tabs import TABS
@@ -42,7 +43,9 @@ from core.image_order.ray_tree import trace_pixel
 from core.presets_trace import PRESETS_TRACE
 from core.scene import Scene
 from views.camera_panel import CameraPanel
+from views.lesson_panel import LessonPanel
 from views.observer_keys import MOUSE_GESTURES, OBSERVER_KEYS, EditorsKeepTheirKeys
+from views.presentation import Presentation
 from views.scene_overlays import SceneOverlays
 from views.scene_view import SceneView
 
@@ -92,7 +95,7 @@ class MainWindow(QMainWindow):
         progress_row.addWidget(self.cancel_button)
         right_layout.addLayout(progress_row)
         right_layout.addWidget(self.status_caption)
-        scene_pane = QWidget()
+        self.scene_pane = scene_pane = QWidget()
         scene_layout = QVBoxLayout(scene_pane)
         scene_layout.setContentsMargins(6, 6, 6, 6)
         scene_title = QLabel(
@@ -118,10 +121,28 @@ class MainWindow(QMainWindow):
         dock.setWidget(self._controls)
         self._fit_controls()
         self.addDockWidget(Qt.DockWidgetArea.LeftDockWidgetArea, dock)
+        # The panel opens on the first lesson without applying it: the scene stays
+        # the one given until the user picks a step.
+        self.lesson_panel = LessonPanel()
+        self.lessons = LessonRunner(self)
+        self.lesson_dock = QDockWidget("Lessons", self)
+        self.lesson_dock.setObjectName("lessons")
+        self.lesson_dock.setFeatures(QDockWidget.DockWidgetFeature.DockWidgetMovable
+                                     | QDockWidget.DockWidgetFeature.DockWidgetClosable)
+        self.lesson_dock.setWidget(self.lesson_panel)
+        # Beside the controls, as a second tab of the same dock area: the image panes keep the width.
+        self.addDockWidget(Qt.DockWidgetArea.LeftDockWidgetArea, self.lesson_dock)
+        self.tabifyDockWidget(dock, self.lesson_dock)
+        self.lesson_dock.raise_()
         self._keyed_actions: list[QAction] = []
-        self._build_menus()
         self._editor_keys = EditorsKeepTheirKeys(self)
         QApplication.instance().installEventFilter(self._editor_keys)
+        # After the editors' filter, so that PageUp/PageDown reach the lessons first, from anywhere.
+        self.presentation = Presentation(self, self.lesson_panel)
+        self._build_menus()
+        self.lesson_panel.step_selected.connect(self.apply_lesson_step)
+        self.presentation.presenting_changed.connect(self._presenting_changed)
+        self.presentation.scale_changed.connect(self._scale_changed)
 
         self.model.camera_refused.connect(
             lambda why: self.statusBar().showMessage(f"Observer not moved — {why}", 6000))
@@ -168,8 +189,35 @@ class MainWindow(QMainWindow):
         return [tab.title for tab in self.tabs]
 
     def show_tab(self, name: str) -> None:
-        """Bring the tab titled ``name`` to the front."""
-        self.tab_widget.setCurrentWidget(self.tab(name).widget)
+        """Bring the tab titled ``name`` to the front (showing it if a lesson had hidden it)."""
+        widget = self.tab(name).widget
+        self.tab_widget.setTabVisible(self.tab_widget.indexOf(widget), True)
+        self.tab_widget.setCurrentWidget(widget)
+
+    def show_all_panes(self) -> None:
+        """Every tab and the 3D pane, as before any lesson."""
+        self.scene_pane.setVisible(True)
+        for i in range(self.tab_widget.count()):
+            self.tab_widget.setTabVisible(i, True)
+
+    def visible_panes(self) -> list[str]:
+        """The panes shown, by their lesson names ("scene 3D" and the tab titles, lower case)."""
+        shown = ["scene 3D"] if self.scene_pane.isVisible() else []
+        return shown + [t.title.lower() for t in self.tabs
+                        if self.tab_widget.isTabVisible(self.tab_widget.indexOf(t.widget))]
+
+    # --------------------------------------------------------------- lessons
+    def apply_lesson_step(self, step) -> None:
+        """Show lesson step ``step`` (a :class:`core.lessons.LessonStep`); see :mod:`app.lesson_runner`."""
+        self.lessons.apply(step)
+
+    def _presenting_changed(self, presenting: bool) -> None:
+        # Esc leaves full screen while presenting; one key, one meaning.
+        self.cancel_button.setShortcut(QKeySequence() if presenting else QKeySequence("Esc"))
+
+    def _scale_changed(self, scale: float) -> None:
+        self.tab("image order").widget.worked_math.set_scale(scale)
+        self.tab("object order").widget.vertex_math.set_scale(scale)
 
     @property
     def current(self):
@@ -200,6 +248,8 @@ class MainWindow(QMainWindow):
                      QKeySequence.StandardKey.SaveAs, "Save the scene and observer as JSON")
         self._action(file_menu, "&Lecture scene", self.reset_scene, "Ctrl+L",
                      "Back to the lecture's cube and cone on a plane")
+        self._action(file_menu, "Open &lesson…", lambda: self.lesson_panel.open_lesson_file(),
+                     tip="Open a lesson JSON file and start it")
         examples = file_menu.addMenu("&Examples")
         for group in (presets.PRESETS, PRESETS_TRACE):
             for key, (title, build) in group.items():
@@ -219,6 +269,22 @@ class MainWindow(QMainWindow):
         self._action(view, "Re-render", self.rerender, "F5")
         for i, tab in enumerate(self.tabs):
             self._action(view, tab.title, lambda _=False, t=tab.title: self.show_tab(t), f"Ctrl+{i + 1}")
+        self._action(view, "Show all panes", self.show_all_panes,
+                     tip="Every tab and the 3D pane again, after a lesson showed only some")
+        view.addSeparator()
+        lessons = self.lesson_dock.toggleViewAction()
+        lessons.setText("Lessons")
+        lessons.setShortcut(QKeySequence("Ctrl+Shift+L"))
+        view.addAction(lessons)
+        self._keyed_actions.append(lessons)
+        acts = self.presentation.actions
+        for key in ("present", "leave", "blank", "contrast", "presenter"):
+            view.addAction(acts[key])
+            if not acts[key].shortcut().isEmpty():
+                self._keyed_actions.append(acts[key])
+        sizes = view.addMenu("Text size")
+        for key in ("scale 1", "scale 1.5", "scale 2"):
+            sizes.addAction(acts[key])
         help_menu = self.menuBar().addMenu("&Help")
         self._action(help_menu, "&Keys and mouse", self.show_keys, tip="Every key and mouse gesture")
 
@@ -227,7 +293,10 @@ class MainWindow(QMainWindow):
         lines = ["Keys (a focused number box keeps the arrow keys for itself):"]
         lines += [f"  {a.shortcut().toString(QKeySequence.SequenceFormat.NativeText):<14} "
                   f"{a.text().replace('&', '')}" for a in self._keyed_actions]
-        lines += [f"  {'Esc':<14} Cancel the render in progress", "", "Mouse in the 3D pane:"]
+        lines += [f"  {'PageDown':<14} Next lesson step (from anywhere)",
+                  f"  {'PageUp':<14} Previous lesson step (from anywhere)",
+                  f"  {'Esc':<14} Cancel the render in progress (while presenting: leave full screen)",
+                  "", "Mouse in the 3D pane:"]
         lines += [f"  {gesture}: {what}" for gesture, what in MOUSE_GESTURES]
         return "\n".join(lines)
 
@@ -298,7 +367,7 @@ class MainWindow(QMainWindow):
 
     def _tab_shown(self, *_) -> None:
         tab = self.current
-        self.scene_view.show_overlays_only(tab.overlays)
+        self.scene_view.show_overlays_only((*tab.overlays, LESSON_OVERLAY))
         self.renders.show_tab(tab)
         self._show_status(tab)
 
@@ -337,19 +406,23 @@ class MainWindow(QMainWindow):
         """Trace the picked pixel again with every ray kept (in the background)."""
         x, y = pixel
         scene, settings = self.model.scene, self.model.trace_settings
-        self._tree_renderer.submit(lambda cancelled, progress: (x, y, trace_pixel(scene, x, y, settings)))
+        self._tree_renderer.submit(
+            lambda cancelled, progress: (x, y, trace_pixel(scene, x, y, settings), scene))
 
     def _show_ray_tree(self, picked) -> None:
-        x, y, root = picked
+        x, y, root, scene = picked
         if (x, y) != self.model.ray_pixel:
             return
-        self.ray_tree = picked
-        self.tab("image order").widget.show_tree(x, y, root)
+        self.ray_tree = (x, y, root)
+        self.tab("image order").widget.show_tree(x, y, root, scene)  # the tree and its worked math
         self.overlays.show_ray_tree(root)
 
     def closeEvent(self, event):
         QApplication.instance().removeEventFilter(self._editor_keys)
+        self.presentation.clicker.remove()
         self.renders.stop()
+        for tab in self.tabs:
+            getattr(tab, "shutdown", lambda: None)()
         self._tree_renderer.cancel()
         self.scene_view.close()
         super().closeEvent(event)

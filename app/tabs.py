@@ -9,10 +9,12 @@ A tab is any object with
   while it is visible; see :mod:`views.scene_overlays`);
 - ``job(scene, preview)`` : a job for :class:`app.workers.Renderer` that
   renders ``scene`` for this tab, or ``None`` if the tab has nothing to
-  render.  With ``preview`` true the job is a coarse, quick one, shown
+  render (a panel that computes on its own, like Hard cases).  With
+  ``preview`` true the job is a coarse, quick one, shown
   while the observer moves (about a quarter of the pixels, upscaled, marked
   "preview"); otherwise it is the full render;
 - ``show(result) -> str`` : show a finished job's result; returns the status line;
+- optionally ``shutdown()`` : stop the tab's own background work (the window is closing);
 - optionally ``show_progress(partial)`` : show a partial result while a job runs;
 - optionally ``warning(scene) -> str | None`` : a word before a very long full render.
 
@@ -34,6 +36,8 @@ from core.image_order.ray_tracing import TraceSettings, merge_band_stats, render
 from core.object_order import three_views
 from core.object_order.pipeline import RasterSettings, render_raster
 from core.scene import Mesh, Scene
+from views.cost_panel import CostPanel
+from views.hard_cases_panel import HardCasesPanel
 from views.image_grid import ImageGrid
 from views.image_order_panel import ImageOrderPanel
 from views.image_view import display_image
@@ -297,5 +301,49 @@ class CompareTab:
         return "the same scene and observer, three ways"
 
 
-TABS = (ImageOrderTab, ObjectOrderTab, FourViewsTab, CompareTab)
+class HardCasesTab:
+    """Where the formulas meet finite precision: each case computes in its own panel, on first show."""
+
+    title = "Hard cases"
+    overlays = ()
+
+    def __init__(self, model):
+        self.model = model
+        self.widget = HardCasesPanel()
+
+    def job(self, scene: Scene, preview: bool):
+        return None  # the cases do not depend on the scene
+
+    def show(self, result) -> str:
+        return ""
+
+    def shutdown(self) -> None:
+        """Stop the panel's background computations (the window is closing)."""
+        self.widget.shutdown()
+
+
+class CostTab:
+    """What a knob (resolution, objects, lights, depth) costs each order; it sweeps the model's scene."""
+
+    title = "Cost"
+    overlays = ()
+
+    def __init__(self, model):
+        self.model = model
+        self.widget = CostPanel()
+        self.widget.set_scene(model.scene)
+        model.scene_changed.connect(self.widget.set_scene)
+
+    def job(self, scene: Scene, preview: bool):
+        return None  # a sweep starts from the panel's Run button
+
+    def show(self, result) -> str:
+        return ""
+
+    def shutdown(self) -> None:
+        """Cancel a running sweep (the window is closing)."""
+        self.widget.cancel()
+
+
+TABS = (ImageOrderTab, ObjectOrderTab, FourViewsTab, CompareTab, HardCasesTab, CostTab)
 """The window's tabs, in order; each is built as ``cls(model)``."""

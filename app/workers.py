@@ -256,6 +256,8 @@ class RenderSchedule(QObject):
         scene = self.model.scene
         job = tab.job(scene, preview)
         if job is None:
+            self._full_shown[tab.title] = scene  # nothing to render: what it shows is current
+            self._set_status(tab, 100, f"{tab.title}: computed in the panel itself")
             return
         self._jobs[tab.title] = (scene, preview)
         tab.renderer.submit(job)

@@ -27,8 +27,10 @@ from PySide6.QtWidgets import (
 
 from core.image_order.ray_tracing import TraceSettings
 from core.image_order.ray_tree import RayNode
+from core.scene import Scene
 from views.image_view import ImageView
 from views.raytree_view import KIND_COLORS, RayKindLegend, RayTreeWidget
+from views.worked_math import WorkedMath
 
 MODES = [("raytrace", "Ray tracing"), ("raycast", "Ray casting")]
 ACCELS = [("bvh", "BVH"), ("grid+spheres", "Grid + spheres"), ("grid", "Grid of cuboids"),
@@ -130,8 +132,11 @@ class ImageOrderPanel(QWidget):
         tl.addWidget(RayKindLegend())
         tl.addWidget(self.tree, 2)
         tl.addWidget(self.explanation, 1)
+        self.worked_math = WorkedMath()
+        self.ray_kind: str | None = None  # the kind of ray to select in each new tree (a lesson's)
         self.details = QTabWidget()
         self.details.addTab(tree_page, "Ray tree")
+        self.details.addTab(self.worked_math, "Worked math")
         self.details.addTab(self.plan, "Effects plan")
         split = QSplitter(Qt.Orientation.Vertical)
         top = QWidget()
@@ -196,6 +201,7 @@ class ImageOrderPanel(QWidget):
             self.tree.clear()
             self.tree_caption.clear()
             self.explanation.clear()
+            self.worked_math.clear()
 
     def show_stats(self, stats: dict) -> None:
         """The effects plan and the rays actually traced, by kind."""
@@ -212,9 +218,12 @@ class ImageOrderPanel(QWidget):
         self.plan.setText(f"<b>What this scene calls for</b> — only these effects are simulated:"
                           f"<br>{reasons}")
 
-    def show_tree(self, x: int, y: int, root: RayNode) -> None:
+    def show_tree(self, x: int, y: int, root: RayNode, scene: Scene) -> None:
+        """Pixel ``(x, y)``'s ray tree ``root``, traced in ``scene``, and the worked math of its first hit."""
         self.image.set_picked((x, y))
         self.tree.set_tree(root)
+        self.worked_math.show_ray(scene, root)
+        self.tree.select_kind(self.ray_kind)
         n = sum(1 for node in root.walk() if node.traced)
         self.tree_caption.setText(f"<b>Ray tree of pixel ({x}, {y})</b>: {n} rays traced; "
                                   f"pixel colour ({', '.join(f'{c:.3f}' for c in root.pixel_color)})")

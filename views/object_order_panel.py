@@ -15,8 +15,10 @@ from PySide6.QtCore import Qt, Signal
 from PySide6.QtGui import QColor, QFont
 from PySide6.QtWidgets import (
     QCheckBox,
+    QComboBox,
     QGridLayout,
     QGroupBox,
+    QHBoxLayout,
     QLabel,
     QPlainTextEdit,
     QSplitter,
@@ -28,12 +30,15 @@ from PySide6.QtWidgets import (
 )
 
 from core.object_order import zbuffer
+from core.object_order.depth_formats import BYTES_PER_PIXEL, DEPTH_FORMATS
 from core.object_order.pipeline import RasterResult, RasterSettings
+from core.projection import project_point
 from core.scene import Scene
 from core.srgb import linear_to_srgb
 from views.depth_view import DepthView
 from views.image_view import ImageView
 from views.step_scrubber import StepScrubber
+from views.worked_math import WorkedMath
 
 STAGES = [
     ("back_face_culling", "Back-face culling",
@@ -47,7 +52,17 @@ STAGES = [
     ("sort_transparent", "Sort transparent far → near",
      "Blend transparent polygons from the farthest to the nearest, after all opaque ones.\n"
      "Off: they are blended in scene order, and the colours come out wrong."),
+    ("z_test", "z-test",
+     "Keep a fragment only if it is nearer than the depth already stored at its pixel.\n"
+     "Off: every fragment overwrites the pixel, so the polygon drawn last wins, near or far."),
 ]
+
+DEPTH_FORMAT_TIP = (
+    "The z-buffer's number format.  Window depth crowds toward the far plane, so two surfaces "
+    "closer together than one step of the format get the same stored depth and the drawing "
+    "order decides between them, pixel by pixel (z-fighting).\n"
+    "float64: our reference.  float32: 24 significant bits.  float32-reversed: stores 1 − depth, "
+    "so the float's fine steps meet the crowded far end.  int24, int16: equal steps over [0, 1].")
 
 HISTORY_COLUMNS = ["step", "polygon", "depth", "stored depth", "z-test", "before", "after", "blend αs"]
 
@@ -96,7 +111,7 @@ class ObjectOrderPanel(QWidget):
         self.scene: Scene | None = None
         self.switches: dict[str, QCheckBox] = {}
         switches = QGridLayout()
-        switches.addWidget(QLabel("<b>Stages</b>"), 0, 0, 2, 1)
+        switches.addWidget(QLabel("<b>Stages</b>"), 0, 0, 3, 1)
         for i, (key, text, tip) in enumerate(STAGES):
             box = QCheckBox(text)
             box.setChecked(True)
@@ -104,6 +119,17 @@ class ObjectOrderPanel(QWidget):
             box.toggled.connect(self._settings_edited)
             switches.addWidget(box, i // 2, 1 + i % 2)
             self.switches[key] = box
+        self.depth_format = QComboBox()
+        for name in DEPTH_FORMATS:
+            self.depth_format.addItem(f"{name} ({BYTES_PER_PIXEL[name]} bytes)", name)
+        self.depth_format.setToolTip(DEPTH_FORMAT_TIP)
+        self.depth_format.currentIndexChanged.connect(self._settings_edited)
+        depth_row = QHBoxLayout()
+        depth_label = QLabel("z-buffer format")
+        depth_label.setToolTip(DEPTH_FORMAT_TIP)
+        depth_row.addWidget(depth_label)
+        depth_row.addWidget(self.depth_format)
+        switches.addLayout(depth_row, len(STAGES) // 2, 2)
         switches.setColumnStretch(3, 1)
 
         self.scrubber = StepScrubber()
@@ -134,6 +160,10 @@ class ObjectOrderPanel(QWidget):
         self.details.addTab(history_page, "Pixel history")
         self.details.addTab(self.numbers, "Numbers")
         self.details.addTab(self.counts, "Counts and times")
+        self.vertex_math = WorkedMath()
+        self.vertex_math.clear("Click a pixel in either buffer: the corner of its visible polygon "
+                               "nearest to it is followed from world space to the pixel.")
+        self.details.addTab(self.vertex_math, "Vertex path")
 
         split = QSplitter(Qt.Orientation.Vertical)
         top = QWidget()
@@ -166,14 +196,18 @@ class ObjectOrderPanel(QWidget):
 
     def _settings_edited(self) -> None:
         self.model.set_raster_settings(RasterSettings(
-            **{k: b.isChecked() for k, b in self.switches.items()}, record_steps=True))
+            **{k: b.isChecked() for k, b in self.switches.items()},
+            depth_format=self.depth_format.currentData(), record_steps=True))
 
     def show_settings(self, settings: RasterSettings) -> None:
-        """Show ``settings`` in the stage switches without writing them back."""
+        """Show ``settings`` in the stage switches and the depth format without writing them back."""
         for key, box in self.switches.items():
             box.blockSignals(True)
             box.setChecked(getattr(settings, key))
             box.blockSignals(False)
+        self.depth_format.blockSignals(True)
+        self.depth_format.setCurrentIndex(self.depth_format.findData(settings.depth_format))
+        self.depth_format.blockSignals(False)
 
     def _step_edited(self, k: int) -> None:
         self.model.set_step(None if k >= self.scrubber.slider.maximum() else k)
@@ -280,6 +314,19 @@ class ObjectOrderPanel(QWidget):
             "Depths are distances along the viewing axis; a fragment passes when it is nearer "
             "than the depth stored so far.")
         self.numbers.setPlainText(self._numbers_text(events))
+        visible = [e for e in events if e.passed]
+        if visible:
+            self._show_vertex_path(visible[-1].polygon, x, y)
+
+    def _show_vertex_path(self, p: int, x: int, y: int) -> None:
+        """The path of polygon ``p``'s corner nearest to pixel ``(x, y)``, world to pixel."""
+        cam = self.scene.camera
+        corners = self.result.draw.polygons.world_vertices(p)
+        pixels = [project_point(c, cam.view_from_world, cam.clip_from_view, cam.width, cam.height).pixel
+                  for c in corners]
+        gaps = [np.inf if q is None else np.hypot(q[0] - x - 0.5, q[1] - y - 0.5) for q in pixels]
+        k = int(np.argmin(gaps))
+        self.vertex_math.show_vertex(corners[k], cam, f"corner {k} of {self._polygon_name(p)}")
 
     def _numbers_text(self, events) -> str:
         r = self.result

@@ -302,6 +302,17 @@ class SceneView(QWidget):
                 return name
         return None
 
+    def look_from(self, view) -> None:
+        """Place the overview camera: ``view`` maps ``position``, ``focal_point`` and ``up``
+        (world space, scene units); empty, the pane frames the scene and observer itself."""
+        if view:
+            self.plotter.camera_position = [tuple(view["position"]), tuple(view["focal_point"]),
+                                            tuple(view.get("up", (0.0, 1.0, 0.0)))]
+            self.plotter.reset_camera_clipping_range()
+        elif self._scene is not None:
+            self._frame(self._scene)
+        self.request_render()
+
     def _frame(self, scene: Scene) -> None:
         """Place the overview camera beside the observer, seeing it and the objects.
 
