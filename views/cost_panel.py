@@ -237,6 +237,11 @@ class CostPanel(QWidget):
         self.status.setText("Pick a knob and press Run.")
         self._update_buttons()
 
+    @property
+    def scene(self) -> Scene | None:
+        """The scene a sweep starts from (the last :meth:`set_scene`)."""
+        return self._scene
+
     def _sweep_scene(self) -> Scene:
         cam = self._scene.camera
         width = min(cam.width, self.width_px.value())
