@@ -71,6 +71,8 @@ class MainWindow(QMainWindow):
         self.overlays = SceneOverlays(self.model, self.scene_view)
         self.camera_panel = CameraPanel(self.model)
         self.tab_widget = QTabWidget()
+        self.tab_widget.setElideMode(Qt.TextElideMode.ElideRight)  # every tab stays in view, however narrow
+        self.tab_widget.setUsesScrollButtons(False)
         self.tabs: list = []
         self.renders = RenderSchedule(self.model, self)
         self.progress = QProgressBar()
@@ -108,7 +110,9 @@ class MainWindow(QMainWindow):
         splitter.addWidget(scene_pane)
         splitter.addWidget(right)
         scene_pane.setMinimumWidth(320)
-        splitter.setSizes([600, 700])
+        splitter.setStretchFactor(0, 2)
+        splitter.setStretchFactor(1, 3)
+        splitter.setSizes([400, 600])  # the tabs' images and panels get the larger share
         self.setCentralWidget(splitter)
 
         dock = QDockWidget("Controls", self)

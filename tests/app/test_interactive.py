@@ -289,7 +289,7 @@ def test_only_the_visible_tab_renders_while_the_observer_moves(qtbot, window):
     _wait_full(qtbot, window)
     assert started["Image order"] >= 1
     assert {t: n for t, n in started.items() if t != "Image order"} == {
-        "Object order": 0, "Four views": 0, "Compare": 0}
+        "Object order": 0, "Four views": 0, "Compare": 0, "Hard cases": 0, "Cost": 0}
     window.show_tab("compare")  # a hidden tab renders once it is shown
     _wait_full(qtbot, window, "compare")
     assert started["Compare"] == 1
