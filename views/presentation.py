@@ -87,6 +87,7 @@ class Presentation(QObject):
         self._base_font = QFont(window.font())
         self._base_style = window.styleSheet()
         self._was_maximized = False
+        self._normal_geometry = window.geometry()
         self._blank = _Blank(window)
         window.installEventFilter(self)
         self.clicker = None
@@ -177,8 +178,11 @@ class Presentation(QObject):
         self._presenting = on
         if on:
             self._was_maximized = self.window.isMaximized()
+            self._normal_geometry = self.window.geometry()
             self.set_scale(max(self._scale, PRESENTING_SCALE))
             self.set_high_contrast(True)
+            # The whole screen even where no window manager honours "full screen" (a bare X server).
+            self.window.setGeometry(self.window.screen().geometry())
             self.window.showFullScreen()
         else:
             self.set_blanked(False)
@@ -188,6 +192,7 @@ class Presentation(QObject):
                 self.window.showMaximized()
             else:
                 self.window.showNormal()
+                self.window.setGeometry(self._normal_geometry)
         if self.clicker is not None:
             self.clicker.arrows = on
             self.panel.set_compact(on)

@@ -168,6 +168,7 @@ def test_f11_presents_with_larger_text_and_dot_blanks(qtbot, window):
     assert window.font().pointSizeF() == pytest.approx(base * presentation.scale())
     assert presentation.scale() > 1
     qtbot.waitUntil(window.isFullScreen)
+    qtbot.waitUntil(lambda: window.geometry().size() == window.screen().geometry().size())
     qtbot.keyClick(window, Qt.Key.Key_Period)
     assert presentation.blanked()
     qtbot.keyClick(window, Qt.Key.Key_Period)
