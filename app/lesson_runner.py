@@ -117,3 +117,5 @@ class LessonRunner:
         self.highlighted = ", ".join(words)
         if self.highlighted:
             w.statusBar().showMessage(f"Look at {self.highlighted}", 15000)
+        else:
+            w.statusBar().clearMessage()  # the previous step's pointer no longer applies

@@ -37,6 +37,7 @@ QWidget { background-color: #000000; color: #ffffff; }
 QAbstractButton, QComboBox, QSpinBox, QDoubleSpinBox, QLineEdit {
     border: 2px solid #ffffff; padding: 3px; }
 QAbstractButton:checked, QAbstractButton:pressed { background-color: #ffd400; color: #000000; }
+QToolButton { background-color: #ffffff; }
 QListView::item:selected, QTreeView::item:selected, QTableView::item:selected {
     background-color: #ffd400; color: #000000; }
 QTabBar::tab:selected { background-color: #ffd400; color: #000000; }
