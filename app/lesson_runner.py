@@ -89,6 +89,7 @@ class LessonRunner:
         image_order.ray_kind = highlight.get("ray")
         image_order.tree.select_kind(image_order.ray_kind)
         if "ray" in highlight:
+            image_order.details.setCurrentIndex(0)  # the ray tree, where that ray is selected
             words.append(f"the {highlight['ray']} ray")
         if "object" in highlight:
             obj = _find(scene, highlight["object"])

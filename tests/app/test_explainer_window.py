@@ -106,6 +106,7 @@ def test_every_shipped_lesson_step_shows_its_panes_scene_text_and_highlight(qtbo
                                 and window.ray_tree[:2] == tuple(s.pixel), timeout=RENDER_TIMEOUT_MS)
                 tree = window.tab("image order").widget.tree
                 qtbot.waitUntil(lambda h=highlight, t=tree: t.selected_kind() == h["ray"])
+                assert tree.isVisible()
 
 
 def test_pagedown_walks_the_zbuffer_lesson_from_anywhere_and_nothing_else_takes_it(qtbot, window):
