@@ -224,3 +224,21 @@ def test_the_lessons_dock_toggles_from_the_view_menu(qtbot, window):
     assert not window.lesson_dock.isVisible()
     toggle.trigger()
     assert window.lesson_dock.isVisible()
+
+
+def test_a_picked_buffer_pixel_follows_its_polygons_nearest_corner_to_the_screen(qtbot, window):
+    window.show_tab("object order")
+    qtbot.waitUntil(lambda: window.showing_full("object order"), timeout=RENDER_TIMEOUT_MS)
+    panel = window.tab("object order").widget
+    cam = window.model.camera
+    panel.image.pixel_clicked.emit(cam.width // 2, cam.height // 2)  # a click in image memory
+    rows = panel.vertex_math.rows()
+    heading = rows[0][1]
+    name = re.search(r"corner \d+ of (.+), triangle \d+", heading)
+    assert name is not None, heading
+    obj = _find(window.model.scene, name.group(1))
+    world = [float(v) for v in re.findall(r"-?[0-9.]+(?:e[-+]?[0-9]+)?",
+                                          panel.vertex_math.value("world").split("=")[1])]
+    # The corner shown is one of that object's own vertices (the centre polygon is not clipped).
+    assert np.min(np.abs(obj.vertices - world).max(axis=1)) < 1e-4
+    assert "pixel" in dict(rows)
