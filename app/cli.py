@@ -11,7 +11,9 @@ import signal
 import sys
 
 from app import (
+    bench_gui,
     bench_raster,
+    bench_startup,
     bench_trace,
     cost_command,
     export_command,
@@ -23,7 +25,7 @@ from app.usage import UsageError
 
 
 def build_parser() -> argparse.ArgumentParser:
-    benchmarks = {"raster": bench_raster, "trace": bench_trace}
+    benchmarks = {"raster": bench_raster, "trace": bench_trace, "gui": bench_gui, "startup": bench_startup}
 
     parser = argparse.ArgumentParser(
         prog="python -m app",

@@ -1,8 +1,12 @@
-"""The main window: wires the scene model to the 3D pane, the image pane and the controls.
+"""The main window: builds the panes and connects them to the one model.
 
-No algorithms live here.  The model (:class:`app.state.SceneModel`) holds the
-scene; the camera panel asks it for changes; its signals redraw the frustum
-and start a background render of the observer's image.
+No algorithms and no drawing live here.  The model (:class:`app.state.SceneModel`)
+holds the window's state; panels write to it and views follow its signals.
+When each tab renders (only the visible one; previews while the observer
+moves) is decided by :class:`app.workers.RenderSchedule`.
+
+Tabs are registered in :data:`app.tabs.TABS` and found by name,
+``window.tab("image order")``.
 """
 
 from __future__ import annotations
@@ -10,9 +14,7 @@ from __future__ import annotations
 import sys
 from pathlib import Path
 
-import numpy as np
-import pyvista as pv
-from PySide6.QtCore import Qt, QThreadPool, QTimer
+from PySide6.QtCore import Qt, QThreadPool, QTimer, Signal
 from PySide6.QtGui import QAction, QFont, QKeySequence
 from PySide6.QtWidgets import (
     QApplication,
@@ -31,55 +33,55 @@ from PySide6.QtWidgets import (
     QWidget,
 )
 
+from app.lesson_runner import LESSON_OVERLAY, LessonRunner
 from app.mesh_files import read_mesh
 from app.state import SceneModel
-from app.tabs import CompareTab, FourViewsTab, ImageOrderTab, ObjectOrderTab
-from app.workers import Renderer
+from app.tabs import TABS
+from app.workers import Renderer, RenderSchedule
 from core import presets, scene_file
-from core.camera import camera_problems
-from core.image_order.bounding_spheres import bounding_spheres
-from core.image_order.flat_scene import trace_scene
-from core.image_order.grid_of_cuboids import cells_on_ray
 from core.image_order.ray_tree import trace_pixel
-from core.object_order import three_views
 from core.presets_trace import PRESETS_TRACE
 from core.scene import Scene
-from views import raytree_view, vtk_convert
 from views.camera_panel import CameraPanel
-from views.raytree_view import KIND_COLORS
+from views.lesson_panel import LessonPanel
+from views.observer_keys import MOUSE_GESTURES, OBSERVER_KEYS, EditorsKeepTheirKeys
+from views.presentation import Presentation
+from views.scene_overlays import SceneOverlays
 from views.scene_view import SceneView
-
-ORBIT_STEP_DEG = 5.0
-ZOOM_FACTOR = 1.15
 
 
 class MainWindow(QMainWindow):
-    """Render Explorer's window: 3D scene with the observer, and what the observer sees."""
+    """Render Explorer's window: 3D scene with the observer, and what the observer sees.
+
+    Signals
+    -------
+    image_shown(str title, bool preview) : a tab showed a new image (a preview or the full one).
+    full_image_shown(str title) : a tab showed the full render of the current scene.
+    """
+
+    image_shown = Signal(str, bool)
+    full_image_shown = Signal(str)
 
     def __init__(self, scene: Scene):
         super().__init__()
         self.setWindowTitle("Render Explorer")
         self.model = SceneModel(scene, self)
         self.scene_path: Path | None = None
-        self.scene_view = SceneView()
-        self.camera_panel = CameraPanel(scene.camera)
-        self.tabs = [ImageOrderTab(), ObjectOrderTab(), FourViewsTab(), CompareTab()]
+        self.scene_view = SceneView(self.model)
+        self.overlays = SceneOverlays(self.model, self.scene_view)
+        self.camera_panel = CameraPanel(self.model)
         self.tab_widget = QTabWidget()
-        self.renderers = []
-        for tab in self.tabs:
-            self.tab_widget.addTab(tab.widget, tab.title)
-            renderer = Renderer(self)
-            renderer.progress.connect(lambda pct, partial, t=tab: self._render_progress(t, pct, partial))
-            renderer.finished.connect(lambda result, t=tab: self._render_finished(t, result))
-            renderer.failed.connect(self._render_failed)
-            self.renderers.append(renderer)
-        self._stale = set(range(len(self.tabs)))
+        self.tab_widget.setElideMode(Qt.TextElideMode.ElideRight)  # every tab stays in view, however narrow
+        self.tab_widget.setUsesScrollButtons(False)
+        self.tabs: list = []
+        self.renders = RenderSchedule(self.model, self)
         self.progress = QProgressBar()
         self.progress.setRange(0, 100)
         self.progress.setTextVisible(True)
         self.status_caption = QLabel()
         self.status_caption.setWordWrap(True)
-        self.last_result = None
+        for cls in TABS:
+            self.add_tab(cls(self.model))
 
         right = QWidget()
         right_layout = QVBoxLayout(right)
@@ -95,11 +97,12 @@ class MainWindow(QMainWindow):
         progress_row.addWidget(self.cancel_button)
         right_layout.addLayout(progress_row)
         right_layout.addWidget(self.status_caption)
-        scene_pane = QWidget()
+        self.scene_pane = scene_pane = QWidget()
         scene_layout = QVBoxLayout(scene_pane)
         scene_layout.setContentsMargins(6, 6, 6, 6)
         scene_title = QLabel(
-            "<b>The scene</b> — observer, viewing pyramid (frustum) and screen on the near plane")
+            "<b>The scene</b> — observer, viewing pyramid (frustum) and screen on the near plane. "
+            "Drag the camera or the orange target to move them")
         scene_title.setWordWrap(True)
         scene_layout.addWidget(scene_title)
         scene_layout.addWidget(self.scene_view, 1)
@@ -107,7 +110,9 @@ class MainWindow(QMainWindow):
         splitter.addWidget(scene_pane)
         splitter.addWidget(right)
         scene_pane.setMinimumWidth(320)
-        splitter.setSizes([600, 700])
+        splitter.setStretchFactor(0, 2)
+        splitter.setStretchFactor(1, 3)
+        splitter.setSizes([400, 600])  # the tabs' images and panels get the larger share
         self.setCentralWidget(splitter)
 
         dock = QDockWidget("Controls", self)
@@ -120,41 +125,119 @@ class MainWindow(QMainWindow):
         dock.setWidget(self._controls)
         self._fit_controls()
         self.addDockWidget(Qt.DockWidgetArea.LeftDockWidgetArea, dock)
+        # The panel opens on the first lesson without applying it: the scene stays
+        # the one given until the user picks a step.
+        self.lesson_panel = LessonPanel()
+        self.lessons = LessonRunner(self)
+        self.lesson_dock = QDockWidget("Lessons", self)
+        self.lesson_dock.setObjectName("lessons")
+        self.lesson_dock.setFeatures(QDockWidget.DockWidgetFeature.DockWidgetMovable
+                                     | QDockWidget.DockWidgetFeature.DockWidgetClosable)
+        self.lesson_dock.setWidget(self.lesson_panel)
+        # Beside the controls, as a second tab of the same dock area: the image panes keep the width.
+        self.addDockWidget(Qt.DockWidgetArea.LeftDockWidgetArea, self.lesson_dock)
+        self.tabifyDockWidget(dock, self.lesson_dock)
+        self.lesson_dock.raise_()
+        self._keyed_actions: list[QAction] = []
+        self._editor_keys = EditorsKeepTheirKeys(self)
+        QApplication.instance().installEventFilter(self._editor_keys)
+        # After the editors' filter, so that PageUp/PageDown reach the lessons first, from anywhere.
+        self.presentation = Presentation(self, self.lesson_panel)
         self._build_menus()
+        self.lesson_panel.step_selected.connect(self.apply_lesson_step)
+        self.presentation.presenting_changed.connect(self._presenting_changed)
+        self.presentation.scale_changed.connect(self._scale_changed)
 
-        self.camera_panel.camera_requested.connect(self._camera_requested)
-        self.model.camera_changed.connect(self.camera_panel.set_camera)
-        self.model.camera_changed.connect(self.scene_view.set_camera)
-        self.model.camera_changed.connect(self._scene_edited)
-        self.model.scene_changed.connect(lambda scene: self.camera_panel.set_camera(scene.camera))
-        self.model.scene_changed.connect(self.scene_view.set_scene)
-        self.model.scene_changed.connect(self._scene_edited)
+        self.model.camera_refused.connect(
+            lambda why: self.statusBar().showMessage(f"Observer not moved — {why}", 6000))
+        self.model.trace_settings_changed.connect(
+            lambda _: self.renders.settings_changed(self.tab("image order")))
+        self.model.raster_settings_changed.connect(
+            lambda _: self.renders.settings_changed(self.tab("object order")))
+        self.renders.status_changed.connect(self._show_status)
+        self.renders.image_shown.connect(self.image_shown)
+        self.renders.full_image_shown.connect(self.full_image_shown)
+        self.renders.warned.connect(lambda warning: self.statusBar().showMessage(warning, 10000))
+        self.renders.rested.connect(self._observer_rested)
+        self.model.ray_pixel_changed.connect(self._ray_pixel_changed)
         self.tab_widget.currentChanged.connect(self._tab_shown)
-        image_order = self.tabs[0].widget
-        image_order.settings_changed.connect(lambda _: self._rerender(0))
-        image_order.pixel_picked.connect(self.pick_ray_tree)
-        image_order.overlays_changed.connect(self._show_accel_overlays)
         self.ray_tree = None
         self._tree_renderer = Renderer(self)
         self._tree_renderer.finished.connect(self._show_ray_tree)
-        self._tree_renderer.failed.connect(self._render_failed)
-        object_order = self.tabs[1].widget
-        object_order.settings_changed.connect(lambda _: self._rerender(1))
-        object_order.polygon_shown.connect(self._show_polygon)
-        object_order.clipped_shown.connect(self._show_clipped)
+        self._tree_renderer.failed.connect(lambda message: self.statusBar().showMessage(message, 6000))
+        object_order = self.tab("object order").widget
+        object_order.polygon_shown.connect(self.overlays.show_polygon)
+        object_order.clipped_shown.connect(self.overlays.show_clipped)
 
-        self.scene_view.set_scene(scene)
-        self._render_current()
+        self._tab_shown()
         self.progress.setFormat("compiling the renderers on first use (numba caches them), "
                                 "then rendering… %p%")
         available = self.screen().availableGeometry()
         self.resize(min(1400, available.width()), min(860, available.height()))
+
+    # ------------------------------------------------------------------ tabs
+    def add_tab(self, tab) -> None:
+        """Show ``tab`` (see :mod:`app.tabs` for what a tab provides) as the last tab."""
+        self.tabs.append(tab)
+        self.tab_widget.addTab(tab.widget, tab.title)
+        self.renders.add(tab)
+
+    def tab(self, name: str):
+        """The tab titled ``name`` (case does not matter)."""
+        for tab in self.tabs:
+            if tab.title.lower() == name.lower():
+                return tab
+        raise KeyError(f"no tab named {name!r}; the tabs are {self.tab_titles()}")
+
+    def tab_titles(self) -> list[str]:
+        return [tab.title for tab in self.tabs]
+
+    def show_tab(self, name: str) -> None:
+        """Bring the tab titled ``name`` to the front (showing it if a lesson had hidden it)."""
+        widget = self.tab(name).widget
+        self.tab_widget.setTabVisible(self.tab_widget.indexOf(widget), True)
+        self.tab_widget.setCurrentWidget(widget)
+
+    def show_all_panes(self) -> None:
+        """Every tab and the 3D pane, as before any lesson."""
+        self.scene_pane.setVisible(True)
+        for i in range(self.tab_widget.count()):
+            self.tab_widget.setTabVisible(i, True)
+
+    def visible_panes(self) -> list[str]:
+        """The panes shown, by their lesson names ("scene 3D" and the tab titles, lower case)."""
+        shown = ["scene 3D"] if self.scene_pane.isVisible() else []
+        return shown + [t.title.lower() for t in self.tabs
+                        if self.tab_widget.isTabVisible(self.tab_widget.indexOf(t.widget))]
+
+    # --------------------------------------------------------------- lessons
+    def apply_lesson_step(self, step) -> None:
+        """Show lesson step ``step`` (a :class:`core.lessons.LessonStep`); see :mod:`app.lesson_runner`."""
+        self.lessons.apply(step)
+
+    def _presenting_changed(self, presenting: bool) -> None:
+        # Esc leaves full screen while presenting; one key, one meaning.
+        self.cancel_button.setShortcut(QKeySequence() if presenting else QKeySequence("Esc"))
+
+    def _scale_changed(self, scale: float) -> None:
+        self.tab("image order").widget.worked_math.set_scale(scale)
+        self.tab("object order").widget.vertex_math.set_scale(scale)
+
+    @property
+    def current(self):
+        """The visible tab."""
+        return self.tabs[self.tab_widget.currentIndex()]
+
+    def showing_full(self, name: str) -> bool:
+        """Whether tab ``name`` shows the full render of the current scene and settings."""
+        return self.renders.showing_full(self.tab(name))
 
     # ----------------------------------------------------------------- menus
     def _action(self, menu, text, slot, shortcut=None, tip=""):
         action = QAction(text, self)
         if shortcut:
             action.setShortcut(QKeySequence(shortcut))
+            self._keyed_actions.append(action)
         action.setStatusTip(tip)
         action.setToolTip(tip)
         action.triggered.connect(slot)
@@ -169,6 +252,8 @@ class MainWindow(QMainWindow):
                      QKeySequence.StandardKey.SaveAs, "Save the scene and observer as JSON")
         self._action(file_menu, "&Lecture scene", self.reset_scene, "Ctrl+L",
                      "Back to the lecture's cube and cone on a plane")
+        self._action(file_menu, "Open &lesson…", lambda: self.lesson_panel.open_lesson_file(),
+                     tip="Open a lesson JSON file and start it")
         examples = file_menu.addMenu("&Examples")
         for group in (presets.PRESETS, PRESETS_TRACE):
             for key, (title, build) in group.items():
@@ -177,43 +262,50 @@ class MainWindow(QMainWindow):
         file_menu.addSeparator()
         self._action(file_menu, "&Quit", self.close, QKeySequence.StandardKey.Quit)
         observer = self.menuBar().addMenu("&Observer")
-        self._action(observer, "Walk left", lambda: self.orbit_by(-ORBIT_STEP_DEG, 0), "Left")
-        self._action(observer, "Walk right", lambda: self.orbit_by(ORBIT_STEP_DEG, 0), "Right")
-        self._action(observer, "Look from higher", lambda: self.orbit_by(0, ORBIT_STEP_DEG), "Up")
-        self._action(observer, "Look from lower", lambda: self.orbit_by(0, -ORBIT_STEP_DEG), "Down")
-        self._action(observer, "Step closer", lambda: self.zoom_by(1 / ZOOM_FACTOR), "+")
-        self._action(observer, "Step back", lambda: self.zoom_by(ZOOM_FACTOR), "-")
-        self._action(observer, "Toggle perspective / orthographic", self.toggle_projection, "P")
+        for key, text, move in OBSERVER_KEYS:
+            self._action(observer, text,
+                         lambda _=False, m=move: self.model.set_camera(m(self.model.camera)), key)
         view = self.menuBar().addMenu("&View")
         self._action(view, "Larger text (lecture hall)", lambda: self.scale_text(1.25),
                      QKeySequence.StandardKey.ZoomIn)
         self._action(view, "Smaller text", lambda: self.scale_text(0.8),
                      QKeySequence.StandardKey.ZoomOut)
-        self._action(view, "Re-render", self._render_current, "F5")
+        self._action(view, "Re-render", self.rerender, "F5")
         for i, tab in enumerate(self.tabs):
-            self._action(view, tab.title, lambda _=False, i=i: self.tab_widget.setCurrentIndex(i),
-                         f"Ctrl+{i + 1}")
+            self._action(view, tab.title, lambda _=False, t=tab.title: self.show_tab(t), f"Ctrl+{i + 1}")
+        self._action(view, "Show all panes", self.show_all_panes,
+                     tip="Every tab and the 3D pane again, after a lesson showed only some")
+        view.addSeparator()
+        lessons = self.lesson_dock.toggleViewAction()
+        lessons.setText("Lessons")
+        lessons.setShortcut(QKeySequence("Ctrl+Shift+L"))
+        view.addAction(lessons)
+        self._keyed_actions.append(lessons)
+        acts = self.presentation.actions
+        for key in ("present", "leave", "blank", "contrast", "presenter"):
+            view.addAction(acts[key])
+            if not acts[key].shortcut().isEmpty():
+                self._keyed_actions.append(acts[key])
+        sizes = view.addMenu("Text size")
+        for key in ("scale 1", "scale 1.5", "scale 2"):
+            sizes.addAction(acts[key])
+        help_menu = self.menuBar().addMenu("&Help")
+        self._action(help_menu, "&Keys and mouse", self.show_keys, tip="Every key and mouse gesture")
 
-    # ----------------------------------------------------------- observer
-    def _camera_requested(self, camera):
-        if not self.model.set_camera(camera) and camera != self.model.camera:
-            problems = "; ".join(f"{f}: {m}" for f, m in camera_problems(camera))
-            self.statusBar().showMessage(f"Observer not moved — {problems}", 6000)
-            self.camera_panel.set_camera(self.model.camera)
+    def keys_text(self) -> str:
+        """Every keyboard shortcut and mouse gesture, one a line."""
+        lines = ["Keys (a focused number box keeps the arrow keys for itself):"]
+        lines += [f"  {a.shortcut().toString(QKeySequence.SequenceFormat.NativeText):<14} "
+                  f"{a.text().replace('&', '')}" for a in self._keyed_actions]
+        lines += [f"  {'PageDown':<14} Next lesson step (from anywhere)",
+                  f"  {'PageUp':<14} Previous lesson step (from anywhere)",
+                  f"  {'Esc':<14} Cancel the render in progress (while presenting: leave full screen)",
+                  "", "Mouse in the 3D pane:"]
+        lines += [f"  {gesture}: {what}" for gesture, what in MOUSE_GESTURES]
+        return "\n".join(lines)
 
-    def orbit_by(self, d_yaw: float, d_pitch: float) -> None:
-        cam = self.model.camera
-        pitch = max(-89.0, min(89.0, cam.pitch_deg + d_pitch))
-        self._camera_requested(cam.orbit(cam.yaw_deg + d_yaw, pitch))
-
-    def zoom_by(self, factor: float) -> None:
-        cam = self.model.camera
-        self._camera_requested(cam.orbit(cam.yaw_deg, cam.pitch_deg, cam.distance * factor))
-
-    def toggle_projection(self) -> None:
-        cam = self.model.camera
-        other = "orthographic" if cam.projection == "perspective" else "perspective"
-        self._camera_requested(cam.replace(projection=other))
+    def show_keys(self) -> None:
+        QMessageBox.information(self, "Keys and mouse", self.keys_text())
 
     def scale_text(self, factor: float) -> None:
         app = QApplication.instance()
@@ -265,141 +357,77 @@ class MainWindow(QMainWindow):
 
     # ------------------------------------------------------------ render
     @property
-    def current_tab(self) -> int:
-        return self.tab_widget.currentIndex()
+    def last_result(self):
+        """The result a tab showed last (preview or full)."""
+        return self.renders.last_result
 
-    def _scene_edited(self, *_):
-        """The scene or observer changed: every tab is stale; redraw the visible one now."""
-        self._stale = set(range(len(self.tabs)))
-        self._render_current()
-        if self.ray_tree is not None:  # the picked pixel now sees something else
-            self.pick_ray_tree(*self.ray_tree[:2])
-        self._show_accel_overlays()
-
-    def _rerender(self, index: int) -> None:
-        self._stale.add(index)
-        if index == self.current_tab:
-            self._render_current()
-
-    def _tab_shown(self, index: int) -> None:
-        for name in ("polygon", "clipped", "ray-tree", "spheres", "grid", "walk"):
-            self.scene_view.set_overlay(name, [])
-        if index == 0:
-            self._show_accel_overlays()
-            if self.ray_tree is not None:
-                self._show_ray_tree(self.ray_tree)
-        if index in self._stale:
-            self._render_current()
-
-    def _render_current(self, *_):
-        index = self.current_tab
-        self._stale.discard(index)
-        tab = self.tabs[index]
-        self.progress.setFormat(f"{tab.title}: rendering… %p%")
-        self.progress.setValue(0)
-        self.renderers[index].submit(tab.job(self.model.scene))
-        self.cancel_button.setEnabled(True)
+    def rerender(self) -> None:
+        """Render the visible tab again in full (F5)."""
+        self.renders.rerender()
 
     def cancel_render(self) -> None:
         """Stop the visible tab's render; what was drawn so far stays on screen."""
-        self.renderers[self.current_tab].cancel()
-        self._stale.add(self.current_tab)
-        self.cancel_button.setEnabled(False)
-        self.progress.setFormat(f"{self.tabs[self.current_tab].title}: cancelled at %p% (F5 renders again)")
+        self.renders.cancel()
 
-    def _render_progress(self, tab, percent, partial):
-        if tab is self.tabs[self.current_tab]:
+    def _tab_shown(self, *_) -> None:
+        tab = self.current
+        self.scene_view.show_overlays_only((*tab.overlays, LESSON_OVERLAY))
+        self.renders.show_tab(tab)
+        self._show_status(tab)
+
+    def _show_status(self, tab) -> None:
+        if tab is not self.current:
+            return
+        percent, text, caption = self.renders.status(tab)
+        if percent != self.progress.value():
+            # QProgressBar.setValue repaints at once, which composes the whole window
+            # (the 3D pane is an OpenGL widget); paint it with the next frame instead.
+            self.progress.setUpdatesEnabled(False)
             self.progress.setValue(percent)
-        if partial is not None:
-            tab.show_progress(percent, partial)
-
-    def _render_finished(self, tab, result):
-        self.last_result = result
-        caption = tab.show(result)
-        if tab is self.tabs[self.current_tab]:
-            self.cancel_button.setEnabled(False)
-            self.progress.setValue(100)
-            self.progress.setFormat(f"{tab.title}: done")
-            self.status_caption.setText(caption)
-
-    def _render_failed(self, message: str):
-        self.cancel_button.setEnabled(False)
-        self.progress.setFormat("render failed")
-        QMessageBox.warning(self, "Render failed", message)
+            self.progress.setUpdatesEnabled(True)
+        self.progress.setFormat(text)
+        self.status_caption.setText(caption)
+        self.cancel_button.setEnabled(self.renders.busy(tab))
 
     # ------------------------------------------------------- image order
     def pick_ray_tree(self, x: int, y: int) -> None:
-        """Trace pixel (x, y) again with every ray kept (in the background)."""
-        scene, settings = self.model.scene, self.tabs[0].widget.settings
-        cam = scene.camera
-        if not (0 <= x < cam.width and 0 <= y < cam.height):
+        """Pick pixel (x, y) of the traced image: its ray tree is traced with every ray kept."""
+        self.model.set_ray_pixel((x, y))
+
+    def _observer_rested(self) -> None:
+        if self.model.ray_pixel is not None:  # the picked pixel now sees something else
+            self._trace_picked(self.model.ray_pixel)
+
+    def _ray_pixel_changed(self, pixel) -> None:
+        if pixel is None:
             self.ray_tree = None
-            self.scene_view.set_overlay("ray-tree", [])
-            return
-        self._tree_renderer.submit(lambda cancelled, progress: (x, y, trace_pixel(scene, x, y, settings)))
+            self._tree_renderer.cancel()
+            self.overlays.show_ray_tree(None)
+        else:
+            self._trace_picked(pixel)
+
+    def _trace_picked(self, pixel) -> None:
+        """Trace the picked pixel again with every ray kept (in the background)."""
+        x, y = pixel
+        scene, settings = self.model.scene, self.model.trace_settings
+        self._tree_renderer.submit(
+            lambda cancelled, progress: (x, y, trace_pixel(scene, x, y, settings), scene))
 
     def _show_ray_tree(self, picked) -> None:
-        self.ray_tree = picked
-        x, y, root = picked
-        if self.current_tab != 0:
+        x, y, root, scene = picked
+        if (x, y) != self.model.ray_pixel:
             return
-        self.tabs[0].widget.show_tree(x, y, root)
-        low, high = three_views.scene_bounds(self.model.scene)
-        miss_length = 0.6 * float(np.linalg.norm(high - low)) + 1.0
-        self.scene_view.set_overlay("ray-tree", raytree_view.ray_tree_parts(root, miss_length))
-        self._show_accel_overlays()
-
-    def _show_accel_overlays(self) -> None:
-        """Bounding spheres, grid cells and the picked ray's cells, as the panel's switches say."""
-        panel, scene = self.tabs[0].widget, self.model.scene
-        if self.current_tab != 0:
-            return
-        spheres = []
-        if panel.show_spheres.isChecked():
-            spheres = [(pv.Sphere(radius=b.radius, center=b.center, theta_resolution=24,
-                                  phi_resolution=16).extract_all_edges(),
-                        {"color": "#9fd3ff", "opacity": 0.35, "line_width": 1})
-                       for b in bounding_spheres(scene) if not b.exact]
-        self.scene_view.set_overlay("spheres", spheres)
-        want_walk = panel.show_walk.isChecked() and self.ray_tree is not None
-        need_grid = panel.show_grid.isChecked() or want_walk
-        grid = trace_scene(scene).geometry.accel("grid")[0] if need_grid else None
-        cells = []
-        if panel.show_grid.isChecked():
-            cells = [(vtk_convert.boxes_polydata(grid.cell_boxes(grid.occupied_cells())),
-                      {"color": "#b0b0b0", "opacity": 0.25, "line_width": 1})]
-        self.scene_view.set_overlay("grid", cells)
-        walk = []
-        if want_walk:
-            root = self.ray_tree[2]
-            t_max = root.t if root.t is not None else np.inf
-            walked = cells_on_ray(grid, root.origin, root.direction, root.t_min, t_max)
-            if len(walked):
-                walk = [(vtk_convert.boxes_polydata(grid.cell_boxes(walked)),
-                         {"color": KIND_COLORS["primary"], "line_width": 3})]
-        self.scene_view.set_overlay("walk", walk)
-
-    # ------------------------------------------------------- object order
-    def _show_clipped(self, polygons) -> None:
-        """Outline, in the 3D pane, the polygons the frustum's planes cut."""
-        parts = [(vtk_convert.polygon_polydata(p).extract_all_edges(),
-                  {"color": "#7cff6b", "line_width": 3}) for p in polygons]
-        self.scene_view.set_overlay("clipped", parts)
-
-    def _show_polygon(self, vertices) -> None:
-        """Highlight the polygon the object-order scrubber is at, in the 3D pane."""
-        if vertices is None:
-            self.scene_view.set_overlay("polygon", [])
-            return
-        poly = vtk_convert.polygon_polydata(vertices)
-        self.scene_view.set_overlay("polygon", [
-            (poly, {"color": "#ff2bd6", "opacity": 0.8}),
-            (poly.extract_all_edges(), {"color": "#ff2bd6", "line_width": 4}),
-        ])
+        self.ray_tree = (x, y, root)
+        self.tab("image order").widget.show_tree(x, y, root, scene)  # the tree and its worked math
+        self.overlays.show_ray_tree(root)
 
     def closeEvent(self, event):
-        for renderer in self.renderers:
-            renderer.cancel()
+        QApplication.instance().removeEventFilter(self._editor_keys)
+        self.presentation.clicker.remove()
+        self.renders.stop()
+        for tab in self.tabs:
+            getattr(tab, "shutdown", lambda: None)()
+        self._tree_renderer.cancel()
         self.scene_view.close()
         super().closeEvent(event)
 
@@ -418,7 +446,5 @@ def run(scene_path: str | None = None) -> int:
     window = MainWindow(scene)
     window.show()
     status = app.exec()
-    for renderer in window.renderers:
-        renderer.cancel()
     QThreadPool.globalInstance().waitForDone()
     return status

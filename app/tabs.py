@@ -1,69 +1,175 @@
 """The main window's tabs: each knows how to render the scene for its view, off the GUI thread.
 
-A tab builds a *job* for the current scene (see :mod:`app.workers`), and
-shows the job's result in its widget.  The main window runs only the visible
-tab's job and marks the others stale until they are shown.
+A tab is any object with
+
+- ``title`` : the tab's label; the window finds it by name,
+  ``window.tab("image order")`` (case does not matter);
+- ``widget`` : the QWidget shown under the tab;
+- ``overlays`` : names of the 3D-pane overlays that belong to it (shown only
+  while it is visible; see :mod:`views.scene_overlays`);
+- ``job(scene, preview)`` : a job for :class:`app.workers.Renderer` that
+  renders ``scene`` for this tab, or ``None`` if the tab has nothing to
+  render (a panel that computes on its own, like Hard cases).  With
+  ``preview`` true the job is a coarse, quick one, shown
+  while the observer moves (about a quarter of the pixels, upscaled, marked
+  "preview"); otherwise it is the full render;
+- ``show(result) -> str`` : show a finished job's result; returns the status line;
+- optionally ``shutdown()`` : stop the tab's own background work (the window is closing);
+- optionally ``show_progress(partial)`` : show a partial result while a job runs;
+- optionally ``warning(scene) -> str | None`` : a word before a very long full render.
+
+Adding a tab is one line: append its class to :data:`TABS` (it is built as
+``cls(model)`` with the window's :class:`app.state.SceneModel`).
+
+Images are converted for display (:func:`views.image_view.display_image`)
+inside the jobs, on the worker thread, so the GUI thread only paints.
 """
 
 from __future__ import annotations
 
-from dataclasses import replace
+from dataclasses import dataclass, replace
 
 import numpy as np
 
+from core.camera import Camera
 from core.image_order.ray_tracing import TraceSettings, merge_band_stats, render_trace
 from core.object_order import three_views
 from core.object_order.pipeline import RasterSettings, render_raster
-from core.scene import Scene
+from core.scene import Mesh, Scene
+from views.cost_panel import CostPanel
+from views.hard_cases_panel import HardCasesPanel
 from views.image_grid import ImageGrid
 from views.image_order_panel import ImageOrderPanel
+from views.image_view import display_image
 from views.object_order_panel import ObjectOrderPanel
+from views.scene_overlays import IMAGE_ORDER_OVERLAYS, OBJECT_ORDER_OVERLAYS
 
 BAND_ROWS = 32
+PREVIEW_STEP = 2
+"""Previews render one pixel in every PREVIEW_STEP x PREVIEW_STEP block: a quarter of the pixels."""
+PREVIEW = "preview"
+SLOW_TESTS = 2e9
+"""Ray–object tests above which a full render without acceleration gets a warning (minutes here)."""
+BAND_TESTS = 5e7
+"""Without acceleration, a band holds at most about this many ray–object tests (a fraction of a
+second), so that a newer camera or Cancel stops the render soon."""
+
+
+def _tests_per_row(scene: Scene) -> int:
+    """Ray–object tests one image row costs when every ray tests every primitive."""
+    primitives = sum(len(o.triangles) if isinstance(o, Mesh) else 1 for o in scene.objects)
+    return scene.camera.width * max(primitives, 1) * (1 + len(scene.lights))
+
+
+@dataclass(frozen=True)
+class Preview:
+    """A preview job's result: the coarse image (marked "preview"), its camera and what it cost."""
+
+    image: object  # views.image_view.DisplayImage
+    camera: Camera
+    seconds: float
+    rays: int = 0
 
 
 def _ms(seconds: float) -> str:
     return f"{seconds * 1000:.0f} ms"
 
 
+def preview_camera(camera: Camera) -> Camera:
+    """The same observer with PREVIEW_STEP times fewer pixels each way."""
+    return camera.replace(width=max(1, -(-camera.width // PREVIEW_STEP)),
+                          height=max(1, -(-camera.height // PREVIEW_STEP)))
+
+
+def upscale(rgb: np.ndarray, width: int, height: int) -> np.ndarray:
+    """A coarse image repeated block by block to ``width`` x ``height`` (nearest neighbour)."""
+    rows = np.minimum(np.arange(height) // PREVIEW_STEP, rgb.shape[0] - 1)
+    cols = np.minimum(np.arange(width) // PREVIEW_STEP, rgb.shape[1] - 1)
+    return rgb[rows][:, cols]
+
+
+def _raster_preview(scene: Scene) -> tuple[np.ndarray, float]:
+    """A quick z-buffer image of ``scene`` from a quarter of the pixels, at full size; and its time."""
+    cam = scene.camera
+    raster = render_raster(replace(scene, camera=preview_camera(cam)), RasterSettings())
+    return upscale(raster.color, cam.width, cam.height), sum(raster.stats["times"].values())
+
+
+def preview_trace_settings(settings: TraceSettings) -> TraceSettings:
+    """Previews never go without acceleration: the image is the same, the wait is not."""
+    return settings if settings.accel != "none" else replace(settings, accel="bvh")
+
+
 class ImageOrderTab:
     """What the observer sees, traced in image order: a coarse image at once, then band by band."""
 
     title = "Image order"
-    COARSE_STEP = 4
+    overlays = IMAGE_ORDER_OVERLAYS
 
-    def __init__(self):
-        self.widget = ImageOrderPanel()
+    def __init__(self, model):
+        self.model = model
+        self.widget = ImageOrderPanel(model)
+        self._preview: Preview | None = None  # the last preview shown, a start for the full render
 
-    def job(self, scene: Scene):
-        settings = self.widget.settings
+    def warning(self, scene: Scene) -> str | None:
+        settings = self.model.trace_settings
+        if settings.accel != "none":
+            return None
+        triangles = sum(len(o.triangles) if isinstance(o, Mesh) else 1 for o in scene.objects)
+        tests = scene.camera.height * _tests_per_row(scene)
+        if tests < SLOW_TESTS:
+            return None
+        return (f"Acceleration 'None': every ray tests all {triangles:,} triangles, about "
+                f"{tests:.1e} tests; this render may take minutes (Esc cancels; previews use the BVH)")
+
+    def job(self, scene: Scene, preview: bool):
+        settings = self.model.trace_settings
+        cam = scene.camera
+        if preview:
+            def run(cancelled, progress):
+                coarse = render_trace(scene, preview_trace_settings(settings), step=PREVIEW_STEP)
+                return Preview(display_image(coarse.color, PREVIEW), cam, coarse.stats["times"]["total"],
+                               coarse.stats["rays"]["total"])
+
+            return run
+        shown = self._preview if self._preview is not None and self._preview.camera == cam else None
+        rows = BAND_ROWS
+        if settings.accel == "none":
+            rows = max(1, min(BAND_ROWS, int(BAND_TESTS // _tests_per_row(scene))))
 
         def run(cancelled, progress):
-            cam = scene.camera
-            coarse = render_trace(scene, settings, step=self.COARSE_STEP)
-            color = coarse.color.copy()
-            progress(0, color.copy())
+            if shown is not None:  # the bands replace the preview already on screen
+                color = shown.image.rgb.copy()
+            else:
+                color = render_trace(scene, preview_trace_settings(settings), step=2 * PREVIEW_STEP).color
+                progress(0, display_image(color, PREVIEW))
             bands = []
-            for first in range(0, cam.height, BAND_ROWS):
+            for first in range(0, cam.height, rows):
                 if cancelled.is_set():
                     return None
-                band = render_trace(scene, settings, rows=(first, min(first + BAND_ROWS, cam.height)))
+                band = render_trace(scene, settings, rows=(first, min(first + rows, cam.height)))
                 color[first:first + len(band.color)] = band.color
                 bands.append(band)
-                progress(round(100 * (first + len(band.color)) / cam.height), color.copy())
-            return color, merge_band_stats([b.stats for b in bands])
+                done = first + len(band.color)
+                progress(round(100 * done / cam.height),
+                         display_image(color.copy(), "" if done == cam.height else "rendering…"))
+            return display_image(color), merge_band_stats([b.stats for b in bands])
 
         return run
 
-    def show_progress(self, percent, partial) -> None:
+    def show_progress(self, partial) -> None:
         self.widget.image.set_image(partial)
 
     def show(self, result) -> str:
-        color, stats = result
-        self.widget.image.set_image(color)
+        if isinstance(result, Preview):
+            self._preview = result
+            self.widget.image.set_image(result.image)
+            return f"preview: a quarter of the rays ({result.rays:,}) in {_ms(result.seconds)}"
+        image, stats = result
+        self.widget.image.set_image(image)
+        times = stats["times"]
         self.widget.show_stats(stats)
         w, h = stats["size"]
-        times = stats["times"]
         return (f"{w} × {h} pixels · {stats['rays']['total']:,} rays · "
                 + " · ".join(f"{k} {_ms(v)}" for k, v in times.items() if k != "total")
                 + f" · total {_ms(times['total'])}")
@@ -73,12 +179,20 @@ class ObjectOrderTab:
     """Object order step by step: the recorded z-buffer render of the observer's view."""
 
     title = "Object order"
+    overlays = OBJECT_ORDER_OVERLAYS
 
-    def __init__(self):
-        self.widget = ObjectOrderPanel()
+    def __init__(self, model):
+        self.model = model
+        self.widget = ObjectOrderPanel(model)
 
-    def job(self, scene: Scene):
-        settings = self.widget.settings
+    def job(self, scene: Scene, preview: bool):
+        settings = self.model.raster_settings
+        if preview:
+            def run(cancelled, progress):
+                rgb, seconds = _raster_preview(scene)
+                return Preview(display_image(rgb, PREVIEW), scene.camera, seconds)
+
+            return run
 
         def run(cancelled, progress):
             return scene, render_raster(scene, settings)
@@ -86,6 +200,9 @@ class ObjectOrderTab:
         return run
 
     def show(self, result) -> str:
+        if isinstance(result, Preview):
+            self.widget.show_preview(result.image)
+            return f"preview: a quarter of the pixels, without steps, in {_ms(result.seconds)}"
         scene, raster = result
         self.widget.show_result(raster, scene)
         s = raster.stats
@@ -97,31 +214,42 @@ class FourViewsTab:
     """The lecture's four views: front, side and top orthographic, and the observer's perspective."""
 
     title = "Four views"
+    overlays = ()
     PANES = [("front", "Front view (orthographic)"), ("side", "Side view (orthographic)"),
              ("top", "Top view (orthographic)"), ("observer", "Observer's view")]
 
-    def __init__(self):
+    def __init__(self, model):
+        self.model = model
         self.widget = ImageGrid(self.PANES, columns=2)
 
-    def job(self, scene: Scene):
+    def job(self, scene: Scene, preview: bool):
         cam = scene.camera
         cameras = {**three_views.orthographic_views(scene, cam.width, cam.height), "observer": cam}
+        if preview:  # the three axis views do not depend on the observer
+            cameras = {"observer": cam}
 
         def run(cancelled, progress):
             images = {}
             for i, (key, camera) in enumerate(cameras.items()):
                 if cancelled.is_set():
                     return None
-                raster = render_raster(replace(scene, camera=camera), RasterSettings())
-                images[key] = (raster.color, sum(raster.stats["times"].values()))
+                view = replace(scene, camera=camera)
+                if preview:
+                    rgb, seconds = _raster_preview(view)
+                    images[key] = (display_image(rgb, PREVIEW), seconds)
+                else:
+                    raster = render_raster(view, RasterSettings())
+                    images[key] = (display_image(raster.color), sum(raster.stats["times"].values()))
                 progress(round(100 * (i + 1) / len(cameras)), None)
             return images
 
         return run
 
     def show(self, images) -> str:
-        for key, (rgb, seconds) in images.items():
-            self.widget.set_image(key, rgb, f"z-buffer render in {_ms(seconds)}")
+        for key, (image, seconds) in images.items():
+            self.widget.set_image(key, image, f"z-buffer {image.note or 'render'} in {_ms(seconds)}")
+        if set(images) == {"observer"}:
+            return f"preview of the observer's view in {_ms(images['observer'][1])}"
         return "front, side and top: parallel projection along the axes"
 
 
@@ -129,34 +257,93 @@ class CompareTab:
     """Orthographic, perspective and ray-traced images of the same scene, with their cost."""
 
     title = "Compare"
+    overlays = ()
     PANES = [("orthographic", "Orthographic (z-buffer)"), ("perspective", "Perspective (z-buffer)"),
              ("traced", "Ray traced (image order)")]
 
-    def __init__(self):
+    def __init__(self, model):
+        self.model = model
         self.widget = ImageGrid(self.PANES, columns=2)
 
-    def job(self, scene: Scene):
+    def job(self, scene: Scene, preview: bool):
         cam = scene.camera
         ortho_height = 2 * cam.distance * np.tan(np.radians(cam.fov_y_deg) / 2)
+        note = PREVIEW if preview else ""
 
         def run(cancelled, progress):
             out = {}
             for key, projection in (("orthographic", "orthographic"), ("perspective", "perspective")):
-                camera = cam.replace(projection=projection, ortho_height=ortho_height)
-                raster = render_raster(replace(scene, camera=camera), RasterSettings())
-                out[key] = (raster.color, sum(raster.stats["times"].values()), "z-buffer")
+                view = replace(scene, camera=cam.replace(projection=projection, ortho_height=ortho_height))
+                if preview:
+                    rgb, seconds = _raster_preview(view)
+                else:
+                    raster = render_raster(view, RasterSettings())
+                    rgb, seconds = raster.color, sum(raster.stats["times"].values())
+                out[key] = (display_image(rgb, note), seconds, "z-buffer")
                 progress(33 if key == "orthographic" else 66, None)
                 if cancelled.is_set():
                     return None
             traced = render_trace(replace(scene, camera=cam.replace(projection="perspective")),
-                                  TraceSettings())
+                                  TraceSettings(), step=PREVIEW_STEP if preview else 1)
             rays = traced.stats["rays"]["total"]
-            out["traced"] = (traced.color, traced.stats["times"]["total"], f"ray tracing, {rays:,} rays,")
+            out["traced"] = (display_image(traced.color, note), traced.stats["times"]["total"],
+                             f"ray tracing, {rays:,} rays,")
             return out
 
         return run
 
     def show(self, images) -> str:
-        for key, (rgb, seconds, method) in images.items():
-            self.widget.set_image(key, rgb, f"{method} in {_ms(seconds)}")
+        for key, (image, seconds, method) in images.items():
+            self.widget.set_image(key, image, f"{method} {image.note + ' ' if image.note else ''}"
+                                              f"in {_ms(seconds)}")
+        if images["traced"][0].note == PREVIEW:
+            return "preview: the same scene and observer, three ways, a quarter of the pixels"
         return "the same scene and observer, three ways"
+
+
+class HardCasesTab:
+    """Where the formulas meet finite precision: each case computes in its own panel, on first show."""
+
+    title = "Hard cases"
+    overlays = ()
+
+    def __init__(self, model):
+        self.model = model
+        self.widget = HardCasesPanel()
+
+    def job(self, scene: Scene, preview: bool):
+        return None  # the cases do not depend on the scene
+
+    def show(self, result) -> str:
+        return ""
+
+    def shutdown(self) -> None:
+        """Stop the panel's background computations (the window is closing)."""
+        self.widget.shutdown()
+
+
+class CostTab:
+    """What a knob (resolution, objects, lights, depth) costs each order; it sweeps the model's scene."""
+
+    title = "Cost"
+    overlays = ()
+
+    def __init__(self, model):
+        self.model = model
+        self.widget = CostPanel()
+        self.widget.set_scene(model.scene)
+        model.scene_changed.connect(self.widget.set_scene)
+
+    def job(self, scene: Scene, preview: bool):
+        return None  # a sweep starts from the panel's Run button
+
+    def show(self, result) -> str:
+        return ""
+
+    def shutdown(self) -> None:
+        """Cancel a running sweep (the window is closing)."""
+        self.widget.cancel()
+
+
+TABS = (ImageOrderTab, ObjectOrderTab, FourViewsTab, CompareTab, HardCasesTab, CostTab)
+"""The window's tabs, in order; each is built as ``cls(model)``."""

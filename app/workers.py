@@ -4,18 +4,23 @@ A *job* is a plain function ``job(cancelled, progress) -> result``: it checks
 ``cancelled`` (a :class:`threading.Event`) between pieces of work and returns
 ``None`` once it is set, and calls ``progress(percent, partial)`` after each
 piece.  :class:`Renderer` runs jobs on the thread pool; a new job supersedes the
-running one, and results of superseded jobs are never delivered.  Signals are
-queued onto the GUI thread, so receivers may touch widgets and VTK.
+running one (it stops at its next piece), and results of superseded jobs are
+never delivered.  Partial results reach the GUI thread at most
+:data:`PROGRESS_PER_SECOND` times a second; the ones in between are dropped
+(the next one shows more anyway).  Signals are queued onto the GUI thread, so
+receivers may touch widgets and VTK.
 """
 
 from __future__ import annotations
 
 import threading
+import time
 from collections.abc import Callable
 
-from PySide6.QtCore import QObject, QRunnable, QThreadPool, Signal
+from PySide6.QtCore import QObject, QRunnable, QThreadPool, QTimer, Signal
 
 Job = Callable[[threading.Event, Callable[[int, object], None]], object]
+PROGRESS_PER_SECOND = 30
 
 
 class _Signals(QObject):
@@ -28,8 +33,11 @@ class _Runnable(QRunnable):
     def __init__(self, job_id: int, job: Job, signals: _Signals, cancelled: threading.Event):
         super().__init__()
         self.job_id, self.job, self.signals, self.cancelled = job_id, job, signals, cancelled
+        self._last_progress = -float("inf")
 
     def run(self):
+        if self.cancelled.is_set():  # superseded while it waited for a thread: nothing to do
+            return
         try:
             result = self.job(self.cancelled, self._progress)
         except Exception as exc:  # shown to the user by whoever listens to `failed`
@@ -39,7 +47,10 @@ class _Runnable(QRunnable):
             self._emit("finished", self.job_id, result)
 
     def _progress(self, percent: int, partial: object) -> None:
-        self._emit("progress", self.job_id, percent, partial)
+        now = time.perf_counter()
+        if now - self._last_progress >= 1.0 / PROGRESS_PER_SECOND:
+            self._last_progress = now
+            self._emit("progress", self.job_id, percent, partial)
 
     def _emit(self, name: str, *args) -> None:
         """Report to the GUI thread, unless the job was cancelled or its window is gone."""
@@ -106,3 +117,186 @@ class Renderer(QObject):
         if job_id == self._latest and self._cancel is not None:
             self._cancel = None
             self.failed.emit(message)
+
+
+class RenderSchedule(QObject):
+    """Decides when each of the window's tabs renders, and remembers what each one shows.
+
+    - Only the visible tab (:meth:`show_tab`) renders; the others render when shown.
+    - While the observer moves (camera changes less than :data:`REST_MS` apart)
+      the visible tab gets previews, one at a time and each of the newest
+      camera, never a queue; once the observer rests, the full render starts.
+    - A newer camera supersedes a running full render at its next band, and a
+      full result is shown only for the scene it was rendered from.
+
+    Tabs are those of :mod:`app.tabs` (``title``, ``job(scene, preview)``,
+    ``show(result)``, optional ``show_progress`` and ``warning``).
+
+    Signals
+    -------
+    status_changed(object tab) : the tab's progress or status line changed (see :meth:`status`).
+    image_shown(str title, bool preview) : a tab showed a new image (a preview or the full one).
+    full_image_shown(str title) : a tab showed the full render of the current scene.
+    warned(str) : a word before a very long render.
+    rested() : the observer stopped moving.
+    """
+
+    REST_MS = 150
+
+    status_changed = Signal(object)
+    image_shown = Signal(str, bool)
+    full_image_shown = Signal(str)
+    warned = Signal(str)
+    rested = Signal()
+
+    def __init__(self, model, parent: QObject | None = None):
+        super().__init__(parent)
+        self.model = model
+        self.tabs: list = []
+        self.current = None
+        self.last_result = None
+        self._jobs: dict[str, tuple[object, bool]] = {}  # title -> (scene, preview) of the running job
+        self._full_shown: dict[str, object] = {}  # title -> the scene whose full image the tab shows
+        self._preview_shown: dict[str, object] = {}
+        self._status: dict[str, tuple[int, str, str]] = {}  # title -> percent, progress text, caption
+        self._moving = False
+        self._rest = QTimer(self)
+        self._rest.setSingleShot(True)
+        self._rest.setInterval(self.REST_MS)
+        self._rest.timeout.connect(self._rested)
+        model.camera_changed.connect(self._camera_moved)
+        model.scene_changed.connect(self._scene_replaced)
+
+    def add(self, tab) -> None:
+        """Render ``tab`` when it is visible; it gets its own :class:`Renderer` as ``tab.renderer``."""
+        self.tabs.append(tab)
+        tab.renderer = Renderer(self)
+        tab.renderer.progress.connect(lambda pct, partial, t=tab: self._progress(t, pct, partial))
+        tab.renderer.finished.connect(lambda result, t=tab: self._finished(t, result))
+        tab.renderer.failed.connect(lambda message, t=tab: self._failed(t, message))
+        self._status[tab.title] = (0, f"{tab.title}: not rendered yet", "")
+
+    def status(self, tab) -> tuple[int, str, str]:
+        """``tab``'s progress in percent, its progress-bar text (``%p%`` for the percent) and caption."""
+        return self._status[tab.title]
+
+    def busy(self, tab) -> bool:
+        return tab.title in self._jobs
+
+    def showing_full(self, tab) -> bool:
+        """Whether ``tab`` shows the full render of the current scene and settings."""
+        return self._full_shown.get(tab.title) is self.model.scene
+
+    def show_tab(self, tab) -> None:
+        """``tab`` is now the visible one: the others stop, it renders what it lacks."""
+        self.current = tab
+        for other in self.tabs:
+            if other is not tab and other.title in self._jobs:
+                other.renderer.cancel()
+                del self._jobs[other.title]
+                self._set_status(other, 0, f"{other.title}: not rendered yet")
+        self._update()
+
+    def settings_changed(self, tab) -> None:
+        """``tab``'s own settings changed: its image is out of date."""
+        self._full_shown.pop(tab.title, None)
+        if tab is self.current:
+            self._update(force=True)
+
+    def rerender(self) -> None:
+        """Render the visible tab again in full."""
+        self._full_shown.pop(self.current.title, None)
+        self._update(force=True)
+
+    def cancel(self) -> None:
+        """Stop the visible tab's render; what was drawn so far stays on screen."""
+        tab = self.current
+        tab.renderer.cancel()
+        self._jobs.pop(tab.title, None)
+        self._set_status(tab, None, f"{tab.title}: cancelled at %p% (F5 renders again)")
+
+    def stop(self) -> None:
+        self._rest.stop()
+        for tab in self.tabs:
+            tab.renderer.cancel()
+
+    # ------------------------------------------------------------ inside
+    def _camera_moved(self, _camera) -> None:
+        self._moving = True
+        self._rest.start()
+        self._update()
+
+    def _rested(self) -> None:
+        self._moving = False
+        self._update()
+        self.rested.emit()
+
+    def _scene_replaced(self, _scene) -> None:
+        self._moving = False
+        self._rest.stop()
+        self._update()
+
+    def _update(self, force: bool = False) -> None:
+        """Start what the visible tab needs next for the current scene, if anything."""
+        tab, scene = self.current, self.model.scene
+        if tab is None:
+            return
+        running = self._jobs.get(tab.title)
+        if self._moving:
+            if running is not None and running[1]:
+                return  # a preview is on its way; when it ends, the next one starts from the newest camera
+            if self._preview_shown.get(tab.title) is not scene or force:
+                self._submit(tab, preview=True)
+        elif running is not None and running[0] is scene and not force:
+            return  # this scene's full render is under way, or its preview, after which the full one starts
+        elif self._full_shown.get(tab.title) is not scene or force:
+            self._submit(tab, preview=False)
+
+    def _submit(self, tab, preview: bool) -> None:
+        scene = self.model.scene
+        job = tab.job(scene, preview)
+        if job is None:
+            self._full_shown[tab.title] = scene  # nothing to render: what it shows is current
+            self._set_status(tab, 100, f"{tab.title}: computed in the panel itself")
+            return
+        self._jobs[tab.title] = (scene, preview)
+        tab.renderer.submit(job)
+        warning = None if preview else getattr(tab, "warning", lambda _: None)(scene)
+        what = "preview while the observer moves" if preview else "rendering"
+        self._set_status(tab, 0, f"{tab.title}: {what}… %p%", warning)
+        if warning:
+            self.warned.emit(warning)
+
+    def _set_status(self, tab, percent: int | None = None, text: str | None = None,
+                    caption: str | None = None) -> None:
+        old = self._status[tab.title]
+        self._status[tab.title] = (old[0] if percent is None else percent, old[1] if text is None else text,
+                                   old[2] if caption is None else caption)
+        self.status_changed.emit(tab)
+
+    def _progress(self, tab, percent, partial):
+        self._set_status(tab, percent)
+        if partial is not None and hasattr(tab, "show_progress"):
+            tab.show_progress(partial)
+
+    def _finished(self, tab, result):
+        scene, preview = self._jobs.pop(tab.title)
+        if not preview and scene is not self.model.scene:
+            return  # a full image of a superseded scene is never shown
+        self.last_result = result
+        caption = tab.show(result)
+        if preview:
+            self._preview_shown[tab.title] = scene
+            self._set_status(tab, 100, f"{tab.title}: preview (observer moving)", caption)
+        else:
+            self._full_shown[tab.title] = scene
+            self._set_status(tab, 100, f"{tab.title}: done", caption)
+        self.image_shown.emit(tab.title, preview)
+        if not preview:
+            self.full_image_shown.emit(tab.title)
+        if tab is self.current:
+            self._update()
+
+    def _failed(self, tab, message: str):
+        self._jobs.pop(tab.title, None)
+        self._set_status(tab, 0, f"{tab.title}: render failed", f"Render failed — {message}")

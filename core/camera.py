@@ -16,6 +16,7 @@ from numba.extending import register_jitable
 from core import projection
 
 PROJECTIONS = ("perspective", "orthographic")
+PITCH_LIMIT_DEG = 89.0  # orbit pitch stays within ±this, so the view never lines up with "up"
 
 Vec3 = tuple[float, float, float]
 

@@ -1,0 +1,1 @@
+"""Qt and pyvista views: widgets that draw what core computes and the model holds."""

@@ -1,14 +1,15 @@
 """Controls that move the observer and change its lens.
 
-The panel shows the current :class:`core.camera.Camera` and, when the user
-edits a control, emits :attr:`CameraPanel.camera_requested` with the camera
-they asked for.  It never changes anything itself: whoever owns the scene
-decides, and calls :meth:`CameraPanel.set_camera` with the camera in force.
+The panel shows the model's :class:`core.camera.Camera` and, when the user
+edits a control, asks the model for the camera they want.  It keeps no
+camera of its own: it reads the model's at edit time, and shows whatever
+camera the model has whenever it changes or refuses a request.  Number
+boxes take the whole range a scene file allows (±1,000,000 scene units).
 """
 
 from __future__ import annotations
 
-from PySide6.QtCore import Qt, Signal
+from PySide6.QtCore import QSize, Qt
 from PySide6.QtWidgets import (
     QComboBox,
     QDoubleSpinBox,
@@ -20,13 +21,32 @@ from PySide6.QtWidgets import (
     QWidget,
 )
 
-from core.camera import Camera
+from core.camera import PITCH_LIMIT_DEG, Camera
+from core.scene_file import MAX_MAGNITUDE
 
 RESOLUTIONS = [(160, 120), (320, 240), (480, 360), (640, 480), (960, 720)]
 
 
+class _NumberBox(QDoubleSpinBox):
+    """A number box as wide as a typical value, not as its extreme ones (±1,000,000 is allowed)."""
+
+    TYPICAL = "-8888.88"
+
+    def _narrowed(self, hint: QSize) -> QSize:
+        fm = self.fontMetrics()
+        widest = max(fm.horizontalAdvance(self.textFromValue(v)) for v in (self.minimum(), self.maximum()))
+        extra = widest - fm.horizontalAdvance(self.TYPICAL)
+        return QSize(hint.width() - max(0, extra), hint.height())
+
+    def sizeHint(self) -> QSize:
+        return self._narrowed(super().sizeHint())
+
+    def minimumSizeHint(self) -> QSize:
+        return self._narrowed(super().minimumSizeHint())
+
+
 def _spin(lo, hi, step, decimals, suffix="", tip=""):
-    box = QDoubleSpinBox()
+    box = _NumberBox()
     box.setRange(lo, hi)
     box.setSingleStep(step)
     box.setDecimals(decimals)
@@ -61,26 +81,30 @@ class _AngleControl(QWidget):
 
 
 class CameraPanel(QWidget):
-    """Eye position, orbit around the target, viewing angle, planes, projection."""
+    """Eye position, orbit around the target, viewing angle, planes, projection.
 
-    camera_requested = Signal(object)
+    ``model`` is the window's state (:class:`app.state.SceneModel` or any
+    object with its ``camera``, ``set_camera`` and signals).
+    """
 
-    def __init__(self, camera: Camera, parent: QWidget | None = None):
+    def __init__(self, model, parent: QWidget | None = None):
         super().__init__(parent)
-        self._camera = camera
-        self.eye = [_spin(-1000, 1000, 0.25, 2, tip=f"Eye {a}: the observer's position")
+        self.model = model
+        big = MAX_MAGNITUDE
+        self.eye = [_spin(-big, big, 0.25, 2, tip=f"Eye {a}: the observer's position")
                     for a in "xyz"]
         self.yaw = _AngleControl(-180, 180, "Yaw: walk the observer around the target (←/→)")
-        self.pitch = _AngleControl(-89, 89, "Pitch: raise or lower the observer (↑/↓)")
-        self.distance = _spin(0.1, 1000, 0.5, 2, tip="Distance from the eye to the target (+/−)")
+        limit = round(PITCH_LIMIT_DEG)
+        self.pitch = _AngleControl(-limit, limit, "Pitch: raise or lower the observer (↑/↓)")
+        self.distance = _spin(0.01, 2 * big, 0.5, 2, tip="Distance from the eye to the target (+/−)")
         self.fov = _AngleControl(1, 179, "Viewing angle α: the frustum's vertical opening")
-        self.near = _spin(0.01, 1000, 0.1, 2, tip="Front (near) plane: nothing closer is drawn")
-        self.far = _spin(0.02, 10000, 1.0, 2, tip="End (far) plane: nothing farther is drawn")
+        self.near = _spin(0.01, 2 * big, 0.1, 2, tip="Front (near) plane: nothing closer is drawn")
+        self.far = _spin(0.02, 4 * big, 1.0, 2, tip="End (far) plane: nothing farther is drawn")
         self.projection = QComboBox()
         self.projection.addItems(["perspective", "orthographic"])
         self.projection.setToolTip("Perspective: rays meet at the eye.  "
                                    "Orthographic: parallel rays (P toggles)")
-        self.ortho_height = _spin(0.1, 1000, 0.5, 2, tip="Height of the orthographic view volume")
+        self.ortho_height = _spin(0.01, 2 * big, 0.5, 2, tip="Height of the orthographic view volume")
         self.resolution = QComboBox()
         self.resolution.addItems([f"{w} × {h}" for w, h in RESOLUTIONS])
         self.resolution.setToolTip("Image size in pixels: more pixels, more rays, more time")
@@ -109,7 +133,7 @@ class CameraPanel(QWidget):
 
         for box in self.eye:
             box.valueChanged.connect(self._eye_edited)
-        cam = lambda: self._camera  # noqa: E731 - read the camera in force at edit time
+        cam = lambda: self.model.camera  # noqa: E731 - read the camera in force at edit time
         self.yaw.spin.valueChanged.connect(lambda v: self._orbit(v, cam().pitch_deg, cam().distance))
         self.pitch.spin.valueChanged.connect(lambda v: self._orbit(cam().yaw_deg, v, cam().distance))
         self.distance.valueChanged.connect(lambda v: self._orbit(cam().yaw_deg, cam().pitch_deg, v))
@@ -119,7 +143,10 @@ class CameraPanel(QWidget):
         self.projection.currentTextChanged.connect(lambda v: self._request(projection=v))
         self.ortho_height.valueChanged.connect(lambda v: self._request(ortho_height=v))
         self.resolution.currentIndexChanged.connect(self._resolution_edited)
-        self.set_camera(camera)
+        model.camera_changed.connect(self.set_camera)
+        model.camera_refused.connect(lambda _: self.set_camera(model.camera))
+        model.scene_changed.connect(lambda scene: self.set_camera(scene.camera))
+        self.set_camera(model.camera)
 
     @property
     def _spins(self):
@@ -127,8 +154,7 @@ class CameraPanel(QWidget):
                 self.projection, self.resolution]
 
     def set_camera(self, camera: Camera) -> None:
-        """Show ``camera`` in every control without emitting requests."""
-        self._camera = camera
+        """Show ``camera`` in every control without asking for a change."""
         for w in self._spins:
             w.blockSignals(True)
         for box, value in zip(self.eye, camera.eye, strict=True):
@@ -150,14 +176,14 @@ class CameraPanel(QWidget):
         self.fov.setEnabled(camera.projection == "perspective")
 
     def _request(self, **changes) -> None:
-        self.camera_requested.emit(self._camera.replace(**changes))
+        self.model.set_camera(self.model.camera.replace(**changes))
 
     def _eye_edited(self) -> None:
         self._request(eye=[box.value() for box in self.eye])
 
     def _orbit(self, yaw_deg: float, pitch_deg: float, distance: float) -> None:
         """Only the control the user touched changes; the others keep full precision."""
-        self.camera_requested.emit(self._camera.orbit(yaw_deg, pitch_deg, distance))
+        self.model.set_camera(self.model.camera.orbit(yaw_deg, pitch_deg, distance))
 
     def _resolution_edited(self, index: int) -> None:
         width, height = RESOLUTIONS[index]

@@ -24,6 +24,7 @@ from PySide6.QtWidgets import (
     QComboBox,
     QDoubleSpinBox,
     QFileDialog,
+    QGridLayout,
     QHBoxLayout,
     QLabel,
     QProgressBar,
@@ -180,17 +181,18 @@ class CostPanel(QWidget):
 
         self.plot_figure = Figure(layout="constrained")
         self.canvas = FigureCanvasQTAgg(self.plot_figure)
-        self.canvas.setMinimumSize(320, 240)
+        self.canvas.setMinimumSize(240, 200)
         self.canvas.mpl_connect("pick_event", self._on_pick)
         self.image_figure = Figure(layout="constrained")
         self.image_canvas = FigureCanvasQTAgg(self.image_figure)
-        self.image_canvas.setMinimumSize(280, 200)
+        self.image_canvas.setMinimumSize(200, 160)
 
-        controls = QHBoxLayout()
-        for w in (self.knob, self.mode, self.width_px, self.reference_spp, self.tolerance, self.run_button,
-                  self.cancel_button, self.export_csv_button, self.export_plot_button):
-            controls.addWidget(w)
-        controls.addStretch(1)
+        controls = QGridLayout()  # three to a row, so that a narrow window keeps every control in view
+        for i, w in enumerate((self.knob, self.mode, self.width_px, self.reference_spp, self.tolerance,
+                               self.run_button, self.cancel_button, self.export_csv_button,
+                               self.export_plot_button)):
+            controls.addWidget(w, i // 3, i % 3)
+        controls.setColumnStretch(3, 1)
         right = QWidget()
         right_layout = QVBoxLayout(right)
         right_layout.setContentsMargins(0, 0, 0, 0)
@@ -234,6 +236,11 @@ class CostPanel(QWidget):
             self.knob.setCurrentIndex(0)
         self.status.setText("Pick a knob and press Run.")
         self._update_buttons()
+
+    @property
+    def scene(self) -> Scene | None:
+        """The scene a sweep starts from (the last :meth:`set_scene`)."""
+        return self._scene
 
     def _sweep_scene(self) -> Scene:
         cam = self._scene.camera

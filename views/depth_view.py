@@ -3,6 +3,8 @@
 The z-buffer starts cleared to the far plane (white here); every fragment
 that passes the depth test writes its distance, so surfaces appear as shades
 of grey.  A scale under the image says which distance each grey stands for.
+The greys are display levels already (an even ramp on screen), not light,
+so they are not sRGB-encoded.
 """
 
 from __future__ import annotations
@@ -11,7 +13,7 @@ import numpy as np
 from PySide6.QtGui import QColor, QLinearGradient, QPainter
 from PySide6.QtWidgets import QHBoxLayout, QLabel, QVBoxLayout, QWidget
 
-from views.image_view import ImageView
+from views.image_view import ImageView, display_image
 
 
 def depth_to_grey(depth: np.ndarray, near: float, far: float) -> np.ndarray:
@@ -51,6 +53,6 @@ class DepthView(QWidget):
 
     def set_depth(self, depth: np.ndarray, near: float, far: float) -> None:
         self.depth = depth
-        self.image.set_image(depth_to_grey(depth, near, far))
+        self.image.set_image(display_image(depth_to_grey(depth, near, far), linear=False))
         self.near_label.setText(f"near {near:g}")
         self.far_label.setText(f"far {far:g}")

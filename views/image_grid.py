@@ -10,7 +10,7 @@ from __future__ import annotations
 import numpy as np
 from PySide6.QtWidgets import QGridLayout, QGroupBox, QLabel, QVBoxLayout, QWidget
 
-from views.image_view import ImageView
+from views.image_view import DisplayImage, ImageView
 
 
 class ImageGrid(QWidget):
@@ -33,6 +33,7 @@ class ImageGrid(QWidget):
             layout.addWidget(self.captions[key])
             grid.addWidget(box, i // columns, i % columns)
 
-    def set_image(self, key: str, rgb: np.ndarray, caption: str = "") -> None:
-        self.views[key].set_image(rgb)
+    def set_image(self, key: str, image: np.ndarray | DisplayImage, caption: str = "") -> None:
+        """Show ``image`` (see :meth:`ImageView.set_image`) in pane ``key``, with ``caption`` under it."""
+        self.views[key].set_image(image)
         self.captions[key].setText(caption)

@@ -9,7 +9,7 @@ from the last hits back to the first.
 
 from __future__ import annotations
 
-from PySide6.QtCore import Qt, Signal
+from PySide6.QtCore import Qt
 from PySide6.QtGui import QFont
 from PySide6.QtWidgets import (
     QCheckBox,
@@ -27,8 +27,10 @@ from PySide6.QtWidgets import (
 
 from core.image_order.ray_tracing import TraceSettings
 from core.image_order.ray_tree import RayNode
+from core.scene import Scene
 from views.image_view import ImageView
 from views.raytree_view import KIND_COLORS, RayKindLegend, RayTreeWidget
+from views.worked_math import WorkedMath
 
 MODES = [("raytrace", "Ray tracing"), ("raycast", "Ray casting")]
 ACCELS = [("bvh", "BVH"), ("grid+spheres", "Grid + spheres"), ("grid", "Grid of cuboids"),
@@ -46,19 +48,13 @@ def _combo(items, tip):
 class ImageOrderPanel(QWidget):
     """Settings, traced image, effects plan with ray counts, and the picked pixel's ray tree.
 
-    Signals
-    -------
-    settings_changed(TraceSettings)
-    pixel_picked(int x, int y)
-    overlays_changed() : a "show in 3D" switch changed.
+    The controls write to the model (``model.set_trace_settings``,
+    ``model.set_overlay``, ``model.set_ray_pixel``) and show what the model holds.
     """
 
-    settings_changed = Signal(object)
-    pixel_picked = Signal(int, int)
-    overlays_changed = Signal()
-
-    def __init__(self, parent: QWidget | None = None):
+    def __init__(self, model, parent: QWidget | None = None):
         super().__init__(parent)
+        self.model = model
         self.mode = _combo(MODES, "Ray casting stops at the first hit and its shadow rays; ray tracing "
                                   "follows reflected and refracted rays too")
         self.depth = QSpinBox()
@@ -86,9 +82,11 @@ class ImageOrderPanel(QWidget):
         self.show_spheres = QCheckBox("bounding spheres")
         self.show_grid = QCheckBox("grid cells")
         self.show_walk = QCheckBox("cells the picked ray walks")
-        for box in (self.show_spheres, self.show_grid, self.show_walk):
+        self._overlay_boxes = {"spheres": self.show_spheres, "grid": self.show_grid,
+                               "walk": self.show_walk}
+        for name, box in self._overlay_boxes.items():
             box.setToolTip("Show in the 3D pane")
-            box.toggled.connect(self.overlays_changed)
+            box.toggled.connect(lambda on, name=name: model.set_overlay(name, on))
 
         form = QGridLayout()
         rows = [[("Method", self.mode), ("Acceleration", self.accel)],
@@ -134,8 +132,11 @@ class ImageOrderPanel(QWidget):
         tl.addWidget(RayKindLegend())
         tl.addWidget(self.tree, 2)
         tl.addWidget(self.explanation, 1)
+        self.worked_math = WorkedMath()
+        self.ray_kind: str | None = None  # the kind of ray to select in each new tree (a lesson's)
         self.details = QTabWidget()
         self.details.addTab(tree_page, "Ray tree")
+        self.details.addTab(self.worked_math, "Worked math")
         self.details.addTab(self.plan, "Effects plan")
         split = QSplitter(Qt.Orientation.Vertical)
         top = QWidget()
@@ -154,21 +155,53 @@ class ImageOrderPanel(QWidget):
         layout.addWidget(split, 1)
 
         for w in (self.mode, self.accel, self.offset):
-            w.currentIndexChanged.connect(self._emit_settings)
+            w.currentIndexChanged.connect(self._settings_edited)
         for w in (self.depth, self.min_weight, self.epsilon):
-            w.valueChanged.connect(self._emit_settings)
-        self.image.pixel_clicked.connect(self.pixel_picked)
+            w.valueChanged.connect(self._settings_edited)
+        self.image.pixel_clicked.connect(lambda x, y: model.set_ray_pixel((x, y)))
+        model.trace_settings_changed.connect(self.show_settings)
+        model.overlays_changed.connect(self._show_overlays)
+        model.ray_pixel_changed.connect(self._ray_pixel_changed)
+        self.show_settings(model.trace_settings)
 
     @property
-    def settings(self) -> TraceSettings:
-        return TraceSettings(mode=self.mode.currentData(), max_depth=self.depth.value(),
-                             min_weight=self.min_weight.value(), accel=self.accel.currentData(),
-                             offset=self.offset.currentData(), epsilon=self.epsilon.value())
+    def _controls(self):
+        return [self.mode, self.accel, self.offset, self.depth, self.min_weight, self.epsilon]
 
-    def _emit_settings(self) -> None:
-        self.epsilon.setEnabled(self.offset.currentData() == "fixed")
-        self.depth.setEnabled(self.mode.currentData() == "raytrace")
-        self.settings_changed.emit(self.settings)
+    def _settings_edited(self) -> None:
+        self.model.set_trace_settings(TraceSettings(
+            mode=self.mode.currentData(), max_depth=self.depth.value(),
+            min_weight=self.min_weight.value(), accel=self.accel.currentData(),
+            offset=self.offset.currentData(), epsilon=self.epsilon.value()))
+
+    def show_settings(self, settings: TraceSettings) -> None:
+        """Show ``settings`` in the controls without writing them back."""
+        for w in self._controls:
+            w.blockSignals(True)
+        self.mode.setCurrentIndex(self.mode.findData(settings.mode))
+        self.accel.setCurrentIndex(self.accel.findData(settings.accel))
+        self.offset.setCurrentIndex(self.offset.findData(settings.offset))
+        self.depth.setValue(settings.max_depth)
+        self.min_weight.setValue(settings.min_weight)
+        self.epsilon.setValue(settings.epsilon)
+        for w in self._controls:
+            w.blockSignals(False)
+        self.epsilon.setEnabled(settings.offset == "fixed")
+        self.depth.setEnabled(settings.mode == "raytrace")
+
+    def _show_overlays(self, shown) -> None:
+        for name, box in self._overlay_boxes.items():
+            box.blockSignals(True)
+            box.setChecked(name in shown)
+            box.blockSignals(False)
+
+    def _ray_pixel_changed(self, pixel) -> None:
+        self.image.set_picked(pixel)
+        if pixel is None:
+            self.tree.clear()
+            self.tree_caption.clear()
+            self.explanation.clear()
+            self.worked_math.clear()
 
     def show_stats(self, stats: dict) -> None:
         """The effects plan and the rays actually traced, by kind."""
@@ -185,9 +218,12 @@ class ImageOrderPanel(QWidget):
         self.plan.setText(f"<b>What this scene calls for</b> — only these effects are simulated:"
                           f"<br>{reasons}")
 
-    def show_tree(self, x: int, y: int, root: RayNode) -> None:
+    def show_tree(self, x: int, y: int, root: RayNode, scene: Scene) -> None:
+        """Pixel ``(x, y)``'s ray tree ``root``, traced in ``scene``, and the worked math of its first hit."""
         self.image.set_picked((x, y))
         self.tree.set_tree(root)
+        self.worked_math.show_ray(scene, root)
+        self.tree.select_kind(self.ray_kind)
         n = sum(1 for node in root.walk() if node.traced)
         self.tree_caption.setText(f"<b>Ray tree of pixel ({x}, {y})</b>: {n} rays traced; "
                                   f"pixel colour ({', '.join(f'{c:.3f}' for c in root.pixel_color)})")

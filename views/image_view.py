@@ -5,21 +5,59 @@ that the image is a grid of samples, scaled to fit the pane with its aspect
 ratio kept.  Clicking a pixel reports which one it was; a picked pixel and a
 set of highlighted pixels (for example one polygon's fragments) can be
 outlined on top.
+
+Renderers produce *linear* RGB; :func:`core.srgb.to_srgb8` encodes it for
+the screen.  That conversion, and the QImage, can be made off the GUI thread
+with :func:`display_image` (QImage, unlike QPixmap, may be built in any
+thread), so a worker hands over an image ready to paint.  An image marked as
+a preview (coarse, shown while the observer moves) carries a visible note.
 """
 
 from __future__ import annotations
+
+from dataclasses import dataclass
 
 import numpy as np
 from PySide6.QtCore import QPointF, QRectF, Qt, Signal
 from PySide6.QtGui import QColor, QImage, QPainter, QPen
 from PySide6.QtWidgets import QSizePolicy, QWidget
 
+from core.srgb import to_srgb8
 
-def to_qimage(rgb: np.ndarray) -> QImage:
-    """An (H, W, 3) float image in [0, 1] as a QImage that owns its pixels."""
-    data = np.ascontiguousarray(np.clip(rgb * 255.0 + 0.5, 0, 255).astype(np.uint8))
+
+@dataclass(frozen=True)
+class DisplayImage:
+    """An image ready to paint.
+
+    Attributes
+    ----------
+    rgb : (H, W, 3) float array, the values the image stands for (linear RGB,
+        or display levels such as a depth grey scale); row 0 at the top.
+    qimage : the 8-bit picture painted on screen.
+    note : shown over the image when not empty (``"preview"`` for a coarse image).
+    """
+
+    rgb: np.ndarray
+    qimage: QImage
+    note: str = ""
+
+
+def to_qimage(rgb: np.ndarray, linear: bool = True) -> QImage:
+    """An (H, W, 3) float image in [0, 1] as a QImage that owns its pixels.
+
+    ``linear`` values are encoded to sRGB (:func:`core.srgb.to_srgb8`); others
+    (already display levels, e.g. a grey scale) are only rounded to 8 bits.
+    """
+    rgb = np.asarray(rgb)
+    levels = to_srgb8(rgb) if linear else np.round(np.clip(rgb, 0.0, 1.0) * 255.0).astype(np.uint8)
+    data = np.ascontiguousarray(levels)
     h, w, _ = data.shape
     return QImage(data.data, w, h, 3 * w, QImage.Format.Format_RGB888).copy()
+
+
+def display_image(rgb: np.ndarray, note: str = "", linear: bool = True) -> DisplayImage:
+    """Prepare ``rgb`` for :meth:`ImageView.set_image`; safe to call in a worker thread."""
+    return DisplayImage(rgb, to_qimage(rgb, linear), note)
 
 
 def _mask_image(mask: np.ndarray, color: QColor) -> QImage:
@@ -45,15 +83,17 @@ class ImageView(QWidget):
         self._image: QImage | None = None
         self._highlight: QImage | None = None
         self.rgb: np.ndarray | None = None
+        self.note = ""
         self.picked: tuple[int, int] | None = None
         self._placeholder = placeholder
         self.setMinimumSize(120, 90)
         self.setSizePolicy(QSizePolicy.Policy.Expanding, QSizePolicy.Policy.Expanding)
 
-    def set_image(self, rgb: np.ndarray) -> None:
-        """Show ``rgb``, an (H, W, 3) float array in [0, 1] (row 0 at the top)."""
-        self.rgb = rgb
-        self._image = to_qimage(rgb)
+    def set_image(self, image: np.ndarray | DisplayImage) -> None:
+        """Show ``image``: a :class:`DisplayImage`, or an (H, W, 3) linear RGB array in [0, 1]."""
+        if not isinstance(image, DisplayImage):
+            image = display_image(image)
+        self.rgb, self._image, self.note = image.rgb, image.qimage, image.note
         self.update()
 
     def set_highlight(self, mask: np.ndarray | None, color: str = "#ff2bd6") -> None:
@@ -120,4 +160,12 @@ class ImageView(QWidget):
             painter.drawRect(cell.adjusted(-pad, -pad, pad, pad))
             painter.setPen(QPen(QColor("#000000"), 1))
             painter.drawRect(cell.adjusted(-pad - 2, -pad - 2, pad + 2, pad + 2))
+        if self.note:
+            painter.setOpacity(0.8)
+            label = painter.fontMetrics().boundingRect(self.note).adjusted(-6, -3, 6, 3)
+            label.moveTopLeft(rect.topLeft().toPoint() + QPointF(6, 6).toPoint())
+            painter.fillRect(label, QColor("#15181f"))
+            painter.setOpacity(1.0)
+            painter.setPen(QColor("#ffd34d"))
+            painter.drawText(label, Qt.AlignmentFlag.AlignCenter, self.note)
         painter.end()

@@ -83,6 +83,7 @@ class LessonPanel(QWidget):
         self.list.setWordWrap(True)
         self.list.setToolTip("The lecture's lessons in order; click one to start it")
         self.list.currentRowChanged.connect(self._on_row)
+        self.list.itemClicked.connect(self._on_click)
 
         self.lesson_title = QLabel()
         self.lesson_title.setWordWrap(True)
@@ -217,6 +218,11 @@ class LessonPanel(QWidget):
     def _on_row(self, row: int) -> None:
         if 0 <= row < len(self._lessons) and row != self._lesson:
             self.select(row, 0)
+
+    def _on_click(self, item: QListWidgetItem) -> None:
+        """A click on the lesson already open shows its step again (the first click after start)."""
+        if self.list.row(item) == self._lesson:
+            self.select(self._lesson, self._step)
 
     def _moved(self, delta: int) -> tuple[int, int] | None:
         if self.current_lesson() is None:

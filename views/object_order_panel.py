@@ -15,8 +15,10 @@ from PySide6.QtCore import Qt, Signal
 from PySide6.QtGui import QColor, QFont
 from PySide6.QtWidgets import (
     QCheckBox,
+    QComboBox,
     QGridLayout,
     QGroupBox,
+    QHBoxLayout,
     QLabel,
     QPlainTextEdit,
     QSplitter,
@@ -28,11 +30,15 @@ from PySide6.QtWidgets import (
 )
 
 from core.object_order import zbuffer
+from core.object_order.depth_formats import BYTES_PER_PIXEL, DEPTH_FORMATS
 from core.object_order.pipeline import RasterResult, RasterSettings
+from core.projection import project_point
 from core.scene import Scene
+from core.srgb import linear_to_srgb
 from views.depth_view import DepthView
 from views.image_view import ImageView
 from views.step_scrubber import StepScrubber
+from views.worked_math import WorkedMath
 
 STAGES = [
     ("back_face_culling", "Back-face culling",
@@ -46,14 +52,24 @@ STAGES = [
     ("sort_transparent", "Sort transparent far → near",
      "Blend transparent polygons from the farthest to the nearest, after all opaque ones.\n"
      "Off: they are blended in scene order, and the colours come out wrong."),
+    ("z_test", "z-test",
+     "Keep a fragment only if it is nearer than the depth already stored at its pixel.\n"
+     "Off: every fragment overwrites the pixel, so the polygon drawn last wins, near or far."),
 ]
+
+DEPTH_FORMAT_TIP = (
+    "The z-buffer's number format.  Window depth crowds toward the far plane, so two surfaces "
+    "closer together than one step of the format get the same stored depth and the drawing "
+    "order decides between them, pixel by pixel (z-fighting).\n"
+    "float64: our reference.  float32: 24 significant bits.  float32-reversed: stores 1 − depth, "
+    "so the float's fine steps meet the crowded far end.  int24, int16: equal steps over [0, 1].")
 
 HISTORY_COLUMNS = ["step", "polygon", "depth", "stored depth", "z-test", "before", "after", "blend αs"]
 
 
 def _swatch(rgb) -> QTableWidgetItem:
     item = QTableWidgetItem(" ".join(f"{c:.2f}" for c in rgb))
-    color = QColor.fromRgbF(*np.clip(rgb, 0, 1))
+    color = QColor.fromRgbF(*linear_to_srgb(rgb))
     item.setBackground(color)
     item.setForeground(QColor("black" if color.lightnessF() > 0.5 else "white"))
     return item
@@ -73,34 +89,47 @@ def _text_box() -> QPlainTextEdit:
 class ObjectOrderPanel(QWidget):
     """Stage switches, step scrubber, image memory and z-buffer, pixel history.
 
+    The stage switches, the scrubber and a click in the buffers write to the
+    model (``set_raster_settings``, ``set_step``, ``set_buffer_pixel``); the
+    panel shows what the model holds.
+
     Signals
     -------
-    settings_changed(RasterSettings) : the user switched a stage on or off.
     polygon_shown(object) : world-space vertices (N, 3) of the polygon drawn at
         the current step, or ``None`` at step 0, for the 3D pane to highlight.
     clipped_shown(object) : list of (N, 3) world-space polygons the frustum cut,
         for the 3D pane to outline.
     """
 
-    settings_changed = Signal(object)
     polygon_shown = Signal(object)
     clipped_shown = Signal(object)
 
-    def __init__(self, parent: QWidget | None = None):
+    def __init__(self, model, parent: QWidget | None = None):
         super().__init__(parent)
+        self.model = model
         self.result: RasterResult | None = None
         self.scene: Scene | None = None
-        self.picked: tuple[int, int] | None = None
         self.switches: dict[str, QCheckBox] = {}
         switches = QGridLayout()
-        switches.addWidget(QLabel("<b>Stages</b>"), 0, 0, 2, 1)
+        switches.addWidget(QLabel("<b>Stages</b>"), 0, 0, 3, 1)
         for i, (key, text, tip) in enumerate(STAGES):
             box = QCheckBox(text)
             box.setChecked(True)
             box.setToolTip(tip)
-            box.toggled.connect(self._emit_settings)
+            box.toggled.connect(self._settings_edited)
             switches.addWidget(box, i // 2, 1 + i % 2)
             self.switches[key] = box
+        self.depth_format = QComboBox()
+        for name in DEPTH_FORMATS:
+            self.depth_format.addItem(f"{name} ({BYTES_PER_PIXEL[name]} bytes)", name)
+        self.depth_format.setToolTip(DEPTH_FORMAT_TIP)
+        self.depth_format.currentIndexChanged.connect(self._settings_edited)
+        depth_row = QHBoxLayout()
+        depth_label = QLabel("z-buffer format")
+        depth_label.setToolTip(DEPTH_FORMAT_TIP)
+        depth_row.addWidget(depth_label)
+        depth_row.addWidget(self.depth_format)
+        switches.addLayout(depth_row, len(STAGES) // 2, 2)
         switches.setColumnStretch(3, 1)
 
         self.scrubber = StepScrubber()
@@ -131,6 +160,10 @@ class ObjectOrderPanel(QWidget):
         self.details.addTab(history_page, "Pixel history")
         self.details.addTab(self.numbers, "Numbers")
         self.details.addTab(self.counts, "Counts and times")
+        self.vertex_math = WorkedMath()
+        self.vertex_math.clear("Click a pixel in either buffer: the corner of its visible polygon "
+                               "nearest to it is followed from world space to the pixel.")
+        self.details.addTab(self.vertex_math, "Vertex path")
 
         split = QSplitter(Qt.Orientation.Vertical)
         top = QWidget()
@@ -148,30 +181,67 @@ class ObjectOrderPanel(QWidget):
         layout.addLayout(switches)
         layout.addWidget(split, 1)
 
-        self.scrubber.step_changed.connect(self.show_step)
+        self.scrubber.step_changed.connect(self._step_edited)
         self.image.pixel_clicked.connect(self.pick_pixel)
         self.depth.image.pixel_clicked.connect(self.pick_pixel)
+        model.raster_settings_changed.connect(self.show_settings)
+        model.step_changed.connect(lambda _: self.show_step(self._model_step()))
+        model.buffer_pixel_changed.connect(self._show_pixel)
+        self.show_settings(model.raster_settings)
 
     @property
-    def settings(self) -> RasterSettings:
-        return RasterSettings(**{k: b.isChecked() for k, b in self.switches.items()},
-                              record_steps=True)
+    def picked(self) -> tuple[int, int] | None:
+        """The pixel whose history is listed (the model's)."""
+        return self.model.buffer_pixel
 
-    def _emit_settings(self) -> None:
-        self.settings_changed.emit(self.settings)
+    def _settings_edited(self) -> None:
+        self.model.set_raster_settings(RasterSettings(
+            **{k: b.isChecked() for k, b in self.switches.items()},
+            depth_format=self.depth_format.currentData(), record_steps=True))
+
+    def show_settings(self, settings: RasterSettings) -> None:
+        """Show ``settings`` in the stage switches and the depth format without writing them back."""
+        for key, box in self.switches.items():
+            box.blockSignals(True)
+            box.setChecked(getattr(settings, key))
+            box.blockSignals(False)
+        self.depth_format.blockSignals(True)
+        self.depth_format.setCurrentIndex(self.depth_format.findData(settings.depth_format))
+        self.depth_format.blockSignals(False)
+
+    def _step_edited(self, k: int) -> None:
+        self.model.set_step(None if k >= self.scrubber.slider.maximum() else k)
+
+    def _model_step(self) -> int:
+        """The model's step, within the current render's steps (``None``: the last)."""
+        count = self.result.history.n_steps if self.result is not None else 0
+        step = self.model.step
+        return count if step is None else min(step, count)
+
+    def show_preview(self, image) -> None:
+        """While the observer moves: a coarse image memory (a :class:`DisplayImage`) only."""
+        self.image.set_image(image)
+        self.step_caption.setText("Preview while the observer moves: the steps and the "
+                                  "z-buffer follow once it rests.")
 
     def show_result(self, result: RasterResult, scene: Scene) -> None:
-        """Show a finished recording render; the scrubber goes to its last step."""
+        """Show a finished recording render at the model's step (the last, unless one was chosen)."""
         self.result, self.scene = result, scene
         self.counts.setPlainText(self._counts_text())
         self.clipped_shown.emit(result.clipping.clipped_polygons())
         self.scrubber.blockSignals(True)
         self.scrubber.set_count(result.history.n_steps)
+        self.scrubber.set_step(self._model_step())
         self.scrubber.blockSignals(False)
         self.show_step(self.scrubber.step)
 
     def show_step(self, k: int) -> None:
         """Buffers after the first ``k`` polygons, with polygon k's fragments tinted."""
+        if self.result is None:
+            return
+        self.scrubber.blockSignals(True)
+        self.scrubber.set_step(k)
+        self.scrubber.blockSignals(False)
         history = self.result.history
         color, zbuf = history.buffers(k)
         distance = zbuffer.distance_from_window_depth(zbuf, history.near, history.far,
@@ -199,8 +269,7 @@ class ObjectOrderPanel(QWidget):
             self.polygon_shown.emit(draw.polygons.world_vertices(p))
         self.image.set_highlight(mask)
         self.depth.image.set_highlight(mask)
-        if self.picked is not None:
-            self.pick_pixel(*self.picked)
+        self._show_pixel(self.picked)
 
     def _polygon_name(self, p: int) -> str:
         draw = self.result.draw
@@ -208,10 +277,23 @@ class ObjectOrderPanel(QWidget):
         return f"{name}, triangle {int(draw.triangle_index[p])}"
 
     def pick_pixel(self, x: int, y: int) -> None:
-        """List every fragment that reached pixel ``(x, y)`` up to the current step."""
-        self.picked = (x, y)
-        self.image.set_picked(self.picked)
-        self.depth.image.set_picked(self.picked)
+        """Pick pixel ``(x, y)``: its fragments up to the current step are listed."""
+        self.model.set_buffer_pixel((x, y))
+
+    def _show_pixel(self, pixel) -> None:
+        """List every fragment that reached ``pixel`` up to the current step (``None``: clear)."""
+        history = None if self.result is None else self.result.history
+        if pixel is not None and history is not None and not (
+                pixel[0] < history.width and pixel[1] < history.height):
+            pixel = None  # the pick belongs to a newer image than this render's
+        self.image.set_picked(pixel)
+        self.depth.image.set_picked(pixel)
+        if pixel is None or history is None:
+            self.history.setRowCount(0)
+            self.history_caption.setText("Click a pixel in either buffer to see its history.")
+            self.numbers.clear()
+            return
+        x, y = pixel
         events = [e for e in self.result.history.pixel_history(x, y)
                   if e.polygon < self.scrubber.step]
         self.history.setRowCount(len(events))
@@ -232,18 +314,32 @@ class ObjectOrderPanel(QWidget):
             "Depths are distances along the viewing axis; a fragment passes when it is nearer "
             "than the depth stored so far.")
         self.numbers.setPlainText(self._numbers_text(events))
+        visible = [e for e in events if e.passed]
+        if visible:
+            self._show_vertex_path(visible[-1].polygon, x, y)
+
+    def _show_vertex_path(self, p: int, x: int, y: int) -> None:
+        """The path of polygon ``p``'s corner nearest to pixel ``(x, y)``, world to pixel."""
+        cam = self.scene.camera
+        corners = self.result.draw.polygons.world_vertices(p)
+        pixels = [project_point(c, cam.view_from_world, cam.clip_from_view, cam.width, cam.height).pixel
+                  for c in corners]
+        gaps = [np.inf if q is None else np.hypot(q[0] - x - 0.5, q[1] - y - 0.5) for q in pixels]
+        k = int(np.argmin(gaps))
+        self.vertex_math.show_vertex(corners[k], cam, f"corner {k} of {self._polygon_name(p)}")
 
     def _numbers_text(self, events) -> str:
         r = self.result
         m = r.clip_from_view
         lines = ["clip_from_view (projection matrix in use):"]
         lines += ["  [" + "  ".join(f"{v:9.4f}" for v in row) + " ]" for row in m]
+        x, y = self.picked
         visible = [e for e in events if e.passed]
         if visible:
             e = visible[-1]
             face = r.face_index(e.object_index, e.triangle_index)
             n = r.faces.normal[face]
-            lines += ["", f"face at pixel {self.picked}: {self._polygon_name(e.polygon)}",
+            lines += ["", f"face at pixel ({x}, {y}): {self._polygon_name(e.polygon)}",
                       f"  camera-space normal N = ({n[0]:.3f}, {n[1]:.3f}, {n[2]:.3f})",
                       f"  Nz = {r.faces.nz[face]:.3f} → "
                       f"{'faces the observer' if r.faces.facing[face] else 'faces away (culled)'}"]

@@ -37,6 +37,7 @@ QWidget { background-color: #000000; color: #ffffff; }
 QAbstractButton, QComboBox, QSpinBox, QDoubleSpinBox, QLineEdit {
     border: 2px solid #ffffff; padding: 3px; }
 QAbstractButton:checked, QAbstractButton:pressed { background-color: #ffd400; color: #000000; }
+QToolButton { background-color: #ffffff; }
 QListView::item:selected, QTreeView::item:selected, QTableView::item:selected {
     background-color: #ffd400; color: #000000; }
 QTabBar::tab:selected { background-color: #ffd400; color: #000000; }
@@ -87,6 +88,7 @@ class Presentation(QObject):
         self._base_font = QFont(window.font())
         self._base_style = window.styleSheet()
         self._was_maximized = False
+        self._normal_geometry = window.geometry()
         self._blank = _Blank(window)
         window.installEventFilter(self)
         self.clicker = None
@@ -177,8 +179,11 @@ class Presentation(QObject):
         self._presenting = on
         if on:
             self._was_maximized = self.window.isMaximized()
+            self._normal_geometry = self.window.geometry()
             self.set_scale(max(self._scale, PRESENTING_SCALE))
             self.set_high_contrast(True)
+            # The whole screen even where no window manager honours "full screen" (a bare X server).
+            self.window.setGeometry(self.window.screen().geometry())
             self.window.showFullScreen()
         else:
             self.set_blanked(False)
@@ -188,6 +193,7 @@ class Presentation(QObject):
                 self.window.showMaximized()
             else:
                 self.window.showNormal()
+                self.window.setGeometry(self._normal_geometry)
         if self.clicker is not None:
             self.clicker.arrows = on
             self.panel.set_compact(on)

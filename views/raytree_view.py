@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 import pyvista as pv
+from PySide6.QtCore import Qt
 from PySide6.QtGui import QColor
 from PySide6.QtWidgets import QGridLayout, QLabel, QTreeWidget, QTreeWidgetItem, QWidget
 
@@ -100,6 +101,30 @@ class RayTreeWidget(QTreeWidget):
         for col in range(len(COLUMNS)):
             self.resizeColumnToContents(col)
 
+    def select_kind(self, kind: str | None) -> bool:
+        """Select and show the first ray of ``kind`` (``None``: no selection); whether there was one."""
+        self.clearSelection()
+        if kind is None:
+            return False
+        for item in self._items():
+            if item.data(0, Qt.ItemDataRole.UserRole) == kind:
+                self.setCurrentItem(item)
+                self.scrollToItem(item)
+                return True
+        return False
+
+    def selected_kind(self) -> str | None:
+        """The kind of the selected ray, or ``None``."""
+        items = self.selectedItems()
+        return items[0].data(0, Qt.ItemDataRole.UserRole) if items else None
+
+    def _items(self):
+        stack = [self.topLevelItem(i) for i in range(self.topLevelItemCount())]
+        while stack:
+            item = stack.pop(0)
+            yield item
+            stack[:0] = [item.child(i) for i in range(item.childCount())]
+
     def _item(self, node: RayNode) -> QTreeWidgetItem:
         label = node.kind if node.kind != "shadow" else f"shadow → light {node.light}"
         if node.hit_name:
@@ -112,6 +137,7 @@ class RayTreeWidget(QTreeWidget):
         item = QTreeWidgetItem([label, hit, t, f"{node.weight:.3g}",
                                 _rgb(node.color) if node.color is not None else ""])
         item.setForeground(0, QColor(KIND_COLORS[node.kind]).darker(130))
+        item.setData(0, Qt.ItemDataRole.UserRole, node.kind)
         tips = [node.status, f"origin {_rgb(node.origin)}", f"direction {_rgb(node.direction)}"]
         if node.normal is not None:
             tips.append(f"normal {_rgb(node.normal)}")

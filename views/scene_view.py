@@ -2,14 +2,32 @@
 
 It shows the scene from the outside, from a free overview camera the user
 can rotate with the mouse, so the observer's own camera appears as an object:
-a small camera glyph at the eye, the frustum (translucent, with its edges),
-and the screen rectangle on the near plane.
+a small camera glyph at the eye, a marker at the target it looks at, the
+frustum (translucent, with its edges), and the screen rectangle on the near
+plane.
+
+The observer can be moved here too: drag the camera glyph to move the eye
+(the target stays), drag the target marker to look elsewhere (the eye
+stays), and scroll over the glyph to widen or narrow the viewing angle.  A
+drag moves the point in the plane through it that faces the overview camera.
+
+The pane follows the model (:class:`app.state.SceneModel`): when the camera
+changes, the observer's actors keep their identity and only their points or
+transform change, and several changes within one frame are drawn once
+(:data:`FRAME_MS`), so moving the observer never queues up renders.  While
+it moves, the pane is drawn without anti-aliasing and the frustum by its
+edges only (its translucent faces cover much of the pane and cost a
+software OpenGL more than the rest of the scene together); once it rests
+for :data:`SMOOTH_AFTER_MS`, it is drawn once more with both.
 """
 
 from __future__ import annotations
 
+import time
+
 import numpy as np
 import pyvista as pv
+from PySide6.QtCore import QEvent, QObject, QPointF, Qt, QTimer
 from PySide6.QtWidgets import QVBoxLayout, QWidget
 from pyvistaqt import QtInteractor
 
@@ -19,27 +37,135 @@ from views import vtk_convert
 
 FRUSTUM_COLOR = "#ffd34d"
 SCREEN_COLOR = "#6fd0ff"
+TARGET_COLOR = "#ff8c42"
+FRAME_MS = 33
+"""Shortest time between two draws of the pane (about 30 per second)."""
+SMOOTH_AFTER_MS = 300
+"""After this long without a change the pane is drawn again with anti-aliasing (FXAA) and the
+frustum's translucent faces."""
+GRAB_RADIUS_PX = 14
+"""How close (pixels) the mouse must be to the eye or target to grab it."""
+FOV_STEP_DEG = 2.0
+"""Viewing-angle change per mouse-wheel notch over the glyph."""
+FOV_RANGE_DEG = (1.0, 179.0)
+
+_FRUSTUM_EDGES = [(0, 1), (1, 2), (2, 3), (3, 0), (4, 5), (5, 6), (6, 7), (7, 4),
+                  (0, 4), (1, 5), (2, 6), (3, 7)]
+_QUADS = [[0, 1, 2, 3], [4, 7, 6, 5], [0, 4, 5, 1], [1, 5, 6, 2], [2, 6, 7, 3], [3, 7, 4, 0]]
+
+
+def _lines(pairs) -> np.ndarray:
+    return np.hstack([[2, a, b] for a, b in pairs])
+
+
+def _unit_glyph() -> pv.PolyData:
+    """The camera glyph in the observer's own frame, size 1: a box with a lens cone along -z."""
+    body = pv.Cube(center=(0.0, 0.0, 0.0), x_length=1.0, y_length=1.0, z_length=1.0)
+    lens = pv.Cone(center=(0.0, 0.0, -0.9), direction=(0.0, 0.0, 1.0), height=0.8, radius=0.45,
+                   resolution=24)
+    return body.merge(lens)
+
+
+def glyph_size(camera: Camera) -> float:
+    """Edge of the camera glyph's box, scene units: a fixed share of the eye–target distance."""
+    return 0.07 * max(camera.distance, 1.0)
 
 
 class SceneView(QWidget):
-    """A pyvistaqt view of a :class:`core.scene.Scene` with its observer."""
+    """A pyvistaqt view of the model's scene with its observer, which the mouse can move.
 
-    def __init__(self, parent: QWidget | None = None):
+    Attributes
+    ----------
+    frustum : the drawn viewing pyramid (8 points, near then far plane, as
+        :meth:`core.camera.Camera.frustum_corners` orders them).
+    screen : the drawn screen rectangle on the near plane.
+    """
+
+    def __init__(self, model, parent: QWidget | None = None):
         super().__init__(parent)
-        self.plotter = QtInteractor(self, auto_update=False)
+        self.model = model
+        self._off_screen = pv.OFF_SCREEN  # set by tests and screenshots: no paint ever renders VTK
+        self.plotter = QtInteractor(self, off_screen=self._off_screen, auto_update=False,
+                                    multi_samples=0)
         self.plotter.set_background("#1d2230", top="#3a4358")
-        self.plotter.enable_anti_aliasing("fxaa")
         self.plotter.add_axes(line_width=3, labels_off=False)
         layout = QVBoxLayout(self)
         layout.setContentsMargins(0, 0, 0, 0)
         layout.addWidget(self.plotter)
         self._object_actors: list = []
-        self._observer_actors: list = []
-        self._overlays: dict[str, list] = {}
+        self._overlays: dict[str, list] = {}  # name -> [(polydata, actor, style)]
+        self._visible_overlays: set[str] | None = None  # None: all
         self._scene: Scene | None = None
         self._framed_at = None  # the overview camera _frame chose, until the user moves it
-        self.frustum: pv.PolyData | None = None
-        self.screen: pv.PolyData | None = None
+        self._render_timer = QTimer(self)
+        self._render_timer.setSingleShot(True)
+        self._render_timer.setInterval(FRAME_MS)
+        self._render_timer.timeout.connect(self._draw_if_changed)
+        self._last_draw = -1.0
+        self._changed = False  # something changed since the last frame was drawn
+        self.plotter.ren_win.AddObserver("EndEvent", self._drawn)
+        self._smooth_timer = QTimer(self)
+        self._smooth_timer.setSingleShot(True)
+        self._smooth_timer.setInterval(SMOOTH_AFTER_MS)
+        self._smooth_timer.timeout.connect(self._smooth)
+        self._build_observer()
+        self._mouse = _MouseGrip(self)
+        self.plotter.installEventFilter(self._mouse)
+        model.camera_changed.connect(self.set_camera)
+        model.scene_changed.connect(self.set_scene)
+        self.set_scene(model.scene)
+
+    # ----------------------------------------------------------- drawing
+    def _build_observer(self) -> None:
+        """Create the observer's actors once; :meth:`set_camera` only moves them."""
+        eight, four = np.zeros((8, 3)), np.zeros((4, 3))
+        self.frustum = pv.PolyData(eight.copy(), np.hstack([[4, *q] for q in _QUADS]))
+        self._frustum_edges = pv.PolyData(eight.copy(), lines=_lines(_FRUSTUM_EDGES))
+        self.screen = pv.PolyData(four.copy(), np.array([4, 0, 1, 2, 3]))
+        self._screen_edges = pv.PolyData(four.copy(), lines=_lines([(0, 1), (1, 2), (2, 3), (3, 0)]))
+        self._sight = pv.PolyData(np.zeros((2, 3)), lines=np.array([2, 0, 1]))
+        add = self.plotter.add_mesh
+        self._frustum_faces = add(self.frustum, color=FRUSTUM_COLOR, opacity=0.07, name="frustum",
+                                  render=False)
+        add(self._frustum_edges, color=FRUSTUM_COLOR, line_width=2, name="frustum-edges", render=False)
+        add(self.screen, color=SCREEN_COLOR, opacity=0.35, name="screen", render=False)
+        add(self._screen_edges, color=SCREEN_COLOR, line_width=3, name="screen-edges", render=False)
+        add(self._sight, color="white", line_width=1, name="sight-line", render=False)
+        self._glyph = add(_unit_glyph(), color="#e8e8e8", name="observer", render=False)
+        self._target = add(pv.Sphere(radius=0.25, theta_resolution=16, phi_resolution=12),
+                           color=TARGET_COLOR, name="target", render=False)
+
+    def request_render(self) -> None:
+        """Draw the pane soon, at most once per FRAME_MS; requests meanwhile share one draw."""
+        self._changed = True
+        self.plotter.renderer.SetUseFXAA(False)
+        self._frustum_faces.SetVisibility(False)
+        self._smooth_timer.start()
+        if self._render_timer.isActive():
+            return
+        wait_ms = FRAME_MS - (time.perf_counter() - self._last_draw) * 1000.0
+        # At once (after the changes queued in this turn of the event loop) if the last
+        # frame is old enough, else when it is.
+        self._render_timer.start(max(0, int(wait_ms) + 1))
+
+    def _draw(self) -> None:
+        self._last_draw = time.perf_counter()
+        if self._off_screen:
+            self.plotter.render()
+        else:
+            self.plotter.update()  # the widget's paint renders VTK, once
+
+    def _draw_if_changed(self) -> None:
+        if self._changed:
+            self._draw()
+
+    def _drawn(self, *_) -> None:
+        self._changed = False
+
+    def _smooth(self) -> None:
+        self.plotter.renderer.SetUseFXAA(True)
+        self._frustum_faces.SetVisibility(True)
+        self._draw()
 
     def set_scene(self, scene: Scene) -> None:
         """Draw every object and light, then the observer; frame the whole."""
@@ -68,59 +194,124 @@ class SceneView(QWidget):
                 render=False,
             )
             self._object_actors.append(actor)
-        self.set_camera(scene.camera, render=False)
         self._scene = scene
+        self.set_camera(scene.camera)
         self._frame(scene)
-        self.plotter.render()
 
     def resizeEvent(self, event):
         """Frame the scene again for the new shape, unless the user has moved the view."""
         super().resizeEvent(event)
         if self._scene is not None and self.plotter.camera_position == self._framed_at:
             self._frame(self._scene)
-            self.plotter.render()
+            self.request_render()
 
-    def set_camera(self, camera: Camera, render: bool = True) -> None:
-        """Redraw the observer, its frustum and its screen for ``camera``."""
-        for actor in self._observer_actors:
-            self.plotter.remove_actor(actor, render=False)
-        self.frustum = vtk_convert.frustum_polydata(camera)
-        self.screen = vtk_convert.screen_polydata(camera)
-        glyph_size = 0.07 * max(camera.distance, 1.0)
-        add = self.plotter.add_mesh
-        self._observer_actors = [
-            add(self.frustum, color=FRUSTUM_COLOR, opacity=0.07, name="frustum", render=False),
-            add(self.frustum.extract_all_edges(), color=FRUSTUM_COLOR, line_width=2,
-                name="frustum-edges", render=False),
-            add(self.screen, color=SCREEN_COLOR, opacity=0.35, name="screen", render=False),
-            add(self.screen.extract_all_edges(), color=SCREEN_COLOR, line_width=3,
-                name="screen-edges", render=False),
-            add(vtk_convert.sight_line_polydata(camera), color="white", line_width=1,
-                name="sight-line", render=False),
-            add(vtk_convert.observer_glyph(camera, glyph_size), color="#e8e8e8",
-                name="observer", render=False),
-        ]
-        if render:
-            self.plotter.render()
+    def set_camera(self, camera: Camera) -> None:
+        """Move the observer, its frustum, its screen and its target marker to ``camera``."""
+        corners = camera.frustum_corners()
+        self.frustum.points = corners
+        self._frustum_edges.points = corners.copy()
+        screen = camera.screen_corners()
+        self.screen.points = screen
+        self._screen_edges.points = screen.copy()
+        self._sight.points = np.array([camera.eye, camera.target], float)
+        size = glyph_size(camera)
+        self._glyph.user_matrix = camera.world_from_view @ np.diag([size, size, size, 1.0])
+        target = np.eye(4)
+        target[:3, :3] *= size
+        target[:3, 3] = camera.target
+        self._target.user_matrix = target
+        self.request_render()
 
     def set_overlay(self, name: str, parts: list[tuple[pv.PolyData, dict]]) -> None:
         """Show extra geometry under ``name`` (replacing what was there), e.g. a ray tree.
 
         ``parts`` are ``(polydata, add_mesh keyword arguments)`` pairs; an empty
-        list removes the overlay.
+        list removes the overlay.  When the parts have the same styles as
+        before, the existing actors keep their identity and take the new points.
         """
-        for actor in self._overlays.pop(name, []):
-            self.plotter.remove_actor(actor, render=False)
-        actors = []
-        for i, (poly, style) in enumerate(parts):
-            if poly.n_points:
-                actors.append(self.plotter.add_mesh(poly, name=f"{name}:{i}", render=False, **style))
-        self._overlays[name] = actors
-        self.plotter.render()
+        parts = [(poly, style) for poly, style in parts if poly.n_points]
+        old = self._overlays.get(name, [])
+        if len(old) == len(parts) and all(o[2] == style for o, (_, style) in zip(old, parts, strict=True)):
+            for (drawn, _, _), (poly, _) in zip(old, parts, strict=True):
+                drawn.copy_from(poly)
+        else:
+            for _, actor, _ in old:
+                self.plotter.remove_actor(actor, render=False)
+            drawn = []
+            for i, (poly, style) in enumerate(parts):
+                actor = self.plotter.add_mesh(poly, name=f"{name}:{i}", render=False, **style)
+                drawn.append((poly, actor, style))
+            self._overlays[name] = drawn
+            self._apply_visibility(name)
+        self.request_render()
+
+    def show_overlays_only(self, names) -> None:
+        """Show only the overlays in ``names`` (the others are kept, hidden); ``None`` shows all."""
+        self._visible_overlays = None if names is None else set(names)
+        for name in self._overlays:
+            self._apply_visibility(name)
+        self.request_render()
+
+    def _apply_visibility(self, name: str) -> None:
+        shown = self._visible_overlays is None or name in self._visible_overlays
+        for _, actor, _ in self._overlays.get(name, []):
+            actor.SetVisibility(shown)
 
     def overlay_names(self) -> list[str]:
-        """Names of the overlays currently drawn (with at least one part)."""
-        return [name for name, actors in self._overlays.items() if actors]
+        """Names of the overlays currently shown (with at least one part)."""
+        return [name for name, parts in self._overlays.items()
+                if parts and (self._visible_overlays is None or name in self._visible_overlays)]
+
+    def overlay_parts(self, name: str) -> list[pv.PolyData]:
+        """The polydata drawn for overlay ``name`` (empty if none)."""
+        return [poly for poly, _, _ in self._overlays.get(name, [])]
+
+    # ----------------------------------------------------- mouse helpers
+    def widget_pos(self, point) -> QPointF:
+        """Where the world point ``point`` appears in the pane (widget coordinates)."""
+        renderer = self.plotter.renderer
+        renderer.SetWorldPoint(*np.asarray(point, float), 1.0)
+        renderer.WorldToDisplay()
+        x, y, _ = renderer.GetDisplayPoint()
+        ratio = self.plotter.devicePixelRatioF()
+        height = self.plotter.ren_win.GetSize()[1]
+        return QPointF(x / ratio, (height - y) / ratio)
+
+    def world_point_under(self, pos: QPointF, anchor) -> np.ndarray:
+        """The point under widget position ``pos`` in the plane through ``anchor`` facing the view."""
+        renderer = self.plotter.renderer
+        ratio = self.plotter.devicePixelRatioF()
+        x, y = pos.x() * ratio, self.plotter.ren_win.GetSize()[1] - pos.y() * ratio
+        ends = []
+        for depth in (0.0, 1.0):
+            renderer.SetDisplayPoint(x, y, depth)
+            renderer.DisplayToWorld()
+            w = np.array(renderer.GetWorldPoint())
+            ends.append(w[:3] / w[3])
+        origin, direction = ends[0], ends[1] - ends[0]
+        normal = np.asarray(self.plotter.camera.direction, float)
+        t = np.dot(np.asarray(anchor, float) - origin, normal) / np.dot(direction, normal)
+        return origin + t * direction
+
+    def grabbable_at(self, pos: QPointF) -> str | None:
+        """``"eye"`` or ``"target"`` if the mouse at ``pos`` is on one of them, else ``None``."""
+        cam = self.model.camera
+        for name, point in (("eye", cam.eye), ("target", cam.target)):
+            p = self.widget_pos(point)
+            if np.hypot(p.x() - pos.x(), p.y() - pos.y()) <= GRAB_RADIUS_PX:
+                return name
+        return None
+
+    def look_from(self, view) -> None:
+        """Place the overview camera: ``view`` maps ``position``, ``focal_point`` and ``up``
+        (world space, scene units); empty, the pane frames the scene and observer itself."""
+        if view:
+            self.plotter.camera_position = [tuple(view["position"]), tuple(view["focal_point"]),
+                                            tuple(view.get("up", (0.0, 1.0, 0.0)))]
+            self.plotter.reset_camera_clipping_range()
+        elif self._scene is not None:
+            self._frame(self._scene)
+        self.request_render()
 
     def _frame(self, scene: Scene) -> None:
         """Place the overview camera beside the observer, seeing it and the objects.
@@ -152,5 +343,42 @@ class SceneView(QWidget):
         self._framed_at = self.plotter.camera_position
 
     def close(self) -> bool:
+        self._render_timer.stop()
+        self._smooth_timer.stop()
         self.plotter.close()
         return super().close()
+
+
+class _MouseGrip(QObject):
+    """Mouse events on the 3D pane that grab the eye or the target; the rest go to VTK."""
+
+    def __init__(self, view: SceneView):
+        super().__init__(view)
+        self.view = view
+        self.drag: str | None = None
+        self.anchor_offset = np.zeros(3)
+
+    def eventFilter(self, obj, event):
+        kind = event.type()
+        view, model = self.view, self.view.model
+        if kind == QEvent.Type.MouseButtonPress and event.button() == Qt.MouseButton.LeftButton:
+            self.drag = view.grabbable_at(event.position())
+            if self.drag is not None:
+                point = getattr(model.camera, self.drag)
+                self.anchor_offset = np.subtract(point, view.world_point_under(event.position(), point))
+                return True
+        elif kind == QEvent.Type.MouseMove and self.drag is not None:
+            point = getattr(model.camera, self.drag)
+            moved = view.world_point_under(event.position(), point) + self.anchor_offset
+            model.update_camera(**{self.drag: moved})
+            return True
+        elif kind == QEvent.Type.MouseButtonRelease and self.drag is not None:
+            self.drag = None
+            return True
+        elif kind == QEvent.Type.Wheel and view.grabbable_at(event.position()) == "eye":
+            notches = event.angleDelta().y() / 120.0
+            lo, hi = FOV_RANGE_DEG
+            fov = min(hi, max(lo, model.camera.fov_y_deg - FOV_STEP_DEG * notches))
+            model.update_camera(fov_y_deg=fov)
+            return True
+        return False

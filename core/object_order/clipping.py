@@ -24,8 +24,16 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from numba.extending import register_jitable
 
 PLANES = ("left", "right", "bottom", "top", "near", "far")
+
+
+#: Most vertices a triangle can have after clipping: each of the six planes cuts
+#: one corner off a convex polygon, adding at most one vertex.
+MAX_CLIPPED_VERTICES = 3 + 6
+#: Components of a vertex while it is clipped: clip ``(x, y, z, w)`` then world ``(x, y, z)``.
+VERTEX_COMPONENTS = 7
 
 
 def boundary_distances(clip: np.ndarray) -> np.ndarray:
@@ -38,19 +46,90 @@ def boundary_distances(clip: np.ndarray) -> np.ndarray:
     Returns
     -------
     (..., 6) float64: ``w + x, w - x, w + y, w - y, w + z, w - z`` (left, right,
-    bottom, top, near, far).
+    bottom, top, near, far), each :func:`boundary_distance`.
 
     Examples
     --------
     >>> boundary_distances(np.array([0.5, 0.0, -2.0, 1.0])).tolist()   # in front of the near plane
     [1.5, 0.5, 1.0, 1.0, -1.0, 3.0]
     """
-    x, y, z, w = clip[..., 0], clip[..., 1], clip[..., 2], clip[..., 3]
-    return np.stack([w + x, w - x, w + y, w - y, w + z, w - z], axis=-1)
+    return np.stack([boundary_distance(clip, plane) for plane in range(6)], axis=-1)
+
+
+@register_jitable
+def boundary_distance(v, plane):
+    """Signed distance of clip-space point ``v = (x, y, z, w, ...)`` from one plane of the frustum.
+
+    ``plane`` numbers :data:`PLANES`: ``w + x`` (left), ``w - x`` (right),
+    ``w + y`` (bottom), ``w - y`` (top), ``w + z`` (near), ``w - z`` (far);
+    inside when ``>= 0``.  ``v`` may be one vertex or an array of them
+    (components along the last axis).
+    """
+    axis = plane // 2
+    if plane % 2 == 0:
+        return v[..., 3] + v[..., axis]
+    return v[..., 3] - v[..., axis]
+
+
+@register_jitable
+def sutherland_hodgman(poly, n, spare):
+    """Clip the convex polygon ``poly[:n]`` against the six planes, in place.
+
+    Walking the polygon's edges plane after plane, every vertex inside the
+    plane is kept and every edge that crosses it contributes its crossing
+    point ``inner + t (outer - inner)`` with ``t = d_inner / (d_inner - d_outer)``,
+    always taken from the inside end so that two triangles sharing an edge get
+    bit-identical new vertices.  A plane no vertex is outside of is skipped.
+
+    Parameters
+    ----------
+    poly : (M, 7) float64, rows clip ``(x, y, z, w)`` then world ``(x, y, z)``;
+        ``M >= n + 6`` (:data:`MAX_CLIPPED_VERTICES` for a triangle).
+        Overwritten with the clipped polygon.
+    n : int, vertices in ``poly``.
+    spare : (M, 7) float64, scratch space.  A polygon so thin that rounding
+        makes it cross a plane more than twice keeps only its first ``M``
+        vertices (memory stays safe in the compiled loop).
+
+    Returns
+    -------
+    int, vertices of the clipped polygon in ``poly[:m]`` (0 when nothing is left).
+    """
+    for plane in range(6):
+        if n == 0:
+            break
+        outside = False
+        for k in range(n):
+            if boundary_distance(poly[k], plane) < 0:
+                outside = True
+        if not outside:
+            continue
+        m = 0
+        for e in range(n):
+            s = e - 1 if e else n - 1  # the edge from the previous vertex s to e
+            ds, de = boundary_distance(poly[s], plane), boundary_distance(poly[e], plane)
+            if (ds >= 0) != (de >= 0) and m < spare.shape[0]:
+                inner, outer, d_inner, d_outer = (s, e, ds, de) if ds >= 0 else (e, s, de, ds)
+                t = d_inner / (d_inner - d_outer)
+                for c in range(VERTEX_COMPONENTS):
+                    spare[m, c] = poly[inner, c] + t * (poly[outer, c] - poly[inner, c])
+                m += 1
+            if de >= 0 and m < spare.shape[0]:
+                for c in range(VERTEX_COMPONENTS):
+                    spare[m, c] = poly[e, c]
+                m += 1
+        for k in range(m):
+            for c in range(VERTEX_COMPONENTS):
+                poly[k, c] = spare[k, c]
+        n = m
+    return n
 
 
 def clip_polygon(clip: np.ndarray, world: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Sutherland-Hodgman: clip one convex polygon against the six planes.
+
+    The readable entry to :func:`sutherland_hodgman`, the same function the
+    compiled clipper (:mod:`core.object_order.kernels.clip`) runs.
 
     Parameters
     ----------
@@ -69,25 +148,11 @@ def clip_polygon(clip: np.ndarray, world: np.ndarray) -> tuple[np.ndarray, np.nd
     >>> c[:, :2].tolist()
     [[0.0, 0.0], [1.0, 0.0], [1.0, 0.375], [0.0, 0.5]]
     """
-    vertices = np.hstack([clip, world])
-    for plane in range(6):
-        if len(vertices) == 0:
-            break
-        d = boundary_distances(vertices[:, :4])[:, plane]
-        if np.all(d >= 0):
-            continue
-        kept = []
-        n = len(vertices)
-        for k in range(n):
-            s, e = k - 1 if k else n - 1, k  # the edge from the previous vertex s to e
-            if (d[s] >= 0) != (d[e] >= 0):
-                inner, outer = (s, e) if d[s] >= 0 else (e, s)
-                t = d[inner] / (d[inner] - d[outer])
-                kept.append(vertices[inner] + t * (vertices[outer] - vertices[inner]))
-            if d[e] >= 0:
-                kept.append(vertices[e])
-        vertices = np.array(kept).reshape(-1, 7)
-    return vertices[:, :4], vertices[:, 4:]
+    n = len(clip)
+    poly = np.zeros((n + 6, VERTEX_COMPONENTS))
+    poly[:n, :4], poly[:n, 4:] = clip, world
+    m = sutherland_hodgman(poly, n, np.zeros_like(poly))
+    return poly[:m, :4].copy(), poly[:m, 4:].copy()
 
 
 @dataclass(frozen=True)
@@ -160,7 +225,8 @@ def clip_triangles(face: np.ndarray, triangles: np.ndarray, clip: np.ndarray, wo
 
     A triangle whose corners are all inside every plane is accepted whole; one
     whose corners are all outside the same plane is rejected; only the rest go
-    through :func:`clip_polygon`.
+    through :func:`sutherland_hodgman`.  Compiled
+    (:func:`core.object_order.kernels.clip.clip_triangles`).
 
     Parameters
     ----------
@@ -171,27 +237,15 @@ def clip_triangles(face: np.ndarray, triangles: np.ndarray, clip: np.ndarray, wo
     test : (K,) bool, which triangles may cross the frustum; the others (their
         object lies inside it) are accepted untested.  Default: test all.
     """
+    from core.object_order.kernels import clip as kernels  # the kernel compiles in this module
+
     k = len(face)
-    test = np.ones(k, dtype=bool) if test is None else test
-    accept, reject = ~test, np.zeros(k, dtype=bool)
-    if test.any():
-        inside = boundary_distances(clip[triangles[test]]) >= 0  # (K', 3 corners, 6 planes)
-        accept[test] = inside.all(axis=(1, 2))
-        reject[test] = (~inside).all(axis=1).any(axis=1)
-    cut = np.flatnonzero(~accept & ~reject)
-    pieces = [clip_polygon(clip[triangles[i]], world[triangles[i]]) for i in cut]
-    survivors = [i for i, (c, _) in enumerate(pieces) if len(c) >= 3]
-    counts = np.where(accept, 3, 0)
-    counts[cut[survivors]] = [len(pieces[i][0]) for i in survivors]
-    keep = np.flatnonzero(counts)
-    offsets = np.concatenate([[0], np.cumsum(counts[keep])]).astype(np.int64)
-    vertex = np.empty(offsets[-1], dtype=np.int64)
-    whole = accept[keep]
-    vertex[(offsets[:-1][whole][:, None] + np.arange(3)).ravel()] = triangles[keep[whole]].ravel()
-    if survivors:
-        new_clip = np.vstack([pieces[i][0] for i in survivors])
-        new_world = np.vstack([pieces[i][1] for i in survivors])
-        vertex[np.repeat(~whole, counts[keep])] = len(clip) + np.arange(len(new_clip))
-        clip, world = np.vstack([clip, new_clip]), np.vstack([world, new_world])
-    polygons = Polygons(offsets, vertex, clip, world, face[keep], ~whole)
-    return ClipResult(polygons, int(accept.sum()), k - len(keep), len(survivors))
+    test = np.ones(k, dtype=bool) if test is None else np.asarray(test, dtype=bool)
+    triangles = np.ascontiguousarray(triangles, dtype=np.int64)
+    outcome, keep, offsets, vertex, new = kernels.clip_triangles(
+        triangles, np.ascontiguousarray(clip, dtype=float), np.ascontiguousarray(world, dtype=float), test)
+    if len(new):
+        clip, world = np.vstack([clip, new[:, :4]]), np.vstack([world, new[:, 4:]])
+    polygons = Polygons(offsets, vertex, clip, world, face[keep], outcome[keep] != kernels.ACCEPTED)
+    accepted = int(np.count_nonzero(outcome == kernels.ACCEPTED))
+    return ClipResult(polygons, accepted, k - len(keep), int(np.count_nonzero(outcome == kernels.CUT)))

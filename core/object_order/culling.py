@@ -27,6 +27,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from numba.extending import register_jitable
 
 OUTSIDE, INSIDE, CROSSING = "outside", "inside", "crossing"
 
@@ -74,24 +75,47 @@ def back_face_culling(view: np.ndarray, triangles: np.ndarray, orthographic: boo
     Returns
     -------
     FaceCulling
+
+    Notes
+    -----
+    Compiled (:func:`core.object_order.kernels.culling.back_face_test`), face
+    by face with :func:`face_facing`.
     """
-    coords = [np.ascontiguousarray(view[:, k]) for k in range(3)]
-    corner = [np.ascontiguousarray(triangles[:, k]) for k in range(3)]
-    a, b, c = ([x[i] for x in coords] for i in corner)  # per corner: x, y, z arrays of length F
-    e1 = [b[k] - a[k] for k in range(3)]
-    e2 = [c[k] - a[k] for k in range(3)]
-    n = [e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]]
-    length = np.sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2])
-    length[length == 0] = 1.0
-    n = [v / length for v in n]
-    centroid = [(a[k] + b[k] + c[k]) / 3.0 for k in range(3)]
+    from core.object_order.kernels import culling as kernels  # the kernel compiles in this module
+
+    normal, centroid, facing = kernels.back_face_test(np.ascontiguousarray(view, dtype=float),
+                                                      np.ascontiguousarray(triangles, dtype=np.int64),
+                                                      bool(orthographic))
+    return FaceCulling(normal, normal[:, 2], centroid, facing, facing > 0)
+
+
+@register_jitable
+def face_facing(a, b, c, orthographic):
+    """The back-face test of one triangle ``a, b, c`` (view space, counter-clockwise from outside).
+
+    Returns
+    -------
+    nx, ny, nz : its unit outward normal ``(b - a) x (c - a) / |...|`` (zero
+        for a triangle with no area).
+    cx, cy, cz : its centroid.
+    facing : ``Nz`` (orthographic), or the cosine between the normal and the
+        direction from the centroid to the eye at the origin (perspective);
+        the face is seen from the front when it is > 0.
+    """
+    e1x, e1y, e1z = b[0] - a[0], b[1] - a[1], b[2] - a[2]
+    e2x, e2y, e2z = c[0] - a[0], c[1] - a[1], c[2] - a[2]
+    nx, ny, nz = e1y * e2z - e1z * e2y, e1z * e2x - e1x * e2z, e1x * e2y - e1y * e2x
+    length = np.sqrt(nx * nx + ny * ny + nz * nz)
+    if length == 0:
+        length = 1.0
+    nx, ny, nz = nx / length, ny / length, nz / length
+    cx, cy, cz = (a[0] + b[0] + c[0]) / 3.0, (a[1] + b[1] + c[1]) / 3.0, (a[2] + b[2] + c[2]) / 3.0
     if orthographic:
-        facing = n[2]
-    else:  # the eye is the origin of view space, so the centroid-to-eye vector is -centroid
-        dist = np.sqrt(centroid[0] ** 2 + centroid[1] ** 2 + centroid[2] ** 2)
-        dist[dist == 0] = 1.0
-        facing = -(n[0] * centroid[0] + n[1] * centroid[1] + n[2] * centroid[2]) / dist
-    return FaceCulling(np.stack(n, axis=1), n[2], np.stack(centroid, axis=1), facing, facing > 0)
+        return nx, ny, nz, cx, cy, cz, nz
+    dist = np.sqrt(cx * cx + cy * cy + cz * cz)  # the eye is the origin: centroid-to-eye is -centroid
+    if dist == 0:
+        dist = 1.0
+    return nx, ny, nz, cx, cy, cz, -(nx * cx + ny * cy + nz * cz) / dist
 
 
 def is_back_facing(triangle, orthographic: bool = False) -> bool:

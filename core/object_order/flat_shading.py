@@ -11,53 +11,81 @@ observer (so a one-sided ground plane is lit from either side) and ``l`` the
 unit vector from the centroid to the light.  A scene without lights is shown
 in its flat material colours.  No shadows.
 
-Positions and directions may be given in any one frame (world or view space);
-the formula only uses differences and dot products.
+Positions and directions are in view space: the observer at the origin
+looking down -z (:mod:`core.projection`).  The formula is :func:`lambert`,
+written once; :func:`face_colors` runs it over all polygons, compiled
+(:mod:`core.object_order.kernels.flat_shading`).
 """
 
 from __future__ import annotations
 
 import numpy as np
+from numba.extending import register_jitable
 
 
-def face_colors(centroid: np.ndarray, normal: np.ndarray, toward_viewer: np.ndarray, base: np.ndarray,
-                ambient: np.ndarray, diffuse: np.ndarray, light_position: np.ndarray,
-                light_rgb: np.ndarray) -> np.ndarray:
-    """The flat Lambert colour of each face.
+@register_jitable
+def lambert(n, c, toward_viewer, base, ambient, diffuse, light_position, light_rgb):
+    """The flat Lambert colour of one face: ``(r, g, b)`` in [0, 1].
 
     Parameters
     ----------
-    centroid : (F, 3) float64, the point each face is lit at.
-    normal : (F, 3) float64, unit face normals.
-    toward_viewer : (F, 3) or (3,) float64, any vector from the face toward the
-        observer (decides which side of the face is lit).
-    base : (F, 3) float64, material colour, RGB in [0, 1].
-    ambient, diffuse : (F,) float64, the material's k_a and k_d.
-    light_position : (L, 3) float64, point light positions (same frame).
+    n, c : (3,) the face's unit normal and centroid (view space).
+    toward_viewer : (3,) any vector from the face toward the observer.
+    base : (3,) material colour; ambient, diffuse : its k_a and k_d.
+    light_position, light_rgb : (L, 3) light positions (view space) and each
+        light's colour times its intensity.
+
+    Examples
+    --------
+    >>> [round(float(v), 6) for v in lambert((0.0, 1.0, 0.0), (0.0, 0.0, 0.0), (0.0, 1.0, 0.0),
+    ...                                (0.5, 0.5, 0.5), 0.1, 0.8, np.array([[0.0, 2.0, 0.0]]),
+    ...                                np.ones((1, 3)))]
+    [0.45, 0.45, 0.45]
+    """
+    side = 1.0
+    if n[0] * toward_viewer[0] + n[1] * toward_viewer[1] + n[2] * toward_viewer[2] < 0:
+        side = -1.0  # turn the normal toward the observer
+    r = g = b = 0.0
+    for k in range(light_position.shape[0]):
+        lx, ly, lz = light_position[k, 0] - c[0], light_position[k, 1] - c[1], light_position[k, 2] - c[2]
+        cos = side * (n[0] * lx + n[1] * ly + n[2] * lz) / np.sqrt(lx * lx + ly * ly + lz * lz)
+        cos = max(cos, 0.0)
+        r, g, b = r + cos * light_rgb[k, 0], g + cos * light_rgb[k, 1], b + cos * light_rgb[k, 2]
+    if light_position.shape[0] == 0:  # no lights: the flat material colour
+        r = g = b = 1.0
+    return (min(max(base[0] * (ambient + diffuse * r), 0.0), 1.0),
+            min(max(base[1] * (ambient + diffuse * g), 0.0), 1.0),
+            min(max(base[2] * (ambient + diffuse * b), 0.0), 1.0))
+
+
+def face_colors(face: np.ndarray, material: np.ndarray, normal: np.ndarray, centroid: np.ndarray,
+                orthographic: bool, base: np.ndarray, ambient: np.ndarray, diffuse: np.ndarray,
+                light_position: np.ndarray, light_rgb: np.ndarray) -> np.ndarray:
+    """The flat Lambert colour of each polygon.
+
+    Parameters
+    ----------
+    face : (P,) int64, the face each polygon comes from (row of ``normal``, ``centroid``).
+    material : (P,) int64, its material (row of ``base``, ``ambient``, ``diffuse``).
+    normal, centroid : (F, 3) float64, unit face normals and centroids, view space.
+    orthographic : the observer looks along -z from afar (toward him is +z);
+        else from the origin (toward him is ``-centroid``).
+    base : (M, 3) float64, material colours, RGB in [0, 1].
+    ambient, diffuse : (M,) float64, the materials' k_a and k_d.
+    light_position : (L, 3) float64, point light positions, view space.
     light_rgb : (L, 3) float64, each light's colour times its intensity.
 
     Returns
     -------
-    (F, 3) float64, RGB in [0, 1].
-
-    Examples
-    --------
-    >>> one = np.ones((1, 3))
-    >>> face_colors(np.zeros((1, 3)), np.array([[0.0, 1.0, 0.0]]), np.array([0.0, 1.0, 0.0]),
-    ...             0.5 * one, np.array([0.1]), np.array([0.8]), np.array([[0.0, 2.0, 0.0]]),
-    ...             one).round(6).tolist()
-    [[0.45, 0.45, 0.45]]
+    (P, 3) float64, RGB in [0, 1].
     """
-    if len(light_position) == 0:
-        return np.clip(base * (ambient + diffuse)[:, None], 0.0, 1.0)
-    n = np.ascontiguousarray(normal.T)  # (3, F): per-coordinate rows are fast to combine
-    c = np.ascontiguousarray(centroid.T)
-    v = np.broadcast_to(np.asarray(toward_viewer, dtype=float), normal.shape).T
-    side = np.where(n[0] * v[0] + n[1] * v[1] + n[2] * v[2] < 0, -1.0, 1.0)
-    light_sum = np.zeros_like(base)
-    for position, rgb in zip(light_position, light_rgb, strict=True):
-        to_light = position[:, None] - c
-        cos = side * (n[0] * to_light[0] + n[1] * to_light[1] + n[2] * to_light[2])
-        cos /= np.sqrt(to_light[0] ** 2 + to_light[1] ** 2 + to_light[2] ** 2)
-        light_sum += np.maximum(cos, 0.0)[:, None] * rgb
-    return np.clip(base * (ambient[:, None] + diffuse[:, None] * light_sum), 0.0, 1.0)
+    from core.object_order.kernels import flat_shading as kernels  # the kernel compiles in this module
+
+    def f64(x, cols=None):
+        x = np.asarray(x, dtype=float)
+        return np.ascontiguousarray(x if cols is None else x.reshape(-1, cols))
+
+    return kernels.face_colors(np.ascontiguousarray(face, dtype=np.int64),
+                               np.ascontiguousarray(material, dtype=np.int64), f64(normal, 3),
+                               f64(centroid, 3), bool(orthographic), f64(base, 3), f64(ambient),
+                               f64(diffuse), f64(light_position, 3), f64(light_rgb, 3))

@@ -4,7 +4,8 @@ The lecture calls the colours a polygon gives to the pixels it may affect
 *fragments*; the final pixel colour comes from all fragments that reached the
 pixel.  :func:`draw` runs rasterization (:mod:`core.object_order.rasterization`)
 and the z-buffer test (:mod:`core.object_order.zbuffer`) over all triangles in
-drawing order in one compiled loop (:mod:`core.object_order.kernels.raster`)
+drawing order in one compiled loop, bands of rows shared by the cores
+(:mod:`core.object_order.kernels.raster`)
 and, if asked, keeps every fragment for step and pixel history.
 """
 
@@ -12,6 +13,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+import numba
 import numpy as np
 
 from core.object_order import zbuffer
@@ -73,7 +75,8 @@ class ZBufferPass:
 
 def draw(xy: np.ndarray, z: np.ndarray, corners: np.ndarray, position: np.ndarray,
          poly_color: np.ndarray, poly_alpha: np.ndarray, width: int, height: int, background,
-         record: bool = False, depth_format: str = "float64", z_test: bool = True) -> ZBufferPass:
+         record: bool = False, depth_format: str = "float64", z_test: bool = True,
+         threads: int | None = None) -> ZBufferPass:
     """Run the z-buffer algorithm over triangles in drawing order.
 
     Parameters
@@ -94,12 +97,15 @@ def draw(xy: np.ndarray, z: np.ndarray, corners: np.ndarray, position: np.ndarra
         (:data:`core.object_order.depth_formats.DEPTH_FORMATS`).
     z_test : compare depths; False draws every fragment over what is there, in
         drawing order (the painter without sorting).
+    threads : threads sharing the image's bands of rows (default: numba's
+        thread count); the result is the same for any number.
     """
     code = format_code(depth_format)
     color, zbuf = zbuffer.cleared_buffers(width, height, background, depth_format)
     generated, passed, pixel, frag_z, ok, out_of_range = kernels.draw_triangles(
         xy, z, corners, position, np.ascontiguousarray(poly_color, dtype=float),
         np.ascontiguousarray(poly_alpha, dtype=float), color, zbuf, record, code, z_test,
+        numba.get_num_threads() if threads is None else max(1, int(threads)),
     )
     return ZBufferPass(color, zbuf, generated, passed, Fragments(pixel, frag_z, ok) if record else None,
                        out_of_range)

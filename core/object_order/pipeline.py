@@ -45,6 +45,7 @@ from core.object_order import (
 )
 from core.object_order.clipping import ClipResult, Polygons
 from core.object_order.culling import FaceCulling, ObjectCulling
+from core.object_order.kernels.transform import transform_points
 from core.object_order.step_history import StepHistory
 from core.presets import zbuffer_piercing
 from core.scene import Mesh, Scene, SceneObject, Sphere
@@ -238,8 +239,8 @@ def render_raster(scene: Scene, settings: RasterSettings = DEFAULT_SETTINGS) -> 
 
     # 1. World -> view (camera) space -> clip space, once per vertex.
     view_from_world, clip_from_view = cam.view_from_world, cam.clip_from_view
-    view = _transform(world, view_from_world, 3)
-    clip = _transform(view, clip_from_view, 4)
+    view = transform_points(np.ascontiguousarray(world, dtype=float), view_from_world, 3)
+    clip = transform_points(view, clip_from_view, 4)
     watch.lap("transform")
 
     # 2. Back-face culling.
@@ -273,22 +274,19 @@ def render_raster(scene: Scene, settings: RasterSettings = DEFAULT_SETTINGS) -> 
     # 6. Flat shading, one colour per polygon, in view space.
     poly_object = face_object[polygons.face]
     materials = [m.material for m in meshes]
-    base = np.array([m.color for m in materials], dtype=float).reshape(-1, 3)[poly_object]
-    ambient = np.array([m.ambient for m in materials], dtype=float)[poly_object]
-    diffuse = np.array([m.diffuse for m in materials], dtype=float)[poly_object]
     alpha = np.array([m.opacity for m in materials], dtype=float)[poly_object]
-    centroid = faces.centroid[polygons.face]
     lights = np.array([(*light.position, 1.0) for light in scene.lights]).reshape(-1, 4)
     colors = flat_shading.face_colors(
-        centroid, faces.normal[polygons.face], (0.0, 0.0, 1.0) if ortho else -centroid, base, ambient,
-        diffuse, (lights @ view_from_world.T)[:, :3],
+        polygons.face, poly_object, faces.normal, faces.centroid, ortho,
+        np.array([m.color for m in materials], dtype=float), np.array([m.ambient for m in materials]),
+        np.array([m.diffuse for m in materials]), (lights @ view_from_world.T)[:, :3],
         np.array([np.multiply(light.color, light.intensity) for light in scene.lights]).reshape(-1, 3),
     )
     watch.lap("shading")
 
     # 7. Drawing order: opaque first, then transparent (sorted far to near by face centroid).
     transparent = alpha < 1.0
-    sort_depth = -centroid[:, 2]
+    sort_depth = -faces.centroid[polygons.face, 2]
     order = blending.draw_order(transparent, sort_depth, settings.sort_transparent)
     watch.lap("sorting")
 
@@ -321,19 +319,6 @@ def render_raster(scene: Scene, settings: RasterSettings = DEFAULT_SETTINGS) -> 
     stats["compile_s"] = compile_s  # compiling or loading the kernels; not part of ``times``
     return RasterResult(zpass.color, depth, zpass.zbuf, stats, settings, meshes, face_offsets, faces,
                         objects, clipped, view_from_world, clip_from_view, draw, history)
-
-
-def _transform(points: np.ndarray, matrix: np.ndarray, rows: int) -> np.ndarray:
-    """``(matrix @ [p, 1])[:rows]`` for every point, (N, 3) -> (N, rows).
-
-    Written per coordinate: for a 4x4 matrix this is several times faster than
-    a matrix product, which hands three-wide rows to a threaded BLAS.
-    """
-    x, y, z = points[:, 0], points[:, 1], points[:, 2]
-    out = np.empty((len(points), rows))
-    for k in range(rows):
-        out[:, k] = matrix[k, 0] * x + matrix[k, 1] * y + matrix[k, 2] * z + matrix[k, 3]
-    return out
 
 
 def _bounding_sphere(obj: SceneObject, mesh: Mesh) -> tuple[np.ndarray, float]:

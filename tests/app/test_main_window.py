@@ -19,12 +19,12 @@ def window(qtbot):
     win = MainWindow(presets.lecture_scene())
     qtbot.addWidget(win)
     win.show()
-    qtbot.waitUntil(lambda: win.last_result is not None, timeout=RENDER_TIMEOUT_MS)
+    qtbot.waitUntil(lambda: win.showing_full("image order"), timeout=RENDER_TIMEOUT_MS)
     return win
 
 
 def _image(win):
-    return win.tabs[0].widget.image.rgb
+    return win.tab("image order").widget.image.rgb
 
 
 def _drawn_frustum(win):
@@ -32,8 +32,10 @@ def _drawn_frustum(win):
 
 
 def _move_and_wait(qtbot, win, action):
-    with qtbot.waitSignal(win.renderers[win.current_tab].finished, timeout=RENDER_TIMEOUT_MS):
-        action()
+    """Do ``action``, then wait until the visible tab shows the full image of the new scene."""
+    action()
+    title = win.current.title
+    qtbot.waitUntil(lambda: win.showing_full(title), timeout=RENDER_TIMEOUT_MS)
     return win.last_result
 
 
@@ -115,14 +117,14 @@ def test_arrow_keys_walk_around_the_target(qtbot, window):
     assert window.model.camera.distance == pytest.approx(before.distance)
 
 
-def _show_tab(qtbot, win, index):
-    with qtbot.waitSignal(win.renderers[index].finished, timeout=RENDER_TIMEOUT_MS):
-        win.tab_widget.setCurrentIndex(index)
+def _show_tab(qtbot, win, name):
+    win.show_tab(name)
+    qtbot.waitUntil(lambda: win.showing_full(name), timeout=RENDER_TIMEOUT_MS)
 
 
 def test_object_order_steps_through_the_z_buffer(qtbot, window):
-    _show_tab(qtbot, window, 1)
-    panel = window.tabs[1].widget
+    _show_tab(qtbot, window, "object order")
+    panel = window.tab("object order").widget
     history = panel.result.history
     assert panel.scrubber.step == history.n_steps > 0
     panel.scrubber.first()
@@ -145,17 +147,16 @@ def test_object_order_steps_through_the_z_buffer(qtbot, window):
 
 
 def test_switching_a_stage_off_rerenders_with_it_off(qtbot, window):
-    _show_tab(qtbot, window, 1)
-    panel = window.tabs[1].widget
-    with qtbot.waitSignal(window.renderers[1].finished, timeout=RENDER_TIMEOUT_MS):
-        panel.switches["back_face_culling"].setChecked(False)
+    _show_tab(qtbot, window, "object order")
+    panel = window.tab("object order").widget
+    _move_and_wait(qtbot, window, lambda: panel.switches["back_face_culling"].setChecked(False))
     assert panel.result.settings.back_face_culling is False
     assert panel.result.stats["faces_culled"] == 0
 
 
 def test_four_views_show_front_side_top_and_observer(qtbot, window):
-    _show_tab(qtbot, window, 2)
-    grid = window.tabs[2].widget
+    _show_tab(qtbot, window, "four views")
+    grid = window.tab("four views").widget
     images = {k: v.rgb for k, v in grid.views.items()}
     assert set(images) == {"front", "side", "top", "observer"}
     assert not np.allclose(images["front"], images["top"])
@@ -163,7 +164,7 @@ def test_four_views_show_front_side_top_and_observer(qtbot, window):
 
 
 def test_clicking_a_pixel_shows_its_ray_tree(qtbot, window):
-    panel = window.tabs[0].widget
+    panel = window.tab("image order").widget
     cam = window.model.camera
     cone = next(o for o in window.model.scene.objects if o.name == "cone")
     # A point on the cone's axis, half way up: the observer sees the cone there.
@@ -181,40 +182,42 @@ def test_clicking_a_pixel_shows_its_ray_tree(qtbot, window):
 
 
 def test_effects_plan_follows_the_scene(qtbot, window):
-    assert "no reflection rays" in window.tabs[0].widget.plan.text()
-    assert "reflection 0" in window.tabs[0].widget.rays.text()
-    with qtbot.waitSignal(window.renderers[0].finished, timeout=RENDER_TIMEOUT_MS):
-        window.load_preset("mirror_and_glass", PRESETS_TRACE["mirror_and_glass"][1])
-    text = window.tabs[0].widget.plan.text()
+    assert "no reflection rays" in window.tab("image order").widget.plan.text()
+    assert "reflection 0" in window.tab("image order").widget.rays.text()
+    _move_and_wait(qtbot, window, lambda: window.load_preset(
+        "mirror_and_glass", PRESETS_TRACE["mirror_and_glass"][1]))
+    text = window.tab("image order").widget.plan.text()
     assert "reflection rays:" in text and "refraction rays" in text
-    counts = window.tabs[0].widget.rays.text()
+    counts = window.tab("image order").widget.rays.text()
     assert "reflection 0" not in counts and "refraction 0" not in counts
 
 
 def test_cancel_stops_a_render_and_keeps_the_window_usable(qtbot, window):
     window.activateWindow()
     qtbot.waitUntil(window.isActiveWindow)
-    window.tabs[0].widget.accel.setCurrentIndex(window.tabs[0].widget.accel.findData("none"))
-    renderer = window.renderers[0]
+    accel = window.tab("image order").widget.accel
+    accel.setCurrentIndex(accel.findData("none"))
+    renderer = window.tab("image order").renderer
     delivered = []
-    renderer.finished.connect(delivered.append)
-    window.camera_panel.resolution.setCurrentIndex(4)  # 960 x 720: a longer render starts
+    window.full_image_shown.connect(delivered.append)
+    window.camera_panel.resolution.setCurrentIndex(4)  # 960 x 720: a preview, then a longer render
+    qtbot.waitUntil(lambda: "rendering" in window.progress.format(), timeout=RENDER_TIMEOUT_MS)
     assert renderer.busy and window.cancel_button.isEnabled()
     qtbot.mouseClick(window.cancel_button, Qt.MouseButton.LeftButton)
     assert not renderer.busy
     assert "cancelled" in window.progress.format()
-    with qtbot.waitSignal(renderer.finished, timeout=RENDER_TIMEOUT_MS):
-        qtbot.keyClick(window, Qt.Key.Key_F5)  # render again on demand
+    qtbot.keyClick(window, Qt.Key.Key_F5)  # render again on demand
+    qtbot.waitUntil(lambda: window.showing_full("image order"), timeout=RENDER_TIMEOUT_MS)
     assert len(delivered) == 1  # only the re-render: the cancelled one never arrives
-    assert window.tabs[0].widget.image.rgb.shape == (720, 960, 3)
+    assert window.tab("image order").widget.image.rgb.shape == (720, 960, 3)
 
 
 def test_3d_pane_shows_bounding_spheres_grid_and_the_walked_cells(qtbot, window):
-    panel = window.tabs[0].widget
+    panel = window.tab("image order").widget
     panel.show_spheres.setChecked(True)
     panel.show_grid.setChecked(True)
     assert {"spheres", "grid"} <= set(window.scene_view.overlay_names())
-    spheres = window.scene_view._overlays["spheres"]
+    spheres = window.scene_view.overlay_parts("spheres")
     assert len(spheres) == len(window.model.scene.objects)  # the lecture scene: three meshes
     cam = window.model.camera
     with qtbot.waitSignal(window._tree_renderer.finished, timeout=RENDER_TIMEOUT_MS):

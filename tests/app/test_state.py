@@ -36,3 +36,48 @@ def test_new_scene_fires_scene_changed_only(qtbot):
     model.set_scene(replace(other))  # equal: nothing happens
     assert scenes == [other] and cameras == []
     assert model.camera == other.camera
+
+
+def test_a_new_scene_clears_the_picks_and_the_step(qtbot):
+    model = SceneModel(presets.lecture_scene())
+    model.set_ray_pixel((10, 20))
+    model.set_buffer_pixel((300, 200))
+    model.set_step(4)
+    cleared = []
+    model.buffer_pixel_changed.connect(cleared.append)
+    model.set_scene(presets.culling_pyramid())
+    assert (model.ray_pixel, model.buffer_pixel, model.step) == (None, None, None)
+    assert cleared == [None]
+
+
+def test_a_smaller_image_drops_a_pick_that_falls_outside_it(qtbot):
+    model = SceneModel(presets.lecture_scene())
+    model.set_buffer_pixel((300, 200))  # inside 320 x 240
+    model.set_ray_pixel((10, 10))
+    model.update_camera(width=160, height=120)
+    assert model.buffer_pixel is None  # (300, 200) is outside 160 x 120
+    assert model.ray_pixel == (10, 10)
+    model.set_ray_pixel((160, 5))  # one past the last column: no pick
+    assert model.ray_pixel is None
+
+
+def test_settings_and_overlays_signal_only_real_changes(qtbot):
+    model = SceneModel(presets.lecture_scene())
+    traces, overlays = [], []
+    model.trace_settings_changed.connect(traces.append)
+    model.overlays_changed.connect(overlays.append)
+    model.set_trace_settings(replace(model.trace_settings))  # equal: nothing
+    model.set_trace_settings(replace(model.trace_settings, accel="grid"))
+    model.set_overlay("grid", True)
+    model.set_overlay("grid", True)
+    model.set_overlay("spheres", True)
+    model.set_overlay("grid", False)
+    assert [s.accel for s in traces] == ["grid"]
+    assert overlays == [{"grid"}, {"grid", "spheres"}, {"spheres"}]
+
+
+def test_a_refused_camera_says_which_field_is_wrong(qtbot):
+    model = SceneModel(presets.lecture_scene())
+    with qtbot.waitSignal(model.camera_refused) as blocker:
+        assert not model.update_camera(near=model.camera.far + 1)
+    assert blocker.args[0].startswith("far: must be > near")

@@ -22,7 +22,9 @@ _OBJECT_ORDER = _KERNELS.parent
 #: lecture modules whose formulas they compile in.  ``tests/core/test_raster.py``
 #: checks that every ``core`` module a kernel imports is listed here.
 SOURCES = sorted(_KERNELS.glob("*.py")) + [
-    _OBJECT_ORDER / name for name in ("rasterization.py", "zbuffer.py", "blending.py", "depth_formats.py")]
+    _OBJECT_ORDER / name for name in ("rasterization.py", "zbuffer.py", "blending.py", "depth_formats.py",
+                                  "clipping.py", "culling.py",
+                                  "flat_shading.py")]
 
 
 def _cache_dirs() -> list[Path]:

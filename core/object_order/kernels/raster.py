@@ -12,7 +12,8 @@ produced:
   (:mod:`core.object_order.depth_formats`) and runs the lecture's z-buffer test
   (:mod:`core.object_order.zbuffer`), or, with the z-test switched off, writes
   every fragment in drawing order.  Optionally it records every fragment: its
-  pixel, its depth key and whether it passed.
+  pixel, its depth key and whether it passed.  Both cores work at once, each
+  on its own bands of rows, with the same result as one core.
 - :func:`replay` applies the recorded fragments of the first ``stop`` polygons
   to cleared buffers (step scrubbing, :mod:`core.object_order.step_history`).
 
@@ -30,7 +31,7 @@ nearer).
 from __future__ import annotations
 
 import numpy as np
-from numba import njit
+from numba import njit, prange
 
 from core.object_order.blending import blend_over
 from core.object_order.depth_formats import depth_key
@@ -56,18 +57,187 @@ def _write(color, zbuf, j, i, key, cs, alpha):
         color[j, i, c] = blend_over(alpha, cs[c], color[j, i, c])
 
 
+BAND_ROWS = 16
+"""Rows of pixels per band: the unit of work one thread takes (:func:`draw_triangles`)."""
+
+
 @njit(cache=True, nogil=True)
-def _grown(a, n, needed):
-    """A copy of ``a[:n]`` with room for at least ``needed`` entries (doubling)."""
-    b = np.empty(max(2 * a.shape[0], needed), a.dtype)
-    b[:n] = a[:n]
-    return b
+def _corners_fixed(xy, a, b, c):
+    """Triangle setup: the corners snapped to fixed point, turned so that inside is E > 0."""
+    f0 = (to_fixed(xy[a, 0]), to_fixed(xy[a, 1]))
+    f1 = (to_fixed(xy[b, 0]), to_fixed(xy[b, 1]))
+    f2 = (to_fixed(xy[c, 0]), to_fixed(xy[c, 1]))
+    area = edge_function(f0, f1, f2)
+    if area < 0:  # make the corners run so that inside means E > 0 for every edge
+        f1, f2 = f2, f1
+    return f0, f1, f2, area
+
+
+@njit(cache=True, nogil=True)
+def _bounding_boxes(xy, corners, width, height):
+    """The pixel bounding box of every triangle, clamped to the image, and the range test.
+
+    Returns
+    -------
+    box : (T, 4) int64, ``imin, imax, jmin, jmax``; a triangle with no area,
+        no pixel inside the image or a corner out of range gets an empty box
+        (``jmin > jmax``).
+    out_of_range : (T,) bool, a corner beyond ``MAX_PIXEL`` or not finite.
+    """
+    n_tri = corners.shape[0]
+    box = np.empty((n_tri, 4), np.int64)
+    out_of_range = np.zeros(n_tri, np.bool_)
+    for t in range(n_tri):
+        box[t, 0], box[t, 1], box[t, 2], box[t, 3] = 0, -1, 1, 0
+        a, b, c = corners[t, 0], corners[t, 1], corners[t, 2]
+        if not (abs(xy[a, 0]) <= MAX_PIXEL and abs(xy[a, 1]) <= MAX_PIXEL and abs(xy[b, 0]) <= MAX_PIXEL
+                and abs(xy[b, 1]) <= MAX_PIXEL and abs(xy[c, 0]) <= MAX_PIXEL
+                and abs(xy[c, 1]) <= MAX_PIXEL):
+            out_of_range[t] = True
+            continue
+        f0, f1, f2, area = _corners_fixed(xy, a, b, c)
+        if area == 0:
+            continue
+        imin = max(min(f0[0], f1[0], f2[0]) >> SUBPIXEL_BITS, 0)
+        imax = min(max(f0[0], f1[0], f2[0]) >> SUBPIXEL_BITS, width - 1)
+        jmin = max(min(f0[1], f1[1], f2[1]) >> SUBPIXEL_BITS, 0)
+        jmax = min(max(f0[1], f1[1], f2[1]) >> SUBPIXEL_BITS, height - 1)
+        if imin <= imax and jmin <= jmax:
+            box[t, 0], box[t, 1], box[t, 2], box[t, 3] = imin, imax, jmin, jmax
+    return box, out_of_range
+
+
+@njit(cache=True, nogil=True)
+def _bin(box, n_bands):
+    """Binning: cut every triangle into pieces, one per band of rows its box reaches.
+
+    Returns
+    -------
+    piece_tri : (E,) int64, the triangle of each piece; pieces are numbered
+        triangle by triangle, and within a triangle band by band (top down),
+        so piece order is drawing order.
+    piece_band : (E,) int64, its band.
+    band_start : (B + 1,) int64, band ``b``'s pieces are
+        ``band_pieces[band_start[b] : band_start[b + 1]]``.
+    band_pieces : (E,) int64, piece numbers band by band, each band's in
+        drawing order.
+    """
+    n_tri = box.shape[0]
+    count = np.zeros(n_bands + 1, np.int64)
+    for t in range(n_tri):
+        if box[t, 2] <= box[t, 3]:
+            for b in range(box[t, 2] // BAND_ROWS, box[t, 3] // BAND_ROWS + 1):
+                count[b + 1] += 1
+    band_start = np.cumsum(count)
+    n = band_start[n_bands]
+    fill = band_start[:-1].copy()
+    piece_tri = np.empty(n, np.int64)
+    piece_band = np.empty(n, np.int64)
+    band_pieces = np.empty(n, np.int64)
+    k = 0
+    for t in range(n_tri):
+        if box[t, 2] <= box[t, 3]:
+            for b in range(box[t, 2] // BAND_ROWS, box[t, 3] // BAND_ROWS + 1):
+                piece_tri[k] = t
+                piece_band[k] = b
+                band_pieces[fill[b]] = k
+                fill[b] += 1
+                k += 1
+    return piece_tri, piece_band, band_start, band_pieces
+
+
+@njit(cache=True, nogil=True)
+def _draw_rows(xy, z, corners, tri_poly, poly_color, poly_alpha, color, zbuf, depth_code, z_test,
+               t, imin, imax, jlo, jhi, record, slot, frag_pixel, frag_key, frag_passed):
+    """Rasterize rows ``jlo .. jhi`` of triangle ``t``'s box, columns ``imin .. imax``, and
+    z-test its fragments; with ``record`` they are kept from position ``slot`` on.
+
+    Returns the numbers of fragments generated and passed.
+    """
+    width = zbuf.shape[1]
+    a, b, c = corners[t, 0], corners[t, 1], corners[t, 2]
+    f0, f1, f2, _ = _corners_fixed(xy, a, b, c)
+    pa, pb, pc = (xy[a, 0], xy[a, 1]), (xy[b, 0], xy[b, 1]), (xy[c, 0], xy[c, 1])
+    plane = depth_plane(pa, pb, pc, z[a], z[b], z[c])  # of the unsnapped corners
+    first = (pixel_centre_fixed(imin), pixel_centre_fixed(jlo))
+    # The three edge functions at the first pixel centre, with the fill rule's offset
+    # so that "E >= 0" means covered, and their exact integer steps per pixel.
+    e0 = edge_function(f1, f2, first) + fill_rule_offset(f1, f2)
+    e1 = edge_function(f2, f0, first) + fill_rule_offset(f2, f0)
+    e2 = edge_function(f0, f1, first) + fill_rule_offset(f0, f1)
+    step_x0, step_y0 = edge_steps(f1, f2)
+    step_x1, step_y1 = edge_steps(f2, f0)
+    step_x2, step_y2 = edge_steps(f0, f1)
+    p = tri_poly[t]
+    cs = poly_color[p]
+    alpha = poly_alpha[p]
+    generated = 0
+    passed = 0
+    for j in range(jlo, jhi + 1):
+        w0, w1, w2 = e0, e1, e2
+        for i in range(imin, imax + 1):
+            if w0 >= 0 and w1 >= 0 and w2 >= 0:
+                key = depth_key(plane_depth(plane, pa, i + 0.5, j + 0.5), depth_code)
+                ok = not z_test or depth_test(key, zbuf[j, i])
+                if ok:
+                    passed += 1
+                    _write(color, zbuf, j, i, key, cs, alpha)
+                if record:
+                    frag_pixel[slot + generated] = j * width + i
+                    frag_key[slot + generated] = key
+                    frag_passed[slot + generated] = ok
+                generated += 1
+            w0 += step_x0
+            w1 += step_x1
+            w2 += step_x2
+        e0 += step_y0
+        e1 += step_y1
+        e2 += step_y2
+    return generated, passed
+
+
+@njit(cache=True, nogil=True)
+def _draw_bands(w, workers, xy, z, corners, tri_poly, poly_color, poly_alpha, color, zbuf, depth_code,
+                z_test, box, piece_tri, band_start, band_pieces, record, slot, scratch_pixel,
+                scratch_key, scratch_passed, piece_generated, piece_passed):
+    """One worker's share: bands ``w, w + workers, ...``, each band's pieces in drawing order."""
+    for b in range(w, band_start.shape[0] - 1, workers):
+        for q in range(band_start[b], band_start[b + 1]):
+            k = band_pieces[q]
+            t = piece_tri[k]
+            jlo = max(box[t, 2], b * BAND_ROWS)
+            jhi = min(box[t, 3], b * BAND_ROWS + BAND_ROWS - 1)
+            piece_generated[k], piece_passed[k] = _draw_rows(
+                xy, z, corners, tri_poly, poly_color, poly_alpha, color, zbuf, depth_code, z_test,
+                t, box[t, 0], box[t, 1], jlo, jhi, record, slot[k], scratch_pixel, scratch_key,
+                scratch_passed)
+
+
+@njit(cache=True, nogil=True, parallel=True)
+def _draw_bands_in_parallel(workers, xy, z, corners, tri_poly, poly_color, poly_alpha, color, zbuf,
+                            depth_code, z_test, box, piece_tri, band_start, band_pieces, record, slot,
+                            scratch_pixel, scratch_key, scratch_passed, piece_generated, piece_passed):
+    """All workers at once, one thread each (the only parallel region of the rasterizer)."""
+    for w in prange(workers):
+        _draw_bands(w, workers, xy, z, corners, tri_poly, poly_color, poly_alpha, color, zbuf,
+                    depth_code, z_test, box, piece_tri, band_start, band_pieces, record, slot,
+                    scratch_pixel, scratch_key, scratch_passed, piece_generated, piece_passed)
 
 
 @njit(cache=True, nogil=True)
 def draw_triangles(xy, z, corners, tri_poly, poly_color, poly_alpha, color, zbuf, record,
-                   depth_code, z_test):
+                   depth_code, z_test, n_workers):
     """Rasterize triangles in order into ``color`` and ``zbuf`` (modified in place).
+
+    The image is cut into bands of ``BAND_ROWS`` rows.  Binning lists for
+    every band the triangles whose bounding box reaches it, in drawing order;
+    ``n_workers`` threads then share the bands (worker ``w`` takes bands
+    ``w, w + n_workers, ...``) and each draws a band's triangles in that
+    order, its rows only.  A pixel lies in one band, so it meets exactly the
+    fragments, in exactly the order, of a single-threaded render: the output
+    does not depend on ``n_workers``.  Recorded fragments are gathered
+    triangle by triangle and within one band by band, which is row by row as
+    the triangle was drawn.
 
     Parameters
     ----------
@@ -83,6 +253,7 @@ def draw_triangles(xy, z, corners, tri_poly, poly_color, poly_alpha, color, zbuf
     depth_code : int, the z-buffer's number format
         (:func:`core.object_order.depth_formats.format_code`).
     z_test : bool, compare depths; False writes every fragment in drawing order.
+    n_workers : int >= 1, threads sharing the bands.
 
     Returns
     -------
@@ -95,77 +266,52 @@ def draw_triangles(xy, z, corners, tri_poly, poly_color, poly_alpha, color, zbuf
         ``MAX_PIXEL`` or not finite.
     """
     height, width = zbuf.shape
+    box, out_of_range = _bounding_boxes(xy, corners, width, height)
+    n_bands = (height + BAND_ROWS - 1) // BAND_ROWS
+    piece_tri, piece_band, band_start, band_pieces = _bin(box, n_bands)
+    n_pieces = piece_tri.shape[0]
+    # Room for every fragment a piece may make: the pixels of its box within its band.
+    slot = np.zeros(n_pieces + 1, np.int64)
+    if record:
+        for k in range(n_pieces):
+            t, b = piece_tri[k], piece_band[k]
+            rows = min(box[t, 3], b * BAND_ROWS + BAND_ROWS - 1) - max(box[t, 2], b * BAND_ROWS) + 1
+            slot[k + 1] = slot[k] + rows * (box[t, 1] - box[t, 0] + 1)
+    scratch_pixel = np.empty(slot[n_pieces], np.int32)
+    scratch_key = np.empty(slot[n_pieces], np.float64)
+    scratch_passed = np.empty(slot[n_pieces], np.bool_)
+    piece_generated = np.zeros(n_pieces, np.int64)
+    piece_passed = np.zeros(n_pieces, np.int64)
+    workers = max(1, min(n_workers, n_bands))
+    if workers == 1:
+        _draw_bands(0, 1, xy, z, corners, tri_poly, poly_color, poly_alpha, color, zbuf, depth_code,
+                    z_test, box, piece_tri, band_start, band_pieces, record, slot, scratch_pixel,
+                    scratch_key, scratch_passed, piece_generated, piece_passed)
+    else:
+        _draw_bands_in_parallel(workers, xy, z, corners, tri_poly, poly_color, poly_alpha, color,
+                                zbuf, depth_code, z_test, box, piece_tri, band_start, band_pieces,
+                                record, slot, scratch_pixel, scratch_key, scratch_passed,
+                                piece_generated, piece_passed)
     generated = np.zeros(poly_alpha.shape[0], np.int64)
     passed = np.zeros(poly_alpha.shape[0], np.int64)
-    capacity = 4 * width * height if record else 0
-    frag_pixel = np.empty(capacity, np.int32)
-    frag_key = np.empty(capacity, np.float64)
-    frag_passed = np.empty(capacity, np.bool_)
-    n = 0
-    out_of_range = 0
-    for t in range(corners.shape[0]):
-        a, b, c = corners[t, 0], corners[t, 1], corners[t, 2]
-        pa, pb, pc = (xy[a, 0], xy[a, 1]), (xy[b, 0], xy[b, 1]), (xy[c, 0], xy[c, 1])
-        if not (abs(pa[0]) <= MAX_PIXEL and abs(pa[1]) <= MAX_PIXEL and abs(pb[0]) <= MAX_PIXEL
-                and abs(pb[1]) <= MAX_PIXEL and abs(pc[0]) <= MAX_PIXEL and abs(pc[1]) <= MAX_PIXEL):
-            out_of_range += 1
-            continue
-        # Triangle setup: fixed-point corners and the depth plane of the unsnapped ones.
-        f0 = (to_fixed(pa[0]), to_fixed(pa[1]))
-        f1 = (to_fixed(pb[0]), to_fixed(pb[1]))
-        f2 = (to_fixed(pc[0]), to_fixed(pc[1]))
-        area = edge_function(f0, f1, f2)
-        if area == 0:
-            continue
-        plane = depth_plane(pa, pb, pc, z[a], z[b], z[c])
-        if area < 0:  # make the corners run so that inside means E > 0 for every edge
-            f1, f2 = f2, f1
-        imin = max(min(f0[0], f1[0], f2[0]) >> SUBPIXEL_BITS, 0)
-        imax = min(max(f0[0], f1[0], f2[0]) >> SUBPIXEL_BITS, width - 1)
-        jmin = max(min(f0[1], f1[1], f2[1]) >> SUBPIXEL_BITS, 0)
-        jmax = min(max(f0[1], f1[1], f2[1]) >> SUBPIXEL_BITS, height - 1)
-        if imin > imax or jmin > jmax:
-            continue
-        box = (imax - imin + 1) * (jmax - jmin + 1)
-        if record and n + box > frag_pixel.shape[0]:  # room for the whole bounding box
-            frag_pixel = _grown(frag_pixel, n, n + box)
-            frag_key = _grown(frag_key, n, n + box)
-            frag_passed = _grown(frag_passed, n, n + box)
-        first = (pixel_centre_fixed(imin), pixel_centre_fixed(jmin))
-        # The three edge functions at the first pixel centre, with the fill rule's offset
-        # so that "E >= 0" means covered, and their exact integer steps per pixel.
-        e0 = edge_function(f1, f2, first) + fill_rule_offset(f1, f2)
-        e1 = edge_function(f2, f0, first) + fill_rule_offset(f2, f0)
-        e2 = edge_function(f0, f1, first) + fill_rule_offset(f0, f1)
-        step_x0, step_y0 = edge_steps(f1, f2)
-        step_x1, step_y1 = edge_steps(f2, f0)
-        step_x2, step_y2 = edge_steps(f0, f1)
-        p = tri_poly[t]
-        cs = poly_color[p]
-        alpha = poly_alpha[p]
-        for j in range(jmin, jmax + 1):
-            w0, w1, w2 = e0, e1, e2
-            for i in range(imin, imax + 1):
-                if w0 >= 0 and w1 >= 0 and w2 >= 0:
-                    key = depth_key(plane_depth(plane, pa, i + 0.5, j + 0.5), depth_code)
-                    ok = not z_test or depth_test(key, zbuf[j, i])
-                    generated[p] += 1
-                    if ok:
-                        passed[p] += 1
-                        _write(color, zbuf, j, i, key, cs, alpha)
-                    if record:
-                        frag_pixel[n] = j * width + i
-                        frag_key[n] = key
-                        frag_passed[n] = ok
-                        n += 1
-                w0 += step_x0
-                w1 += step_x1
-                w2 += step_x2
-            e0 += step_y0
-            e1 += step_y1
-            e2 += step_y2
-    return (generated, passed, frag_pixel[:n].copy(), frag_key[:n].copy(), frag_passed[:n].copy(),
-            out_of_range)
+    for k in range(n_pieces):
+        p = tri_poly[piece_tri[k]]
+        generated[p] += piece_generated[k]
+        passed[p] += piece_passed[k]
+    # Gather the recorded fragments piece by piece, which is drawing order.
+    start = np.zeros(n_pieces + 1, np.int64)
+    if record:
+        start[1:] = np.cumsum(piece_generated)
+    frag_pixel = np.empty(start[n_pieces], np.int32)
+    frag_key = np.empty(start[n_pieces], np.float64)
+    frag_passed = np.empty(start[n_pieces], np.bool_)
+    if record:
+        for k in range(n_pieces):
+            for f in range(piece_generated[k]):
+                frag_pixel[start[k] + f] = scratch_pixel[slot[k] + f]
+                frag_key[start[k] + f] = scratch_key[slot[k] + f]
+                frag_passed[start[k] + f] = scratch_passed[slot[k] + f]
+    return generated, passed, frag_pixel, frag_key, frag_passed, int(out_of_range.sum())
 
 
 @njit(cache=True, nogil=True)

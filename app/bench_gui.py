@@ -1,0 +1,178 @@
+"""``python -m app bench gui``: does the window stay responsive while the observer moves?
+
+Opens the main window on the lecture scene under the current display, and
+for each tab in turn moves the observer along a scripted path (an orbit
+with a slow rise and fall) 25 times a second for ``--seconds`` seconds,
+then lets it rest.  Per tab it prints:
+
+- the longest and the 99th-percentile *stall* of the GUI thread: how late a
+  timer that should fire every 5 ms actually fired (ms);
+- how many camera changes the 3D pane actually drew per second;
+- how many fresh images (preview or full) the tab's observer image showed
+  per second while moving;
+- the time from the last move to the full-resolution image of the last
+  camera (ms).
+
+The numba kernels are compiled (or loaded from their cache) before the
+window opens, so the figures are the window's, not the compiler's.
+
+This is a benchmark, not a test; nothing here is asserted.  Run it under
+``xvfb-run -a -s "-screen 0 1920x1080x24"`` on a machine without a display.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+
+MOVES_PER_SECOND = 25
+TICK_MS = 5
+
+
+def add_arguments(parser) -> None:
+    """Add the benchmark's options to ``parser`` (the ``bench gui`` subcommand)."""
+    parser.add_argument("--seconds", type=float, default=6.0,
+                        help="how long the observer moves on each tab (default 6)")
+    parser.add_argument("--size", default="1600x900", help="window size WxH in pixels (default 1600x900)")
+
+
+def _size(text: str) -> tuple[int, int]:
+    from app.usage import UsageError
+
+    try:
+        w, h = (int(v) for v in text.lower().split("x"))
+    except ValueError:
+        raise UsageError(f"--size: expected WIDTHxHEIGHT such as 1600x900, got {text!r}") from None
+    if not (200 <= w <= 10000 and 200 <= h <= 10000):
+        raise UsageError(f"--size: width and height must be within 200..10000 pixels, got {text!r}")
+    return w, h
+
+
+class _Probe:
+    """Counts what the user would notice on one tab: stalls, 3D draws, fresh images."""
+
+    def __init__(self, window, view):
+        from PySide6.QtCore import QTimer
+
+        self.window, self.view = window, view
+        self.ticks: list[float] = []
+        self.draws = 0
+        self.images = 0
+        self._last_drawn = None
+        self._timer = QTimer()
+        self._timer.setInterval(TICK_MS)
+        self._timer.timeout.connect(lambda: self.ticks.append(time.perf_counter()))
+        ren_win = window.scene_view.plotter.ren_win
+        self._observer = ren_win.AddObserver("EndEvent", self._drawn)
+        self._original = view.set_image
+        view.set_image = self._image_set
+
+    def _drawn(self, *_):
+        import numpy as np
+
+        corners = np.array(self.window.scene_view.frustum.points)
+        if self._last_drawn is None or not np.array_equal(corners, self._last_drawn):
+            self.draws += 1
+        self._last_drawn = corners
+
+    def _image_set(self, *args, **kwargs):
+        self.images += 1
+        return self._original(*args, **kwargs)
+
+    def start(self):
+        self.draws = self.images = 0
+        self.ticks = [time.perf_counter()]
+        self._timer.start()
+
+    def stop(self):
+        self._timer.stop()
+        self.window.scene_view.plotter.ren_win.RemoveObserver(self._observer)
+        del self.view.set_image
+
+    def stalls_ms(self):
+        import numpy as np
+
+        gaps = np.diff(self.ticks) * 1000.0 - TICK_MS
+        return (float(gaps.max()), float(np.percentile(gaps, 99))) if len(gaps) else (0.0, 0.0)
+
+
+def _observer_image(window, title: str):
+    """The image pane of ``title``'s tab that shows the observer's own view."""
+    widget = window.tab(title).widget
+    key = {"Four views": "observer", "Compare": "perspective"}.get(title)
+    return widget.views[key] if key else widget.image
+
+
+def _bench_tab(app, window, title: str, seconds: float) -> dict:
+    from PySide6.QtCore import QEventLoop, QTimer
+
+    def wait_idle(timeout_s=600.0):
+        """Until the tab shows the full image of the current camera."""
+        end = time.perf_counter() + timeout_s
+        while not window.showing_full(title) and time.perf_counter() < end:
+            app.processEvents(QEventLoop.ProcessEventsFlag.AllEvents, 5)
+
+    window.show_tab(title)
+    wait_idle()
+    probe = _Probe(window, _observer_image(window, title))
+    start_cam = window.model.camera
+    moves = int(seconds * MOVES_PER_SECOND)
+    state = {"i": 0}
+
+    def move():
+        i = state["i"] = state["i"] + 1
+        yaw = start_cam.yaw_deg + 1.5 * i
+        pitch = max(-80.0, min(80.0, start_cam.pitch_deg + 10.0 * math.sin(i / 20)))
+        window.model.set_camera(start_cam.orbit(yaw, pitch))
+        if i >= moves:
+            mover.stop()
+
+    mover = QTimer()
+    mover.setInterval(1000 // MOVES_PER_SECOND)
+    mover.timeout.connect(move)
+    probe.start()
+    t0 = time.perf_counter()
+    mover.start()
+    while mover.isActive():
+        app.processEvents(QEventLoop.ProcessEventsFlag.AllEvents, 5)
+    moving = time.perf_counter() - t0
+    draws, images = probe.draws, probe.images
+    stopped = time.perf_counter()
+    wait_idle()
+    settle = time.perf_counter() - stopped
+    longest, p99 = probe.stalls_ms()
+    probe.stop()
+    window.model.set_camera(start_cam)
+    wait_idle()
+    return {"tab": title, "longest": longest, "p99": p99, "draws": draws / moving,
+            "images": images / moving, "full": settle * 1000.0}
+
+
+def run(args) -> int:
+    width, height = _size(args.size)
+    from PySide6.QtCore import QThreadPool
+    from PySide6.QtWidgets import QApplication
+
+    from app.main_window import MainWindow
+    from core import presets
+    from core.image_order import ray_tracing
+    from core.object_order import pipeline
+
+    ray_tracing.ensure_compiled()  # compile (or load) the kernels first: this measures the window
+    pipeline.ensure_compiled()
+    app = QApplication.instance() or QApplication([])
+    window = MainWindow(presets.lecture_scene())
+    window.resize(width, height)
+    window.show()
+    rows = [_bench_tab(app, window, title, args.seconds) for title in window.tab_titles()]
+    cam = window.model.camera
+    print(f"window {width} x {height}, lecture scene {cam.width} x {cam.height}, "
+          f"observer moved {MOVES_PER_SECOND}x/s for {args.seconds:g} s per tab")
+    print(f"{'tab':<14}{'longest stall':>15}{'p99 stall':>11}{'3D draws/s':>12}"
+          f"{'images/s':>10}{'full image after stop':>23}")
+    for r in rows:
+        print(f"{r['tab']:<14}{r['longest']:>12.0f} ms{r['p99']:>8.0f} ms{r['draws']:>12.1f}"
+              f"{r['images']:>10.1f}{r['full']:>20.0f} ms")
+    window.close()
+    QThreadPool.globalInstance().waitForDone()
+    return 0

@@ -1,0 +1,100 @@
+"""``python -m app bench startup``: from a fresh process to the window shown and to its first image.
+
+Each run starts a new Python process that does what ``python -m app`` does
+(``app.cli.main([])``, the lecture scene), watched from outside the window's
+code: an event filter on the application notes the first time the main
+window (or any widget in it) is painted and the first time an image pane that holds an
+image (``ImageView.rgb`` set) is painted, then quits.  Times are measured
+from just before the process is started, so interpreter start-up and every
+import are included.  One untimed run first warms numba's on-disk cache and
+the operating system's file cache; then the median of ``--runs`` runs is
+printed with the lowest and highest.
+
+It needs a display (or ``xvfb-run -a``): the 3D pane gets no OpenGL context
+on Qt's off-screen platform.  This is a benchmark, not a test; nothing here
+is asserted.
+"""
+
+from __future__ import annotations
+
+import os
+import statistics
+import subprocess
+import sys
+import time
+
+from app.usage import UsageError
+
+#: The watched process.  It prints ``shown <t>`` and ``image <t>`` (``time.time()``).
+DRIVER = """
+import sys, time
+from PySide6.QtCore import QEvent, QObject, QTimer
+from PySide6.QtWidgets import QApplication, QMainWindow, QWidget
+
+class Watch(QObject):
+    shown = image = None
+
+    def eventFilter(self, obj, event):
+        kind = event.type()
+        if (self.shown is None and kind == QEvent.Type.Paint and isinstance(obj, QWidget)
+                and isinstance(obj.window(), QMainWindow)):
+            self.shown = time.time()
+            print("shown", self.shown, flush=True)
+        if (self.image is None and kind == QEvent.Type.Paint and type(obj).__name__ == "ImageView"
+                and getattr(obj, "rgb", None) is not None and obj.isVisible()):
+            self.image = time.time()
+            print("image", self.image, flush=True)
+        if self.shown is not None and self.image is not None:
+            QTimer.singleShot(0, QApplication.instance().quit)
+        return False
+
+app = QApplication(sys.argv[:1])
+watch = Watch()
+app.installEventFilter(watch)
+QTimer.singleShot(TIMEOUT_MS, app.quit)
+from app import cli
+cli.main([])
+"""
+
+
+def add_arguments(parser) -> None:
+    """Add the benchmark's options to ``parser`` (the ``bench startup`` subcommand)."""
+    parser.add_argument("--runs", type=int, default=5, help="timed start-ups (default 5)")
+    parser.add_argument("--timeout", type=float, default=120.0,
+                        help="seconds to wait for one start-up (default 120)")
+
+
+def _start_once(timeout_s: float) -> tuple[float, float]:
+    """Seconds from process start to the window shown and to the first image."""
+    root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    code = DRIVER.replace("TIMEOUT_MS", str(int(timeout_s * 1000)))
+    start = time.time()
+    out = subprocess.run([sys.executable, "-c", code], cwd=root, capture_output=True, text=True,
+                         timeout=timeout_s + 30)
+    stamps = dict(line.split() for line in out.stdout.splitlines() if line.startswith(("shown", "image")))
+    if "shown" not in stamps or "image" not in stamps:
+        tail = (out.stderr.strip().splitlines() or ["no output"])[-1]
+        raise UsageError(f"bench startup: the window did not show an image within {timeout_s:g} s "
+                         f"(exit status {out.returncode}: {tail})")
+    return float(stamps["shown"]) - start, float(stamps["image"]) - start
+
+
+def run(args) -> int:
+    """Run the benchmark and print its figures; returns the exit status."""
+    if args.runs < 1:
+        raise UsageError(f"--runs must be at least 1, got {args.runs}")
+    if not os.environ.get("DISPLAY") and not os.environ.get("WAYLAND_DISPLAY"):
+        raise UsageError("bench startup needs a display; run it under xvfb-run -a")
+    print(f"bench startup: python -m app on the lecture scene, fresh processes, numba cache warm; "
+          f"median of {args.runs} after one warm-up start [lowest .. highest]")
+    _start_once(args.timeout)
+    shown, image = [], []
+    for _ in range(args.runs):
+        s, i = _start_once(args.timeout)
+        shown.append(s)
+        image.append(i)
+    for name, ts in (("window shown", shown), ("first image shown", image)):
+        print(f"  {name:<18} {statistics.median(ts):6.2f} s [{min(ts):.2f} .. {max(ts):.2f}]")
+    print(f"goals: window <= 1.5 s {'met' if statistics.median(shown) <= 1.5 else 'missed'}; "
+          f"first image <= 2.5 s {'met' if statistics.median(image) <= 2.5 else 'missed'}")
+    return 0

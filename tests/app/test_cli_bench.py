@@ -1,0 +1,44 @@
+"""Bad options to the benchmarks: one line naming the option, exit status 2, no traceback.
+
+Each runs in a subprocess, as a user would type it; all are refused before
+anything is imported or timed.
+"""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[2]
+
+
+def _run(*argv, env=None):
+    return subprocess.run([sys.executable, "-m", "app", *argv], cwd=ROOT, capture_output=True, text=True,
+                          env=env, timeout=120)
+
+
+@pytest.mark.parametrize(("argv", "named"), [
+    (["bench", "raster", "--triangles", "10k"], "--triangles: '10k' is not a whole number"),
+    (["bench", "raster", "--triangles", "10000,5"], "--triangles: 5 is outside"),
+    (["bench", "raster", "--runs", "0"], "--runs must be at least 1"),
+    (["bench", "raster", "--width", "-3"], "--width must be at least 16"),
+    (["bench", "startup", "--runs", "0"], "--runs must be at least 1"),
+])
+def test_bad_benchmark_options_are_one_line_and_exit_2(argv, named):
+    out = _run(*argv)
+    assert out.returncode == 2
+    lines = out.stderr.strip().splitlines()
+    assert len(lines) == 1 and named in lines[0], out.stderr
+    assert "Traceback" not in out.stderr and out.stdout == ""
+
+
+def test_bench_startup_without_a_display_says_how_to_run_it():
+    env = {k: v for k, v in os.environ.items() if k not in ("DISPLAY", "WAYLAND_DISPLAY")}
+    out = _run("bench", "startup", env=env)
+    assert out.returncode == 2
+    expected = "python -m app: error: bench startup needs a display; run it under xvfb-run -a"
+    assert out.stderr.strip() == expected

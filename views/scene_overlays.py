@@ -1,0 +1,117 @@
+"""What the tabs add to the 3D pane: acceleration structures, a ray tree, polygons.
+
+- Image order: the objects' *bounding spheres* and the occupied cells of the
+  *grid of cuboids* (as the model's overlay switches say), the picked pixel's
+  ray tree, and the cells its primary ray walks through.
+- Object order: the polygon drawn at the current step, and the polygons the
+  frustum's planes cut (clipping).
+
+:class:`SceneOverlays` builds these shapes and hands them to the
+:class:`views.scene_view.SceneView` under fixed names, so the window only
+connects signals to it.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pyvista as pv
+
+from core.image_order.bounding_spheres import bounding_spheres
+from core.image_order.flat_scene import trace_scene
+from core.image_order.grid_of_cuboids import cells_on_ray
+from core.image_order.ray_tree import RayNode
+from core.object_order import three_views
+from views import raytree_view, vtk_convert
+from views.raytree_view import KIND_COLORS
+
+IMAGE_ORDER_OVERLAYS = ("ray-tree", "spheres", "grid", "walk")
+OBJECT_ORDER_OVERLAYS = ("polygon", "clipped")
+
+
+def sphere_parts(scene) -> list[tuple[pv.PolyData, dict]]:
+    """Wire-frame bounding spheres of the objects that are not spheres themselves."""
+    return [(pv.Sphere(radius=b.radius, center=b.center, theta_resolution=24,
+                       phi_resolution=16).extract_all_edges(),
+             {"color": "#9fd3ff", "opacity": 0.35, "line_width": 1})
+            for b in bounding_spheres(scene) if not b.exact]
+
+
+def grid_cell_parts(grid) -> list[tuple[pv.PolyData, dict]]:
+    """Outlines of the grid cells that hold at least one object."""
+    return [(vtk_convert.boxes_polydata(grid.cell_boxes(grid.occupied_cells())),
+             {"color": "#b0b0b0", "opacity": 0.25, "line_width": 1})]
+
+
+def walked_cell_parts(grid, root: RayNode) -> list[tuple[pv.PolyData, dict]]:
+    """The cells the primary ray ``root`` passes through, up to its hit."""
+    t_max = root.t if root.t is not None else np.inf
+    walked = cells_on_ray(grid, root.origin, root.direction, root.t_min, t_max)
+    if not len(walked):
+        return []
+    return [(vtk_convert.boxes_polydata(grid.cell_boxes(walked)),
+             {"color": KIND_COLORS["primary"], "line_width": 3})]
+
+
+def polygon_parts(vertices) -> list[tuple[pv.PolyData, dict]]:
+    """One world-space polygon, filled and outlined (``None``: nothing)."""
+    if vertices is None:
+        return []
+    poly = vtk_convert.polygon_polydata(vertices)
+    return [(poly, {"color": "#ff2bd6", "opacity": 0.8}),
+            (poly.extract_all_edges(), {"color": "#ff2bd6", "line_width": 4})]
+
+
+def clipped_parts(polygons) -> list[tuple[pv.PolyData, dict]]:
+    """Outlines of the polygons the frustum's planes cut."""
+    return [(vtk_convert.polygon_polydata(p).extract_all_edges(),
+             {"color": "#7cff6b", "line_width": 3}) for p in polygons]
+
+
+class SceneOverlays:
+    """Keeps the 3D pane's overlays in step with the model and the tabs' results.
+
+    Parameters
+    ----------
+    model : the window's state (``scene``, ``overlays`` and their signals).
+    view : the :class:`views.scene_view.SceneView` to draw in.
+    """
+
+    def __init__(self, model, view):
+        self.model, self.view = model, view
+        self.ray_tree: RayNode | None = None
+        model.overlays_changed.connect(self._accel_changed)
+        model.scene_changed.connect(self._accel_changed)
+
+    def _grid(self):
+        return trace_scene(self.model.scene).geometry.accel("grid")[0]
+
+    def _accel_changed(self, *_) -> None:
+        """Bounding spheres and grid cells, as the model's switches say."""
+        shown = self.model.overlays
+        scene = self.model.scene
+        self.view.set_overlay("spheres", sphere_parts(scene) if "spheres" in shown else [])
+        self.view.set_overlay("grid", grid_cell_parts(self._grid()) if "grid" in shown else [])
+        self._walk()
+
+    def _walk(self) -> None:
+        want = "walk" in self.model.overlays and self.ray_tree is not None
+        self.view.set_overlay("walk", walked_cell_parts(self._grid(), self.ray_tree) if want else [])
+
+    def show_ray_tree(self, root: RayNode | None) -> None:
+        """Draw the picked pixel's ray tree (``None`` removes it) and the cells its ray walks."""
+        self.ray_tree = root
+        parts = []
+        if root is not None:
+            low, high = three_views.scene_bounds(self.model.scene)
+            miss_length = 0.6 * float(np.linalg.norm(high - low)) + 1.0
+            parts = raytree_view.ray_tree_parts(root, miss_length)
+        self.view.set_overlay("ray-tree", parts)
+        self._walk()
+
+    def show_polygon(self, vertices) -> None:
+        """Highlight the polygon the object-order scrubber is at (``None``: none)."""
+        self.view.set_overlay("polygon", polygon_parts(vertices))
+
+    def show_clipped(self, polygons) -> None:
+        """Outline the polygons the frustum's planes cut."""
+        self.view.set_overlay("clipped", clipped_parts(polygons))
