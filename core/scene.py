@@ -108,9 +108,8 @@ class Mesh:
         return n / np.linalg.norm(n, axis=1, keepdims=True)
 
     def bounding_sphere(self) -> tuple[np.ndarray, float]:
-        """Centre and radius of a sphere around all vertices (box centre based)."""
-        center = (self.vertices.min(axis=0) + self.vertices.max(axis=0)) / 2.0
-        return center, float(np.linalg.norm(self.vertices - center, axis=1).max())
+        """Centre and radius of a sphere around all vertices (:func:`bounding_sphere_of`)."""
+        return bounding_sphere_of(self.vertices)
 
 
 @dataclass(frozen=True)
@@ -133,3 +132,29 @@ class Scene:
     objects: tuple[SceneObject, ...] = ()
     lights: tuple[PointLight, ...] = ()
     background: Vec3 = (0.05, 0.07, 0.12)
+
+
+def bounding_sphere_of(points: np.ndarray) -> tuple[np.ndarray, float]:
+    """A sphere around points: centred on their bounding box, out to the farthest one.
+
+    The one bounding-sphere formula of the app: object-order culling tests it against
+    the frustum, image order tests rays against it before the object.
+
+    Parameters
+    ----------
+    points : (N, 3) float64, N >= 1.
+
+    Returns
+    -------
+    center : (3,) float64 and radius : float, in the points' frame and units.
+
+    Examples
+    --------
+    >>> c, r = bounding_sphere_of(np.array([[0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [1.0, 1.0, 0.0]]))
+    >>> c.tolist(), r
+    ([1.0, 0.5, 0.0], 1.118033988749895)
+    """
+    coords = np.ascontiguousarray(np.asarray(points, dtype=float).T)  # (3, N): fast reductions
+    center = (coords.min(axis=1) + coords.max(axis=1)) / 2.0
+    offset = coords - center[:, None]
+    return center, float(np.sqrt((offset * offset).sum(axis=0).max()))

@@ -153,29 +153,6 @@ class ObjectCulling:
         return sum(s == state for s in self.state)
 
 
-def bounding_sphere(points: np.ndarray) -> tuple[np.ndarray, float]:
-    """A sphere around points: centred on their bounding box, out to the farthest one.
-
-    Parameters
-    ----------
-    points : (N, 3) float64, N >= 1.
-
-    Returns
-    -------
-    center : (3,) float64 and radius : float, in the points' frame and units.
-
-    Examples
-    --------
-    >>> c, r = bounding_sphere(np.array([[0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [1.0, 1.0, 0.0]]))
-    >>> c.tolist(), r
-    ([1.0, 0.5, 0.0], 1.118033988749895)
-    """
-    coords = np.ascontiguousarray(np.asarray(points, dtype=float).T)  # (3, N): fast reductions
-    center = (coords.min(axis=1) + coords.max(axis=1)) / 2.0
-    offset = coords - center[:, None]
-    return center, float(np.sqrt((offset * offset).sum(axis=0).max()))
-
-
 def frustum_culling(center: np.ndarray, radius: np.ndarray, planes: np.ndarray) -> ObjectCulling:
     """Classify bounding spheres against the six frustum planes.
 

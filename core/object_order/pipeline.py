@@ -324,7 +324,7 @@ def render_raster(scene: Scene, settings: RasterSettings = DEFAULT_SETTINGS) -> 
 def _bounding_sphere(obj: SceneObject, mesh: Mesh) -> tuple[np.ndarray, float]:
     if isinstance(obj, Sphere):
         return np.asarray(obj.center, dtype=float), float(obj.radius)
-    return culling.bounding_sphere(mesh.vertices)
+    return mesh.bounding_sphere()
 
 
 def _stats(settings, projection_name, faces, outside_faces, objects, clipped, n_triangles, out_of_range,
