@@ -16,6 +16,9 @@ it
    whether they will be traced (depth limit, minimum weight).
 
 Everything is written into a flat record (:mod:`core.image_order.kernels.layout`).
+The small helpers below are inlined into :func:`shade_hit`: a hit makes
+about twenty of their calls, and as real calls they cost more than the
+arithmetic they wrap.
 """
 
 from __future__ import annotations
@@ -26,19 +29,19 @@ from core.image_order.intersect_sphere import outward_normal
 from core.image_order.intersect_triangle import barycentric_point
 from core.image_order.kernels import layout as lay
 from core.image_order.kernels.closest_hit import closest_hit
-from core.image_order.kernels.jit import jit
+from core.image_order.kernels.jit import jit, jit_inline
 from core.image_order.optics import dot, fresnel_dielectric, reflect, refract
 from core.image_order.ray_offset import error_bound, offset_ray_origin
 from core.image_order.shading import lambert, phong, surface_split
 
 
-@jit
+@jit_inline
 def _unit(v):
     length = math.sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2])
     return v[0] / length, v[1] / length, v[2] / length
 
 
-@jit
+@jit_inline
 def surface_point(o, d, hit, scaled, geo):
     """The hit point and the outward unit normal there: ``(point, normal, error)``.
 
@@ -65,12 +68,12 @@ def surface_point(o, d, hit, scaled, geo):
     return p, n, error
 
 
-@jit
+@jit_inline
 def _write3(rec, at, v):
     rec[at], rec[at + 1], rec[at + 2] = v[0], v[1], v[2]
 
 
-@jit
+@jit_inline
 def _child(rec, at, origin, direction, weight, k, depth, opts):
     """Record a spawned ray and whether it will be traced."""
     _write3(rec, at + lay.CHILD_ORIGIN, origin)
