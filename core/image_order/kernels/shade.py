@@ -16,6 +16,8 @@ it
    whether they will be traced (depth limit, minimum weight).
 
 Everything is written into a flat record (:mod:`core.image_order.kernels.layout`).
+:func:`shade_hit` is inlined into the render's loops: as a call it would bind
+some thirty arrays anew for every hit.
 """
 
 from __future__ import annotations
@@ -27,7 +29,7 @@ from core.image_order.intersect_triangle import barycentric_point, ray_shear
 from core.image_order.kernels import layout as lay
 from core.image_order.kernels.bvh_traverse import bvh_closest
 from core.image_order.kernels.closest_hit import BVH, closest_hit
-from core.image_order.kernels.jit import jit
+from core.image_order.kernels.jit import jit, jit_inline
 from core.image_order.optics import dot, fresnel_dielectric, reflect, refract
 from core.image_order.ray_offset import error_bound, offset_ray_origin
 from core.image_order.shading import lambert, phong, surface_split
@@ -88,7 +90,7 @@ def _child(rec, at, origin, direction, weight, k, depth, opts):
     rec[at + lay.CHILD_STATUS] = status
 
 
-@jit
+@jit_inline
 def shade_hit(o, d, hit, weight, depth, materials, lights, opts, geo, grid, bvh, scratch, counters,
               rec):
     """Shade the hit ``hit`` of the unit ray ``o + t d`` and fill the record ``rec``.
