@@ -79,9 +79,9 @@ def run(args) -> int:
     # 1. and 2. Our BVH and Embree on meshes of growing size.
     rows = [_primary_rays(triangles, args) for triangles in args.triangles]
     if len(rows) > 1:
-        print("primary rays against mesh size (median ms):")
-        for n, ours_ms, embree_ms in rows:
-            other = "" if embree_ms is None else f"  Embree {embree_ms:7.1f}  ratio {embree_ms / ours_ms:.2f}"
+        print("primary rays against mesh size (median ms; ratio ours / Embree as above):")
+        for n, ours_ms, embree_ms, ratio in rows:
+            other = "" if embree_ms is None else f"  Embree {embree_ms:7.1f}  ratio {ratio:.2f}"
             print(f"  {n:>9,} triangles: ours {ours_ms:7.1f}{other}")
 
     # 3. Whitted frames, all rays counted, the two scenes in turns.
@@ -116,7 +116,8 @@ _STAGES = ("primary", "shading", "secondary")
 def _primary_rays(triangles: int, args) -> tuple:
     """Time the primary rays on a mesh of about ``triangles`` triangles, ours and Embree's, in turns.
 
-    Prints the figures; returns ``(triangle count, our median ms, Embree's median ms or None)``.
+    Prints the figures; returns ``(triangle count, our median ms, Embree's median ms, the median
+    ratio of side-by-side runs)``, the last two ``None`` without embreex.
     """
     import numba
     import numpy as np
@@ -159,7 +160,7 @@ def _primary_rays(triangles: int, args) -> tuple:
           f"{n_rays / seconds['ours'] / 1e6:6.2f} Mrays/s  ({(prims >= 0).mean():.0%} of rays hit; per ray "
           f"{per_ray[BOUNDS_TESTS]:.1f} box and {per_ray[PRIM_TESTS]:.1f} triangle tests)")
     if embree is None:
-        return len(mesh.triangles), seconds["ours"] * 1e3, None
+        return len(mesh.triangles), seconds["ours"] * 1e3, None, None
     agree = np.mean(embree[1]() == prims)
     print(f"  Embree (embreex, float32, {args.threads} threads): {_spread(runs['embree'])}  "
           f"{n_rays / seconds['embree'] / 1e6:6.2f} Mrays/s  (same triangle as ours for {agree:.2%} of rays)")
@@ -168,7 +169,7 @@ def _primary_rays(triangles: int, args) -> tuple:
     pairs = sorted(e / o for o, e in zip(runs["ours"], runs["embree"], strict=True))
     print(f"  ratio ours / Embree: {statistics.median(pairs):.2f} (goal: >= 1.0; median of {len(pairs)} "
           f"runs side by side, lowest {pairs[0]:.2f}, highest {pairs[-1]:.2f})")
-    return len(mesh.triangles), seconds["ours"] * 1e3, seconds["embree"] * 1e3
+    return len(mesh.triangles), seconds["ours"] * 1e3, seconds["embree"] * 1e3, statistics.median(pairs)
 
 
 def _interleaved_runs(runners: dict, repeats: int) -> dict:
