@@ -2,19 +2,23 @@
 
 Three figures, each the median of several runs after a warm-up run:
 
-1. primary-ray throughput of our BVH on a bumpy ball of about 100,000
-   triangles filling most of a 640 x 480 view (closest hit with ``t`` and
-   barycentrics per ray; four-wide tree, four boxes and four triangles per
-   vector instruction, see :mod:`core.image_order.bvh`);
+1. primary-ray throughput of our BVH on a bumpy ball of about 10,000,
+   100,000 and 1,000,000 triangles (``--triangles``) filling most of a
+   640 x 480 view (closest hit with ``t`` and barycentrics per ray; four-wide
+   tree, four boxes and four triangles per vector instruction, see
+   :mod:`core.image_order.bvh`), so that a reader sees how the cost grows
+   with the mesh;
 2. the same rays with Intel Embree through the ``embreex`` package (an
-   optional extra: ``pip install -e '.[bench]'``).  ``run()`` of embreex
-   traces on the calling thread only, so the rays are split over one Python
-   thread per core; Embree works in float32, we in float64;
+   optional extra: ``pip install -e '.[bench]'``), on its fastest path from
+   Python: ``run()`` traces a whole array of rays in one call, but on the
+   calling thread only, so the rays are split over one Python thread per
+   core, each thread making one call; Embree works in float32, we in float64;
 3. a full Whitted render (all rays counted) of the lecture scene and of the
    mirror-and-glass scene at 640 x 480 with depth 5.
 
 Compiling the kernels (or loading them from numba's cache) is timed
-separately and never counted in a figure.
+separately and never counted in a figure.  Every figure is the median of
+interleaved runs after a warm-up run, printed with the lowest and highest.
 """
 
 from __future__ import annotations
@@ -30,21 +34,29 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     """Options of ``bench trace``."""
     parser.add_argument("--width", type=int, default=640, help="image width in pixels (default 640)")
     parser.add_argument("--height", type=int, default=480, help="image height in pixels (default 480)")
-    parser.add_argument("--triangles", type=int, default=100_000,
-                        help="approximate triangle count of the benchmark mesh (default 100000)")
+    parser.add_argument("--triangles", type=_sizes, default=(10_000, 100_000, 1_000_000),
+                        help="approximate triangle counts of the benchmark meshes, comma separated "
+                             "(default 10000,100000,1000000)")
     parser.add_argument("--repeats", type=int, default=7, help="timed runs per figure (default 7)")
     parser.add_argument("--threads", type=int, default=os.cpu_count() or 1,
                         help="Python threads for Embree (default: one per core)")
 
 
-def _median_time(func, repeats: int) -> float:
-    func()  # warm-up
-    times = []
-    for _ in range(repeats):
-        start = time.perf_counter()
-        func()
-        times.append(time.perf_counter() - start)
-    return statistics.median(times)
+def _sizes(text: str) -> tuple[int, ...]:
+    """``"10000,100000"`` as ``(10000, 100000)``; a clear message for anything else."""
+    try:
+        sizes = tuple(int(part) for part in text.split(","))
+    except ValueError:
+        sizes = ()
+    if not sizes or min(sizes) < 1:
+        raise argparse.ArgumentTypeError(f"expected positive whole numbers separated by commas, got {text!r}")
+    return sizes
+
+
+def _spread(times: list) -> str:
+    """``"median ms (lowest-highest)"`` of run times in seconds."""
+    return (f"{statistics.median(times) * 1e3:7.1f} ms ({min(times) * 1e3:.1f}-"
+            f"{max(times) * 1e3:.1f})")
 
 
 def run(args) -> int:
@@ -52,31 +64,78 @@ def run(args) -> int:
     from dataclasses import replace
 
     import numba
-    import numpy as np
 
     from core import presets, presets_trace
+    from core.image_order.flat_scene import TraceSettings
+    from core.image_order.ray_tracing import ensure_compiled, render_trace
+
+    size = (args.width, args.height)
+    print(f"bench trace: {args.width} x {args.height} = {args.width * args.height} rays per frame, "
+          f"{numba.get_num_threads()} numba threads, median of {args.repeats} runs after a warm-up "
+          "(lowest-highest in brackets)")
+    compile_s = ensure_compiled()
+    print(f"compile (or load from cache) the kernels: {compile_s:.2f} s (not counted below)")
+
+    # 1. and 2. Our BVH and Embree on meshes of growing size.
+    rows = [_primary_rays(triangles, args) for triangles in args.triangles]
+    if len(rows) > 1:
+        print("primary rays against mesh size (median ms; ratio ours / Embree as above):")
+        for n, ours_ms, embree_ms, ratio in rows:
+            other = "" if embree_ms is None else f"  Embree {embree_ms:7.1f}  ratio {ratio:.2f}"
+            print(f"  {n:>9,} triangles: ours {ours_ms:7.1f}{other}")
+
+    # 3. Whitted frames, all rays counted, the two scenes in turns.
+    frames, stats = {}, {}
+    for title, build in (("lecture scene", presets.lecture_scene),
+                         ("mirror and glass", presets_trace.mirror_and_glass)):
+        frame = build()
+        frame = replace(frame, camera=frame.camera.replace(width=size[0], height=size[1]))
+        whitted = TraceSettings(mode="raytrace", max_depth=5, accel="bvh")
+        stats[title] = []
+
+        def whitted_frame(frame=frame, whitted=whitted, out=stats[title]):
+            out.append(render_trace(frame, whitted).stats)
+
+        frames[title] = whitted_frame
+    runs = _interleaved_runs(frames, args.repeats)
+    for title, goal in (("lecture scene", 50), ("mirror and glass", 80)):
+        frame_s = statistics.median(runs[title])
+        rays = stats[title][-1]["rays"]
+        stages = ", ".join(f"{stage} {statistics.median(s['times'][stage] for s in stats[title]) * 1e3:.1f}"
+                           for stage in _STAGES)
+        print(f"Whitted frame, {title}, depth 5: {_spread(runs[title])} (goal <= {goal} ms); "
+              f"{rays['total']} rays = {rays['primary']} primary + {rays['shadow']} shadow + "
+              f"{rays['reflection']} reflection + {rays['refraction']} refraction "
+              f"({rays['total'] / frame_s / 1e6:.1f} Mrays/s); median ms per stage: {stages}")
+    return 0
+
+
+_STAGES = ("primary", "shading", "secondary")
+
+
+def _primary_rays(triangles: int, args) -> tuple:
+    """Time the primary rays on a mesh of about ``triangles`` triangles, ours and Embree's, in turns.
+
+    Prints the figures; returns ``(triangle count, our median ms, Embree's median ms, the median
+    ratio of side-by-side runs)``, the last two ``None`` without embreex.
+    """
+    import numba
+    import numpy as np
+
+    from core import presets_trace
     from core.image_order.effects_plan import effects_plan
     from core.image_order.flat_scene import TraceSettings, kernel_inputs, trace_scene
     from core.image_order.kernels import layout, render
     from core.image_order.kernels.layout import BOUNDS_TESTS, HIT_PRIM, HIT_SIZE, PRIM_TESTS
-    from core.image_order.ray_tracing import ensure_compiled, render_trace
     from core.scene import PointLight, Scene
 
-    size = (args.width, args.height)
     n_rays = args.width * args.height
-    print(f"bench trace: {args.width} x {args.height} = {n_rays} rays per frame, "
-          f"{numba.get_num_threads()} numba threads, median of {args.repeats} runs after a warm-up")
-    compile_s = ensure_compiled()
-    print(f"compile (or load from cache) the kernels: {compile_s:.2f} s (not counted below)")
-
-    # 1. Our BVH on a mesh of about 100,000 triangles.
-    mesh = presets_trace.bumpy_ball(args.triangles)
+    mesh = presets_trace.bumpy_ball(triangles)
     scene = Scene(camera=presets_trace.BIG_MESH_CAMERA.replace(width=args.width, height=args.height),
                   objects=(mesh,), lights=(PointLight((4.0, 8.0, 6.0)),))
-    settings = TraceSettings(accel="bvh")
     flat = trace_scene(scene)
     bvh, build_s, _ = flat.geometry.accel("bvh")
-    k = kernel_inputs(scene, settings, effects_plan(scene), flat, bvh)
+    k = kernel_inputs(scene, TraceSettings(accel="bvh"), effects_plan(scene), flat, bvh)
     xs = np.arange(float(args.width))
     ys = np.arange(float(args.height))
     shape = (args.height, args.width)
@@ -86,52 +145,31 @@ def run(args) -> int:
 
     def ours():
         counters[:] = [render.render_pass(render.PRIMARY_STAGE, k.cam, xs, ys, hits, depth, color,
-                                                children, k.materials, k.lights, k.opts, k.geo, k.grid, k.bvh,
-                                                k.bvh_depth, numba.get_num_threads())]
+                                          children, k.materials, k.lights, k.opts, k.geo, k.grid, k.bvh,
+                                          k.bvh_depth, numba.get_num_threads())]
 
-    print(f"mesh: {len(mesh.triangles)} triangles; BVH build {build_s:.3f} s, {len(bvh.nodes)} nodes, "
+    print(f"mesh: {len(mesh.triangles):,} triangles; BVH build {build_s:.3f} s, {len(bvh.nodes)} nodes, "
           f"depth {bvh.depth}")
     embree = _embree(mesh, scene, args.threads)
     runners = {"ours": ours} if embree is None else {"ours": ours, "embree": embree[0]}
     runs = _interleaved_runs(runners, args.repeats)
     seconds = {name: statistics.median(times) for name, times in runs.items()}
-    ours_rate = n_rays / seconds["ours"] / 1e6
     per_ray = counters[0] / n_rays
     prims = hits[..., HIT_PRIM].reshape(-1)
-    print(f"ours   (numba 4-wide BVH, float64): {seconds['ours'] * 1e3:7.1f} ms  {ours_rate:6.2f} Mrays/s  "
-          f"({(prims >= 0).mean():.0%} of rays hit; per ray {per_ray[BOUNDS_TESTS]:.1f} box and "
-          f"{per_ray[PRIM_TESTS]:.1f} triangle tests)")
-
-    # 2. The same rays with Embree.
-    if embree is not None:
-        rate = n_rays / seconds["embree"] / 1e6
-        agree = np.mean(embree[1]() == prims)
-        print(f"Embree (embreex, float32, {args.threads} threads): {seconds['embree'] * 1e3:7.1f} ms  "
-              f"{rate:6.2f} Mrays/s  (same triangle as ours for {agree:.2%} of rays)")
-        # Each of our runs against the Embree run right after it: a load change on this shared
-        # machine slows both alike, so the pairs' ratios scatter less than the times do.
-        pairs = sorted(e / o for o, e in zip(runs["ours"], runs["embree"], strict=True))
-        print(f"ratio ours / Embree: {statistics.median(pairs):.2f} (goal: >= 0.5; median of {len(pairs)} "
-              f"runs side by side, lowest {pairs[0]:.2f}, highest {pairs[-1]:.2f})")
-
-    # 3. Whitted frames, all rays counted.
-    for title, build in (("lecture scene", presets.lecture_scene),
-                         ("mirror and glass", presets_trace.mirror_and_glass)):
-        frame = build()
-        frame = replace(frame, camera=frame.camera.replace(width=size[0], height=size[1]))
-        whitted = TraceSettings(mode="raytrace", max_depth=5, accel="bvh")
-        stats = {}
-
-        def whitted_frame(frame=frame, whitted=whitted, stats=stats):
-            stats.update(render_trace(frame, whitted).stats)
-
-        frame_s = _median_time(whitted_frame, args.repeats)
-        rays = stats["rays"]
-        print(f"Whitted frame, {title}, depth 5: {frame_s * 1e3:7.1f} ms (goal < 250 ms); "
-              f"{rays['total']} rays = {rays['primary']} primary + {rays['shadow']} shadow + "
-              f"{rays['reflection']} reflection + {rays['refraction']} refraction "
-              f"({rays['total'] / frame_s / 1e6:.1f} Mrays/s)")
-    return 0
+    print(f"  ours   (numba 4-wide BVH, float64): {_spread(runs['ours'])}  "
+          f"{n_rays / seconds['ours'] / 1e6:6.2f} Mrays/s  ({(prims >= 0).mean():.0%} of rays hit; per ray "
+          f"{per_ray[BOUNDS_TESTS]:.1f} box and {per_ray[PRIM_TESTS]:.1f} triangle tests)")
+    if embree is None:
+        return len(mesh.triangles), seconds["ours"] * 1e3, None, None
+    agree = np.mean(embree[1]() == prims)
+    print(f"  Embree (embreex, float32, {args.threads} threads): {_spread(runs['embree'])}  "
+          f"{n_rays / seconds['embree'] / 1e6:6.2f} Mrays/s  (same triangle as ours for {agree:.2%} of rays)")
+    # Each of our runs against the Embree run right after it: a load change on this shared
+    # machine slows both alike, so the pairs' ratios scatter less than the times do.
+    pairs = sorted(e / o for o, e in zip(runs["ours"], runs["embree"], strict=True))
+    print(f"  ratio ours / Embree: {statistics.median(pairs):.2f} (goal: >= 1.0; median of {len(pairs)} "
+          f"runs side by side, lowest {pairs[0]:.2f}, highest {pairs[-1]:.2f})")
+    return len(mesh.triangles), seconds["ours"] * 1e3, seconds["embree"] * 1e3, statistics.median(pairs)
 
 
 def _interleaved_runs(runners: dict, repeats: int) -> dict:

@@ -92,6 +92,43 @@ def test_every_method_agrees_on_shadow_rays(scene):
     assert 200 < blocked < 900
 
 
+def test_shadow_rays_grazing_edges_and_corners_are_blocked_exactly_when_a_closest_hit_lies_before_the_light(
+        scene):
+    """Any-hit (stop at the first blocker) against closest hit, on rays aimed at edges and corners.
+
+    The light sits before, just before, just after or beyond the aimed-at
+    point, so the segment's end falls on both sides of a hit as well.  A
+    blocker found by any-hit lies on the segment, and any-hit never does more
+    primitive tests than the closest-hit search it cuts short.
+    """
+    rng = np.random.default_rng(31)
+    corners = np.concatenate([ob.corners for ob in scene.objects if hasattr(ob, "corners")])
+    queries = {m: Query(scene, m) for m in METHODS}
+    blocked = 0
+    rays = 1500
+    for _ in range(rays):
+        o = rng.normal(size=3) * 6.0 + [0.0, 1.0, 0.0]
+        a, b, _ = corners[rng.integers(len(corners))][rng.permutation(3)]
+        target = a if rng.random() < 0.3 else a + rng.random() * (b - a)
+        d = target - o
+        aimed = float(np.linalg.norm(d))
+        d /= aimed
+        length = aimed * rng.choice([0.5, 1.0 - 1e-9, 1.0 + 1e-9, 3.0])
+        reference = queries["none"](o, d, length)[0] >= 0
+        blocked += reference
+        for method, query in queries.items():
+            before = query.counters[PRIM_TESTS]
+            closest = query(o, d, length)
+            closest_tests = query.counters[PRIM_TESTS] - before
+            before = query.counters[PRIM_TESTS]
+            first = query(o, d, length, any_hit=True)
+            any_tests = query.counters[PRIM_TESTS] - before
+            assert (first[0] >= 0) == (closest[0] >= 0) == reference, method
+            assert first[1] < length if reference else first[1] == math.inf, method
+            assert any_tests <= closest_tests, method
+    assert 0.3 * rays < blocked < 0.9 * rays
+
+
 def test_grid_and_bvh_do_far_fewer_tests_on_a_big_mesh():
     scene = Scene(objects=(bumpy_ball(20_000),))
     rng = np.random.default_rng(1)

@@ -11,9 +11,10 @@ with a sphere primitive by primitive.  Boxes are only tested against the
 part of the ray before the closest hit so far, so far subtrees fall away
 quickly.
 
-:func:`bvh_closest` is inlined into the render's primary-ray loop, where a
-call passing the tree's arrays would cost about a fifth of the traversal
-itself; every other caller goes through one compiled copy
+:func:`bvh_closest` is inlined into the render's loops of primary and
+secondary rays and into the shadow rays of shading, where a call passing
+the tree's arrays would cost about a fifth of the traversal itself; every
+other caller goes through one compiled copy
 (:mod:`core.image_order.kernels.closest_hit`).
 """
 

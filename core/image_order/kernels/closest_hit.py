@@ -6,8 +6,9 @@ primitive tests, so they return bit-identical hits and differ only in the
 work counted in ``counters``.
 
 :func:`closest_hit` itself is inlined where it is called; the traversal of
-each method is compiled once and called from there (the render's primary
-rays inline the BVH traversal, see :mod:`core.image_order.kernels.render`).
+each method is compiled once and called from there (the render's rays and
+the shadow rays of shading inline the BVH traversal instead, see
+:mod:`core.image_order.kernels.render` and :mod:`core.image_order.kernels.shade`).
 """
 
 from __future__ import annotations

@@ -117,6 +117,7 @@ def _secondary_rows(first, last, color, children, materials, lights, opts, geo, 
                     count):
     method = int(opts[lay.OPT_ACCEL])
     max_depth = int(opts[lay.OPT_MAX_DEPTH])
+    n_spheres = geo[lay.GEO_N_SPHERES]
     t_start = 0.0 if opts[lay.OPT_SCALED_OFFSET] > 0.0 else opts[lay.OPT_EPSILON]
     stack = np.empty((2 * max_depth + 4, lay.STACK_SIZE))
     o_at, d_at = lay.CHILD_ORIGIN, lay.CHILD_DIRECTION
@@ -137,7 +138,12 @@ def _secondary_rows(first, last, color, children, materials, lights, opts, geo, 
                 weight = stack[top, lay.CHILD_WEIGHT]
                 depth, kind = int(stack[top, lay.STACK_GENERATION]), stack[top, lay.STACK_KIND]
                 count[lay.REFLECTION if kind == lay.SPAWN_REFLECT else lay.REFRACTION] += 1
-                h = closest_hit(method, o, d, t_start, math.inf, False, geo, grid, bvh, scratch, count)
+                if method == BVH:  # inlined, as for the primary rays
+                    h = bvh_closest(o, d, ray_shear(d[0], d[1], d[2]), t_start, math.inf, False, bvh,
+                                    n_spheres, scratch[lay.SCRATCH_STACK], scratch[lay.SCRATCH_STACK_T],
+                                    count)
+                else:
+                    h = closest_hit(method, o, d, t_start, math.inf, False, geo, grid, bvh, scratch, count)
                 if h[lay.HIT_PRIM] < 0:
                     for a in range(3):
                         color[j, i, a] += weight * opts[lay.OPT_BACKGROUND + a]

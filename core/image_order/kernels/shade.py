@@ -16,6 +16,8 @@ it
    whether they will be traced (depth limit, minimum weight).
 
 Everything is written into a flat record (:mod:`core.image_order.kernels.layout`).
+:func:`shade_hit` is inlined into the render's loops: as a call it would bind
+some thirty arrays anew for every hit.
 """
 
 from __future__ import annotations
@@ -23,10 +25,11 @@ from __future__ import annotations
 import math
 
 from core.image_order.intersect_sphere import outward_normal
-from core.image_order.intersect_triangle import barycentric_point
+from core.image_order.intersect_triangle import barycentric_point, ray_shear
 from core.image_order.kernels import layout as lay
-from core.image_order.kernels.closest_hit import closest_hit
-from core.image_order.kernels.jit import jit
+from core.image_order.kernels.bvh_traverse import bvh_closest
+from core.image_order.kernels.closest_hit import BVH, closest_hit
+from core.image_order.kernels.jit import jit, jit_inline
 from core.image_order.optics import dot, fresnel_dielectric, reflect, refract
 from core.image_order.ray_offset import error_bound, offset_ray_origin
 from core.image_order.shading import lambert, phong, surface_split
@@ -87,7 +90,7 @@ def _child(rec, at, origin, direction, weight, k, depth, opts):
     rec[at + lay.CHILD_STATUS] = status
 
 
-@jit
+@jit_inline
 def shade_hit(o, d, hit, weight, depth, materials, lights, opts, geo, grid, bvh, scratch, counters,
               rec):
     """Shade the hit ``hit`` of the unit ray ``o + t d`` and fill the record ``rec``.
@@ -150,8 +153,15 @@ def shade_hit(o, d, hit, weight, depth, materials, lights, opts, geo, grid, bvh,
             s_dist = math.sqrt(dot(sd, sd))
             sd = (sd[0] / s_dist, sd[1] / s_dist, sd[2] / s_dist)
             counters[lay.SHADOW] += 1
-            blocker = closest_hit(method, so, sd, t_start, s_dist, True, geo, grid, bvh, scratch,
-                                  counters)
+            if method == BVH:
+                # The any-hit traversal inlined here, as for the render's primary rays: called
+                # through closest_hit, every array of the tree is bound anew for each shadow ray.
+                blocker = bvh_closest(so, sd, ray_shear(sd[0], sd[1], sd[2]), t_start, s_dist, True, bvh,
+                                      geo[lay.GEO_N_SPHERES], scratch[lay.SCRATCH_STACK],
+                                      scratch[lay.SCRATCH_STACK_T], counters)
+            else:
+                blocker = closest_hit(method, so, sd, t_start, s_dist, True, geo, grid, bvh, scratch,
+                                      counters)
             _write3(rec, at + lay.LR_ORIGIN, so)
             _write3(rec, at + lay.LR_DIRECTION, sd)
             rec[at + lay.LR_DISTANCE] = s_dist
