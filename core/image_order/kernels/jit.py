@@ -26,11 +26,11 @@ changed, deletes the tracer's cache files before any kernel is loaded.
 
 from __future__ import annotations
 
-import hashlib
-import os
 from pathlib import Path
 
-from numba import config, njit
+from numba import njit
+
+from core.kernel_cache import drop_stale_cache
 
 _OPTIONS = {"cache": True, "nogil": True, "error_model": "numpy"}
 _KERNELS = Path(__file__).resolve().parent
@@ -47,35 +47,7 @@ SOURCES = sorted(_KERNELS.rglob("*.py")) + [
     _CORE / name for name in ("camera.py", "projection.py")]
 
 
-def _cache_dirs() -> list[Path]:
-    folders = sorted({p.parent for p in _KERNELS.rglob("*.py")})
-    dirs = [f / "__pycache__" for f in folders]
-    if config.CACHE_DIR:
-        dirs += [Path(config.CACHE_DIR) / str(f).lstrip(os.sep) for f in folders]
-    return dirs
-
-
-def drop_stale_cache() -> bool:
-    """Delete the tracer's cached kernels if any of :data:`SOURCES` changed; True if it did."""
-    digest = hashlib.sha1(b"".join(p.read_bytes() for p in SOURCES)).hexdigest()[:16]
-    dropped = False
-    for folder in _cache_dirs():
-        stamp = folder / f"trace_sources.{digest}"
-        try:
-            folder.mkdir(parents=True, exist_ok=True)
-            if stamp.exists():
-                continue
-            for f in folder.iterdir():
-                if f.suffix in (".nbi", ".nbc") or f.name.startswith("trace_sources."):
-                    f.unlink(missing_ok=True)
-                    dropped = True
-            stamp.touch()
-        except OSError:  # a read-only install: numba caches elsewhere, nothing to do here
-            continue
-    return dropped
-
-
-drop_stale_cache()
+drop_stale_cache(_KERNELS, SOURCES, "trace")
 
 
 def jit(func):
