@@ -4,7 +4,7 @@ Pixels are drawn as crisp squares (nearest neighbour) so a student can see
 that the image is a grid of samples, scaled to fit the pane with its aspect
 ratio kept.  Clicking a pixel reports which one it was; a picked pixel and a
 set of highlighted pixels (for example one polygon's fragments) can be
-outlined on top.
+outlined on top; the outline leaves every pixel's colour true.
 
 Renderers produce *linear* RGB; :func:`core.srgb.to_srgb8` encodes it for
 the screen.  That conversion, and the QImage, can be made off the GUI thread
@@ -18,7 +18,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from PySide6.QtCore import QPointF, QRectF, Qt, Signal
+from PySide6.QtCore import QLineF, QPointF, QRectF, Qt, Signal
 from PySide6.QtGui import QColor, QImage, QPainter, QPen
 from PySide6.QtWidgets import QSizePolicy, QWidget
 
@@ -60,12 +60,27 @@ def display_image(rgb: np.ndarray, note: str = "", linear: bool = True) -> Displ
     return DisplayImage(rgb, to_qimage(rgb, linear), note)
 
 
-def _mask_image(mask: np.ndarray, color: QColor) -> QImage:
-    """A transparent image, ``color`` where ``mask`` is true."""
-    h, w = mask.shape
-    rgba = np.zeros((h, w, 4), np.uint8)
-    rgba[mask] = (color.red(), color.green(), color.blue(), color.alpha())
-    return QImage(rgba.data, w, h, 4 * w, QImage.Format.Format_RGBA8888).copy()
+def mask_outline(mask: np.ndarray) -> np.ndarray:
+    """The boundary of a set of pixels as unit segments between pixel corners.
+
+    Parameters
+    ----------
+    mask : (H, W) bool, the pixels (for example one polygon's fragments).
+
+    Returns
+    -------
+    (S, 4) float64, segments ``(x0, y0, x1, y1)`` in pixel-corner coordinates (x to
+    the right, y down), one for every side a masked pixel shares with an unmasked
+    one or with the image border.  Drawn on top, they mark the set while every
+    pixel inside keeps its true colour.
+    """
+    padded = np.pad(np.asarray(mask, bool), 1)
+    horizontal = padded[1:, 1:-1] != padded[:-1, 1:-1]  # (H+1, W): edge above row y
+    vertical = padded[1:-1, 1:] != padded[1:-1, :-1]  # (H, W+1): edge left of column x
+    hy, hx = np.nonzero(horizontal)
+    vy, vx = np.nonzero(vertical)
+    return np.concatenate([np.column_stack([hx, hy, hx + 1, hy]),
+                           np.column_stack([vx, vy, vx, vy + 1])]).astype(float)
 
 
 class ImageView(QWidget):
@@ -81,7 +96,9 @@ class ImageView(QWidget):
     def __init__(self, parent: QWidget | None = None, placeholder: str = "rendering…"):
         super().__init__(parent)
         self._image: QImage | None = None
-        self._highlight: QImage | None = None
+        self._highlight: np.ndarray | None = None
+        self._highlight_shape: tuple[int, int] | None = None
+        self._highlight_color = QColor("#ff2bd6")
         self.rgb: np.ndarray | None = None
         self.note = ""
         self.picked: tuple[int, int] | None = None
@@ -97,8 +114,10 @@ class ImageView(QWidget):
         self.update()
 
     def set_highlight(self, mask: np.ndarray | None, color: str = "#ff2bd6") -> None:
-        """Tint the pixels where ``mask`` (H, W) is true; ``None`` clears it."""
-        self._highlight = None if mask is None else _mask_image(mask, QColor(color))
+        """Outline the pixels where ``mask`` (H, W) is true, keeping their colours; ``None`` clears it."""
+        self._highlight = None if mask is None else mask_outline(mask)
+        self._highlight_shape = None if mask is None else mask.shape
+        self._highlight_color = QColor(color)
         self.update()
 
     def set_picked(self, pixel: tuple[int, int] | None) -> None:
@@ -146,10 +165,17 @@ class ImageView(QWidget):
         rect = self.image_rect()
         painter.setRenderHint(QPainter.RenderHint.SmoothPixmapTransform, False)
         painter.drawImage(rect, self._image)
-        if self._highlight is not None and self._highlight.size() == self._image.size():
-            painter.setOpacity(0.45)
-            painter.drawImage(rect, self._highlight)
-            painter.setOpacity(1.0)
+        if self._highlight is not None and self._highlight_shape == (self._image.height(),
+                                                                     self._image.width()):
+            sx = rect.width() / self._image.width()
+            sy = rect.height() / self._image.height()
+            seg = self._highlight * (sx, sy, sx, sy) + (rect.x(), rect.y(), rect.x(), rect.y())
+            lines = [QLineF(*row) for row in seg.tolist()]
+            width = max(2.0, 0.25 * min(sx, sy))
+            painter.setPen(QPen(QColor(0, 0, 0, 170), width + 2))  # a dark rim, visible on light colours
+            painter.drawLines(lines)
+            painter.setPen(QPen(self._highlight_color, width))
+            painter.drawLines(lines)
         if self.picked is not None:
             sx = rect.width() / self._image.width()
             sy = rect.height() / self._image.height()

@@ -3,7 +3,7 @@
 Polygons are processed one after another.  The scrubber moves through them:
 at step k the image memory and the z-buffer are shown exactly as they stand
 after the first k polygons, the polygon drawn at that step has its fragments
-tinted in both buffers, and a click on a pixel lists every fragment that
+outlined in both buffers, and a click on a pixel lists every fragment that
 reached it: which polygon, its depth against the stored depth, whether it
 passed, and for transparent polygons the blend.
 """
@@ -236,7 +236,7 @@ class ObjectOrderPanel(QWidget):
         self.show_step(self.scrubber.step)
 
     def show_step(self, k: int) -> None:
-        """Buffers after the first ``k`` polygons, with polygon k's fragments tinted."""
+        """Buffers after the first ``k`` polygons, with polygon k's fragments outlined."""
         if self.result is None:
             return
         self.scrubber.blockSignals(True)
