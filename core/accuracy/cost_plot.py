@@ -101,6 +101,11 @@ def _draw_depth_formats(ax, formats: list[tuple[int, Row]]) -> dict:
             if r.knee:
                 ax.plot([x], [y], "o", markersize=13, markerfacecolor="none", markeredgecolor=color,
                         markeredgewidth=2)
+    highest = max(100 * r.wrong_pixel_fraction for _, r in formats)
+    ax.set_ylim(-0.02 * max(highest, 1.0), 1.1 * max(highest, 1.0))
+    if highest == 0:
+        ax.text(0.5, 0.5, "no format fights on this scene:\nno two surfaces are close enough in depth",
+                transform=ax.transAxes, ha="center", va="center", color="gray")
     ax.set_xscale("log")
     ax.set_xlabel("far / near ratio (near plane moved)")
     ax.set_ylabel("pixels showing the wrong object (%)")
