@@ -234,11 +234,16 @@ class _Job:
     bytes: int | None = None
 
 
-def knee_index(rows: list[Row], tolerance: float = DEFAULT_TOLERANCE) -> int:
+def knee_index(rows: list[Row], tolerance: float = DEFAULT_TOLERANCE, by_time: bool = False) -> int:
     """Index of the cheapest row whose FLIP is within ``tolerance`` of the best row's.
 
-    Cheapest is the shortest time, except for the depth formats (all rows of
-    knob ``depth-format``), which save memory: there it is the format with the
+    Cheapest is the first in the knob's own order (its values go from the
+    cheapest to the dearest: fewer samples, fewer bounces, fewer pixels), not
+    the measured time: a render of a few milliseconds on a shared machine can
+    time a dearer setting faster than a cheaper one, and the knee must not
+    follow that noise.  With ``by_time`` (acceleration methods, whose order is
+    no order of cost) it is the shortest median time.  The depth formats (all
+    rows of knob ``depth-format``) save memory, so there it is the format with the
     fewest bytes whose worst FLIP over the ratios is within ``tolerance`` of
     the best format's worst (ties: lower worst FLIP, then time), and the index
     is that format's row at the largest ratio.
@@ -254,7 +259,7 @@ def knee_index(rows: list[Row], tolerance: float = DEFAULT_TOLERANCE) -> int:
         return _depth_format_knee(rows, tolerance)
     best = min(r.flip for r in rows)
     good = [i for i, r in enumerate(rows) if r.flip <= best + tolerance]
-    return min(good, key=lambda i: rows[i].seconds)
+    return min(good, key=lambda i: rows[i].seconds) if by_time else good[0]
 
 
 def _depth_format_knee(rows: list[Row], tolerance: float) -> int:
@@ -412,7 +417,8 @@ class Sweep:
             knob_indices = [i for i, s in enumerate(self.settings) if s.knob == setting.knob]
             if all(i in self.points for i in knob_indices):
                 rows = [self.points[i].row for i in knob_indices]
-                self._knees[setting.knob] = knob_indices[knee_index(rows, self.tolerance)]
+                self._knees[setting.knob] = knob_indices[knee_index(rows, self.tolerance,
+                                                                        KNOBS[setting.knob].time_only)]
                 yield Knee(setting.knob, self._knees[setting.knob])
 
     def run(self) -> list[Row]:

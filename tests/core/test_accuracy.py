@@ -219,6 +219,17 @@ def test_knee_is_the_cheapest_within_tolerance():
     assert knee_index(rows, 0.0) == 3
 
 
+def test_knee_follows_the_knobs_order_not_timing_noise():
+    from core.accuracy.sweep import Row
+
+    # a dearer setting timed faster (a busy machine): the knee stays the cheaper value ...
+    rows = [Row("depth", str(d), "raytrace", s, 0.0, f, 0.0, 0.0, f, 1.0, None, "reference")
+            for d, (s, f) in enumerate([(0.05, 0.11), (0.08, 0.0147), (0.10, 0.0143), (0.05, 0.0143)])]
+    assert knee_index(rows, 0.01) == 1
+    # ... while methods that differ only in time are ranked by time
+    assert knee_index(rows, 1.0, by_time=True) == 0
+
+
 def _parallel_planes(d=50.0, gap=0.01, far=100.0) -> Scene:
     """Two squares facing the observer at distances ``d`` and ``d + gap``; the farther (red) drawn first."""
     cam = Camera(eye=(0.0, 0.0, 0.0), target=(0.0, 0.0, -1.0), fov_y_deg=40, near=1.0, far=far,
