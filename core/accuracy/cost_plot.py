@@ -43,8 +43,12 @@ def draw_cost_plot(figure: Figure, rows: list[Row], indices: list[int] | None = 
     others = [(i, r) for i, r in zip(indices, rows, strict=True) if r.knob != "depth-format"]
     if formats and not others:
         return _draw_depth_formats(figure.add_subplot(1, 1, 1), formats)
-    ax = figure.add_subplot(1, 2, 1) if formats else figure.add_subplot(1, 1, 1)
-    lines = _draw_depth_formats(figure.add_subplot(1, 2, 2), formats) if formats else {}
+    if formats:  # the cost curves keep two thirds of the width
+        grid = figure.add_gridspec(1, 2, width_ratios=(2, 1))
+        ax = figure.add_subplot(grid[0, 0])
+        lines = _draw_depth_formats(figure.add_subplot(grid[0, 1]), formats)
+    else:
+        ax, lines = figure.add_subplot(1, 1, 1), {}
     indices, rows = [i for i, _ in others], [r for _, r in others]
     for name in KNOB_NAMES:
         mine = [(i, r) for i, r in zip(indices, rows, strict=True) if r.knob == name]
@@ -95,7 +99,7 @@ def _draw_depth_formats(ax, formats: list[tuple[int, Row]]) -> dict:
         ys = [100 * r.wrong_pixel_fraction for _, _, r in mine]
         color = f"C{k}"
         (line,) = ax.plot(xs, ys, "o-", color=color, markersize=5, picker=True, pickradius=6,
-                          label=f"{name} ({BYTES_PER_PIXEL[name]} bytes/pixel)")
+                          label=f"{name} ({BYTES_PER_PIXEL[name]} B/pixel)")
         lines[line] = [i for _, i, _ in mine]
         for x, y, (_, _, r) in zip(xs, ys, mine, strict=True):
             if r.knee:
@@ -104,12 +108,13 @@ def _draw_depth_formats(ax, formats: list[tuple[int, Row]]) -> dict:
     highest = max(100 * r.wrong_pixel_fraction for _, r in formats)
     ax.set_ylim(-0.02 * max(highest, 1.0), 1.1 * max(highest, 1.0))
     if highest == 0:
-        ax.text(0.5, 0.5, "no format fights on this scene:\nno two surfaces are close enough in depth",
+        ax.text(0.5, 0.4, "no format fights here:\nno two surfaces are\nclose enough in depth",
                 transform=ax.transAxes, ha="center", va="center", color="gray")
     ax.set_xscale("log")
     ax.set_xlabel("far / near ratio (near plane moved)")
     ax.set_ylabel("pixels showing the wrong object (%)")
-    ax.set_title("z-buffer formats: z-fighting against float64\n(ringed: fewest bytes within the tolerance)")
+    ax.set_title("z-buffer formats: z-fighting\nagainst float64 (ringed: fewest bytes\nwithin the tolerance)",
+                 fontsize=10)
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=8, loc="upper left")
     return lines
