@@ -63,9 +63,9 @@ def test_one_knob_on_the_tracer(tmp_path, mirror_scene):
     assert result.returncode == 0, result.stderr
     rows = _rows(out)
     assert {r["mode"] for r in rows} == {"raytrace"}  # ray depth belongs to ray tracing
-    # with a huge tolerance every setting is "as good", so the knee is the fastest one
-    knee = next(r for r in rows if r["knee"] == "1")
-    assert float(knee["seconds"]) == min(float(r["seconds"]) for r in rows)
+    # with a huge tolerance every setting is "as good", so the knee is the cheapest in the knob's
+    # order (depth 0), whatever the noisy timings say
+    assert [r["value"] for r in rows if r["knee"] == "1"] == [str(KNOBS["depth"].values[0])]
     assert np.isfinite([float(r["flip"]) for r in rows]).all()
 
 
