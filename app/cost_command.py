@@ -77,13 +77,21 @@ def _size(camera, width, height) -> tuple[int, int]:
 
 
 def _table(rows, skipped) -> str:
-    lines = [f"{'knob':<13}{'value':>9}  {'mode':<9}{'seconds':>9}{'rmse':>9}{'flip':>8}{'wrong':>8}  knee"]
+    from core.accuracy.sweep import KNOBS
+
+    v = max([9] + [len(r.value) for r in rows])
+    lines = [f"{'knob':<13}{'value':>{v}}  {'mode':<9}{'seconds':>9}{'rmse':>9}{'flip':>8}{'x best':>8}"
+             f"{'wrong':>8}  knee"]
     for r in rows:
-        lines.append(f"{r.knob:<13}{r.value:>9}  {r.mode:<9}{r.seconds:>9.4f}{r.rmse:>9.4f}{r.flip:>8.4f}"
-                     f"{r.wrong_pixel_fraction:>8.4f}  {'<-- knee' if r.knee else ''}")
+        times = "" if r.flip_vs_best is None else f"{r.flip_vs_best:.2f}"
+        lines.append(f"{r.knob:<13}{r.value:>{v}}  {r.mode:<9}{r.seconds:>9.4f}{r.rmse:>9.4f}{r.flip:>8.4f}"
+                     f"{times:>8}{r.wrong_pixel_fraction:>8.4f}  {'<-- knee' if r.knee else ''}")
     for knob, reason in skipped.items():
         lines.append(f"{knob}: not swept: {reason}")
-    for knob in sorted({r.knob for r in rows if r.compared_with != "reference"}):
+    if any(r.knob == "depth-format" for r in rows):
+        lines.append("depth-format: each format compared with float64 at the same near/far ratio; "
+                     "'wrong' is z-fighting")
+    for knob in sorted({r.knob for r in rows if KNOBS[r.knob].time_only}):
         lines.append(f"{knob}: compared with '{next(r for r in rows if r.knob == knob).compared_with}': "
                      "changes time only")
     return "\n".join(lines)

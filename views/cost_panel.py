@@ -37,7 +37,7 @@ from PySide6.QtWidgets import (
 )
 
 from core.accuracy import cost_files
-from core.accuracy.cost_plot import draw_cost_plot
+from core.accuracy.cost_plot import draw_cost_plot, point_position
 from core.accuracy.explanations import EXPLANATIONS
 from core.accuracy.reference import REFERENCE_SPP
 from core.accuracy.sweep import (
@@ -48,6 +48,7 @@ from core.accuracy.sweep import (
     Point,
     Progress,
     Sweep,
+    marked_rows,
     unavailable,
 )
 from core.scene import Scene
@@ -350,17 +351,15 @@ class CostPanel(QWidget):
 
     def rows(self) -> list:
         """The rows received so far, in setting order, knees marked."""
-        knee_at = set(self._knees.values())
-        return [replace(p.row, knee=i in knee_at) for i, p in sorted(self._points.items())]
+        return marked_rows(self._points, self._knees)
 
     def _draw_plot(self) -> None:
         rows = self.rows()
         self._lines = draw_cost_plot(self.plot_figure, rows, sorted(self._points))
         ax = self.plot_figure.axes[0]
         if self.selected is not None and self.selected in self._points:
-            r = self._points[self.selected].row
-            ax.plot([max(r.seconds, 1e-6)], [max(r.reference_flip, 1e-5)], "x", color="black",
-                    markersize=10, markeredgewidth=2)
+            at, x, y = point_position(self.plot_figure, self._points[self.selected].row)
+            at.plot([x], [y], "x", color="black", markersize=10, markeredgewidth=2)
         if not rows:
             ax.text(0.5, 0.5, "the curves fill in here, point by point", transform=ax.transAxes,
                     ha="center", va="center", color="gray")
@@ -374,9 +373,8 @@ class CostPanel(QWidget):
 
     def point_position(self, index: int) -> tuple[float, float]:
         """Where setting ``index``'s point is drawn on the plot canvas, in widget pixels (x right, y down)."""
-        r = self._points[index].row
-        ax = self.plot_figure.axes[0]
-        x, y = ax.transData.transform((max(r.seconds, 1e-6), max(r.reference_flip, 1e-5)))
+        ax, x, y = point_position(self.plot_figure, self._points[index].row)
+        x, y = ax.transData.transform((x, y))
         ratio = self.canvas.device_pixel_ratio or 1.0
         return x / ratio, self.canvas.height() - y / ratio
 

@@ -5,13 +5,19 @@ the app (inside a Qt canvas) and the command line (saved as PNG and SVG).
 The error axis is FLIP against the reference: acceleration methods, which are
 exactly equal to each other, sit on one horizontal line at the error of the
 default render.
+
+The z-buffer's number formats save memory, not time, so they get a panel of
+their own on the right: the share of pixels showing the wrong object
+(z-fighting, against float64 at the same ratio) against the far/near ratio,
+one curve per format.
 """
 
 from __future__ import annotations
 
 from matplotlib.figure import Figure
 
-from core.accuracy.sweep import KNOB_NAMES, KNOBS, Row
+from core.accuracy.sweep import KNOB_NAMES, KNOBS, Row, split_depth_label
+from core.object_order.depth_formats import BYTES_PER_PIXEL, DEPTH_FORMATS
 
 #: Smallest error drawn: log axes cannot show 0.
 ERROR_FLOOR = 1e-5
@@ -33,8 +39,17 @@ def draw_cost_plot(figure: Figure, rows: list[Row], indices: list[int] | None = 
     """
     indices = list(range(len(rows))) if indices is None else indices
     figure.clear()
-    ax = figure.add_subplot(1, 1, 1)
-    lines = {}
+    formats = [(i, r) for i, r in zip(indices, rows, strict=True) if r.knob == "depth-format"]
+    others = [(i, r) for i, r in zip(indices, rows, strict=True) if r.knob != "depth-format"]
+    if formats and not others:
+        return _draw_depth_formats(figure.add_subplot(1, 1, 1), formats)
+    if formats:  # the cost curves keep two thirds of the width
+        grid = figure.add_gridspec(1, 2, width_ratios=(2, 1))
+        ax = figure.add_subplot(grid[0, 0])
+        lines = _draw_depth_formats(figure.add_subplot(grid[0, 1]), formats)
+    else:
+        ax, lines = figure.add_subplot(1, 1, 1), {}
+    indices, rows = [i for i, _ in others], [r for _, r in others]
     for name in KNOB_NAMES:
         mine = [(i, r) for i, r in zip(indices, rows, strict=True) if r.knob == name]
         if not mine:
@@ -62,4 +77,44 @@ def draw_cost_plot(figure: Figure, rows: list[Row], indices: list[int] | None = 
     ax.grid(True, which="both", alpha=0.3)
     if lines:
         ax.legend(fontsize=8, loc="best")
+    return lines
+
+
+def point_position(figure: Figure, row: Row):
+    """Where ``row`` is drawn by :func:`draw_cost_plot`: (axes, x, y) in its data coordinates."""
+    if row.knob == "depth-format":
+        return figure.axes[-1], split_depth_label(row.value)[1], 100 * row.wrong_pixel_fraction
+    return figure.axes[0], max(row.seconds, 1e-6), max(row.reference_flip, ERROR_FLOOR)
+
+
+def _draw_depth_formats(ax, formats: list[tuple[int, Row]]) -> dict:
+    """The z-fighting panel: wrong-object share (%) against the far/near ratio, a curve per format."""
+    lines = {}
+    for k, name in enumerate(DEPTH_FORMATS):
+        mine = sorted(((split_depth_label(r.value)[1], i, r) for i, r in formats
+                       if split_depth_label(r.value)[0] == name), key=lambda t: t[0])
+        if not mine:
+            continue
+        xs = [ratio for ratio, _, _ in mine]
+        ys = [100 * r.wrong_pixel_fraction for _, _, r in mine]
+        color = f"C{k}"
+        (line,) = ax.plot(xs, ys, "o-", color=color, markersize=5, picker=True, pickradius=6,
+                          label=f"{name} ({BYTES_PER_PIXEL[name]} B/pixel)")
+        lines[line] = [i for _, i, _ in mine]
+        for x, y, (_, _, r) in zip(xs, ys, mine, strict=True):
+            if r.knee:
+                ax.plot([x], [y], "o", markersize=13, markerfacecolor="none", markeredgecolor=color,
+                        markeredgewidth=2)
+    highest = max(100 * r.wrong_pixel_fraction for _, r in formats)
+    ax.set_ylim(-0.02 * max(highest, 1.0), 1.1 * max(highest, 1.0))
+    if highest == 0:
+        ax.text(0.5, 0.4, "no format fights here:\nno two surfaces are\nclose enough in depth",
+                transform=ax.transAxes, ha="center", va="center", color="gray")
+    ax.set_xscale("log")
+    ax.set_xlabel("far / near ratio (near plane moved)")
+    ax.set_ylabel("pixels showing the wrong object (%)")
+    ax.set_title("z-buffer formats: z-fighting\nagainst float64 (ringed: fewest bytes\nwithin the tolerance)",
+                 fontsize=10)
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=8, loc="upper left")
     return lines

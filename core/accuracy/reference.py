@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import time
 from collections.abc import Generator
-from dataclasses import dataclass, fields
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -65,10 +65,8 @@ def trace_settings(mode: str) -> TraceSettings:
 
 
 def raster_settings() -> RasterSettings:
-    """The rasterizer's reference settings: its defaults, with float64 depth where it has the choice."""
-    if "depth_format" in {f.name for f in fields(RasterSettings)}:
-        return RasterSettings(depth_format="float64")
-    return RasterSettings()
+    """The rasterizer's reference settings: its defaults, with float64 depth."""
+    return RasterSettings(depth_format="float64")
 
 
 def reference_steps(scene: Scene, mode: str, spp: int = REFERENCE_SPP,

@@ -13,9 +13,20 @@ values with everything else at its default, and for each one measures
   triangles for the tessellation.
 
 The *knee* of a knob is its cheapest value whose FLIP is within the tolerance
-of the best value's: past it you pay for what nobody sees.  Acceleration
+of the best value's: past it you pay for what nobody sees.  The tolerance is
+an absolute FLIP distance, so each row also reports its FLIP as a multiple of
+the best (``flip_vs_best``): on a small image every error is small, and a knee
+within 0.01 may still have several times the best error.  Acceleration
 methods are compared with ``"none"`` instead of the reference: they must find
 exactly the same hits, so their error is exactly 0 and they change time only.
+
+The z-buffer's number format has a second axis, the far/near ratio of the
+frustum (:data:`DEPTH_RATIOS`, the near plane moved, the far plane kept): each
+format at each ratio is compared with float64 at the same ratio, so its
+wrong-visible-object fraction is z-fighting and nothing else.  Its values are
+written ``int16@1:1000``; what it saves is memory, not time, so its knee is
+the format with the fewest bytes per pixel whose FLIP stays within the
+tolerance at every ratio tried.
 
 A sweep is a generator of events (:meth:`Sweep.events`): it yields after every
 render, so a caller running it in the background can stop between renders,
@@ -48,6 +59,8 @@ DEFAULT_TOLERANCE = 0.01
 #: Samples per axis in a pixel that adaptive supersampling refines.
 ADAPTIVE_N = 4
 TRACE_MODES = ("raytrace", "raycast")
+#: Far/near ratios the depth formats are tried at (``1:1000`` is near = far / 1000).
+DEPTH_RATIOS = (10, 100, 1000, 10000)
 
 
 @dataclass(frozen=True)
@@ -78,6 +91,8 @@ class Knob:
             return f"{value}x{value}"
         if self.name == "tessellation":
             return f"{value[0]}x{value[1]}"
+        if self.name == "depth-format":
+            return f"{value[0]}@1:{value[1]}"
         return str(value)
 
     def mode_for(self, mode: str) -> str:
@@ -96,14 +111,22 @@ KNOBS: dict[str, Knob] = {k.name: k for k in (
     Knob("tessellation", "sphere tessellation (rings x segments)", ("raster",),
          ((4, 8), (8, 16), (16, 32), (32, 64), (64, 128)), (SPHERE_RINGS, SPHERE_SEGMENTS)),
     Knob("accel", "acceleration method", TRACE_MODES, ACCEL_CODES, "bvh", time_only=True),
-    Knob("depth-format", "z-buffer number format", ("raster",), DEPTH_FORMATS, "float64"),
+    Knob("depth-format", "z-buffer number format @ near/far ratio", ("raster",),
+         tuple((f, r) for f in DEPTH_FORMATS for r in DEPTH_RATIOS), "float64"),
 )}
 KNOB_NAMES = tuple(KNOBS)
 
 
-def raster_has_depth_formats() -> bool:
-    """Whether the rasterizer takes ``RasterSettings(depth_format=...)``."""
-    return "depth_format" in {f.name for f in fields(RasterSettings)}
+def split_depth_label(text: str) -> tuple[str, int]:
+    """A depth-format value as written (``"int16@1:1000"``) -> (format, far/near ratio).
+
+    Examples
+    --------
+    >>> split_depth_label("float32-reversed@1:100")
+    ('float32-reversed', 100)
+    """
+    name, ratio = text.split("@1:")
+    return name, int(ratio)
 
 
 def unavailable(name: str, scene: Scene) -> str | None:
@@ -112,8 +135,6 @@ def unavailable(name: str, scene: Scene) -> str | None:
         raise ValueError(f"knob must be one of {list(KNOB_NAMES)}, got {name!r}")
     if name == "tessellation" and not tessellation.has_spheres(scene):
         return "the scene has no analytic spheres to tessellate"
-    if name == "depth-format" and not raster_has_depth_formats():
-        return "not offered yet: the rasterizer has no RasterSettings.depth_format"
     return None
 
 
@@ -144,6 +165,8 @@ class Row:
     samples_per_pixel : rays (or raster passes) per pixel.
     bytes : size of the buffers this knob changes, ``None`` where it changes none.
     knee : this is the knob's knee.
+    flip_vs_best : ``flip`` divided by the knob's lowest ``flip`` (1 on the best row), once the
+        knob is finished; ``None`` before, or when the best is exactly 0.
     """
 
     knob: str
@@ -159,6 +182,7 @@ class Row:
     bytes: int | None
     compared_with: str
     knee: bool = False
+    flip_vs_best: float | None = None
 
 
 CSV_COLUMNS = tuple(f.name for f in fields(Row))
@@ -210,8 +234,19 @@ class _Job:
     bytes: int | None = None
 
 
-def knee_index(rows: list[Row], tolerance: float = DEFAULT_TOLERANCE) -> int:
+def knee_index(rows: list[Row], tolerance: float = DEFAULT_TOLERANCE, by_time: bool = False) -> int:
     """Index of the cheapest row whose FLIP is within ``tolerance`` of the best row's.
+
+    Cheapest is the first in the knob's own order (its values go from the
+    cheapest to the dearest: fewer samples, fewer bounces, fewer pixels), not
+    the measured time: a render of a few milliseconds on a shared machine can
+    time a dearer setting faster than a cheaper one, and the knee must not
+    follow that noise.  With ``by_time`` (acceleration methods, whose order is
+    no order of cost) it is the shortest median time.  The depth formats (all
+    rows of knob ``depth-format``) save memory, so there it is the format with the
+    fewest bytes whose worst FLIP over the ratios is within ``tolerance`` of
+    the best format's worst (ties: lower worst FLIP, then time), and the index
+    is that format's row at the largest ratio.
 
     Examples
     --------
@@ -220,9 +255,44 @@ def knee_index(rows: list[Row], tolerance: float = DEFAULT_TOLERANCE) -> int:
     >>> knee_index(r)
     1
     """
+    if rows[0].knob == "depth-format":
+        return _depth_format_knee(rows, tolerance)
     best = min(r.flip for r in rows)
     good = [i for i, r in enumerate(rows) if r.flip <= best + tolerance]
-    return min(good, key=lambda i: rows[i].seconds)
+    return min(good, key=lambda i: rows[i].seconds) if by_time else good[0]
+
+
+def _depth_format_knee(rows: list[Row], tolerance: float) -> int:
+    by_format: dict[str, list[int]] = {}
+    for i, r in enumerate(rows):
+        by_format.setdefault(split_depth_label(r.value)[0], []).append(i)
+    worst = {f: max(rows[i].flip for i in idx) for f, idx in by_format.items()}
+    best = min(worst.values())
+    good = [f for f in by_format if worst[f] <= best + tolerance]
+    chosen = min(good, key=lambda f: (BYTES_PER_PIXEL[f], worst[f],
+                                      sum(rows[i].seconds for i in by_format[f])))
+    return max(by_format[chosen], key=lambda i: split_depth_label(rows[i].value)[1])
+
+
+def marked_rows(points: dict[int, Point], knees: dict[str, int]) -> list[Row]:
+    """The rows of ``points`` in setting order, knees marked and ``flip_vs_best`` filled in.
+
+    Parameters
+    ----------
+    points : setting index -> Point.
+    knees : knob name -> setting index of its knee (the finished knobs).
+    """
+    knee_at = set(knees.values())
+    best: dict[str, float] = {}
+    for p in points.values():
+        if p.row.knob in knees:
+            best[p.row.knob] = min(best.get(p.row.knob, np.inf), p.row.flip)
+    rows = []
+    for i, p in sorted(points.items()):
+        lowest = best.get(p.row.knob, 0.0)
+        ratio = p.row.flip / lowest if lowest > 0 else None
+        rows.append(replace(p.row, knee=i in knee_at, flip_vs_best=ratio))
+    return rows
 
 
 def best_within(rows: list[Row], budget: float) -> dict[str, Row]:
@@ -291,8 +361,7 @@ class Sweep:
 
     def rows(self) -> list[Row]:
         """The rows done so far, in setting order, with the knees marked."""
-        knee_at = set(self._knees.values())
-        return [replace(p.row, knee=i in knee_at) for i, p in sorted(self.points.items())]
+        return marked_rows(self.points, self._knees)
 
     def knee_indices(self) -> dict[str, int]:
         """Knob name -> setting index of its knee, for the knobs finished so far."""
@@ -348,7 +417,8 @@ class Sweep:
             knob_indices = [i for i, s in enumerate(self.settings) if s.knob == setting.knob]
             if all(i in self.points for i in knob_indices):
                 rows = [self.points[i].row for i in knob_indices]
-                self._knees[setting.knob] = knob_indices[knee_index(rows, self.tolerance)]
+                self._knees[setting.knob] = knob_indices[knee_index(rows, self.tolerance,
+                                                                        KNOBS[setting.knob].time_only)]
                 yield Knee(setting.knob, self._knees[setting.knob])
 
     def run(self) -> list[Row]:
@@ -359,14 +429,13 @@ class Sweep:
 
     def _point(self, index, setting, seconds, color, samples, spp, visible, nbytes) -> Point:
         ref = self.references[setting.mode]
-        knob = KNOBS[setting.knob]
         ref_flip, ref_map = error_metrics.flip(ref.color, color)
-        if knob.time_only:
-            first = next(i for i, s in enumerate(self.settings) if s.knob == setting.knob)
-            base = self.points.get(first)
+        baseline = self._baseline(index)
+        if baseline is not None:
+            base = self.points.get(baseline)
             base_color = color if base is None else base.color
-            base_visible = visible if base is None else self._visible[first]
-            compared_with = knob.label(knob.values[0])
+            base_visible = visible if base is None else self._visible[baseline]
+            compared_with = self.settings[baseline].label
         else:
             base_color, compared_with = ref.color, "reference"
             base_visible = ref.exact if setting.knob == "tessellation" else ref.visible
@@ -380,6 +449,20 @@ class Sweep:
                                             visible.object_index),
                   ref_flip, float(spp), nbytes, compared_with)
         return Point(index, row, color, error_map, samples)
+
+    def _baseline(self, index: int) -> int | None:
+        """The setting that ``index`` is compared with instead of the reference, if any.
+
+        Acceleration methods: the first method (``none``).  Depth formats:
+        float64 at the same far/near ratio.  Other knobs: ``None``.
+        """
+        setting = self.settings[index]
+        if KNOBS[setting.knob].time_only:
+            return next(i for i, s in enumerate(self.settings) if s.knob == setting.knob)
+        if setting.knob == "depth-format":
+            same = ("float64", setting.value[1])
+            return next(i for i, s in enumerate(self.settings) if s.knob == setting.knob and s.value == same)
+        return None
 
     def _job(self, setting: Setting) -> _Job:
         """The timed render and the visible surface of one setting."""
@@ -433,8 +516,10 @@ class Sweep:
             return _Job(lambda: (render_raster(tessellation.tessellated(scene, rings, segments)).color, None,
                                  1.0),
                         lambda: rasterized_surface(tessellation.tessellated(scene, rings, segments)), nbytes)
-        # depth-format: only offered once RasterSettings has the field (see ``unavailable``)
-        settings = RasterSettings(depth_format=value)
-        return _Job(lambda: (render_raster(scene, settings).color, None, 1.0),
-                    lambda: rasterized_surface(scene, settings),
-                    cam.width * cam.height * BYTES_PER_PIXEL[value])
+        # depth-format: a number format at a far/near ratio, the near plane moved
+        name, ratio = value
+        moved = replace(scene, camera=cam.replace(near=cam.far / ratio))
+        settings = RasterSettings(depth_format=name)
+        return _Job(lambda: (render_raster(moved, settings).color, None, 1.0),
+                    lambda: rasterized_surface(moved, settings),
+                    cam.width * cam.height * BYTES_PER_PIXEL[name])

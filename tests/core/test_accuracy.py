@@ -5,6 +5,7 @@ coverage is computed here with exact fractions (the area of each pixel on
 the lit side of the edge), independently of both renderers.
 """
 
+import math
 from dataclasses import replace
 from fractions import Fraction
 
@@ -13,13 +14,14 @@ import pytest
 
 from core.accuracy import error_metrics, supersampling
 from core.accuracy.resolution import to_size
-from core.accuracy.sweep import KNOBS, Sweep, knee_index, unavailable
+from core.accuracy.sweep import DEPTH_RATIOS, KNOBS, Sweep, knee_index, unavailable
 from core.camera import Camera
 from core.image_order.flat_scene import TraceSettings
-from core.object_order.pipeline import RasterSettings
+from core.object_order.depth_formats import BYTES_PER_PIXEL, DEPTH_FORMATS
+from core.object_order.pipeline import RasterSettings, render_raster
 from core.presets import lecture_scene
 from core.presets_trace import mirror_and_glass
-from core.scene import Material, Mesh, Scene
+from core.scene import Material, Mesh, PointLight, Scene
 
 W, H = 48, 32
 #: The edge, in pixel coordinates (x right, y down): the lit side is y > Y0 + SLOPE * x.
@@ -215,3 +217,94 @@ def test_knee_is_the_cheapest_within_tolerance():
             for i, (s, f) in enumerate([(0.5, 0.30), (1.0, 0.02), (2.0, 0.012), (4.0, 0.011)])]
     assert knee_index(rows, 0.01) == 1
     assert knee_index(rows, 0.0) == 3
+
+
+def test_knee_follows_the_knobs_order_not_timing_noise():
+    from core.accuracy.sweep import Row
+
+    # a dearer setting timed faster (a busy machine): the knee stays the cheaper value ...
+    rows = [Row("depth", str(d), "raytrace", s, 0.0, f, 0.0, 0.0, f, 1.0, None, "reference")
+            for d, (s, f) in enumerate([(0.05, 0.11), (0.08, 0.0147), (0.10, 0.0143), (0.05, 0.0143)])]
+    assert knee_index(rows, 0.01) == 1
+    # ... while methods that differ only in time are ranked by time
+    assert knee_index(rows, 1.0, by_time=True) == 0
+
+
+def _parallel_planes(d=50.0, gap=0.01, far=100.0) -> Scene:
+    """Two squares facing the observer at distances ``d`` and ``d + gap``; the farther (red) drawn first."""
+    cam = Camera(eye=(0.0, 0.0, 0.0), target=(0.0, 0.0, -1.0), fov_y_deg=40, near=1.0, far=far,
+                 width=40, height=30)
+
+    def square(z, half, color, name):
+        v = [(-half, -half, -z), (half, -half, -z), (half, half, -z), (-half, half, -z)]
+        return Mesh(v, [[0, 1, 2], [0, 2, 3]], Material(color=color), name)
+
+    return Scene(camera=cam, objects=(square(d + gap, 0.24 * d, (1.0, 0.0, 0.0), "far"),
+                                      square(d, 0.2 * d, (0.0, 1.0, 0.0), "near")),
+                 lights=(PointLight((0.0, 0.0, 10.0)),))
+
+
+def _int16_collides(d, gap, near, far) -> bool:
+    """Exact window depths of both planes (fractions) rounded to 16 bits: the same step?"""
+    d, gap, near, far = (Fraction(v) for v in (d, gap, near, far))
+
+    def step(x):
+        z = ((far + near) / (far - near) - 2 * far * near / ((far - near) * x) + 1) / 2
+        return math.floor(z * 65535 + Fraction(1, 2))
+
+    return step(d) == step(d + gap)
+
+
+@pytest.fixture(scope="module")
+def depth_format_rows():
+    sweep = Sweep(_parallel_planes(), ["depth-format"], "raster", runs=3, reference_spp=1)
+    return {r.value: r for r in sweep.run()}
+
+
+def test_every_depth_format_is_swept_at_every_ratio_with_its_bytes(depth_format_rows):
+    scene = _parallel_planes()
+    for fmt in DEPTH_FORMATS:
+        zbuffer = render_raster(scene, RasterSettings(depth_format=fmt)).stats["zbuffer_bytes"]
+        for ratio in DEPTH_RATIOS:
+            row = depth_format_rows[f"{fmt}@1:{ratio}"]
+            assert row.mode == "raster" and row.bytes == zbuffer == 40 * 30 * BYTES_PER_PIXEL[fmt]
+            assert row.compared_with == f"float64@1:{ratio}"
+    assert len(depth_format_rows) == len(DEPTH_FORMATS) * len(DEPTH_RATIOS)
+
+
+def test_int16_fights_at_1_to_1000_and_float64_never(depth_format_rows):
+    assert _int16_collides(50, 0.01, 100 / 1000, 100)  # so the planes must fight
+    assert depth_format_rows["int16@1:1000"].wrong_pixel_fraction > 0.01
+    assert not _int16_collides(50, 0.01, 100 / 10, 100)
+    assert depth_format_rows["int16@1:10"].wrong_pixel_fraction == 0.0
+    for ratio in DEPTH_RATIOS:
+        row = depth_format_rows[f"float64@1:{ratio}"]
+        assert row.wrong_pixel_fraction == 0.0 and row.rmse == 0.0
+
+
+def test_reversed_float32_is_never_worse_than_float32(depth_format_rows):
+    for ratio in DEPTH_RATIOS:
+        plain = depth_format_rows[f"float32@1:{ratio}"]
+        reversed_ = depth_format_rows[f"float32-reversed@1:{ratio}"]
+        assert reversed_.wrong_pixel_fraction <= plain.wrong_pixel_fraction
+
+
+def test_the_depth_format_knee_is_the_fewest_bytes_that_never_fight_visibly(depth_format_rows):
+    rows = list(depth_format_rows.values())
+    (knee,) = [r for r in rows if r.knee] or [rows[knee_index(rows)]]
+    worst = {}
+    for r in rows:
+        name = r.value.split("@")[0]
+        worst[name] = max(worst.get(name, 0.0), r.flip)
+    fine = [f for f in DEPTH_FORMATS if worst[f] <= 0.01]
+    assert knee.value.split("@")[0] == min(fine, key=lambda f: (BYTES_PER_PIXEL[f], worst[f]))
+    assert knee.value.endswith("@1:10000")
+
+
+def test_knee_reports_its_error_as_a_multiple_of_the_best():
+    sweep = Sweep(_small(lecture_scene(), 24, 18), ["depth"], "raytrace", runs=3, reference_spp=2)
+    rows = sweep.run()
+    best = min(r.flip for r in rows)
+    for r in rows:
+        assert r.flip_vs_best == pytest.approx(r.flip / best)
+    assert sum(r.knee for r in rows) == 1

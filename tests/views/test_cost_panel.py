@@ -65,6 +65,25 @@ def test_sweep_fills_the_plot_and_a_click_shows_the_point(qtbot, panel):
     assert "ray depth" in panel.explanation.text()
 
 
+def test_depth_formats_get_their_own_panel_and_a_click_there_shows_the_point(qtbot, panel):
+    _pick(panel, "depth-format")
+    panel.run()
+    with qtbot.waitSignal(panel.sweep_finished, timeout=TIMEOUT_MS):
+        pass
+    n = len(KNOBS["depth-format"].values)
+    assert _plotted_points(panel) == n and len(panel.rows()) == n
+    (ax,) = panel.plot_figure.axes
+    assert "near ratio" in ax.get_xlabel() and "wrong object" in ax.get_ylabel()
+    panel.canvas.draw()
+    last = n - 1  # int16 at the largest ratio
+    x, y = panel.point_position(last)
+    with qtbot.waitSignal(panel.point_selected, timeout=5000) as picked:
+        qtbot.mouseClick(panel.canvas, Qt.MouseButton.LeftButton, pos=QPoint(round(x), round(y)))
+    # no format fights on this scene, so every curve lies on 0 and the click finds the ratio, any format
+    assert panel._points[picked.args[0]].row.value.endswith("@1:10000")
+    assert "16-bit" in panel.explanation.text()
+
+
 def test_cancel_stops_between_renders_and_run_resumes(qtbot, panel):
     _pick(panel, "spp")
     panel.run()
