@@ -73,7 +73,7 @@ def draw_cost_plot(figure: Figure, rows: list[Row], indices: list[int] | None = 
     ax.set_yscale("log")
     ax.set_xlabel("render time (s, median)")
     ax.set_ylabel("mean FLIP error against the reference")
-    ax.set_title("What accuracy costs in time\n(ringed: the knee of each knob)")  # fits a narrow pane
+    ax.set_title("What accuracy costs in time\n(ringed: each knob's knee)", fontsize="medium")
     ax.grid(True, which="both", alpha=0.3)
     if lines:
         ax.legend(fontsize=8, loc="best")
