@@ -6,8 +6,8 @@ import mpmath
 import numpy as np
 import pytest
 from PySide6.QtCore import Qt
+from window_helpers import RENDER_TIMEOUT_MS
 
-from app.main_window import MainWindow
 from core import presets
 from core.lessons import shipped_lessons
 from core.object_order.depth_formats import DEPTH_FORMATS
@@ -15,17 +15,7 @@ from core.scene import Mesh, Sphere
 from views.cost_panel import CostPanel
 from views.hard_cases_panel import HardCasesPanel
 
-RENDER_TIMEOUT_MS = 180_000  # the first render compiles the numba kernels when no cache exists
 LESSONS = {lesson.id: i for i, lesson in enumerate(shipped_lessons())}
-
-
-@pytest.fixture
-def window(qtbot):
-    win = MainWindow(presets.lecture_scene())
-    qtbot.addWidget(win)
-    win.show()
-    qtbot.waitUntil(lambda: win.showing_full("image order"), timeout=RENDER_TIMEOUT_MS)
-    return win
 
 
 def _activate(qtbot, win):

@@ -12,23 +12,12 @@ import pytest
 from PySide6.QtCore import QPoint, QPointF, Qt, QTimer
 from PySide6.QtGui import QWheelEvent
 from PySide6.QtWidgets import QApplication
+from window_helpers import RENDER_TIMEOUT_MS
 
-from app.main_window import MainWindow
 from core import presets, scene_file, shapes
 from core.image_order.ray_tracing import render_trace
 from views.observer_keys import WALK_FRACTION
 from views.scene_view import FOV_STEP_DEG
-
-RENDER_TIMEOUT_MS = 180_000  # the first render compiles the numba kernels when no cache exists
-
-
-@pytest.fixture
-def window(qtbot):
-    win = MainWindow(presets.lecture_scene())
-    qtbot.addWidget(win)
-    win.show()
-    qtbot.waitUntil(lambda: win.showing_full("image order"), timeout=RENDER_TIMEOUT_MS)
-    return win
 
 
 def _wait_full(qtbot, win, name=None):

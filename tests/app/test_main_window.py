@@ -6,21 +6,9 @@ import numpy as np
 import pytest
 from PySide6.QtCore import Qt
 from PySide6.QtWidgets import QApplication, QMessageBox
+from window_helpers import RENDER_TIMEOUT_MS
 
-from app.main_window import MainWindow
-from core import presets
 from core.presets_trace import PRESETS_TRACE
-
-RENDER_TIMEOUT_MS = 180_000  # the first render compiles the numba kernels when no cache exists
-
-
-@pytest.fixture
-def window(qtbot):
-    win = MainWindow(presets.lecture_scene())
-    qtbot.addWidget(win)
-    win.show()
-    qtbot.waitUntil(lambda: win.showing_full("image order"), timeout=RENDER_TIMEOUT_MS)
-    return win
 
 
 def _image(win):

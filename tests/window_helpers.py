@@ -1,0 +1,15 @@
+"""The main window as the GUI tests open it: on the lecture scene, its first image shown."""
+
+from app.main_window import MainWindow
+from core import presets
+
+RENDER_TIMEOUT_MS = 180_000  # the first render compiles the numba kernels when no cache exists
+
+
+def open_window(qtbot) -> MainWindow:
+    """Open the window on the lecture scene and wait until the image-order tab shows its full image."""
+    win = MainWindow(presets.lecture_scene())
+    qtbot.addWidget(win)
+    win.show()
+    qtbot.waitUntil(lambda: win.showing_full("image order"), timeout=RENDER_TIMEOUT_MS)
+    return win
