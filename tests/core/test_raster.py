@@ -21,6 +21,9 @@ from core.object_order import kernels as raster_kernels
 from core.object_order.pipeline import render_raster
 from core.scene import Mesh, Scene
 
+#: The stale-cache guard itself runs at import; none of its code is compiled into a kernel.
+GUARD = "core.kernel_cache"
+
 
 def coverage_counts(triangles_xy, width, height) -> np.ndarray:
     """(H, W) int: how many of the given pixel-space triangles produced a fragment at each pixel.
@@ -207,7 +210,8 @@ def test_the_stale_cache_guard_hashes_every_module_the_raster_kernel_compiles_in
     for path in sorted(folder.glob("*.py")):
         assert path in listed
         for node in ast.walk(ast.parse(path.read_text())):
-            if isinstance(node, ast.ImportFrom) and (node.module or "").startswith("core."):
+            module = (node.module or "") if isinstance(node, ast.ImportFrom) else ""
+            if module.startswith("core.") and module != GUARD:
                 target = root / (node.module.replace(".", "/") + ".py")
                 assert target.resolve() in listed, f"{path.name} compiles in {target}, not in SOURCES"
 
