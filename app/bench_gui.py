@@ -164,7 +164,10 @@ def run(args) -> int:
     window = MainWindow(presets.lecture_scene())
     window.resize(width, height)
     window.show()
-    rows = [_bench_tab(app, window, title, args.seconds) for title in window.tab_titles()]
+    # Tabs that draw what the observer sees; Hard cases and Cost do not follow the observer.
+    following = [t for t in window.tab_titles()
+                 if hasattr(window.tab(t).widget, "image") or hasattr(window.tab(t).widget, "views")]
+    rows = [_bench_tab(app, window, title, args.seconds) for title in following]
     cam = window.model.camera
     print(f"window {width} x {height}, lecture scene {cam.width} x {cam.height}, "
           f"observer moved {MOVES_PER_SECOND}x/s for {args.seconds:g} s per tab")
