@@ -33,7 +33,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from app.render_command import ACCELS, MODES, budget_limit, camera_overrides, check_cost, load_scene
+from app.render_command import ACCELS, MODES, prepare
 from app.usage import UsageError
 
 WHATS = ("image", "zbuffer", "zbuffer-steps", "four-views", "compare", "orbit")
@@ -120,19 +120,11 @@ def _modes(args) -> list[str]:
 
 
 def run(args) -> int:
-    from core import scene_file
-
     _check_arguments(args)
-    changes = camera_overrides(args)
-    limit, limit_source = budget_limit(args)
-    outputs = _outputs(args)
-    try:
-        scene = load_scene(args, outputs, changes)
-    except scene_file.SceneFileError as exc:
-        print(f"python -m app export: error: {exc}", file=sys.stderr)
+    prepared = prepare(args, _outputs, [_with_mode(args, mode) for mode in _modes(args)])
+    if prepared is None:
         return 2
-    for mode in _modes(args):
-        check_cost(scene, _with_mode(args, mode), limit, limit_source)
+    scene, outputs, limit = prepared
     if args.dry_run:
         return 0
     path = outputs.paths["--out"]

@@ -152,18 +152,35 @@ def load_scene(args, outputs, changes: dict):
     return scene
 
 
-def run(args) -> int:
+def prepare(args, make_outputs, runs) -> tuple | None:
+    """What ``render`` and ``export`` do before any work, in this order.
+
+    Read the camera options, the memory budget and the output paths
+    (``make_outputs(args)``), load and check the scene, then check the cost of
+    each of ``runs`` (argument sets, one per pipeline the command will run).
+    Returns ``(scene, outputs, limit)``, or ``None`` after printing why the scene
+    file was refused (exit status 2); bad options raise :class:`UsageError`.
+    """
     from core import scene_file
 
     changes = camera_overrides(args)
     limit, limit_source = budget_limit(args)
-    outputs = _outputs(args)
+    outputs = make_outputs(args)
     try:
         scene = load_scene(args, outputs, changes)
     except scene_file.SceneFileError as exc:
-        print(f"python -m app render: error: {exc}", file=sys.stderr)
+        print(f"python -m app {args.command}: error: {exc}", file=sys.stderr)
+        return None
+    for run_args in runs:
+        check_cost(scene, run_args, limit, limit_source)
+    return scene, outputs, limit
+
+
+def run(args) -> int:
+    prepared = prepare(args, _outputs, [args])
+    if prepared is None:
         return 2
-    check_cost(scene, args, limit, limit_source)
+    scene, outputs, _ = prepared
     if args.dry_run:
         return 0
 
