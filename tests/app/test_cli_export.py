@@ -12,7 +12,7 @@ import imageio.v3 as iio
 import numpy as np
 import pytest
 
-from app.export_command import MARGIN, TITLE_ROW
+from app.picture_sheet import MARGIN, TITLE_ROW
 from core import scene_file
 from core.presets import lecture_scene, zbuffer_three_polygons
 from core.srgb import to_srgb8
