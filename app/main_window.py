@@ -33,6 +33,7 @@ from PySide6.QtWidgets import (
     QWidget,
 )
 
+from app.export_menu import ExportMenu
 from app.lesson_runner import LESSON_OVERLAY, LessonRunner
 from app.mesh_files import read_mesh
 from app.state import SceneModel
@@ -259,6 +260,7 @@ class MainWindow(QMainWindow):
             for key, (title, build) in group.items():
                 self._action(examples, title, lambda _=False, b=build, k=key: self.load_preset(k, b))
             examples.addSeparator()
+        self.exports = ExportMenu(self, file_menu)
         file_menu.addSeparator()
         self._action(file_menu, "&Quit", self.close, QKeySequence.StandardKey.Quit)
         observer = self.menuBar().addMenu("&Observer")

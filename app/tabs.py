@@ -16,7 +16,9 @@ A tab is any object with
 - ``show(result) -> str`` : show a finished job's result; returns the status line;
 - optionally ``shutdown()`` : stop the tab's own background work (the window is closing);
 - optionally ``show_progress(partial)`` : show a partial result while a job runs;
-- optionally ``warning(scene) -> str | None`` : a word before a very long full render.
+- optionally ``warning(scene) -> str | None`` : a word before a very long full render;
+- optionally ``pictures()`` : what File → Export offers for this tab, instead of
+  every image pane of ``widget`` (see :mod:`app.pane_pictures`).
 
 Adding a tab is one line: append its class to :data:`TABS` (it is built as
 ``cls(model)`` with the window's :class:`app.state.SceneModel`).
