@@ -184,6 +184,21 @@ def test_a_file_that_cannot_be_written_shows_a_dialog_naming_it(window, tmp_path
     assert not out.parent.exists()
 
 
+def test_an_animation_that_cannot_be_written_shows_a_dialog_naming_it(qtbot, window, tmp_path,
+                                                                        monkeypatch):
+    shown = []
+    monkeypatch.setattr(QMessageBox, "critical", lambda parent, title, text, *rest: shown.append(text))
+    window.load_preset("three polygons", presets.zbuffer_three_polygons)
+    folder = tmp_path / "slides"
+    folder.mkdir()
+    out = folder / "steps.mp4"
+    assert window.exports.export_steps(str(out))
+    folder.rmdir()  # the folder goes away while the frames are made
+    qtbot.waitUntil(lambda: bool(shown), timeout=EXPORT_TIMEOUT_MS)
+    assert str(out) in shown[0] and "No such file or directory" in shown[0]
+    assert not any(d.isVisible() for d in window.findChildren(QProgressDialog))
+
+
 def test_a_tab_can_offer_its_own_pictures(window, tmp_path, monkeypatch):
     class Slides:
         title, overlays = "Slides", ()
