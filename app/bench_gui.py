@@ -99,7 +99,7 @@ class _Probe:
 def _observer_image(window, title: str):
     """The image pane of ``title``'s tab that shows the observer's own view."""
     widget = window.tab(title).widget
-    key = {"Four views": "observer", "Compare": "perspective"}.get(title)
+    key = {"Four views": "observer", "Compare": "a"}.get(title)
     return widget.views[key] if key else widget.image
 
 

@@ -15,6 +15,8 @@ A tab is any object with
   "preview"); otherwise it is the full render;
 - ``show(result) -> str`` : show a finished job's result; returns the status line;
 - optionally ``shutdown()`` : stop the tab's own background work (the window is closing);
+- optionally ``changes`` : signals after which the tab's image is out of date (its own
+  settings changed); it renders again when visible;
 - optionally ``show_progress(partial)`` : show a partial result while a job runs;
 - optionally ``warning(scene) -> str | None`` : a word before a very long full render;
 - optionally ``pictures()`` : what File → Export offers for this tab, instead of
@@ -33,11 +35,14 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from app.workers import Renderer
 from core.camera import Camera
+from core.compare import Comparison, difference, explain, render_output
 from core.image_order.ray_tracing import TraceSettings, merge_band_stats, render_trace
 from core.object_order import three_views
 from core.object_order.pipeline import RasterSettings, render_raster
 from core.scene import Mesh, Scene
+from views.compare_panel import ComparePanel, ComparisonImages
 from views.cost_panel import CostPanel
 from views.hard_cases_panel import HardCasesPanel
 from views.image_grid import ImageGrid
@@ -256,51 +261,65 @@ class FourViewsTab:
 
 
 class CompareTab:
-    """Orthographic, perspective and ray-traced images of the same scene, with their cost."""
+    """Any two outputs of the scene side by side, their difference image, one pixel read in both."""
 
     title = "Compare"
     overlays = ()
-    PANES = [("orthographic", "Orthographic (z-buffer)"), ("perspective", "Perspective (z-buffer)"),
-             ("traced", "Ray traced (image order)")]
 
     def __init__(self, model):
         self.model = model
-        self.widget = ImageGrid(self.PANES, columns=2)
+        self.widget = ComparePanel()
+        self.changes = (self.widget.pair_changed, model.trace_settings_changed)
+        self._reader = Renderer(self.widget)  # reads a picked pixel in both outputs
+        self._reader.finished.connect(self.widget.show_pixel)
+        self.widget.pixel_picked.connect(self._read_pixel)
 
     def job(self, scene: Scene, preview: bool):
+        a, b = self.widget.pair()
+        settings = preview_trace_settings(self.model.trace_settings)  # acceleration leaves the image alone
         cam = scene.camera
-        ortho_height = 2 * cam.distance * np.tan(np.radians(cam.fov_y_deg) / 2)
-        note = PREVIEW if preview else ""
+        picked = self.widget.picked
+        inside = picked is not None and picked[0] < cam.width and picked[1] < cam.height
+        pixel = picked if inside and not preview else None
+        rendered = replace(scene, camera=preview_camera(cam)) if preview else scene
 
         def run(cancelled, progress):
-            out = {}
-            for key, projection in (("orthographic", "orthographic"), ("perspective", "perspective")):
-                view = replace(scene, camera=cam.replace(projection=projection, ortho_height=ortho_height))
-                if preview:
-                    rgb, seconds = _raster_preview(view)
-                else:
-                    raster = render_raster(view, RasterSettings())
-                    rgb, seconds = raster.color, sum(raster.stats["times"].values())
-                out[key] = (display_image(rgb, note), seconds, "z-buffer")
-                progress(33 if key == "orthographic" else 66, None)
-                if cancelled.is_set():
-                    return None
-            traced = render_trace(replace(scene, camera=cam.replace(projection="perspective")),
-                                  TraceSettings(), step=PREVIEW_STEP if preview else 1)
-            rays = traced.stats["rays"]["total"]
-            out["traced"] = (display_image(traced.color, note), traced.stats["times"]["total"],
-                             f"ray tracing, {rays:,} rays,")
-            return out
+            first = render_output(rendered, a, settings)
+            progress(50, None)
+            if cancelled.is_set():
+                return None
+            second = first if b == a else render_output(rendered, b, settings)
+            diff = difference(first.color, second.color)
+            comparison = Comparison(first, second, diff, explain(first, second, diff))
+            images = {key: display_image(upscale(rgb, cam.width, cam.height) if preview else rgb,
+                                         PREVIEW if preview else "")
+                      for key, rgb in (("a", first.color), ("b", second.color), ("difference", diff.colored))}
+            return ComparisonImages(comparison, images, display_image(diff.colorbar()), preview, pixel,
+                                    None if pixel is None else comparison.pixel(*pixel))
 
         return run
 
-    def show(self, images) -> str:
-        for key, (image, seconds, method) in images.items():
-            self.widget.set_image(key, image, f"{method} {image.note + ' ' if image.note else ''}"
-                                              f"in {_ms(seconds)}")
-        if images["traced"][0].note == PREVIEW:
-            return "preview: the same scene and observer, three ways, a quarter of the pixels"
-        return "the same scene and observer, three ways"
+    def show(self, shown) -> str:
+        self._reader.cancel()  # a pixel read from the comparison this one replaces
+        self.widget.show_comparison(shown)
+        if not shown.preview and self.widget.picked not in (None, shown.pixel):
+            self._read_pixel(*self.widget.picked)  # picked while this comparison rendered
+        c = shown.comparison
+        if shown.preview:
+            return f"preview: {c.a.title} against {c.b.title}, a quarter of the pixels"
+        return (f"{c.a.title} against {c.b.title}: they differ visibly at "
+                f"{100 * c.difference.visible_fraction:.1f}% of the pixels, by at most "
+                f"{c.difference.scale:.3f} (linear RGB)")
+
+    def _read_pixel(self, x: int, y: int) -> None:
+        shown = self.widget.shown
+        if shown is None or shown.preview:
+            return  # read when the full comparison arrives
+        self._reader.submit(lambda cancelled, progress: ((x, y), shown.comparison.pixel(x, y)))
+
+    def shutdown(self) -> None:
+        """Stop reading a pixel (the window is closing)."""
+        self._reader.cancel()
 
 
 class HardCasesTab:

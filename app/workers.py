@@ -130,7 +130,7 @@ class RenderSchedule(QObject):
       full result is shown only for the scene it was rendered from.
 
     Tabs are those of :mod:`app.tabs` (``title``, ``job(scene, preview)``,
-    ``show(result)``, optional ``show_progress`` and ``warning``).
+    ``show(result)``, optional ``show_progress``, ``warning`` and ``changes``).
 
     Signals
     -------
@@ -175,6 +175,8 @@ class RenderSchedule(QObject):
         tab.renderer.finished.connect(lambda result, t=tab: self._finished(t, result))
         tab.renderer.failed.connect(lambda message, t=tab: self._failed(t, message))
         self._status[tab.title] = (0, f"{tab.title}: not rendered yet", "")
+        for signal in getattr(tab, "changes", ()):
+            signal.connect(lambda *_, t=tab: self.settings_changed(t))
 
     def status(self, tab) -> tuple[int, str, str]:
         """``tab``'s progress in percent, its progress-bar text (``%p%`` for the percent) and caption."""

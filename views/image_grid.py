@@ -1,8 +1,7 @@
 """Several images side by side, each with a title and a caption.
 
 Used for the lecture's four-view figure (front, side and top orthographic
-views next to the perspective view) and for comparing orthographic,
-perspective and ray-traced renders of the same scene.
+views next to the perspective view).
 """
 
 from __future__ import annotations
