@@ -35,9 +35,10 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from app.compare_pictures import comparison_pictures
 from app.workers import Renderer
 from core.camera import Camera
-from core.compare import Comparison, difference, explain, render_output
+from core.compare import compare
 from core.image_order.ray_tracing import TraceSettings, merge_band_stats, render_trace
 from core.object_order import three_views
 from core.object_order.pipeline import RasterSettings, render_raster
@@ -284,16 +285,18 @@ class CompareTab:
         rendered = replace(scene, camera=preview_camera(cam)) if preview else scene
 
         def run(cancelled, progress):
-            first = render_output(rendered, a, settings)
-            progress(50, None)
-            if cancelled.is_set():
+            def carry_on():  # output A is rendered
+                progress(50, None)
+                return not cancelled.is_set()
+
+            comparison = compare(rendered, a, b, settings, carry_on=carry_on)  # as `export --what compare`
+            if comparison is None:
                 return None
-            second = first if b == a else render_output(rendered, b, settings)
-            diff = difference(first.color, second.color)
-            comparison = Comparison(first, second, diff, explain(first, second, diff))
+            diff = comparison.difference
             images = {key: display_image(upscale(rgb, cam.width, cam.height) if preview else rgb,
                                          PREVIEW if preview else "")
-                      for key, rgb in (("a", first.color), ("b", second.color), ("difference", diff.colored))}
+                      for key, rgb in (("a", comparison.a.color), ("b", comparison.b.color),
+                                       ("difference", diff.colored))}
             return ComparisonImages(comparison, images, display_image(diff.colorbar()), preview, pixel,
                                     None if pixel is None else comparison.pixel(*pixel))
 
@@ -316,6 +319,10 @@ class CompareTab:
         if shown is None or shown.preview:
             return  # read when the full comparison arrives
         self._reader.submit(lambda cancelled, progress: ((x, y), shown.comparison.pixel(x, y)))
+
+    def pictures(self):
+        """File → Export: outputs A and B, the difference with its scale, the whole comparison."""
+        return comparison_pictures(self.title, self.widget.shown)
 
     def shutdown(self) -> None:
         """Stop reading a pixel (the window is closing)."""
