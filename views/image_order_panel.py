@@ -16,6 +16,7 @@ from PySide6.QtWidgets import (
     QComboBox,
     QDoubleSpinBox,
     QGridLayout,
+    QHBoxLayout,
     QLabel,
     QPlainTextEdit,
     QSpinBox,
@@ -30,6 +31,7 @@ from core.image_order.ray_tree import RayNode
 from core.scene import Scene
 from views.image_view import ImageView
 from views.raytree_view import KIND_COLORS, RayKindLegend, RayTreeWidget
+from views.side_column import SideColumn
 from views.worked_math import WorkedMath
 
 MODES = [("raytrace", "Ray tracing"), ("raycast", "Ray casting")]
@@ -88,24 +90,17 @@ class ImageOrderPanel(QWidget):
             box.setToolTip("Show in the 3D pane")
             box.toggled.connect(lambda on, name=name: model.set_overlay(name, on))
 
-        form = QGridLayout()
-        rows = [[("Method", self.mode), ("Acceleration", self.accel)],
-                [("Max depth", self.depth), ("Min weight", self.min_weight)],
-                [("Ray offset", self.offset), ("ε", self.epsilon)]]
-        for r, row in enumerate(rows):
-            for c, (label, widget) in enumerate(row):
-                form.addWidget(QLabel(label), r, 2 * c)
-                form.addWidget(widget, r, 2 * c + 1)
-        shows = QWidget()
-        sl = QGridLayout(shows)
-        sl.setContentsMargins(0, 0, 0, 0)
-        sl.addWidget(QLabel("Show in 3D:"), 0, 0)
+        form_box = QWidget()
+        form = QGridLayout(form_box)
+        form.setContentsMargins(0, 0, 0, 0)
+        rows = [("Method", self.mode), ("Acceleration", self.accel), ("Max depth", self.depth),
+                ("Min weight", self.min_weight), ("Ray offset", self.offset), ("ε", self.epsilon)]
+        for r, (label, widget) in enumerate(rows):
+            form.addWidget(QLabel(label), r, 0)
+            form.addWidget(widget, r, 1)
+        form.addWidget(QLabel("Show in 3D:"), len(rows), 0, 1, 2)
         for i, box in enumerate((self.show_spheres, self.show_grid, self.show_walk)):
-            sl.addWidget(box, i // 2, 1 + i % 2)
-        sl.setColumnStretch(3, 1)
-        form.addWidget(shows, len(rows), 0, 1, 4)
-        form.setColumnStretch(1, 1)
-        form.setColumnStretch(3, 1)
+            form.addWidget(box, len(rows) + 1 + i, 0, 1, 2)
 
         self.image = ImageView()
         self.rays = QLabel()
@@ -130,28 +125,36 @@ class ImageOrderPanel(QWidget):
         tl.setContentsMargins(0, 0, 0, 0)
         tl.addWidget(self.tree_caption)
         tl.addWidget(RayKindLegend())
-        tl.addWidget(self.tree, 2)
-        tl.addWidget(self.explanation, 1)
+        beside = QSplitter(Qt.Orientation.Horizontal)  # side by side: both get the page's height
+        beside.addWidget(self.tree)
+        beside.addWidget(self.explanation)
+        beside.setStretchFactor(0, 3)
+        beside.setStretchFactor(1, 2)
+        tl.addWidget(beside, 1)
         self.worked_math = WorkedMath()
         self.ray_kind: str | None = None  # the kind of ray to select in each new tree (a lesson's)
         self.details = QTabWidget()
         self.details.addTab(tree_page, "Ray tree")
         self.details.addTab(self.worked_math, "Worked math")
         self.details.addTab(self.plan, "Effects plan")
-        split = QSplitter(Qt.Orientation.Vertical)
+        # The image beside its settings, the picked pixel's details under both: the image
+        # keeps the pane's height, the tables get several rows.
         top = QWidget()
-        top_layout = QVBoxLayout(top)
+        top_layout = QHBoxLayout(top)
         top_layout.setContentsMargins(0, 0, 0, 0)
-        top_layout.addWidget(self.image, 1)
-        top_layout.addWidget(self.rays)
+        image_column = QVBoxLayout()
+        image_column.addWidget(self.image, 1)
+        image_column.addWidget(self.rays)
+        top_layout.addLayout(image_column, 1)
+        top_layout.addWidget(SideColumn([form_box]))
+        split = QSplitter(Qt.Orientation.Vertical)
         split.addWidget(top)
         split.addWidget(self.details)
         split.setStretchFactor(0, 3)
         split.setStretchFactor(1, 2)
-        split.setSizes([420, 260])
+        split.setSizes([600, 400])
         layout = QVBoxLayout(self)
         layout.setContentsMargins(6, 6, 6, 6)
-        layout.addLayout(form)
         layout.addWidget(split, 1)
 
         for w in (self.mode, self.accel, self.offset):

@@ -16,7 +16,6 @@ from PySide6.QtGui import QColor, QFont
 from PySide6.QtWidgets import (
     QCheckBox,
     QComboBox,
-    QGridLayout,
     QGroupBox,
     QHBoxLayout,
     QLabel,
@@ -37,6 +36,7 @@ from core.scene import Scene
 from core.srgb import linear_to_srgb
 from views.depth_view import DepthView
 from views.image_view import ImageView
+from views.side_column import SideColumn
 from views.step_scrubber import StepScrubber
 from views.worked_math import WorkedMath
 
@@ -110,27 +110,26 @@ class ObjectOrderPanel(QWidget):
         self.result: RasterResult | None = None
         self.scene: Scene | None = None
         self.switches: dict[str, QCheckBox] = {}
-        switches = QGridLayout()
-        switches.addWidget(QLabel("<b>Stages</b>"), 0, 0, 3, 1)
-        for i, (key, text, tip) in enumerate(STAGES):
+        stages = QWidget()
+        switches = QVBoxLayout(stages)
+        switches.setContentsMargins(0, 0, 0, 0)
+        switches.addWidget(QLabel("<b>Stages</b>"))
+        for key, text, tip in STAGES:
             box = QCheckBox(text)
             box.setChecked(True)
             box.setToolTip(tip)
             box.toggled.connect(self._settings_edited)
-            switches.addWidget(box, i // 2, 1 + i % 2)
+            switches.addWidget(box)
             self.switches[key] = box
         self.depth_format = QComboBox()
         for name in DEPTH_FORMATS:
             self.depth_format.addItem(f"{name} ({BYTES_PER_PIXEL[name]} bytes)", name)
         self.depth_format.setToolTip(DEPTH_FORMAT_TIP)
         self.depth_format.currentIndexChanged.connect(self._settings_edited)
-        depth_row = QHBoxLayout()
         depth_label = QLabel("z-buffer format")
         depth_label.setToolTip(DEPTH_FORMAT_TIP)
-        depth_row.addWidget(depth_label)
-        depth_row.addWidget(self.depth_format)
-        switches.addLayout(depth_row, len(STAGES) // 2, 2)
-        switches.setColumnStretch(3, 1)
+        switches.addWidget(depth_label)
+        switches.addWidget(self.depth_format)
 
         self.scrubber = StepScrubber()
         self.image = ImageView(placeholder="image memory")
@@ -140,7 +139,6 @@ class ObjectOrderPanel(QWidget):
             box = QGroupBox(title)
             QVBoxLayout(box).addWidget(widget)
             buffers.addWidget(box)
-        buffers.setMinimumHeight(200)
         self.step_caption = QLabel()
         self.step_caption.setWordWrap(True)
 
@@ -165,20 +163,25 @@ class ObjectOrderPanel(QWidget):
                                "nearest to it is followed from world space to the pixel.")
         self.details.addTab(self.vertex_math, "Vertex path")
 
+        # The buffers beside the stage switches, the pixel's details under both: the buffers
+        # keep the pane's height, the history table gets several rows.
         split = QSplitter(Qt.Orientation.Vertical)
         top = QWidget()
         tl = QVBoxLayout(top)
         tl.setContentsMargins(0, 0, 0, 0)
-        tl.addWidget(buffers, 1)
+        beside = QHBoxLayout()
+        beside.addWidget(buffers, 1)
+        beside.addWidget(SideColumn([stages]))
+        tl.addLayout(beside, 1)
         tl.addWidget(self.scrubber)
         tl.addWidget(self.step_caption)
         split.addWidget(top)
         split.addWidget(self.details)
         split.setStretchFactor(0, 3)
-        split.setStretchFactor(1, 1)
+        split.setStretchFactor(1, 2)
+        split.setSizes([600, 400])
         layout = QVBoxLayout(self)
         layout.setContentsMargins(6, 6, 6, 6)
-        layout.addLayout(switches)
         layout.addWidget(split, 1)
 
         self.scrubber.step_changed.connect(self._step_edited)
