@@ -36,13 +36,14 @@ from app.lesson_runner import LESSON_OVERLAY, LessonRunner
 from app.mesh_files import read_mesh
 from app.state import SceneModel
 from app.tabs import TABS
-from app.window_layout import fit_window
+from app.window_layout import LEFT_SHARE, fit_window
 from app.workers import Renderer, RenderSchedule
 from core import presets, scene_file
 from core.image_order.ray_tree import trace_pixel
 from core.presets_trace import PRESETS_TRACE
 from core.scene import Scene
 from views.camera_panel import CameraPanel
+from views.elided_label import ElidedLabel
 from views.lesson_panel import LessonPanel
 from views.observer_keys import MOUSE_GESTURES, OBSERVER_KEYS, EditorsKeepTheirKeys
 from views.presentation import Presentation
@@ -100,13 +101,12 @@ class MainWindow(QMainWindow):
         scene_pane = QWidget()
         scene_layout = QVBoxLayout(scene_pane)
         scene_layout.setContentsMargins(2, 2, 2, 2)
-        scene_hint = QLabel("Drag the camera or the orange target to move them")
-        scene_hint.setWordWrap(True)
+        scene_hint = ElidedLabel("Drag the camera or the orange target to move them; "
+                                 "drag elsewhere to turn the view")
         scene_layout.addWidget(self.scene_view, 1)
         scene_layout.addWidget(scene_hint)
         # Above the controls and lessons, beside the tabs: the tabs' images get the window's width.
-        self.scene_pane = QDockWidget("The scene: observer, frustum, screen",
-                                      self)
+        self.scene_pane = QDockWidget("The scene: observer, frustum, screen", self)
         self.scene_pane.setObjectName("scene")
         self.scene_pane.setFeatures(QDockWidget.DockWidgetFeature.DockWidgetMovable)
         self.scene_pane.setWidget(scene_pane)
@@ -118,7 +118,6 @@ class MainWindow(QMainWindow):
         dock.setTitleBarWidget(QWidget())  # the group boxes carry the titles
         self._controls = QScrollArea()
         self._controls.setWidgetResizable(True)
-        self._controls.setHorizontalScrollBarPolicy(Qt.ScrollBarPolicy.ScrollBarAlwaysOff)
         self._controls.setWidget(self.camera_panel)
         dock.setWidget(self._controls)
         self._fit_controls()
@@ -227,7 +226,11 @@ class MainWindow(QMainWindow):
 
     def _refit(self) -> None:
         """Share the room again once the new text size or screen reached every widget."""
-        QTimer.singleShot(0, lambda: fit_window(self, self.presentation.scale()))
+        QTimer.singleShot(0, self._fit)
+
+    def _fit(self) -> None:
+        self._fit_controls()
+        fit_window(self, self.presentation.scale())
 
     def resizeEvent(self, event):
         super().resizeEvent(event)
@@ -325,10 +328,11 @@ class MainWindow(QMainWindow):
         QTimer.singleShot(0, self._fit_controls)  # after the new font reached every widget
 
     def _fit_controls(self) -> None:
-        """Keep the whole control panel visible at any text size."""
+        """Keep the whole control panel visible at any text size (scrolling sideways on a small screen)."""
         self.camera_panel.adjustSize()
         scrollbar = self._controls.verticalScrollBar().sizeHint().width()
-        self._controls.setMinimumWidth(self.camera_panel.sizeHint().width() + scrollbar + 4)
+        most = round(self.screen().availableGeometry().width() * LEFT_SHARE[max(LEFT_SHARE)])
+        self._controls.setMinimumWidth(min(most, self.camera_panel.minimumSizeHint().width() + scrollbar + 4))
 
     # ------------------------------------------------------------- files
     def open_scene_dialog(self) -> None:

@@ -111,6 +111,7 @@ class CameraPanel(QWidget):
 
         observer = QGroupBox("Observer")
         form = QFormLayout(observer)
+        form.setRowWrapPolicy(QFormLayout.RowWrapPolicy.WrapLongRows)  # narrow at large text: label above
         eye_row = QHBoxLayout()
         for box in self.eye:
             eye_row.addWidget(box)
@@ -120,6 +121,7 @@ class CameraPanel(QWidget):
         form.addRow("Distance", self.distance)
         lens = QGroupBox("Lens and frustum")
         form2 = QFormLayout(lens)
+        form2.setRowWrapPolicy(QFormLayout.RowWrapPolicy.WrapLongRows)
         form2.addRow("Viewing angle α", self.fov)
         form2.addRow("Near plane", self.near)
         form2.addRow("Far plane", self.far)

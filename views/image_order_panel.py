@@ -15,7 +15,7 @@ from PySide6.QtWidgets import (
     QCheckBox,
     QComboBox,
     QDoubleSpinBox,
-    QGridLayout,
+    QFormLayout,
     QHBoxLayout,
     QLabel,
     QPlainTextEdit,
@@ -83,28 +83,29 @@ class ImageOrderPanel(QWidget):
         self.epsilon.setToolTip("The fixed offset ε (used with 'Fixed ε')")
         self.show_spheres = QCheckBox("bounding spheres")
         self.show_grid = QCheckBox("grid cells")
-        self.show_walk = QCheckBox("cells the picked ray walks")
+        self.show_walk = QCheckBox("cells the ray walks")
         self._overlay_boxes = {"spheres": self.show_spheres, "grid": self.show_grid,
                                "walk": self.show_walk}
         for name, box in self._overlay_boxes.items():
             box.setToolTip("Show in the 3D pane")
             box.toggled.connect(lambda on, name=name: model.set_overlay(name, on))
+        self.show_walk.setToolTip("Show in the 3D pane the grid cells the picked pixel's primary ray "
+                                  "passes through")
 
         form_box = QWidget()
-        form = QGridLayout(form_box)
+        form = QFormLayout(form_box)
         form.setContentsMargins(0, 0, 0, 0)
-        rows = [("Method", self.mode), ("Acceleration", self.accel), ("Max depth", self.depth),
-                ("Min weight", self.min_weight), ("Ray offset", self.offset), ("ε", self.epsilon)]
-        for r, (label, widget) in enumerate(rows):
-            form.addWidget(QLabel(label), r, 0)
-            form.addWidget(widget, r, 1)
-        form.addWidget(QLabel("Show in 3D:"), len(rows), 0, 1, 2)
-        for i, box in enumerate((self.show_spheres, self.show_grid, self.show_walk)):
-            form.addWidget(box, len(rows) + 1 + i, 0, 1, 2)
+        form.setRowWrapPolicy(QFormLayout.RowWrapPolicy.WrapLongRows)  # narrow: labels above the fields
+        for label, widget in [("Method", self.mode), ("Acceleration", self.accel), ("Max depth", self.depth),
+                              ("Min weight", self.min_weight), ("Ray offset", self.offset),
+                              ("ε", self.epsilon)]:
+            form.addRow(label, widget)
+        form.addRow(QLabel("Show in 3D:"))
+        for box in (self.show_spheres, self.show_grid, self.show_walk):
+            form.addRow(box)
 
         self.image = ImageView()
         self.rays = QLabel()
-        self.rays.setWordWrap(True)
         self.rays.setTextFormat(Qt.TextFormat.RichText)
         self.plan = QLabel()
         self.plan.setWordWrap(True)
@@ -124,7 +125,6 @@ class ImageOrderPanel(QWidget):
         tl = QVBoxLayout(tree_page)
         tl.setContentsMargins(0, 0, 0, 0)
         tl.addWidget(self.tree_caption)
-        tl.addWidget(RayKindLegend())
         beside = QSplitter(Qt.Orientation.Horizontal)  # side by side: both get the page's height
         beside.addWidget(self.tree)
         beside.addWidget(self.explanation)
@@ -142,11 +142,9 @@ class ImageOrderPanel(QWidget):
         top = QWidget()
         top_layout = QHBoxLayout(top)
         top_layout.setContentsMargins(0, 0, 0, 0)
-        image_column = QVBoxLayout()
-        image_column.addWidget(self.image, 1)
-        image_column.addWidget(self.rays)
-        top_layout.addLayout(image_column, 1)
-        top_layout.addWidget(SideColumn([form_box]))
+        top_layout.addWidget(self.image, 1)
+        top_layout.addWidget(SideColumn([form_box, self.rays, QLabel("<b>Ray colours</b>"),
+                                         RayKindLegend(per_line=1)]))
         split = QSplitter(Qt.Orientation.Vertical)
         split.addWidget(top)
         split.addWidget(self.details)
@@ -209,15 +207,15 @@ class ImageOrderPanel(QWidget):
     def show_stats(self, stats: dict) -> None:
         """The effects plan and the rays actually traced, by kind."""
         rays = stats["rays"]
-        chips = " ".join(
+        chips = "<br>".join(
             f'<span style="background:{KIND_COLORS[k]}; color:black">&nbsp;{k} {rays[k]:,}&nbsp;</span>'
             for k in KIND_COLORS)
         accel = stats["accel"]
         reasons = "<br>".join(f"• {r}" for r in stats["plan"]["reasons"])
         self.rays.setText(
-            f"<b>Rays traced:</b> {chips} &nbsp; "
-            f"{accel['tests_per_ray']:.1f} intersection tests per ray"
-            + (f", {accel['cells_per_ray']:.1f} grid cells" if accel["cells_per_ray"] else ""))
+            f"<b>Rays traced</b><br>{chips}<br>"
+            f"{accel['tests_per_ray']:.1f} tests a ray"
+            + (f"<br>{accel['cells_per_ray']:.1f} grid cells a ray" if accel["cells_per_ray"] else ""))
         self.plan.setText(f"<b>What this scene calls for</b> — only these effects are simulated:"
                           f"<br>{reasons}")
 

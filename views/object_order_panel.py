@@ -18,6 +18,7 @@ from PySide6.QtWidgets import (
     QComboBox,
     QGroupBox,
     QHBoxLayout,
+    QHeaderView,
     QLabel,
     QPlainTextEdit,
     QSplitter,
@@ -145,6 +146,10 @@ class ObjectOrderPanel(QWidget):
         self.history = QTableWidget(0, len(HISTORY_COLUMNS))
         self.history.setHorizontalHeaderLabels(HISTORY_COLUMNS)
         self.history.verticalHeader().setVisible(False)
+        # Columns as wide as their header or their widest entry, rows as tall as the text,
+        # at every text scale (presentation mode enlarges both).
+        self.history.horizontalHeader().setSectionResizeMode(QHeaderView.ResizeMode.ResizeToContents)
+        self.history.verticalHeader().setSectionResizeMode(QHeaderView.ResizeMode.ResizeToContents)
         self.history.setEditTriggers(QTableWidget.EditTrigger.NoEditTriggers)
         self.history_caption = QLabel("Click a pixel in either buffer to see its history.")
         self.history_caption.setWordWrap(True)
@@ -311,7 +316,6 @@ class ObjectOrderPanel(QWidget):
                                       f"{e.blend.alpha:.2f}: c0 = αs·cs + (1 − αs)·cd")]
             for col, cell in enumerate(cells):
                 self.history.setItem(row, col, cell)
-        self.history.resizeColumnsToContents()
         self.history_caption.setText(
             f"Pixel ({x}, {y}): {len(events)} fragments up to step {self.scrubber.step}. "
             "Depths are distances along the viewing axis; a fragment passes when it is nearer "

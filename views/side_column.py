@@ -13,10 +13,15 @@ from PySide6.QtWidgets import QFrame, QScrollArea, QSizePolicy, QVBoxLayout, QWi
 
 
 class SideColumn(QScrollArea):
-    """Widgets stacked top to bottom in a scroll area exactly as wide as the widest of them."""
+    """Widgets stacked top to bottom in a scroll area as wide as they ask to be.
 
-    def __init__(self, widgets=(), parent: QWidget | None = None):
+    The column takes at most ``share`` of its parent's width, unless its
+    widgets cannot be narrower (a form then puts its labels above the fields).
+    """
+
+    def __init__(self, widgets=(), share: float = 0.3, parent: QWidget | None = None):
         super().__init__(parent)
+        self.share = share
         self.inner = QWidget()
         self.column = QVBoxLayout(self.inner)
         self.column.setContentsMargins(0, 0, 4, 0)
@@ -32,12 +37,22 @@ class SideColumn(QScrollArea):
         self._fit()
 
     def _fit(self) -> None:
-        scrollbar = self.verticalScrollBar().sizeHint().width()
-        self.setFixedWidth(self.inner.sizeHint().width() + scrollbar)
+        wanted, least = self.inner.sizeHint().width(), self.inner.minimumSizeHint().width()
+        if self.parentWidget() is not None:
+            wanted = min(wanted, max(least, round(self.share * self.parentWidget().width())))
+        width = wanted + self.verticalScrollBar().sizeHint().width()
+        if width != self.width() or self.minimumWidth() != width:
+            self.setFixedWidth(width)
 
     def eventFilter(self, watched, event) -> bool:
-        # A new font (text scale) or new contents change the width the column needs.
-        if watched is self.inner and event.type() in (QEvent.Type.LayoutRequest, QEvent.Type.FontChange,
-                                                      QEvent.Type.StyleChange):
+        # A new font (text scale), new contents or a new pane width change the width to take.
+        if (watched is self.inner and event.type() in (QEvent.Type.LayoutRequest, QEvent.Type.FontChange,
+                                                       QEvent.Type.StyleChange)
+                or watched is self.parentWidget() and event.type() == QEvent.Type.Resize):
             self._fit()
         return False
+
+    def event(self, event) -> bool:
+        if event.type() == QEvent.Type.ParentChange and self.parentWidget() is not None:
+            self.parentWidget().installEventFilter(self)  # its width sets the column's share
+        return super().event(event)

@@ -1,0 +1,41 @@
+"""The window shares its screen so that the images are the largest thing on it, at every text scale."""
+
+import pytest
+from PySide6.QtCore import QRect
+from PySide6.QtGui import QScreen
+from window_helpers import open_window
+
+from views.presentation import SCALES
+
+SCREENS = [(1280, 720), (1920, 1080)]
+ROWS = 3
+"""A table shows at least this many rows."""
+
+
+def _rows_shown(view) -> float:
+    return view.viewport().height() / view.fontMetrics().height()
+
+
+@pytest.mark.parametrize("screen", SCREENS, ids=lambda s: f"{s[0]}x{s[1]}")
+def test_the_traced_image_outsizes_the_3d_pane_and_the_window_fits_its_screen(qtbot, monkeypatch, screen):
+    # A laptop's screen on this display: the window takes what the screen makes available.
+    monkeypatch.setattr(QScreen, "availableGeometry", lambda self: QRect(0, 0, *screen))
+    window = open_window(qtbot)
+    image_order = window.tab("image order").widget
+    for scale in SCALES:
+        window.presentation.set_scale(scale)
+        window.setGeometry(window.screen().availableGeometry())
+
+        def laid_out():
+            hint = window.minimumSizeHint()
+            assert hint.width() <= screen[0] and hint.height() <= screen[1], (scale, hint)
+            assert window.width() <= screen[0] and window.height() <= screen[1], (scale, window.size())
+            shown = image_order.image.image_rect()
+            pane = window.scene_view.size()
+            assert shown.width() * shown.height() > pane.width() * pane.height(), (scale, shown, pane)
+            assert _rows_shown(image_order.tree) >= ROWS, scale
+
+        qtbot.waitUntil(laid_out, timeout=5000)
+    window.show_tab("object order")
+    history = window.tab("object order").widget.history
+    qtbot.waitUntil(lambda: _rows_shown(history) >= ROWS, timeout=5000)
