@@ -47,7 +47,7 @@ from views.elided_label import ElidedLabel
 from views.lesson_panel import LessonPanel
 from views.observer_keys import MOUSE_GESTURES, OBSERVER_KEYS, EditorsKeepTheirKeys
 from views.presentation import Presentation
-from views.scene_overlays import SceneOverlays
+from views.scene_overlays import SCENE_OVERLAYS, SceneOverlays
 from views.scene_view import SceneView
 
 
@@ -222,6 +222,7 @@ class MainWindow(QMainWindow):
     def _scale_changed(self, scale: float) -> None:
         self.tab("image order").widget.worked_math.set_scale(scale)
         self.tab("object order").widget.vertex_math.set_scale(scale)
+        self.scene_view.set_line_scale(scale)
         self._refit()
 
     def _refit(self) -> None:
@@ -385,7 +386,7 @@ class MainWindow(QMainWindow):
 
     def _tab_shown(self, *_) -> None:
         tab = self.current
-        self.scene_view.show_overlays_only((*tab.overlays, LESSON_OVERLAY))
+        self.scene_view.show_overlays_only((*tab.overlays, *SCENE_OVERLAYS, LESSON_OVERLAY))
         self.renders.show_tab(tab)
         self._show_status(tab)
 

@@ -26,7 +26,7 @@ def test_the_traced_image_outsizes_the_3d_pane_and_the_window_fits_its_screen(qt
         window.presentation.set_scale(scale)
         window.setGeometry(window.screen().availableGeometry())
 
-        def laid_out():
+        def laid_out(scale=scale):
             hint = window.minimumSizeHint()
             assert hint.width() <= screen[0] and hint.height() <= screen[1], (scale, hint)
             assert window.width() <= screen[0] and window.height() <= screen[1], (scale, window.size())
