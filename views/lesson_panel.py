@@ -130,7 +130,8 @@ class LessonPanel(QWidget):
         self.scroll = QScrollArea()  # long text at a large scale scrolls; the controls stay in view
         self.scroll.setWidgetResizable(True)
         self.scroll.setFrameShape(QFrame.Shape.NoFrame)
-        self.scroll.setHorizontalScrollBarPolicy(Qt.ScrollBarPolicy.ScrollBarAlwaysOff)
+        # A formula too long for the panel breaks into lines; one line still too long scrolls sideways.
+        self.scroll.setHorizontalScrollBarPolicy(Qt.ScrollBarPolicy.ScrollBarAsNeeded)
         self.scroll.setWidget(words)
         step = QWidget()
         step_layout = QVBoxLayout(step)

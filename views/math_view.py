@@ -56,14 +56,58 @@ def _typeset(text: str, size_pt: float, color: str, dpi: float) -> np.ndarray:
     return rgba
 
 
+MIN_SHRINK = 0.75
+"""A formula is never drawn smaller than this share of its size: beyond that it breaks into lines
+(at its wide spaces) and, if a line is still too wide, its pane scrolls sideways."""
+BREAKS = (r"\qquad", r"\quad", r"\ \ ")
+"""The wide spaces of mathtext a formula may be broken at: between its parts, never inside one."""
+
+
+def split_formula(text: str) -> list[str]:
+    r"""``text`` broken at its top-level wide spaces (:data:`BREAKS`), each piece valid on its own.
+
+    Only spaces inside math (between ``$`` signs) and outside any braces
+    break; the pieces keep their ``$`` signs.
+
+    >>> split_formula(r"$a = 1,\quad b = \frac{2}{3}$")
+    ['$a = 1,$', '$b = \\frac{2}{3}$']
+    """
+    pieces, start, depth, math, i = [], 0, 0, False, 0
+    opened = False  # the piece being collected starts inside math
+    while i < len(text):
+        if text.startswith("\\$", i):
+            i += 2
+            continue
+        if text[i] == "$":
+            math = not math
+        elif text[i] == "{":
+            depth += 1
+        elif text[i] == "}":
+            depth -= 1
+        elif math and depth == 0:
+            brk = next((b for b in BREAKS if text.startswith(b, i)
+                        and not (b[-1].isalpha() and text[i + len(b):i + len(b) + 1].isalpha())), None)
+            if brk is not None:
+                pieces.append(("$" if opened else "") + text[start:i].strip() + "$")
+                i += len(brk)
+                start, opened = i, True
+                continue
+        i += 1
+    pieces.append(("$" if opened else "") + text[start:].strip())
+    return [p for p in pieces if p.strip("$ ")] or [text]
+
+
 class MathView(QLabel):
     """A label showing one mathtext formula, typeset.
 
     The formula is drawn at ``font size x scale`` points in the label's text
-    colour unless :meth:`set_color` gave another, and smaller when the label
-    is given less width than that, so a long formula never widens the window.
-    An invalid formula is shown as its plain text, with the parser's complaint
-    in the tooltip.
+    colour unless :meth:`set_color` gave another.  Given less width than
+    that, a formula with wide spaces between its parts (``\\quad``) breaks
+    there into lines, the later ones indented; one that still does not fit is
+    drawn smaller, down to :data:`MIN_SHRINK` of its size, so that it stays
+    readable from the back of a room (a scroll area around it then scrolls
+    sideways).  An invalid formula is shown as its plain text, with the
+    parser's complaint in the tooltip.
     """
 
     def __init__(self, formula: str = "", parent: QWidget | None = None, *, size_pt: float | None = None):
@@ -73,8 +117,11 @@ class MathView(QLabel):
         self._scale = 1.0
         self._color: QColor | None = None
         self._natural: QSize | None = None
+        self._pieces: list[str] = [formula]
         self.error: str | None = None
-        self.setSizePolicy(QSizePolicy.Policy.Preferred, QSizePolicy.Policy.Fixed)
+        policy = QSizePolicy(QSizePolicy.Policy.Preferred, QSizePolicy.Policy.Fixed)
+        policy.setHeightForWidth(True)  # broken into lines, the formula grows taller
+        self.setSizePolicy(policy)
         self._render()
 
     def formula(self) -> str:
@@ -96,9 +143,13 @@ class MathView(QLabel):
         self._render()
 
     def size_pt(self) -> float:
-        """The font size the formula is drawn at, in points (scale included)."""
+        """The font size the formula is drawn at when it fits, in points (scale included)."""
         base = self._size_pt or QFont(self.font()).pointSizeF() or 10.0
         return base * 1.15 * self._scale
+
+    def shown_lines(self) -> tuple[list[str], float]:
+        """The lines the formula is drawn in at the label's width, and their size in points."""
+        return self._layout(self.width())
 
     def changeEvent(self, event) -> None:  # a new font or palette (theme, scale) re-renders
         super().changeEvent(event)
@@ -106,16 +157,29 @@ class MathView(QLabel):
             self._render()
 
     def sizeHint(self) -> QSize:
-        """The formula's full size (a narrower label shrinks it to fit)."""
+        """The formula's full size on one line (a narrower label breaks or shrinks it)."""
         return self._natural if self._natural is not None else super().sizeHint()
 
     def minimumSizeHint(self) -> QSize:
-        hint = self.sizeHint()
-        return QSize(min(hint.width(), 40), hint.height() // 2)
+        if self._natural is None:
+            return super().minimumSizeHint()
+        least = self.size_pt() * MIN_SHRINK
+        widest = max(self._width(piece, least) + (k > 0) * self._indent(least)
+                     for k, piece in enumerate(self._pieces))
+        return QSize(int(widest + 0.999), self._natural.height())
+
+    def hasHeightForWidth(self) -> bool:
+        return self._natural is not None
+
+    def heightForWidth(self, width: int) -> int:
+        if self._natural is None:
+            return super().heightForWidth(width)
+        lines, size = self._layout(width)
+        return int(sum(self._image_of(line, size).height() for line in lines) / self._ratio() + 0.999)
 
     def resizeEvent(self, event) -> None:
         super().resizeEvent(event)
-        self._show(fit=True)
+        self._show()
 
     def _render(self) -> None:
         self.error = None
@@ -124,7 +188,7 @@ class MathView(QLabel):
             self.clear()
             return
         try:
-            image = self._image(self.size_pt())
+            image = self._image_of(self._formula, self.size_pt())
         except ValueError as exc:
             self.error = str(exc).strip().splitlines()[-1] if str(exc).strip() else "invalid mathtext"
             self.setToolTip(f"cannot typeset: {self.error}")
@@ -132,30 +196,66 @@ class MathView(QLabel):
             return
         ratio = self._ratio()
         self._natural = QSize(int(image.width() / ratio + 0.999), int(image.height() / ratio + 0.999))
+        try:
+            self._pieces = split_formula(self._formula)
+            for piece in self._pieces:
+                self._image_of(piece, self.size_pt())
+        except ValueError:  # a piece that is not mathtext on its own: the formula stays whole
+            self._pieces = [self._formula]
         self.setToolTip("")
         self.updateGeometry()
-        self._show(fit=False, image=image)
+        self._show()
 
     def _ratio(self) -> float:
         return max(1.0, self.devicePixelRatioF())
 
-    def _image(self, size_pt: float) -> QImage:
+    def _image_of(self, text: str, size_pt: float) -> QImage:
         color = self._color or self.palette().color(self.foregroundRole())
-        return render_mathtext(self._formula, size_pt, color.name(), 96.0 * self._ratio())
+        return render_mathtext(text, size_pt, color.name(), 96.0 * self._ratio())
 
-    def _show(self, fit: bool, image: QImage | None = None) -> None:
-        """Show the formula at full size, or smaller when the label is narrower than that."""
+    def _width(self, text: str, size_pt: float) -> float:
+        return self._image_of(text, size_pt).width() / self._ratio()
+
+    def _indent(self, size_pt: float) -> float:
+        """How far lines after the first are indented (two ems), in pixels."""
+        return 2.0 * size_pt * 96.0 / 72.0
+
+    def _layout(self, width: int) -> tuple[list[str], float]:
+        """The lines and their size for a label ``width`` pixels wide."""
+        size = self.size_pt()
+        full = self._natural.width()
+        if width <= 0 or full <= width:
+            return [self._formula], size
+        if len(self._pieces) > 1:
+            widest = max(self._width(p, size) + (k > 0) * self._indent(size)
+                         for k, p in enumerate(self._pieces))
+            return list(self._pieces), max(size * MIN_SHRINK, min(size, size * width / widest * 0.98))
+        return [self._formula], max(size * MIN_SHRINK, size * width / full * 0.98)
+
+    def _show(self) -> None:
+        """Draw the formula in the lines :meth:`_layout` chose for the label's width."""
         if self._natural is None:
             return
-        size = self.size_pt()
-        if fit and 0 < self.width() < self._natural.width():
-            size = max(1.0, size * self.width() / self._natural.width() * 0.98)
-            image = self._image(size)
-        elif image is None:
-            image = self._image(size)
+        lines, size = self._layout(self.width())
+        images = [self._image_of(line, size) for line in lines]
+        if len(images) == 1:
+            image = images[0]
+        else:
+            indent = int(self._indent(size) * self._ratio())
+            image = QImage(max(im.width() + (k > 0) * indent for k, im in enumerate(images)),
+                           sum(im.height() for im in images), QImage.Format.Format_ARGB32_Premultiplied)
+            image.fill(Qt.GlobalColor.transparent)
+            painter = QPainter(image)
+            y = 0
+            for k, im in enumerate(images):
+                painter.drawImage(indent if k else 0, y, im)
+                y += im.height()
+            painter.end()
         pixmap = QPixmap.fromImage(image)
         pixmap.setDevicePixelRatio(self._ratio())
         self.setPixmap(pixmap)
+        if len(images) > 1 and self.height() * self._ratio() < image.height():
+            self.updateGeometry()  # taller now: ask the layout for the room
 
 
 def _number(x: float) -> str:
