@@ -16,7 +16,7 @@ from PySide6.QtCore import Qt
 
 LEFT_SHARE = {1.0: 0.28, 1.5: 0.31, 2.0: 0.34}
 """Share of the window's width for the left column (3D pane, controls, lessons), by text scale."""
-SCENE_SHARE = 0.45
+SCENE_SHARE = 0.42
 """Share of the left column's height for the 3D pane (the rest: controls and lessons)."""
 
 

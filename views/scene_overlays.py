@@ -65,7 +65,7 @@ def polygon_parts(vertices) -> list[tuple[pv.PolyData, dict]]:
     if vertices is None:
         return []
     poly = vtk_convert.polygon_polydata(vertices)
-    return [(poly, {"color": "#ff2bd6", "opacity": 0.8}),
+    return [(poly, {"color": "#ff2bd6", "opacity": 0.35}),  # the scene stays visible through it
             (poly.extract_all_edges(), {"color": "#ff2bd6", "line_width": 4})]
 
 
@@ -81,7 +81,7 @@ def frustum_parts(camera) -> list[tuple[pv.PolyData, dict]]:
     near, far = corners[:4], corners[4:]
     edges = pv.PolyData(corners, lines=np.hstack([[2, a, b] for a, b in (
         (0, 1), (1, 2), (2, 3), (3, 0), (4, 5), (5, 6), (6, 7), (7, 4), (0, 4), (1, 5), (2, 6), (3, 7))]))
-    labels = pv.PolyData(np.array([near[2], far[2]], float))  # their top right corners
+    labels = pv.PolyData(np.array([(near[2] + near[3]) / 2, (far[2] + far[3]) / 2], float))  # top edges
     labels.point_data["labels"] = np.array([f"near plane (the screen), n = {camera.near:g}",
                                             f"far plane, f = {camera.far:g}"])
     return [(pv.PolyData(far.copy(), np.array([4, 0, 1, 2, 3])), {"color": FRUSTUM_COLOR, "opacity": 0.3}),

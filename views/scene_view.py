@@ -261,6 +261,8 @@ class SceneView(QWidget):
             text.SetColor(pv.Color(style.get("color", "white")).float_rgb)
             text.SetBold(True)
             text.SetShadow(True)
+            text.SetJustificationToCentered()  # centred above the point: a label at a pane's edge shows
+            text.SetVerticalJustificationToBottom()
             actor = vtkActor2D()
             actor.SetMapper(mapper)
             self.plotter.add_actor(actor, name=name, render=False)
