@@ -2,10 +2,11 @@
 
 import pytest
 from PySide6.QtCore import QRect
-from PySide6.QtGui import QScreen
-from window_helpers import open_window
+from PySide6.QtGui import QFont, QFontMetrics, QScreen
+from window_helpers import RENDER_TIMEOUT_MS, open_window
 
 from views.presentation import SCALES
+from views.raytree_view import COLUMNS as RAY_TREE_COLUMNS
 
 SCREENS = [(1280, 720), (1920, 1080)]
 ROWS = 3
@@ -39,3 +40,23 @@ def test_the_traced_image_outsizes_the_3d_pane_and_the_window_fits_its_screen(qt
     window.show_tab("object order")
     history = window.tab("object order").widget.history
     qtbot.waitUntil(lambda: _rows_shown(history) >= ROWS, timeout=5000)
+
+
+def test_table_headers_and_rows_grow_with_the_text_scale(qtbot, window):
+    window.show_tab("object order")
+    qtbot.waitUntil(lambda: window.showing_full("object order"), timeout=RENDER_TIMEOUT_MS)
+    panel = window.tab("object order").widget
+    cam = window.model.camera
+    panel.pick_pixel(cam.width // 2, cam.height // 2)  # listed at the normal size, then enlarged
+    window.presentation.set_scale(2.0)
+    tables = [(panel.history.horizontalHeader(), [panel.history.horizontalHeaderItem(c).text()
+                                                  for c in range(panel.history.columnCount())]),
+              (window.tab("image order").widget.tree.header(), RAY_TREE_COLUMNS)]
+    for header, labels in tables:
+        metrics = header.fontMetrics()
+        assert metrics.height() >= 2 * 0.9 * QFontMetrics(QFont()).height()  # the header's text is scaled
+        assert header.height() >= metrics.height()
+        for column, label in enumerate(labels):
+            assert header.sectionSize(column) >= metrics.horizontalAdvance(label), label
+    assert panel.history.rowCount() > 0
+    assert panel.history.rowHeight(0) >= panel.history.fontMetrics().height()
