@@ -220,8 +220,7 @@ class MainWindow(QMainWindow):
         self._refit()
 
     def _scale_changed(self, scale: float) -> None:
-        self.tab("image order").widget.worked_math.set_scale(scale)
-        self.tab("object order").widget.vertex_math.set_scale(scale)
+        # The formulas follow the window's font, which the scale enlarged already; the 3D pane does not.
         self.scene_view.set_line_scale(scale)
         self._refit()
 

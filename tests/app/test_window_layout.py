@@ -5,6 +5,7 @@ from PySide6.QtCore import QRect
 from PySide6.QtGui import QFont, QFontMetrics, QScreen
 from window_helpers import RENDER_TIMEOUT_MS, open_window
 
+from views.math_view import MathView
 from views.presentation import SCALES
 from views.raytree_view import COLUMNS as RAY_TREE_COLUMNS
 
@@ -60,3 +61,15 @@ def test_table_headers_and_rows_grow_with_the_text_scale(qtbot, window):
             assert header.sectionSize(column) >= metrics.horizontalAdvance(label), label
     assert panel.history.rowCount() > 0
     assert panel.history.rowHeight(0) >= panel.history.fontMetrics().height()
+
+
+def test_worked_math_and_lesson_formulas_share_one_size_at_every_scale(qtbot, window):
+    lessons = [lesson.id for lesson in window.lesson_panel.lessons()]
+    window.lesson_panel.select(lessons.index("perspective"), 0)  # a lesson that follows a vertex
+    worked = window.tab("object order").widget.vertex_math.findChildren(MathView)
+    assert worked
+    for scale in SCALES:
+        window.presentation.set_scale(scale)
+        lesson = window.lesson_panel.formula_views()[0].size_pt()
+        assert lesson == pytest.approx(scale * MathView().size_pt(), rel=0.01)
+        assert {round(view.size_pt(), 3) for view in worked} == {round(lesson, 3)}
