@@ -57,44 +57,64 @@ def _typeset(text: str, size_pt: float, color: str, dpi: float) -> np.ndarray:
 
 
 MIN_SHRINK = 0.75
-"""A formula is never drawn smaller than this share of its size: beyond that it breaks into lines
-(at its wide spaces) and, if a line is still too wide, its pane scrolls sideways."""
-BREAKS = (r"\qquad", r"\quad", r"\ \ ")
-"""The wide spaces of mathtext a formula may be broken at: between its parts, never inside one."""
+"""A formula is never drawn smaller than this share of its size: beyond that it wraps into lines
+(at its spaces) and, if a part is still too wide, its pane scrolls sideways."""
+BREAKS = (r"\qquad", r"\quad", r"\ \ ", r"\ ")
+"""The spaces of mathtext a formula may wrap at (between its parts, never inside braces)."""
 
 
-def split_formula(text: str) -> list[str]:
-    r"""``text`` broken at its top-level wide spaces (:data:`BREAKS`), each piece valid on its own.
+def _command_at(text: str, i: int, name: str) -> bool:
+    r"""Whether the command ``name`` (``r"\quad"``) starts at ``text[i]`` (and not a longer one)."""
+    after = text[i + len(name):i + len(name) + 1]
+    return text.startswith(name, i) and not (name[-1].isalpha() and after.isalpha())
 
-    Only spaces inside math (between ``$`` signs) and outside any braces
-    break; the pieces keep their ``$`` signs.
+
+def split_formula(text: str) -> list[tuple[str, str]]:
+    r"""A formula's parts, each with the space that follows it: ``[(part, space), ..., (last, "")]``.
+
+    Only a formula that is one stretch of math between ``$`` signs splits,
+    and only at the spaces of :data:`BREAKS` outside braces and
+    ``\left … \right``; otherwise it is one part.  :func:`join_parts` of
+    all the parts gives the formula back (up to spaces before a break).
 
     >>> split_formula(r"$a = 1,\quad b = \frac{2}{3}$")
-    ['$a = 1,$', '$b = \\frac{2}{3}$']
+    [('a = 1,', '\\quad '), ('b = \\frac{2}{3}', '')]
     """
-    pieces, start, depth, math, i = [], 0, 0, False, 0
-    opened = False  # the piece being collected starts inside math
-    while i < len(text):
-        if text.startswith("\\$", i):
+    body = text.strip()
+    if len(body) < 2 or body[0] != "$" or body[-1] != "$" or "$" in body[1:-1].replace(r"\$", ""):
+        return [(text, "")]
+    body = body[1:-1]
+    parts, start, depth, i = [], 0, 0, 0
+    while i < len(body):
+        if body[i] == "\\" and i + 1 < len(body) and body[i + 1] in "{}$\\":
             i += 2
             continue
-        if text[i] == "$":
-            math = not math
-        elif text[i] == "{":
+        if body[i] == "{" or _command_at(body, i, r"\left"):
             depth += 1
-        elif text[i] == "}":
+        elif body[i] == "}" or _command_at(body, i, r"\right"):
             depth -= 1
-        elif math and depth == 0:
-            brk = next((b for b in BREAKS if text.startswith(b, i)
-                        and not (b[-1].isalpha() and text[i + len(b):i + len(b) + 1].isalpha())), None)
-            if brk is not None:
-                pieces.append(("$" if opened else "") + text[start:i].strip() + "$")
-                i += len(brk)
-                start, opened = i, True
+        elif depth == 0:
+            space = next((b for b in BREAKS if _command_at(body, i, b)), None)
+            if space is not None:
+                end = i + len(space)
+                while end < len(body) and body[end] == " ":
+                    end += 1
+                if body[start:i].strip():
+                    parts.append((body[start:i].strip(), body[i:end]))
+                start = i = end
                 continue
         i += 1
-    pieces.append(("$" if opened else "") + text[start:].strip())
-    return [p for p in pieces if p.strip("$ ")] or [text]
+    if not parts:
+        return [(text, "")]
+    parts.append((body[start:].strip(), ""))
+    return parts
+
+
+def join_parts(parts) -> str:
+    """The mathtext of consecutive parts of :func:`split_formula` on one line."""
+    if len(parts) == 1 and parts[0][0].startswith("$"):
+        return parts[0][0]
+    return "$" + "".join(p + space for p, space in parts[:-1]) + parts[-1][0] + "$"
 
 
 class MathView(QLabel):
@@ -102,12 +122,12 @@ class MathView(QLabel):
 
     The formula is drawn at ``font size x scale`` points in the label's text
     colour unless :meth:`set_color` gave another.  Given less width than
-    that, a formula with wide spaces between its parts (``\\quad``) breaks
-    there into lines, the later ones indented; one that still does not fit is
-    drawn smaller, down to :data:`MIN_SHRINK` of its size, so that it stays
-    readable from the back of a room (a scroll area around it then scrolls
-    sideways).  An invalid formula is shown as its plain text, with the
-    parser's complaint in the tooltip.
+    that, it is drawn a little smaller, down to :data:`MIN_SHRINK` of its
+    size, and wrapped into lines at its spaces (``\\quad``, ``\\ ``), the
+    later lines indented, so that it stays readable from the back of a room;
+    a part still too wide makes a scroll area around it scroll sideways.
+    An invalid formula is shown as its plain text, with the parser's
+    complaint in the tooltip.
     """
 
     def __init__(self, formula: str = "", parent: QWidget | None = None, *, size_pt: float | None = None):
@@ -117,7 +137,7 @@ class MathView(QLabel):
         self._scale = 1.0
         self._color: QColor | None = None
         self._natural: QSize | None = None
-        self._pieces: list[str] = [formula]
+        self._parts: list[tuple[str, str]] = [(formula, "")]
         self.error: str | None = None
         policy = QSizePolicy(QSizePolicy.Policy.Preferred, QSizePolicy.Policy.Fixed)
         policy.setHeightForWidth(True)  # broken into lines, the formula grows taller
@@ -164,9 +184,9 @@ class MathView(QLabel):
         if self._natural is None:
             return super().minimumSizeHint()
         least = self.size_pt() * MIN_SHRINK
-        widest = max(self._width(piece, least) + (k > 0) * self._indent(least)
-                     for k, piece in enumerate(self._pieces))
-        return QSize(int(widest + 0.999), self._natural.height())
+        indent = self._indent(least) if len(self._parts) > 1 else 0.0
+        widest = max(self._width(join_parts([part]), least) for part in self._parts) + indent
+        return QSize(int(min(widest, self._natural.width()) + 0.999), self._natural.height())
 
     def hasHeightForWidth(self) -> bool:
         return self._natural is not None
@@ -197,11 +217,11 @@ class MathView(QLabel):
         ratio = self._ratio()
         self._natural = QSize(int(image.width() / ratio + 0.999), int(image.height() / ratio + 0.999))
         try:
-            self._pieces = split_formula(self._formula)
-            for piece in self._pieces:
-                self._image_of(piece, self.size_pt())
-        except ValueError:  # a piece that is not mathtext on its own: the formula stays whole
-            self._pieces = [self._formula]
+            self._parts = split_formula(self._formula)
+            for part in self._parts:
+                self._image_of(join_parts([part]), self.size_pt())
+        except ValueError:  # a part that is not mathtext on its own: the formula stays whole
+            self._parts = [(self._formula, "")]
         self.setToolTip("")
         self.updateGeometry()
         self._show()
@@ -226,11 +246,28 @@ class MathView(QLabel):
         full = self._natural.width()
         if width <= 0 or full <= width:
             return [self._formula], size
-        if len(self._pieces) > 1:
-            widest = max(self._width(p, size) + (k > 0) * self._indent(size)
-                         for k, p in enumerate(self._pieces))
-            return list(self._pieces), max(size * MIN_SHRINK, min(size, size * width / widest * 0.98))
-        return [self._formula], max(size * MIN_SHRINK, size * width / full * 0.98)
+        least = size * MIN_SHRINK
+        if len(self._parts) == 1:
+            return [self._formula], max(least, size * width / full * 0.98)
+        for shrink in (1.0, 0.9, 0.8, MIN_SHRINK):  # as large as possible, then the fewest lines
+            lines = self._wrap(width, size * shrink)
+            if all(self._width(line, size * shrink) + (k > 0) * self._indent(size * shrink) <= width
+                   for k, line in enumerate(lines)):
+                return lines, size * shrink
+        return lines, least
+
+    def _wrap(self, width: int, size: float) -> list[str]:
+        """The parts filled into lines of at most ``width`` pixels at ``size`` (a part too wide alone
+        gets a line of its own)."""
+        lines, line = [], [self._parts[0]]
+        for part in self._parts[1:]:
+            indent = self._indent(size) if lines else 0.0
+            if self._width(join_parts(line + [part]), size) + indent <= width:
+                line.append(part)
+            else:
+                lines.append(join_parts(line))
+                line = [part]
+        return lines + [join_parts(line)]
 
     def _show(self) -> None:
         """Draw the formula in the lines :meth:`_layout` chose for the label's width."""

@@ -5,18 +5,22 @@ from PySide6.QtGui import QFont
 
 from core.lessons import shipped_lessons
 from views.lesson_panel import LessonPanel
-from views.math_view import MIN_SHRINK, MathView, split_formula
+from views.math_view import MIN_SHRINK, MathView, join_parts, split_formula
 
 SPHERE = r"$c = (x_1-l)^2 + (y_1-m)^2 + (z_1-n)^2 - r^2,\quad \Delta = b^2 - 4ac$"
 
 
-def test_a_formula_breaks_only_at_wide_spaces_between_its_parts():
-    assert split_formula(SPHERE) == [r"$c = (x_1-l)^2 + (y_1-m)^2 + (z_1-n)^2 - r^2,$",
-                                     r"$\Delta = b^2 - 4ac$"]
-    assert split_formula(r"$a,\ \ b\qquad c$") == ["$a,$", "$b$", "$c$"]
-    assert split_formula(r"$\mathrm{no\ \ hit}\ d$") == [r"$\mathrm{no\ \ hit}\ d$"]  # inside braces
-    assert split_formula(r"text\quad more") == [r"text\quad more"]  # outside the math
-    assert split_formula(r"$x\quadrature$") == [r"$x\quadrature$"]  # another command
+def test_a_formula_splits_only_at_spaces_between_its_parts_and_joins_back():
+    parts = split_formula(SPHERE)
+    assert parts == [(r"c = (x_1-l)^2 + (y_1-m)^2 + (z_1-n)^2 - r^2,", r"\quad "),
+                     (r"\Delta = b^2 - 4ac", "")]
+    assert join_parts(parts) == SPHERE and join_parts(parts[1:]) == r"$\Delta = b^2 - 4ac$"
+    assert [p for p, _ in split_formula(r"$a,\ \ b\qquad c\ d$")] == ["a,", "b", "c", "d"]
+    for whole in (r"$\mathrm{no\ \ hit}$",  # inside braces
+                  r"$\left( a,\ b \right)$",  # inside \left ... \right
+                  r"text\quad $x$ more",  # not one stretch of math
+                  r"$x\quadrature$"):  # another command
+        assert split_formula(whole) == [(whole, "")], whole
 
 
 def _shown(qtbot, formula, width, scale):
@@ -43,6 +47,17 @@ def test_a_long_formula_in_a_narrow_pane_breaks_into_lines_at_a_readable_size(qt
     shown = view.pixmap().deviceIndependentSize()
     assert shown.height() > 1.5 * one_line.height() * size / view.size_pt()  # two lines, stacked
     assert view.height() >= shown.height() - 1  # the label is as tall as both lines
+
+
+def test_words_joined_by_spaces_fill_lines_like_text(qtbot):
+    formula = (r"$\mathrm{object\ order:}\ \mathbf{for}\ \mathrm{object}\ "
+               r"\mathbf{for}\ \mathrm{pixel\ it\ covers}$")
+    one_line = _shown(qtbot, formula, 5000, 2.0).pixmap().deviceIndependentSize().width()
+    view = _shown(qtbot, formula, int(one_line * 0.45), 2.0)
+    lines, size = view.shown_lines()
+    assert 2 <= len(lines) <= 4 and size >= MIN_SHRINK * view.size_pt()
+    assert lines[0].startswith(r"$\mathrm{object\ order:}")  # the words stay in their order
+    assert view.pixmap().deviceIndependentSize().width() <= view.width() + 1  # nothing cut off
 
 
 def test_a_formula_without_breaks_stops_shrinking_and_asks_for_its_width(qtbot):
