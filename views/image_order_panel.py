@@ -121,6 +121,7 @@ class ImageOrderPanel(QWidget):
             "Click a pixel to trace it again with every ray kept: its ray tree appears in the "
             "3D pane and here, with the colours computed from the last hits back to the first.")
         self.tree_caption = QLabel()
+        self.tree_caption.setWordWrap(True)  # a long caption must not widen the window
         tree_page = QWidget()
         tl = QVBoxLayout(tree_page)
         tl.setContentsMargins(0, 0, 0, 0)

@@ -24,6 +24,9 @@ def test_the_traced_image_outsizes_the_3d_pane_and_the_window_fits_its_screen(qt
     monkeypatch.setattr(QScreen, "availableGeometry", lambda self: QRect(0, 0, *screen))
     window = open_window(qtbot)
     image_order = window.tab("image order").widget
+    cam = window.model.camera
+    with qtbot.waitSignal(window._tree_renderer.finished, timeout=RENDER_TIMEOUT_MS):
+        window.pick_ray_tree(cam.width // 2, cam.height // 2)  # its tree and caption are shown too
     for scale in SCALES:
         window.presentation.set_scale(scale)
         window.setGeometry(window.screen().availableGeometry())
