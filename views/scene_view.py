@@ -34,7 +34,7 @@ from vtkmodules.vtkRenderingCore import vtkActor2D
 from vtkmodules.vtkRenderingLabel import vtkLabeledDataMapper
 
 from core.camera import Camera
-from core.scene import Scene
+from core.scene import Scene, Sphere
 from views import vtk_convert
 
 FRUSTUM_COLOR = "#ffd34d"
@@ -50,6 +50,9 @@ GRAB_RADIUS_PX = 14
 FOV_STEP_DEG = 2.0
 """Viewing-angle change per mouse-wheel notch over the glyph."""
 FOV_RANGE_DEG = (1.0, 179.0)
+ENCLOSING_OPACITY = 0.25
+"""A sphere the observer stands inside (as in the lecture's exercise) is drawn this translucent,
+so that the observer and its rays inside stay visible."""
 
 _FRUSTUM_EDGES = [(0, 1), (1, 2), (2, 3), (3, 0), (4, 5), (5, 6), (6, 7), (7, 4),
                   (0, 4), (1, 5), (2, 6), (3, 7)]
@@ -177,10 +180,15 @@ class SceneView(QWidget):
         self._object_actors = []
         for obj in scene.objects:
             m = obj.material
+            opacity = m.opacity
+            eye_inside = isinstance(obj, Sphere) and np.linalg.norm(
+                np.subtract(scene.camera.eye, obj.center)) < obj.radius
+            if eye_inside:
+                opacity = min(opacity, ENCLOSING_OPACITY)  # the observer stands inside: see through
             actor = self.plotter.add_mesh(
                 vtk_convert.object_polydata(obj),
                 color=m.color,
-                opacity=m.opacity,
+                opacity=opacity,
                 smooth_shading=False,
                 show_edges=False,
                 specular=m.specular,

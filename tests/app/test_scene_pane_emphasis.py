@@ -5,6 +5,7 @@ from window_helpers import RENDER_TIMEOUT_MS
 
 from core.lessons import shipped_lessons
 from views.raytree_view import ray_tree_parts
+from views.scene_view import ENCLOSING_OPACITY
 
 LESSONS = {lesson.id: i for i, lesson in enumerate(shipped_lessons())}
 
@@ -56,3 +57,13 @@ def test_presentation_scale_widens_the_3d_lines_points_labels_and_axes(qtbot, wi
         assert prop.point_size == 2 * style.get("point_size", 5)
     window.presentation.set_scale(1.0)
     assert edges.prop.line_width == width
+
+
+def test_the_sphere_the_exercise_starts_inside_is_drawn_see_through(qtbot, window):
+    window.lesson_panel.select(LESSONS["ray_sphere"], 1)
+    sphere = next(o for o in window.model.scene.objects if o.name == "exercise sphere")
+    assert np.linalg.norm(np.subtract(window.model.camera.eye, sphere.center)) < sphere.radius
+    assert _actor(window, f"object:{id(sphere)}").prop.opacity == ENCLOSING_OPACITY
+    window.reset_scene()  # the lecture scene: the observer outside every object
+    for obj in window.model.scene.objects:
+        assert _actor(window, f"object:{id(obj)}").prop.opacity == obj.material.opacity
