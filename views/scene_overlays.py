@@ -61,12 +61,11 @@ def walked_cell_parts(grid, root: RayNode) -> list[tuple[pv.PolyData, dict]]:
 
 
 def polygon_parts(vertices) -> list[tuple[pv.PolyData, dict]]:
-    """One world-space polygon, filled and outlined (``None``: nothing)."""
+    """One world-space polygon outlined, its colours left true (``None``: nothing)."""
     if vertices is None:
         return []
-    poly = vtk_convert.polygon_polydata(vertices)
-    return [(poly, {"color": "#ff2bd6", "opacity": 0.35}),  # the scene stays visible through it
-            (poly.extract_all_edges(), {"color": "#ff2bd6", "line_width": 4})]
+    outline = vtk_convert.polygon_polydata(vertices).extract_all_edges()
+    return [(outline, {"color": "#ff2bd6", "line_width": 4})]
 
 
 def clipped_parts(polygons) -> list[tuple[pv.PolyData, dict]]:
