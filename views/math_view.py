@@ -139,8 +139,10 @@ class MathView(QLabel):
         self._natural: QSize | None = None
         self._parts: list[tuple[str, str]] = [(formula, "")]
         self.error: str | None = None
-        policy = QSizePolicy(QSizePolicy.Policy.Preferred, QSizePolicy.Policy.Fixed)
-        policy.setHeightForWidth(True)  # broken into lines, the formula grows taller
+        # Wrapped into lines the formula grows taller than its one-line size hint: a fixed
+        # height would clip it, so the height is at least the hint and as tall as the lines.
+        policy = QSizePolicy(QSizePolicy.Policy.Preferred, QSizePolicy.Policy.Minimum)
+        policy.setHeightForWidth(True)
         self.setSizePolicy(policy)
         self._render()
 
