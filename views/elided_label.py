@@ -28,10 +28,6 @@ class ElidedLabel(QLabel):
     def text(self) -> str:
         return self._full
 
-    def shown_text(self) -> str:
-        """The text as drawn (shortened with "…" when the label is too narrow)."""
-        return super().text()
-
     def minimumSizeHint(self) -> QSize:
         return QSize(0, self.fontMetrics().height())
 

@@ -2,7 +2,8 @@
 
 import pytest
 from PySide6.QtCore import QRect
-from PySide6.QtGui import QFont, QFontMetrics, QScreen
+from PySide6.QtGui import QFont, QFontDatabase, QFontMetrics, QScreen
+from PySide6.QtWidgets import QApplication
 from window_helpers import RENDER_TIMEOUT_MS, open_window
 
 from views.math_view import MathView
@@ -14,12 +15,23 @@ ROWS = 3
 """A table shows at least this many rows."""
 
 
+@pytest.fixture
+def normal_text():
+    """The platform's normal text size for the application (another test may have enlarged it)."""
+    app = QApplication.instance()
+    before = app.font()
+    app.setFont(QFontDatabase.systemFont(QFontDatabase.SystemFont.GeneralFont))
+    yield
+    app.setFont(before)
+
+
 def _rows_shown(view) -> float:
     return view.viewport().height() / view.fontMetrics().height()
 
 
 @pytest.mark.parametrize("screen", SCREENS, ids=lambda s: f"{s[0]}x{s[1]}")
-def test_the_traced_image_outsizes_the_3d_pane_and_the_window_fits_its_screen(qtbot, monkeypatch, screen):
+def test_the_traced_image_outsizes_the_3d_pane_and_the_window_fits_its_screen(qtbot, monkeypatch, screen,
+                                                                             normal_text):
     # A laptop's screen on this display: the window takes what the screen makes available.
     monkeypatch.setattr(QScreen, "availableGeometry", lambda self: QRect(0, 0, *screen))
     window = open_window(qtbot)
