@@ -22,8 +22,8 @@ SCENE_PANE = "scene 3D"
 """The lesson name of the 3D pane (the others are tab titles)."""
 LESSON_OVERLAY = "lesson"
 """The 3D overlay that marks a step's highlighted object or face; shown with every tab."""
-MODEL_OVERLAYS = {"bounding spheres": "spheres", "grid cells": "grid"}
-"""Lesson overlay names and the model's names for them ("frustum" is always drawn)."""
+MODEL_OVERLAYS = {"bounding spheres": "spheres", "grid cells": "grid", "frustum": "frustum"}
+"""Lesson overlay names and the model's names for them."""
 OBJECT_STYLE = {"color": "#ffd400", "style": "wireframe", "line_width": 3}
 
 

@@ -27,7 +27,6 @@ from PySide6.QtWidgets import (
     QProgressBar,
     QPushButton,
     QScrollArea,
-    QSplitter,
     QTabWidget,
     QVBoxLayout,
     QWidget,
@@ -38,16 +37,18 @@ from app.lesson_runner import LESSON_OVERLAY, LessonRunner
 from app.mesh_files import read_mesh
 from app.state import SceneModel
 from app.tabs import TABS
+from app.window_layout import LEFT_SHARE, fit_window
 from app.workers import Renderer, RenderSchedule
 from core import presets, scene_file
 from core.image_order.ray_tree import trace_pixel
 from core.presets_trace import PRESETS_TRACE
 from core.scene import Scene
 from views.camera_panel import CameraPanel
+from views.elided_label import ElidedLabel
 from views.lesson_panel import LessonPanel
 from views.observer_keys import MOUSE_GESTURES, OBSERVER_KEYS, EditorsKeepTheirKeys
 from views.presentation import Presentation
-from views.scene_overlays import SceneOverlays
+from views.scene_overlays import SCENE_OVERLAYS, SceneOverlays
 from views.scene_view import SceneView
 
 
@@ -98,34 +99,31 @@ class MainWindow(QMainWindow):
         progress_row.addWidget(self.cancel_button)
         right_layout.addLayout(progress_row)
         right_layout.addWidget(self.status_caption)
-        self.scene_pane = scene_pane = QWidget()
+        scene_pane = QWidget()
         scene_layout = QVBoxLayout(scene_pane)
-        scene_layout.setContentsMargins(6, 6, 6, 6)
-        scene_title = QLabel(
-            "<b>The scene</b> — observer, viewing pyramid (frustum) and screen on the near plane. "
-            "Drag the camera or the orange target to move them")
-        scene_title.setWordWrap(True)
-        scene_layout.addWidget(scene_title)
+        scene_layout.setContentsMargins(2, 2, 2, 2)
+        scene_hint = ElidedLabel("Drag the camera or the orange target to move them; "
+                                 "drag elsewhere to turn the view")
         scene_layout.addWidget(self.scene_view, 1)
-        splitter = QSplitter(Qt.Orientation.Horizontal)
-        splitter.addWidget(scene_pane)
-        splitter.addWidget(right)
-        scene_pane.setMinimumWidth(320)
-        splitter.setStretchFactor(0, 2)
-        splitter.setStretchFactor(1, 3)
-        splitter.setSizes([400, 600])  # the tabs' images and panels get the larger share
-        self.setCentralWidget(splitter)
+        scene_layout.addWidget(scene_hint)
+        # Above the controls and lessons, beside the tabs: the tabs' images get the window's width.
+        self.scene_pane = QDockWidget("The scene: observer, frustum, screen", self)
+        self.scene_pane.setObjectName("scene")
+        self.scene_pane.setFeatures(QDockWidget.DockWidgetFeature.DockWidgetMovable)
+        self.scene_pane.setWidget(scene_pane)
+        self.addDockWidget(Qt.DockWidgetArea.LeftDockWidgetArea, self.scene_pane)
+        self.setCentralWidget(right)
 
         dock = QDockWidget("Controls", self)
         dock.setFeatures(QDockWidget.DockWidgetFeature.DockWidgetMovable)
         dock.setTitleBarWidget(QWidget())  # the group boxes carry the titles
         self._controls = QScrollArea()
         self._controls.setWidgetResizable(True)
-        self._controls.setHorizontalScrollBarPolicy(Qt.ScrollBarPolicy.ScrollBarAlwaysOff)
         self._controls.setWidget(self.camera_panel)
         dock.setWidget(self._controls)
         self._fit_controls()
         self.addDockWidget(Qt.DockWidgetArea.LeftDockWidgetArea, dock)
+        self.splitDockWidget(self.scene_pane, dock, Qt.Orientation.Vertical)
         # The panel opens on the first lesson without applying it: the scene stays
         # the one given until the user picks a step.
         self.lesson_panel = LessonPanel()
@@ -148,6 +146,7 @@ class MainWindow(QMainWindow):
         self.lesson_panel.step_selected.connect(self.apply_lesson_step)
         self.presentation.presenting_changed.connect(self._presenting_changed)
         self.presentation.scale_changed.connect(self._scale_changed)
+        self.scene_pane.visibilityChanged.connect(lambda shown: shown and self._refit())
 
         self.model.camera_refused.connect(
             lambda why: self.statusBar().showMessage(f"Observer not moved — {why}", 6000))
@@ -219,10 +218,24 @@ class MainWindow(QMainWindow):
     def _presenting_changed(self, presenting: bool) -> None:
         # Esc leaves full screen while presenting; one key, one meaning.
         self.cancel_button.setShortcut(QKeySequence() if presenting else QKeySequence("Esc"))
+        self._refit()
 
     def _scale_changed(self, scale: float) -> None:
-        self.tab("image order").widget.worked_math.set_scale(scale)
-        self.tab("object order").widget.vertex_math.set_scale(scale)
+        # The formulas follow the window's font, which the scale enlarged already; the 3D pane does not.
+        self.scene_view.set_line_scale(scale)
+        self._refit()
+
+    def _refit(self) -> None:
+        """Share the room again once the new text size or screen reached every widget."""
+        QTimer.singleShot(0, self._fit)
+
+    def _fit(self) -> None:
+        self._fit_controls()
+        fit_window(self, self.presentation.scale())
+
+    def resizeEvent(self, event):
+        super().resizeEvent(event)
+        fit_window(self, self.presentation.scale())
 
     @property
     def current(self):
@@ -317,10 +330,11 @@ class MainWindow(QMainWindow):
         QTimer.singleShot(0, self._fit_controls)  # after the new font reached every widget
 
     def _fit_controls(self) -> None:
-        """Keep the whole control panel visible at any text size."""
+        """Keep the whole control panel visible at any text size (scrolling sideways on a small screen)."""
         self.camera_panel.adjustSize()
         scrollbar = self._controls.verticalScrollBar().sizeHint().width()
-        self._controls.setMinimumWidth(self.camera_panel.sizeHint().width() + scrollbar + 4)
+        most = round(self.screen().availableGeometry().width() * LEFT_SHARE[max(LEFT_SHARE)])
+        self._controls.setMinimumWidth(min(most, self.camera_panel.minimumSizeHint().width() + scrollbar + 4))
 
     # ------------------------------------------------------------- files
     def open_scene_dialog(self) -> None:
@@ -373,7 +387,7 @@ class MainWindow(QMainWindow):
 
     def _tab_shown(self, *_) -> None:
         tab = self.current
-        self.scene_view.show_overlays_only((*tab.overlays, LESSON_OVERLAY))
+        self.scene_view.show_overlays_only((*tab.overlays, *SCENE_OVERLAYS, LESSON_OVERLAY))
         self.renders.show_tab(tab)
         self._show_status(tab)
 

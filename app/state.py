@@ -25,8 +25,9 @@ from core.image_order.flat_scene import TraceSettings
 from core.object_order.pipeline import RasterSettings
 from core.scene import Scene
 
-OVERLAYS = ("spheres", "grid", "walk")
-"""3D overlays a user switches on: bounding spheres, grid cells, the cells the picked ray walks."""
+OVERLAYS = ("spheres", "grid", "walk", "frustum")
+"""3D overlays a user switches on: bounding spheres, grid cells, the cells the picked ray walks,
+the frustum's planes filled and labelled."""
 
 Pixel = tuple[int, int]
 

@@ -40,7 +40,7 @@ from app.workers import Renderer
 from core.camera import Camera
 from core.compare import compare
 from core.image_order.ray_tracing import TraceSettings, merge_band_stats, render_trace
-from core.object_order import three_views
+from core.object_order import outlines, three_views
 from core.object_order.pipeline import RasterSettings, render_raster
 from core.scene import Mesh, Scene
 from views.compare_panel import ComparePanel, ComparisonImages
@@ -247,7 +247,8 @@ class FourViewsTab:
                     images[key] = (display_image(rgb, PREVIEW), seconds)
                 else:
                     raster = render_raster(view, RasterSettings())
-                    images[key] = (display_image(raster.color), sum(raster.stats["times"].values()))
+                    color = outlines.outlined(raster.color, raster.depth, raster.meshes, camera)
+                    images[key] = (display_image(color), sum(raster.stats["times"].values()))
                 progress(round(100 * (i + 1) / len(cameras)), None)
             return images
 
@@ -258,7 +259,7 @@ class FourViewsTab:
             self.widget.set_image(key, image, f"z-buffer {image.note or 'render'} in {_ms(seconds)}")
         if set(images) == {"observer"}:
             return f"preview of the observer's view in {_ms(images['observer'][1])}"
-        return "front, side and top: parallel projection along the axes"
+        return "front, side and top: parallel projection along the axes, framed on the objects, edges inked"
 
 
 class CompareTab:

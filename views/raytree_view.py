@@ -13,7 +13,7 @@ import numpy as np
 import pyvista as pv
 from PySide6.QtCore import Qt
 from PySide6.QtGui import QColor
-from PySide6.QtWidgets import QGridLayout, QLabel, QTreeWidget, QTreeWidgetItem, QWidget
+from PySide6.QtWidgets import QGridLayout, QHeaderView, QLabel, QTreeWidget, QTreeWidgetItem, QWidget
 
 from core.image_order.ray_tree import RayNode
 
@@ -63,11 +63,9 @@ def ray_tree_parts(root: RayNode, miss_length: float) -> list[tuple[pv.PolyData,
 
 
 class RayKindLegend(QWidget):
-    """One coloured swatch per kind of ray, three to a line (so a narrow pane keeps them all)."""
+    """One coloured swatch per kind of ray, ``per_line`` to a line (so a narrow pane keeps them all)."""
 
-    PER_LINE = 3
-
-    def __init__(self, parent: QWidget | None = None):
+    def __init__(self, per_line: int = 3, parent: QWidget | None = None):
         super().__init__(parent)
         layout = QGridLayout(self)
         layout.setContentsMargins(0, 0, 0, 0)
@@ -75,10 +73,10 @@ class RayKindLegend(QWidget):
             swatch = QLabel()
             swatch.setFixedSize(22, 8)
             swatch.setStyleSheet(f"background: {color}; border: 1px solid #333;")
-            row, column = divmod(i, self.PER_LINE)
+            row, column = divmod(i, per_line)
             layout.addWidget(swatch, row, 2 * column)
             layout.addWidget(QLabel(kind), row, 2 * column + 1)
-        layout.setColumnStretch(2 * self.PER_LINE, 1)
+        layout.setColumnStretch(2 * per_line, 1)
 
 
 def _rgb(c) -> str:
@@ -93,13 +91,13 @@ class RayTreeWidget(QTreeWidget):
         self.setColumnCount(len(COLUMNS))
         self.setHeaderLabels(COLUMNS)
         self.setAlternatingRowColors(True)
+        # Columns as wide as their header or their widest entry, at every text scale.
+        self.header().setSectionResizeMode(QHeaderView.ResizeMode.ResizeToContents)
 
     def set_tree(self, root: RayNode) -> None:
         self.clear()
         self.addTopLevelItem(self._item(root))
         self.expandAll()
-        for col in range(len(COLUMNS)):
-            self.resizeColumnToContents(col)
 
     def select_kind(self, kind: str | None) -> bool:
         """Select and show the first ray of ``kind`` (``None``: no selection); whether there was one."""

@@ -5,6 +5,9 @@
   ray tree, and the cells its primary ray walks through.
 - Object order: the polygon drawn at the current step, and the polygons the
   frustum's planes cut (clipping).
+- With every tab (:data:`SCENE_OVERLAYS`), when the model's ``"frustum"``
+  switch is on: the frustum emphasised, its near plane (the screen) and far
+  plane filled and labelled with their distances.
 
 :class:`SceneOverlays` builds these shapes and hands them to the
 :class:`views.scene_view.SceneView` under fixed names, so the window only
@@ -23,9 +26,14 @@ from core.image_order.ray_tree import RayNode
 from core.object_order import three_views
 from views import raytree_view, vtk_convert
 from views.raytree_view import KIND_COLORS
+from views.scene_view import FRUSTUM_COLOR, SCREEN_COLOR
 
 IMAGE_ORDER_OVERLAYS = ("ray-tree", "spheres", "grid", "walk")
 OBJECT_ORDER_OVERLAYS = ("polygon", "clipped")
+SCENE_OVERLAYS = ("frustum",)
+"""Overlays of the scene itself, shown whatever the tab."""
+LABEL_PT = 13
+"""Size of the 3D pane's labels at text scale 1, points."""
 
 
 def sphere_parts(scene) -> list[tuple[pv.PolyData, dict]]:
@@ -53,18 +61,32 @@ def walked_cell_parts(grid, root: RayNode) -> list[tuple[pv.PolyData, dict]]:
 
 
 def polygon_parts(vertices) -> list[tuple[pv.PolyData, dict]]:
-    """One world-space polygon, filled and outlined (``None``: nothing)."""
+    """One world-space polygon outlined, its colours left true (``None``: nothing)."""
     if vertices is None:
         return []
-    poly = vtk_convert.polygon_polydata(vertices)
-    return [(poly, {"color": "#ff2bd6", "opacity": 0.8}),
-            (poly.extract_all_edges(), {"color": "#ff2bd6", "line_width": 4})]
+    outline = vtk_convert.polygon_polydata(vertices).extract_all_edges()
+    return [(outline, {"color": "#ff2bd6", "line_width": 4})]
 
 
 def clipped_parts(polygons) -> list[tuple[pv.PolyData, dict]]:
     """Outlines of the polygons the frustum's planes cut."""
     return [(vtk_convert.polygon_polydata(p).extract_all_edges(),
              {"color": "#7cff6b", "line_width": 3}) for p in polygons]
+
+
+def frustum_parts(camera) -> list[tuple[pv.PolyData, dict]]:
+    """The viewing frustum emphasised: near and far planes filled, thick edges, labels."""
+    corners = camera.frustum_corners()
+    near, far = corners[:4], corners[4:]
+    edges = pv.PolyData(corners, lines=np.hstack([[2, a, b] for a, b in (
+        (0, 1), (1, 2), (2, 3), (3, 0), (4, 5), (5, 6), (6, 7), (7, 4), (0, 4), (1, 5), (2, 6), (3, 7))]))
+    labels = pv.PolyData(np.array([(near[2] + near[3]) / 2, (far[2] + far[3]) / 2], float))  # top edges
+    labels.point_data["labels"] = np.array([f"near plane (the screen), n = {camera.near:g}",
+                                            f"far plane, f = {camera.far:g}"])
+    return [(pv.PolyData(far.copy(), np.array([4, 0, 1, 2, 3])), {"color": FRUSTUM_COLOR, "opacity": 0.3}),
+            (pv.PolyData(near.copy(), np.array([4, 0, 1, 2, 3])), {"color": SCREEN_COLOR, "opacity": 0.6}),
+            (edges, {"color": FRUSTUM_COLOR, "line_width": 4}),
+            (labels, {"label_size": LABEL_PT, "color": "white"})]
 
 
 class SceneOverlays:
@@ -81,6 +103,7 @@ class SceneOverlays:
         self.ray_tree: RayNode | None = None
         model.overlays_changed.connect(self._accel_changed)
         model.scene_changed.connect(self._accel_changed)
+        model.camera_changed.connect(self._frustum)
 
     def _grid(self):
         return trace_scene(self.model.scene).geometry.accel("grid")[0]
@@ -92,6 +115,11 @@ class SceneOverlays:
         self.view.set_overlay("spheres", sphere_parts(scene) if "spheres" in shown else [])
         self.view.set_overlay("grid", grid_cell_parts(self._grid()) if "grid" in shown else [])
         self._walk()
+        self._frustum()
+
+    def _frustum(self, *_) -> None:
+        shown = "frustum" in self.model.overlays
+        self.view.set_overlay("frustum", frustum_parts(self.model.camera) if shown else [])
 
     def _walk(self) -> None:
         want = "walk" in self.model.overlays and self.ray_tree is not None
