@@ -32,6 +32,7 @@ from PySide6.QtWidgets import (
     QWidget,
 )
 
+from app import render_budget
 from app.export_menu import ExportMenu
 from app.lesson_runner import LESSON_OVERLAY, LessonRunner
 from app.mesh_files import read_mesh
@@ -64,10 +65,10 @@ class MainWindow(QMainWindow):
     image_shown = Signal(str, bool)
     full_image_shown = Signal(str)
 
-    def __init__(self, scene: Scene):
+    def __init__(self, scene: Scene, memory_limit: int | None = None):
         super().__init__()
         self.setWindowTitle("Render Explorer")
-        self.model = SceneModel(scene, self)
+        self.model = SceneModel(scene, self, memory_limit)
         self.scene_path: Path | None = None
         self.scene_view = SceneView(self.model)
         self.overlays = SceneOverlays(self.model, self.scene_view)
@@ -158,6 +159,7 @@ class MainWindow(QMainWindow):
         self.renders.image_shown.connect(self.image_shown)
         self.renders.full_image_shown.connect(self.full_image_shown)
         self.renders.warned.connect(lambda warning: self.statusBar().showMessage(warning, 10000))
+        self.renders.refused.connect(lambda refusal: self.statusBar().showMessage(refusal, 10000))
         self.renders.rested.connect(self._observer_rested)
         self.model.ray_pixel_changed.connect(self._ray_pixel_changed)
         self.tab_widget.currentChanged.connect(self._tab_shown)
@@ -170,8 +172,9 @@ class MainWindow(QMainWindow):
         object_order.clipped_shown.connect(self.overlays.show_clipped)
 
         self._tab_shown()
-        self.progress.setFormat("compiling the renderers on first use (numba caches them), "
-                                "then rendering… %p%")
+        if self.renders.busy(self.current):  # not when the scene is over the memory budget
+            self.progress.setFormat("compiling the renderers on first use (numba caches them), "
+                                    "then rendering… %p%")
         available = self.screen().availableGeometry()
         self.resize(min(1400, available.width()), min(860, available.height()))
 
@@ -352,7 +355,22 @@ class MainWindow(QMainWindow):
         self.scene_path = Path(path)
         self.setWindowTitle(f"Render Explorer — {self.scene_path.name}")
         self.model.set_scene(scene)
+        self.explain_if_too_large(self.scene_path.name)
         return True
+
+    def explain_if_too_large(self, name: str) -> None:
+        """Say in a dialog why tabs will not render the scene just opened (from file ``name``), if so."""
+        refused = render_budget.refusals(self.tabs, self.model.scene, self.model.memory_limit)
+        if not refused:
+            return
+        first = refused.get(self.current.title, next(iter(refused.values())))
+        box = QMessageBox(QMessageBox.Icon.Warning, "Scene too large to render", f"{name}:\n\n{first}",
+                          parent=self)
+        others = [title for title, why in refused.items() if why is not first]
+        box.setInformativeText((f"Too large for {', '.join(others)} as well. " if others else "")
+                               + "The scene is open: the tabs render it once it is small enough.")
+        box.setAttribute(Qt.WidgetAttribute.WA_DeleteOnClose)
+        box.open()  # the window stays responsive behind it
 
     def save_scene_dialog(self) -> None:
         path, _ = QFileDialog.getSaveFileName(self, "Save scene", "scene.json",
@@ -448,8 +466,12 @@ class MainWindow(QMainWindow):
         super().closeEvent(event)
 
 
-def run(scene_path: str | None = None) -> int:
-    """Open the window on ``scene_path`` (or the lecture scene); returns the exit status."""
+def run(scene_path: str | None = None, memory_limit: int | None = None) -> int:
+    """Open the window on ``scene_path`` (or the lecture scene); returns the exit status.
+
+    ``memory_limit``: renders estimated to need more bytes are refused (default: half of
+    the memory available).
+    """
     scene = presets.lecture_scene()
     if scene_path is not None:
         try:
@@ -459,8 +481,10 @@ def run(scene_path: str | None = None) -> int:
             return 2
     app = QApplication.instance() or QApplication(sys.argv[:1])
     app.setApplicationName("Render Explorer")
-    window = MainWindow(scene)
+    window = MainWindow(scene, memory_limit)
     window.show()
+    if scene_path is not None:
+        window.explain_if_too_large(Path(scene_path).name)
     status = app.exec()
     QThreadPool.globalInstance().waitForDone()
     return status

@@ -21,6 +21,9 @@ A tab is any object with
 - optionally ``warning(scene) -> str | None`` : a word before a very long full render;
 - optionally ``pictures()`` : what File → Export offers for this tab, instead of
   every image pane of ``widget`` (see :mod:`app.pane_pictures`).
+- optionally ``cost(scene, preview)`` : what ``job(scene, preview)`` will cost, a
+  :class:`core.budget.Estimate`; a job over the memory budget never starts
+  (see :mod:`app.render_budget`).
 
 Adding a tab is one line: append its class to :data:`TABS` (it is built as
 ``cls(model)`` with the window's :class:`app.state.SceneModel`).
@@ -37,6 +40,7 @@ import numpy as np
 
 from app.compare_pictures import comparison_pictures
 from app.workers import Renderer
+from core import budget
 from core.camera import Camera
 from core.compare import compare
 from core.image_order.ray_tracing import TraceSettings, merge_band_stats, render_trace
@@ -103,6 +107,15 @@ def _raster_preview(scene: Scene) -> tuple[np.ndarray, float]:
     return upscale(raster.color, cam.width, cam.height), sum(raster.stats["times"].values())
 
 
+def _cost(scene: Scene, preview: bool, runs, shown_images: int) -> budget.Estimate:
+    """The cost of ``runs`` (``(mode, accel, max_depth)`` renders made one after another, of a
+    quarter of the pixels for a preview) whose results fill ``shown_images`` full-size images."""
+    view = replace(scene, camera=preview_camera(scene.camera)) if preview else scene
+    cam = scene.camera
+    return budget.combined([budget.estimate(view, *run) for run in runs], cam.width * cam.height,
+                           shown_images)
+
+
 def preview_trace_settings(settings: TraceSettings) -> TraceSettings:
     """Previews never go without acceleration: the image is the same, the wait is not."""
     return settings if settings.accel != "none" else replace(settings, accel="bvh")
@@ -129,6 +142,10 @@ class ImageOrderTab:
             return None
         return (f"Acceleration 'None': every ray tests all {triangles:,} triangles, about "
                 f"{tests:.1e} tests; this render may take minutes (Esc cancels; previews use the BVH)")
+
+    def cost(self, scene: Scene, preview: bool) -> budget.Estimate:
+        s = preview_trace_settings(self.model.trace_settings) if preview else self.model.trace_settings
+        return _cost(scene, preview, [(s.mode, s.accel, s.max_depth)], 1)
 
     def job(self, scene: Scene, preview: bool):
         settings = self.model.trace_settings
@@ -193,6 +210,9 @@ class ObjectOrderTab:
         self.model = model
         self.widget = ObjectOrderPanel(model)
 
+    def cost(self, scene: Scene, preview: bool) -> budget.Estimate:
+        return _cost(scene, preview, [("raster",)], 1 if preview else 2)  # full: image and z-buffer
+
     def job(self, scene: Scene, preview: bool):
         settings = self.model.raster_settings
         if preview:
@@ -229,6 +249,10 @@ class FourViewsTab:
     def __init__(self, model):
         self.model = model
         self.widget = ImageGrid(self.PANES, columns=2)
+
+    def cost(self, scene: Scene, preview: bool) -> budget.Estimate:
+        views = 1 if preview else len(self.PANES)
+        return _cost(scene, preview, [("raster",)] * views, views)
 
     def job(self, scene: Scene, preview: bool):
         cam = scene.camera
@@ -275,6 +299,9 @@ class CompareTab:
         self._reader = Renderer(self.widget)  # reads a picked pixel in both outputs
         self._reader.finished.connect(self.widget.show_pixel)
         self.widget.pixel_picked.connect(self._read_pixel)
+
+    def cost(self, scene: Scene, preview: bool) -> budget.Estimate:
+        return _cost(scene, preview, [("raster",), ("raster",), ("raytrace",)], len(self.PANES))
 
     def job(self, scene: Scene, preview: bool):
         a, b = self.widget.pair()
@@ -360,6 +387,7 @@ class CostTab:
     def __init__(self, model):
         self.model = model
         self.widget = CostPanel()
+        self.widget.memory_limit = model.memory_limit
         self.widget.set_scene(model.scene)
         model.scene_changed.connect(self.widget.set_scene)
 

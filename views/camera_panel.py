@@ -174,8 +174,9 @@ class CameraPanel(QWidget):
         self.ortho_height.setValue(camera.ortho_height)
         self.projection.setCurrentText(camera.projection)
         size = (camera.width, camera.height)
-        if size in RESOLUTIONS:
-            self.resolution.setCurrentIndex(RESOLUTIONS.index(size))
+        # A size not in the list shows as it is, and picking any listed one changes it.
+        self.resolution.setPlaceholderText(f"{camera.width} × {camera.height}")
+        self.resolution.setCurrentIndex(RESOLUTIONS.index(size) if size in RESOLUTIONS else -1)
         for w in self._spins:
             w.blockSignals(False)
         self.yaw.set_value(camera.yaw_deg)

@@ -8,6 +8,10 @@ that setting's image, the reference and the FLIP error map side by side (and
 the samples per pixel for adaptive supersampling), with a sentence on why the
 knob's curve has its shape.  The CSV and the plot can be exported.
 
+Before a sweep starts its cost is estimated (:mod:`core.accuracy.sweep_cost`):
+one over the memory budget does not start and says what to reduce; a long one
+says how long, in its status line, while it runs.
+
 Images are encoded to sRGB in :mod:`core.srgb` before they are shown.
 """
 
@@ -36,7 +40,8 @@ from PySide6.QtWidgets import (
     QWidget,
 )
 
-from core.accuracy import cost_files
+from core import budget
+from core.accuracy import cost_files, sweep_cost
 from core.accuracy.cost_plot import draw_cost_plot, point_position
 from core.accuracy.explanations import EXPLANATIONS
 from core.accuracy.reference import REFERENCE_SPP
@@ -57,6 +62,8 @@ from core.srgb import to_srgb8
 MODES = [("raytrace", "Ray tracing"), ("raycast", "Ray casting"), ("raster", "Rasterization")]
 #: The sweep's image is at most this wide (the scene's aspect kept), so a sweep takes minutes, not hours.
 DEFAULT_WIDTH = 160
+#: A sweep estimated to take longer than this (seconds) says how long in its status line.
+LONG_SWEEP_SECONDS = 600
 
 
 class _Signals(QObject):
@@ -112,6 +119,11 @@ class CostPanel(QWidget):
     -------
     point_selected(int) : the setting index of the clicked point.
     sweep_finished(bool) : a run ended, ``True`` when every setting is done.
+
+    Attributes
+    ----------
+    memory_limit : a sweep estimated to need more bytes does not start; ``None``:
+        half of the memory available when it would start.
     """
 
     point_selected = Signal(int)
@@ -120,6 +132,8 @@ class CostPanel(QWidget):
     def __init__(self, parent: QWidget | None = None, pool: QThreadPool | None = None):
         super().__init__(parent)
         self._pool = pool or QThreadPool.globalInstance()
+        self.memory_limit: int | None = None
+        self._slow_note = ""  # the estimated time of a long sweep, added to its status line
         self._scene: Scene | None = None
         self.sweep: Sweep | None = None
         self._points: dict[int, Point] = {}
@@ -277,11 +291,26 @@ class CostPanel(QWidget):
             self.status.setText("Nothing to sweep: " + "; ".join(f"{k}: {r}" for k, r in
                                                                  self.sweep.skipped.items()))
             return
+        if not self._within_budget():
+            return
         self._run_id += 1
         self._cancel = threading.Event()
         self._pool.start(_SweepRun(self._run_id, self.sweep, self._signals, self._cancel, self._sweep_lock))
         self.status.setText("Starting…")
         self._update_buttons()
+
+    def _within_budget(self) -> bool:
+        """Whether the sweep's estimated memory is within the budget; if not, the status says why."""
+        cost = sweep_cost.estimate(self.sweep)
+        cam = self.sweep.scene.camera
+        over = budget.refusal(f"This sweep of {len(self.sweep.settings)} settings at {cam.width} × "
+                              f"{cam.height}", cost, *budget.memory_limit(self.memory_limit))
+        if over:
+            self.status.setText(f"{over}. Not started: use a smaller width or fewer objects or triangles.")
+            return False
+        self._slow_note = (f" (the sweep: about {budget.format_seconds(cost.seconds)} in all)"
+                           if cost.seconds > LONG_SWEEP_SECONDS else "")
+        return True
 
     def cancel(self) -> None:
         """Stop the running sweep after its current render (Run resumes it)."""
@@ -306,7 +335,7 @@ class CostPanel(QWidget):
             return
         if isinstance(event, Progress):
             self.progress.setValue(round(1000 * event.done / max(event.total, 1)))
-            self.status.setText(event.what)
+            self.status.setText(event.what + self._slow_note)
         elif isinstance(event, Point):
             self._points[event.index] = event
             self._draw_plot()
