@@ -87,6 +87,10 @@ class SceneView(QWidget):
         super().__init__(parent)
         self.model = model
         self.plotter = ImagePlotter(self)
+        # Translucent surfaces are blended in drawing order: VTK's order-independent
+        # translucency costs a software OpenGL extra passes over the whole pane, about 8 of
+        # the 18 ms of a draw, and the few translucent surfaces here barely overlap.
+        self.plotter.renderer.SetUseOIT(False)
         self.plotter.set_background("#1d2230", top="#3a4358")
         self.plotter.add_axes(line_width=3, labels_off=False)
         layout = QVBoxLayout(self)
