@@ -8,21 +8,26 @@
 
 :class:`SceneOverlays` builds these shapes and hands them to the
 :class:`views.scene_view.SceneView` under fixed names, so the window only
-connects signals to it.
+connects signals to it.  pyvista (and VTK) load when a first shape is
+built, not with the window (see :mod:`views.deferred_scene_view`).
 """
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
-import pyvista as pv
 
 from core.image_order.bounding_spheres import bounding_spheres
 from core.image_order.flat_scene import trace_scene
 from core.image_order.grid_of_cuboids import cells_on_ray
 from core.image_order.ray_tree import RayNode
 from core.object_order import three_views
-from views import raytree_view, vtk_convert
+from views import raytree_view
 from views.raytree_view import KIND_COLORS
+
+if TYPE_CHECKING:
+    import pyvista as pv
 
 IMAGE_ORDER_OVERLAYS = ("ray-tree", "spheres", "grid", "walk")
 OBJECT_ORDER_OVERLAYS = ("polygon", "clipped")
@@ -30,6 +35,8 @@ OBJECT_ORDER_OVERLAYS = ("polygon", "clipped")
 
 def sphere_parts(scene) -> list[tuple[pv.PolyData, dict]]:
     """Wire-frame bounding spheres of the objects that are not spheres themselves."""
+    import pyvista as pv
+
     return [(pv.Sphere(radius=b.radius, center=b.center, theta_resolution=24,
                        phi_resolution=16).extract_all_edges(),
              {"color": "#9fd3ff", "opacity": 0.35, "line_width": 1})
@@ -38,12 +45,16 @@ def sphere_parts(scene) -> list[tuple[pv.PolyData, dict]]:
 
 def grid_cell_parts(grid) -> list[tuple[pv.PolyData, dict]]:
     """Outlines of the grid cells that hold at least one object."""
+    from views import vtk_convert
+
     return [(vtk_convert.boxes_polydata(grid.cell_boxes(grid.occupied_cells())),
              {"color": "#b0b0b0", "opacity": 0.25, "line_width": 1})]
 
 
 def walked_cell_parts(grid, root: RayNode) -> list[tuple[pv.PolyData, dict]]:
     """The cells the primary ray ``root`` passes through, up to its hit."""
+    from views import vtk_convert
+
     t_max = root.t if root.t is not None else np.inf
     walked = cells_on_ray(grid, root.origin, root.direction, root.t_min, t_max)
     if not len(walked):
@@ -56,6 +67,8 @@ def polygon_parts(vertices) -> list[tuple[pv.PolyData, dict]]:
     """One world-space polygon, filled and outlined (``None``: nothing)."""
     if vertices is None:
         return []
+    from views import vtk_convert
+
     poly = vtk_convert.polygon_polydata(vertices)
     return [(poly, {"color": "#ff2bd6", "opacity": 0.8}),
             (poly.extract_all_edges(), {"color": "#ff2bd6", "line_width": 4})]
@@ -63,6 +76,10 @@ def polygon_parts(vertices) -> list[tuple[pv.PolyData, dict]]:
 
 def clipped_parts(polygons) -> list[tuple[pv.PolyData, dict]]:
     """Outlines of the polygons the frustum's planes cut."""
+    if not len(polygons):
+        return []
+    from views import vtk_convert
+
     return [(vtk_convert.polygon_polydata(p).extract_all_edges(),
              {"color": "#7cff6b", "line_width": 3}) for p in polygons]
 
