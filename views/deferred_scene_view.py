@@ -6,9 +6,10 @@ image.  :class:`DeferredSceneView` stands in the window's layout for the
 :class:`views.scene_view.SceneView`: it shows a short note, and builds the
 real view in its place when told to (:meth:`build_soon`: the window does so
 once its first image is shown) or at the latest :data:`BUILD_AFTER_MS` after
-it was first painted.  The import holds the GIL, so doing it in a thread
-would only slow the render of the first image by as much; after it, the
-user waits for nothing else.
+it was first painted.  Not earlier: the imports hold the GIL, so they would
+slow the first render by as much as they take.  pyvista and pyvistaqt are
+imported on a thread, so the window keeps answering meanwhile; the view is
+then built, and VTK draws its first frame, on the GUI thread.
 
 Until then it keeps what the window asks of the 3D pane (overlays, which of
 them are shown, the overview camera) and hands it to the view when it is
@@ -19,13 +20,29 @@ once when asked for.
 
 from __future__ import annotations
 
-from PySide6.QtCore import Qt, QTimer, Signal
+import contextlib
+import threading
+
+from PySide6.QtCore import QObject, Qt, QTimer, Signal
 from PySide6.QtWidgets import QLabel, QVBoxLayout, QWidget
 
 PLACEHOLDER = "Loading the 3D view…"
 BUILD_AFTER_MS = 2000
 """The view is built this long after the pane was first painted if no one asked before (a first
 render that compiles the kernels takes minutes)."""
+
+
+class _Imported(QObject):
+    done = Signal()
+
+
+def _import_pyvista(imported: _Imported) -> None:
+    try:
+        import pyvista  # noqa: F401
+        import pyvistaqt  # noqa: F401
+    finally:
+        with contextlib.suppress(RuntimeError):  # RuntimeError: the pane was deleted meanwhile
+            imported.done.emit()  # queued: the view is built on the GUI thread
 
 
 class DeferredSceneView(QWidget):
@@ -50,6 +67,9 @@ class DeferredSceneView(QWidget):
         self._visible: tuple[bool, object] = (False, None)  # (asked, names) of show_overlays_only
         self._look: tuple[bool, object] = (False, None)  # (asked, view) of look_from
         self._painted = False
+        self._importing = False
+        self._imported = _Imported(self)
+        self._imported.done.connect(self.build)
         self._placeholder = QLabel(PLACEHOLDER)
         self._placeholder.setAlignment(Qt.AlignmentFlag.AlignCenter)
         self._placeholder.setStyleSheet("background: #1d2230; color: #c8cfdc;")
@@ -61,12 +81,14 @@ class DeferredSceneView(QWidget):
         super().paintEvent(event)
         if not self._painted:
             self._painted = True
-            QTimer.singleShot(BUILD_AFTER_MS, self.build)
+            QTimer.singleShot(BUILD_AFTER_MS, self.build_soon)
 
     def build_soon(self, *_) -> None:
-        """Build the view on the next turn of the event loop (after what is being painted now)."""
-        if self.view is None:
-            QTimer.singleShot(0, self.build)
+        """Import pyvista on a thread, then build the view on the GUI thread (once)."""
+        if self.view is None and not self._importing:
+            self._importing = True
+            threading.Thread(target=_import_pyvista, args=(self._imported,), name="import pyvista",
+                             daemon=True).start()
 
     def build(self):
         """Import VTK and build the SceneView now (once); returns it."""
