@@ -27,9 +27,10 @@ from PySide6.QtCore import QObject, Qt, QTimer, Signal
 from PySide6.QtWidgets import QLabel, QVBoxLayout, QWidget
 
 PLACEHOLDER = "Loading the 3D view…"
-BUILD_AFTER_MS = 2000
-"""The view is built this long after the pane was first painted if no one asked before (a first
-render that compiles the kernels takes minutes)."""
+BUILD_AFTER_MS = 5000
+"""The view is built this long after the pane was first painted if no one asked before: a first
+render that compiles the kernels takes minutes, one from numba's cache well under a second (a few
+seconds on a busy machine, where loading pyvista beside it would only slow it down)."""
 
 
 class _Imported(QObject):

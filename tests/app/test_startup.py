@@ -80,3 +80,16 @@ def test_what_a_lesson_asks_of_the_3d_pane_before_it_exists_shows_once_it_is_bui
     position, focal_point, up = view.plotter.camera_position
     assert np.allclose(position, step.view["position"]) and np.allclose(focal_point, step.view["focal_point"])
     assert np.allclose(up, step.view["up"])
+
+
+def test_the_3d_pane_comes_in_on_its_own_when_no_image_is_shown(qtbot, monkeypatch):
+    monkeypatch.setattr(deferred_scene_view, "BUILD_AFTER_MS", 100)
+    win = MainWindow(presets.lecture_scene())
+    qtbot.addWidget(win)
+    win.show_tab("hard cases")  # a tab that renders nothing: no first image to wait for
+    shown = []
+    win.image_shown.connect(lambda *_: shown.append(1))
+    win.show()
+    qtbot.waitUntil(lambda: win.scene_view.view is not None, timeout=RENDER_TIMEOUT_MS)
+    assert shown == []
+    assert np.allclose(win.scene_view.frustum.points, win.model.camera.frustum_corners())
