@@ -16,7 +16,6 @@ import numpy as np
 from core.lessons import LessonStep
 from core.scene import Mesh, Scene
 from views.scene_overlays import polygon_parts
-from views.vtk_convert import object_polydata
 
 SCENE_PANE = "scene 3D"
 """The lesson name of the 3D pane (the others are tab titles)."""
@@ -92,6 +91,8 @@ class LessonRunner:
             image_order.details.setCurrentIndex(0)  # the ray tree, where that ray is selected
             words.append(f"the {highlight['ray']} ray")
         if "object" in highlight:
+            from views.vtk_convert import object_polydata  # pyvista loads with the 3D pane, not before
+
             obj = _find(scene, highlight["object"])
             parts.append((object_polydata(obj), OBJECT_STYLE))
             words.append(f"object {obj.name!r}")

@@ -45,12 +45,12 @@ from core.image_order.ray_tree import trace_pixel
 from core.presets_trace import PRESETS_TRACE
 from core.scene import Scene
 from views.camera_panel import CameraPanel
+from views.deferred_scene_view import DeferredSceneView
 from views.elided_label import ElidedLabel
 from views.lesson_panel import LessonPanel
 from views.observer_keys import MOUSE_GESTURES, OBSERVER_KEYS, EditorsKeepTheirKeys
 from views.presentation import Presentation
 from views.scene_overlays import SCENE_OVERLAYS, SceneOverlays
-from views.scene_view import SceneView
 
 
 class MainWindow(QMainWindow):
@@ -70,7 +70,7 @@ class MainWindow(QMainWindow):
         self.setWindowTitle("Render Explorer")
         self.model = SceneModel(scene, self, memory_limit)
         self.scene_path: Path | None = None
-        self.scene_view = SceneView(self.model)
+        self.scene_view = DeferredSceneView(self.model)  # VTK loads once the window is on screen
         self.overlays = SceneOverlays(self.model, self.scene_view)
         self.camera_panel = CameraPanel(self.model)
         self.tab_widget = QTabWidget()
@@ -158,6 +158,7 @@ class MainWindow(QMainWindow):
         self.renders.status_changed.connect(self._show_status)
         self.renders.image_shown.connect(self.image_shown)
         self.renders.full_image_shown.connect(self.full_image_shown)
+        self.renders.image_shown.connect(self.scene_view.build_soon)  # the first image before VTK
         self.renders.warned.connect(lambda warning: self.statusBar().showMessage(warning, 10000))
         self.renders.refused.connect(lambda refusal: self.statusBar().showMessage(refusal, 10000))
         self.renders.rested.connect(self._observer_rested)

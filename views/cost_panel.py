@@ -13,6 +13,8 @@ one over the memory budget does not start and says what to reduce; a long one
 says how long, in its status line, while it runs.
 
 Images are encoded to sRGB in :mod:`core.srgb` before they are shown.
+matplotlib loads, and the figures are made, when the panel is first shown
+(or first asked for a point), so the main window opens without it.
 """
 
 from __future__ import annotations
@@ -21,9 +23,7 @@ import threading
 from dataclasses import replace
 
 import numpy as np
-from matplotlib.backends.backend_qtagg import FigureCanvasQTAgg
-from matplotlib.figure import Figure
-from PySide6.QtCore import QObject, QRunnable, Qt, QThreadPool, Signal
+from PySide6.QtCore import QObject, QRunnable, QSize, Qt, QThreadPool, Signal
 from PySide6.QtWidgets import (
     QComboBox,
     QDoubleSpinBox,
@@ -64,6 +64,17 @@ MODES = [("raytrace", "Ray tracing"), ("raycast", "Ray casting"), ("raster", "Ra
 DEFAULT_WIDTH = 160
 #: A sweep estimated to take longer than this (seconds) says how long in its status line.
 LONG_SWEEP_SECONDS = 600
+
+
+class _CanvasBox(QWidget):
+    """Where a canvas goes once made; meanwhile it asks for the room the canvas will ask for."""
+
+    def __init__(self):
+        super().__init__()
+        QVBoxLayout(self).setContentsMargins(0, 0, 0, 0)
+
+    def sizeHint(self) -> QSize:
+        return QSize(640, 480)  # matplotlib's default figure, 6.4 x 4.8 inches at 100 dpi
 
 
 class _Signals(QObject):
@@ -194,13 +205,10 @@ class CostPanel(QWidget):
         self.explanation.setAlignment(Qt.AlignmentFlag.AlignTop | Qt.AlignmentFlag.AlignLeft)
         self.explanation.setSizePolicy(QSizePolicy.Policy.Preferred, QSizePolicy.Policy.Minimum)
 
-        self.plot_figure = Figure(layout="constrained")
-        self.canvas = FigureCanvasQTAgg(self.plot_figure)
-        self.canvas.setMinimumSize(240, 200)
-        self.canvas.mpl_connect("pick_event", self._on_pick)
-        self.image_figure = Figure(layout="constrained")
-        self.image_canvas = FigureCanvasQTAgg(self.image_figure)
-        self.image_canvas.setMinimumSize(200, 160)
+        self.plot_figure = self.canvas = self.image_figure = self.image_canvas = None  # see _make_canvases
+        self._plot_box, self._image_box = _CanvasBox(), _CanvasBox()
+        self._plot_box.setMinimumSize(240, 200)
+        self._image_box.setMinimumSize(200, 160)
 
         controls = QGridLayout()  # three to a row, so that a narrow window keeps every control in view
         for i, w in enumerate((self.knob, self.mode, self.width_px, self.reference_spp, self.tolerance,
@@ -211,10 +219,10 @@ class CostPanel(QWidget):
         right = QWidget()
         right_layout = QVBoxLayout(right)
         right_layout.setContentsMargins(0, 0, 0, 0)
-        right_layout.addWidget(self.image_canvas, 1)
+        right_layout.addWidget(self._image_box, 1)
         right_layout.addWidget(self.explanation)
         split = QSplitter(Qt.Orientation.Horizontal)
-        split.addWidget(self.canvas)
+        split.addWidget(self._plot_box)
         split.addWidget(right)
         split.setStretchFactor(0, 3)
         split.setStretchFactor(1, 2)
@@ -234,6 +242,26 @@ class CostPanel(QWidget):
         self._show_explanation()
         self._draw_plot()
         self._update_buttons()
+
+    def showEvent(self, event) -> None:
+        self._make_canvases()
+        super().showEvent(event)
+
+    def _make_canvases(self) -> None:
+        """Make the plot's and the images' figures and canvases, once (matplotlib loads here)."""
+        if self.canvas is not None:
+            return
+        from matplotlib.backends.backend_qtagg import FigureCanvasQTAgg
+        from matplotlib.figure import Figure
+
+        self.plot_figure = Figure(layout="constrained")
+        self.canvas = FigureCanvasQTAgg(self.plot_figure)
+        self.canvas.mpl_connect("pick_event", self._on_pick)
+        self.image_figure = Figure(layout="constrained")
+        self.image_canvas = FigureCanvasQTAgg(self.image_figure)
+        self._plot_box.layout().addWidget(self.canvas)
+        self._image_box.layout().addWidget(self.image_canvas)
+        self._draw_plot()
 
     # -- inputs ---------------------------------------------------------------
 
@@ -327,8 +355,9 @@ class CostPanel(QWidget):
         self._points, self._knees, self.selected = {}, {}, None
         self.progress.setValue(0)
         self._draw_plot()
-        self.image_figure.clear()
-        self.image_canvas.draw_idle()
+        if self.image_figure is not None:
+            self.image_figure.clear()
+            self.image_canvas.draw_idle()
 
     def _on_event(self, run_id: int, event) -> None:
         if run_id != self._run_id:
@@ -383,6 +412,8 @@ class CostPanel(QWidget):
         return marked_rows(self._points, self._knees)
 
     def _draw_plot(self) -> None:
+        if self.canvas is None:
+            return  # drawn when the canvas is made
         rows = self.rows()
         self._lines = draw_cost_plot(self.plot_figure, rows, sorted(self._points))
         ax = self.plot_figure.axes[0]
@@ -402,6 +433,7 @@ class CostPanel(QWidget):
 
     def point_position(self, index: int) -> tuple[float, float]:
         """Where setting ``index``'s point is drawn on the plot canvas, in widget pixels (x right, y down)."""
+        self._make_canvases()
         ax, x, y = point_position(self.plot_figure, self._points[index].row)
         x, y = ax.transData.transform((x, y))
         ratio = self.canvas.device_pixel_ratio or 1.0
@@ -409,6 +441,7 @@ class CostPanel(QWidget):
 
     def show_point(self, index: int) -> None:
         """Show setting ``index``'s image, the reference and the error map side by side."""
+        self._make_canvases()
         point = self._points[index]
         self.selected = index
         reference = self.sweep.references[point.row.mode]
@@ -442,6 +475,7 @@ class CostPanel(QWidget):
 
     def shown_images(self) -> list[np.ndarray]:
         """The arrays currently shown beside the plot (setting, reference, error map, samples)."""
+        self._make_canvases()
         return [ax.images[0].get_array() for ax in self.image_figure.axes if ax.images]
 
     def _show_explanation(self, knob: str | None = None) -> None:
@@ -461,6 +495,7 @@ class CostPanel(QWidget):
 
     def export_plot(self, path) -> None:
         """Write the plot as PNG or SVG, after the suffix (atomically)."""
+        self._make_canvases()
         cost_files.save_figure(self.plot_figure, path)
 
     def _ask_export_csv(self) -> None:

@@ -5,7 +5,8 @@ text outside the dollar signs is set as ordinary text).  It renders at the
 label's font size times a scale, in a given colour, at the screen's pixel
 density, so a formula stays sharp when presentation mode enlarges it.
 mathtext has no matrices, so :class:`MatrixView` draws a bracketed grid of
-numbers itself.
+numbers itself.  matplotlib loads with the first formula that is not in
+:mod:`views.formula_cache` (formulas at their natural size are kept there).
 """
 
 from __future__ import annotations
@@ -13,17 +14,14 @@ from __future__ import annotations
 from functools import lru_cache
 
 import numpy as np
-from matplotlib.colors import to_rgb
-from matplotlib.font_manager import FontProperties
-from matplotlib.mathtext import MathTextParser
 from PySide6.QtCore import QRectF, QSize, Qt
 from PySide6.QtGui import QColor, QFont, QFontMetricsF, QImage, QPainter, QPen, QPixmap
 from PySide6.QtWidgets import QLabel, QSizePolicy, QWidget
 
-_PARSER = MathTextParser("agg")  # typesets straight into an 8-bit coverage image
+from views import formula_cache
 
 
-def render_mathtext(text: str, size_pt: float, color: str, dpi: float) -> QImage:
+def render_mathtext(text: str, size_pt: float, color: str, dpi: float, keep: bool = False) -> QImage:
     """``text`` typeset by mathtext as an image with a transparent background.
 
     Parameters
@@ -32,27 +30,37 @@ def render_mathtext(text: str, size_pt: float, color: str, dpi: float) -> QImage
     size_pt : font size in points.
     color : any matplotlib colour, e.g. ``"#202020"``.
     dpi : output pixels per inch (72 makes one point one pixel).
+    keep : keep the image in :mod:`views.formula_cache` for later processes
+        (and look there first).
 
     Raises
     ------
     ValueError
         ``text`` is not valid mathtext (the message says where).
     """
-    rgba = _typeset(text, float(size_pt), color, float(dpi))
+    rgba = _typeset(text, float(size_pt), color, float(dpi), keep)
     h, w, _ = rgba.shape
     return QImage(rgba.data, w, h, 4 * w, QImage.Format.Format_RGBA8888).copy()
 
 
 @lru_cache(maxsize=512)
-def _typeset(text: str, size_pt: float, color: str, dpi: float) -> np.ndarray:
+def _typeset(text: str, size_pt: float, color: str, dpi: float, keep: bool) -> np.ndarray:
     """(H, W, 4) uint8 RGBA of the typeset ``text`` (cached: plain arrays, no Qt objects)."""
-    ink = np.asarray(_PARSER.parse(text, dpi=dpi, prop=FontProperties(size=size_pt)).image)
+    if keep and (kept := formula_cache.load(text, size_pt, color, dpi)) is not None:
+        kept.setflags(write=False)
+        return kept
+    from matplotlib.colors import to_rgb
+    from matplotlib.font_manager import FontProperties
+
+    ink = np.asarray(_parser().parse(text, dpi=dpi, prop=FontProperties(size=size_pt)).image)
     pad = max(2, int(round(0.15 * size_pt * dpi / 72.0)))  # room for glyphs at the box's edge
     alpha = np.pad(ink, pad)
     rgba = np.empty((*alpha.shape, 4), np.uint8)
     rgba[..., :3] = np.round(np.array(to_rgb(color)) * 255).astype(np.uint8)
     rgba[..., 3] = alpha
     rgba.setflags(write=False)
+    if keep:
+        formula_cache.store(text, size_pt, color, dpi, rgba)
     return rgba
 
 
@@ -115,6 +123,13 @@ def join_parts(parts) -> str:
     if len(parts) == 1 and parts[0][0].startswith("$"):
         return parts[0][0]
     return "$" + "".join(p + space for p, space in parts[:-1]) + parts[-1][0] + "$"
+
+
+@lru_cache(maxsize=1)
+def _parser():
+    from matplotlib.mathtext import MathTextParser
+
+    return MathTextParser("agg")  # typesets straight into an 8-bit coverage image
 
 
 class MathView(QLabel):
@@ -232,8 +247,10 @@ class MathView(QLabel):
         return max(1.0, self.devicePixelRatioF())
 
     def _image_of(self, text: str, size_pt: float) -> QImage:
+        """``text`` typeset at ``size_pt``; the whole formula at its natural size is kept on disk too."""
         color = self._color or self.palette().color(self.foregroundRole())
-        return render_mathtext(text, size_pt, color.name(), 96.0 * self._ratio())
+        return render_mathtext(text, size_pt, color.name(), 96.0 * self._ratio(),
+                               keep=text == self._formula and size_pt == self.size_pt())
 
     def _width(self, text: str, size_pt: float) -> float:
         return self._image_of(text, size_pt).width() / self._ratio()

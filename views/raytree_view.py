@@ -9,13 +9,17 @@ local colour and its children's colours, from the last hits back to the first.
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
-import pyvista as pv
 from PySide6.QtCore import Qt
 from PySide6.QtGui import QColor
 from PySide6.QtWidgets import QGridLayout, QHeaderView, QLabel, QTreeWidget, QTreeWidgetItem, QWidget
 
 from core.image_order.ray_tree import RayNode
+
+if TYPE_CHECKING:
+    import pyvista as pv
 
 # Okabe & Ito (2008), "Color Universal Design": distinguishable with colour-vision deficiencies.
 KIND_COLORS = {
@@ -40,6 +44,8 @@ def _segment_end(node: RayNode, miss_length: float) -> np.ndarray:
 
 def ray_tree_parts(root: RayNode, miss_length: float) -> list[tuple[pv.PolyData, dict]]:
     """Line segments of every traced ray, one part per style, for ``SceneView.set_overlay``."""
+    import pyvista as pv  # loaded with the 3D pane, not with the window (views.deferred_scene_view)
+
     segments: dict[str, list] = {}
     for node in root.walk():
         if not node.traced:

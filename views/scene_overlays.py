@@ -11,22 +11,27 @@
 
 :class:`SceneOverlays` builds these shapes and hands them to the
 :class:`views.scene_view.SceneView` under fixed names, so the window only
-connects signals to it.
+connects signals to it.  pyvista (and VTK) load when a first shape is
+built, not with the window (see :mod:`views.deferred_scene_view`).
 """
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
-import pyvista as pv
 
 from core.image_order.bounding_spheres import bounding_spheres
 from core.image_order.flat_scene import trace_scene
 from core.image_order.grid_of_cuboids import cells_on_ray
 from core.image_order.ray_tree import RayNode
 from core.object_order import three_views
-from views import raytree_view, vtk_convert
+from views import raytree_view
 from views.raytree_view import KIND_COLORS
-from views.scene_view import FRUSTUM_COLOR, SCREEN_COLOR
+from views.scene_colors import FRUSTUM_COLOR, SCREEN_COLOR
+
+if TYPE_CHECKING:
+    import pyvista as pv
 
 IMAGE_ORDER_OVERLAYS = ("ray-tree", "spheres", "grid", "walk")
 OBJECT_ORDER_OVERLAYS = ("polygon", "clipped")
@@ -38,6 +43,8 @@ LABEL_PT = 13
 
 def sphere_parts(scene) -> list[tuple[pv.PolyData, dict]]:
     """Wire-frame bounding spheres of the objects that are not spheres themselves."""
+    import pyvista as pv
+
     return [(pv.Sphere(radius=b.radius, center=b.center, theta_resolution=24,
                        phi_resolution=16).extract_all_edges(),
              {"color": "#9fd3ff", "opacity": 0.35, "line_width": 1})
@@ -46,12 +53,16 @@ def sphere_parts(scene) -> list[tuple[pv.PolyData, dict]]:
 
 def grid_cell_parts(grid) -> list[tuple[pv.PolyData, dict]]:
     """Outlines of the grid cells that hold at least one object."""
+    from views import vtk_convert
+
     return [(vtk_convert.boxes_polydata(grid.cell_boxes(grid.occupied_cells())),
              {"color": "#b0b0b0", "opacity": 0.25, "line_width": 1})]
 
 
 def walked_cell_parts(grid, root: RayNode) -> list[tuple[pv.PolyData, dict]]:
     """The cells the primary ray ``root`` passes through, up to its hit."""
+    from views import vtk_convert
+
     t_max = root.t if root.t is not None else np.inf
     walked = cells_on_ray(grid, root.origin, root.direction, root.t_min, t_max)
     if not len(walked):
@@ -64,18 +75,26 @@ def polygon_parts(vertices) -> list[tuple[pv.PolyData, dict]]:
     """One world-space polygon outlined, its colours left true (``None``: nothing)."""
     if vertices is None:
         return []
+    from views import vtk_convert
+
     outline = vtk_convert.polygon_polydata(vertices).extract_all_edges()
     return [(outline, {"color": "#ff2bd6", "line_width": 4})]
 
 
 def clipped_parts(polygons) -> list[tuple[pv.PolyData, dict]]:
     """Outlines of the polygons the frustum's planes cut."""
+    if not len(polygons):
+        return []
+    from views import vtk_convert
+
     return [(vtk_convert.polygon_polydata(p).extract_all_edges(),
              {"color": "#7cff6b", "line_width": 3}) for p in polygons]
 
 
 def frustum_parts(camera) -> list[tuple[pv.PolyData, dict]]:
     """The viewing frustum emphasised: near and far planes filled, thick edges, labels."""
+    import pyvista as pv
+
     corners = camera.frustum_corners()
     near, far = corners[:4], corners[4:]
     edges = pv.PolyData(corners, lines=np.hstack([[2, a, b] for a, b in (

@@ -38,9 +38,8 @@ from core.camera import Camera
 from core.scene import Scene, Sphere
 from views import vtk_convert
 from views.image_plotter import ImagePlotter
+from views.scene_colors import FRUSTUM_COLOR, SCREEN_COLOR
 
-FRUSTUM_COLOR = "#ffd34d"
-SCREEN_COLOR = "#6fd0ff"
 TARGET_COLOR = "#ff8c42"
 FRAME_MS = 33
 """Shortest time between two draws of the pane (about 30 per second)."""
