@@ -301,7 +301,11 @@ class CompareTab:
         self.widget.pixel_picked.connect(self._read_pixel)
 
     def cost(self, scene: Scene, preview: bool) -> budget.Estimate:
-        return _cost(scene, preview, [("raster",), ("raster",), ("raytrace",)], len(self.PANES))
+        modes = {"orthographic": "raster", "perspective": "raster", "raycast": "raycast",
+                 "raytrace": "raytrace"}
+        settings = preview_trace_settings(self.model.trace_settings)
+        runs = [(modes[key], settings.accel, settings.max_depth) for key in self.widget.pair()]
+        return _cost(scene, preview, runs, 3)  # A, B and their difference
 
     def job(self, scene: Scene, preview: bool):
         a, b = self.widget.pair()
