@@ -157,7 +157,8 @@ class DeferredSceneView(QWidget):
         return super().close()
 
     def __getattr__(self, name: str):
-        # Only called for what this widget lacks: the SceneView's own attributes.
-        if name.startswith("_") or name in ("view", "model"):
+        # Only called for what this widget lacks: the SceneView's own attributes.  Names no
+        # attribute could have (PySide's connect looks a lambda slot up as "<lambda>") build nothing.
+        if name.startswith("_") or not name.isidentifier() or name in ("view", "model"):
             raise AttributeError(name)
         return getattr(self.build(), name)

@@ -297,7 +297,8 @@ class HardCasesPanel(QWidget):
             self._show(self._results[name])
         else:
             self._parameter = None
-            self._submit(name, None)
+            if self._prefetched:  # before the first show, the prefetch there brings it
+                self._submit(name, None)
 
     def _on_slider(self, position: int) -> None:
         if self._parameter is None:

@@ -67,6 +67,8 @@ def _typeset(text: str, size_pt: float, color: str, dpi: float, keep: bool) -> n
 MIN_SHRINK = 0.75
 """A formula is never drawn smaller than this share of its size: beyond that it wraps into lines
 (at its spaces) and, if a part is still too wide, its pane scrolls sideways."""
+SHRINKS = (1.0, 0.9, 0.8, MIN_SHRINK)
+"""The shares of its size a formula of several parts is tried at, largest first, when it must wrap."""
 BREAKS = (r"\qquad", r"\quad", r"\ \ ", r"\ ")
 """The spaces of mathtext a formula may wrap at (between its parts, never inside braces)."""
 
@@ -247,10 +249,12 @@ class MathView(QLabel):
         return max(1.0, self.devicePixelRatioF())
 
     def _image_of(self, text: str, size_pt: float) -> QImage:
-        """``text`` typeset at ``size_pt``; the whole formula at its natural size is kept on disk too."""
+        """``text`` typeset at ``size_pt``; kept on disk too at the few sizes that do not depend on the
+        label's width (those of :data:`SHRINKS`), which are all a window needs to open."""
         color = self._color or self.palette().color(self.foregroundRole())
+        natural = self.size_pt()
         return render_mathtext(text, size_pt, color.name(), 96.0 * self._ratio(),
-                               keep=text == self._formula and size_pt == self.size_pt())
+                               keep=any(size_pt == natural * s for s in SHRINKS))
 
     def _width(self, text: str, size_pt: float) -> float:
         return self._image_of(text, size_pt).width() / self._ratio()
@@ -268,7 +272,7 @@ class MathView(QLabel):
         least = size * MIN_SHRINK
         if len(self._parts) == 1:
             return [self._formula], max(least, size * width / full * 0.98)
-        for shrink in (1.0, 0.9, 0.8, MIN_SHRINK):  # as large as possible, then the fewest lines
+        for shrink in SHRINKS:  # as large as possible, then the fewest lines
             lines = self._wrap(width, size * shrink)
             if all(self._width(line, size * shrink) + (k > 0) * self._indent(size * shrink) <= width
                    for k, line in enumerate(lines)):

@@ -89,3 +89,14 @@ def test_slider_positions_map_onto_the_parameter_range_in_decades():
     assert slider_steps(parameter) == 9 * 20
     assert slider_value(parameter, 0) == 1.0 and slider_value(parameter, 180) == 1e9
     assert slider_value(parameter, slider_position(parameter)) == pytest.approx(1e7)
+
+
+def test_a_panel_not_yet_shown_computes_nothing_then_shows_its_first_case(qtbot):
+    widget = HardCasesPanel()  # as in the window: a tab behind the visible one
+    qtbot.addWidget(widget)
+    assert widget.result is None and widget.status.text() != "computing…"
+    first = next(iter(hard_cases.CASES))
+    with qtbot.waitSignal(widget.result_shown, timeout=TIMEOUT, check_params_cb=lambda shown: shown == first):
+        widget.show()
+    assert widget.result.name == first
+    widget.shutdown()
