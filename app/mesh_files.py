@@ -9,11 +9,20 @@ PLY that declares two billion vertices).  Here every count a header declares
 is checked against the bytes the file really has *before* anything is
 allocated, every face index is checked against the vertices, and a file that
 disagrees with its own header is refused with a message that says so.
+
+Text (ASCII OBJ, STL and PLY) is parsed :data:`CHUNK_BYTES` at a time, each
+chunk's numbers going straight into numpy arrays (:func:`numpy.loadtxt`, with
+a line-by-line reader for what it does not take), so that reading a file near
+the size limit needs a small multiple of the file's size, not Python objects
+for every number.
 """
 
 from __future__ import annotations
 
 import os
+import re
+from itertools import chain
+from typing import NamedTuple
 
 import numpy as np
 
@@ -23,6 +32,7 @@ from core.scene_file import MAX_TRIANGLES, degenerate
 EXTENSIONS = (".obj", ".stl", ".ply")
 MAX_FILE_BYTES = 256_000_000
 MAX_HEADER_BYTES = 65_536  # of a PLY header
+CHUNK_BYTES = 1_000_000  # of text parsed at a time
 
 
 class MeshFileError(ValueError):
@@ -82,7 +92,8 @@ def read_mesh(path) -> tuple[np.ndarray, np.ndarray]:
         raise MeshFileError(f"cannot read mesh file {path}: the file is damaged ({exc})") from None
     if len(faces) and not np.isfinite(vertices).all():
         raise MeshFileError(f"cannot read mesh file {path}: vertices are not finite numbers")
-    triangles = faces[~degenerate(vertices, faces)] if len(faces) else faces
+    zero_area = degenerate(vertices, faces)
+    triangles = faces[~zero_area] if zero_area.any() else faces
     if len(triangles) == 0:
         raise MeshFileError(f"mesh file has no triangles: {path}")
     return vertices, np.ascontiguousarray(triangles)
@@ -98,15 +109,35 @@ def _check_count(n: int, what: str, limit: int = MAX_TRIANGLES) -> None:
                        f"{MAX_TRIANGLES:,} triangles)")
 
 
-def _fan(polygons) -> np.ndarray:
-    """Triangles of polygons (lists of vertex indices), each as a fan from its first corner."""
-    if isinstance(polygons, np.ndarray):  # (F, k) polygons of k corners each
-        k = polygons.shape[1]
-        fans = [polygons[:, [0, i, i + 1]] for i in range(1, k - 1)]
-        return np.stack(fans, axis=1).reshape(-1, 3).astype(np.int64) if fans else \
-            np.zeros((0, 3), np.int64)
-    tris = [(p[0], p[i], p[i + 1]) for p in polygons for i in range(1, len(p) - 1)]
-    return np.array(tris, dtype=np.int64).reshape(-1, 3)
+def _fan(polygons: np.ndarray) -> np.ndarray:
+    """Triangles of (F, k) polygons of k corners each, each as a fan from its first corner."""
+    k = polygons.shape[1]
+    if k == 3:
+        return polygons.astype(np.int64, copy=False)
+    triangles = np.empty((len(polygons), max(k - 2, 0), 3), np.int64)
+    for i in range(1, k - 1):
+        triangles[:, i - 1] = polygons[:, [0, i, i + 1]]
+    return triangles.reshape(-1, 3)
+
+
+def _fan_ragged(corners: np.ndarray, counts: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Triangles of polygons given as their corners one after another and their sizes.
+
+    Returns the triangles (a fan from each polygon's first corner; polygons of
+    fewer than three corners give none) and, for each, the polygon it comes from.
+    """
+    starts = np.cumsum(counts) - counts  # of each polygon's corners
+    per_polygon = np.maximum(counts - 2, 0)
+    polygon = np.repeat(np.arange(len(counts)), per_polygon)
+    # Triangle t of polygon p, the j-th of p's, has corners 0, j + 1 and j + 2 of p.
+    second = np.repeat(starts - (np.cumsum(per_polygon) - per_polygon), per_polygon)
+    second += np.arange(1, len(polygon) + 1)
+    triangles = np.empty((len(polygon), 3), np.int64)
+    triangles[:, 0] = corners[starts[polygon]]
+    triangles[:, 1] = corners[second]
+    second += 1
+    triangles[:, 2] = corners[second]
+    return triangles, polygon
 
 
 def _check_indices(faces: np.ndarray, n_vertices: int, where, base: int = 0) -> None:
@@ -128,7 +159,69 @@ def _first_bad(face: np.ndarray, n: int) -> int:
     return int(next(i for i in face if not 0 <= i < n))
 
 
+# --- text ----------------------------------------------------------------------
+
+
+def _text_chunks(data: bytes, start: int = 0):
+    """``data[start:]`` as lists of lines, about :data:`CHUNK_BYTES` at a time, and each list's
+    first line number (counting from 1 at ``start``).  A chunk ends at a line break (``\\n``, or
+    ``\\r`` in a file without ``\\n``), so no line is cut in two."""
+    number = 1
+    while start < len(data):
+        stop = min(start + CHUNK_BYTES, len(data))
+        if stop < len(data):
+            cut = data.rfind(b"\n", start, stop)
+            if cut < 0:  # a line longer than a chunk, or a file of ``\r`` line breaks
+                cut = data.find(b"\n", stop)
+            stop = len(data) if cut < 0 else cut + 1
+        lines = data[start:stop].splitlines()
+        yield number, lines
+        number += len(lines)
+        start = stop
+
+
+_PLAIN = bytes(range(0x20, 0x7F)) + b"\t\n\x0b\x0c\r"
+"""The bytes numpy's reader takes as Python's ``split`` does; it would read others differently (it
+decodes the text and splits at Unicode spaces such as ``\\xa0``, ``\\x85``, ``\\x1c``)."""
+
+
+def _table(lines: list, dtype, usecols=None) -> np.ndarray | None:
+    """Whitespace-separated numbers of ``lines`` as an (N, K) array, each line a row of the same K
+    numbers (or of at least the columns ``usecols``, the others skipped); None for anything numpy
+    does not read as such, which a line-by-line reader then explains."""
+    if b"\n".join(lines).translate(None, _PLAIN):
+        return None
+    try:
+        return np.loadtxt(lines, dtype=dtype, comments=None, ndmin=2, usecols=usecols)
+    except ValueError:
+        return None
+
+
+class _Ragged(NamedTuple):
+    """Lists of whole numbers of varying lengths: their values one after another, and the lengths."""
+
+    values: np.ndarray
+    lengths: np.ndarray
+
+    @staticmethod
+    def of(lists: list) -> _Ragged:
+        """From a list of lists (or of 1-D arrays) of whole numbers."""
+        return _Ragged(np.fromiter(chain.from_iterable(lists), np.int64),
+                       np.array([len(item) for item in lists], dtype=np.int64))
+
+    @staticmethod
+    def joined(parts: list) -> _Ragged:
+        """One list of lists from ``parts``, each a :class:`_Ragged` or an (N, k) array of N lists of k."""
+        parts = [p if isinstance(p, _Ragged) else _Ragged(p.ravel(), np.full(len(p), p.shape[1]))
+                 for p in parts]
+        return _Ragged(np.concatenate([p.values for p in parts]),
+                       np.concatenate([p.lengths for p in parts]))
+
+
 # --- OBJ -----------------------------------------------------------------------
+
+
+_BLANKS = (b" ", b"\t", b"\x0b", b"\x0c", b"\r")  # what ``bytes.split`` splits at, within a line
 
 
 def _parse_obj(data: bytes) -> tuple[np.ndarray, np.ndarray]:
@@ -138,65 +231,124 @@ def _parse_obj(data: bytes) -> tuple[np.ndarray, np.ndarray]:
     indices need not exist.  Indices count from 1; negative ones count back
     from the last vertex read so far, as the format says.
     """
-    text = data.decode("utf-8", errors="replace")
-    fast = _parse_obj_triangles(text)
-    if fast is not None:
-        return fast
+    # Room for every line written "v ...", so that the vertices are not copied once more at the end.
+    vertices = np.empty((data.count(b"\nv ") + data.startswith(b"v "), 3))
+    polygons = []
+    n_vertices = n_polygons = 0
+    for number, lines in _text_chunks(data):
+        chunk_vertices, chunk_polygons = _obj_chunk_fast(lines) or _obj_chunk(lines, number, n_vertices)
+        end = n_vertices + len(chunk_vertices)
+        if end > len(vertices):  # vertices written otherwise: twice the room
+            grown = np.empty((max(2 * len(vertices), end), 3))
+            grown[:n_vertices] = vertices[:n_vertices]
+            vertices = grown
+        vertices[n_vertices:end] = chunk_vertices
+        polygons.append(chunk_polygons)
+        n_vertices = end
+        n_polygons += len(chunk_polygons) if isinstance(chunk_polygons, np.ndarray) else \
+            len(chunk_polygons.lengths)  # (a _Ragged is a pair)
+        _check_count(n_polygons, "faces")
+    vertices = vertices if n_vertices == len(vertices) else vertices[:n_vertices].copy()
+    faces, polygon_of = _polygon_triangles(polygons)
+    _check_indices(faces, n_vertices, lambda k: f"line {_obj_polygon_line(data, polygon_of(k))}: face",
+                   base=1)
+    return vertices, faces
+
+
+def _polygon_triangles(parts: list):
+    """Triangles of polygons read in parts (each an (F, k) array or a :class:`_Ragged`), and a
+    function giving the polygon that triangle ``t`` comes from."""
+    if all(isinstance(p, np.ndarray) for p in parts) and len({p.shape[1] for p in parts if len(p)}) <= 1:
+        polygons = np.concatenate([p for p in parts if len(p)] or [np.zeros((0, 3), np.int64)])
+        per_polygon = max(polygons.shape[1] - 2, 1)
+        return _fan(polygons), lambda t: t // per_polygon
+    joined = _Ragged.joined(parts)
+    triangles, polygon = _fan_ragged(joined.values, joined.lengths)
+    return triangles, lambda t: polygon[t]
+
+
+def _obj_chunk_fast(lines: list):
+    """The common chunk read by numpy: ``v x y z`` lines, and ``f`` lines of positive indices with
+    the same number of corners; its vertices and (F, k) polygons, or None for anything else,
+    which :func:`_obj_chunk` reads."""
+    if _unusual_statements(b"\n" + b"\n".join(lines) + b"\n"):
+        return None
+    v = [line for line in lines if line.startswith(b"v ")]
+    f = [line[2:] for line in lines if line.startswith(b"f ")]
+    vertices = _table(v, np.float64, usecols=(1, 2, 3)) if v else np.zeros((0, 3))
+    if any(b"/" in line for line in f):  # only the vertex index of each corner counts
+        f = re.sub(rb"/\S*", b"", b"\n".join(f)).split(b"\n")
+    polygons = _table(f, np.int64) if f else np.zeros((0, 3), np.int64)
+    if vertices is None or polygons is None or (polygons.size and polygons.min() < 1):
+        return None
+    if polygons.shape[1] < 3:  # points and lines have no triangles
+        polygons = np.zeros((0, 3), np.int64)
+    return vertices, polygons - 1
+
+
+def _unusual_statements(text: bytes) -> bool:
+    """Whether a line of ``text`` (lines between ``\\n``) may be a ``v`` or ``f`` statement not
+    written ``v ...`` or ``f ...``: indented, or with a tab after the keyword, or without values."""
+    if any(b"\n" + blank in text for blank in _BLANKS):  # indented lines: look at each
+        return any(line.split(None, 1)[:1] in ([b"v"], [b"f"]) for line in text.split(b"\n")
+                   if line[:1] in b" \t\x0b\x0c\r")
+    return any(b"\n" + key + after in text for key in (b"v", b"f") for after in (*_BLANKS[1:], b"\n"))
+
+
+def _obj_chunk(lines: list, number: int, n_before: int):
+    """A chunk of OBJ lines (the first is line ``number``; ``n_before`` vertices came before),
+    line by line: its vertices and its polygons (an (F, k) array, or a :class:`_Ragged`)."""
     vertices: list[tuple[float, float, float]] = []
-    polygons: list[list[int]] = []
-    lines: list[int] = []
-    for number, line in enumerate(text.splitlines(), start=1):
+    corners: list[int] = []
+    counts: list[int] = []
+    for number, line in enumerate(lines, start=number):  # noqa: B020 (numbering goes on from the chunk's)
         parts = line.split()
         if not parts:
             continue
-        if parts[0] == "v":
+        if parts[0] == b"v":
             try:
                 vertices.append((float(parts[1]), float(parts[2]), float(parts[3])))
             except (IndexError, ValueError):
                 raise _DamagedError(f"line {number}: a vertex needs three numbers, "
-                                    f"got {line.strip()[:60]!r}") from None
-        elif parts[0] == "f":
-            corners = []
+                                    f"got {_shown(line)!r}") from None
+        elif parts[0] == b"f":
+            face = []
             for corner in parts[1:]:
                 try:
-                    i = int(corner.split("/")[0])
+                    i = int(corner.split(b"/")[0])
                 except ValueError:
-                    raise _DamagedError(f"line {number}: face corner {corner[:30]!r} is not a vertex "
-                                   "index") from None
+                    raise _DamagedError(f"line {number}: face corner {_shown(corner, 30)!r} is not "
+                                        "a vertex index") from None
                 if i == 0:
                     raise _DamagedError(f"line {number}: vertex index 0 (OBJ counts from 1)")
-                corners.append(i - 1 if i > 0 else len(vertices) + i)
-            if len(corners) >= 3:
-                polygons.append(corners)
-                lines.append(number)
-            _check_count(len(polygons), "faces")
-    faces = _fan(polygons)
-    corner_line = np.repeat(lines, [len(p) - 2 for p in polygons]) if polygons else []
-    _check_indices(faces, len(vertices), lambda k: f"line {corner_line[k]}: face", base=1)
-    return np.array(vertices, dtype=np.float64).reshape(-1, 3), faces
+                face.append(i - 1 if i > 0 else n_before + len(vertices) + i)
+            if len(face) >= 3:  # points and lines have no triangles
+                corners += face
+                counts.append(len(face))
+    corners = np.array(corners, dtype=np.int64)
+    if len(set(counts)) == 1:  # polygons of one size, such as quads: the cheaper fan
+        polygons = corners.reshape(len(counts), counts[0])
+    else:
+        polygons = _Ragged(corners, np.array(counts, dtype=np.int64))
+    return np.array(vertices, dtype=np.float64).reshape(-1, 3), polygons
 
 
-def _parse_obj_triangles(text: str):
-    """The common OBJ read with numpy: ``v x y z`` lines and triangles with positive indices.
+def _obj_polygon_line(data: bytes, polygon: int) -> int:
+    """The line number of the ``polygon``-th face (of three corners or more) of an OBJ file."""
+    seen = 0
+    for number, lines in _text_chunks(data):
+        for k, line in enumerate(lines):
+            parts = line.split()
+            if parts[:1] == [b"f"] and len(parts) >= 4:
+                if seen == polygon:
+                    return number + k
+                seen += 1
+    raise ValueError(f"no face {polygon}")
 
-    None when the file is anything else (or damaged), so that the line-by-line
-    reader handles it and names the line that is wrong.
-    """
-    rows = [line.split() for line in text.splitlines() if line.startswith(("v ", "f "))]
-    v_rows = [r[1:] for r in rows if r[0] == "v"]
-    f_rows = [r[1:] for r in rows if r[0] == "f"]
-    if len(f_rows) > MAX_TRIANGLES or any(len(r) != 3 for r in v_rows) or any(
-            len(r) != 3 for r in f_rows):
-        return None
-    try:  # Python's float() and int() per token: far faster than numpy's string parsing
-        vertices = np.array([float(c) for r in v_rows for c in r], dtype=np.float64).reshape(-1, 3)
-        faces = np.array([int(c.split("/")[0]) for r in f_rows for c in r], dtype=np.int64)
-    except ValueError:
-        return None
-    faces = faces.reshape(-1, 3) - 1
-    if faces.size and not ((faces >= 0) & (faces < len(vertices))).all():
-        return None
-    return vertices, faces
+
+def _shown(text: bytes, limit: int = 60) -> str:
+    """The start of ``text`` (a line or a word of the file) for a message."""
+    return text.strip()[:limit].decode("utf-8", errors="replace")
 
 
 # --- STL -----------------------------------------------------------------------
@@ -219,19 +371,28 @@ def _parse_stl(data: bytes) -> tuple[np.ndarray, np.ndarray]:
                            f"bytes, but the file has {len(data):,} bytes")
         raise _DamagedError("neither a binary STL (too short for its header) nor an ASCII one "
                        "(it does not start with 'solid')")
-    vertices = []
-    for number, line in enumerate(data.decode("utf-8", errors="replace").splitlines(), start=1):
-        parts = line.split()
-        if parts[:1] == ["vertex"]:
-            try:
-                vertices.append((float(parts[1]), float(parts[2]), float(parts[3])))
-            except (IndexError, ValueError):
-                raise _DamagedError(f"line {number}: a vertex needs three numbers") from None
+    chunks = []
+    for number, lines in _text_chunks(data):
+        rows = [(k, line) for k, line in enumerate(lines, start=number)
+                if b"vertex" in line and line.split(None, 1)[0] == b"vertex"]
+        table = _table([line for _, line in rows], np.float64, usecols=(1, 2, 3)) if rows else \
+            np.zeros((0, 3))
+        if table is None:  # line by line, to say which one is wrong
+            table = np.array([_stl_vertex(line, k) for k, line in rows])
+        chunks.append(table)
+    vertices = np.concatenate(chunks) if chunks else np.zeros((0, 3))
     if len(vertices) % 3:
         raise _DamagedError(f"ASCII STL has {len(vertices):,} vertices, not three per facet")
     _check_count(len(vertices) // 3, "facets")
-    return (np.array(vertices, dtype=np.float64).reshape(-1, 3),
-            np.arange(len(vertices), dtype=np.int64).reshape(-1, 3))
+    return vertices, np.arange(len(vertices), dtype=np.int64).reshape(-1, 3)
+
+
+def _stl_vertex(line: bytes, number: int) -> tuple[float, float, float]:
+    parts = line.split()
+    try:
+        return float(parts[1]), float(parts[2]), float(parts[3])
+    except (IndexError, ValueError):
+        raise _DamagedError(f"line {number}: a vertex needs three numbers") from None
 
 
 # --- PLY -----------------------------------------------------------------------
@@ -275,6 +436,10 @@ def _ply_header(data: bytes):
     return fmt, elements, body
 
 
+_PLY_USED = {"vertex": ("x", "y", "z"), "face": ("vertex_indices", "vertex_index")}
+"""The properties a mesh is made of; an ASCII file's others are checked, not kept."""
+
+
 def _parse_ply(data: bytes) -> tuple[np.ndarray, np.ndarray]:
     """The ``vertex`` element's x, y, z and the ``face`` element's vertex index lists."""
     fmt, elements, body = _ply_header(data)
@@ -289,10 +454,10 @@ def _parse_ply(data: bytes) -> tuple[np.ndarray, np.ndarray]:
             raise _DamagedError("the 'face' element has no 'vertex_indices' list")
         _check_count(count, f"{name} elements declared", 3 * MAX_TRIANGLES)
     if fmt == "ascii":
-        values = _ply_ascii_elements(data[body:], elements)
+        values = _ply_ascii_elements(data, body, elements, _PLY_USED)
     else:
         values = _ply_binary_elements(data, body, elements, "<" if fmt.endswith("little_endian") else ">")
-    vertices = np.stack([values["vertex"][k] for k in "xyz"], axis=1).astype(np.float64)
+    vertices = np.stack([values["vertex"][k] for k in "xyz"], axis=1).astype(np.float64, copy=False)
     if "face" not in values:
         return vertices, np.zeros((0, 3), np.int64)
     lists = values["face"].get("vertex_indices", values["face"].get("vertex_index"))
@@ -301,46 +466,110 @@ def _parse_ply(data: bytes) -> tuple[np.ndarray, np.ndarray]:
         k = max(lists.shape[1] - 2, 1)
         _check_indices(faces, n_vertices, lambda i: f"face {i // k}")
         return vertices, faces
-    faces = _fan([list(p) for p in lists if len(p) >= 3])
-    first_face = np.repeat(np.flatnonzero([len(p) >= 3 for p in lists]),
-                           [len(p) - 2 for p in lists if len(p) >= 3]) if len(faces) else []
-    _check_indices(faces, n_vertices, lambda k: f"face {first_face[k]}")
+    faces, face_of = _fan_ragged(lists.values, lists.lengths)
+    _check_indices(faces, n_vertices, lambda k: f"face {face_of[k]}")
     return vertices, faces
 
 
-def _ply_ascii_elements(body: bytes, elements) -> dict:
-    lines = body.split(b"\n")
+def _ply_ascii_elements(data: bytes, body: int, elements, used: dict) -> dict:
+    """The elements of an ASCII PLY whose data starts at ``body`` (one non-blank line per element,
+    read a chunk at a time): element -> property -> values, for the properties ``used[element]``."""
     needed = sum(count for _, count, _ in elements)
-    available = sum(1 for line in lines if line.strip())
+    if data.count(b"\n", body) + data.count(b"\r", body) + 1 < needed:  # more lines than there can be
+        _ply_too_few_lines(data, body, elements)
+    try:
+        return _ply_ascii_rows(data, body, elements, used)
+    except _DamagedError:
+        _ply_too_few_lines(data, body, elements)  # a file shorter than its header says is told so first
+        raise
+
+
+def _ply_ascii_rows(data: bytes, body: int, elements, used: dict) -> dict:
+    stream, pending = _ply_rows(data, body), []
+    values = {}
+    for name, count, props in elements:
+        wanted = [p for p in props if p[0] in used.get(name, ())]
+        scalars = {prop: np.empty(count) for prop, _, c in wanted if c is None}  # filled batch by batch
+        lists: dict[str, list] = {prop: [] for prop, _, c in wanted if c is not None}
+        row = 0
+        while row < count:
+            if not pending:
+                pending = next(stream, None)
+                if pending is None:
+                    raise _DamagedError("the file ends before its elements do")
+            batch, pending = pending[:count - row], pending[count - row:]
+            kept = _ply_ascii_batch(batch, name, row, props)
+            for prop, column in scalars.items():
+                column[row:row + len(batch)] = kept[prop]
+            for prop, parts in lists.items():
+                parts.append(kept[prop])
+            row += len(batch)
+        values[name] = {**scalars, **{prop: _ply_lists(parts) for prop, parts in lists.items()}}
+    return values
+
+
+def _ply_lists(parts: list):
+    """A list property's values from its batches: an (N, k) array if every list has the same
+    length k, else a :class:`_Ragged`."""
+    if not parts:
+        return np.zeros((0, 0), np.int64)
+    if any(isinstance(p, _Ragged) for p in parts) or len({p.shape[1] for p in parts}) > 1:
+        return _Ragged.joined(parts)
+    return parts[0] if len(parts) == 1 else np.concatenate(parts)
+
+
+def _ply_rows(data: bytes, body: int):
+    """The non-blank lines after the header, a chunk's worth at a time."""
+    for _, lines in _text_chunks(data, body):
+        rows = [line for line in lines if line.strip()]
+        if rows:
+            yield rows
+
+
+def _ply_too_few_lines(data: bytes, body: int, elements) -> None:
+    """Refuse an ASCII PLY with fewer lines of data than its header declares elements."""
+    needed = sum(count for _, count, _ in elements)
+    available = sum(len(rows) for rows in _ply_rows(data, body))
     if available < needed:
         declared = ", ".join(f"{count:,} {name}" for name, count, _ in elements)
         raise _DamagedError(f"the header declares {declared} ({needed:,} lines of data), "
-                       f"but only {available:,} lines follow it")
-    rows = (line for line in lines if line.strip())
-    values = {}
-    for name, count, props in elements:
-        columns: dict[str, list] = {p[0]: [] for p in props}
-        for row in range(count):
-            fields = next(rows).split()
-            try:
-                at = 0
-                for prop, _, count_type in props:
-                    if count_type is None:
-                        columns[prop].append(float(fields[at]))
-                        at += 1
-                    else:
-                        k = int(fields[at])
-                        if k < 0 or at + 1 + k > len(fields):
-                            raise ValueError
-                        columns[prop].append([int(x) for x in fields[at + 1: at + 1 + k]])
-                        at += 1 + k
-            except (IndexError, ValueError):
-                text = b" ".join(fields).decode("ascii", "replace")[:60]
-                raise _DamagedError(f"{name} {row}: does not match the header's properties: "
-                               f"{text!r}") from None
-        values[name] = {k: (v if any(p[0] == k and p[2] for p in props) else np.array(v))
-                        for k, v in columns.items()}
-    return values
+                            f"but only {available:,} lines follow it")
+
+
+def _ply_ascii_batch(rows: list, name: str, first: int, props) -> dict:
+    """Rows ``first``, ``first + 1``, ... of element ``name``: property -> values.
+
+    Scalars are float64 arrays; a list property is an (N, k) array when every
+    list has k values, else a :class:`_Ragged`.
+    """
+    if all(c is None for _, _, c in props):
+        table = _table(rows, np.float64, usecols=range(len(props)))
+        if table is not None:  # columns copied, so that the batch's table is not kept
+            return {prop: table[:, i].copy() for i, (prop, _, _) in enumerate(props)}
+    elif len(props) == 1:
+        table = _table(rows, np.int64)
+        if table is not None and (table[:, 0] == table.shape[1] - 1).all():
+            return {props[0][0]: table[:, 1:]}
+    columns: dict[str, list] = {p[0]: [] for p in props}
+    for row, line in enumerate(rows, start=first):  # line by line, to say which one is wrong
+        fields = line.split()
+        try:
+            at = 0
+            for prop, _, count_type in props:
+                if count_type is None:
+                    columns[prop].append(float(fields[at]))
+                    at += 1
+                else:
+                    k = int(fields[at])
+                    if k < 0 or at + 1 + k > len(fields):
+                        raise ValueError
+                    columns[prop].append([int(x) for x in fields[at + 1: at + 1 + k]])
+                    at += 1 + k
+        except (IndexError, ValueError):
+            raise _DamagedError(f"{name} {row}: does not match the header's properties: "
+                                f"{_shown(b' '.join(fields))!r}") from None
+    return {prop: _Ragged.of(columns[prop]) if c is not None else np.array(columns[prop], dtype=np.float64)
+            for prop, _, c in props}
 
 
 def _ply_binary_elements(data: bytes, offset: int, elements, order: str) -> dict:
@@ -388,10 +617,10 @@ def _ply_binary_lists(data: bytes, offset: int, name: str, count: int, props, or
             if k < 0 or offset + k * item.itemsize > len(data):
                 raise _DamagedError(f"the header declares {count:,} {name} elements, but the "
                                     f"file ends inside {name} {row} (a list of {k} values)")
-            columns[prop].append(np.frombuffer(data, item, k, offset).astype(np.int64).tolist())
+            columns[prop].append(np.frombuffer(data, item, k, offset).astype(np.int64))
             offset += k * item.itemsize
-    return {k: (v if any(p[0] == k and p[2] for p in props) else np.array(v))
-            for k, v in columns.items()}, offset
+    return {prop: _Ragged.of(columns[prop]) if c is not None else np.array(columns[prop])
+            for prop, _, c in props}, offset
 
 
 def _ply_fixed_lists(data: bytes, offset: int, count: int, props, order: str):

@@ -53,6 +53,7 @@ MAX_TRIANGLES = 2_000_000  # of the whole scene: primitives, inline meshes and m
 MAX_NESTING = 32  # levels of JSON arrays and objects; a scene needs 5
 MAX_FILE_BYTES = 100_000_000
 MAX_DIGITS = 100  # of a whole number in the JSON text; any longer one is out of range anyway
+DEGENERATE_BLOCK = 100_000  # triangles checked for zero area at a time
 
 MeshReader = Callable[[str], tuple[np.ndarray, np.ndarray]]
 
@@ -327,12 +328,17 @@ def degenerate(vertices: np.ndarray, triangles: np.ndarray) -> np.ndarray:
 
     A triangle is degenerate when twice its area is at most ``1e-12`` times the
     product of two of its edge lengths (its corners are collinear or repeated).
+    Computed :data:`DEGENERATE_BLOCK` triangles at a time, so that a large mesh
+    needs little memory beyond its own.
     """
-    c = vertices[triangles]
-    e1, e2 = c[:, 1] - c[:, 0], c[:, 2] - c[:, 0]
-    area2 = np.linalg.norm(np.cross(e1, e2), axis=1)
-    scale = np.linalg.norm(e1, axis=1) * np.linalg.norm(e2, axis=1)
-    return ~(area2 > 1e-12 * scale)
+    out = np.empty(len(triangles), dtype=bool)
+    for first in range(0, len(triangles), DEGENERATE_BLOCK):
+        c = vertices[triangles[first:first + DEGENERATE_BLOCK]]
+        e1, e2 = c[:, 1] - c[:, 0], c[:, 2] - c[:, 0]
+        area2 = np.linalg.norm(np.cross(e1, e2), axis=1)
+        scale = np.linalg.norm(e1, axis=1) * np.linalg.norm(e2, axis=1)
+        out[first:first + len(c)] = ~(area2 > 1e-12 * scale)
+    return out
 
 
 def _triangle_problems(vertices: np.ndarray, triangles: np.ndarray) -> list[tuple[int, str]]:
