@@ -35,6 +35,7 @@ from PySide6.QtWidgets import (
 
 from app.lesson_runner import LESSON_OVERLAY, LessonRunner
 from app.mesh_files import read_mesh
+from app.scene_editor import SceneEditor
 from app.state import SceneModel
 from app.tabs import TABS
 from app.workers import Renderer, RenderSchedule
@@ -144,6 +145,8 @@ class MainWindow(QMainWindow):
         # After the editors' filter, so that PageUp/PageDown reach the lessons first, from anywhere.
         self.presentation = Presentation(self, self.lesson_panel)
         self._build_menus()
+        self.editor = SceneEditor(self)
+        self._keyed_actions += self.editor.keyed_actions
         self.lesson_panel.step_selected.connect(self.apply_lesson_step)
         self.presentation.presenting_changed.connect(self._presenting_changed)
         self.presentation.scale_changed.connect(self._scale_changed)
@@ -213,7 +216,8 @@ class MainWindow(QMainWindow):
     # --------------------------------------------------------------- lessons
     def apply_lesson_step(self, step) -> None:
         """Show lesson step ``step`` (a :class:`core.lessons.LessonStep`); see :mod:`app.lesson_runner`."""
-        self.lessons.apply(step)
+        if self.editor.may_replace_scene():
+            self.lessons.apply(step)
 
     def _presenting_changed(self, presenting: bool) -> None:
         # Esc leaves full screen while presenting; one key, one meaning.
@@ -333,6 +337,8 @@ class MainWindow(QMainWindow):
         except scene_file.SceneFileError as exc:
             QMessageBox.critical(self, "Cannot open scene", f"{Path(path).name}:\n\n{exc}")
             return False
+        if not self.editor.may_replace_scene():
+            return False
         self.scene_path = Path(path)
         self.setWindowTitle(f"Render Explorer — {self.scene_path.name}")
         self.model.set_scene(scene)
@@ -346,11 +352,15 @@ class MainWindow(QMainWindow):
                 scene_file.save(self.model.scene, path)
             except OSError as exc:
                 QMessageBox.critical(self, "Cannot save scene", f"{path}:\n\n{exc}")
+            else:
+                self.editor.saved(path)
 
     def reset_scene(self) -> None:
         self.load_preset("lecture", presets.lecture_scene)
 
     def load_preset(self, key: str, build) -> None:
+        if not self.editor.may_replace_scene():
+            return
         self.scene_path = None
         self.setWindowTitle(f"Render Explorer — example: {key}")
         self.model.set_scene(build())
@@ -422,6 +432,9 @@ class MainWindow(QMainWindow):
         self.overlays.show_ray_tree(root)
 
     def closeEvent(self, event):
+        if not self.editor.may_replace_scene():
+            event.ignore()
+            return
         QApplication.instance().removeEventFilter(self._editor_keys)
         self.presentation.clicker.remove()
         self.renders.stop()

@@ -286,10 +286,11 @@ def _read_camera(r: _Reader, value, path="camera") -> Camera:
 
 
 def _read_light(r: _Reader, value, path) -> PointLight | None:
-    d = r.fields(value, path, ["position", "color", "intensity"], ["position"])
+    d = r.fields(value, path, ["position", "color", "intensity", "name"], ["position"])
     if d is None:
         return None
     values = {
+        "name": r.string(d["name"], f"{path}.name") if "name" in d else "light",
         "position": r.vector(d["position"], f"{path}.position") if "position" in d else None,
         "color": r.color(d["color"], f"{path}.color") if "color" in d else (1.0, 1.0, 1.0),
         "intensity": r.number(d["intensity"], f"{path}.intensity", ge=0)
@@ -696,7 +697,8 @@ def to_dict(scene: Scene, base_dir=None) -> dict:
     lights = [
         {"position": [float(x) for x in light.position],
          "color": [float(x) for x in light.color],
-         "intensity": float(light.intensity)}
+         "intensity": float(light.intensity),
+         "name": light.name}
         for light in scene.lights
     ]
     return {

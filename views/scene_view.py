@@ -196,7 +196,8 @@ class SceneView(QWidget):
             self._object_actors.append(actor)
         self._scene = scene
         self.set_camera(scene.camera)
-        self._frame(scene)
+        if not self.model.scene_was_edited:  # an edit keeps the view the user has
+            self._frame(scene)
 
     def resizeEvent(self, event):
         """Frame the scene again for the new shape, unless the user has moved the view."""
