@@ -33,6 +33,7 @@ from PySide6.QtWidgets import (
     QWidget,
 )
 
+from app import session
 from app.lesson_runner import LESSON_OVERLAY, LessonRunner
 from app.mesh_files import read_mesh
 from app.scene_editor import SceneEditor
@@ -457,7 +458,13 @@ def run(scene_path: str | None = None) -> int:
     app = QApplication.instance() or QApplication(sys.argv[:1])
     app.setApplicationName("Render Explorer")
     window = MainWindow(scene)
+    if scene_path is None:
+        session.restore(window)
+    else:
+        window.scene_path = Path(scene_path)
+        window.setWindowTitle(f"Render Explorer — {window.scene_path.name}")
     window.show()
     status = app.exec()
+    session.remember(window)
     QThreadPool.globalInstance().waitForDone()
     return status

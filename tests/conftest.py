@@ -1,11 +1,18 @@
 """Shared test set-up: GUI tests need a real X server, and say so instead of skipping."""
 
+import atexit
 import os
+import shutil
+import tempfile
 
 import pytest
 import pyvista as pv
 
 pv.OFF_SCREEN = True
+# The window keeps its last scene in the user's settings (QSettings); the tests, and the
+# windows they start in subprocesses, keep theirs in a folder of their own.
+os.environ["XDG_CONFIG_HOME"] = tempfile.mkdtemp(prefix="render-explorer-test-config-")
+atexit.register(shutil.rmtree, os.environ["XDG_CONFIG_HOME"], ignore_errors=True)
 
 
 def pytest_configure(config):

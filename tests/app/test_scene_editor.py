@@ -13,7 +13,8 @@ from PySide6.QtGui import QColor
 from PySide6.QtWidgets import QApplication, QColorDialog, QLineEdit, QMessageBox
 from window_helpers import RENDER_TIMEOUT_MS
 
-from app.main_window import MainWindow
+from app import session
+from app.main_window import MainWindow, run
 from core import presets, scene_file
 from core.scene import Sphere
 
@@ -283,3 +284,79 @@ def test_save_from_the_question_writes_the_file_and_clears_the_star(qtbot, windo
 def _saved_lecture(path):
     scene_file.save(presets.lecture_scene(), path)
     return path
+
+
+def _fresh_window(qtbot):
+    win = MainWindow(presets.lecture_scene())
+    qtbot.addWidget(win)
+    return win
+
+
+def test_saved_scene_and_observer_come_back_in_a_fresh_window(qtbot, window, tmp_path):
+    session.settings().clear()
+    path = _saved_lecture(tmp_path / "kept.json")
+    assert window.open_scene(str(path))
+    _editor_action(window, "pyramid").trigger()
+    window.editor.save_action.trigger()  # Ctrl+S: into the scene's file
+    assert not window.isWindowModified()
+    assert [o.name for o in scene_file.load(path).objects][-1] == "pyramid"
+    moved = window.model.camera.orbit(window.model.camera.yaw_deg + 40, 10.0)
+    window.model.set_camera(moved)
+    session.remember(window)
+
+    fresh = _fresh_window(qtbot)
+    assert session.restore(fresh)
+    assert [o.name for o in fresh.model.scene.objects] == ["cube", "cone", "ground", "pyramid"]
+    assert fresh.model.camera == moved
+    assert fresh.scene_path == path and "kept.json" in fresh.windowTitle()
+    assert not fresh.isWindowModified()
+
+
+def test_discarded_edits_are_not_kept_but_the_observer_is(qtbot, window):
+    session.settings().clear()
+    _editor_action(window, "pyramid").trigger()
+    moved = window.model.camera.orbit(window.model.camera.yaw_deg - 40, 15.0)
+    window.model.set_camera(moved)
+    session.remember(window)  # as after "Discard" at closing
+
+    fresh = _fresh_window(qtbot)
+    assert session.restore(fresh)
+    assert [o.name for o in fresh.model.scene.objects] == ["cube", "cone", "ground"]
+    assert fresh.model.camera == moved
+
+
+def test_settings_that_no_longer_load_are_reported_and_the_lecture_scene_kept(qtbot):
+    session.settings().clear()
+    store = session.settings()
+    store.setValue("scene", '{"objects": [{"type": "sphere", "center": [0, 0, 0], "radius": -1}]}')
+    store.sync()
+    fresh = _fresh_window(qtbot)
+    assert not session.restore(fresh)
+    assert fresh.model.scene == presets.lecture_scene()
+    assert "objects[0].radius: must be > 0, got -1" in fresh.statusBar().currentMessage()
+
+
+def test_a_scene_file_on_the_command_line_wins_over_the_last_session(qtbot, tmp_path):
+    session.settings().clear()
+    store = session.settings()
+    store.setValue("scene", '{"objects": [{"type": "box", "center": [0, 0, 0], "size": 1}]}')
+    store.sync()
+    given = tmp_path / "given.json"
+    scene_file.save(presets.lecture_scene(), given)
+    shown = []
+
+    def close_once_shown():
+        win = next((w for w in QApplication.topLevelWidgets()
+                    if isinstance(w, MainWindow) and w.isVisible() and w.scene_path == given), None)
+        if win is None:
+            QTimer.singleShot(50, close_once_shown)
+            return
+        shown.append([o.name for o in win.model.scene.objects])
+        win.close()
+
+    QTimer.singleShot(0, close_once_shown)
+    assert run(str(given)) == 0
+    assert shown == [["cube", "cone", "ground"]]
+    fresh = _fresh_window(qtbot)  # and at the next start without a file, that file comes back
+    assert session.restore(fresh)
+    assert fresh.scene_path == given
