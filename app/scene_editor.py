@@ -28,6 +28,7 @@ from app.scene_edits import SceneEdit
 from app.workers import Renderer
 from core import scene_editing, scene_file
 from core.scene_file import SceneFileError
+from views.scene_picking import ScenePicker
 from views.scene_tree_panel import SceneTreePanel, label
 
 EDITABLE = ("object", "light")
@@ -63,6 +64,9 @@ class SceneEditor(QObject):
         self._build_actions()
         self.panel.field_edited.connect(self.change_field)
         self.panel.move_requested.connect(self.move)
+        self.picker = ScenePicker(self.model, window.scene_view)
+        self.picker.move_requested.connect(self.move)
+        self.picker.picked.connect(lambda item: item is not None and self.dock.raise_())
         self.model.scene_changed.connect(self._scene_changed)
         self.model.selection_changed.connect(self._selection_changed)
         self.stack.cleanChanged.connect(lambda clean: window.setWindowModified(not clean))

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from PySide6.QtCore import Qt, QTimer
+from PySide6.QtCore import QPointF, Qt, QTimer
 from PySide6.QtGui import QColor
 from PySide6.QtWidgets import QApplication, QColorDialog, QLineEdit, QMessageBox
 from window_helpers import RENDER_TIMEOUT_MS
@@ -360,3 +360,44 @@ def test_a_scene_file_on_the_command_line_wins_over_the_last_session(qtbot, tmp_
     fresh = _fresh_window(qtbot)  # and at the next start without a file, that file comes back
     assert session.restore(fresh)
     assert fresh.scene_path == given
+
+
+def _centre(obj):
+    return (obj.vertices.min(axis=0) + obj.vertices.max(axis=0)) / 2
+
+
+def test_clicking_an_object_in_the_3d_pane_selects_it(qtbot, window):
+    view, model = window.scene_view, window.model
+    cone = model.scene.objects[1]
+    qtbot.mouseClick(view.plotter, Qt.MouseButton.LeftButton, pos=view.widget_pos(_centre(cone)).toPoint())
+    assert model.selection == ("object", 1)
+    assert window.editor.panel.tree.currentItem().text(0) == "cone"
+    assert window.editor.dock.isVisible()
+    assert window.editor.picker.handle_center is not None
+    # Nothing under the mouse (high above the scene): nothing selected.
+    empty = view.widget_pos(np.add(model.camera.target, (0.0, 40.0, 0.0)))
+    qtbot.mouseClick(view.plotter, Qt.MouseButton.LeftButton, pos=empty.toPoint())
+    assert model.selection is None and window.editor.picker.handle_center is None
+
+
+def test_dragging_the_handle_moves_the_object_in_one_undo_step(qtbot, window):
+    view, model, editor = window.scene_view, window.model, window.editor
+    model.set_selection(("object", 0))
+    before = _centre(model.scene.objects[0])
+    start = view.widget_pos(editor.picker.handle_center)
+    qtbot.mousePress(view.plotter, Qt.MouseButton.LeftButton, pos=start.toPoint())
+    for k in range(1, 9):
+        qtbot.mouseMove(view.plotter, pos=(start + QPointF(5 * k, -2 * k)).toPoint())
+    end = start + QPointF(40, -16)
+    qtbot.mouseRelease(view.plotter, Qt.MouseButton.LeftButton, pos=end.toPoint())
+    after = _centre(model.scene.objects[0])
+    assert not np.allclose(after, before)
+    assert editor.stack.count() == 1 and editor.undo_action.text() == "Undo Move cube"
+    # It moved in the plane facing the overview camera, and landed under the mouse.
+    direction = np.asarray(view.plotter.camera.direction)
+    assert np.dot(after - before, direction) == pytest.approx(0.0, abs=0.01)
+    landed = view.widget_pos(editor.picker.handle_center)
+    assert abs(landed.x() - end.x()) <= 1.5 and abs(landed.y() - end.y()) <= 1.5
+    assert model.selection == ("object", 0)
+    editor.undo_action.trigger()
+    assert np.allclose(_centre(model.scene.objects[0]), before)

@@ -134,3 +134,14 @@ def test_a_material_left_at_its_defaults_is_edited_field_by_field():
     scene = _scene()
     edited = scene_editing.with_field(scene, ("object", 0), "material.shininess", 8)
     assert edited.objects[0].material == Material(shininess=8.0)
+
+
+def test_a_picking_ray_selects_the_nearest_object_it_meets():
+    from core.image_order.picking import first_object_hit
+
+    box = shapes.box((0.0, 0.0, 0.0), 1.0)  # its front face is the plane z = 0.5
+    ball = Sphere((0.0, 0.0, -5.0), 1.0)
+    assert first_object_hit([ball, box], (0, 0, 10), (0, 0, -1)) == (1, 9.5)
+    assert first_object_hit([ball, box], (0, 0, 10), (0, 0, -2)) == (1, 4.75)  # t in units of |d|
+    assert first_object_hit([ball, box], (3, 0, 10), (0, 0, -1)) is None
+    assert first_object_hit([ball, box], (0, 0, -2), (0, 0, -1)) == (0, 2.0)  # past the box: the ball
