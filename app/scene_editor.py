@@ -111,8 +111,8 @@ class SceneEditor(QObject):
                                           "Delete the selected object or light")
         self.save_action = self._action("&Save scene", self.save, QKeySequence.StandardKey.Save,
                                         "Save the scene to its file (asks for one if it has none)")
-        add = self._action("Add", lambda: None, tip="Add an object or a light")
-        self.panel.add_button(add, self.add_menu)
+        self.add_menu.setToolTip("Add an object or a light")
+        self.panel.add_button(menu=self.add_menu, text="Add")
         for action in (self.duplicate_action, self.rename_action, self.delete_action):
             self.panel.add_button(action)
 

@@ -1,11 +1,20 @@
 """Editing a scene the way its file would be edited: every change passes the file's checks.
 
-An edit is made on the scene's file form (:func:`core.scene_file.to_dict`) and
-loaded back with :func:`core.scene_file.from_dict`.  So a value the loader
-would refuse in a file is refused here too, with the loader's own message
+An edit is made on the changed item's file form (its part of
+:func:`core.scene_file.to_dict`) and read back by the loader
+(:func:`core.scene_file.read_object` for an object, :func:`core.scene_file.from_dict`
+for lights and the background).  So a value the loader would refuse in a file
+is refused here too, with the loader's own message
 (``objects[0].radius: must be > 0, got -1``), and a refused edit leaves the
 scene as it was: every function returns a new :class:`core.scene.Scene` or
-raises :class:`core.scene_file.SceneFileError`.
+raises :class:`core.scene_file.SceneFileError`.  The scene's limits (objects,
+lights, triangles in all) are checked with the other items counted as they are.
+
+Only the changed item is read: the others were checked when they came in and
+stay the same Python objects, so what the renderers cached for them stays
+valid.  A mesh whose vertices an edit leaves alone (a new name or material, a
+copy) is checked with a one-triangle stand-in for its geometry and keeps its
+own arrays, so editing a large mesh costs no more than editing a cube.
 
 Items of a scene are addressed as ``(kind, index)``: ``("object", i)``,
 ``("light", i)`` and :data:`BACKGROUND`.  An item's *form* is its part of the
@@ -14,8 +23,7 @@ Fields are addressed by their key in the form, with ``"material.color"`` for
 a material's field.
 
 The observer (the scene's camera) is never changed here: moving it is not an
-edit of the scene.  Objects an edit did not touch are kept as they were (the
-same Python objects), so what the renderers cached for them stays valid.
+edit of the scene.
 """
 
 from __future__ import annotations
@@ -32,7 +40,6 @@ from core.scene import Mesh, Scene
 
 Item = tuple[str, int]
 BACKGROUND: Item = ("background", 0)
-KINDS = ("object", "light")
 
 NEW_OBJECTS = {
     "sphere": {"center": None, "radius": 0.5},
@@ -47,10 +54,7 @@ NEW_OBJECTS = {
 NEW_LIGHT = {"color": [1.0, 1.0, 1.0], "intensity": 1.0}
 LIGHT_ABOVE = 3.0
 """A new light is placed this far (scene units) above the point given."""
-
-
-def _key(kind: str) -> str:
-    return {"object": "objects", "light": "lights"}[kind]
+_STAND_IN = {"vertices": [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]], "triangles": [[0, 1, 2]]}
 
 
 def name_of(scene: Scene, item: Item) -> str:
@@ -61,16 +65,26 @@ def name_of(scene: Scene, item: Item) -> str:
     return (scene.objects if kind == "object" else scene.lights)[index].name
 
 
+def names(scene: Scene, kind: str) -> list[str]:
+    return [x.name for x in (scene.objects if kind == "object" else scene.lights)]
+
+
 def _base(base_dir) -> str:
     """The folder relative mesh file paths are written against (and read back from)."""
     return os.getcwd() if base_dir is None else os.fspath(base_dir)
+
+
+def _is_plain_mesh(obj) -> bool:
+    """A mesh given by its vertices (inline or from a file), not built from a primitive's parameters."""
+    return isinstance(obj, Mesh) and (obj.source or {}).get("type") not in shapes.PRIMITIVES
 
 
 def form(scene: Scene, item: Item, base_dir=None) -> dict:
     """The item's part of the scene file (a fresh copy that the caller may change).
 
     ``base_dir`` is the scene file's folder (default: the current one); give the
-    same to the function that takes the changed form back.
+    same to the function that takes the changed form back.  A mesh's form holds
+    its vertices, so for a large mesh it is large.
     """
     kind, index = item
     if kind == "object":
@@ -78,6 +92,10 @@ def form(scene: Scene, item: Item, base_dir=None) -> dict:
         return scene_file.to_dict(one, _base(base_dir))["objects"][0]
     d = scene_file.to_dict(replace(scene, objects=()))
     return {"color": d["background"]} if kind == "background" else d["lights"][index]
+
+
+def _light_forms(scene: Scene) -> list[dict]:
+    return scene_file.to_dict(replace(scene, objects=()))["lights"]
 
 
 def position_key(scene: Scene, item: Item) -> str | None:
@@ -100,24 +118,38 @@ def position_key(scene: Scene, item: Item) -> str | None:
 def position_of(scene: Scene, item: Item) -> np.ndarray | None:
     """(3,) world-space point that places the item: its centre, base centre or position;
     for a mesh the centre of its bounding box; ``None`` for the background."""
-    key = position_key(scene, item)
-    if key is not None:
-        return np.array(form(scene, item)[key], dtype=float)
-    if item[0] == "object":
-        v = scene.objects[item[1]].vertices
-        return (v.min(axis=0) + v.max(axis=0)) / 2.0
-    return None
+    kind, index = item
+    if kind == "light":
+        return np.array(scene.lights[index].position, dtype=float)
+    if kind != "object":
+        return None
+    obj = scene.objects[index]
+    if not isinstance(obj, Mesh):
+        return np.array(obj.center, dtype=float)
+    if not _is_plain_mesh(obj):
+        return np.array(obj.source[position_key(scene, item)], dtype=float)
+    return (obj.vertices.min(axis=0) + obj.vertices.max(axis=0)) / 2.0
+
+
+# --- edits -------------------------------------------------------------------------
 
 
 def with_field(scene: Scene, item: Item, key: str, value, base_dir=None, read_mesh=None) -> Scene:
     """``scene`` with the item's field ``key`` (``"radius"``, ``"material.color"``) set to ``value``
     (a JSON value: number, list, string), checked as the loader checks a file."""
-    new = form(scene, item, base_dir)
+    kind, index = item
+    keeps_geometry = kind == "object" and _is_plain_mesh(scene.objects[index])
+    new = _small_form(scene, item, base_dir) if keeps_geometry else form(scene, item, base_dir)
     *parents, last = key.split(".")
     target = new
     for part in parents:
         target = target.setdefault(part, {})
     target[last] = value
+    if keeps_geometry:
+        objects = list(scene.objects)
+        objects[index] = _read(scene, new, index, len(objects), index, base_dir, read_mesh,
+                               geometry_of=objects[index])
+        return replace(scene, objects=tuple(objects))
     return with_form(scene, item, new, base_dir, read_mesh)
 
 
@@ -125,14 +157,16 @@ def with_form(scene: Scene, item: Item, value: dict, base_dir=None, read_mesh=No
     """``scene`` with the item's whole form replaced by ``value`` (checked)."""
     kind, index = item
     if kind == "background":
-        return _checked(scene, list(scene.objects), base_dir, read_mesh, background=value.get("color"))
+        loaded = scene_file.from_dict({"background": value.get("color")})
+        return replace(scene, background=loaded.background)
     if kind == "light":
         lights = _light_forms(scene)
         lights[index] = value
-        return _checked(scene, list(scene.objects), base_dir, read_mesh, lights=lights)
+        return replace(scene, lights=scene_file.from_dict({"lights": lights}).lights)
     objects = list(scene.objects)
-    objects[index] = value
-    return _checked(scene, objects, base_dir, read_mesh)
+    objects[index] = _read(scene, value, index, len(objects), index, base_dir,
+                           _cached_reader(scene.objects, read_mesh))
+    return replace(scene, objects=tuple(objects))
 
 
 def moved(scene: Scene, item: Item, position, base_dir=None, read_mesh=None) -> Scene:
@@ -145,12 +179,18 @@ def moved(scene: Scene, item: Item, position, base_dir=None, read_mesh=None) -> 
     key = position_key(scene, item)
     if key is not None:
         return with_field(scene, item, key, position, base_dir, read_mesh)
-    obj = scene.objects[item[1]]
-    offset = np.asarray(position) - position_of(scene, item)
-    new = form(scene, item, base_dir)
-    new.pop("path", None)
-    new.update(type="mesh", vertices=(obj.vertices + offset).tolist(), triangles=obj.triangles.tolist())
-    return with_form(scene, item, new, base_dir, read_mesh)
+    index = item[1]
+    obj = scene.objects[index]
+    vertices = obj.vertices + (np.asarray(position) - position_of(scene, item))
+    # The moved vertices pass the checks of a mesh read from a file (numbers in range,
+    # no triangle of zero area), done on the arrays.
+    as_read = {k: v for k, v in _small_form(scene, item, base_dir).items() if k not in _STAND_IN}
+    as_read.update(type="mesh_file", path=obj.name or "mesh")
+    mesh = _read(scene, as_read, index, len(scene.objects), index, base_dir,
+                 lambda path: (vertices, obj.triangles))
+    objects = list(scene.objects)
+    objects[index] = replace(mesh, source=None)
+    return replace(scene, objects=tuple(objects))
 
 
 def added(scene: Scene, kind: str, value: dict, index: int | None = None, base_dir=None,
@@ -164,31 +204,35 @@ def added(scene: Scene, kind: str, value: dict, index: int | None = None, base_d
         lights = _light_forms(scene)
         index = len(lights) if index is None else index
         lights.insert(index, value)
-        return _checked(scene, list(scene.objects), base_dir, read_mesh, lights=lights), (kind, index)
+        return replace(scene, lights=scene_file.from_dict({"lights": lights}).lights), (kind, index)
     objects = list(scene.objects)
     index = len(objects) if index is None else index
-    objects.insert(index, value)
-    return _checked(scene, objects, base_dir, read_mesh, known), (kind, index)
+    objects.insert(index, _read(scene, value, index, len(objects) + 1, None, base_dir,
+                                _cached_reader([*scene.objects, *known], read_mesh)))
+    return replace(scene, objects=tuple(objects)), (kind, index)
 
 
 def duplicated(scene: Scene, item: Item, base_dir=None, read_mesh=None) -> tuple[Scene, Item]:
     """``scene`` with a copy of the item just after it, named like it with a number."""
     kind, index = item
-    copied = form(scene, item, base_dir)
-    copied["name"] = unique_name(name_of(scene, item), names(scene, kind))
-    return added(scene, kind, copied, index + 1, base_dir, read_mesh)
+    name = unique_name(name_of(scene, item), names(scene, kind))
+    if kind == "object" and _is_plain_mesh(scene.objects[index]):
+        original = scene.objects[index]
+        copied = _read(scene, {**_small_form(scene, item, base_dir), "name": name}, index + 1,
+                       len(scene.objects) + 1, None, base_dir, read_mesh, geometry_of=original)
+        objects = list(scene.objects)
+        objects.insert(index + 1, copied)
+        return replace(scene, objects=tuple(objects)), (kind, index + 1)
+    return added(scene, kind, {**form(scene, item, base_dir), "name": name}, index + 1, base_dir,
+                 read_mesh)
 
 
 def removed(scene: Scene, item: Item) -> Scene:
     """``scene`` without the item (nothing to check: any part of a valid scene is valid)."""
     kind, index = item
-    items = scene.objects if kind == "object" else scene.lights
-    kept = items[:index] + items[index + 1:]
-    return replace(scene, **{_key(kind): kept})
-
-
-def names(scene: Scene, kind: str) -> list[str]:
-    return [x.name for x in (scene.objects if kind == "object" else scene.lights)]
+    if kind == "object":
+        return replace(scene, objects=scene.objects[:index] + scene.objects[index + 1:])
+    return replace(scene, lights=scene.lights[:index] + scene.lights[index + 1:])
 
 
 def unique_name(name: str, taken) -> str:
@@ -227,17 +271,22 @@ def new_light(scene: Scene, at) -> dict:
 
 def read_object(value: dict, read_mesh=None):
     """One object from its form, checked on its own (e.g. a mesh file, read in the background)."""
-    return scene_file.from_dict({"objects": [value]}, read_mesh=read_mesh).objects[0]
+    return scene_file.read_object(value, 0, 1, read_mesh=read_mesh)
 
 
-# --- checking ------------------------------------------------------------------
+# --- checking ------------------------------------------------------------------------
 
 
-def _cached_reader(objects, read_mesh):
-    """A ``read_mesh`` that gives the meshes of ``objects`` read from files without reading them again."""
-    read = {o.source["resolved_path"]: (o.vertices, o.triangles) for o in objects
-            if isinstance(o, Mesh) and (o.source or {}).get("type") == "mesh_file"
-            and "resolved_path" in o.source}
+def _small_form(scene: Scene, item: Item, base_dir) -> dict:
+    """A plain mesh's form with a one-triangle stand-in for its vertices (name and material as they are)."""
+    stand_in = replace(scene.objects[item[1]], source=None, **{k: np.array(v) for k, v in _STAND_IN.items()})
+    return scene_file.to_dict(replace(scene, objects=(stand_in,)), _base(base_dir))["objects"][0]
+
+
+def _cached_reader(meshes, read_mesh):
+    """A ``read_mesh`` that gives the meshes of ``meshes`` read from files without reading them again."""
+    read = {o.source["resolved_path"]: (o.vertices, o.triangles) for o in meshes
+            if isinstance(o, Mesh) and "resolved_path" in (o.source or {})}
 
     def reader(path):
         if path in read:
@@ -249,27 +298,18 @@ def _cached_reader(objects, read_mesh):
     return reader
 
 
-def _light_forms(scene: Scene) -> list[dict]:
-    return scene_file.to_dict(replace(scene, objects=()))["lights"]
+def _read(scene: Scene, value: dict, index: int, count: int, replacing: int | None, base_dir,
+          read_mesh, geometry_of: Mesh | None = None):
+    """Object ``index`` of the edited scene (``count`` objects) from its form ``value``, checked.
 
-
-def _checked(scene: Scene, objects: list, base_dir, read_mesh, known=(), lights=None,
-             background=None) -> Scene:
-    """Load ``scene`` with new parts, checking every value as the loader checks a file.
-
-    ``objects`` holds the scene's objects to keep as they are and forms (dicts) of new or
-    changed ones; ``lights`` (forms) and ``background`` (a colour) replace the scene's when
-    given.  Kept objects stay the same Python objects; the camera stays.
+    The scene's other objects (all but ``replacing``) count towards its triangle limit.
+    With ``geometry_of``, ``value`` holds the stand-in geometry and the object
+    read keeps that mesh's arrays and source instead.
     """
-    base_dir = _base(base_dir)
-    kept = [None if isinstance(o, dict) else o for o in objects]
-    d = scene_file.to_dict(replace(scene, objects=tuple(o for o in kept if o is not None)), base_dir)
-    kept_forms = iter(d["objects"])
-    d["objects"] = [o if isinstance(o, dict) else next(kept_forms) for o in objects]
-    if lights is not None:
-        d["lights"] = lights
-    if background is not None:
-        d["background"] = background
-    loaded = scene_file.from_dict(d, base_dir, _cached_reader([*scene.objects, *known], read_mesh))
-    return replace(loaded, camera=scene.camera, objects=tuple(
-        k if k is not None else new for k, new in zip(kept, loaded.objects, strict=True)))
+    elsewhere = sum(scene_file.counted_triangles(o) for j, o in enumerate(scene.objects) if j != replacing)
+    if geometry_of is not None:
+        elsewhere += scene_file.counted_triangles(geometry_of) - 1  # the stand-in has one
+    obj = scene_file.read_object(value, index, count, elsewhere, _base(base_dir), read_mesh)
+    if geometry_of is not None:
+        return replace(geometry_of, name=obj.name, material=obj.material)
+    return obj

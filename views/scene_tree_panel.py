@@ -258,11 +258,14 @@ class SceneTreePanel(QWidget):
         self._scene_changed()
 
     # -------------------------------------------------------------- tree
-    def add_button(self, action, menu=None) -> QToolButton:
-        """A button under the tree for ``action`` (with ``menu`` as its drop-down, if given)."""
+    def add_button(self, action=None, menu=None, text: str = "") -> QToolButton:
+        """A button under the tree for ``action``, or titled ``text`` opening ``menu``."""
         button = QToolButton()
-        button.setDefaultAction(action)
-        if menu is not None:
+        if action is not None:
+            button.setDefaultAction(action)
+        else:
+            button.setText(text)
+            button.setToolTip(menu.toolTip())
             button.setMenu(menu)
             button.setPopupMode(QToolButton.ToolButtonPopupMode.InstantPopup)
         button.setToolButtonStyle(Qt.ToolButtonStyle.ToolButtonTextOnly)
@@ -307,9 +310,13 @@ class SceneTreePanel(QWidget):
         self.model.set_selection(current.data(0, ITEM_ROLE) if current is not None else None)
 
     def _tree_renamed(self, leaf, column) -> None:
-        item = leaf.data(0, ITEM_ROLE)
-        if column == 0 and item is not None and leaf.text(0) != scene_editing.name_of(self.model.scene, item):
+        item, scene = leaf.data(0, ITEM_ROLE), self.model.scene
+        if column == 0 and item is not None and leaf.text(0) != scene_editing.name_of(scene, item):
             self.field_edited.emit(item, "name", leaf.text(0))
+            if self.model.scene is scene:  # refused: the tree shows the name it has
+                self.tree.blockSignals(True)
+                leaf.setText(0, scene_editing.name_of(scene, item))
+                self.tree.blockSignals(False)
 
     # ------------------------------------------------------------- form
     def _show_selection(self) -> None:

@@ -78,6 +78,7 @@ def _editor_action(win, text):
 def _type_into(qtbot, box: QLineEdit, text: str):
     box.setFocus()
     box.selectAll()
+    qtbot.keyClick(box, Qt.Key.Key_Backspace)
     qtbot.keyClicks(box, text)
     qtbot.keyClick(box, Qt.Key.Key_Return)
 
@@ -188,6 +189,9 @@ def test_rename_duplicate_delete_from_the_edit_menu(qtbot, window):
     qtbot.keyClick(line, Qt.Key.Key_Return)  # the tree takes the name in the next turn of the loop
     qtbot.waitUntil(lambda: [o.name for o in model.scene.objects] == ["cube", "cone", "spire", "ground"])
     assert editor.undo_action.text() == "Undo Rename cone 2 to spire"
+    _type_into(qtbot, editor.panel.fields["name"].boxes[0], "")
+    assert editor.panel.problem("name") == "name: must not be empty"
+    assert model.scene.objects[2].name == "spire" and editor.stack.count() == 2
 
     model.set_selection(("light", 0))
     _editor_action(window, "Duplicate").trigger()

@@ -145,3 +145,29 @@ def test_a_picking_ray_selects_the_nearest_object_it_meets():
     assert first_object_hit([ball, box], (0, 0, 10), (0, 0, -2)) == (1, 4.75)  # t in units of |d|
     assert first_object_hit([ball, box], (3, 0, 10), (0, 0, -1)) is None
     assert first_object_hit([ball, box], (0, 0, -2), (0, 0, -1)) == (0, 2.0)  # past the box: the ball
+
+
+def test_a_mesh_edit_keeps_its_arrays_and_the_limits_count_it():
+    mesh = Mesh(TETRA_V, TETRA_T, name="tetra")
+    scene = Scene(objects=(mesh,))
+    renamed = scene_editing.with_field(scene, ("object", 0), "material.opacity", 0.5)
+    assert np.shares_memory(renamed.objects[0].vertices, mesh.vertices)
+    assert renamed.objects[0].material.opacity == 0.5
+    assert _problems(lambda: scene_editing.with_field(scene, ("object", 0), "material.ior", 0.5)) == [
+        "objects[0].material.ior: must be >= 1, got 0.5"]
+    copied, item = scene_editing.duplicated(scene, ("object", 0))
+    assert copied.objects[1].name == "tetra 2"
+    assert np.shares_memory(copied.objects[1].triangles, mesh.triangles)
+
+
+def test_the_object_limit_holds_for_added_objects():
+    scene = Scene(objects=(Sphere((0.0, 0.0, 0.0), 1.0),) * scene_file.MAX_OBJECTS)
+    value = scene_editing.new_object(scene, "sphere", (0.0, 0.0, 0.0))
+    assert _problems(lambda: scene_editing.added(scene, "object", value)) == [
+        f"objects: at most {scene_file.MAX_OBJECTS:,} are allowed, got {scene_file.MAX_OBJECTS + 1:,}"]
+
+
+def test_a_mesh_moved_beyond_the_coordinate_limit_is_refused():
+    scene = Scene(objects=(Mesh(TETRA_V, TETRA_T, name="tetra"),))
+    (problem,) = _problems(lambda: scene_editing.moved(scene, ("object", 0), (2e6, 0.0, 0.0)))
+    assert "coordinates must be within ±1,000,000" in problem and problem.startswith("objects[0]")
