@@ -22,6 +22,7 @@ from PySide6.QtCore import QEvent, QObject, QPointF, Qt, Signal
 from core import scene_editing
 from core.image_order.picking import first_object_hit
 from core.scene import Mesh
+from views import vtk_convert
 from views.scene_view import GRAB_RADIUS_PX, glyph_size
 
 SELECTION_COLOR = "#00e5c0"
@@ -77,7 +78,7 @@ class ScenePicker(QObject):
         self._drag = None
         self.handle_center = None
         if box is not None:
-            self._outline.copy_from(pv.Box(bounds=np.ravel(box, order="F")).outline())
+            self._outline.copy_from(vtk_convert.boxes_polydata(box))
             self._radius = 0.35 * glyph_size(scene.camera)
             (x0, _, z0), (x1, y1, z1) = box
             self.handle_center = np.array([(x0 + x1) / 2, y1 + 2.0 * self._radius, (z0 + z1) / 2])
