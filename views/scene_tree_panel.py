@@ -75,7 +75,7 @@ MATERIAL_TIPS = {
 }
 KIND_TIPS = {"point": "scene units", "size3": "x, y, z, each > 0", "size2": "x, z, each > 0",
              "length": "scene units, > 0"}
-COMPONENTS = {"point": "xyz", "size3": "xyz", "size2": "xz", "color": "rgb"}
+COMPONENTS = {"point": "xyz", "mesh position": "xyz", "size3": "xyz", "size2": "xz", "color": "rgb"}
 
 
 def label(key: str) -> str:
@@ -330,12 +330,13 @@ class SceneTreePanel(QWidget):
             self.title.setText("Select an object, a light or the background in the tree, "
                                "or click an object in the 3D pane.")
             return
-        value = scene_editing.form(scene, item)
         specs = _specs(scene, item)
         if self._shown != (item, [s[0] for s in specs]):
             self._build(item, specs)
-        for key, *_ in specs:
-            self.fields[key].set_value(_get(value, key, scene, item))
+        # The item's file form, only if a field needs it: a mesh's would hold every vertex.
+        value = scene_editing.form(scene, item) if any(map(_in_form, specs)) else {}
+        for spec in specs:
+            self.fields[spec[0]].set_value(_get(value, spec, scene, item))
         kind = item[0]
         what = _type_name(scene.objects[item[1]]) if kind == "object" else kind
         extra = _mesh_note(scene.objects[item[1]]) if kind == "object" else ""
@@ -353,13 +354,12 @@ class SceneTreePanel(QWidget):
                 field = _NameField(tip=tip)
             else:
                 field = _Field(COMPONENTS.get(kind, ""), tip)
-            if key == "position" and item[0] == "object":
+            if kind == "mesh position":
                 field.edited.connect(lambda v, i=item: self.move_requested.emit(i, v))
             else:
                 field.edited.connect(lambda v, i=item, k=key: self.field_edited.emit(i, k, v))
             if key.startswith("material.") and not any(k.startswith("material.") for k in self.fields):
-                header = QLabel("<b>Material</b>")
-                self.form.addRow(header)
+                self.form.addRow(QLabel("<b>Material</b>"))
             name = QLabel(label(key))
             name.setToolTip(tip)
             self.form.addRow(name, field)
@@ -410,15 +410,24 @@ def _specs(scene, item) -> list[tuple[str, str, str]]:
         params = [(p.name, p.kind, f"{p.doc} ({KIND_TIPS.get(p.kind, f'{p.minimum} to {p.maximum}')})")
                   for p in shapes.PRIMITIVES[type_name].params]
     else:
-        params = [("position", "point", "centre of its bounding box; moving it moves every vertex "
-                                        "(a mesh from a file is then saved inline)")]
+        params = [("position", "mesh position", "centre of its bounding box; moving it moves every "
+                                                "vertex (a mesh from a file is then saved inline)")]
     material = [(f"material.{k}", "color" if k == "color" else "number", tip)
                 for k, tip in MATERIAL_TIPS.items()]
     return [name, *params, *material]
 
 
-def _get(value: dict, key: str, scene, item):
-    if key == "position" and item[0] == "object":
+def _in_form(spec) -> bool:
+    """Whether a field's value is read from the item's file form (see :func:`_get`)."""
+    key, kind, _ = spec
+    return key != "name" and not key.startswith("material.") and kind != "mesh position"
+
+
+def _get(value: dict, spec, scene, item):
+    key, kind, _ = spec
+    if key == "name":
+        return scene_editing.name_of(scene, item)
+    if kind == "mesh position":
         return scene_editing.position_of(scene, item).tolist()
     if key.startswith("material."):
         return getattr(scene.objects[item[1]].material, key.split(".", 1)[1])

@@ -238,6 +238,11 @@ def test_a_mesh_file_is_added_through_the_safe_reader(qtbot, window, tmp_path):
     mesh = window.model.scene.objects[-1]
     assert mesh.name == "tetra" and len(mesh.triangles) == 4
     assert window.editor.undo_action.text() == "Undo Add tetra"
+    assert window.model.selection == ("object", 3)
+    _type_into(qtbot, window.editor.panel.fields["position"].boxes[0], "2.5")  # its bounding box's centre
+    moved = window.model.scene.objects[-1]
+    assert np.allclose(_centre(moved), (2.5, 0.5, 0.5)) and moved.source is None  # now saved inline
+    assert window.editor.undo_action.text() == "Undo Move tetra"
 
     bad = tmp_path / "broken.obj"
     bad.write_text("v 0 0 0\nf 1 2 3\n")
