@@ -1,8 +1,9 @@
-"""Output files: images encoded as sRGB, and every output written atomically.
+"""Output files: images and animations encoded as sRGB, and every output written atomically.
 
 Renderers produce *linear* RGB; :func:`encode_image` turns it into 8-bit sRGB
 with :func:`core.srgb.to_srgb8` (the one place that happens) and encodes it
-with imageio: PNG for ``.png``, JPEG (quality 95) for ``.jpg`` and ``.jpeg``.
+with imageio: PNG for ``.png``, JPEG (quality 95) for ``.jpg`` and ``.jpeg``;
+:func:`encode_animation` makes a GIF, or an MP4 with imageio-ffmpeg.
 
 An :class:`Outputs` set checks its paths *before* the work (the folder exists
 and is writable, the extension matches the format, no output names an input
@@ -15,6 +16,7 @@ from __future__ import annotations
 
 import io
 import os
+import tempfile
 from pathlib import Path
 
 import numpy as np
@@ -23,8 +25,10 @@ from core.safe_files import OutputError, write_atomic, write_atomic_all
 from core.srgb import to_srgb8
 
 IMAGE_EXTENSIONS = {".png": "PNG", ".jpg": "JPEG", ".jpeg": "JPEG"}
+ANIMATION_EXTENSIONS = (".gif", ".mp4")
 
-__all__ = ["IMAGE_EXTENSIONS", "OutputError", "Outputs", "encode_image", "write_image"]
+__all__ = ["ANIMATION_EXTENSIONS", "IMAGE_EXTENSIONS", "OutputError", "Outputs", "encode_animation",
+           "encode_image", "write_image"]
 
 
 def encode_image(rgb: np.ndarray, extension: str) -> bytes:
@@ -53,6 +57,43 @@ def encode_image(rgb: np.ndarray, extension: str) -> bytes:
 def write_image(path, rgb: np.ndarray) -> None:
     """Write ``rgb`` (linear RGB) as an sRGB PNG or JPEG, chosen by the extension, atomically."""
     write_atomic(path, encode_image(rgb, Path(path).suffix))
+
+
+def encode_animation(frames, extension: str, fps: int, limit: int) -> bytes:
+    """The bytes of a GIF or MP4 of ``frames`` (each (H, W, 3) linear RGB, written as sRGB).
+
+    The file is encoded in a private temporary folder and returned as bytes,
+    so the caller writes it into place atomically.  Frames are taken one at a
+    time: an MP4 holds one, a GIF all of them until it is written, and a GIF
+    whose frames would exceed ``limit`` bytes is refused
+    (:class:`app.usage.UsageError`) as soon as they do.
+    """
+    import imageio.v2 as iio2
+    import imageio.v3 as iio
+
+    from app.usage import UsageError
+    from core import budget
+
+    with tempfile.TemporaryDirectory(prefix="render-explorer-export-") as folder:
+        path = os.path.join(folder, "animation" + extension)
+        if extension == ".gif":
+            pixels, held = [], 0
+            for frame in frames:
+                pixels.append(to_srgb8(frame))
+                held += pixels[-1].nbytes
+                if held > limit:
+                    raise UsageError(f"the GIF's frames need more than {budget.format_bytes(limit)}; "
+                                     "use a smaller image, fewer frames, or MP4")
+            iio.imwrite(path, pixels, extension=".gif", duration=1000 / fps, loop=0)
+        else:
+            with iio2.get_writer(path, format="FFMPEG", fps=fps, macro_block_size=2,
+                                 ffmpeg_log_level="error") as writer:
+                for frame in frames:
+                    pixels = to_srgb8(frame)
+                    h, w = pixels.shape[:2]
+                    writer.append_data(np.pad(pixels, ((0, h % 2), (0, w % 2), (0, 0)), mode="edge"))
+        with open(path, "rb") as f:
+            return f.read()
 
 
 def _same_file(a: str, b: str) -> bool:

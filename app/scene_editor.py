@@ -49,7 +49,7 @@ class SceneEditor(QObject):
         self.window, self.model = window, window.model
         self.stack = QUndoStack(self)
         self.panel = SceneTreePanel(self.model)
-        self.dock = QDockWidget("Scene", window)
+        self.dock = QDockWidget("Edit scene", window)
         self.dock.setObjectName("scene editor")
         self.dock.setFeatures(QDockWidget.DockWidgetFeature.DockWidgetMovable
                               | QDockWidget.DockWidgetFeature.DockWidgetClosable)
@@ -64,9 +64,12 @@ class SceneEditor(QObject):
         self._build_actions()
         self.panel.field_edited.connect(self.change_field)
         self.panel.move_requested.connect(self.move)
-        self.picker = ScenePicker(self.model, window.scene_view)
-        self.picker.move_requested.connect(self.move)
-        self.picker.picked.connect(lambda item: item is not None and self.dock.raise_())
+        self.picker: ScenePicker | None = None  # once the 3D pane is built
+        pane = window.scene_view
+        if pane.view is not None:
+            self._attach_picker(pane.view)
+        else:
+            pane.ready.connect(lambda: self._attach_picker(pane.view))
         self.model.scene_changed.connect(self._scene_changed)
         self.model.selection_changed.connect(self._selection_changed)
         self.stack.cleanChanged.connect(lambda clean: window.setWindowModified(not clean))
@@ -133,6 +136,12 @@ class SceneEditor(QObject):
         save_as = next((a for a in file_actions if a.text().startswith("&Save scene as")), None)
         if save_as is not None:
             bar[0].menu().insertAction(save_as, self.save_action)
+
+    def _attach_picker(self, view) -> None:
+        """Clicks in the 3D pane select, its handle moves (see :mod:`views.scene_picking`)."""
+        self.picker = ScenePicker(self.model, view)
+        self.picker.move_requested.connect(self.move)
+        self.picker.picked.connect(lambda item: item is not None and self.dock.raise_())
 
     def _selection_changed(self, item) -> None:
         editable = item is not None and item[0] in EDITABLE

@@ -2,15 +2,12 @@
 
 When the app ends (its window closed), :func:`remember` stores the scene (as the text of a
 scene file, or only its file's path when that text would be very long) and the
-observer (the camera) with ``QSettings``, in the user's configuration folder
-(``~/.config/Render Explorer/Render Explorer.ini`` on Linux).  Edits the user
+observer (the camera) in the user's settings (:mod:`app.user_settings`).  Edits the user
 chose to discard are not stored: the scene kept is the one last saved (or
 opened).  At the next start without a scene file on the command line,
 :func:`restore` loads them back through the scene file's loader, so stored
 settings that no longer load (a mesh file moved away, a hand-edited file) are
 reported in the status bar and the window keeps the lecture scene.
-
-Tests point ``QSettings`` elsewhere (``QSettings.setPath``, or ``XDG_CONFIG_HOME``).
 """
 
 from __future__ import annotations
@@ -19,19 +16,14 @@ import json
 from dataclasses import replace
 from pathlib import Path
 
-from PySide6.QtCore import QSettings
-
 from app.mesh_files import read_mesh
 from app.scene_edits import scene_at
+from app.user_settings import user_settings
 from core import scene_file
 
-ORGANIZATION = APPLICATION = "Render Explorer"
 MAX_SCENE_CHARS = 2_000_000
 """A longer scene text (large inline meshes) is not stored; its file's path is, if it has one."""
-
-
-def settings() -> QSettings:
-    return QSettings(QSettings.Format.IniFormat, QSettings.Scope.UserScope, ORGANIZATION, APPLICATION)
+SCENE, SCENE_PATH, OBSERVER = KEYS = ("session/scene", "session/scene_path", "session/observer")
 
 
 def remember(window) -> None:
@@ -40,17 +32,17 @@ def remember(window) -> None:
     path = window.scene_path
     scene = scene_at(editor.stack, editor.stack.cleanIndex(), model.scene)
     text = "" if scene is None else json.dumps(scene_file.to_dict(scene, path.parent if path else None))
-    store = settings()
-    store.setValue("scene", text if len(text) <= MAX_SCENE_CHARS else "")
-    store.setValue("scene_path", str(path) if path is not None else "")  # the file holds the saved scene
-    store.setValue("observer", json.dumps(scene_file.to_dict(model.scene)["camera"]))
+    store = user_settings()
+    store.setValue(SCENE, text if len(text) <= MAX_SCENE_CHARS else "")
+    store.setValue(SCENE_PATH, str(path) if path is not None else "")  # the file holds the saved scene
+    store.setValue(OBSERVER, json.dumps(scene_file.to_dict(model.scene)["camera"]))
     store.sync()
 
 
 def restore(window) -> bool:
     """Show the stored scene and observer in ``window``; returns whether there was one to show."""
-    store = settings()
-    text, path, observer = (str(store.value(key, "") or "") for key in ("scene", "scene_path", "observer"))
+    store = user_settings()
+    text, path, observer = (str(store.value(key, "") or "") for key in KEYS)
     if not (text or path or observer):
         return False
     path = Path(path) if path else None

@@ -1,18 +1,11 @@
 """Shared test set-up: GUI tests need a real X server, and say so instead of skipping."""
 
-import atexit
 import os
-import shutil
-import tempfile
 
 import pytest
 import pyvista as pv
 
 pv.OFF_SCREEN = True
-# The window keeps its last scene in the user's settings (QSettings); the tests, and the
-# windows they start in subprocesses, keep theirs in a folder of their own.
-os.environ["XDG_CONFIG_HOME"] = tempfile.mkdtemp(prefix="render-explorer-test-config-")
-atexit.register(shutil.rmtree, os.environ["XDG_CONFIG_HOME"], ignore_errors=True)
 
 
 def pytest_configure(config):
@@ -28,3 +21,14 @@ def _require_display(request):
             "Run the suite with `bash .ci/test.sh`, which starts Xvfb, "
             "or wrap pytest in `xvfb-run -a`."
         )
+
+
+@pytest.fixture(autouse=True)
+def _private_settings(tmp_path_factory):
+    """QSettings read and write a fresh folder in every test, never the user's configuration."""
+    from PySide6.QtCore import QSettings
+
+    folder = str(tmp_path_factory.mktemp("settings"))
+    for settings_format in (QSettings.Format.NativeFormat, QSettings.Format.IniFormat):
+        for scope in (QSettings.Scope.UserScope, QSettings.Scope.SystemScope):
+            QSettings.setPath(settings_format, scope, folder)

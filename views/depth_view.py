@@ -52,7 +52,8 @@ class DepthView(QWidget):
         layout.addLayout(row)
 
     def set_depth(self, depth: np.ndarray, near: float, far: float) -> None:
-        self.depth = depth
+        """Show ``depth`` (H, W), distances along the viewing axis, +inf where nothing was drawn."""
+        self.depth, self.near, self.far = depth, near, far
         self.image.set_image(display_image(depth_to_grey(depth, near, far), linear=False))
         self.near_label.setText(f"near {near:g}")
         self.far_label.setText(f"far {far:g}")

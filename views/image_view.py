@@ -113,6 +113,11 @@ class ImageView(QWidget):
         self.rgb, self._image, self.note = image.rgb, image.qimage, image.note
         self.update()
 
+    @property
+    def qimage(self) -> QImage | None:
+        """The 8-bit picture shown, at the image's own resolution (``None`` before the first)."""
+        return self._image
+
     def set_highlight(self, mask: np.ndarray | None, color: str = "#ff2bd6") -> None:
         """Outline the pixels where ``mask`` (H, W) is true, keeping their colours; ``None`` clears it."""
         self._highlight = None if mask is None else mask_outline(mask)

@@ -247,7 +247,7 @@ class SceneTreePanel(QWidget):
         splitter = QSplitter(Qt.Orientation.Vertical)
         splitter.addWidget(top)
         splitter.addWidget(scroll)
-        splitter.setStretchFactor(1, 2)
+        splitter.setSizes([130, 390])  # the fields get most of a small height; more is shared
         layout = QVBoxLayout(self)
         layout.setContentsMargins(4, 4, 4, 4)
         layout.addWidget(splitter)

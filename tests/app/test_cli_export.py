@@ -12,7 +12,7 @@ import imageio.v3 as iio
 import numpy as np
 import pytest
 
-from app.export_command import MARGIN, TITLE_ROW
+from app.picture_sheet import MARGIN, TITLE_ROW
 from core import scene_file
 from core.presets import lecture_scene, zbuffer_three_polygons
 from core.srgb import to_srgb8
@@ -174,3 +174,29 @@ def test_ctrl_c_during_an_animation_stops_cleanly_and_writes_nothing(tmp_path, l
     assert proc.returncode == 130
     assert "interrupted" in err and "Traceback" not in err
     assert list(tmp_path.iterdir()) == [lecture]
+
+
+def test_zbuffer_steps_of_too_many_polygons_are_refused_before_rendering(tmp_path):
+    from core.presets_trace import PRESETS_TRACE
+
+    scene = tmp_path / "sphere.json"  # one analytic sphere: 3,968 triangles in object order
+    scene_file.save(PRESETS_TRACE["lone_sphere"][1](), scene)
+    out = tmp_path / "steps.gif"
+    result = _run(str(scene), "--what", "zbuffer-steps", "--out", str(out))
+    assert result.returncode == 2
+    assert len(result.stderr.strip().splitlines()) == 1, result.stderr  # no progress bar: nothing rendered
+    assert "--what zbuffer-steps" in result.stderr and "fewer objects or triangles" in result.stderr
+    assert not out.exists()
+
+
+def test_a_zbuffer_steps_gif_over_the_memory_limit_is_refused_and_mp4_suggested(tmp_path, lecture):
+    # 110 triangles at 64 x 48: up to 111 frames of 152 x 184 pixels, about 9 MB held by a GIF.
+    out = tmp_path / "steps.gif"
+    result = _run(str(lecture), "--what", "zbuffer-steps", "--memory-limit", "4M", "--out", str(out))
+    assert result.returncode == 2
+    assert len(result.stderr.strip().splitlines()) == 1, result.stderr
+    assert "MP4" in result.stderr
+    assert not out.exists()
+    mp4 = _run(str(lecture), "--what", "zbuffer-steps", "--memory-limit", "4M", "--dry-run",
+               "--out", str(tmp_path / "steps.mp4"))
+    assert mp4.returncode == 0, mp4.stderr

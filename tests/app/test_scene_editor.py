@@ -15,6 +15,7 @@ from window_helpers import RENDER_TIMEOUT_MS
 
 from app import session
 from app.main_window import MainWindow, run
+from app.user_settings import user_settings
 from core import presets, scene_file
 from core.scene import Sphere
 
@@ -28,6 +29,7 @@ def window(qtbot):
     win = MainWindow(presets.lecture_scene())
     win.show()
     qtbot.waitUntil(lambda: win.showing_full("image order"), timeout=RENDER_TIMEOUT_MS)
+    qtbot.waitUntil(lambda: win.scene_view.view is not None, timeout=RENDER_TIMEOUT_MS)  # the 3D pane
     yield win
     win.editor.stack.setClean()
     win.close()
@@ -302,7 +304,6 @@ def _fresh_window(qtbot):
 
 
 def test_saved_scene_and_observer_come_back_in_a_fresh_window(qtbot, window, tmp_path):
-    session.settings().clear()
     path = _saved_lecture(tmp_path / "kept.json")
     assert window.open_scene(str(path))
     _editor_action(window, "pyramid").trigger()
@@ -322,7 +323,6 @@ def test_saved_scene_and_observer_come_back_in_a_fresh_window(qtbot, window, tmp
 
 
 def test_discarded_edits_are_not_kept_but_the_observer_is(qtbot, window):
-    session.settings().clear()
     _editor_action(window, "pyramid").trigger()
     moved = window.model.camera.orbit(window.model.camera.yaw_deg - 40, 15.0)
     window.model.set_camera(moved)
@@ -335,9 +335,8 @@ def test_discarded_edits_are_not_kept_but_the_observer_is(qtbot, window):
 
 
 def test_settings_that_no_longer_load_are_reported_and_the_lecture_scene_kept(qtbot):
-    session.settings().clear()
-    store = session.settings()
-    store.setValue("scene", '{"objects": [{"type": "sphere", "center": [0, 0, 0], "radius": -1}]}')
+    store = user_settings()
+    store.setValue(session.SCENE, '{"objects": [{"type": "sphere", "center": [0, 0, 0], "radius": -1}]}')
     store.sync()
     fresh = _fresh_window(qtbot)
     assert not session.restore(fresh)
@@ -346,9 +345,8 @@ def test_settings_that_no_longer_load_are_reported_and_the_lecture_scene_kept(qt
 
 
 def test_a_scene_file_on_the_command_line_wins_over_the_last_session(qtbot, tmp_path):
-    session.settings().clear()
-    store = session.settings()
-    store.setValue("scene", '{"objects": [{"type": "box", "center": [0, 0, 0], "size": 1}]}')
+    store = user_settings()
+    store.setValue(session.SCENE, '{"objects": [{"type": "box", "center": [0, 0, 0], "size": 1}]}')
     store.sync()
     given = tmp_path / "given.json"
     scene_file.save(presets.lecture_scene(), given)
@@ -377,10 +375,11 @@ def _centre(obj):
 
 def test_clicking_an_object_in_the_3d_pane_selects_it(qtbot, window):
     view, model = window.scene_view, window.model
-    cone = model.scene.objects[1]
-    qtbot.mouseClick(view.plotter, Qt.MouseButton.LeftButton, pos=view.widget_pos(_centre(cone)).toPoint())
-    assert model.selection == ("object", 1)
-    assert window.editor.panel.tree.currentItem().text(0) == "cone"
+    at = view.widget_pos(_centre(model.scene.objects[0]))
+    assert view.grabbable_at(at) is None  # the cube's centre is not where the eye or the target is
+    qtbot.mouseClick(view.plotter, Qt.MouseButton.LeftButton, pos=at.toPoint())
+    assert model.selection == ("object", 0)
+    assert window.editor.panel.tree.currentItem().text(0) == "cube"
     assert window.editor.dock.isVisible()
     assert window.editor.picker.handle_center is not None
     # Nothing under the mouse (high above the scene): nothing selected.

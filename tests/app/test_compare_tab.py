@@ -1,0 +1,151 @@
+"""The Compare tab as a user works it: choose two outputs, read their difference, pick one pixel in all."""
+
+import numpy as np
+from PySide6.QtCore import Qt
+from window_helpers import RENDER_TIMEOUT_MS
+
+from core.compare import OUTPUTS
+
+
+def _compare(qtbot, window):
+    window.show_tab("compare")
+    qtbot.waitUntil(lambda: window.showing_full("compare"), timeout=RENDER_TIMEOUT_MS)
+    return window.tab("compare").widget
+
+
+def _choose(qtbot, window, panel, a: str, b: str) -> None:
+    """Pick outputs A and B in the selectors and wait for their comparison."""
+    for combo, key in zip(panel.selectors, (a, b), strict=True):
+        combo.setCurrentIndex(combo.findData(key))
+    qtbot.waitUntil(lambda: window.showing_full("compare")
+                    and panel.boxes["b"].title() == f"B: {OUTPUTS[b]}"
+                    and panel.boxes["a"].title() == f"A: {OUTPUTS[a]}", timeout=RENDER_TIMEOUT_MS)
+
+
+def _click(qtbot, view, x: int, y: int) -> None:
+    qtbot.mouseClick(view, Qt.MouseButton.LeftButton, pos=view.widget_pos(x, y).toPoint())
+
+
+def _read(qtbot, panel, view: str, x: int, y: int) -> tuple[int, int]:
+    """Click pixel (x, y) in image ``view``, wait until it is read in both outputs; the pixel picked.
+
+    A pane smaller than the image shows fewer screen pixels than image pixels, so
+    the click may land on a neighbour of (x, y).
+    """
+    _click(qtbot, panel.views[view], x, y)
+    qtbot.waitUntil(lambda: panel.readout[0].rgb is not None, timeout=RENDER_TIMEOUT_MS)
+    picked = panel.views[view].picked
+    assert abs(picked[0] - x) <= 1 and abs(picked[1] - y) <= 1
+    return picked
+
+
+def _blue(rgb: np.ndarray) -> np.ndarray:
+    """Where an image shows the cone, the lecture scene's one blue object: blue well above red.
+
+    The cone's colour is (0.15, 0.55, 0.75); the cube is orange, the ground grey and the
+    background (0.05, 0.07, 0.12) too dark to pass.
+    """
+    return rgb[..., 2] > 3 * rgb[..., 0] + 0.05
+
+
+def test_a_pixel_picked_in_one_image_is_read_in_every_output(qtbot, window):
+    panel = _compare(qtbot, window)
+    a, b = panel.views["a"].rgb, panel.views["b"].rgb
+    ys, xs = np.nonzero(_blue(a) & _blue(b))
+    assert len(xs) > 100, "the cone is in view in both outputs"
+    x, y = _read(qtbot, panel, "difference", int(xs[len(xs) // 2]), int(ys[len(ys) // 2]))
+    assert _blue(a)[y, x] and _blue(b)[y, x]
+
+    assert [view.picked for view in panel.views.values()] == [(x, y)] * 3
+    assert panel.pixel_box.title() == f"Picked pixel ({x}, {y})"
+    np.testing.assert_allclose(panel.readout[0].rgb, a[y, x])
+    np.testing.assert_allclose(panel.readout[1].rgb, b[y, x])
+    np.testing.assert_allclose(panel.readout[2].rgb, np.abs(a[y, x] - b[y, x]))
+    assert panel.readout[0].numbers.text() == "linear RGB " + " ".join(f"{c:.3f}" for c in a[y, x])
+    zbuffer, tracer = panel.readout[0].found.text(), panel.readout[1].found.text()
+    assert "passed the z-test" in zbuffer and "came from cone (triangle" in zbuffer and "distance" in zbuffer
+    assert "first hits cone" in tracer and "rays traced: 1 primary" in tracer
+    assert "colours from the last hits back to the first" in panel.readout[1].toolTip()
+
+
+def test_a_pixel_where_both_see_the_background_says_so(qtbot, window):
+    panel = _compare(qtbot, window)
+    background = np.asarray(window.model.scene.background)
+    a, b = panel.views["a"].rgb, panel.views["b"].rgb
+    assert np.array_equal(a[0, 0], background) and np.array_equal(b[0, 0], background)
+    _read(qtbot, panel, "a", 0, 0)
+    assert "no polygon covers this pixel" in panel.readout[0].found.text()
+    assert "hits nothing" in panel.readout[1].found.text()
+    assert panel.readout[2].rgb == (0.0, 0.0, 0.0)
+    assert "no difference" in panel.readout[2].found.text()
+
+
+def test_the_difference_of_an_output_with_itself_is_zero_everywhere(qtbot, window):
+    panel = _compare(qtbot, window)
+    _choose(qtbot, window, panel, "perspective", "perspective")
+    assert np.array_equal(panel.views["a"].rgb, panel.views["b"].rgb)
+    assert not panel.shown.comparison.difference.delta.any()
+    shown = panel.views["difference"].rgb
+    assert np.array_equal(shown, np.broadcast_to(shown[0, 0], shown.shape)), "one colour: the scale's zero"
+    assert (panel.scale.low.text(), panel.scale.high.text()) == ("0", "0")
+    assert "linear RGB" in panel.scale.units.text()
+    _read(qtbot, panel, "b", 40, 200)
+    assert panel.readout[2].rgb == (0.0, 0.0, 0.0)
+
+
+def test_the_two_projections_differ_where_their_images_do_and_agree_on_shared_background(qtbot, window):
+    panel = _compare(qtbot, window)
+    _choose(qtbot, window, panel, "orthographic", "perspective")
+    a, b = panel.views["a"].rgb, panel.views["b"].rgb
+    background = np.asarray(window.model.scene.background)
+    both_background = np.all(a == background, axis=2) & np.all(b == background, axis=2)
+    differ = np.any(a != b, axis=2)
+    assert both_background.any() and differ.any()
+    delta = panel.shown.comparison.difference.delta
+    np.testing.assert_array_equal(delta, np.abs(a - b))
+    assert not delta[both_background].any()
+    assert (delta.max(axis=2)[differ] > 0).all()
+    assert panel.scale.high.text() == f"{np.abs(a - b).max():.3g}"
+    zero = panel.views["difference"].rgb[both_background]
+    assert np.array_equal(zero, np.broadcast_to(zero[0], zero.shape))
+    assert np.any(panel.views["difference"].rgb[differ] != zero[0], axis=1).all()
+    assert "parallel" in panel.explanation.text() and "converge" in panel.explanation.text()
+
+
+def test_the_explanation_names_the_effects_only_the_tracer_computes(qtbot, window):
+    panel = _compare(qtbot, window)
+    assert panel.pair() == ("perspective", "raytrace")
+    text = panel.explanation.text()
+    assert "Only the tracer casts shadows" in text and "effects plan" in text
+    assert "z-test" in text and "first hit" in text
+
+
+def test_changing_the_pair_renders_again_and_reads_the_picked_pixel_in_the_new_output(qtbot, window):
+    panel = _compare(qtbot, window)
+    tab = window.tab("compare")
+    jobs = []
+    job = tab.job
+    tab.job = lambda scene, preview: jobs.append(preview) or job(scene, preview)
+    before = panel.views["b"].rgb
+    x, y = _read(qtbot, panel, "a", 100, 150)
+    _choose(qtbot, window, panel, "perspective", "orthographic")
+    assert jobs == [False]
+    after = panel.views["b"].rgb
+    assert after.shape == before.shape and np.any(after != before)
+    qtbot.waitUntil(lambda: panel.readout[1].title.text() == "<b>B: orthographic z-buffer</b>",
+                    timeout=RENDER_TIMEOUT_MS)
+    np.testing.assert_allclose(panel.readout[1].rgb, after[y, x])
+    assert panel.views["b"].picked == (x, y)
+
+
+def test_moving_the_observer_shows_a_preview_then_reads_the_picked_pixel_again(qtbot, window):
+    panel = _compare(qtbot, window)
+    x, y = _read(qtbot, panel, "b", 160, 120)
+    with qtbot.waitSignal(window.image_shown, timeout=RENDER_TIMEOUT_MS,
+                          check_params_cb=lambda title, preview: title == "Compare" and preview):
+        window.model.set_camera(window.model.camera.orbit(window.model.camera.yaw_deg + 10, 20.0))
+    assert panel.views["a"].note == "preview"
+    assert panel.readout[0].rgb is None
+    qtbot.waitUntil(lambda: window.showing_full("compare") and panel.readout[0].rgb is not None,
+                    timeout=RENDER_TIMEOUT_MS)
+    np.testing.assert_allclose(panel.readout[0].rgb, panel.views["a"].rgb[y, x])

@@ -1,0 +1,33 @@
+"""How the 3D pane is drawn: cheaply, and the same picture as VTK's most careful way."""
+
+import numpy as np
+import pytest
+from PySide6.QtGui import QSurface
+
+from core import presets
+
+
+def _drawn(view):
+    """The pane drawn now, as (H, W, 3) ints (a screenshot alone shows the last draw)."""
+    view.plotter.render()
+    return view.plotter.screenshot(None, return_img=True).astype(int)
+
+
+@pytest.mark.parametrize("build", [presets.lecture_scene, presets.transparent_panes])
+def test_translucent_surfaces_look_as_with_vtks_order_independent_translucency(qtbot, window, build):
+    window.model.set_scene(build())
+    view = window.scene_view
+    renderer = view.plotter.renderer
+    qtbot.waitUntil(renderer.GetUseFXAA)  # at rest: the frustum's translucent faces are drawn too
+    assert not renderer.GetUseOIT()
+    ours = _drawn(view)
+    renderer.SetUseOIT(True)  # the reference: VTK's order-independent translucency
+    reference = _drawn(view)
+    renderer.SetUseOIT(False)
+    levels = np.abs(ours - reference).max(axis=2)
+    assert np.percentile(levels, 99) <= 8  # 8-bit levels; edges of overlapping panes may differ more
+
+
+def test_repaints_of_the_window_never_go_through_opengl(window):
+    # One OpenGL widget anywhere would make Qt compose the whole window through OpenGL at every repaint.
+    assert window.windowHandle().surfaceType() == QSurface.SurfaceType.RasterSurface

@@ -1,0 +1,111 @@
+"""A pyvista plotter that VTK draws off screen and a plain Qt widget paints as an image.
+
+Why not :class:`pyvistaqt.QtInteractor`: that one is a ``QOpenGLWidget``, and
+a single OpenGL widget turns the whole Qt window into an OpenGL surface that
+Qt composes again on *every* repaint — a progress bar step, a new image in a
+tab — by drawing the full window as textures.  Under a software OpenGL
+(llvmpipe, as under Xvfb) that costs 15–40 ms a repaint at 1600 × 900, and
+the window repaints many times a second while the observer moves.  Letting
+VTK draw into a native child window avoids that, but then every draw copies
+the picture to the window through OpenGL (8 ms of a 20 ms draw in llvmpipe).
+
+Here VTK draws into its own off-screen framebuffer; :meth:`render` reads the
+picture back (about a millisecond) and the widget paints it like any other
+image.  The Qt window stays a plain raster surface (a repaint costs about a
+millisecond), Qt may use any display (X11, Wayland), and a paint never makes
+VTK draw: only :meth:`render` and a change of size do.
+
+The plotter is both the Qt widget (mouse and keys go to VTK's trackball
+interactor, through VTK's own ``QVTKRenderWindowInteractor``) and a pyvista
+plotter (``add_mesh``, ``renderer``, ``camera``, ``render()``, ``screenshot()``).
+"""
+
+from __future__ import annotations
+
+import contextlib
+
+import numpy as np
+import vtkmodules.vtkInteractionStyle  # noqa: F401  (VTK's interactor styles)
+import vtkmodules.vtkRenderingOpenGL2  # noqa: F401  (the OpenGL render window of this platform)
+from PySide6.QtCore import Qt
+from PySide6.QtGui import QImage, QPainter
+from PySide6.QtWidgets import QWidget
+from pyvista.plotting.plotter import BasePlotter
+from pyvista.plotting.render_window_interactor import RenderWindowInteractor
+from vtkmodules.qt.QVTKRenderWindowInteractor import QVTKRenderWindowInteractor
+from vtkmodules.util.numpy_support import vtk_to_numpy
+from vtkmodules.vtkCommonCore import vtkUnsignedCharArray
+from vtkmodules.vtkRenderingCore import vtkRenderWindow
+
+
+@contextlib.contextmanager
+def _without_base_plotter_init():
+    """Qt's constructor calls the next ``__init__`` of the class's bases (BasePlotter's)
+    without arguments; it is called once, explicitly, after the widget exists."""
+    init = BasePlotter.__init__
+    BasePlotter.__init__ = lambda *args, **kwargs: None
+    try:
+        yield
+    finally:
+        BasePlotter.__init__ = init
+
+
+class ImagePlotter(QVTKRenderWindowInteractor, BasePlotter):
+    """A pyvista plotter and the Qt widget that shows what it drew.
+
+    Attributes
+    ----------
+    picture : the last picture drawn (a QImage in device pixels), or ``None`` before the first.
+    """
+
+    def __init__(self, parent: QWidget | None = None):
+        window = vtkRenderWindow()
+        window.SetOffScreenRendering(True)
+        window.SetMultiSamples(0)  # anti-aliasing is FXAA, and only when the pane rests
+        with _without_base_plotter_init():
+            QVTKRenderWindowInteractor.__init__(self, parent, rw=window)
+        BasePlotter.__init__(self)
+        # VTK's widget would have VTK paint on screen; this one paints the picture itself.
+        self.setAttribute(Qt.WidgetAttribute.WA_PaintOnScreen, False)
+        self.picture: QImage | None = None
+        self._pixels = vtkUnsignedCharArray()
+        self.ren_win = window
+        for renderer in self.renderers:
+            renderer.view_isometric()
+            window.AddRenderer(renderer)
+        self.iren = RenderWindowInteractor(self, interactor=window.GetInteractor())
+        self.iren.interactor.RemoveObservers("MouseMoveEvent")  # pyvista's own: a draw per mouse move
+        self.iren.initialize()
+        self.enable_trackball_style()
+        self._first_time = False  # BasePlotter draws only after its first show(); this one is shown
+
+    def paintEngine(self):
+        return QWidget.paintEngine(self)
+
+    def paintEvent(self, event) -> None:
+        if self.picture is not None:
+            painter = QPainter(self)
+            painter.drawImage(self.rect(), self.picture)
+            painter.end()
+
+    def resizeEvent(self, event) -> None:
+        super().resizeEvent(event)  # VTK's: the render window takes the new size
+        self.render()
+
+    def render(self) -> None:
+        """Draw the scene now and show it (nothing once closed or while hidden)."""
+        if getattr(self, "_closed", False) or not self.isVisible():
+            return
+        BasePlotter.render(self)
+        w, h = self.ren_win.GetSize()
+        self.ren_win.GetRGBACharPixelData(0, 0, w - 1, h - 1, False, self._pixels)
+        rgba = np.ascontiguousarray(vtk_to_numpy(self._pixels).reshape(h, w, 4)[::-1])  # row 0 on top
+        self.picture = QImage(rgba.data, w, h, 4 * w, QImage.Format.Format_RGBX8888).copy()
+        self.picture.setDevicePixelRatio(self.devicePixelRatioF())
+        self.update()
+
+    def close(self) -> None:
+        """Release VTK's render window and OpenGL context (the Qt widget goes with its parent)."""
+        if getattr(self, "_closed", True):
+            return
+        BasePlotter.close(self)  # finalizes the render window
