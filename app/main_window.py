@@ -32,10 +32,11 @@ from PySide6.QtWidgets import (
     QWidget,
 )
 
-from app import render_budget
+from app import render_budget, session
 from app.export_menu import ExportMenu
 from app.lesson_runner import LESSON_OVERLAY, LessonRunner
 from app.mesh_files import read_mesh
+from app.scene_editor import SceneEditor
 from app.state import SceneModel
 from app.tabs import TABS
 from app.window_layout import LEFT_SHARE, fit_window
@@ -144,6 +145,8 @@ class MainWindow(QMainWindow):
         # After the editors' filter, so that PageUp/PageDown reach the lessons first, from anywhere.
         self.presentation = Presentation(self, self.lesson_panel)
         self._build_menus()
+        self.editor = SceneEditor(self)
+        self._keyed_actions += self.editor.keyed_actions
         self.lesson_panel.step_selected.connect(self.apply_lesson_step)
         self.presentation.presenting_changed.connect(self._presenting_changed)
         self.presentation.scale_changed.connect(self._scale_changed)
@@ -217,7 +220,8 @@ class MainWindow(QMainWindow):
     # --------------------------------------------------------------- lessons
     def apply_lesson_step(self, step) -> None:
         """Show lesson step ``step`` (a :class:`core.lessons.LessonStep`); see :mod:`app.lesson_runner`."""
-        self.lessons.apply(step)
+        if self.editor.may_replace_scene():
+            self.lessons.apply(step)
 
     def _presenting_changed(self, presenting: bool) -> None:
         # Esc leaves full screen while presenting; one key, one meaning.
@@ -353,6 +357,8 @@ class MainWindow(QMainWindow):
         except scene_file.SceneFileError as exc:
             QMessageBox.critical(self, "Cannot open scene", f"{Path(path).name}:\n\n{exc}")
             return False
+        if not self.editor.may_replace_scene():
+            return False
         self.scene_path = Path(path)
         self.setWindowTitle(f"Render Explorer — {self.scene_path.name}")
         self.model.set_scene(scene)
@@ -381,11 +387,15 @@ class MainWindow(QMainWindow):
                 scene_file.save(self.model.scene, path)
             except OSError as exc:
                 QMessageBox.critical(self, "Cannot save scene", f"{path}:\n\n{exc}")
+            else:
+                self.editor.saved(path)
 
     def reset_scene(self) -> None:
         self.load_preset("lecture", presets.lecture_scene)
 
     def load_preset(self, key: str, build) -> None:
+        if not self.editor.may_replace_scene():
+            return
         self.scene_path = None
         self.setWindowTitle(f"Render Explorer — example: {key}")
         self.model.set_scene(build())
@@ -457,6 +467,9 @@ class MainWindow(QMainWindow):
         self.overlays.show_ray_tree(root)
 
     def closeEvent(self, event):
+        if not self.editor.may_replace_scene():
+            event.ignore()
+            return
         QApplication.instance().removeEventFilter(self._editor_keys)
         self.presentation.clicker.remove()
         self.renders.stop()
@@ -483,9 +496,15 @@ def run(scene_path: str | None = None, memory_limit: int | None = None) -> int:
     app = QApplication.instance() or QApplication(sys.argv[:1])
     app.setApplicationName("Render Explorer")
     window = MainWindow(scene, memory_limit)
+    if scene_path is None:
+        session.restore(window)
+    else:
+        window.scene_path = Path(scene_path)
+        window.setWindowTitle(f"Render Explorer — {window.scene_path.name}")
     window.show()
     if scene_path is not None:
         window.explain_if_too_large(Path(scene_path).name)
     status = app.exec()
+    session.remember(window)
     QThreadPool.globalInstance().waitForDone()
     return status

@@ -51,6 +51,8 @@ class SceneModel(QObject):
     step_changed(object) : the object-order step shown (polygons drawn so far),
         or ``None`` for "the last step of the current render".
     overlays_changed(frozenset) : the names (from :data:`OVERLAYS`) switched on.
+    selection_changed(object) : the scene item selected for editing, ``("object", i)``,
+        ``("light", i)``, ``("background", 0)``, or ``None``.
 
     Attributes
     ----------
@@ -68,6 +70,7 @@ class SceneModel(QObject):
     buffer_pixel_changed = Signal(object)
     step_changed = Signal(object)
     overlays_changed = Signal(frozenset)
+    selection_changed = Signal(object)
 
     def __init__(self, scene: Scene, parent: QObject | None = None, memory_limit: int | None = None):
         super().__init__(parent)
@@ -79,6 +82,9 @@ class SceneModel(QObject):
         self._buffer_pixel: Pixel | None = None
         self._step: int | None = None
         self._overlays: frozenset[str] = frozenset()
+        self._selection: tuple[str, int] | None = None
+        self.scene_was_edited = False
+        """Whether the last new scene was an edit of the one before (:meth:`set_scene`)."""
 
     # ------------------------------------------------------------ scene
     @property
@@ -106,11 +112,19 @@ class SceneModel(QObject):
         """Change some camera fields (see :meth:`core.camera.Camera.replace`)."""
         return self.set_camera(self.camera.replace(**changes))
 
-    def set_scene(self, scene: Scene) -> None:
-        """Replace the whole scene (for example after opening a file); picks and step are cleared."""
+    def set_scene(self, scene: Scene, edit: bool = False) -> None:
+        """Replace the whole scene; picks and step are cleared.
+
+        ``edit`` says it is the same scene changed by the editor (the 3D pane keeps its
+        view, a selection that still exists stays); otherwise it is a new scene (a file,
+        an example, a lesson step) and the selection is cleared too.
+        """
         if scene == self._scene:
             return
         self._scene = scene
+        self.scene_was_edited = edit
+        if not edit or not self._exists(self._selection):
+            self.set_selection(None)
         self.set_ray_pixel(None)
         self.set_buffer_pixel(None)
         self.set_step(None)
@@ -182,6 +196,27 @@ class SceneModel(QObject):
         if overlays != self._overlays:
             self._overlays = overlays
             self.overlays_changed.emit(overlays)
+
+    # -------------------------------------------------------- selection
+    @property
+    def selection(self) -> tuple[str, int] | None:
+        return self._selection
+
+    def set_selection(self, item: tuple[str, int] | None) -> None:
+        """Select ``item`` (see ``selection_changed``) for editing; a missing one selects nothing."""
+        item = item if self._exists(item) else None
+        if item != self._selection:
+            self._selection = item
+            self.selection_changed.emit(item)
+
+    def _exists(self, item) -> bool:
+        if item is None:
+            return False
+        kind, index = item
+        if kind == "background":
+            return index == 0
+        items = {"object": self._scene.objects, "light": self._scene.lights}.get(kind, ())
+        return 0 <= index < len(items)
 
     # ------------------------------------------------------------ helpers
     def _inside(self, pixel: Pixel | None) -> Pixel | None:

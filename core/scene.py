@@ -114,11 +114,12 @@ class Mesh:
 
 @dataclass(frozen=True)
 class PointLight:
-    """A point light: position (world space), RGB colour, intensity (>= 0)."""
+    """A point light: position (world space), RGB colour, intensity (>= 0), and a name to list it by."""
 
     position: Vec3
     color: Vec3 = (1.0, 1.0, 1.0)
     intensity: float = 1.0
+    name: str = "light"
 
 
 SceneObject = Sphere | Mesh

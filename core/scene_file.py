@@ -287,10 +287,11 @@ def _read_camera(r: _Reader, value, path="camera") -> Camera:
 
 
 def _read_light(r: _Reader, value, path) -> PointLight | None:
-    d = r.fields(value, path, ["position", "color", "intensity"], ["position"])
+    d = r.fields(value, path, ["position", "color", "intensity", "name"], ["position"])
     if d is None:
         return None
     values = {
+        "name": r.string(d["name"], f"{path}.name") if "name" in d else "light",
         "position": r.vector(d["position"], f"{path}.position") if "position" in d else None,
         "color": r.color(d["color"], f"{path}.color") if "color" in d else (1.0, 1.0, 1.0),
         "intensity": r.number(d["intensity"], f"{path}.intensity", ge=0)
@@ -523,13 +524,51 @@ def _read_object(r: _Reader, value, path, base_dir, read_mesh):
     return None
 
 
+def _too_many(n: int, limit: int) -> str:
+    return f"at most {limit:,} are allowed, got {n:,}"
+
+
 def _limited(r: _Reader, value, path: str, limit: int) -> list:
     """The list at ``path``, or an empty one (and a problem) if it holds more than ``limit``."""
     items = r.listing(value, path)
     if len(items) > limit:
-        r.add(path, f"at most {limit:,} are allowed, got {len(items):,}")
+        r.add(path, _too_many(len(items), limit))
         return []
     return items
+
+
+def counted_triangles(obj) -> int:
+    """The triangles the loader counts for ``obj`` against :data:`MAX_TRIANGLES`: a primitive's
+    from its parameters (as :func:`from_dict` counts them), a mesh's own, none for a sphere."""
+    if isinstance(obj, Sphere):
+        return 0
+    source = obj.source or {}
+    if source.get("type") in shapes.PRIMITIVES:
+        return _primitive_triangles(source["type"], source)
+    return len(obj.triangles)
+
+
+def read_object(value, index: int, count: int, triangles_elsewhere: int = 0, base_dir=None,
+                read_mesh: MeshReader | None = None):
+    """Object ``objects[index]`` of a scene file, checked exactly as :func:`from_dict` checks it.
+
+    For the scene's limits, the file has ``count`` objects and the others have
+    ``triangles_elsewhere`` triangles (as :func:`counted_triangles` counts them);
+    so an editor can check one changed object without reading the others again.
+
+    Raises
+    ------
+    SceneFileError
+        Listing every problem, with the paths a whole file would give.
+    """
+    r = _Reader()
+    r.triangles = triangles_elsewhere
+    if count > MAX_OBJECTS:
+        r.add("objects", _too_many(count, MAX_OBJECTS))
+    obj = _read_object(r, value, f"objects[{index}]", base_dir, read_mesh)
+    if r.problems:
+        raise SceneFileError(r.problems)
+    return obj
 
 
 def _nesting_depth(value) -> int:
@@ -702,7 +741,8 @@ def to_dict(scene: Scene, base_dir=None) -> dict:
     lights = [
         {"position": [float(x) for x in light.position],
          "color": [float(x) for x in light.color],
-         "intensity": float(light.intensity)}
+         "intensity": float(light.intensity),
+         "name": light.name}
         for light in scene.lights
     ]
     return {

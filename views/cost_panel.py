@@ -351,10 +351,12 @@ class CostPanel(QWidget):
             self._update_buttons()
 
     def _reset(self) -> None:
+        drawn = bool(self._points)  # else the empty plot is already shown
         self.sweep, self._swept_with = None, None
         self._points, self._knees, self.selected = {}, {}, None
         self.progress.setValue(0)
-        self._draw_plot()
+        if drawn:
+            self._draw_plot()
         if self.image_figure is not None:
             self.image_figure.clear()
             self.image_canvas.draw_idle()

@@ -92,6 +92,8 @@ MOUSE_GESTURES = [
     ("Drag the orange target", "move the point the observer looks at"),
     ("Scroll over the glyph", "narrow or widen the viewing angle α"),
     ("Drag elsewhere in the 3D pane", "turn the overview (not the observer)"),
+    ("Click an object in the 3D pane", "select it in the scene editor"),
+    ("Drag the handle above the selection", "move it (one undo step)"),
     ("Click a pixel", "trace it (image order) or list its fragments (object order)"),
 ]
 

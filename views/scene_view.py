@@ -207,7 +207,8 @@ class SceneView(QWidget):
             self._object_actors.append(actor)
         self._scene = scene
         self.set_camera(scene.camera)
-        self._frame(scene)
+        if self._framed_at is None or not self.model.scene_was_edited:  # an edit keeps the user's view
+            self._frame(scene)
 
     def resizeEvent(self, event):
         """Frame the scene again for the new shape, unless the user has moved the view."""

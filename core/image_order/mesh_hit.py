@@ -49,7 +49,7 @@ def first_triangle_hit(mesh: Mesh, origin, direction) -> tuple[int, TriangleInte
         q = np.cross(s, e1)
         v = (q @ d) * inv
         t = np.einsum("ij,ij->i", e2, q) * inv
-    ok = np.isfinite(t) & (t >= -_SLACK) & (u >= -_SLACK) & (v >= -_SLACK) & (u + v <= 1 + _SLACK)
+        ok = np.isfinite(t) & (t >= -_SLACK) & (u >= -_SLACK) & (v >= -_SLACK) & (u + v <= 1 + _SLACK)
     for k in np.flatnonzero(ok)[np.argsort(t[ok], kind="stable")]:
         hit = intersect_triangle(o, d, *corners[k])
         if hit.hit:
