@@ -34,6 +34,9 @@ def build_parser() -> argparse.ArgumentParser:
     sub = parser.add_subparsers(dest="command", metavar="COMMAND")
     gui = sub.add_parser("gui", help="open the window (the default when no command is given)")
     gui.add_argument("scene", nargs="?", help="a scene JSON file (default: the lecture scene)")
+    gui.add_argument("--memory-limit", metavar="SIZE",
+                     help="refuse renders estimated to need more memory, e.g. 8G or 512M "
+                          "(default: half of the memory available)")
     intersect_command.add_parser(sub)
     render_command.add_parser(sub)
     hardcases_command.add_parser(sub)
@@ -64,7 +67,7 @@ def main(argv: list[str] | None = None) -> int:
         if args.command == "gui":
             from app.main_window import run
 
-            return run(args.scene)
+            return run(args.scene, render_command.parse_memory_limit(args.memory_limit))
         return args.run(args)
     except UsageError as exc:
         print(f"{parser.prog}: error: {exc}", file=sys.stderr)

@@ -11,7 +11,8 @@
 - ``four-views``: the front, side and top orthographic views and the
   observer's view in one picture;
 - ``compare``: two outputs (``--pair``), their difference image with its colour
-  scale, and the sentences that explain it;
+  scale and units, and the sentences that explain it: the sheet of the
+  Compare tab's File → Export (:mod:`app.comparison_sheet`);
 - ``orbit``: an animation of the observer walking once around the target in
   ``--frames`` steps, each frame the chosen pipeline's image.
 
@@ -34,7 +35,7 @@ import sys
 import numpy as np
 
 from app.animation_frames import MAX_FRAMES, orbit_frames, steps_problem, zbuffer_steps
-from app.picture_sheet import Panel, compose, four_views, zbuffer_sheet
+from app.picture_sheet import four_views, zbuffer_sheet
 from app.render_command import ACCELS, MODES, prepare
 from app.usage import UsageError
 
@@ -190,15 +191,11 @@ def _picture(scene, args) -> np.ndarray:
 
 
 def _comparison(scene, args) -> np.ndarray:
+    from app.comparison_sheet import comparison_sheet
     from core.compare import compare
 
     a, b = _pair(args)
-    result = compare(scene, a, b, _trace_settings(args, "raytrace"))
-    diff = result.difference
-    panels = [Panel(result.a.title, result.a.color), Panel(result.b.title, result.b.color),
-              Panel("difference |A - B| (linear RGB)", diff.colored,
-                    diff.colorbar(diff.colored.shape[1], 10), ("0", f"{diff.scale:.3g}"))]
-    return compose(panels, 3, list(result.explanation))
+    return comparison_sheet(compare(scene, a, b, _trace_settings(args, "raytrace")))
 
 
 # --- animations ---------------------------------------------------------------------------------------

@@ -16,8 +16,8 @@ The sheets and frames are those of ``python -m app export``
 off the GUI thread (:class:`app.workers.Renderer`) behind a progress dialog
 with Cancel.  Every file is written atomically (:mod:`core.safe_files`); a
 failure shows a dialog naming the file and the cause.  The file dialogs start
-in the folder used last.  An entry with nothing to export is disabled and
-its tooltip says why.
+in the folder used last, also after a restart (:mod:`app.user_settings`).  An
+entry with nothing to export is disabled and its tooltip says why.
 
 The ``export_*`` methods take the file's path; the menu asks for it with
 :meth:`ExportMenu.ask_path`, the one place a file dialog opens.
@@ -30,7 +30,8 @@ import re
 from dataclasses import replace
 
 from PySide6.QtCore import QObject, Qt, QTimer, Signal
-from PySide6.QtWidgets import QApplication, QFileDialog, QInputDialog, QMessageBox, QProgressDialog
+from PySide6.QtGui import QAction
+from PySide6.QtWidgets import QApplication, QFileDialog, QInputDialog, QMenu, QMessageBox, QProgressDialog
 
 from app.animation_frames import MAX_FRAMES, orbit_frames, steps_problem, zbuffer_steps
 from app.image_files import (
@@ -45,6 +46,7 @@ from app.lesson_runner import LESSON_OVERLAY
 from app.pane_pictures import PanePicture, tab_pictures
 from app.picture_sheet import four_views
 from app.ray_tree_json import ray_tree_json
+from app.user_settings import user_settings
 from app.workers import Renderer
 from core import budget
 from core.safe_files import write_atomic
@@ -56,6 +58,7 @@ FPS = 10
 ORBIT_FRAMES = 36
 PICTURE_FILTERS = [("PNG image", ".png"), ("JPEG image", ".jpg")]
 ANIMATION_FILTERS = [("GIF animation", ".gif"), ("MP4 video", ".mp4")]
+FOLDER_SETTING = "export/folder"
 NO_PICKED_PIXEL = "No picked pixel: click a pixel of the Image order tab's image first"
 
 
@@ -89,7 +92,7 @@ class ExportMenu(QObject):
     ----------
     menu : the QMenu, rebuilt each time it opens, so it lists what can be exported now.
     actions : its entries by path, e.g. ``"Object order/Image memory"``, ``"Ray tree/JSON"``.
-    folder : where the next file dialog starts (the folder of the last export).
+    folder : where the next file dialog starts (the folder of the last export, kept in the settings).
 
     Signals
     -------
@@ -101,7 +104,6 @@ class ExportMenu(QObject):
     def __init__(self, window, file_menu):
         super().__init__(window)
         self.window = window
-        self.folder = os.getcwd()
         self.menu = file_menu.addMenu("&Export")
         self.menu.setToolTipsVisible(True)
         self.menu.aboutToShow.connect(self.refresh)
@@ -115,9 +117,21 @@ class ExportMenu(QObject):
         QApplication.instance().aboutToQuit.connect(self.cancel)
         QTimer.singleShot(0, self.refresh)  # once the window is built: the entries ask it what it shows
 
+    @property
+    def folder(self) -> str:
+        """Where the next file dialog starts: the folder of the last export, kept between sessions."""
+        folder = user_settings().value(FOLDER_SETTING, "", str)
+        return folder if folder and os.path.isdir(folder) else os.getcwd()
+
+    @folder.setter
+    def folder(self, folder: str) -> None:
+        user_settings().setValue(FOLDER_SETTING, folder)
+
     # ------------------------------------------------------------------ menu
     def refresh(self) -> None:
         """List what can be exported now; entries with nothing to export are disabled with the reason."""
+        for submenu in self.menu.findChildren(QMenu):
+            submenu.deleteLater()  # the last refresh's submenus
         self.menu.clear()
         self.actions = {}
         for tab in self.window.tabs:
@@ -148,12 +162,14 @@ class ExportMenu(QObject):
                   "Kind, origin, direction, t, the object hit and the colours of every ray")
 
     def _submenu(self, title: str):
-        submenu = self.menu.addMenu(title)
+        submenu = QMenu(title, self.menu)  # made in Python: PySide6 never hands back a stale wrapper
         submenu.setToolTipsVisible(True)
+        self.menu.addMenu(submenu)
         return submenu
 
     def _add(self, menu, key: str, text: str, slot, why_not: str, tip: str) -> None:
-        action = menu.addAction(text)
+        action = QAction(text, menu)
+        menu.addAction(action)
         action.triggered.connect(slot)
         action.setEnabled(not why_not)
         action.setToolTip(why_not or tip)

@@ -16,14 +16,13 @@ import numpy as np
 from core.lessons import LessonStep
 from core.scene import Mesh, Scene
 from views.scene_overlays import polygon_parts
-from views.vtk_convert import object_polydata
 
 SCENE_PANE = "scene 3D"
 """The lesson name of the 3D pane (the others are tab titles)."""
 LESSON_OVERLAY = "lesson"
 """The 3D overlay that marks a step's highlighted object or face; shown with every tab."""
-MODEL_OVERLAYS = {"bounding spheres": "spheres", "grid cells": "grid"}
-"""Lesson overlay names and the model's names for them ("frustum" is always drawn)."""
+MODEL_OVERLAYS = {"bounding spheres": "spheres", "grid cells": "grid", "frustum": "frustum"}
+"""Lesson overlay names and the model's names for them."""
 OBJECT_STYLE = {"color": "#ffd400", "style": "wireframe", "line_width": 3}
 
 
@@ -92,6 +91,8 @@ class LessonRunner:
             image_order.details.setCurrentIndex(0)  # the ray tree, where that ray is selected
             words.append(f"the {highlight['ray']} ray")
         if "object" in highlight:
+            from views.vtk_convert import object_polydata  # pyvista loads with the 3D pane, not before
+
             obj = _find(scene, highlight["object"])
             parts.append((object_polydata(obj), OBJECT_STYLE))
             words.append(f"object {obj.name!r}")

@@ -27,28 +27,30 @@ from PySide6.QtWidgets import (
     QProgressBar,
     QPushButton,
     QScrollArea,
-    QSplitter,
     QTabWidget,
     QVBoxLayout,
     QWidget,
 )
 
+from app import render_budget
 from app.export_menu import ExportMenu
 from app.lesson_runner import LESSON_OVERLAY, LessonRunner
 from app.mesh_files import read_mesh
 from app.state import SceneModel
 from app.tabs import TABS
+from app.window_layout import LEFT_SHARE, fit_window
 from app.workers import Renderer, RenderSchedule
 from core import presets, scene_file
 from core.image_order.ray_tree import trace_pixel
 from core.presets_trace import PRESETS_TRACE
 from core.scene import Scene
 from views.camera_panel import CameraPanel
+from views.deferred_scene_view import DeferredSceneView
+from views.elided_label import ElidedLabel
 from views.lesson_panel import LessonPanel
 from views.observer_keys import MOUSE_GESTURES, OBSERVER_KEYS, EditorsKeepTheirKeys
 from views.presentation import Presentation
-from views.scene_overlays import SceneOverlays
-from views.scene_view import SceneView
+from views.scene_overlays import SCENE_OVERLAYS, SceneOverlays
 
 
 class MainWindow(QMainWindow):
@@ -63,12 +65,12 @@ class MainWindow(QMainWindow):
     image_shown = Signal(str, bool)
     full_image_shown = Signal(str)
 
-    def __init__(self, scene: Scene):
+    def __init__(self, scene: Scene, memory_limit: int | None = None):
         super().__init__()
         self.setWindowTitle("Render Explorer")
-        self.model = SceneModel(scene, self)
+        self.model = SceneModel(scene, self, memory_limit)
         self.scene_path: Path | None = None
-        self.scene_view = SceneView(self.model)
+        self.scene_view = DeferredSceneView(self.model)  # VTK loads once the window is on screen
         self.overlays = SceneOverlays(self.model, self.scene_view)
         self.camera_panel = CameraPanel(self.model)
         self.tab_widget = QTabWidget()
@@ -98,34 +100,31 @@ class MainWindow(QMainWindow):
         progress_row.addWidget(self.cancel_button)
         right_layout.addLayout(progress_row)
         right_layout.addWidget(self.status_caption)
-        self.scene_pane = scene_pane = QWidget()
+        scene_pane = QWidget()
         scene_layout = QVBoxLayout(scene_pane)
-        scene_layout.setContentsMargins(6, 6, 6, 6)
-        scene_title = QLabel(
-            "<b>The scene</b> — observer, viewing pyramid (frustum) and screen on the near plane. "
-            "Drag the camera or the orange target to move them")
-        scene_title.setWordWrap(True)
-        scene_layout.addWidget(scene_title)
+        scene_layout.setContentsMargins(2, 2, 2, 2)
+        scene_hint = ElidedLabel("Drag the camera or the orange target to move them; "
+                                 "drag elsewhere to turn the view")
         scene_layout.addWidget(self.scene_view, 1)
-        splitter = QSplitter(Qt.Orientation.Horizontal)
-        splitter.addWidget(scene_pane)
-        splitter.addWidget(right)
-        scene_pane.setMinimumWidth(320)
-        splitter.setStretchFactor(0, 2)
-        splitter.setStretchFactor(1, 3)
-        splitter.setSizes([400, 600])  # the tabs' images and panels get the larger share
-        self.setCentralWidget(splitter)
+        scene_layout.addWidget(scene_hint)
+        # Above the controls and lessons, beside the tabs: the tabs' images get the window's width.
+        self.scene_pane = QDockWidget("The scene: observer, frustum, screen", self)
+        self.scene_pane.setObjectName("scene")
+        self.scene_pane.setFeatures(QDockWidget.DockWidgetFeature.DockWidgetMovable)
+        self.scene_pane.setWidget(scene_pane)
+        self.addDockWidget(Qt.DockWidgetArea.LeftDockWidgetArea, self.scene_pane)
+        self.setCentralWidget(right)
 
         dock = QDockWidget("Controls", self)
         dock.setFeatures(QDockWidget.DockWidgetFeature.DockWidgetMovable)
         dock.setTitleBarWidget(QWidget())  # the group boxes carry the titles
         self._controls = QScrollArea()
         self._controls.setWidgetResizable(True)
-        self._controls.setHorizontalScrollBarPolicy(Qt.ScrollBarPolicy.ScrollBarAlwaysOff)
         self._controls.setWidget(self.camera_panel)
         dock.setWidget(self._controls)
         self._fit_controls()
         self.addDockWidget(Qt.DockWidgetArea.LeftDockWidgetArea, dock)
+        self.splitDockWidget(self.scene_pane, dock, Qt.Orientation.Vertical)
         # The panel opens on the first lesson without applying it: the scene stays
         # the one given until the user picks a step.
         self.lesson_panel = LessonPanel()
@@ -148,6 +147,7 @@ class MainWindow(QMainWindow):
         self.lesson_panel.step_selected.connect(self.apply_lesson_step)
         self.presentation.presenting_changed.connect(self._presenting_changed)
         self.presentation.scale_changed.connect(self._scale_changed)
+        self.scene_pane.visibilityChanged.connect(lambda shown: shown and self._refit())
 
         self.model.camera_refused.connect(
             lambda why: self.statusBar().showMessage(f"Observer not moved — {why}", 6000))
@@ -158,7 +158,9 @@ class MainWindow(QMainWindow):
         self.renders.status_changed.connect(self._show_status)
         self.renders.image_shown.connect(self.image_shown)
         self.renders.full_image_shown.connect(self.full_image_shown)
+        self.renders.image_shown.connect(self.scene_view.build_soon)  # the first image before VTK
         self.renders.warned.connect(lambda warning: self.statusBar().showMessage(warning, 10000))
+        self.renders.refused.connect(lambda refusal: self.statusBar().showMessage(refusal, 10000))
         self.renders.rested.connect(self._observer_rested)
         self.model.ray_pixel_changed.connect(self._ray_pixel_changed)
         self.tab_widget.currentChanged.connect(self._tab_shown)
@@ -171,8 +173,9 @@ class MainWindow(QMainWindow):
         object_order.clipped_shown.connect(self.overlays.show_clipped)
 
         self._tab_shown()
-        self.progress.setFormat("compiling the renderers on first use (numba caches them), "
-                                "then rendering… %p%")
+        if self.renders.busy(self.current):  # not when the scene is over the memory budget
+            self.progress.setFormat("compiling the renderers on first use (numba caches them), "
+                                    "then rendering… %p%")
         available = self.screen().availableGeometry()
         self.resize(min(1400, available.width()), min(860, available.height()))
 
@@ -219,10 +222,24 @@ class MainWindow(QMainWindow):
     def _presenting_changed(self, presenting: bool) -> None:
         # Esc leaves full screen while presenting; one key, one meaning.
         self.cancel_button.setShortcut(QKeySequence() if presenting else QKeySequence("Esc"))
+        self._refit()
 
     def _scale_changed(self, scale: float) -> None:
-        self.tab("image order").widget.worked_math.set_scale(scale)
-        self.tab("object order").widget.vertex_math.set_scale(scale)
+        # The formulas follow the window's font, which the scale enlarged already; the 3D pane does not.
+        self.scene_view.set_line_scale(scale)
+        self._refit()
+
+    def _refit(self) -> None:
+        """Share the room again once the new text size or screen reached every widget."""
+        QTimer.singleShot(0, self._fit)
+
+    def _fit(self) -> None:
+        self._fit_controls()
+        fit_window(self, self.presentation.scale())
+
+    def resizeEvent(self, event):
+        super().resizeEvent(event)
+        fit_window(self, self.presentation.scale())
 
     @property
     def current(self):
@@ -317,10 +334,11 @@ class MainWindow(QMainWindow):
         QTimer.singleShot(0, self._fit_controls)  # after the new font reached every widget
 
     def _fit_controls(self) -> None:
-        """Keep the whole control panel visible at any text size."""
+        """Keep the whole control panel visible at any text size (scrolling sideways on a small screen)."""
         self.camera_panel.adjustSize()
         scrollbar = self._controls.verticalScrollBar().sizeHint().width()
-        self._controls.setMinimumWidth(self.camera_panel.sizeHint().width() + scrollbar + 4)
+        most = round(self.screen().availableGeometry().width() * LEFT_SHARE[max(LEFT_SHARE)])
+        self._controls.setMinimumWidth(min(most, self.camera_panel.minimumSizeHint().width() + scrollbar + 4))
 
     # ------------------------------------------------------------- files
     def open_scene_dialog(self) -> None:
@@ -338,7 +356,22 @@ class MainWindow(QMainWindow):
         self.scene_path = Path(path)
         self.setWindowTitle(f"Render Explorer — {self.scene_path.name}")
         self.model.set_scene(scene)
+        self.explain_if_too_large(self.scene_path.name)
         return True
+
+    def explain_if_too_large(self, name: str) -> None:
+        """Say in a dialog why tabs will not render the scene just opened (from file ``name``), if so."""
+        refused = render_budget.refusals(self.tabs, self.model.scene, self.model.memory_limit)
+        if not refused:
+            return
+        first = refused.get(self.current.title, next(iter(refused.values())))
+        box = QMessageBox(QMessageBox.Icon.Warning, "Scene too large to render", f"{name}:\n\n{first}",
+                          parent=self)
+        others = [title for title, why in refused.items() if why is not first]
+        box.setInformativeText((f"Too large for {', '.join(others)} as well. " if others else "")
+                               + "The scene is open: the tabs render it once it is small enough.")
+        box.setAttribute(Qt.WidgetAttribute.WA_DeleteOnClose)
+        box.open()  # the window stays responsive behind it
 
     def save_scene_dialog(self) -> None:
         path, _ = QFileDialog.getSaveFileName(self, "Save scene", "scene.json",
@@ -373,7 +406,7 @@ class MainWindow(QMainWindow):
 
     def _tab_shown(self, *_) -> None:
         tab = self.current
-        self.scene_view.show_overlays_only((*tab.overlays, LESSON_OVERLAY))
+        self.scene_view.show_overlays_only((*tab.overlays, *SCENE_OVERLAYS, LESSON_OVERLAY))
         self.renders.show_tab(tab)
         self._show_status(tab)
 
@@ -434,8 +467,12 @@ class MainWindow(QMainWindow):
         super().closeEvent(event)
 
 
-def run(scene_path: str | None = None) -> int:
-    """Open the window on ``scene_path`` (or the lecture scene); returns the exit status."""
+def run(scene_path: str | None = None, memory_limit: int | None = None) -> int:
+    """Open the window on ``scene_path`` (or the lecture scene); returns the exit status.
+
+    ``memory_limit``: renders estimated to need more bytes are refused (default: half of
+    the memory available).
+    """
     scene = presets.lecture_scene()
     if scene_path is not None:
         try:
@@ -445,8 +482,10 @@ def run(scene_path: str | None = None) -> int:
             return 2
     app = QApplication.instance() or QApplication(sys.argv[:1])
     app.setApplicationName("Render Explorer")
-    window = MainWindow(scene)
+    window = MainWindow(scene, memory_limit)
     window.show()
+    if scene_path is not None:
+        window.explain_if_too_large(Path(scene_path).name)
     status = app.exec()
     QThreadPool.globalInstance().waitForDone()
     return status

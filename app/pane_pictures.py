@@ -1,6 +1,7 @@
 """The pictures a tab offers File → Export: every image pane in it, at the image's full resolution.
 
-A tab offers, unless it says otherwise, what its widget shows:
+A tab offers, unless it says otherwise, what its widget shows (each pane
+named by its accessible name, else by the title of the group box around it):
 
 - each image pane (:class:`views.image_view.ImageView`), pixel for pixel as
   it is painted (one file pixel per image pixel, however large the pane);
@@ -11,7 +12,8 @@ A tab offers, unless it says otherwise, what its widget shows:
 
 A tab with other pictures to offer defines ``pictures() -> list[PanePicture]``
 (see :mod:`app.tabs`).  A pane not rendered yet, or showing a preview or a
-render under way, has nothing to export; its picture says why.
+render under way, or hidden in its tab, has nothing to export; its picture
+says why.
 """
 
 from __future__ import annotations
@@ -63,7 +65,9 @@ def shown_rgb(view: ImageView) -> np.ndarray:
     return srgb_to_linear(rows[:, :3 * w].reshape(h, w, 3) / 255.0)
 
 
-def _why_not(view: ImageView) -> str:
+def _why_not(view: ImageView, top: QWidget) -> str:
+    if not view.isVisibleTo(top):
+        return "Not part of what the tab shows now"
     if view.qimage is None:
         return "Nothing shown yet: show the tab and let it render"
     if view.note:
@@ -81,8 +85,8 @@ def _pane_title(view: QWidget, top: QWidget) -> str:
     return ""
 
 
-def _picture(tab: str, pane: str, views: list[ImageView], make) -> PanePicture:
-    why = next((why for why in map(_why_not, views) if why), "")
+def _picture(tab: str, pane: str, views: list[ImageView], top: QWidget, make) -> PanePicture:
+    why = next((why for why in (_why_not(view, top) for view in views) if why), "")
     return PanePicture(tab, pane, None if why else make, why)
 
 
@@ -108,12 +112,12 @@ def widget_pictures(tab: str, widget: QWidget) -> list[PanePicture]:
                 panels = [Panel(_pane_title(v, grid), shown_rgb(v)) for v in views]
                 return compose(panels, grid.layout().columnCount())
 
-            pictures.append(_picture(tab, f"All {len(views)} panes as one picture", views, sheet))
+            pictures.append(_picture(tab, f"All {len(views)} panes as one picture", views, widget, sheet))
         elif isinstance(pane, DepthView):
             title = _pane_title(pane, widget) or "z-buffer"
-            pictures.append(_picture(tab, f"{title} with its scale", [pane.image],
+            pictures.append(_picture(tab, f"{title} with its scale", [pane.image], widget,
                                      lambda d=pane: zbuffer_sheet(d.depth, d.near, d.far)))
         else:
-            pictures.append(_picture(tab, _pane_title(pane, widget) or "Image", [pane],
-                                     lambda v=pane: shown_rgb(v)))
+            name = pane.accessibleName() or _pane_title(pane, widget) or "Image"
+            pictures.append(_picture(tab, name, [pane], widget, lambda v=pane: shown_rgb(v)))
     return pictures

@@ -27,7 +27,6 @@ from app.usage import UsageError
 MODES = ("raster", "raycast", "raytrace")
 ACCELS = ("none", "spheres", "grid", "grid+spheres", "bvh")
 MAX_DEPTH = 64
-SLOW_SECONDS = 5.0  # an estimate above this is printed before starting
 
 
 def add_parser(sub) -> None:
@@ -86,16 +85,20 @@ def _outputs(args):
     return outputs
 
 
+def parse_memory_limit(text: str | None) -> int | None:
+    """``--memory-limit``'s value in bytes (None when not given); a bad one raises :class:`UsageError`."""
+    from core import budget
+
+    try:
+        return None if text is None else budget.parse_size(text)
+    except ValueError as exc:
+        raise UsageError(f"--memory-limit: {exc}") from None
+
+
 def budget_limit(args) -> tuple[int, str]:
     from core import budget
 
-    if args.memory_limit is None:
-        return budget.default_budget(), (
-            f"half of the {budget.format_bytes(budget.available_memory())} available")
-    try:
-        return budget.parse_size(args.memory_limit), "--memory-limit"
-    except ValueError as exc:
-        raise UsageError(f"--memory-limit: {exc}") from None
+    return budget.memory_limit(parse_memory_limit(args.memory_limit))
 
 
 def check_cost(scene, args, limit: int, limit_source: str) -> None:
@@ -104,18 +107,16 @@ def check_cost(scene, args, limit: int, limit_source: str) -> None:
 
     cost = budget.estimate(scene, args.mode, args.accel, args.max_depth)
     cam = scene.camera
-    if cost.bytes > limit:
-        parts = ", ".join(f"{k} {budget.format_bytes(v)}" for k, v in cost.parts.items())
-        raise UsageError(
-            f"{cam.width} × {cam.height} {args.mode} of {len(scene.objects)} objects needs about "
-            f"{budget.format_bytes(cost.bytes)} ({parts}); the budget is "
-            f"{budget.format_bytes(limit)} ({limit_source}); use a smaller image "
-            "(--width/--height), fewer objects or triangles, or --memory-limit")
+    over = budget.refusal(f"{cam.width} × {cam.height} {args.mode} of {len(scene.objects)} objects",
+                          cost, limit, limit_source)
+    if over:
+        raise UsageError(f"{over}; use a smaller image (--width/--height), fewer objects or "
+                         "triangles, or --memory-limit")
     if args.dry_run:
         print(f"{args.mode}: {cam.width}x{cam.height} pixels, {len(scene.objects)} objects: "
               f"about {budget.format_bytes(cost.bytes)} of memory and "
               f"{budget.format_seconds(cost.seconds)}; nothing rendered (--dry-run)")
-    elif cost.seconds > SLOW_SECONDS:
+    elif cost.seconds > budget.SLOW_SECONDS:
         why = f": {cost.slow_because}" if cost.slow_because else ""
         print(f"python -m app {args.command}: estimated time about {budget.format_seconds(cost.seconds)}"
               f" and {budget.format_bytes(cost.bytes)} of memory{why}", file=sys.stderr, flush=True)

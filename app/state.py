@@ -25,8 +25,9 @@ from core.image_order.flat_scene import TraceSettings
 from core.object_order.pipeline import RasterSettings
 from core.scene import Scene
 
-OVERLAYS = ("spheres", "grid", "walk")
-"""3D overlays a user switches on: bounding spheres, grid cells, the cells the picked ray walks."""
+OVERLAYS = ("spheres", "grid", "walk", "frustum")
+"""3D overlays a user switches on: bounding spheres, grid cells, the cells the picked ray walks,
+the frustum's planes filled and labelled."""
 
 Pixel = tuple[int, int]
 
@@ -50,6 +51,12 @@ class SceneModel(QObject):
     step_changed(object) : the object-order step shown (polygons drawn so far),
         or ``None`` for "the last step of the current render".
     overlays_changed(frozenset) : the names (from :data:`OVERLAYS`) switched on.
+
+    Attributes
+    ----------
+    memory_limit : renders estimated to need more memory than this many bytes
+        are refused (:mod:`app.render_budget`); ``None``: half of the memory
+        available when each would start.
     """
 
     camera_changed = Signal(object)
@@ -62,8 +69,9 @@ class SceneModel(QObject):
     step_changed = Signal(object)
     overlays_changed = Signal(frozenset)
 
-    def __init__(self, scene: Scene, parent: QObject | None = None):
+    def __init__(self, scene: Scene, parent: QObject | None = None, memory_limit: int | None = None):
         super().__init__(parent)
+        self.memory_limit = memory_limit
         self._scene = scene
         self._trace = TraceSettings()
         self._raster = RasterSettings(record_steps=True)

@@ -21,6 +21,9 @@ A tab is any object with
 - optionally ``warning(scene) -> str | None`` : a word before a very long full render;
 - optionally ``pictures()`` : what File → Export offers for this tab, instead of
   every image pane of ``widget`` (see :mod:`app.pane_pictures`).
+- optionally ``cost(scene, preview)`` : what ``job(scene, preview)`` will cost, a
+  :class:`core.budget.Estimate`; a job over the memory budget never starts
+  (see :mod:`app.render_budget`).
 
 Adding a tab is one line: append its class to :data:`TABS` (it is built as
 ``cls(model)`` with the window's :class:`app.state.SceneModel`).
@@ -35,11 +38,13 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from app.compare_pictures import comparison_pictures
 from app.workers import Renderer
+from core import budget
 from core.camera import Camera
-from core.compare import Comparison, difference, explain, render_output
+from core.compare import compare
 from core.image_order.ray_tracing import TraceSettings, merge_band_stats, render_trace
-from core.object_order import three_views
+from core.object_order import outlines, three_views
 from core.object_order.pipeline import RasterSettings, render_raster
 from core.scene import Mesh, Scene
 from views.compare_panel import ComparePanel, ComparisonImages
@@ -102,6 +107,15 @@ def _raster_preview(scene: Scene) -> tuple[np.ndarray, float]:
     return upscale(raster.color, cam.width, cam.height), sum(raster.stats["times"].values())
 
 
+def _cost(scene: Scene, preview: bool, runs, shown_images: int) -> budget.Estimate:
+    """The cost of ``runs`` (``(mode, accel, max_depth)`` renders made one after another, of a
+    quarter of the pixels for a preview) whose results fill ``shown_images`` full-size images."""
+    view = replace(scene, camera=preview_camera(scene.camera)) if preview else scene
+    cam = scene.camera
+    return budget.combined([budget.estimate(view, *run) for run in runs], cam.width * cam.height,
+                           shown_images)
+
+
 def preview_trace_settings(settings: TraceSettings) -> TraceSettings:
     """Previews never go without acceleration: the image is the same, the wait is not."""
     return settings if settings.accel != "none" else replace(settings, accel="bvh")
@@ -128,6 +142,10 @@ class ImageOrderTab:
             return None
         return (f"Acceleration 'None': every ray tests all {triangles:,} triangles, about "
                 f"{tests:.1e} tests; this render may take minutes (Esc cancels; previews use the BVH)")
+
+    def cost(self, scene: Scene, preview: bool) -> budget.Estimate:
+        s = preview_trace_settings(self.model.trace_settings) if preview else self.model.trace_settings
+        return _cost(scene, preview, [(s.mode, s.accel, s.max_depth)], 1)
 
     def job(self, scene: Scene, preview: bool):
         settings = self.model.trace_settings
@@ -192,6 +210,9 @@ class ObjectOrderTab:
         self.model = model
         self.widget = ObjectOrderPanel(model)
 
+    def cost(self, scene: Scene, preview: bool) -> budget.Estimate:
+        return _cost(scene, preview, [("raster",)], 1 if preview else 2)  # full: image and z-buffer
+
     def job(self, scene: Scene, preview: bool):
         settings = self.model.raster_settings
         if preview:
@@ -229,6 +250,10 @@ class FourViewsTab:
         self.model = model
         self.widget = ImageGrid(self.PANES, columns=2)
 
+    def cost(self, scene: Scene, preview: bool) -> budget.Estimate:
+        views = 1 if preview else len(self.PANES)
+        return _cost(scene, preview, [("raster",)] * views, views)
+
     def job(self, scene: Scene, preview: bool):
         cam = scene.camera
         cameras = {**three_views.orthographic_views(scene, cam.width, cam.height), "observer": cam}
@@ -246,7 +271,8 @@ class FourViewsTab:
                     images[key] = (display_image(rgb, PREVIEW), seconds)
                 else:
                     raster = render_raster(view, RasterSettings())
-                    images[key] = (display_image(raster.color), sum(raster.stats["times"].values()))
+                    color = outlines.outlined(raster.color, raster.depth, raster.meshes, camera)
+                    images[key] = (display_image(color), sum(raster.stats["times"].values()))
                 progress(round(100 * (i + 1) / len(cameras)), None)
             return images
 
@@ -257,7 +283,7 @@ class FourViewsTab:
             self.widget.set_image(key, image, f"z-buffer {image.note or 'render'} in {_ms(seconds)}")
         if set(images) == {"observer"}:
             return f"preview of the observer's view in {_ms(images['observer'][1])}"
-        return "front, side and top: parallel projection along the axes"
+        return "front, side and top: parallel projection along the axes, framed on the objects, edges inked"
 
 
 class CompareTab:
@@ -274,6 +300,13 @@ class CompareTab:
         self._reader.finished.connect(self.widget.show_pixel)
         self.widget.pixel_picked.connect(self._read_pixel)
 
+    def cost(self, scene: Scene, preview: bool) -> budget.Estimate:
+        modes = {"orthographic": "raster", "perspective": "raster", "raycast": "raycast",
+                 "raytrace": "raytrace"}
+        settings = preview_trace_settings(self.model.trace_settings)
+        runs = [(modes[key], settings.accel, settings.max_depth) for key in self.widget.pair()]
+        return _cost(scene, preview, runs, 3)  # A, B and their difference
+
     def job(self, scene: Scene, preview: bool):
         a, b = self.widget.pair()
         settings = preview_trace_settings(self.model.trace_settings)  # acceleration leaves the image alone
@@ -284,16 +317,18 @@ class CompareTab:
         rendered = replace(scene, camera=preview_camera(cam)) if preview else scene
 
         def run(cancelled, progress):
-            first = render_output(rendered, a, settings)
-            progress(50, None)
-            if cancelled.is_set():
+            def carry_on():  # output A is rendered
+                progress(50, None)
+                return not cancelled.is_set()
+
+            comparison = compare(rendered, a, b, settings, carry_on=carry_on)  # as `export --what compare`
+            if comparison is None:
                 return None
-            second = first if b == a else render_output(rendered, b, settings)
-            diff = difference(first.color, second.color)
-            comparison = Comparison(first, second, diff, explain(first, second, diff))
+            diff = comparison.difference
             images = {key: display_image(upscale(rgb, cam.width, cam.height) if preview else rgb,
                                          PREVIEW if preview else "")
-                      for key, rgb in (("a", first.color), ("b", second.color), ("difference", diff.colored))}
+                      for key, rgb in (("a", comparison.a.color), ("b", comparison.b.color),
+                                       ("difference", diff.colored))}
             return ComparisonImages(comparison, images, display_image(diff.colorbar()), preview, pixel,
                                     None if pixel is None else comparison.pixel(*pixel))
 
@@ -316,6 +351,10 @@ class CompareTab:
         if shown is None or shown.preview:
             return  # read when the full comparison arrives
         self._reader.submit(lambda cancelled, progress: ((x, y), shown.comparison.pixel(x, y)))
+
+    def pictures(self):
+        """File → Export: outputs A and B, the difference with its scale, the whole comparison."""
+        return comparison_pictures(self.title, self.widget.shown)
 
     def shutdown(self) -> None:
         """Stop reading a pixel (the window is closing)."""
@@ -352,6 +391,7 @@ class CostTab:
     def __init__(self, model):
         self.model = model
         self.widget = CostPanel()
+        self.widget.memory_limit = model.memory_limit
         self.widget.set_scene(model.scene)
         model.scene_changed.connect(self.widget.set_scene)
 

@@ -19,6 +19,8 @@ from collections.abc import Callable
 
 from PySide6.QtCore import QObject, QRunnable, QThreadPool, QTimer, Signal
 
+from app import render_budget
+
 Job = Callable[[threading.Event, Callable[[int, object], None]], object]
 PROGRESS_PER_SECOND = 30
 
@@ -128,9 +130,11 @@ class RenderSchedule(QObject):
       camera, never a queue; once the observer rests, the full render starts.
     - A newer camera supersedes a running full render at its next band, and a
       full result is shown only for the scene it was rendered from.
+    - A job over the memory budget never starts (:mod:`app.render_budget`): the
+      tab's status says why and what to reduce.
 
     Tabs are those of :mod:`app.tabs` (``title``, ``job(scene, preview)``,
-    ``show(result)``, optional ``show_progress``, ``warning`` and ``changes``).
+    ``show(result)``, optional ``show_progress``, ``warning``, ``changes`` and ``cost``).
 
     Signals
     -------
@@ -138,6 +142,7 @@ class RenderSchedule(QObject):
     image_shown(str title, bool preview) : a tab showed a new image (a preview or the full one).
     full_image_shown(str title) : a tab showed the full render of the current scene.
     warned(str) : a word before a very long render.
+    refused(str) : a render was not started because it is over the memory budget; the message says why.
     rested() : the observer stopped moving.
     """
 
@@ -147,6 +152,7 @@ class RenderSchedule(QObject):
     image_shown = Signal(str, bool)
     full_image_shown = Signal(str)
     warned = Signal(str)
+    refused = Signal(str)
     rested = Signal()
 
     def __init__(self, model, parent: QObject | None = None):
@@ -256,6 +262,13 @@ class RenderSchedule(QObject):
 
     def _submit(self, tab, preview: bool) -> None:
         scene = self.model.scene
+        refusal, slow = render_budget.check(tab, scene, preview, self.model.memory_limit)
+        if refusal:
+            tab.renderer.cancel()  # whatever it was rendering is out of date too
+            self._jobs.pop(tab.title, None)
+            self._set_status(tab, 0, f"{tab.title}: not rendered, over the memory budget", refusal)
+            self.refused.emit(refusal)
+            return
         job = tab.job(scene, preview)
         if job is None:
             self._full_shown[tab.title] = scene  # nothing to render: what it shows is current
@@ -263,7 +276,7 @@ class RenderSchedule(QObject):
             return
         self._jobs[tab.title] = (scene, preview)
         tab.renderer.submit(job)
-        warning = None if preview else getattr(tab, "warning", lambda _: None)(scene)
+        warning = None if preview else getattr(tab, "warning", lambda _: None)(scene) or slow
         what = "preview while the observer moves" if preview else "rendering"
         self._set_status(tab, 0, f"{tab.title}: {what}… %p%", warning)
         if warning:

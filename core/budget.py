@@ -30,6 +30,11 @@ SPHERE_TRIANGLES_RASTER = 2 * 64 * (32 - 1)
 SECONDS_PER_TEST = 6e-9
 #: Seconds per ray with an acceleration structure, and per rasterized triangle.
 SECONDS_PER_RAY, SECONDS_PER_TRIANGLE = 3e-7, 1e-6
+#: Bytes per pixel of an image kept on screen (float RGB and its 8-bit picture), and of the
+#: temporaries of converting one for the screen (sRGB encoding in float64).
+SHOWN_BYTES_PER_PIXEL, CONVERT_BYTES_PER_PIXEL = 30, 100
+#: An estimate above this many seconds is announced before the work starts.
+SLOW_SECONDS = 5.0
 
 
 @dataclass(frozen=True)
@@ -74,7 +79,8 @@ def count_primitives(scene) -> tuple[int, int]:
     return spheres, triangles
 
 
-def estimate(scene, mode: str, accel: str = "bvh", max_depth: int = 5) -> Estimate:
+def estimate(scene, mode: str, accel: str = "bvh", max_depth: int = 5,
+             sphere_triangles: int = SPHERE_TRIANGLES_RASTER) -> Estimate:
     """Estimate the memory and time of rendering ``scene`` from its camera.
 
     Parameters
@@ -83,6 +89,7 @@ def estimate(scene, mode: str, accel: str = "bvh", max_depth: int = 5) -> Estima
     mode : ``"raster"``, ``"raycast"`` or ``"raytrace"``.
     accel : image order: ``"none"`` tests every ray against every primitive.
     max_depth : ray tracing: deepest bounce.
+    sphere_triangles : object order: triangles each analytic sphere is tessellated into.
 
     Examples
     --------
@@ -95,7 +102,7 @@ def estimate(scene, mode: str, accel: str = "bvh", max_depth: int = 5) -> Estima
     pixels = scene.camera.width * scene.camera.height
     spheres, triangles = count_primitives(scene)
     if mode == "raster":
-        triangles += spheres * SPHERE_TRIANGLES_RASTER
+        triangles += spheres * sphere_triangles
     parts = {"image buffers": pixels * BYTES_PER_PIXEL[mode],
              "triangles": triangles * BYTES_PER_TRIANGLE[mode]}
     slow = None
@@ -114,17 +121,67 @@ def estimate(scene, mode: str, accel: str = "bvh", max_depth: int = 5) -> Estima
     return Estimate(sum(parts.values()), parts, seconds, slow)
 
 
-def format_bytes(n: float) -> str:
-    """``n`` bytes as a short decimal figure: ``"3.2 GB"``, ``"512 MB"``.
+def combined(estimates, shown_pixels: int = 0, shown_images: int = 0) -> Estimate:
+    """The cost of renders made one after another, whose results are shown on screen.
+
+    Memory is the largest render's plus ``shown_images`` images of
+    ``shown_pixels`` pixels kept for display (and converting one of them);
+    time is the sum.
+    """
+    largest = max(estimates, key=lambda e: e.bytes)
+    parts = dict(largest.parts)
+    if shown_images:
+        parts["shown images"] = shown_pixels * (CONVERT_BYTES_PER_PIXEL
+                                                + shown_images * SHOWN_BYTES_PER_PIXEL)
+    slow = next((e.slow_because for e in estimates if e.slow_because), None)
+    return Estimate(sum(parts.values()), parts, sum(e.seconds for e in estimates), slow)
+
+
+def memory_limit(given: int | None, option: str = "--memory-limit") -> tuple[int, str]:
+    """The memory budget, bytes, and where it comes from: ``given`` (by ``option``), else
+    :func:`default_budget`."""
+    if given is not None:
+        return given, option
+    return default_budget(), f"half of the {format_bytes(available_memory())} available"
+
+
+def refusal(what: str, cost: Estimate, limit: int, source: str) -> str | None:
+    """Why a render of ``what`` costing ``cost`` is over the budget ``limit`` (from ``source``); None if not.
 
     Examples
     --------
-    >>> format_bytes(32e9), format_bytes(5e8), format_bytes(2e4)
-    ('32 GB', '500 MB', '0.02 MB')
+    >>> cost = Estimate(40 * 10**9, {"image buffers": 39 * 10**9, "triangles": 10**9}, 60.0)
+    >>> print(refusal("16384 × 16384 raycast", cost, 2 * 10**9, "--memory-limit"))
+    16384 × 16384 raycast needs about 40 GB (image buffers 39 GB, triangles 1 GB); the budget is 2 GB \
+(--memory-limit)
+    >>> refusal("a small one", cost, 10**11, "--memory-limit") is None
+    True
+    """
+    if cost.bytes <= limit:
+        return None
+    parts = ", ".join(f"{k} {format_bytes(v)}" for k, v in cost.parts.items())
+    return (f"{what} needs about {format_bytes(cost.bytes)} ({parts}); the budget is "
+            f"{format_bytes(limit)} ({source})")
+
+
+def largest_part(cost: Estimate) -> str:
+    """The name of the part of ``cost`` that takes the most memory (what to reduce first)."""
+    return max(cost.parts, key=cost.parts.get)
+
+
+def format_bytes(n: float) -> str:
+    """``n`` bytes as a short decimal figure: ``"3.2 GB"``, ``"512 MB"``, ``"20 kB"``.
+
+    Examples
+    --------
+    >>> format_bytes(32e9), format_bytes(5e8), format_bytes(2e5), format_bytes(2e4), format_bytes(0)
+    ('32 GB', '500 MB', '0.2 MB', '20 kB', '0 kB')
     """
     if n >= 1e9:
         return f"{n / 1e9:.3g} GB"
-    return f"{n / 1e6:.3g} MB"
+    if n >= 1e5:
+        return f"{n / 1e6:.3g} MB"
+    return f"{n / 1e3:.3g} kB"
 
 
 def format_seconds(s: float) -> str:

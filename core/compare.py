@@ -23,6 +23,7 @@ half imports it.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -46,6 +47,8 @@ OUTPUTS = {
 
 #: A difference below half an 8-bit step cannot be seen on screen or in a file.
 VISIBLE_STEP = 0.5 / 255
+#: What the difference image's colours measure, said wherever its colour scale is shown.
+DIFFERENCE_UNITS = "max(|ΔR|, |ΔG|, |ΔB|), linear RGB units (1 = black against white)"
 
 
 @dataclass(frozen=True, eq=False)
@@ -376,9 +379,16 @@ class Comparison:
 
 
 def compare(scene: Scene, a: str, b: str, settings: TraceSettings = TraceSettings(),
-            colormap: str = "magma") -> Comparison:
-    """Render outputs ``a`` and ``b`` (keys of :data:`OUTPUTS`) of ``scene`` and compare them."""
+            colormap: str = "magma", carry_on: Callable[[], bool] | None = None) -> Comparison | None:
+    """Render outputs ``a`` and ``b`` (keys of :data:`OUTPUTS`) of ``scene`` and compare them.
+
+    ``carry_on()``, if given, is asked once output ``a`` is rendered (a moment
+    to report progress); when it answers False, ``b`` is not rendered and the
+    result is ``None``.
+    """
     first = render_output(scene, a, settings)
+    if carry_on is not None and not carry_on():
+        return None
     second = first if b == a else render_output(scene, b, settings)
     diff = difference(first.color, second.color, colormap)
     return Comparison(first, second, diff, explain(first, second, diff))

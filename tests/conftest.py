@@ -21,3 +21,14 @@ def _require_display(request):
             "Run the suite with `bash .ci/test.sh`, which starts Xvfb, "
             "or wrap pytest in `xvfb-run -a`."
         )
+
+
+@pytest.fixture(autouse=True)
+def _private_settings(tmp_path_factory):
+    """QSettings read and write a fresh folder in every test, never the user's configuration."""
+    from PySide6.QtCore import QSettings
+
+    folder = str(tmp_path_factory.mktemp("settings"))
+    for settings_format in (QSettings.Format.NativeFormat, QSettings.Format.IniFormat):
+        for scope in (QSettings.Scope.UserScope, QSettings.Scope.SystemScope):
+            QSettings.setPath(settings_format, scope, folder)

@@ -7,9 +7,11 @@ RENDER_TIMEOUT_MS = 180_000  # the first render compiles the numba kernels when 
 
 
 def open_window(qtbot) -> MainWindow:
-    """Open the window on the lecture scene and wait until the image-order tab shows its full image."""
+    """Open the window on the lecture scene; wait until the image-order tab shows its full image
+    and the 3D pane is built (it comes in after the first image, see views.deferred_scene_view)."""
     win = MainWindow(presets.lecture_scene())
     qtbot.addWidget(win)
     win.show()
     qtbot.waitUntil(lambda: win.showing_full("image order"), timeout=RENDER_TIMEOUT_MS)
+    qtbot.waitUntil(lambda: win.scene_view.view is not None, timeout=RENDER_TIMEOUT_MS)
     return win

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 from PySide6.QtCore import QSize, Qt
 from PySide6.QtWidgets import (
+    QCheckBox,
     QComboBox,
     QDoubleSpinBox,
     QFormLayout,
@@ -111,6 +112,7 @@ class CameraPanel(QWidget):
 
         observer = QGroupBox("Observer")
         form = QFormLayout(observer)
+        form.setRowWrapPolicy(QFormLayout.RowWrapPolicy.WrapLongRows)  # narrow at large text: label above
         eye_row = QHBoxLayout()
         for box in self.eye:
             eye_row.addWidget(box)
@@ -120,12 +122,18 @@ class CameraPanel(QWidget):
         form.addRow("Distance", self.distance)
         lens = QGroupBox("Lens and frustum")
         form2 = QFormLayout(lens)
+        form2.setRowWrapPolicy(QFormLayout.RowWrapPolicy.WrapLongRows)
         form2.addRow("Viewing angle α", self.fov)
         form2.addRow("Near plane", self.near)
         form2.addRow("Far plane", self.far)
         form2.addRow("Projection", self.projection)
         form2.addRow("Ortho height", self.ortho_height)
         form2.addRow("Image size", self.resolution)
+        self.frustum_labels = QCheckBox("Fill and label the near and far planes")
+        self.frustum_labels.setToolTip("Show the frustum's front (near) and end (far) planes filled in the "
+                                       "3D pane, with their distances")
+        self.frustum_labels.toggled.connect(lambda on: model.set_overlay("frustum", on))
+        form2.addRow(self.frustum_labels)
         layout = QVBoxLayout(self)
         layout.addWidget(observer)
         layout.addWidget(lens)
@@ -146,6 +154,7 @@ class CameraPanel(QWidget):
         model.camera_changed.connect(self.set_camera)
         model.camera_refused.connect(lambda _: self.set_camera(model.camera))
         model.scene_changed.connect(lambda scene: self.set_camera(scene.camera))
+        model.overlays_changed.connect(self._show_overlays)
         self.set_camera(model.camera)
 
     @property
@@ -165,8 +174,9 @@ class CameraPanel(QWidget):
         self.ortho_height.setValue(camera.ortho_height)
         self.projection.setCurrentText(camera.projection)
         size = (camera.width, camera.height)
-        if size in RESOLUTIONS:
-            self.resolution.setCurrentIndex(RESOLUTIONS.index(size))
+        # A size not in the list shows as it is, and picking any listed one changes it.
+        self.resolution.setPlaceholderText(f"{camera.width} × {camera.height}")
+        self.resolution.setCurrentIndex(RESOLUTIONS.index(size) if size in RESOLUTIONS else -1)
         for w in self._spins:
             w.blockSignals(False)
         self.yaw.set_value(camera.yaw_deg)
@@ -174,6 +184,11 @@ class CameraPanel(QWidget):
         self.fov.set_value(camera.fov_y_deg)
         self.ortho_height.setEnabled(camera.projection == "orthographic")
         self.fov.setEnabled(camera.projection == "perspective")
+
+    def _show_overlays(self, shown) -> None:
+        self.frustum_labels.blockSignals(True)
+        self.frustum_labels.setChecked("frustum" in shown)
+        self.frustum_labels.blockSignals(False)
 
     def _request(self, **changes) -> None:
         self.model.set_camera(self.model.camera.replace(**changes))

@@ -29,14 +29,13 @@ from PySide6.QtWidgets import (
     QWidget,
 )
 
-from core.compare import OUTPUTS, Comparison, Output, PixelReport
+from core.compare import DIFFERENCE_UNITS, OUTPUTS, Comparison, Output, PixelReport
 from core.srgb import linear_to_srgb
 from views.color_scale import ColorScale
 from views.image_view import DisplayImage, ImageView
 
 PANES = ("a", "b", "difference")
 DEFAULT_PAIR = ("perspective", "raytrace")
-UNITS = "max(|ΔR|, |ΔG|, |ΔB|), linear RGB units (1 = black against white)"
 PICK_HINT = "Click a pixel in any image to read it in both outputs."
 
 
@@ -248,7 +247,7 @@ class ComparePanel(QWidget):
         for key, view in self.views.items():
             view.set_image(shown.images[key])
         diff = comparison.difference
-        self.scale.set_scale(shown.bar, "0", f"{diff.scale:.3g}", UNITS)
+        self.scale.set_scale(shown.bar, "0", f"{diff.scale:.3g}", DIFFERENCE_UNITS)
         self.explanation.setText("<b>Why they differ</b><br>"
                                  + "<br>".join(f"• {s}" for s in comparison.explanation))
         h, w = shown.images["a"].rgb.shape[:2]

@@ -8,7 +8,13 @@ that setting's image, the reference and the FLIP error map side by side (and
 the samples per pixel for adaptive supersampling), with a sentence on why the
 knob's curve has its shape.  The CSV and the plot can be exported.
 
+Before a sweep starts its cost is estimated (:mod:`core.accuracy.sweep_cost`):
+one over the memory budget does not start and says what to reduce; a long one
+says how long, in its status line, while it runs.
+
 Images are encoded to sRGB in :mod:`core.srgb` before they are shown.
+matplotlib loads, and the figures are made, when the panel is first shown
+(or first asked for a point), so the main window opens without it.
 """
 
 from __future__ import annotations
@@ -17,9 +23,7 @@ import threading
 from dataclasses import replace
 
 import numpy as np
-from matplotlib.backends.backend_qtagg import FigureCanvasQTAgg
-from matplotlib.figure import Figure
-from PySide6.QtCore import QObject, QRunnable, Qt, QThreadPool, Signal
+from PySide6.QtCore import QObject, QRunnable, QSize, Qt, QThreadPool, Signal
 from PySide6.QtWidgets import (
     QComboBox,
     QDoubleSpinBox,
@@ -36,7 +40,8 @@ from PySide6.QtWidgets import (
     QWidget,
 )
 
-from core.accuracy import cost_files
+from core import budget
+from core.accuracy import cost_files, sweep_cost
 from core.accuracy.cost_plot import draw_cost_plot, point_position
 from core.accuracy.explanations import EXPLANATIONS
 from core.accuracy.reference import REFERENCE_SPP
@@ -57,6 +62,19 @@ from core.srgb import to_srgb8
 MODES = [("raytrace", "Ray tracing"), ("raycast", "Ray casting"), ("raster", "Rasterization")]
 #: The sweep's image is at most this wide (the scene's aspect kept), so a sweep takes minutes, not hours.
 DEFAULT_WIDTH = 160
+#: A sweep estimated to take longer than this (seconds) says how long in its status line.
+LONG_SWEEP_SECONDS = 600
+
+
+class _CanvasBox(QWidget):
+    """Where a canvas goes once made; meanwhile it asks for the room the canvas will ask for."""
+
+    def __init__(self):
+        super().__init__()
+        QVBoxLayout(self).setContentsMargins(0, 0, 0, 0)
+
+    def sizeHint(self) -> QSize:
+        return QSize(640, 480)  # matplotlib's default figure, 6.4 x 4.8 inches at 100 dpi
 
 
 class _Signals(QObject):
@@ -112,6 +130,11 @@ class CostPanel(QWidget):
     -------
     point_selected(int) : the setting index of the clicked point.
     sweep_finished(bool) : a run ended, ``True`` when every setting is done.
+
+    Attributes
+    ----------
+    memory_limit : a sweep estimated to need more bytes does not start; ``None``:
+        half of the memory available when it would start.
     """
 
     point_selected = Signal(int)
@@ -120,6 +143,8 @@ class CostPanel(QWidget):
     def __init__(self, parent: QWidget | None = None, pool: QThreadPool | None = None):
         super().__init__(parent)
         self._pool = pool or QThreadPool.globalInstance()
+        self.memory_limit: int | None = None
+        self._slow_note = ""  # the estimated time of a long sweep, added to its status line
         self._scene: Scene | None = None
         self.sweep: Sweep | None = None
         self._points: dict[int, Point] = {}
@@ -180,13 +205,10 @@ class CostPanel(QWidget):
         self.explanation.setAlignment(Qt.AlignmentFlag.AlignTop | Qt.AlignmentFlag.AlignLeft)
         self.explanation.setSizePolicy(QSizePolicy.Policy.Preferred, QSizePolicy.Policy.Minimum)
 
-        self.plot_figure = Figure(layout="constrained")
-        self.canvas = FigureCanvasQTAgg(self.plot_figure)
-        self.canvas.setMinimumSize(240, 200)
-        self.canvas.mpl_connect("pick_event", self._on_pick)
-        self.image_figure = Figure(layout="constrained")
-        self.image_canvas = FigureCanvasQTAgg(self.image_figure)
-        self.image_canvas.setMinimumSize(200, 160)
+        self.plot_figure = self.canvas = self.image_figure = self.image_canvas = None  # see _make_canvases
+        self._plot_box, self._image_box = _CanvasBox(), _CanvasBox()
+        self._plot_box.setMinimumSize(240, 200)
+        self._image_box.setMinimumSize(200, 160)
 
         controls = QGridLayout()  # three to a row, so that a narrow window keeps every control in view
         for i, w in enumerate((self.knob, self.mode, self.width_px, self.reference_spp, self.tolerance,
@@ -197,10 +219,10 @@ class CostPanel(QWidget):
         right = QWidget()
         right_layout = QVBoxLayout(right)
         right_layout.setContentsMargins(0, 0, 0, 0)
-        right_layout.addWidget(self.image_canvas, 1)
+        right_layout.addWidget(self._image_box, 1)
         right_layout.addWidget(self.explanation)
         split = QSplitter(Qt.Orientation.Horizontal)
-        split.addWidget(self.canvas)
+        split.addWidget(self._plot_box)
         split.addWidget(right)
         split.setStretchFactor(0, 3)
         split.setStretchFactor(1, 2)
@@ -220,6 +242,26 @@ class CostPanel(QWidget):
         self._show_explanation()
         self._draw_plot()
         self._update_buttons()
+
+    def showEvent(self, event) -> None:
+        self._make_canvases()
+        super().showEvent(event)
+
+    def _make_canvases(self) -> None:
+        """Make the plot's and the images' figures and canvases, once (matplotlib loads here)."""
+        if self.canvas is not None:
+            return
+        from matplotlib.backends.backend_qtagg import FigureCanvasQTAgg
+        from matplotlib.figure import Figure
+
+        self.plot_figure = Figure(layout="constrained")
+        self.canvas = FigureCanvasQTAgg(self.plot_figure)
+        self.canvas.mpl_connect("pick_event", self._on_pick)
+        self.image_figure = Figure(layout="constrained")
+        self.image_canvas = FigureCanvasQTAgg(self.image_figure)
+        self._plot_box.layout().addWidget(self.canvas)
+        self._image_box.layout().addWidget(self.image_canvas)
+        self._draw_plot()
 
     # -- inputs ---------------------------------------------------------------
 
@@ -277,11 +319,26 @@ class CostPanel(QWidget):
             self.status.setText("Nothing to sweep: " + "; ".join(f"{k}: {r}" for k, r in
                                                                  self.sweep.skipped.items()))
             return
+        if not self._within_budget():
+            return
         self._run_id += 1
         self._cancel = threading.Event()
         self._pool.start(_SweepRun(self._run_id, self.sweep, self._signals, self._cancel, self._sweep_lock))
         self.status.setText("Starting…")
         self._update_buttons()
+
+    def _within_budget(self) -> bool:
+        """Whether the sweep's estimated memory is within the budget; if not, the status says why."""
+        cost = sweep_cost.estimate(self.sweep)
+        cam = self.sweep.scene.camera
+        over = budget.refusal(f"This sweep of {len(self.sweep.settings)} settings at {cam.width} × "
+                              f"{cam.height}", cost, *budget.memory_limit(self.memory_limit))
+        if over:
+            self.status.setText(f"{over}. Not started: use a smaller width or fewer objects or triangles.")
+            return False
+        self._slow_note = (f" (the sweep: about {budget.format_seconds(cost.seconds)} in all)"
+                           if cost.seconds > LONG_SWEEP_SECONDS else "")
+        return True
 
     def cancel(self) -> None:
         """Stop the running sweep after its current render (Run resumes it)."""
@@ -298,15 +355,16 @@ class CostPanel(QWidget):
         self._points, self._knees, self.selected = {}, {}, None
         self.progress.setValue(0)
         self._draw_plot()
-        self.image_figure.clear()
-        self.image_canvas.draw_idle()
+        if self.image_figure is not None:
+            self.image_figure.clear()
+            self.image_canvas.draw_idle()
 
     def _on_event(self, run_id: int, event) -> None:
         if run_id != self._run_id:
             return
         if isinstance(event, Progress):
             self.progress.setValue(round(1000 * event.done / max(event.total, 1)))
-            self.status.setText(event.what)
+            self.status.setText(event.what + self._slow_note)
         elif isinstance(event, Point):
             self._points[event.index] = event
             self._draw_plot()
@@ -354,6 +412,8 @@ class CostPanel(QWidget):
         return marked_rows(self._points, self._knees)
 
     def _draw_plot(self) -> None:
+        if self.canvas is None:
+            return  # drawn when the canvas is made
         rows = self.rows()
         self._lines = draw_cost_plot(self.plot_figure, rows, sorted(self._points))
         ax = self.plot_figure.axes[0]
@@ -373,6 +433,7 @@ class CostPanel(QWidget):
 
     def point_position(self, index: int) -> tuple[float, float]:
         """Where setting ``index``'s point is drawn on the plot canvas, in widget pixels (x right, y down)."""
+        self._make_canvases()
         ax, x, y = point_position(self.plot_figure, self._points[index].row)
         x, y = ax.transData.transform((x, y))
         ratio = self.canvas.device_pixel_ratio or 1.0
@@ -380,6 +441,7 @@ class CostPanel(QWidget):
 
     def show_point(self, index: int) -> None:
         """Show setting ``index``'s image, the reference and the error map side by side."""
+        self._make_canvases()
         point = self._points[index]
         self.selected = index
         reference = self.sweep.references[point.row.mode]
@@ -413,6 +475,7 @@ class CostPanel(QWidget):
 
     def shown_images(self) -> list[np.ndarray]:
         """The arrays currently shown beside the plot (setting, reference, error map, samples)."""
+        self._make_canvases()
         return [ax.images[0].get_array() for ax in self.image_figure.axes if ax.images]
 
     def _show_explanation(self, knob: str | None = None) -> None:
@@ -432,6 +495,7 @@ class CostPanel(QWidget):
 
     def export_plot(self, path) -> None:
         """Write the plot as PNG or SVG, after the suffix (atomically)."""
+        self._make_canvases()
         cost_files.save_figure(self.plot_figure, path)
 
     def _ask_export_csv(self) -> None:

@@ -215,6 +215,8 @@ class HardCasesPanel(QWidget):
 
         self.naive_image = ImageView(placeholder="")
         self.robust_image = ImageView(placeholder="")
+        self.naive_image.setAccessibleName("Picture of the textbook method")  # also its File → Export entry
+        self.robust_image.setAccessibleName("Picture of the robust method")
         self.naive_caption, self.robust_caption = QLabel(), QLabel()
         images = QGridLayout()
         images.addWidget(self.naive_caption, 0, 0)

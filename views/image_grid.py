@@ -7,7 +7,7 @@ views next to the perspective view).
 from __future__ import annotations
 
 import numpy as np
-from PySide6.QtWidgets import QGridLayout, QGroupBox, QLabel, QVBoxLayout, QWidget
+from PySide6.QtWidgets import QFrame, QGridLayout, QLabel, QVBoxLayout, QWidget
 
 from views.image_view import DisplayImage, ImageView
 
@@ -23,8 +23,12 @@ class ImageGrid(QWidget):
         grid = QGridLayout(self)
         grid.setContentsMargins(6, 6, 6, 6)
         for i, (key, title) in enumerate(panes):
-            box = QGroupBox(title)
+            box = QFrame()  # a word-wrapped title, not a group box's: narrow at large text
+            box.setFrameShape(QFrame.Shape.StyledPanel)
             layout = QVBoxLayout(box)
+            heading = QLabel(f"<b>{title}</b>")
+            heading.setWordWrap(True)
+            layout.addWidget(heading)
             self.views[key] = ImageView(placeholder="rendering…")
             self.captions[key] = QLabel()
             self.captions[key].setWordWrap(True)

@@ -15,7 +15,8 @@ from PySide6.QtWidgets import (
     QCheckBox,
     QComboBox,
     QDoubleSpinBox,
-    QGridLayout,
+    QFormLayout,
+    QHBoxLayout,
     QLabel,
     QPlainTextEdit,
     QSpinBox,
@@ -30,6 +31,7 @@ from core.image_order.ray_tree import RayNode
 from core.scene import Scene
 from views.image_view import ImageView
 from views.raytree_view import KIND_COLORS, RayKindLegend, RayTreeWidget
+from views.side_column import SideColumn
 from views.worked_math import WorkedMath
 
 MODES = [("raytrace", "Ray tracing"), ("raycast", "Ray casting")]
@@ -81,35 +83,29 @@ class ImageOrderPanel(QWidget):
         self.epsilon.setToolTip("The fixed offset ε (used with 'Fixed ε')")
         self.show_spheres = QCheckBox("bounding spheres")
         self.show_grid = QCheckBox("grid cells")
-        self.show_walk = QCheckBox("cells the picked ray walks")
+        self.show_walk = QCheckBox("cells the ray walks")
         self._overlay_boxes = {"spheres": self.show_spheres, "grid": self.show_grid,
                                "walk": self.show_walk}
         for name, box in self._overlay_boxes.items():
             box.setToolTip("Show in the 3D pane")
             box.toggled.connect(lambda on, name=name: model.set_overlay(name, on))
+        self.show_walk.setToolTip("Show in the 3D pane the grid cells the picked pixel's primary ray "
+                                  "passes through")
 
-        form = QGridLayout()
-        rows = [[("Method", self.mode), ("Acceleration", self.accel)],
-                [("Max depth", self.depth), ("Min weight", self.min_weight)],
-                [("Ray offset", self.offset), ("ε", self.epsilon)]]
-        for r, row in enumerate(rows):
-            for c, (label, widget) in enumerate(row):
-                form.addWidget(QLabel(label), r, 2 * c)
-                form.addWidget(widget, r, 2 * c + 1)
-        shows = QWidget()
-        sl = QGridLayout(shows)
-        sl.setContentsMargins(0, 0, 0, 0)
-        sl.addWidget(QLabel("Show in 3D:"), 0, 0)
-        for i, box in enumerate((self.show_spheres, self.show_grid, self.show_walk)):
-            sl.addWidget(box, i // 2, 1 + i % 2)
-        sl.setColumnStretch(3, 1)
-        form.addWidget(shows, len(rows), 0, 1, 4)
-        form.setColumnStretch(1, 1)
-        form.setColumnStretch(3, 1)
+        form_box = QWidget()
+        form = QFormLayout(form_box)
+        form.setContentsMargins(0, 0, 0, 0)
+        form.setRowWrapPolicy(QFormLayout.RowWrapPolicy.WrapLongRows)  # narrow: labels above the fields
+        for label, widget in [("Method", self.mode), ("Acceleration", self.accel), ("Max depth", self.depth),
+                              ("Min weight", self.min_weight), ("Ray offset", self.offset),
+                              ("ε", self.epsilon)]:
+            form.addRow(label, widget)
+        form.addRow(QLabel("Show in 3D:"))
+        for box in (self.show_spheres, self.show_grid, self.show_walk):
+            form.addRow(box)
 
         self.image = ImageView()
         self.rays = QLabel()
-        self.rays.setWordWrap(True)
         self.rays.setTextFormat(Qt.TextFormat.RichText)
         self.plan = QLabel()
         self.plan.setWordWrap(True)
@@ -125,33 +121,39 @@ class ImageOrderPanel(QWidget):
             "Click a pixel to trace it again with every ray kept: its ray tree appears in the "
             "3D pane and here, with the colours computed from the last hits back to the first.")
         self.tree_caption = QLabel()
+        self.tree_caption.setWordWrap(True)  # a long caption must not widen the window
         tree_page = QWidget()
         tl = QVBoxLayout(tree_page)
         tl.setContentsMargins(0, 0, 0, 0)
         tl.addWidget(self.tree_caption)
-        tl.addWidget(RayKindLegend())
-        tl.addWidget(self.tree, 2)
-        tl.addWidget(self.explanation, 1)
+        beside = QSplitter(Qt.Orientation.Horizontal)  # side by side: both get the page's height
+        beside.addWidget(self.tree)
+        beside.addWidget(self.explanation)
+        beside.setStretchFactor(0, 3)
+        beside.setStretchFactor(1, 2)
+        tl.addWidget(beside, 1)
         self.worked_math = WorkedMath()
         self.ray_kind: str | None = None  # the kind of ray to select in each new tree (a lesson's)
         self.details = QTabWidget()
         self.details.addTab(tree_page, "Ray tree")
         self.details.addTab(self.worked_math, "Worked math")
         self.details.addTab(self.plan, "Effects plan")
-        split = QSplitter(Qt.Orientation.Vertical)
+        # The image beside its settings, the picked pixel's details under both: the image
+        # keeps the pane's height, the tables get several rows.
         top = QWidget()
-        top_layout = QVBoxLayout(top)
+        top_layout = QHBoxLayout(top)
         top_layout.setContentsMargins(0, 0, 0, 0)
         top_layout.addWidget(self.image, 1)
-        top_layout.addWidget(self.rays)
+        top_layout.addWidget(SideColumn([form_box, self.rays, QLabel("<b>Ray colours</b>"),
+                                         RayKindLegend(per_line=1)]))
+        split = QSplitter(Qt.Orientation.Vertical)
         split.addWidget(top)
         split.addWidget(self.details)
         split.setStretchFactor(0, 3)
         split.setStretchFactor(1, 2)
-        split.setSizes([420, 260])
+        split.setSizes([600, 400])
         layout = QVBoxLayout(self)
         layout.setContentsMargins(6, 6, 6, 6)
-        layout.addLayout(form)
         layout.addWidget(split, 1)
 
         for w in (self.mode, self.accel, self.offset):
@@ -206,15 +208,15 @@ class ImageOrderPanel(QWidget):
     def show_stats(self, stats: dict) -> None:
         """The effects plan and the rays actually traced, by kind."""
         rays = stats["rays"]
-        chips = " ".join(
+        chips = "<br>".join(
             f'<span style="background:{KIND_COLORS[k]}; color:black">&nbsp;{k} {rays[k]:,}&nbsp;</span>'
             for k in KIND_COLORS)
         accel = stats["accel"]
         reasons = "<br>".join(f"• {r}" for r in stats["plan"]["reasons"])
         self.rays.setText(
-            f"<b>Rays traced:</b> {chips} &nbsp; "
-            f"{accel['tests_per_ray']:.1f} intersection tests per ray"
-            + (f", {accel['cells_per_ray']:.1f} grid cells" if accel["cells_per_ray"] else ""))
+            f"<b>Rays traced</b><br>{chips}<br>"
+            f"{accel['tests_per_ray']:.1f} tests a ray"
+            + (f"<br>{accel['cells_per_ray']:.1f} grid cells a ray" if accel["cells_per_ray"] else ""))
         self.plan.setText(f"<b>What this scene calls for</b> — only these effects are simulated:"
                           f"<br>{reasons}")
 

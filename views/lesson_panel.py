@@ -130,7 +130,8 @@ class LessonPanel(QWidget):
         self.scroll = QScrollArea()  # long text at a large scale scrolls; the controls stay in view
         self.scroll.setWidgetResizable(True)
         self.scroll.setFrameShape(QFrame.Shape.NoFrame)
-        self.scroll.setHorizontalScrollBarPolicy(Qt.ScrollBarPolicy.ScrollBarAlwaysOff)
+        # A formula too long for the panel breaks into lines; one line still too long scrolls sideways.
+        self.scroll.setHorizontalScrollBarPolicy(Qt.ScrollBarPolicy.ScrollBarAsNeeded)
         self.scroll.setWidget(words)
         step = QWidget()
         step_layout = QVBoxLayout(step)
@@ -147,9 +148,9 @@ class LessonPanel(QWidget):
         self.splitter = QSplitter(Qt.Orientation.Vertical)
         self.splitter.addWidget(top)
         self.splitter.addWidget(step)
-        self.splitter.setStretchFactor(0, 2)
+        self.splitter.setStretchFactor(0, 1)
         self.splitter.setStretchFactor(1, 3)
-        self.splitter.setSizes([300, 450])  # the step's words get more room than the list
+        self.splitter.setSizes([200, 600])  # the step's words get more room than the list
         self.splitter.setChildrenCollapsible(False)
         layout = QVBoxLayout(self)
         layout.setContentsMargins(4, 4, 4, 4)

@@ -5,7 +5,8 @@ text outside the dollar signs is set as ordinary text).  It renders at the
 label's font size times a scale, in a given colour, at the screen's pixel
 density, so a formula stays sharp when presentation mode enlarges it.
 mathtext has no matrices, so :class:`MatrixView` draws a bracketed grid of
-numbers itself.
+numbers itself.  matplotlib loads with the first formula that is not in
+:mod:`views.formula_cache` (formulas at their natural size are kept there).
 """
 
 from __future__ import annotations
@@ -13,17 +14,14 @@ from __future__ import annotations
 from functools import lru_cache
 
 import numpy as np
-from matplotlib.colors import to_rgb
-from matplotlib.font_manager import FontProperties
-from matplotlib.mathtext import MathTextParser
 from PySide6.QtCore import QRectF, QSize, Qt
 from PySide6.QtGui import QColor, QFont, QFontMetricsF, QImage, QPainter, QPen, QPixmap
 from PySide6.QtWidgets import QLabel, QSizePolicy, QWidget
 
-_PARSER = MathTextParser("agg")  # typesets straight into an 8-bit coverage image
+from views import formula_cache
 
 
-def render_mathtext(text: str, size_pt: float, color: str, dpi: float) -> QImage:
+def render_mathtext(text: str, size_pt: float, color: str, dpi: float, keep: bool = False) -> QImage:
     """``text`` typeset by mathtext as an image with a transparent background.
 
     Parameters
@@ -32,38 +30,119 @@ def render_mathtext(text: str, size_pt: float, color: str, dpi: float) -> QImage
     size_pt : font size in points.
     color : any matplotlib colour, e.g. ``"#202020"``.
     dpi : output pixels per inch (72 makes one point one pixel).
+    keep : keep the image in :mod:`views.formula_cache` for later processes
+        (and look there first).
 
     Raises
     ------
     ValueError
         ``text`` is not valid mathtext (the message says where).
     """
-    rgba = _typeset(text, float(size_pt), color, float(dpi))
+    rgba = _typeset(text, float(size_pt), color, float(dpi), keep)
     h, w, _ = rgba.shape
     return QImage(rgba.data, w, h, 4 * w, QImage.Format.Format_RGBA8888).copy()
 
 
 @lru_cache(maxsize=512)
-def _typeset(text: str, size_pt: float, color: str, dpi: float) -> np.ndarray:
+def _typeset(text: str, size_pt: float, color: str, dpi: float, keep: bool) -> np.ndarray:
     """(H, W, 4) uint8 RGBA of the typeset ``text`` (cached: plain arrays, no Qt objects)."""
-    ink = np.asarray(_PARSER.parse(text, dpi=dpi, prop=FontProperties(size=size_pt)).image)
+    if keep and (kept := formula_cache.load(text, size_pt, color, dpi)) is not None:
+        kept.setflags(write=False)
+        return kept
+    from matplotlib.colors import to_rgb
+    from matplotlib.font_manager import FontProperties
+
+    ink = np.asarray(_parser().parse(text, dpi=dpi, prop=FontProperties(size=size_pt)).image)
     pad = max(2, int(round(0.15 * size_pt * dpi / 72.0)))  # room for glyphs at the box's edge
     alpha = np.pad(ink, pad)
     rgba = np.empty((*alpha.shape, 4), np.uint8)
     rgba[..., :3] = np.round(np.array(to_rgb(color)) * 255).astype(np.uint8)
     rgba[..., 3] = alpha
     rgba.setflags(write=False)
+    if keep:
+        formula_cache.store(text, size_pt, color, dpi, rgba)
     return rgba
+
+
+MIN_SHRINK = 0.75
+"""A formula is never drawn smaller than this share of its size: beyond that it wraps into lines
+(at its spaces) and, if a part is still too wide, its pane scrolls sideways."""
+BREAKS = (r"\qquad", r"\quad", r"\ \ ", r"\ ")
+"""The spaces of mathtext a formula may wrap at (between its parts, never inside braces)."""
+
+
+def _command_at(text: str, i: int, name: str) -> bool:
+    r"""Whether the command ``name`` (``r"\quad"``) starts at ``text[i]`` (and not a longer one)."""
+    after = text[i + len(name):i + len(name) + 1]
+    return text.startswith(name, i) and not (name[-1].isalpha() and after.isalpha())
+
+
+def split_formula(text: str) -> list[tuple[str, str]]:
+    r"""A formula's parts, each with the space that follows it: ``[(part, space), ..., (last, "")]``.
+
+    Only a formula that is one stretch of math between ``$`` signs splits,
+    and only at the spaces of :data:`BREAKS` outside braces and
+    ``\left … \right``; otherwise it is one part.  :func:`join_parts` of
+    all the parts gives the formula back (up to spaces before a break).
+
+    >>> split_formula(r"$a = 1,\quad b = \frac{2}{3}$")
+    [('a = 1,', '\\quad '), ('b = \\frac{2}{3}', '')]
+    """
+    body = text.strip()
+    if len(body) < 2 or body[0] != "$" or body[-1] != "$" or "$" in body[1:-1].replace(r"\$", ""):
+        return [(text, "")]
+    body = body[1:-1]
+    parts, start, depth, i = [], 0, 0, 0
+    while i < len(body):
+        if body[i] == "\\" and i + 1 < len(body) and body[i + 1] in "{}$\\":
+            i += 2
+            continue
+        if body[i] == "{" or _command_at(body, i, r"\left"):
+            depth += 1
+        elif body[i] == "}" or _command_at(body, i, r"\right"):
+            depth -= 1
+        elif depth == 0:
+            space = next((b for b in BREAKS if _command_at(body, i, b)), None)
+            if space is not None:
+                end = i + len(space)
+                while end < len(body) and body[end] == " ":
+                    end += 1
+                if body[start:i].strip():
+                    parts.append((body[start:i].strip(), body[i:end]))
+                start = i = end
+                continue
+        i += 1
+    if not parts:
+        return [(text, "")]
+    parts.append((body[start:].strip(), ""))
+    return parts
+
+
+def join_parts(parts) -> str:
+    """The mathtext of consecutive parts of :func:`split_formula` on one line."""
+    if len(parts) == 1 and parts[0][0].startswith("$"):
+        return parts[0][0]
+    return "$" + "".join(p + space for p, space in parts[:-1]) + parts[-1][0] + "$"
+
+
+@lru_cache(maxsize=1)
+def _parser():
+    from matplotlib.mathtext import MathTextParser
+
+    return MathTextParser("agg")  # typesets straight into an 8-bit coverage image
 
 
 class MathView(QLabel):
     """A label showing one mathtext formula, typeset.
 
     The formula is drawn at ``font size x scale`` points in the label's text
-    colour unless :meth:`set_color` gave another, and smaller when the label
-    is given less width than that, so a long formula never widens the window.
-    An invalid formula is shown as its plain text, with the parser's complaint
-    in the tooltip.
+    colour unless :meth:`set_color` gave another.  Given less width than
+    that, it is drawn a little smaller, down to :data:`MIN_SHRINK` of its
+    size, and wrapped into lines at its spaces (``\\quad``, ``\\ ``), the
+    later lines indented, so that it stays readable from the back of a room;
+    a part still too wide makes a scroll area around it scroll sideways.
+    An invalid formula is shown as its plain text, with the parser's
+    complaint in the tooltip.
     """
 
     def __init__(self, formula: str = "", parent: QWidget | None = None, *, size_pt: float | None = None):
@@ -73,8 +152,13 @@ class MathView(QLabel):
         self._scale = 1.0
         self._color: QColor | None = None
         self._natural: QSize | None = None
+        self._parts: list[tuple[str, str]] = [(formula, "")]
         self.error: str | None = None
-        self.setSizePolicy(QSizePolicy.Policy.Preferred, QSizePolicy.Policy.Fixed)
+        # Wrapped into lines the formula grows taller than its one-line size hint: a fixed
+        # height would clip it, so the height is at least the hint and as tall as the lines.
+        policy = QSizePolicy(QSizePolicy.Policy.Preferred, QSizePolicy.Policy.Minimum)
+        policy.setHeightForWidth(True)
+        self.setSizePolicy(policy)
         self._render()
 
     def formula(self) -> str:
@@ -96,9 +180,13 @@ class MathView(QLabel):
         self._render()
 
     def size_pt(self) -> float:
-        """The font size the formula is drawn at, in points (scale included)."""
+        """The font size the formula is drawn at when it fits, in points (scale included)."""
         base = self._size_pt or QFont(self.font()).pointSizeF() or 10.0
         return base * 1.15 * self._scale
+
+    def shown_lines(self) -> tuple[list[str], float]:
+        """The lines the formula is drawn in at the label's width, and their size in points."""
+        return self._layout(self.width())
 
     def changeEvent(self, event) -> None:  # a new font or palette (theme, scale) re-renders
         super().changeEvent(event)
@@ -106,16 +194,29 @@ class MathView(QLabel):
             self._render()
 
     def sizeHint(self) -> QSize:
-        """The formula's full size (a narrower label shrinks it to fit)."""
+        """The formula's full size on one line (a narrower label breaks or shrinks it)."""
         return self._natural if self._natural is not None else super().sizeHint()
 
     def minimumSizeHint(self) -> QSize:
-        hint = self.sizeHint()
-        return QSize(min(hint.width(), 40), hint.height() // 2)
+        if self._natural is None:
+            return super().minimumSizeHint()
+        least = self.size_pt() * MIN_SHRINK
+        indent = self._indent(least) if len(self._parts) > 1 else 0.0
+        widest = max(self._width(join_parts([part]), least) for part in self._parts) + indent
+        return QSize(int(min(widest, self._natural.width()) + 0.999), self._natural.height())
+
+    def hasHeightForWidth(self) -> bool:
+        return self._natural is not None
+
+    def heightForWidth(self, width: int) -> int:
+        if self._natural is None:
+            return super().heightForWidth(width)
+        lines, size = self._layout(width)
+        return int(sum(self._image_of(line, size).height() for line in lines) / self._ratio() + 0.999)
 
     def resizeEvent(self, event) -> None:
         super().resizeEvent(event)
-        self._show(fit=True)
+        self._show()
 
     def _render(self) -> None:
         self.error = None
@@ -124,7 +225,7 @@ class MathView(QLabel):
             self.clear()
             return
         try:
-            image = self._image(self.size_pt())
+            image = self._image_of(self._formula, self.size_pt())
         except ValueError as exc:
             self.error = str(exc).strip().splitlines()[-1] if str(exc).strip() else "invalid mathtext"
             self.setToolTip(f"cannot typeset: {self.error}")
@@ -132,30 +233,85 @@ class MathView(QLabel):
             return
         ratio = self._ratio()
         self._natural = QSize(int(image.width() / ratio + 0.999), int(image.height() / ratio + 0.999))
+        try:
+            self._parts = split_formula(self._formula)
+            for part in self._parts:
+                self._image_of(join_parts([part]), self.size_pt())
+        except ValueError:  # a part that is not mathtext on its own: the formula stays whole
+            self._parts = [(self._formula, "")]
         self.setToolTip("")
         self.updateGeometry()
-        self._show(fit=False, image=image)
+        self._show()
 
     def _ratio(self) -> float:
         return max(1.0, self.devicePixelRatioF())
 
-    def _image(self, size_pt: float) -> QImage:
+    def _image_of(self, text: str, size_pt: float) -> QImage:
+        """``text`` typeset at ``size_pt``; the whole formula at its natural size is kept on disk too."""
         color = self._color or self.palette().color(self.foregroundRole())
-        return render_mathtext(self._formula, size_pt, color.name(), 96.0 * self._ratio())
+        return render_mathtext(text, size_pt, color.name(), 96.0 * self._ratio(),
+                               keep=text == self._formula and size_pt == self.size_pt())
 
-    def _show(self, fit: bool, image: QImage | None = None) -> None:
-        """Show the formula at full size, or smaller when the label is narrower than that."""
+    def _width(self, text: str, size_pt: float) -> float:
+        return self._image_of(text, size_pt).width() / self._ratio()
+
+    def _indent(self, size_pt: float) -> float:
+        """How far lines after the first are indented (two ems), in pixels."""
+        return 2.0 * size_pt * 96.0 / 72.0
+
+    def _layout(self, width: int) -> tuple[list[str], float]:
+        """The lines and their size for a label ``width`` pixels wide."""
+        size = self.size_pt()
+        full = self._natural.width()
+        if width <= 0 or full <= width:
+            return [self._formula], size
+        least = size * MIN_SHRINK
+        if len(self._parts) == 1:
+            return [self._formula], max(least, size * width / full * 0.98)
+        for shrink in (1.0, 0.9, 0.8, MIN_SHRINK):  # as large as possible, then the fewest lines
+            lines = self._wrap(width, size * shrink)
+            if all(self._width(line, size * shrink) + (k > 0) * self._indent(size * shrink) <= width
+                   for k, line in enumerate(lines)):
+                return lines, size * shrink
+        return lines, least
+
+    def _wrap(self, width: int, size: float) -> list[str]:
+        """The parts filled into lines of at most ``width`` pixels at ``size`` (a part too wide alone
+        gets a line of its own)."""
+        lines, line = [], [self._parts[0]]
+        for part in self._parts[1:]:
+            indent = self._indent(size) if lines else 0.0
+            if self._width(join_parts(line + [part]), size) + indent <= width:
+                line.append(part)
+            else:
+                lines.append(join_parts(line))
+                line = [part]
+        return lines + [join_parts(line)]
+
+    def _show(self) -> None:
+        """Draw the formula in the lines :meth:`_layout` chose for the label's width."""
         if self._natural is None:
             return
-        size = self.size_pt()
-        if fit and 0 < self.width() < self._natural.width():
-            size = max(1.0, size * self.width() / self._natural.width() * 0.98)
-            image = self._image(size)
-        elif image is None:
-            image = self._image(size)
+        lines, size = self._layout(self.width())
+        images = [self._image_of(line, size) for line in lines]
+        if len(images) == 1:
+            image = images[0]
+        else:
+            indent = int(self._indent(size) * self._ratio())
+            image = QImage(max(im.width() + (k > 0) * indent for k, im in enumerate(images)),
+                           sum(im.height() for im in images), QImage.Format.Format_ARGB32_Premultiplied)
+            image.fill(Qt.GlobalColor.transparent)
+            painter = QPainter(image)
+            y = 0
+            for k, im in enumerate(images):
+                painter.drawImage(indent if k else 0, y, im)
+                y += im.height()
+            painter.end()
         pixmap = QPixmap.fromImage(image)
         pixmap.setDevicePixelRatio(self._ratio())
         self.setPixmap(pixmap)
+        if len(images) > 1 and self.height() * self._ratio() < image.height():
+            self.updateGeometry()  # taller now: ask the layout for the room
 
 
 def _number(x: float) -> str:

@@ -16,9 +16,9 @@ from PySide6.QtGui import QColor, QFont
 from PySide6.QtWidgets import (
     QCheckBox,
     QComboBox,
-    QGridLayout,
     QGroupBox,
     QHBoxLayout,
+    QHeaderView,
     QLabel,
     QPlainTextEdit,
     QSplitter,
@@ -37,6 +37,7 @@ from core.scene import Scene
 from core.srgb import linear_to_srgb
 from views.depth_view import DepthView
 from views.image_view import ImageView
+from views.side_column import SideColumn
 from views.step_scrubber import StepScrubber
 from views.worked_math import WorkedMath
 
@@ -110,27 +111,26 @@ class ObjectOrderPanel(QWidget):
         self.result: RasterResult | None = None
         self.scene: Scene | None = None
         self.switches: dict[str, QCheckBox] = {}
-        switches = QGridLayout()
-        switches.addWidget(QLabel("<b>Stages</b>"), 0, 0, 3, 1)
-        for i, (key, text, tip) in enumerate(STAGES):
+        stages = QWidget()
+        switches = QVBoxLayout(stages)
+        switches.setContentsMargins(0, 0, 0, 0)
+        switches.addWidget(QLabel("<b>Stages</b>"))
+        for key, text, tip in STAGES:
             box = QCheckBox(text)
             box.setChecked(True)
             box.setToolTip(tip)
             box.toggled.connect(self._settings_edited)
-            switches.addWidget(box, i // 2, 1 + i % 2)
+            switches.addWidget(box)
             self.switches[key] = box
         self.depth_format = QComboBox()
         for name in DEPTH_FORMATS:
             self.depth_format.addItem(f"{name} ({BYTES_PER_PIXEL[name]} bytes)", name)
         self.depth_format.setToolTip(DEPTH_FORMAT_TIP)
         self.depth_format.currentIndexChanged.connect(self._settings_edited)
-        depth_row = QHBoxLayout()
         depth_label = QLabel("z-buffer format")
         depth_label.setToolTip(DEPTH_FORMAT_TIP)
-        depth_row.addWidget(depth_label)
-        depth_row.addWidget(self.depth_format)
-        switches.addLayout(depth_row, len(STAGES) // 2, 2)
-        switches.setColumnStretch(3, 1)
+        switches.addWidget(depth_label)
+        switches.addWidget(self.depth_format)
 
         self.scrubber = StepScrubber()
         self.image = ImageView(placeholder="image memory")
@@ -140,13 +140,16 @@ class ObjectOrderPanel(QWidget):
             box = QGroupBox(title)
             QVBoxLayout(box).addWidget(widget)
             buffers.addWidget(box)
-        buffers.setMinimumHeight(200)
         self.step_caption = QLabel()
         self.step_caption.setWordWrap(True)
 
         self.history = QTableWidget(0, len(HISTORY_COLUMNS))
         self.history.setHorizontalHeaderLabels(HISTORY_COLUMNS)
         self.history.verticalHeader().setVisible(False)
+        # Columns as wide as their header or their widest entry, rows as tall as the text,
+        # at every text scale (presentation mode enlarges both).
+        self.history.horizontalHeader().setSectionResizeMode(QHeaderView.ResizeMode.ResizeToContents)
+        self.history.verticalHeader().setSectionResizeMode(QHeaderView.ResizeMode.ResizeToContents)
         self.history.setEditTriggers(QTableWidget.EditTrigger.NoEditTriggers)
         self.history_caption = QLabel("Click a pixel in either buffer to see its history.")
         self.history_caption.setWordWrap(True)
@@ -165,20 +168,25 @@ class ObjectOrderPanel(QWidget):
                                "nearest to it is followed from world space to the pixel.")
         self.details.addTab(self.vertex_math, "Vertex path")
 
+        # The buffers beside the stage switches, the pixel's details under both: the buffers
+        # keep the pane's height, the history table gets several rows.
         split = QSplitter(Qt.Orientation.Vertical)
         top = QWidget()
         tl = QVBoxLayout(top)
         tl.setContentsMargins(0, 0, 0, 0)
-        tl.addWidget(buffers, 1)
+        beside = QHBoxLayout()
+        beside.addWidget(buffers, 1)
+        beside.addWidget(SideColumn([stages]))
+        tl.addLayout(beside, 1)
         tl.addWidget(self.scrubber)
         tl.addWidget(self.step_caption)
         split.addWidget(top)
         split.addWidget(self.details)
         split.setStretchFactor(0, 3)
-        split.setStretchFactor(1, 1)
+        split.setStretchFactor(1, 2)
+        split.setSizes([600, 400])
         layout = QVBoxLayout(self)
         layout.setContentsMargins(6, 6, 6, 6)
-        layout.addLayout(switches)
         layout.addWidget(split, 1)
 
         self.scrubber.step_changed.connect(self._step_edited)
@@ -308,7 +316,6 @@ class ObjectOrderPanel(QWidget):
                                       f"{e.blend.alpha:.2f}: c0 = αs·cs + (1 − αs)·cd")]
             for col, cell in enumerate(cells):
                 self.history.setItem(row, col, cell)
-        self.history.resizeColumnsToContents()
         self.history_caption.setText(
             f"Pixel ({x}, {y}): {len(events)} fragments up to step {self.scrubber.step}. "
             "Depths are distances along the viewing axis; a fragment passes when it is nearer "

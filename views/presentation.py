@@ -34,6 +34,8 @@ PRESENTING_SCALE = 1.5
 #: Black and white with a yellow accent; colours only, so the font scale stays the window's.
 HIGH_CONTRAST = """
 QWidget { background-color: #000000; color: #ffffff; }
+QWidget:disabled { color: #9a9a9a; }
+QAbstractItemView { alternate-background-color: #262626; }
 QAbstractButton, QComboBox, QSpinBox, QDoubleSpinBox, QLineEdit {
     border: 2px solid #ffffff; padding: 3px; }
 QAbstractButton:checked, QAbstractButton:pressed { background-color: #ffd400; color: #000000; }

@@ -9,13 +9,17 @@ local colour and its children's colours, from the last hits back to the first.
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
-import pyvista as pv
 from PySide6.QtCore import Qt
 from PySide6.QtGui import QColor
-from PySide6.QtWidgets import QGridLayout, QLabel, QTreeWidget, QTreeWidgetItem, QWidget
+from PySide6.QtWidgets import QGridLayout, QHeaderView, QLabel, QTreeWidget, QTreeWidgetItem, QWidget
 
 from core.image_order.ray_tree import RayNode
+
+if TYPE_CHECKING:
+    import pyvista as pv
 
 # Okabe & Ito (2008), "Color Universal Design": distinguishable with colour-vision deficiencies.
 KIND_COLORS = {
@@ -40,6 +44,8 @@ def _segment_end(node: RayNode, miss_length: float) -> np.ndarray:
 
 def ray_tree_parts(root: RayNode, miss_length: float) -> list[tuple[pv.PolyData, dict]]:
     """Line segments of every traced ray, one part per style, for ``SceneView.set_overlay``."""
+    import pyvista as pv  # loaded with the 3D pane, not with the window (views.deferred_scene_view)
+
     segments: dict[str, list] = {}
     for node in root.walk():
         if not node.traced:
@@ -63,11 +69,9 @@ def ray_tree_parts(root: RayNode, miss_length: float) -> list[tuple[pv.PolyData,
 
 
 class RayKindLegend(QWidget):
-    """One coloured swatch per kind of ray, three to a line (so a narrow pane keeps them all)."""
+    """One coloured swatch per kind of ray, ``per_line`` to a line (so a narrow pane keeps them all)."""
 
-    PER_LINE = 3
-
-    def __init__(self, parent: QWidget | None = None):
+    def __init__(self, per_line: int = 3, parent: QWidget | None = None):
         super().__init__(parent)
         layout = QGridLayout(self)
         layout.setContentsMargins(0, 0, 0, 0)
@@ -75,10 +79,10 @@ class RayKindLegend(QWidget):
             swatch = QLabel()
             swatch.setFixedSize(22, 8)
             swatch.setStyleSheet(f"background: {color}; border: 1px solid #333;")
-            row, column = divmod(i, self.PER_LINE)
+            row, column = divmod(i, per_line)
             layout.addWidget(swatch, row, 2 * column)
             layout.addWidget(QLabel(kind), row, 2 * column + 1)
-        layout.setColumnStretch(2 * self.PER_LINE, 1)
+        layout.setColumnStretch(2 * per_line, 1)
 
 
 def _rgb(c) -> str:
@@ -93,13 +97,13 @@ class RayTreeWidget(QTreeWidget):
         self.setColumnCount(len(COLUMNS))
         self.setHeaderLabels(COLUMNS)
         self.setAlternatingRowColors(True)
+        # Columns as wide as their header or their widest entry, at every text scale.
+        self.header().setSectionResizeMode(QHeaderView.ResizeMode.ResizeToContents)
 
     def set_tree(self, root: RayNode) -> None:
         self.clear()
         self.addTopLevelItem(self._item(root))
         self.expandAll()
-        for col in range(len(COLUMNS)):
-            self.resizeColumnToContents(col)
 
     def select_kind(self, kind: str | None) -> bool:
         """Select and show the first ray of ``kind`` (``None``: no selection); whether there was one."""

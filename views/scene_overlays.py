@@ -5,31 +5,46 @@
   ray tree, and the cells its primary ray walks through.
 - Object order: the polygon drawn at the current step, and the polygons the
   frustum's planes cut (clipping).
+- With every tab (:data:`SCENE_OVERLAYS`), when the model's ``"frustum"``
+  switch is on: the frustum emphasised, its near plane (the screen) and far
+  plane filled and labelled with their distances.
 
 :class:`SceneOverlays` builds these shapes and hands them to the
 :class:`views.scene_view.SceneView` under fixed names, so the window only
-connects signals to it.
+connects signals to it.  pyvista (and VTK) load when a first shape is
+built, not with the window (see :mod:`views.deferred_scene_view`).
 """
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
-import pyvista as pv
 
 from core.image_order.bounding_spheres import bounding_spheres
 from core.image_order.flat_scene import trace_scene
 from core.image_order.grid_of_cuboids import cells_on_ray
 from core.image_order.ray_tree import RayNode
 from core.object_order import three_views
-from views import raytree_view, vtk_convert
+from views import raytree_view
 from views.raytree_view import KIND_COLORS
+from views.scene_colors import FRUSTUM_COLOR, SCREEN_COLOR
+
+if TYPE_CHECKING:
+    import pyvista as pv
 
 IMAGE_ORDER_OVERLAYS = ("ray-tree", "spheres", "grid", "walk")
 OBJECT_ORDER_OVERLAYS = ("polygon", "clipped")
+SCENE_OVERLAYS = ("frustum",)
+"""Overlays of the scene itself, shown whatever the tab."""
+LABEL_PT = 13
+"""Size of the 3D pane's labels at text scale 1, points."""
 
 
 def sphere_parts(scene) -> list[tuple[pv.PolyData, dict]]:
     """Wire-frame bounding spheres of the objects that are not spheres themselves."""
+    import pyvista as pv
+
     return [(pv.Sphere(radius=b.radius, center=b.center, theta_resolution=24,
                        phi_resolution=16).extract_all_edges(),
              {"color": "#9fd3ff", "opacity": 0.35, "line_width": 1})
@@ -38,12 +53,16 @@ def sphere_parts(scene) -> list[tuple[pv.PolyData, dict]]:
 
 def grid_cell_parts(grid) -> list[tuple[pv.PolyData, dict]]:
     """Outlines of the grid cells that hold at least one object."""
+    from views import vtk_convert
+
     return [(vtk_convert.boxes_polydata(grid.cell_boxes(grid.occupied_cells())),
              {"color": "#b0b0b0", "opacity": 0.25, "line_width": 1})]
 
 
 def walked_cell_parts(grid, root: RayNode) -> list[tuple[pv.PolyData, dict]]:
     """The cells the primary ray ``root`` passes through, up to its hit."""
+    from views import vtk_convert
+
     t_max = root.t if root.t is not None else np.inf
     walked = cells_on_ray(grid, root.origin, root.direction, root.t_min, t_max)
     if not len(walked):
@@ -53,18 +72,40 @@ def walked_cell_parts(grid, root: RayNode) -> list[tuple[pv.PolyData, dict]]:
 
 
 def polygon_parts(vertices) -> list[tuple[pv.PolyData, dict]]:
-    """One world-space polygon, filled and outlined (``None``: nothing)."""
+    """One world-space polygon outlined, its colours left true (``None``: nothing)."""
     if vertices is None:
         return []
-    poly = vtk_convert.polygon_polydata(vertices)
-    return [(poly, {"color": "#ff2bd6", "opacity": 0.8}),
-            (poly.extract_all_edges(), {"color": "#ff2bd6", "line_width": 4})]
+    from views import vtk_convert
+
+    outline = vtk_convert.polygon_polydata(vertices).extract_all_edges()
+    return [(outline, {"color": "#ff2bd6", "line_width": 4})]
 
 
 def clipped_parts(polygons) -> list[tuple[pv.PolyData, dict]]:
     """Outlines of the polygons the frustum's planes cut."""
+    if not len(polygons):
+        return []
+    from views import vtk_convert
+
     return [(vtk_convert.polygon_polydata(p).extract_all_edges(),
              {"color": "#7cff6b", "line_width": 3}) for p in polygons]
+
+
+def frustum_parts(camera) -> list[tuple[pv.PolyData, dict]]:
+    """The viewing frustum emphasised: near and far planes filled, thick edges, labels."""
+    import pyvista as pv
+
+    corners = camera.frustum_corners()
+    near, far = corners[:4], corners[4:]
+    edges = pv.PolyData(corners, lines=np.hstack([[2, a, b] for a, b in (
+        (0, 1), (1, 2), (2, 3), (3, 0), (4, 5), (5, 6), (6, 7), (7, 4), (0, 4), (1, 5), (2, 6), (3, 7))]))
+    labels = pv.PolyData(np.array([(near[2] + near[3]) / 2, (far[2] + far[3]) / 2], float))  # top edges
+    labels.point_data["labels"] = np.array([f"near plane (the screen), n = {camera.near:g}",
+                                            f"far plane, f = {camera.far:g}"])
+    return [(pv.PolyData(far.copy(), np.array([4, 0, 1, 2, 3])), {"color": FRUSTUM_COLOR, "opacity": 0.3}),
+            (pv.PolyData(near.copy(), np.array([4, 0, 1, 2, 3])), {"color": SCREEN_COLOR, "opacity": 0.6}),
+            (edges, {"color": FRUSTUM_COLOR, "line_width": 4}),
+            (labels, {"label_size": LABEL_PT, "color": "white"})]
 
 
 class SceneOverlays:
@@ -81,6 +122,7 @@ class SceneOverlays:
         self.ray_tree: RayNode | None = None
         model.overlays_changed.connect(self._accel_changed)
         model.scene_changed.connect(self._accel_changed)
+        model.camera_changed.connect(self._frustum)
 
     def _grid(self):
         return trace_scene(self.model.scene).geometry.accel("grid")[0]
@@ -92,6 +134,11 @@ class SceneOverlays:
         self.view.set_overlay("spheres", sphere_parts(scene) if "spheres" in shown else [])
         self.view.set_overlay("grid", grid_cell_parts(self._grid()) if "grid" in shown else [])
         self._walk()
+        self._frustum()
+
+    def _frustum(self, *_) -> None:
+        shown = "frustum" in self.model.overlays
+        self.view.set_overlay("frustum", frustum_parts(self.model.camera) if shown else [])
 
     def _walk(self) -> None:
         want = "walk" in self.model.overlays and self.ray_tree is not None

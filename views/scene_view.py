@@ -31,14 +31,15 @@ import numpy as np
 import pyvista as pv
 from PySide6.QtCore import QEvent, QObject, QPointF, Qt, QTimer
 from PySide6.QtWidgets import QVBoxLayout, QWidget
+from vtkmodules.vtkRenderingCore import vtkActor2D
+from vtkmodules.vtkRenderingLabel import vtkLabeledDataMapper
 
 from core.camera import Camera
-from core.scene import Scene
+from core.scene import Scene, Sphere
 from views import vtk_convert
 from views.image_plotter import ImagePlotter
+from views.scene_colors import FRUSTUM_COLOR, SCREEN_COLOR
 
-FRUSTUM_COLOR = "#ffd34d"
-SCREEN_COLOR = "#6fd0ff"
 TARGET_COLOR = "#ff8c42"
 FRAME_MS = 33
 """Shortest time between two draws of the pane (about 30 per second)."""
@@ -50,6 +51,9 @@ GRAB_RADIUS_PX = 14
 FOV_STEP_DEG = 2.0
 """Viewing-angle change per mouse-wheel notch over the glyph."""
 FOV_RANGE_DEG = (1.0, 179.0)
+ENCLOSING_OPACITY = 0.25
+"""A sphere the observer stands inside (as in the lecture's exercise) is drawn this translucent,
+so that the observer and its rays inside stay visible."""
 
 _FRUSTUM_EDGES = [(0, 1), (1, 2), (2, 3), (3, 0), (4, 5), (5, 6), (6, 7), (7, 4),
                   (0, 4), (1, 5), (2, 6), (3, 7)]
@@ -92,7 +96,8 @@ class SceneView(QWidget):
         # the 18 ms of a draw, and the few translucent surfaces here barely overlap.
         self.plotter.renderer.SetUseOIT(False)
         self.plotter.set_background("#1d2230", top="#3a4358")
-        self.plotter.add_axes(line_width=3, labels_off=False)
+        self.line_scale = 1.0  # lines, points, labels and axes drawn this many times their width
+        self._add_axes()
         layout = QVBoxLayout(self)
         layout.setContentsMargins(0, 0, 0, 0)
         layout.addWidget(self.plotter)
@@ -175,10 +180,15 @@ class SceneView(QWidget):
         self._object_actors = []
         for obj in scene.objects:
             m = obj.material
+            opacity = m.opacity
+            eye_inside = isinstance(obj, Sphere) and np.linalg.norm(
+                np.subtract(scene.camera.eye, obj.center)) < obj.radius
+            if eye_inside:
+                opacity = min(opacity, ENCLOSING_OPACITY)  # the observer stands inside: see through
             actor = self.plotter.add_mesh(
                 vtk_convert.object_polydata(obj),
                 color=m.color,
-                opacity=m.opacity,
+                opacity=opacity,
                 smooth_shading=False,
                 show_edges=False,
                 specular=m.specular,
@@ -240,11 +250,61 @@ class SceneView(QWidget):
                 self.plotter.remove_actor(actor, render=False)
             drawn = []
             for i, (poly, style) in enumerate(parts):
-                actor = self.plotter.add_mesh(poly, name=f"{name}:{i}", render=False, **style)
-                drawn.append((poly, actor, style))
+                drawn.append((poly, self._add_part(f"{name}:{i}", poly, style), style))
             self._overlays[name] = drawn
             self._apply_visibility(name)
         self.request_render()
+
+    def _add_part(self, name: str, poly: pv.PolyData, style: dict):
+        """An overlay part's actor: ``poly`` drawn with ``style``, or its points labelled with the
+        strings of its ``"labels"`` point array when ``style`` has ``"label_size"`` (points)."""
+        if "label_size" not in style:
+            actor = self.plotter.add_mesh(poly, name=name, render=False, **style)
+        else:
+            mapper = vtkLabeledDataMapper()
+            mapper.SetInputData(poly)  # the same polydata: new points move the labels
+            mapper.SetLabelModeToLabelFieldData()
+            mapper.SetFieldDataName("labels")
+            text = mapper.GetLabelTextProperty()
+            text.SetColor(pv.Color(style.get("color", "white")).float_rgb)
+            text.SetBold(True)
+            text.SetShadow(True)
+            text.SetJustificationToCentered()  # centred above the point: a label at a pane's edge shows
+            text.SetVerticalJustificationToBottom()
+            actor = vtkActor2D()
+            actor.SetMapper(mapper)
+            self.plotter.add_actor(actor, name=name, render=False)
+        self._scale_actor(actor, style)
+        return actor
+
+    def _scale_actor(self, actor, style: dict | None = None) -> None:
+        """Widen ``actor``'s lines and points (or enlarge its labels) by :attr:`line_scale`."""
+        if not hasattr(actor, "_unscaled"):
+            if isinstance(actor, vtkActor2D):
+                if style is None:
+                    return  # not an overlay's label: nothing of ours to scale
+                actor._unscaled = ("label", style["label_size"])
+            else:
+                prop = actor.GetProperty()
+                actor._unscaled = ("lines", prop.GetLineWidth(), prop.GetPointSize())
+        if actor._unscaled[0] == "label":
+            actor.GetMapper().GetLabelTextProperty().SetFontSize(round(actor._unscaled[1] * self.line_scale))
+        else:
+            actor.GetProperty().SetLineWidth(actor._unscaled[1] * self.line_scale)
+            actor.GetProperty().SetPointSize(actor._unscaled[2] * self.line_scale)
+
+    def set_line_scale(self, scale: float) -> None:
+        """Draw every line, point, label and the axes ``scale`` times as large (presentation mode)."""
+        self.line_scale = float(scale)
+        for actor in self.plotter.renderer.actors.values():
+            self._scale_actor(actor)
+        self._add_axes()
+        self.request_render()
+
+    def _add_axes(self) -> None:
+        side = min(0.2 * self.line_scale, 0.4)  # the labels' size follows the marker's viewport
+        self.plotter.add_axes(line_width=round(3 * self.line_scale), labels_off=False,
+                              viewport=(0.0, 0.0, side, side))
 
     def show_overlays_only(self, names) -> None:
         """Show only the overlays in ``names`` (the others are kept, hidden); ``None`` shows all."""

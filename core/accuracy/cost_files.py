@@ -12,10 +12,12 @@ import io
 import os
 import tempfile
 from pathlib import Path
-
-from matplotlib.figure import Figure
+from typing import TYPE_CHECKING
 
 from core.accuracy.sweep import CSV_COLUMNS, Row
+
+if TYPE_CHECKING:  # matplotlib loads with the first figure, not with this module
+    from matplotlib.figure import Figure
 
 
 def _umask() -> int:

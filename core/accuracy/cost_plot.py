@@ -14,10 +14,13 @@ one curve per format.
 
 from __future__ import annotations
 
-from matplotlib.figure import Figure
+from typing import TYPE_CHECKING
 
 from core.accuracy.sweep import KNOB_NAMES, KNOBS, Row, split_depth_label
 from core.object_order.depth_formats import BYTES_PER_PIXEL, DEPTH_FORMATS
+
+if TYPE_CHECKING:  # matplotlib loads with the first figure, not with this module
+    from matplotlib.figure import Figure
 
 #: Smallest error drawn: log axes cannot show 0.
 ERROR_FLOOR = 1e-5

@@ -14,7 +14,6 @@ from __future__ import annotations
 
 import math
 
-import mpmath
 import numpy as np
 
 from core.hard_cases.result import DIGITS, U64, CaseResult, Parameter, Row
@@ -41,6 +40,8 @@ def textbook_refract(d, n, eta) -> np.ndarray:
 
 def _exact(d, n, eta):
     """In mpmath: ``(total, direction, R)``, the continuing direction and the reflected fraction."""
+    import mpmath  # loaded when a case is computed, not with the window
+
     with mpmath.workdps(DIGITS):
         d = [mpmath.mpf(float(x)) for x in d]
         n = [mpmath.mpf(float(x)) for x in n]
@@ -59,6 +60,8 @@ def _exact(d, n, eta):
 
 def _distance(computed, reference) -> float:
     """``|computed - reference|`` of two directions (about the angle between them, radians)."""
+    import mpmath  # loaded when a case is computed, not with the window
+
     if not all(math.isfinite(float(x)) for x in computed):
         return math.nan
     with mpmath.workdps(DIGITS):
@@ -77,6 +80,8 @@ def total_internal_reflection(angle_deg: float = 60.0) -> CaseResult:
     ----------
     angle_deg : float in [0, 90), angle of incidence in degrees.
     """
+    import mpmath  # loaded when a case is computed, not with the window
+
     normal = NORMAL / np.linalg.norm(NORMAL)
     tangent = TANGENT / np.linalg.norm(TANGENT)
     a = math.radians(angle_deg)

@@ -14,7 +14,6 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
-import mpmath
 import numpy as np
 
 #: Working precision of every mpmath reference, in decimal digits.
@@ -133,6 +132,8 @@ def relative_error(computed: float, reference) -> float:
     >>> relative_error(2.9375, 3), relative_error(float("nan"), 3)
     (0.020833333333333332, nan)
     """
+    import mpmath  # loaded when a case is computed, not with the window
+
     if computed is None or not math.isfinite(computed):
         return math.nan if computed is None or math.isnan(computed) else math.inf
     with mpmath.workdps(DIGITS):

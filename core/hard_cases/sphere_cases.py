@@ -15,7 +15,6 @@ from __future__ import annotations
 import math
 from fractions import Fraction
 
-import mpmath
 import numpy as np
 
 from core.hard_cases.result import DIGITS, U64, CaseResult, Parameter, Row, digits_correct, relative_error
@@ -158,6 +157,8 @@ def textbook_segment(start, end, center, radius):
 
 def lecture_segment() -> CaseResult:
     """The lecture's exercise: segment (2,1,2)→(10,6,6), sphere at (6,4,6) with r = 10."""
+    import mpmath  # loaded when a case is computed, not with the window
+
     start, end, center, r = LECTURE
     disc, t0, t1 = textbook_segment(start, end, center, r)
     robust = intersect_sphere_segment(start, end, center, r)
@@ -214,6 +215,8 @@ def _pbrt_discriminant_float32(origin, direction, center, radius) -> float:
 
 def _exact_disc_mp(origin, direction, center, radius):
     """The exact discriminant, read as an mpmath number at 50 digits."""
+    import mpmath  # loaded when a case is computed, not with the window
+
     q = exact_discriminant(origin, direction, center, radius)
     with mpmath.workdps(DIGITS):
         return mpmath.mpf(q.numerator) / q.denominator

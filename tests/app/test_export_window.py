@@ -14,6 +14,7 @@ from PySide6.QtCore import Qt, QThreadPool
 from PySide6.QtWidgets import QFileDialog, QMessageBox, QProgressDialog, QPushButton, QWidget
 from window_helpers import RENDER_TIMEOUT_MS
 
+from app.main_window import MainWindow
 from app.pane_pictures import PanePicture
 from app.picture_sheet import MARGIN, TITLE_ROW
 from core import presets
@@ -223,3 +224,49 @@ def test_a_tab_can_offer_its_own_pictures(window, tmp_path, monkeypatch):
     _save_as(monkeypatch, tmp_path / "card.png")
     _export(window, "Slides/Grey card")
     assert (iio.imread(tmp_path / "card.png") == to_srgb8(np.full(3, 0.5))).all()
+
+
+def test_the_remembered_folder_survives_a_new_window(qtbot, window, tmp_path, monkeypatch):
+    slides = tmp_path / "slides"
+    slides.mkdir()
+    _save_as(monkeypatch, slides / "traced.png")
+    _export(window, "Image order/Image")
+    window.close()
+
+    asked = []
+    _save_as(monkeypatch, slides / "scene-3d.png", asked)
+    again = MainWindow(presets.lecture_scene())  # as after a restart
+    qtbot.addWidget(again)
+    again.show()
+    _export(again, "3D pane")
+    assert Path(asked[-1]).parent == slides  # the dialog opens where the last file went
+
+    for written in slides.iterdir():
+        written.unlink()
+    slides.rmdir()  # a folder that is gone: the dialog starts in the working folder instead
+    monkeypatch.setattr(QFileDialog, "getSaveFileName",
+                        lambda parent, title, start, filters: (asked.append(start), ("", ""))[1])  # Cancel
+    _export(again, "3D pane")
+    assert Path(asked[-1]).parent == Path.cwd()
+
+
+def test_the_hard_cases_pictures_are_named_after_their_method(qtbot, window, tmp_path, monkeypatch):
+    panel = window.tab("hard cases").widget
+    window.show_tab("hard cases")  # the first case, the tangent ray, has numbers but no picture
+    qtbot.waitUntil(lambda: panel.result is not None, timeout=RENDER_TIMEOUT_MS)
+    with qtbot.waitSignal(panel.result_shown, timeout=RENDER_TIMEOUT_MS):
+        panel.select("behind_eye")  # a triangle drawn with and without clipping
+    window.exports.refresh()
+    entries = [key for key in window.exports.actions if key.startswith("Hard cases/")]
+    assert entries == ["Hard cases/Picture of the textbook method", "Hard cases/Picture of the robust method"]
+    _save_as(monkeypatch, tmp_path / "textbook.png")
+    _export(window, "Hard cases/Picture of the textbook method")
+    pixels = iio.imread(tmp_path / "textbook.png")
+    assert pixels.shape[:2] == panel.result.images[0].naive.shape[:2]  # the case's image, pixel for pixel
+    assert len(np.unique(pixels.reshape(-1, 3), axis=0)) > 1
+
+    with qtbot.waitSignal(panel.result_shown, timeout=RENDER_TIMEOUT_MS):
+        panel.select("tangent")  # back to a case without a picture: the last one is not offered
+    window.exports.refresh()
+    textbook = window.exports.actions["Hard cases/Picture of the textbook method"]
+    assert not textbook.isEnabled() and "Not part of what the tab shows" in textbook.toolTip()

@@ -2,7 +2,8 @@
 
 import pytest
 from PySide6.QtCore import Qt
-from PySide6.QtWidgets import QLabel, QMainWindow, QSplitter
+from PySide6.QtGui import QPalette
+from PySide6.QtWidgets import QLabel, QMainWindow, QSpinBox, QSplitter, QTreeWidget, QTreeWidgetItem
 
 from views.lesson_panel import LessonPanel
 from views.math_view import MathView
@@ -112,3 +113,20 @@ def test_presenting_hides_the_lesson_list_and_leaving_brings_it_back(hall, qtbot
     assert not panel.list.isVisible() and panel.text.isVisible() and panel.next_button.isVisible()
     presentation.set_presenting(False)
     assert panel.list.isVisible()
+
+
+def test_high_contrast_keeps_every_table_row_and_disabled_control_readable(hall, qtbot):
+    window, panel, presentation = hall
+    table = QTreeWidget(window)
+    table.setAlternatingRowColors(True)
+    table.addTopLevelItems([QTreeWidgetItem([f"row {i}"]) for i in range(4)])
+    off = QSpinBox(window)
+    off.setEnabled(False)
+    presentation.set_high_contrast(True)
+    for widget in (table, off):
+        widget.ensurePolished()
+    text, odd_rows = table.palette().color(QPalette.ColorRole.Text), table.palette().alternateBase().color()
+    assert text.lightnessF() - odd_rows.lightnessF() > 0.7  # white text on (nearly) black rows
+    enabled = table.palette().color(QPalette.ColorRole.Text).lightnessF()
+    disabled = off.palette().color(QPalette.ColorGroup.Disabled, QPalette.ColorRole.Text).lightnessF()
+    assert 0.3 < disabled < enabled  # a switched-off control looks switched off

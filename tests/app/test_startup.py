@@ -1,0 +1,95 @@
+"""Start-up: the window opens and works before VTK loads; the 3D pane comes in afterwards as asked."""
+
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+from PySide6.QtCore import Qt
+from PySide6.QtWidgets import QLabel
+from window_helpers import RENDER_TIMEOUT_MS
+
+from app.main_window import MainWindow
+from core import presets
+from core.lessons import shipped_lessons
+from views import deferred_scene_view
+from views.deferred_scene_view import PLACEHOLDER
+
+ROOT = Path(__file__).resolve().parents[2]
+LATER = ("vtkmodules", "pyvista", "pyvistaqt", "matplotlib", "mpmath")
+"""What the 3D pane, the Cost plot, typesetting a new formula and the hard cases need, and the
+window's first frame does not."""
+
+
+def test_importing_the_window_loads_no_vtk_pyvista_matplotlib_or_mpmath():
+    code = ("import sys, app.main_window; "
+            f"print(','.join(m for m in {LATER!r} if m in sys.modules))")
+    out = subprocess.run([sys.executable, "-c", code], cwd=ROOT, capture_output=True, text=True,
+                         timeout=300)
+    assert out.returncode == 0, out.stderr
+    assert out.stdout.strip() == ""
+
+
+@pytest.fixture
+def opening(qtbot, monkeypatch):
+    """The window just shown; its 3D pane is built when its first image is shown, not on a timer."""
+    monkeypatch.setattr(deferred_scene_view, "BUILD_AFTER_MS", 3_600_000)
+    win = MainWindow(presets.lecture_scene())
+    qtbot.addWidget(win)
+    win.show()
+    qtbot.waitExposed(win)
+    return win
+
+
+def test_keys_move_the_observer_and_a_tab_shows_its_image_before_the_3d_pane_exists(qtbot, opening):
+    win = opening
+    pane_built_at_image = []
+    win.image_shown.connect(lambda *_: pane_built_at_image.append(win.scene_view.view is not None))
+    assert win.scene_view.view is None
+    assert win.scene_view.findChild(QLabel).text() == PLACEHOLDER
+    win.activateWindow()
+    qtbot.waitUntil(win.isActiveWindow)
+    before = win.model.camera
+    qtbot.keyClick(win, Qt.Key.Key_W)  # walk forward a tenth of the eye-to-target distance
+    view = np.subtract(before.target, before.eye)
+    assert np.allclose(np.subtract(win.model.camera.eye, before.eye), 0.1 * view)
+    assert win.scene_view.view is None
+    qtbot.waitUntil(lambda: win.showing_full("image order"), timeout=RENDER_TIMEOUT_MS)
+    image = win.tab("image order").widget.image
+    assert image.rgb.shape[:2] == (win.model.camera.height, win.model.camera.width)
+    assert pane_built_at_image[0] is False  # the first image came before VTK
+    qtbot.waitUntil(lambda: win.scene_view.view is not None)
+    assert np.allclose(win.scene_view.frustum.points, win.model.camera.frustum_corners())
+
+
+def test_what_a_lesson_asks_of_the_3d_pane_before_it_exists_shows_once_it_is_built(qtbot, opening):
+    win = opening
+    lesson = next(i for i, lesson in enumerate(shipped_lessons()) if lesson.id == "observer")
+    step = shipped_lessons()[lesson].steps[0]
+    win.lesson_panel.select(lesson, 0)
+    assert win.scene_view.view is None
+    assert win.scene_view.overlay_names() == ["lesson"]
+    qtbot.waitUntil(lambda: win.scene_view.view is not None, timeout=RENDER_TIMEOUT_MS)
+    view = win.scene_view.view
+    assert "lesson" in view.overlay_names()
+    (lit,) = view.overlay_parts("lesson")
+    obj = next(o for o in step.scene.objects if o.name == step.highlight["object"])
+    low, high = np.array(lit.bounds).reshape(3, 2).T
+    assert np.allclose(low, obj.vertices.min(axis=0)) and np.allclose(high, obj.vertices.max(axis=0))
+    position, focal_point, up = view.plotter.camera_position
+    assert np.allclose(position, step.view["position"]) and np.allclose(focal_point, step.view["focal_point"])
+    assert np.allclose(up, step.view["up"])
+
+
+def test_the_3d_pane_comes_in_on_its_own_when_no_image_is_shown(qtbot, monkeypatch):
+    monkeypatch.setattr(deferred_scene_view, "BUILD_AFTER_MS", 100)
+    win = MainWindow(presets.lecture_scene())
+    qtbot.addWidget(win)
+    win.show_tab("hard cases")  # a tab that renders nothing: no first image to wait for
+    shown = []
+    win.image_shown.connect(lambda *_: shown.append(1))
+    win.show()
+    qtbot.waitUntil(lambda: win.scene_view.view is not None, timeout=RENDER_TIMEOUT_MS)
+    assert shown == []
+    assert np.allclose(win.scene_view.frustum.points, win.model.camera.frustum_corners())

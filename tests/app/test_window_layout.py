@@ -1,0 +1,90 @@
+"""The window shares its screen so that the images are the largest thing on it, at every text scale."""
+
+import pytest
+from PySide6.QtCore import QRect
+from PySide6.QtGui import QFont, QFontDatabase, QFontMetrics, QScreen
+from PySide6.QtWidgets import QApplication
+from window_helpers import RENDER_TIMEOUT_MS, open_window
+
+from views.math_view import MathView
+from views.presentation import SCALES
+from views.raytree_view import COLUMNS as RAY_TREE_COLUMNS
+
+SCREENS = [(1280, 720), (1920, 1080)]
+ROWS = 3
+"""A table shows at least this many rows."""
+
+
+@pytest.fixture
+def normal_text():
+    """The platform's normal text size for the application (another test may have enlarged it)."""
+    app = QApplication.instance()
+    before = app.font()
+    app.setFont(QFontDatabase.systemFont(QFontDatabase.SystemFont.GeneralFont))
+    yield
+    app.setFont(before)
+
+
+def _rows_shown(view) -> float:
+    return view.viewport().height() / view.fontMetrics().height()
+
+
+@pytest.mark.parametrize("screen", SCREENS, ids=lambda s: f"{s[0]}x{s[1]}")
+def test_the_traced_image_outsizes_the_3d_pane_and_the_window_fits_its_screen(qtbot, monkeypatch, screen,
+                                                                             normal_text):
+    # A laptop's screen on this display: the window takes what the screen makes available.
+    monkeypatch.setattr(QScreen, "availableGeometry", lambda self: QRect(0, 0, *screen))
+    window = open_window(qtbot)
+    image_order = window.tab("image order").widget
+    cam = window.model.camera
+    with qtbot.waitSignal(window._tree_renderer.finished, timeout=RENDER_TIMEOUT_MS):
+        window.pick_ray_tree(cam.width // 2, cam.height // 2)  # its tree and caption are shown too
+    for scale in SCALES:
+        window.presentation.set_scale(scale)
+        window.setGeometry(window.screen().availableGeometry())
+
+        def laid_out(scale=scale):
+            hint = window.minimumSizeHint()
+            assert hint.width() <= screen[0] and hint.height() <= screen[1], (scale, hint)
+            assert window.width() <= screen[0] and window.height() <= screen[1], (scale, window.size())
+            shown = image_order.image.image_rect()
+            pane = window.scene_view.size()
+            assert shown.width() * shown.height() > pane.width() * pane.height(), (scale, shown, pane)
+            assert _rows_shown(image_order.tree) >= ROWS, scale
+
+        qtbot.waitUntil(laid_out, timeout=5000)
+    window.show_tab("object order")
+    history = window.tab("object order").widget.history
+    qtbot.waitUntil(lambda: _rows_shown(history) >= ROWS, timeout=5000)
+
+
+def test_table_headers_and_rows_grow_with_the_text_scale(qtbot, window):
+    window.show_tab("object order")
+    qtbot.waitUntil(lambda: window.showing_full("object order"), timeout=RENDER_TIMEOUT_MS)
+    panel = window.tab("object order").widget
+    cam = window.model.camera
+    panel.pick_pixel(cam.width // 2, cam.height // 2)  # listed at the normal size, then enlarged
+    window.presentation.set_scale(2.0)
+    tables = [(panel.history.horizontalHeader(), [panel.history.horizontalHeaderItem(c).text()
+                                                  for c in range(panel.history.columnCount())]),
+              (window.tab("image order").widget.tree.header(), RAY_TREE_COLUMNS)]
+    for header, labels in tables:
+        metrics = header.fontMetrics()
+        assert metrics.height() >= 2 * 0.9 * QFontMetrics(QFont()).height()  # the header's text is scaled
+        assert header.height() >= metrics.height()
+        for column, label in enumerate(labels):
+            assert header.sectionSize(column) >= metrics.horizontalAdvance(label), label
+    assert panel.history.rowCount() > 0
+    assert panel.history.rowHeight(0) >= panel.history.fontMetrics().height()
+
+
+def test_worked_math_and_lesson_formulas_share_one_size_at_every_scale(qtbot, window):
+    lessons = [lesson.id for lesson in window.lesson_panel.lessons()]
+    window.lesson_panel.select(lessons.index("perspective"), 0)  # a lesson that follows a vertex
+    worked = window.tab("object order").widget.vertex_math.findChildren(MathView)
+    assert worked
+    for scale in SCALES:
+        window.presentation.set_scale(scale)
+        lesson = window.lesson_panel.formula_views()[0].size_pt()
+        assert lesson == pytest.approx(scale * MathView().size_pt(), rel=0.01)
+        assert {round(view.size_pt(), 3) for view in worked} == {round(lesson, 3)}
