@@ -2,7 +2,7 @@
 
 import numpy as np
 import pytest
-from PySide6.QtGui import QSurface
+from PySide6.QtGui import QImage, QSurface
 
 from core import presets
 
@@ -31,3 +31,16 @@ def test_translucent_surfaces_look_as_with_vtks_order_independent_translucency(q
 def test_repaints_of_the_window_never_go_through_opengl(window):
     # One OpenGL widget anywhere would make Qt compose the whole window through OpenGL at every repaint.
     assert window.windowHandle().surfaceType() == QSurface.SurfaceType.RasterSurface
+
+
+def test_the_pane_shows_what_vtk_draws_background_and_all(qtbot, window):
+    view = window.scene_view
+    qtbot.waitUntil(view.plotter.renderer.GetUseFXAA)  # at rest: anti-aliased, frustum faces drawn
+    view.plotter.render()
+    shown = view.plotter.grab().toImage().convertToFormat(QImage.Format.Format_RGB888)
+    h, w = shown.height(), shown.width()
+    rows = np.frombuffer(shown.constBits(), np.uint8).reshape(h, shown.bytesPerLine())
+    painted = rows[:, :3 * w].reshape(h, w, 3).astype(int)
+    drawn_by_vtk = _drawn(view)[..., :3]  # VTK draws the gradient background itself here
+    levels = np.abs(painted - drawn_by_vtk).max(axis=2)
+    assert np.percentile(levels, 99) <= 8  # anti-aliased edges against the background may differ more

@@ -31,11 +31,8 @@ def shown(qtbot):
 def _on_screen(widget):
     """What the screen shows where ``widget`` is, as (H, W, 3) uint8."""
     corner = widget.mapToGlobal(widget.rect().topLeft())
-    image = QApplication.primaryScreen().grabWindow(0, corner.x(), corner.y(), widget.width(),
-                                                     widget.height()).toImage()
-    image = image.convertToFormat(image.Format.Format_RGB888)
-    rows = np.frombuffer(image.constBits(), np.uint8).reshape(image.height(), image.bytesPerLine())
-    return rows[:, :3 * image.width()].reshape(image.height(), image.width(), 3)
+    return _pixels(QApplication.primaryScreen().grabWindow(0, corner.x(), corner.y(), widget.width(),
+                                                           widget.height()).toImage())
 
 
 def test_the_drawn_picture_is_on_screen_and_the_window_stays_a_raster_surface(qtbot, shown):
@@ -47,13 +44,35 @@ def test_the_drawn_picture_is_on_screen_and_the_window_stays_a_raster_surface(qt
     assert window.windowHandle().surfaceType() == QSurface.SurfaceType.RasterSurface
 
 
+def _pixels(image):
+    """A QImage as (H, W, 3) uint8."""
+    image = image.convertToFormat(image.Format.Format_RGB888)
+    rows = np.frombuffer(image.constBits(), np.uint8).reshape(image.height(), image.bytesPerLine())
+    return rows[:, :3 * image.width()].reshape(image.height(), image.width(), 3).copy()  # before image goes
+
+
 def test_the_picture_is_upright(shown):
     _, plotter, _ = shown
-    plotter.set_background("black", top="white")  # a gradient: white at the top of the view
+    plotter.add_mesh(pv.Plane(center=(0, 4, 0.1), i_size=10, j_size=2), color="blue", lighting=False)
+    plotter.render()  # a blue band across the top of the red square
+    picture = _pixels(plotter.picture)
+    h, w, _ = picture.shape
+    assert picture[int(0.22 * h), w // 2, 2] > 200 and picture[int(0.7 * h), w // 2, 0] > 200
+    assert np.array_equal(picture, plotter.screenshot(None, return_img=True)[..., :3])  # as VTK reads it
+
+
+def test_a_gradient_background_is_painted_as_vtk_draws_it(qtbot, shown):
+    _, plotter, _ = shown
     plotter.clear_actors()
+    plotter.add_mesh(pv.Sphere(radius=2), color="orange")
+    plotter.add_mesh(pv.Plane(i_size=6, j_size=3), color="cyan", opacity=0.4)  # translucent, over both
+    plotter.set_background("#1d2230", top="#3a4358")
     plotter.render()
-    picture = plotter.picture.convertToFormat(plotter.picture.Format.Format_Grayscale8)
-    assert picture.pixelColor(5, 2).value() > 200 and picture.pixelColor(5, picture.height() - 3).value() < 50
+    painted = _pixels(plotter.grab().toImage()).astype(int)
+    drawn_by_vtk = plotter.screenshot(None, return_img=True)[..., :3].astype(int)
+    assert painted.shape == drawn_by_vtk.shape
+    assert np.abs(painted - drawn_by_vtk).max() <= 2  # 8-bit levels
+    assert painted[2, 2, 2] > painted[-3, 2, 2] + 20  # the gradient: lighter at the top
 
 
 def test_a_paint_shows_the_last_picture_without_drawing_again(qtbot, shown):
