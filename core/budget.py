@@ -159,7 +159,7 @@ def refusal(what: str, cost: Estimate, limit: int, source: str) -> str | None:
     """
     if cost.bytes <= limit:
         return None
-    parts = ", ".join(f"{k} {format_bytes(v)}" for k, v in cost.parts.items())
+    parts = ", ".join(f"{k} {format_bytes(v)}" for k, v in cost.parts.items() if v)
     return (f"{what} needs about {format_bytes(cost.bytes)} ({parts}); the budget is "
             f"{format_bytes(limit)} ({source})")
 

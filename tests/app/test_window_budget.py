@@ -207,3 +207,10 @@ def test_a_tabs_estimate_covers_the_memory_its_render_takes(title):
     figures = json.loads(out.stdout.splitlines()[-1])
     # Estimates are good to a factor of about two, and err on the large side.
     assert figures["measured"] <= figures["estimated"] <= 3 * figures["measured"]
+
+
+def test_a_bad_memory_limit_for_the_window_is_refused_before_it_opens(tmp_path):
+    out = subprocess.run([sys.executable, "-m", "app", "--memory-limit", "lots", str(tmp_path / "s.json")],
+                         cwd=ROOT, capture_output=True, text=True, timeout=120)
+    assert out.returncode == 2 and "Traceback" not in out.stderr
+    assert "--memory-limit: expected a size such as 8G" in out.stderr
