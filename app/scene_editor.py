@@ -28,7 +28,6 @@ from app.scene_edits import SceneEdit
 from app.workers import Renderer
 from core import scene_editing, scene_file
 from core.scene_file import SceneFileError
-from views.scene_picking import ScenePicker
 from views.scene_tree_panel import SceneTreePanel, label
 
 EDITABLE = ("object", "light")
@@ -64,7 +63,7 @@ class SceneEditor(QObject):
         self._build_actions()
         self.panel.field_edited.connect(self.change_field)
         self.panel.move_requested.connect(self.move)
-        self.picker: ScenePicker | None = None  # once the 3D pane is built
+        self.picker = None  # a views.scene_picking.ScenePicker, once the 3D pane is built
         pane = window.scene_view
         if pane.view is not None:
             self._attach_picker(pane.view)
@@ -139,6 +138,8 @@ class SceneEditor(QObject):
 
     def _attach_picker(self, view) -> None:
         """Clicks in the 3D pane select, its handle moves (see :mod:`views.scene_picking`)."""
+        from views.scene_picking import ScenePicker  # with VTK, which the window loads after its first frame
+
         self.picker = ScenePicker(self.model, view)
         self.picker.move_requested.connect(self.move)
         self.picker.picked.connect(lambda item: item is not None and self.dock.raise_())
