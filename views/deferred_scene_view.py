@@ -1,13 +1,13 @@
 """The 3D pane, built once the window is on screen.
 
-pyvista, pyvistaqt and VTK take about a second to import and the first VTK
+pyvista and VTK take about a second to import and the first VTK
 frame more; none of it is needed to show the window, its tabs and the first
 image.  :class:`DeferredSceneView` stands in the window's layout for the
 :class:`views.scene_view.SceneView`: it shows a short note, and builds the
 real view in its place when told to (:meth:`build_soon`: the window does so
 once its first image is shown) or at the latest :data:`BUILD_AFTER_MS` after
 it was first painted.  Not earlier: the imports hold the GIL, so they would
-slow the first render by as much as they take.  pyvista and pyvistaqt are
+slow the first render by as much as they take.  pyvista and VTK's Qt widget are
 imported on a thread, so the window keeps answering meanwhile; the view is
 then built, and VTK draws its first frame, on the GUI thread.
 
@@ -40,7 +40,8 @@ class _Imported(QObject):
 def _import_pyvista(imported: _Imported) -> None:
     try:
         import pyvista  # noqa: F401
-        import pyvistaqt  # noqa: F401
+
+        import views.image_plotter  # noqa: F401  (VTK's Qt widget and OpenGL)
     finally:
         with contextlib.suppress(RuntimeError):  # RuntimeError: the pane was deleted meanwhile
             imported.done.emit()  # queued: the view is built on the GUI thread

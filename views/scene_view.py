@@ -78,7 +78,7 @@ def glyph_size(camera: Camera) -> float:
 
 
 class SceneView(QWidget):
-    """A pyvistaqt view of the model's scene with its observer, which the mouse can move.
+    """A pyvista view of the model's scene with its observer, which the mouse can move.
 
     Attributes
     ----------

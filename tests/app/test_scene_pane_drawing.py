@@ -43,4 +43,4 @@ def test_the_pane_shows_what_vtk_draws_background_and_all(qtbot, window):
     painted = rows[:, :3 * w].reshape(h, w, 3).astype(int)
     drawn_by_vtk = _drawn(view)[..., :3]  # VTK draws the gradient background itself here
     levels = np.abs(painted - drawn_by_vtk).max(axis=2)
-    assert np.percentile(levels, 99) <= 8  # anti-aliased edges against the background may differ more
+    assert np.mean(levels <= 2) >= 0.95  # all but the anti-aliased edges against the background
