@@ -32,3 +32,15 @@ def _private_settings(tmp_path_factory):
     for settings_format in (QSettings.Format.NativeFormat, QSettings.Format.IniFormat):
         for scope in (QSettings.Scope.UserScope, QSettings.Scope.SystemScope):
             QSettings.setPath(settings_format, scope, folder)
+
+
+@pytest.fixture(autouse=True)
+def _application_font_restored():
+    """A test that enlarges the application's text (presentation mode, Ctrl++) leaves it as it was."""
+    from PySide6.QtWidgets import QApplication
+
+    app = QApplication.instance()
+    font = None if app is None else QApplication.font()
+    yield
+    if font is not None and QApplication.instance() is not None:
+        QApplication.setFont(font)
