@@ -149,20 +149,8 @@ class ScenePicker(QObject):
         self.picked.emit(item)
 
     def ray_under(self, pos: QPointF) -> tuple[np.ndarray, np.ndarray]:
-        """The overview camera's ray through widget position ``pos``: origin on the near
-        plane and direction to the far plane (world space)."""
-        plotter = self.view.plotter
-        renderer = plotter.renderer
-        ratio = plotter.devicePixelRatioF()
-        x, y = pos.x() * ratio, plotter.ren_win.GetSize()[1] - pos.y() * ratio
-        ends = []
-        for depth in (0.0, 1.0):
-            renderer.SetDisplayPoint(x, y, depth)
-            renderer.DisplayToWorld()
-            w = np.array(renderer.GetWorldPoint())
-            ends.append(w[:3] / w[3])
-        return ends[0], ends[1] - ends[0]
-
+        """The overview camera's ray through widget position ``pos`` (see :meth:`SceneView.ray_under`)."""
+        return self.view.ray_under(pos)
 
 def _bounds(scene, item):
     """(2, 3) lower and upper corners of the item's box in the 3D pane, or None."""

@@ -339,8 +339,9 @@ class SceneView(QWidget):
         height = self.plotter.ren_win.GetSize()[1]
         return QPointF(x / ratio, (height - y) / ratio)
 
-    def world_point_under(self, pos: QPointF, anchor) -> np.ndarray:
-        """The point under widget position ``pos`` in the plane through ``anchor`` facing the view."""
+    def ray_under(self, pos: QPointF) -> tuple[np.ndarray, np.ndarray]:
+        """The overview camera's ray through widget position ``pos``: origin on the near
+        plane and direction to the far plane (world space)."""
         renderer = self.plotter.renderer
         ratio = self.plotter.devicePixelRatioF()
         x, y = pos.x() * ratio, self.plotter.ren_win.GetSize()[1] - pos.y() * ratio
@@ -350,7 +351,11 @@ class SceneView(QWidget):
             renderer.DisplayToWorld()
             w = np.array(renderer.GetWorldPoint())
             ends.append(w[:3] / w[3])
-        origin, direction = ends[0], ends[1] - ends[0]
+        return ends[0], ends[1] - ends[0]
+
+    def world_point_under(self, pos: QPointF, anchor) -> np.ndarray:
+        """The point under widget position ``pos`` in the plane through ``anchor`` facing the view."""
+        origin, direction = self.ray_under(pos)
         normal = np.asarray(self.plotter.camera.direction, float)
         t = np.dot(np.asarray(anchor, float) - origin, normal) / np.dot(direction, normal)
         return origin + t * direction
