@@ -64,6 +64,7 @@ class ImagePlotter(QVTKRenderWindowInteractor, BasePlotter):
         window.SetMultiSamples(0)  # anti-aliasing is FXAA, and only when the pane rests
         with _without_base_plotter_init():
             QVTKRenderWindowInteractor.__init__(self, parent, rw=window)
+        window.SetWindowInfo("0")  # VTK's widget hands VTK its native window; VTK needs none of ours
         BasePlotter.__init__(self)
         # VTK's widget would have VTK paint on screen; this one paints the picture itself.
         self.setAttribute(Qt.WidgetAttribute.WA_PaintOnScreen, False)
