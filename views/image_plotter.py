@@ -12,8 +12,8 @@ the picture to the window through OpenGL (8 ms of a 20 ms draw in llvmpipe).
 Here VTK draws into its own off-screen framebuffer; :meth:`render` reads the
 picture back (about a millisecond) and the widget paints it like any other
 image.  The Qt window stays a plain raster surface (a repaint costs about a
-millisecond), Qt may use any display (X11, Wayland), and a paint never makes
-VTK draw: only :meth:`render` and a change of size do.
+millisecond), and a paint never makes VTK draw: only :meth:`render` and a
+change of size do.
 
 The plotter is both the Qt widget (mouse and keys go to VTK's trackball
 interactor, through VTK's own ``QVTKRenderWindowInteractor``) and a pyvista
@@ -64,6 +64,7 @@ class ImagePlotter(QVTKRenderWindowInteractor, BasePlotter):
         window.SetMultiSamples(0)  # anti-aliasing is FXAA, and only when the pane rests
         with _without_base_plotter_init():
             QVTKRenderWindowInteractor.__init__(self, parent, rw=window)
+        window.SetWindowInfo("0")  # VTK's widget hands VTK its native window; VTK needs none of ours
         BasePlotter.__init__(self)
         # VTK's widget would have VTK paint on screen; this one paints the picture itself.
         self.setAttribute(Qt.WidgetAttribute.WA_PaintOnScreen, False)
@@ -84,8 +85,8 @@ class ImagePlotter(QVTKRenderWindowInteractor, BasePlotter):
     def set_background(self, color, top=None, **kwargs) -> None:
         """As pyvista's; a vertical gradient (``top`` given) is painted by the widget, under the
         picture VTK draws over a transparent background.  (VTK's own gradient costs a software
-        OpenGL a pass over every pixel of every draw, about a third of a draw; Qt paints it in
-        a millisecond.)  :meth:`screenshot` has VTK draw the gradient itself."""
+        OpenGL a pass over every pixel of every draw, a third or more of the draw; Qt paints it
+        in about a millisecond.)  :meth:`screenshot` has VTK draw the gradient itself."""
         BasePlotter.set_background(self, color, top=top, **kwargs)
         self._gradient = None
         if top is not None:

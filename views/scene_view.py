@@ -92,8 +92,8 @@ class SceneView(QWidget):
         self.model = model
         self.plotter = ImagePlotter(self)
         # Translucent surfaces are blended in drawing order: VTK's order-independent
-        # translucency costs a software OpenGL extra passes over the whole pane, about 8 of
-        # the 18 ms of a draw, and the few translucent surfaces here barely overlap.
+        # translucency costs a software OpenGL extra passes over the whole pane (nearly half
+        # of a draw), and the few translucent surfaces here barely overlap.
         self.plotter.renderer.SetUseOIT(False)
         self.plotter.set_background("#1d2230", top="#3a4358")
         self.line_scale = 1.0  # lines, points, labels and axes drawn this many times their width

@@ -1,5 +1,10 @@
 """The 3D pane's plotter: VTK draws off screen, a plain widget paints the picture, the window stays raster."""
 
+import os
+import subprocess
+import sys
+from pathlib import Path
+
 import numpy as np
 import pytest
 import pyvista as pv
@@ -7,6 +12,8 @@ from PySide6.QtGui import QSurface
 from PySide6.QtWidgets import QApplication, QVBoxLayout, QWidget
 
 from views.image_plotter import ImagePlotter
+
+ROOT = Path(__file__).resolve().parents[2]
 
 
 @pytest.fixture
@@ -95,3 +102,31 @@ def test_a_closed_plotter_no_longer_draws(shown):
     plotter.close()
     plotter.render()
     assert not draws
+
+
+DRAW_UNDER_ANOTHER_PLATFORM = """
+import pyvista as pv
+from PySide6.QtWidgets import QApplication
+from views.image_plotter import ImagePlotter
+app = QApplication([])
+plotter = ImagePlotter()
+plotter.set_background("black")
+plotter.add_mesh(pv.Plane(i_size=10, j_size=10), color="red", lighting=False)
+plotter.view_xy()
+plotter.resize(200, 200)
+plotter.show()
+plotter.render()
+print(plotter.picture.pixelColor(100, 100).red())
+plotter.close()
+"""
+
+
+@pytest.mark.gui
+def test_vtk_draws_whatever_display_qt_uses(tmp_path):
+    # Qt's own off-screen platform stands for one that is not X11 (Wayland, say): VTK never
+    # draws into the widget's window, so it does not care what kind of window that is.
+    env = {**os.environ, "QT_QPA_PLATFORM": "offscreen", "PYTHONPATH": str(ROOT)}
+    out = subprocess.run([sys.executable, "-c", DRAW_UNDER_ANOTHER_PLATFORM], env=env, cwd=tmp_path,
+                         capture_output=True, text=True, timeout=120)
+    assert out.returncode == 0, out.stderr
+    assert int(out.stdout.split()[-1]) > 200  # the red square
