@@ -45,6 +45,11 @@ def add_parser(sub) -> None:
     p.add_argument("--budget", type=float,
                    help="equal time: also print each knob's most accurate setting within this many seconds")
     p.add_argument("--out", required=True, help="folder for cost.csv, cost.png and cost.svg")
+    p.add_argument("--dry-run", action="store_true",
+                   help="print the sweep's estimated memory and time, and stop before rendering")
+    p.add_argument("--memory-limit", metavar="SIZE",
+                   help="refuse a sweep estimated to need more memory, e.g. 8G or 512M "
+                        "(default: half of the memory available)")
     p.set_defaults(run=run)
 
 
@@ -97,8 +102,33 @@ def _table(rows, skipped) -> str:
     return "\n".join(lines)
 
 
+def _check_cost(job, args) -> bool:
+    """Refuse a sweep over the memory budget, announce a slow one; True when it should run."""
+    from app.render_command import budget_limit
+    from core import budget
+    from core.accuracy import sweep_cost
+
+    cost = sweep_cost.estimate(job)
+    cam = job.scene.camera
+    what = f"a sweep of {len(job.settings)} settings at {cam.width} × {cam.height}"
+    over = budget.refusal(what, cost, *budget_limit(args))
+    if over:
+        raise UsageError(f"{over}; use a smaller image (--width/--height), one --knob, a lower "
+                         "--reference-spp, or --memory-limit")
+    said = (f"{what}: about {budget.format_bytes(cost.bytes)} of memory and "
+            f"{budget.format_seconds(cost.seconds)}")
+    if args.dry_run:
+        print(f"{said}; nothing rendered (--dry-run)")
+    elif cost.seconds > budget.SLOW_SECONDS:
+        print(f"python -m app cost: estimated {said}", file=sys.stderr, flush=True)
+    return not args.dry_run
+
+
 def run(args) -> int:
     _check(args)
+    from app.render_command import parse_memory_limit
+
+    parse_memory_limit(args.memory_limit)
     from app.mesh_files import read_mesh
     from core import scene_file
 
@@ -121,6 +151,8 @@ def run(args) -> int:
     if not job.settings:
         reasons = "; ".join(f"{k}: {why}" for k, why in job.skipped.items())
         raise UsageError(f"--knob {args.knob}: nothing to sweep on this scene ({reasons})")
+    if not _check_cost(job, args):
+        return 0
     out = Path(args.out)
     try:
         out.mkdir(parents=True, exist_ok=True)

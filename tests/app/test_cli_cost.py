@@ -125,3 +125,28 @@ def test_depth_format_rows_name_format_and_ratio(tmp_path, mirror_scene):
     assert sum(int(r["knee"]) for r in rows) == 1
     assert "z-fighting" in result.stdout and "changes time only" not in result.stdout
     assert iio.imread(out / "cost.png")[..., :3].std() > 10
+
+
+def test_a_sweep_over_the_memory_budget_is_refused_before_anything_renders(tmp_path, mirror_scene):
+    # Every finished setting keeps at least its colour image: 4096 x 4096 x 3 float64 is 400 MB
+    # each, so a sweep of several settings cannot fit in 1 GB.
+    out = tmp_path / "out"
+    result = _run(str(mirror_scene), "--knob", "depth", "--width", "4096", "--height", "4096",
+                  "--memory-limit", "1G", "--out", str(out))
+    assert result.returncode == 2
+    message = result.stderr.strip()
+    assert "4096 × 4096" in message and "the budget is 1 GB (--memory-limit)" in message
+    assert "Traceback" not in result.stderr and not out.exists()
+
+
+def test_a_dry_run_prints_the_estimate_and_renders_nothing(tmp_path, mirror_scene):
+    out = tmp_path / "out"
+    result = _run(str(mirror_scene), "--knob", "depth", "--width", "32", "--dry-run", "--out", str(out))
+    assert result.returncode == 0, result.stderr
+    assert "of memory and" in result.stdout and "nothing rendered (--dry-run)" in result.stdout
+    assert not out.exists()
+
+
+def test_a_bad_memory_limit_is_named(tmp_path, mirror_scene):
+    result = _run(str(mirror_scene), "--memory-limit", "lots", "--out", str(tmp_path / "out"))
+    assert result.returncode == 2 and "--memory-limit" in result.stderr and "Traceback" not in result.stderr
