@@ -20,6 +20,7 @@ from collections.abc import Callable
 from PySide6.QtCore import QObject, QRunnable, QThreadPool, QTimer, Signal
 
 from app import render_budget
+from views.stale_cover import cover, uncover
 
 Job = Callable[[threading.Event, Callable[[int, object], None]], object]
 PROGRESS_PER_SECOND = 30
@@ -267,6 +268,7 @@ class RenderSchedule(QObject):
             tab.renderer.cancel()  # whatever it was rendering is out of date too
             self._jobs.pop(tab.title, None)
             self._set_status(tab, 0, f"{tab.title}: not rendered, over the memory budget", refusal)
+            cover(tab.widget, f"Not rendered: what this tab shows is not of the current scene.\n\n{refusal}")
             self.refused.emit(refusal)
             return
         job = tab.job(scene, preview)
@@ -300,6 +302,7 @@ class RenderSchedule(QObject):
             return  # a full image of a superseded scene is never shown
         self.last_result = result
         caption = tab.show(result)
+        uncover(tab.widget)
         if preview:
             self._preview_shown[tab.title] = scene
             self._set_status(tab, 100, f"{tab.title}: preview (observer moving)", caption)
@@ -315,3 +318,4 @@ class RenderSchedule(QObject):
     def _failed(self, tab, message: str):
         self._jobs.pop(tab.title, None)
         self._set_status(tab, 0, f"{tab.title}: render failed", f"Render failed — {message}")
+        cover(tab.widget, f"Render failed: what this tab shows is not of the current scene.\n\n{message}")

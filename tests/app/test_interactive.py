@@ -18,6 +18,7 @@ from core import presets, scene_file, shapes
 from core.image_order.ray_tracing import render_trace
 from views.observer_keys import WALK_FRACTION
 from views.scene_view import FOV_STEP_DEG
+from views.stale_cover import covered_with
 
 
 def _wait_full(qtbot, win, name=None):
@@ -227,6 +228,7 @@ def test_a_failed_render_resets_the_progress_and_says_why(qtbot, window):
     qtbot.waitUntil(lambda: "failed" in window.progress.format(), timeout=RENDER_TIMEOUT_MS)
     assert window.progress.value() == 0
     assert "the image does not fit" in window.status_caption.text()
+    assert "the image does not fit" in covered_with(tab.widget)  # the tab's old pictures are marked stale
 
 
 def test_opening_a_smaller_scene_after_picking_a_buffer_pixel_clears_the_pick(qtbot, window, tmp_path):

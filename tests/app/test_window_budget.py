@@ -21,6 +21,7 @@ from window_helpers import RENDER_TIMEOUT_MS
 from app import render_budget
 from core import budget, presets, scene_file
 from core.scene import PointLight
+from views.stale_cover import covered_with
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -116,6 +117,7 @@ def test_a_scene_over_the_budget_is_refused_in_every_tab_and_a_smaller_image_ren
         assert window.progress.format() == f"{name}: not rendered, over the memory budget"
         assert "smaller Image size" in window.status_caption.text()
         assert not window.renders.busy(window.tab(name))
+        assert "the budget is 200 MB" in covered_with(window.tab(name).widget)  # no stale image as current
     assert shown == []
 
     window.show_tab("image order")
@@ -123,6 +125,7 @@ def test_a_scene_over_the_budget_is_refused_in_every_tab_and_a_smaller_image_ren
     qtbot.waitUntil(lambda: window.showing_full("image order"), timeout=RENDER_TIMEOUT_MS)
     assert window.tab("image order").widget.image.rgb.shape == (240, 320, 3)
     assert window.progress.format() == "Image order: done"
+    assert covered_with(window.tab("image order").widget) is None
 
 
 def test_previews_while_the_observer_moves_are_budgeted_too(window):
