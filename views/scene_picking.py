@@ -3,9 +3,10 @@
 - A left click that does not drag (the mouse moves at most :data:`CLICK_SLOP_PX`
   between press and release) casts one ray from the overview camera through
   the clicked point; the first object it meets becomes the model's selection
-  (:func:`core.image_order.picking.first_object_hit`), and a click on empty
-  space selects nothing.  A drag still turns the overview, and the observer's
-  eye and target keep their own drags (:class:`views.scene_view.SceneView`).
+  (:func:`core.image_order.picking.first_object_hit`), or a light whose small
+  sphere it meets nearer, and a click on empty space selects nothing.  A drag
+  still turns the overview, and the observer's eye and target keep their own drags
+  (:class:`views.scene_view.SceneView`).
 - The selected object or light is outlined by its bounding box, and a handle
   (a small sphere) floats just above it.  It is dragged like the eye and the
   target: in the plane through it that faces the overview camera.  The handle
@@ -20,17 +21,16 @@ import pyvista as pv
 from PySide6.QtCore import QEvent, QObject, QPointF, Qt, Signal
 
 from core import scene_editing
+from core.image_order.intersect_sphere import intersect_sphere
 from core.image_order.picking import first_object_hit
 from core.scene import Mesh
 from views import vtk_convert
-from views.scene_view import GRAB_RADIUS_PX, glyph_size
+from views.scene_view import GRAB_RADIUS_PX, LIGHT_MARKER, glyph_size
 
 SELECTION_COLOR = "#00e5c0"
 CLICK_SLOP_PX = 4
 POSITION_DECIMALS = 3
 """A dragged position is rounded to this many decimals (scene units), so the file stays readable."""
-LIGHT_MARKER = 0.18
-"""Radius (scene units) of the sphere that shows a light in the 3D pane."""
 
 
 def _translation(offset, scale: float = 1.0) -> np.ndarray:
@@ -138,13 +138,18 @@ class ScenePicker(QObject):
             self.move_requested.emit(item, position.tolist())
 
     def click(self, pos: QPointF) -> None:
-        """Select the object under the widget position ``pos`` (nothing if none); the eye
-        and the target are not objects."""
+        """Select the object or light under the widget position ``pos`` (nothing if none); the
+        eye and the target are not objects."""
         if self.view.grabbable_at(pos) is not None:
             return
         origin, direction = self.ray_under(pos)
-        hit = first_object_hit(self.model.scene.objects, origin, direction)
-        item = ("object", hit[0]) if hit is not None else None
+        scene = self.model.scene
+        hit = first_object_hit(scene.objects, origin, direction)
+        item, nearest = (("object", hit[0]), hit[1]) if hit is not None else (None, np.inf)
+        for index, light in enumerate(scene.lights):  # a light is drawn as a small sphere
+            crossing = intersect_sphere(origin, direction, light.position, LIGHT_MARKER)
+            if crossing.hit and crossing.t < nearest:
+                item, nearest = ("light", index), crossing.t
         self.model.set_selection(item)
         self.picked.emit(item)
 

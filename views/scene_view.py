@@ -50,6 +50,8 @@ GRAB_RADIUS_PX = 14
 """How close (pixels) the mouse must be to the eye or target to grab it."""
 FOV_STEP_DEG = 2.0
 """Viewing-angle change per mouse-wheel notch over the glyph."""
+LIGHT_MARKER = 0.18
+"""Radius (scene units) of the sphere that shows a light in the 3D pane (and that a click selects)."""
 FOV_RANGE_DEG = (1.0, 179.0)
 ENCLOSING_OPACITY = 0.25
 """A sphere the observer stands inside (as in the lecture's exercise) is drawn this translucent,
@@ -198,7 +200,7 @@ class SceneView(QWidget):
             self._object_actors.append(actor)
         for i, light in enumerate(scene.lights):
             actor = self.plotter.add_mesh(
-                pv.Sphere(radius=0.18, center=light.position),
+                pv.Sphere(radius=LIGHT_MARKER, center=light.position),
                 color="#fff6a0",
                 lighting=False,
                 name=f"light:{i}",

@@ -409,3 +409,18 @@ def test_dragging_the_handle_moves_the_object_in_one_undo_step(qtbot, window):
     assert model.selection == ("object", 0)
     editor.undo_action.trigger()
     assert np.allclose(_centre(model.scene.objects[0]), before)
+
+
+def test_clicking_a_light_in_the_3d_pane_selects_it(qtbot, window):
+    view, model = window.scene_view, window.model
+    light = np.asarray(model.scene.lights[0].position, float)
+    # Turn the overview towards the light (it may sit above the default framing), as a user would.
+    view.plotter.camera_position = [tuple(light + (4.0, 1.0, 4.0)), tuple(light), (0.0, 1.0, 0.0)]
+    view.plotter.reset_camera_clipping_range()
+    at = view.widget_pos(light)
+    assert view.plotter.rect().contains(at.toPoint())
+    qtbot.mouseClick(view.plotter, Qt.MouseButton.LeftButton, pos=at.toPoint())
+    assert model.selection == ("light", 0)
+    assert window.editor.picker.handle_center is not None
+    # The handle floats above the light's marker, which is what was clicked.
+    assert window.editor.picker.handle_center[1] > light[1]
