@@ -9,8 +9,8 @@
   (:class:`views.scene_view.SceneView`).
 - The selected object or light is outlined by its bounding box, and a handle
   (a small sphere) floats just above it.  It is dragged like the eye and the
-  target: in the plane through it that faces the overview camera.  The handle
-  and the outline follow the mouse; on release ``move_requested(item, position)``
+  target: in the plane through it that faces the overview camera.  The item,
+  its handle and its outline follow the mouse; on release ``move_requested(item, position)``
   asks once for the new position, so a whole drag is one edit.
 """
 
@@ -89,9 +89,12 @@ class ScenePicker(QObject):
         self.view.request_render()
 
     def _show_moved(self, offset) -> None:
-        """Draw the outline and the handle ``offset`` (world space) away from where the item is."""
+        """Draw the item, its outline and the handle ``offset`` (world space) away from where it is."""
         self._outline_actor.user_matrix = _translation(offset)
         self._handle.user_matrix = _translation(self.handle_center + offset, self._radius)
+        actor = self.view.actor_of(self.model.selection)
+        if actor is not None:
+            actor.user_matrix = _translation(offset)
 
     # ------------------------------------------------------------- mouse
     def _on_handle(self, pos: QPointF) -> bool:

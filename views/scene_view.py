@@ -212,6 +212,13 @@ class SceneView(QWidget):
         if self._framed_at is None or not self.model.scene_was_edited:  # an edit keeps the user's view
             self._frame(scene)
 
+    def actor_of(self, item):
+        """The actor that draws ``item`` of the scene (``("object", i)`` or ``("light", i)``), or None."""
+        if self._scene is None or item is None or item[0] not in ("object", "light"):
+            return None
+        index = item[1] + (len(self._scene.objects) if item[0] == "light" else 0)
+        return self._object_actors[index] if index < len(self._object_actors) else None
+
     def resizeEvent(self, event):
         """Frame the scene again for the new shape, unless the user has moved the view."""
         super().resizeEvent(event)

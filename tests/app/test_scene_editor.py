@@ -396,6 +396,9 @@ def test_dragging_the_handle_moves_the_object_in_one_undo_step(qtbot, window):
     qtbot.mousePress(view.plotter, Qt.MouseButton.LeftButton, pos=start.toPoint())
     for k in range(1, 9):
         qtbot.mouseMove(view.plotter, pos=(start + QPointF(5 * k, -2 * k)).toPoint())
+    # While dragging, the cube itself is drawn moved with its handle (the scene is not edited yet).
+    moved = np.asarray(view.view.actor_of(("object", 0)).user_matrix)[:3, 3]
+    assert np.linalg.norm(moved) > 0.1 and editor.stack.count() == 0
     end = start + QPointF(40, -16)
     qtbot.mouseRelease(view.plotter, Qt.MouseButton.LeftButton, pos=end.toPoint())
     after = _centre(model.scene.objects[0])
