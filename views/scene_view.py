@@ -103,7 +103,8 @@ class SceneView(QWidget):
         layout = QVBoxLayout(self)
         layout.setContentsMargins(0, 0, 0, 0)
         layout.addWidget(self.plotter)
-        self._object_actors: list = []
+        self._object_actors: list = []  # the scene's objects', then its lights' actors, in order
+        self._kept: list[tuple] = []  # (key, object or light, actor) of what _object_actors draw
         self._overlays: dict[str, list] = {}  # name -> [(polydata, actor, style)]
         self._visible_overlays: set[str] | None = None  # None: all
         self._scene: Scene | None = None
@@ -176,41 +177,45 @@ class SceneView(QWidget):
         self._draw()
 
     def set_scene(self, scene: Scene) -> None:
-        """Draw every object and light, then the observer; frame the whole."""
-        for actor in self._object_actors:
-            self.plotter.remove_actor(actor, render=False)
-        self._object_actors = []
-        for obj in scene.objects:
-            m = obj.material
-            opacity = m.opacity
-            eye_inside = isinstance(obj, Sphere) and np.linalg.norm(
-                np.subtract(scene.camera.eye, obj.center)) < obj.radius
-            if eye_inside:
-                opacity = min(opacity, ENCLOSING_OPACITY)  # the observer stands inside: see through
-            actor = self.plotter.add_mesh(
-                vtk_convert.object_polydata(obj),
-                color=m.color,
-                opacity=opacity,
-                smooth_shading=False,
-                show_edges=False,
-                specular=m.specular,
-                name=f"object:{id(obj)}",
-                render=False,
-            )
+        """Draw every object and light, then the observer; frame the whole.
+
+        An object or light that is the same as in the scene drawn before (an edit
+        replaces only what it changes) keeps its actor; only the others are built.
+        """
+        before: dict[tuple, list] = {}
+        for key, thing, actor in self._kept:
+            before.setdefault(key, []).append((thing, actor))
+        self._kept, self._object_actors = [], []
+        drawn = [(obj, False) for obj in scene.objects] + [(light, True) for light in scene.lights]
+        for thing, is_light in drawn:
+            eye_inside = isinstance(thing, Sphere) and np.linalg.norm(
+                np.subtract(scene.camera.eye, thing.center)) < thing.radius
+            key = (id(thing), eye_inside)  # ``before`` holds its things: an id there is that thing
+            if before.get(key):
+                actor = before[key].pop()[1]
+            elif is_light:
+                actor = self.plotter.add_mesh(pv.Sphere(radius=LIGHT_MARKER, center=thing.position),
+                                              color="#fff6a0", lighting=False, name=f"light:{id(thing)}",
+                                              render=False)
+            else:
+                actor = self._add_object(thing, eye_inside)
+            self._kept.append((key, thing, actor))
             self._object_actors.append(actor)
-        for i, light in enumerate(scene.lights):
-            actor = self.plotter.add_mesh(
-                pv.Sphere(radius=LIGHT_MARKER, center=light.position),
-                color="#fff6a0",
-                lighting=False,
-                name=f"light:{i}",
-                render=False,
-            )
-            self._object_actors.append(actor)
+        for left in before.values():
+            for _, actor in left:
+                self.plotter.remove_actor(actor, render=False)
         self._scene = scene
         self.set_camera(scene.camera)
         if self._framed_at is None or not self.model.scene_was_edited:  # an edit keeps the user's view
             self._frame(scene)
+
+    def _add_object(self, obj, eye_inside: bool):
+        m = obj.material
+        # The observer standing inside a sphere sees through it.
+        opacity = min(m.opacity, ENCLOSING_OPACITY) if eye_inside else m.opacity
+        return self.plotter.add_mesh(vtk_convert.object_polydata(obj), color=m.color, opacity=opacity,
+                                     smooth_shading=False, show_edges=False, specular=m.specular,
+                                     name=f"object:{id(obj)}", render=False)
 
     def actor_of(self, item):
         """The actor that draws ``item`` of the scene (``("object", i)`` or ``("light", i)``), or None."""

@@ -127,6 +127,21 @@ def test_add_a_sphere_colour_it_undo_twice_redo_once(qtbot, window):
     qtbot.waitUntil(lambda: window.showing_full("image order"), timeout=60_000)  # and it was rendered
 
 
+def test_an_edit_redraws_only_what_it_changed_in_the_3d_pane(qtbot, window):
+    editor, model = window.editor, window.model
+    before = dict(window.scene_view.plotter.renderer.actors)
+    kept = [before[n] for n in before if n.startswith(("object:", "light:"))]
+    assert len(kept) == len(model.scene.objects) + len(model.scene.lights)
+    assert editor.change_field(("object", 1), "material.color", [0.1, 0.9, 0.2])
+    assert _drawn_in(window, (0.1, 0.9, 0.2))
+    after = window.scene_view.plotter.renderer.actors.values()
+    # The cube, the ground and the light keep their actors; the cone's is new, in its new colour.
+    assert sum(any(a is k for a in after) for k in kept) == len(kept) - 1
+    assert len(_object_actors(window)) == 3
+    editor.undo_action.trigger()
+    assert not _drawn_in(window, (0.1, 0.9, 0.2)) and len(_object_actors(window)) == 3
+
+
 def test_a_bad_value_is_refused_with_the_loaders_message_and_the_scene_kept(qtbot, window):
     model, panel = window.model, window.editor.panel
     model.set_selection(("object", 0))
