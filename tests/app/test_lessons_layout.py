@@ -2,7 +2,10 @@
 
 import numpy as np
 import pytest
+from PySide6.QtCore import QRect
+from PySide6.QtGui import QScreen
 from vtkmodules.vtkRenderingCore import vtkTextRenderer
+from window_helpers import open_window
 
 from core.lessons import shipped_lessons
 
@@ -62,4 +65,37 @@ def test_frustum_lessons_keep_their_labels_inside_the_3d_pane_while_presenting(q
     window.presentation.set_scale(scale)
     qtbot.waitUntil(lambda: window.scene_view.view.line_scale == scale)
     _check_frustum_lessons(qtbot, window)
+    window.presentation.set_presenting(False)
+
+
+LINES = 10
+"""At 1280x720 and text x2 a lesson step shows at least this many lines of its words (or all of them)."""
+
+
+def _words_shown(panel) -> int:
+    return panel.scroll.viewport().height()
+
+
+def _words_short_by(panel) -> int:
+    """How much taller the words would be than the room they have (by Qt's own layout)."""
+    viewport = panel.scroll.viewport()
+    return panel.scroll.widget().layout().totalHeightForWidth(viewport.width()) - viewport.height()
+
+
+def test_at_1280x720_and_text_x2_every_lesson_step_shows_its_words_whole_or_ten_lines(qtbot, monkeypatch):
+    screen = QRect(0, 0, 1280, 720)
+    monkeypatch.setattr(QScreen, "availableGeometry", lambda self: screen)
+    monkeypatch.setattr(QScreen, "geometry", lambda self: screen)
+    window = open_window(qtbot)
+    window.presentation.set_presenting(True)
+    window.presentation.set_scale(2.0)
+    panel = window.lesson_panel
+    line = panel.text.fontMetrics().lineSpacing()
+    for row, lesson in enumerate(shipped_lessons()):
+        for k, step in enumerate(lesson.steps):
+            panel.select(row, k)
+            qtbot.waitUntil(lambda: _words_shown(panel) >= LINES * line or _words_short_by(panel) <= 0,
+                            timeout=5000)
+            if "scene 3D" in step.panes:  # the 3D pane keeps its share all the same
+                assert window.scene_pane.height() >= 0.25 * window.centralWidget().height(), (lesson.id, k)
     window.presentation.set_presenting(False)
