@@ -62,5 +62,6 @@ def _words_short_by(panel, wider: int) -> int:
     """How many pixels taller the lesson panel's words area must be to show the step whole
     (negative: how many it has to spare) once the panel is ``wider`` pixels wider."""
     viewport = panel.scroll.viewport()
-    words = panel.scroll.widget()
-    return words.layout().totalHeightForWidth(viewport.width() + wider) - viewport.height()
+    words = panel.scroll.widget()  # as tall as its lines at that width, and never below its minimum
+    tall = max(words.layout().totalHeightForWidth(viewport.width() + wider), words.minimumSizeHint().height())
+    return tall - viewport.height()

@@ -22,14 +22,17 @@ import numpy as np
 
 MARGIN = 0.04
 """Room left between a point and the pane's edge, as a share of the pane's half-width (or height)."""
+LEAST_ROOM = 0.1
+"""A label's anchor may move at least this far either way, in pane units, however large the label."""
 
 
 def label_bounds(width_px: float, height_px: float, pane_px: tuple[float, float],
                  margin: float = MARGIN) -> np.ndarray:
     """Where a label's anchor may go, ``[[x_lo, x_hi], [y_lo, y_hi]]`` in ``[-1, 1]`` pane units,
     for a text ``width_px`` × ``height_px`` centred above its anchor in a pane ``pane_px`` (w, h)."""
-    half_w = min(width_px / pane_px[0], 1.0 - margin)  # a text wider than the pane: keep it centred
-    tall = min(2.0 * height_px / pane_px[1], 2.0 - 2 * margin)
+    # A text (nearly) as wide or tall as the pane keeps a little room to move, so a framing exists.
+    half_w = min(width_px / pane_px[0], 1.0 - margin - LEAST_ROOM)
+    tall = min(2.0 * height_px / pane_px[1], 2.0 - 2 * margin - 2 * LEAST_ROOM)
     return np.array([[-1 + margin + half_w, 1 - margin - half_w], [-1 + margin, 1 - margin - tall]])
 
 
