@@ -432,7 +432,8 @@ class CostPanel(QWidget):
 
         rows = self.rows()
         self._dark = plot_theme.is_dark(self)
-        self.plot_figure.set_facecolor(plot_theme.background(self._dark))
+        for figure in (self.plot_figure, self.image_figure):  # the images' too, before any is shown
+            figure.set_facecolor(plot_theme.background(self._dark))
         with matplotlib.rc_context(plot_theme.plot_style(self._dark)):
             self._lines = draw_cost_plot(self.plot_figure, rows, sorted(self._points))
             ax = self.plot_figure.axes[0]
@@ -444,6 +445,7 @@ class CostPanel(QWidget):
                 ax.text(0.5, 0.5, "the curves fill in here, point by point", transform=ax.transAxes,
                         ha="center", va="center", color="gray")
         self.canvas.draw_idle()
+        self.image_canvas.draw_idle()
 
     def _on_pick(self, event) -> None:
         indices = self._lines.get(event.artist)

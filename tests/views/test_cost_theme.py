@@ -47,6 +47,7 @@ def test_the_cost_plot_turns_dark_in_high_contrast_and_light_again(qtbot, themed
     assert to_rgb(ax.title.get_color()) == (1.0, 1.0, 1.0)
     assert all(to_rgb(t.get_color()) == (1.0, 1.0, 1.0) for t in ax.get_yticklabels())
     assert _canvas_mean(panel) < 40  # a black picture with light text, not a white one
+    assert to_rgb(panel.image_figure.get_facecolor()) == (0.0, 0.0, 0.0)  # no point shown yet, black too
     presentation.set_high_contrast(False)
     qtbot.waitUntil(lambda: to_rgb(panel.plot_figure.get_facecolor()) == (1.0, 1.0, 1.0))
     assert to_rgb(panel.plot_figure.axes[0].xaxis.label.get_color()) == (0.0, 0.0, 0.0)
