@@ -186,7 +186,8 @@ def _picture(scene, args) -> np.ndarray:
         cam = scene.camera
         return zbuffer_sheet(render_raster(scene).depth, cam.near, cam.far)
     if args.what == "four-views":
-        return four_views(scene, lambda view: render(view, args), args.mode)
+        traced = None if args.mode == "raster" else lambda view: render(view, args)
+        return four_views(scene, args.mode, traced)
     return _comparison(scene, args)
 
 

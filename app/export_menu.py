@@ -65,15 +65,14 @@ NO_PICKED_PIXEL = "No picked pixel: click a pixel of the Image order tab's image
 def _orbit_pictures(model) -> dict:
     """Pane name -> (what a frame shows, ``picture(scene)`` with the window's current settings)."""
     from core.image_order.ray_tracing import render_trace
-    from core.object_order.pipeline import RasterSettings, render_raster
+    from core.object_order.pipeline import render_raster
 
     trace = model.trace_settings
     raster = replace(model.raster_settings, record_steps=False)
     return {
         "Image order": ("the traced image", lambda scene: render_trace(scene, trace).color),
         "Object order": ("the image memory", lambda scene: render_raster(scene, raster).color),
-        "Four views": ("the four views", lambda scene: four_views(
-            scene, lambda view: render_raster(view, RasterSettings()).color, "raster")),
+        "Four views": ("the four views", four_views),
     }
 
 

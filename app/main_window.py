@@ -222,6 +222,7 @@ class MainWindow(QMainWindow):
         """Show lesson step ``step`` (a :class:`core.lessons.LessonStep`); see :mod:`app.lesson_runner`."""
         if self.editor.may_replace_scene():
             self.lessons.apply(step)
+            self._refit()  # the step's words may need another share of the left column
 
     def _presenting_changed(self, presenting: bool) -> None:
         # Esc leaves full screen while presenting; one key, one meaning.

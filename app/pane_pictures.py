@@ -108,8 +108,8 @@ def widget_pictures(tab: str, widget: QWidget) -> list[PanePicture]:
         if isinstance(pane, ImageGrid):
             views = list(pane.views.values())
 
-            def sheet(grid=pane, views=views):
-                panels = [Panel(_pane_title(v, grid), shown_rgb(v)) for v in views]
+            def sheet(grid=pane):
+                panels = [Panel(grid.titles[key], shown_rgb(v)) for key, v in grid.views.items()]
                 return compose(panels, grid.layout().columnCount())
 
             pictures.append(_picture(tab, f"All {len(views)} panes as one picture", views, widget, sheet))

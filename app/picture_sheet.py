@@ -155,17 +155,20 @@ def zbuffer_sheet(depth: np.ndarray, near: float, far: float) -> np.ndarray:
                                 f"plane (black) to the far plane (white); {span}."])
 
 
-def four_views(scene, render, pipeline: str) -> np.ndarray:
+def four_views(scene, pipeline: str = "raster", render=None) -> np.ndarray:
     """The front, side and top orthographic views and the observer's view of ``scene`` in one sheet.
 
-    ``render(scene) -> (H, W, 3)`` linear RGB draws each view; ``pipeline``
-    names it in the caption.
+    By the ``"raster"`` pipeline each view is drawn as the window's Four views
+    tab draws it (:func:`core.object_order.four_views.inked_view`), under the
+    tab's titles; another pipeline needs ``render(scene) -> (H, W, 3)`` linear
+    RGB.  The caption names the pipeline.
     """
-    from core.object_order.three_views import orthographic_views
+    from core.object_order.four_views import PANES, four_cameras, inked_view
 
-    cam = scene.camera
-    views = orthographic_views(scene, cam.width, cam.height)
-    panels = [Panel(f"{name} view (orthographic)", render(replace(scene, camera=camera)))
-              for name, camera in views.items()]
-    panels.append(Panel(f"observer's view ({cam.projection})", render(scene)))
+    if render is None:
+        def render(view):
+            return inked_view(view, view.camera)[0]
+
+    cameras = four_cameras(scene)
+    panels = [Panel(title, render(replace(scene, camera=cameras[key]))) for key, title in PANES]
     return compose(panels, 2, [f"Pipeline: {pipeline}."])

@@ -44,7 +44,7 @@ from core import budget
 from core.camera import Camera
 from core.compare import compare
 from core.image_order.ray_tracing import TraceSettings, merge_band_stats, render_trace
-from core.object_order import outlines, three_views
+from core.object_order import four_views
 from core.object_order.pipeline import RasterSettings, render_raster
 from core.scene import Mesh, Scene
 from views.compare_panel import ComparePanel, ComparisonImages
@@ -243,8 +243,7 @@ class FourViewsTab:
 
     title = "Four views"
     overlays = ()
-    PANES = [("front", "Front view (orthographic)"), ("side", "Side view (orthographic)"),
-             ("top", "Top view (orthographic)"), ("observer", "Observer's view")]
+    PANES = list(four_views.PANES)
 
     def __init__(self, model):
         self.model = model
@@ -255,10 +254,9 @@ class FourViewsTab:
         return _cost(scene, preview, [("raster",)] * views, views)
 
     def job(self, scene: Scene, preview: bool):
-        cam = scene.camera
-        cameras = {**three_views.orthographic_views(scene, cam.width, cam.height), "observer": cam}
+        cameras = four_views.four_cameras(scene)
         if preview:  # the three axis views do not depend on the observer
-            cameras = {"observer": cam}
+            cameras = {"observer": scene.camera}
 
         def run(cancelled, progress):
             images = {}
@@ -270,9 +268,8 @@ class FourViewsTab:
                     rgb, seconds = _raster_preview(view)
                     images[key] = (display_image(rgb, PREVIEW), seconds)
                 else:
-                    raster = render_raster(view, RasterSettings())
-                    color = outlines.outlined(raster.color, raster.depth, raster.meshes, camera)
-                    images[key] = (display_image(color), sum(raster.stats["times"].values()))
+                    color, seconds = four_views.inked_view(scene, camera)
+                    images[key] = (display_image(color), seconds)
                 progress(round(100 * (i + 1) / len(cameras)), None)
             return images
 

@@ -5,9 +5,12 @@ the 3D scene sits above the controls and the lessons.  :func:`fit_window`
 keeps that order at every size and text scale: the left column takes
 :data:`LEFT_SHARE` of the width (a little more at larger text, so the
 lesson's words keep a readable line length) and the 3D pane
-:data:`SCENE_SHARE` of the left column's height; the window never grows
-beyond its screen's available area.  The window calls it when it is shown,
-resized, or its text scale changes.
+:data:`SCENE_SHARE` of the left column's height, less when the lesson
+step's words need the room (large text on a small screen), but never less
+than :data:`MIN_SCENE_SHARE` (then the column widens, up to
+:data:`MAX_LEFT_SHARE`); the window never grows beyond its screen's
+available area.  The window calls it when it is shown, resized, its text
+scale changes or a lesson step is shown.
 """
 
 from __future__ import annotations
@@ -18,6 +21,10 @@ LEFT_SHARE = {1.0: 0.28, 1.5: 0.31, 2.0: 0.34}
 """Share of the window's width for the left column (3D pane, controls, lessons), by text scale."""
 SCENE_SHARE = 0.42
 """Share of the left column's height for the 3D pane (the rest: controls and lessons)."""
+MIN_SCENE_SHARE = 0.3
+"""The least share of the left column's height the 3D pane keeps when a lesson's words need room."""
+MAX_LEFT_SHARE = 0.42
+"""The widest share the left column takes when a lesson's words need room (large text, small screen)."""
 
 
 def left_share(scale: float) -> float:
@@ -30,10 +37,31 @@ def fit_window(window, scale: float = 1.0) -> None:
     available = window.screen().availableGeometry()
     if window.width() > available.width() or window.height() > available.height():
         window.resize(min(window.width(), available.width()), min(window.height(), available.height()))
-    docks = [window.scene_pane, window.lesson_dock]
-    window.resizeDocks([window.lesson_dock], [round(window.width() * left_share(scale))],
-                       Qt.Orientation.Horizontal)
+    column = window.centralWidget().height()
+    least_scene = round(column * MIN_SCENE_SHARE)
+    share, short = left_share(scale), 0
+    # The lesson step's words shown whole, if the 3D pane can spare the room, else if the left
+    # column may widen that much (the docks take their new sizes after this call).
+    words = window.lesson_panel.isVisible() and window.scene_pane.isVisible()
+    while words:
+        wider = round(window.width() * share) - window.lesson_dock.width()
+        short = _words_short_by(window.lesson_panel, wider)
+        if window.scene_pane.height() - short >= least_scene or share >= MAX_LEFT_SHARE:
+            break
+        share = min(share + 0.02, MAX_LEFT_SHARE)
+    window.resizeDocks([window.lesson_dock], [round(window.width() * share)], Qt.Orientation.Horizontal)
     if window.scene_pane.isVisible():
-        column = window.centralWidget().height()
         scene = round(column * SCENE_SHARE)
-        window.resizeDocks(docks, [scene, column - scene], Qt.Orientation.Vertical)
+        if words:
+            scene = max(least_scene, min(scene, window.scene_pane.height() - short))
+        window.resizeDocks([window.scene_pane, window.lesson_dock], [scene, column - scene],
+                           Qt.Orientation.Vertical)
+
+
+def _words_short_by(panel, wider: int) -> int:
+    """How many pixels taller the lesson panel's words area must be to show the step whole
+    (negative: how many it has to spare) once the panel is ``wider`` pixels wider."""
+    viewport = panel.scroll.viewport()
+    words = panel.scroll.widget()  # as tall as its lines at that width, and never below its minimum
+    tall = max(words.layout().totalHeightForWidth(viewport.width() + wider), words.minimumSizeHint().height())
+    return tall - viewport.height()

@@ -23,7 +23,7 @@ import threading
 from dataclasses import replace
 
 import numpy as np
-from PySide6.QtCore import QObject, QRunnable, QSize, Qt, QThreadPool, Signal
+from PySide6.QtCore import QEvent, QObject, QRunnable, QSize, Qt, QThreadPool, Signal
 from PySide6.QtWidgets import (
     QComboBox,
     QDoubleSpinBox,
@@ -58,6 +58,7 @@ from core.accuracy.sweep import (
 )
 from core.scene import Scene
 from core.srgb import to_srgb8
+from views import plot_theme
 
 MODES = [("raytrace", "Ray tracing"), ("raycast", "Ray casting"), ("raster", "Rasterization")]
 #: The sweep's image is at most this wide (the scene's aspect kept), so a sweep takes minutes, not hours.
@@ -206,6 +207,7 @@ class CostPanel(QWidget):
         self.explanation.setSizePolicy(QSizePolicy.Policy.Preferred, QSizePolicy.Policy.Minimum)
 
         self.plot_figure = self.canvas = self.image_figure = self.image_canvas = None  # see _make_canvases
+        self._dark = False  # the figures were drawn in the dark theme
         self._plot_box, self._image_box = _CanvasBox(), _CanvasBox()
         self._plot_box.setMinimumSize(240, 200)
         self._image_box.setMinimumSize(200, 160)
@@ -246,6 +248,16 @@ class CostPanel(QWidget):
     def showEvent(self, event) -> None:
         self._make_canvases()
         super().showEvent(event)
+
+    def changeEvent(self, event) -> None:  # noqa: N802 (Qt's name)
+        """The plot and the images follow the window's theme (dark in high contrast)."""
+        super().changeEvent(event)
+        if event.type() == QEvent.Type.PaletteChange and self.canvas is not None:
+            dark = plot_theme.is_dark(self)
+            if dark != self._dark:
+                self._draw_plot()
+                if self.selected is not None and self.selected in self._points:
+                    self.show_point(self.selected)
 
     def _make_canvases(self) -> None:
         """Make the plot's and the images' figures and canvases, once (matplotlib loads here)."""
@@ -416,16 +428,24 @@ class CostPanel(QWidget):
     def _draw_plot(self) -> None:
         if self.canvas is None:
             return  # drawn when the canvas is made
+        import matplotlib
+
         rows = self.rows()
-        self._lines = draw_cost_plot(self.plot_figure, rows, sorted(self._points))
-        ax = self.plot_figure.axes[0]
-        if self.selected is not None and self.selected in self._points:
-            at, x, y = point_position(self.plot_figure, self._points[self.selected].row)
-            at.plot([x], [y], "x", color="black", markersize=10, markeredgewidth=2)
-        if not rows:
-            ax.text(0.5, 0.5, "the curves fill in here, point by point", transform=ax.transAxes,
-                    ha="center", va="center", color="gray")
+        self._dark = plot_theme.is_dark(self)
+        for figure in (self.plot_figure, self.image_figure):  # the images' too, before any is shown
+            figure.set_facecolor(plot_theme.background(self._dark))
+        with matplotlib.rc_context(plot_theme.plot_style(self._dark)):
+            self._lines = draw_cost_plot(self.plot_figure, rows, sorted(self._points))
+            ax = self.plot_figure.axes[0]
+            if self.selected is not None and self.selected in self._points:
+                at, x, y = point_position(self.plot_figure, self._points[self.selected].row)
+                at.plot([x], [y], "x", color=plot_theme.foreground(self._dark), markersize=10,
+                        markeredgewidth=2)
+            if not rows:
+                ax.text(0.5, 0.5, "the curves fill in here, point by point", transform=ax.transAxes,
+                        ha="center", va="center", color="gray")
         self.canvas.draw_idle()
+        self.image_canvas.draw_idle()
 
     def _on_pick(self, event) -> None:
         indices = self._lines.get(event.artist)
@@ -443,6 +463,8 @@ class CostPanel(QWidget):
 
     def show_point(self, index: int) -> None:
         """Show setting ``index``'s image, the reference and the error map side by side."""
+        import matplotlib
+
         self._make_canvases()
         point = self._points[index]
         self.selected = index
@@ -456,20 +478,22 @@ class CostPanel(QWidget):
             panels.append((point.samples, f"samples per pixel\n{point.row.samples_per_pixel:.2f} on average",
                            "viridis"))
         self.image_figure.clear()
-        cols = 2
-        for k, (image, title, cmap) in enumerate(panels):
-            ax = self.image_figure.add_subplot(2, cols, k + 1)
-            if cmap == "magma":
-                shown = ax.imshow(image, cmap=cmap, vmin=0.0, vmax=1.0, interpolation="nearest")
-            elif cmap:
-                shown = ax.imshow(image, cmap=cmap, interpolation="nearest")
-            else:
-                shown = ax.imshow(image, interpolation="nearest")
-            if cmap:
-                self.image_figure.colorbar(shown, ax=ax, shrink=0.8)
-            ax.set_title(title, fontsize=9)
-            ax.set_xticks([])
-            ax.set_yticks([])
+        dark = plot_theme.is_dark(self)
+        self.image_figure.set_facecolor(plot_theme.background(dark))
+        with matplotlib.rc_context(plot_theme.plot_style(dark)):
+            for k, (image, title, cmap) in enumerate(panels):
+                ax = self.image_figure.add_subplot(2, 2, k + 1)
+                if cmap == "magma":
+                    shown = ax.imshow(image, cmap=cmap, vmin=0.0, vmax=1.0, interpolation="nearest")
+                elif cmap:
+                    shown = ax.imshow(image, cmap=cmap, interpolation="nearest")
+                else:
+                    shown = ax.imshow(image, interpolation="nearest")
+                if cmap:
+                    self.image_figure.colorbar(shown, ax=ax, shrink=0.8)
+                ax.set_title(title, fontsize=9)
+                ax.set_xticks([])
+                ax.set_yticks([])
         self.image_canvas.draw_idle()
         self._draw_plot()
         self._show_explanation(point.row.knob)

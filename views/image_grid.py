@@ -19,6 +19,7 @@ class ImageGrid(QWidget):
         """``panes`` are ``(key, title)`` pairs, laid out row by row."""
         super().__init__(parent)
         self.views: dict[str, ImageView] = {}
+        self.titles: dict[str, str] = dict(panes)
         self.captions: dict[str, QLabel] = {}
         grid = QGridLayout(self)
         grid.setContentsMargins(6, 6, 6, 6)

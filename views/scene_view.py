@@ -31,12 +31,13 @@ import numpy as np
 import pyvista as pv
 from PySide6.QtCore import QEvent, QObject, QPointF, Qt, QTimer
 from PySide6.QtWidgets import QVBoxLayout, QWidget
-from vtkmodules.vtkRenderingCore import vtkActor2D
+from vtkmodules.vtkRenderingCore import vtkActor2D, vtkTextRenderer
 from vtkmodules.vtkRenderingLabel import vtkLabeledDataMapper
 
 from core.camera import Camera
 from core.scene import Scene, Sphere
 from views import vtk_convert
+from views.framing import MARGIN, fit_view, label_bounds
 from views.image_plotter import ImagePlotter
 from views.scene_colors import FRUSTUM_COLOR, SCREEN_COLOR
 
@@ -53,6 +54,8 @@ FOV_STEP_DEG = 2.0
 LIGHT_MARKER = 0.18
 """Radius (scene units) of the sphere that shows a light in the 3D pane (and that a click selects)."""
 FOV_RANGE_DEG = (1.0, 179.0)
+FRAMED_OVERLAYS = ("frustum",)
+"""Overlays the pane's framing keeps inside it, their labels whole (what a lesson talks about)."""
 ENCLOSING_OPACITY = 0.25
 """A sphere the observer stands inside (as in the lecture's exercise) is drawn this translucent,
 so that the observer and its rays inside stay visible."""
@@ -109,6 +112,7 @@ class SceneView(QWidget):
         self._visible_overlays: set[str] | None = None  # None: all
         self._scene: Scene | None = None
         self._framed_at = None  # the overview camera _frame chose, until the user moves it
+        self._view: dict | None = None  # the overview camera look_from was given, if any
         self._render_timer = QTimer(self)
         self._render_timer.setSingleShot(True)
         self._render_timer.setInterval(FRAME_MS)
@@ -207,6 +211,7 @@ class SceneView(QWidget):
         self._scene = scene
         self.set_camera(scene.camera)
         if self._framed_at is None or not self.model.scene_was_edited:  # an edit keeps the user's view
+            self._view = None
             self._frame(scene)
 
     def _add_object(self, obj, eye_inside: bool):
@@ -314,6 +319,8 @@ class SceneView(QWidget):
         for actor in self.plotter.renderer.actors.values():
             self._scale_actor(actor)
         self._add_axes()
+        if self._scene is not None and self.plotter.camera_position == self._framed_at:
+            self._frame(self._scene)  # larger labels need more room
         self.request_render()
 
     def _add_axes(self) -> None:
@@ -385,49 +392,80 @@ class SceneView(QWidget):
 
     def look_from(self, view) -> None:
         """Place the overview camera: ``view`` maps ``position``, ``focal_point`` and ``up``
-        (world space, scene units); empty, the pane frames the scene and observer itself."""
-        if view:
-            self.plotter.camera_position = [tuple(view["position"]), tuple(view["focal_point"]),
-                                            tuple(view.get("up", (0.0, 1.0, 0.0)))]
-            self.plotter.reset_camera_clipping_range()
-        elif self._scene is not None:
+        (world space, scene units); empty, the pane frames the scene and observer itself.
+        While a :data:`FRAMED_OVERLAYS` overlay (the frustum) is shown, the camera looks the
+        way ``view`` says but stands where that overlay and its labels fit in the pane."""
+        self._view = dict(view) if view else None
+        if self._scene is not None:
             self._frame(self._scene)
         self.request_render()
 
     def _frame(self, scene: Scene) -> None:
-        """Place the overview camera beside the observer, seeing it and the objects.
+        """Place the overview camera as :meth:`look_from` was told, or beside the observer.
 
-        The far part of the frustum may leave the view; the objects, the eye
-        and the screen rectangle stay inside whatever the pane's shape.
+        Beside the observer, it sees the eye, the screen rectangle and the
+        objects, and the frustum with its labels when that overlay is shown;
+        the rest of the frustum may leave the view.
         """
-        cam = scene.camera
-        points = [cam.eye, cam.target, *cam.screen_corners()]
-        for obj in scene.objects:
-            center, radius = vtk_convert.bounding_sphere(obj)
-            points += [center - radius, center + radius]
-        points = np.array(points)
-        center = (points.min(axis=0) + points.max(axis=0)) / 2
-        radius = np.linalg.norm(points - center, axis=1).max()
-        side = np.cross(cam.forward, (0.0, 1.0, 0.0))
-        side = side / (np.linalg.norm(side) or 1.0)
-        direction = side + np.array([0.0, 0.7, 0.0]) - cam.forward * 0.6
-        direction /= np.linalg.norm(direction)
-        view_angle = np.radians(30.0)
-        aspect = max(self.plotter.width(), 1) / max(self.plotter.height(), 1)
-        half = min(view_angle / 2, np.arctan(np.tan(view_angle / 2) * aspect))
-        distance = radius / np.sin(half) * 0.8  # the bounding sphere is loose: its box corners may leave
-        self.plotter.camera_position = [
-            tuple(center + direction * distance), tuple(center), (0.0, 1.0, 0.0)
-        ]
-        self.plotter.camera.view_angle = np.degrees(view_angle)
+        view = self._view
+        framed = [name for name in FRAMED_OVERLAYS if name in self.overlay_names()]
+        if view and not framed:
+            self.plotter.camera_position = [tuple(view["position"]), tuple(view["focal_point"]),
+                                            tuple(view.get("up", (0.0, 1.0, 0.0)))]
+        else:
+            cam = scene.camera
+            if view:
+                direction = np.subtract(view["focal_point"], view["position"])
+                up = view.get("up", (0.0, 1.0, 0.0))
+            else:
+                side = np.cross(cam.forward, (0.0, 1.0, 0.0))
+                side = side / (np.linalg.norm(side) or 1.0)
+                direction = cam.forward * 0.6 - side - np.array([0.0, 0.7, 0.0])
+                up = (0.0, 1.0, 0.0)
+            points = [cam.eye, cam.target, *cam.screen_corners()]
+            for obj in scene.objects:
+                points += list(_box_corners(obj))
+            bounds = [[[-1 + MARGIN, 1 - MARGIN]] * 2] * len(points)
+            for name in framed:
+                for poly, actor, style in self._overlays[name]:
+                    points += list(poly.points)
+                    if "label_size" in style:
+                        bounds += self._label_bounds(poly, actor)
+                    else:
+                        bounds += [bounds[0]] * poly.n_points
+            self.plotter.camera.view_angle = 30.0
+            aspect = max(self.plotter.width(), 1) / max(self.plotter.height(), 1)
+            self.plotter.camera_position = [tuple(v) for v in fit_view(
+                points, direction, up, 30.0, aspect, bounds)]
         self.plotter.reset_camera_clipping_range()
         self._framed_at = self.plotter.camera_position
+
+    def _label_bounds(self, poly: pv.PolyData, actor) -> list:
+        """Where each label of ``poly`` (drawn by ``actor``) may be anchored, whole in the pane."""
+        ratio = self.plotter.devicePixelRatioF()
+        pane = (max(self.plotter.width(), 1) * ratio, max(self.plotter.height(), 1) * ratio)
+        text = actor.GetMapper().GetLabelTextProperty()
+        measure, box = vtkTextRenderer(), [0, 0, 0, 0]
+        bounds = []
+        for label in poly.point_data["labels"]:
+            measure.GetBoundingBox(text, str(label), box, self.plotter.ren_win.GetDPI())
+            bounds.append(label_bounds(box[1] - box[0] + 4, box[3] - box[2] + 4, pane).tolist())
+        return bounds
 
     def close(self) -> bool:
         self._render_timer.stop()
         self._smooth_timer.stop()
         self.plotter.close()
         return super().close()
+
+
+def _box_corners(obj) -> np.ndarray:
+    """The 8 corners of a box around ``obj``."""
+    if isinstance(obj, Sphere):
+        low, high = np.subtract(obj.center, obj.radius), np.add(obj.center, obj.radius)
+    else:
+        low, high = obj.vertices.min(axis=0), obj.vertices.max(axis=0)
+    return np.array([[(low, high)[i >> k & 1][k] for k in range(3)] for i in range(8)])
 
 
 class _MouseGrip(QObject):

@@ -1,0 +1,49 @@
+"""matplotlib figures in the window's colours: light as usual, or dark in the high-contrast theme.
+
+A widget that draws with matplotlib asks :func:`is_dark` of its own palette
+(the high-contrast style sheet turns it black, see :mod:`views.presentation`)
+and draws inside ``matplotlib.rc_context(plot_style(dark))``: the figure,
+axes, text, ticks, grid and legend take the theme's colours, and the colour
+cycle (``"C0"``, ``"C1"``, ...) becomes one that reads on black.
+"""
+
+from __future__ import annotations
+
+from PySide6.QtGui import QPalette
+from PySide6.QtWidgets import QWidget
+
+DARK_BACKGROUND = "#000000"
+DARK_FOREGROUND = "#ffffff"
+LIGHT_BACKGROUND = "#ffffff"
+LIGHT_FOREGROUND = "#000000"
+DARK_CYCLE = ["#4fc3ff", "#ffb000", "#5cff7a", "#ff6b6b", "#d29bff", "#ffd400", "#ff8ad8", "#e0e0e0",
+              "#c6ff3d", "#3dfff2"]
+"""Colours that read on black (each at least 7:1 against it), for the figures' colour cycle."""
+
+
+def is_dark(widget: QWidget) -> bool:
+    """Whether ``widget`` is drawn on a dark background now."""
+    return widget.palette().color(QPalette.ColorRole.Window).lightness() < 128
+
+
+def foreground(dark: bool) -> str:
+    """The colour of text and marks on the theme's background."""
+    return DARK_FOREGROUND if dark else LIGHT_FOREGROUND
+
+
+def plot_style(dark: bool) -> dict:
+    """matplotlib settings for the theme (empty for the light one: matplotlib's own)."""
+    if not dark:
+        return {}
+    from cycler import cycler
+
+    fg = DARK_FOREGROUND
+    return {"figure.facecolor": DARK_BACKGROUND, "axes.facecolor": DARK_BACKGROUND,
+            "savefig.facecolor": DARK_BACKGROUND, "axes.edgecolor": fg, "axes.labelcolor": fg,
+            "axes.titlecolor": fg, "text.color": fg, "xtick.color": fg, "ytick.color": fg,
+            "grid.color": "#bbbbbb", "legend.facecolor": "#1a1a1a", "legend.edgecolor": fg,
+            "legend.labelcolor": fg, "axes.prop_cycle": cycler(color=DARK_CYCLE)}
+
+
+def background(dark: bool) -> str:
+    return DARK_BACKGROUND if dark else LIGHT_BACKGROUND
