@@ -50,7 +50,7 @@ STAGES = [
     ("clipping", "Clipping",
      "Cut polygons at the six frustum planes before the perspective divide.\n"
      "Off: polygons reaching behind the eye are dropped whole, so geometry near the observer vanishes."),
-    ("sort_transparent", "Sort transparent far → near",
+    ("sort_transparent", "Sort transparent\nfar → near",
      "Blend transparent polygons from the farthest to the nearest, after all opaque ones.\n"
      "Off: they are blended in scene order, and the colours come out wrong."),
     ("z_test", "z-test",

@@ -29,6 +29,7 @@ from PySide6.QtGui import QColor
 from PySide6.QtWidgets import (
     QColorDialog,
     QFormLayout,
+    QGridLayout,
     QHBoxLayout,
     QLabel,
     QLineEdit,
@@ -49,6 +50,8 @@ from core.srgb import linear_to_srgb, srgb_to_linear
 
 PROBLEM_COLOR = "#ff6b6b"
 ITEM_ROLE = Qt.ItemDataRole.UserRole
+BUTTONS_PER_ROW = 2
+"""Buttons under the tree, per row."""
 
 LABELS = {
     "name": "name", "center": "centre", "base_center": "base centre", "position": "position",
@@ -222,8 +225,9 @@ class SceneTreePanel(QWidget):
                                   | QTreeWidget.EditTrigger.EditKeyPressed)
         self.tree.currentItemChanged.connect(self._tree_selected)
         self.tree.itemChanged.connect(self._tree_renamed)
-        self.buttons = QHBoxLayout()
+        self.buttons = QGridLayout()  # two to a row: the dock stays narrow at large text
         self.buttons.setContentsMargins(0, 0, 0, 0)
+        self.buttons.setSpacing(2)
         self.title = QLabel()
         self.title.setWordWrap(True)
         self.form_host = QWidget()
@@ -270,7 +274,8 @@ class SceneTreePanel(QWidget):
             button.setPopupMode(QToolButton.ToolButtonPopupMode.InstantPopup)
         button.setToolButtonStyle(Qt.ToolButtonStyle.ToolButtonTextOnly)
         button.setSizePolicy(QSizePolicy.Policy.Expanding, QSizePolicy.Policy.Fixed)
-        self.buttons.addWidget(button)
+        n = self.buttons.count()
+        self.buttons.addWidget(button, n // BUTTONS_PER_ROW, n % BUTTONS_PER_ROW)
         return button
 
     def start_rename(self) -> None:

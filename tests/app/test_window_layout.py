@@ -88,3 +88,31 @@ def test_worked_math_and_lesson_formulas_share_one_size_at_every_scale(qtbot, wi
         lesson = window.lesson_panel.formula_views()[0].size_pt()
         assert lesson == pytest.approx(scale * MathView().size_pt(), rel=0.01)
         assert {round(view.size_pt(), 3) for view in worked} == {round(lesson, 3)}
+
+
+def _settle():
+    """Let the layout requests a change posts (one layout level at a time) all run."""
+    for _ in range(10):
+        QApplication.processEvents()
+
+
+def test_every_tab_and_lesson_step_fits_a_small_screen_at_every_text_scale(qtbot, monkeypatch, normal_text):
+    # The widest things at large text were the scene editor's button row and the lesson that shows
+    # the Object order tab beside its words: the window's least width must stay within the screen.
+    monkeypatch.setattr(QScreen, "availableGeometry", lambda self: QRect(0, 0, 1280, 720))
+    window = open_window(qtbot)
+    for scale in SCALES:
+        window.presentation.set_scale(scale)
+        for tab in window.tabs:
+            window.show_tab(tab.title)
+            _settle()
+            hint = window.minimumSizeHint()
+            assert hint.width() <= 1280 and hint.height() <= 720, (scale, tab.title, hint)
+    panel = window.lesson_panel
+    for li, lesson in enumerate(panel.lessons()):
+        for si in range(len(lesson.steps)):
+            panel.select(li, si)
+            _settle()  # the step's words and panes are laid out
+            hint = window.minimumSizeHint()
+            assert hint.width() <= 1280 and hint.height() <= 720, (lesson.id, si, hint)
+            assert window.width() <= 1280 and window.height() <= 720, (lesson.id, si, window.size())
