@@ -236,6 +236,7 @@ class ObjectOrderPanel(QWidget):
         """Show a finished recording render at the model's step (the last, unless one was chosen)."""
         self.result, self.scene = result, scene
         self.counts.setPlainText(self._counts_text())
+        self.vertex_math.follow_camera(scene.camera)
         self.clipped_shown.emit(result.clipping.clipped_polygons())
         self.scrubber.blockSignals(True)
         self.scrubber.set_count(result.history.n_steps)

@@ -112,6 +112,7 @@ class WorkedMath(QScrollArea):
                 item.widget().deleteLater()
         self._rows = []
         self._grid = None
+        self._vertex = None  # (point, camera, name) while a vertex's path is shown
 
     def _heading(self, text: str) -> None:
         label = QLabel(text)
@@ -280,9 +281,17 @@ class WorkedMath(QScrollArea):
 
     # --- object order -------------------------------------------------------
 
+    def follow_camera(self, camera: Camera) -> None:
+        """Work a shown vertex's path again for ``camera`` (the observer moved, or a lesson changed
+        the projection), so the matrices shown are always the ones in use."""
+        if self._vertex is not None and self._vertex[1] != camera:
+            point, _, name = self._vertex
+            self.show_vertex(point, camera, name)
+
     def show_vertex(self, point, camera: Camera, name: str = "vertex") -> ProjectedPoint:
         """The path of world point ``point`` through view, clip, NDC and pixel, with each map's matrix."""
         self._start()
+        self._vertex = (point, camera, name)
         view_from_world, clip_from_view = camera.view_from_world, camera.clip_from_view
         p = project_point(point, view_from_world, clip_from_view, camera.width, camera.height)
         self._heading(f"The path of {name} through the stages")

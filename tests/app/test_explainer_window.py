@@ -1,5 +1,6 @@
 """The explainer in the window: lessons drive the panes, presentation keys, worked math, new tabs."""
 
+import ast
 import re
 
 import mpmath
@@ -232,3 +233,16 @@ def test_a_picked_buffer_pixel_follows_its_polygons_nearest_corner_to_the_screen
     # The corner shown is one of that object's own vertices (the centre polygon is not clipped).
     assert np.min(np.abs(obj.vertices - world).max(axis=1)) < 1e-4
     assert "pixel" in dict(rows)
+
+
+def test_a_vertex_path_shown_by_one_lesson_is_worked_again_with_the_next_lessons_projection(qtbot, window):
+    panel = window.lesson_panel
+    vertex_math = window.tab("object order").widget.vertex_math
+    panel.select(LESSONS["perspective"], 0)  # shows a cube corner's path under perspective
+    assert vertex_math.value("clip ← view").endswith("[0.0, 0.0, -1.0, 0.0]]")  # w = -z_view
+    panel.select(LESSONS["orthographic"], 0)
+    qtbot.waitUntil(lambda: window.showing_full("object order"), timeout=RENDER_TIMEOUT_MS)
+    assert window.model.camera.projection == "orthographic"
+    # An orthographic projection keeps w = 1: its matrix's last row is (0, 0, 0, 1).
+    assert vertex_math.value("clip ← view").endswith("[0.0, 0.0, 0.0, 1.0]]")
+    assert np.allclose(ast.literal_eval(vertex_math.value("clip ← view")), window.model.camera.clip_from_view)
