@@ -40,6 +40,12 @@ QAbstractButton, QComboBox, QSpinBox, QDoubleSpinBox, QLineEdit {
     border: 2px solid #ffffff; padding: 3px; }
 QAbstractButton:checked, QAbstractButton:pressed { background-color: #ffd400; color: #000000; }
 QToolButton { background-color: #ffffff; }
+QCheckBox, QRadioButton { border: none; }
+QCheckBox:checked, QRadioButton:checked { background-color: #000000; color: #ffffff; }
+QCheckBox::indicator, QRadioButton::indicator {
+    width: 0.8em; height: 0.8em; border: 2px solid #ffffff; background-color: #000000; }
+QCheckBox::indicator:checked, QRadioButton::indicator:checked { background-color: #ffd400; }
+QRadioButton::indicator { border-radius: 0.4em; }
 QListView::item:selected, QTreeView::item:selected, QTableView::item:selected {
     background-color: #ffd400; color: #000000; }
 QTabBar::tab:selected { background-color: #ffd400; color: #000000; }

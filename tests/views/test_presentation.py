@@ -3,7 +3,15 @@
 import pytest
 from PySide6.QtCore import Qt
 from PySide6.QtGui import QPalette
-from PySide6.QtWidgets import QLabel, QMainWindow, QSpinBox, QSplitter, QTreeWidget, QTreeWidgetItem
+from PySide6.QtWidgets import (
+    QCheckBox,
+    QLabel,
+    QMainWindow,
+    QSpinBox,
+    QSplitter,
+    QTreeWidget,
+    QTreeWidgetItem,
+)
 
 from views.lesson_panel import LessonPanel
 from views.math_view import MathView
@@ -130,3 +138,28 @@ def test_high_contrast_keeps_every_table_row_and_disabled_control_readable(hall,
     enabled = table.palette().color(QPalette.ColorRole.Text).lightnessF()
     disabled = off.palette().color(QPalette.ColorGroup.Disabled, QPalette.ColorRole.Text).lightnessF()
     assert 0.3 < disabled < enabled  # a switched-off control looks switched off
+
+
+def test_high_contrast_check_boxes_show_their_box_and_whether_they_are_on(hall, qtbot):
+    window, panel, presentation = hall
+    presentation.set_high_contrast(True)
+    box = QCheckBox("bounding spheres", window)
+    box.show()
+    box.ensurePolished()
+
+    def indicator_colours():
+        picture = box.grab().toImage()
+        side = picture.height()  # the indicator is at the left, about a text line high
+        # Inside the widget's own edge (3 px): the indicator's pixels, not a frame around the widget.
+        return {picture.pixelColor(x, y).name() for x in range(3, side) for y in range(3, side - 3)}
+
+    def background_right():
+        picture = box.grab().toImage()
+        return picture.pixelColor(picture.width() - 4, picture.height() // 2).name()
+
+    box.resize(box.sizeHint().width() + 40, box.sizeHint().height())
+    unchecked = indicator_colours()
+    assert "#ffffff" in unchecked and "#ffd400" not in unchecked  # a white box on black
+    box.setChecked(True)
+    assert "#ffd400" in indicator_colours()  # filled with the accent when on
+    assert background_right() == "#000000"  # only the box, not the whole row, turns yellow
