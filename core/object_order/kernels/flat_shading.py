@@ -7,18 +7,18 @@ formula written once in the flat-shading module.  View space.
 from __future__ import annotations
 
 import numpy as np
-from numba import njit
+from numba import njit, prange
 
 from core.object_order.flat_shading import lambert
 
 
-@njit(cache=True, nogil=True)
+@njit(cache=True, nogil=True, parallel=True)
 def face_colors(face, material, normal, centroid, orthographic, base, ambient, diffuse,
                 light_position, light_rgb):
     """(P, 3) float64 flat colours, RGB in [0, 1]; parameters as
     :func:`core.object_order.flat_shading.face_colors` (float64 / int64, C-contiguous)."""
     out = np.empty((face.shape[0], 3))
-    for p in range(face.shape[0]):
+    for p in prange(face.shape[0]):
         f, m = face[p], material[p]
         n = (normal[f, 0], normal[f, 1], normal[f, 2])
         c = (centroid[f, 0], centroid[f, 1], centroid[f, 2])

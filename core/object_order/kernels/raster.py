@@ -37,7 +37,7 @@ from core.object_order.blending import blend_over
 from core.object_order.depth_formats import depth_key
 from core.object_order.rasterization import (
     MAX_PIXEL,
-    SUBPIXEL_BITS,
+    centres_within,
     depth_plane,
     edge_function,
     edge_steps,
@@ -46,7 +46,7 @@ from core.object_order.rasterization import (
     plane_depth,
     to_fixed,
 )
-from core.object_order.zbuffer import depth_test
+from core.object_order.zbuffer import FAR_DEPTH, depth_test, distance_from_window_depth
 
 
 @njit(cache=True, nogil=True)
@@ -73,21 +73,23 @@ def _corners_fixed(xy, a, b, c):
     return f0, f1, f2, area
 
 
-@njit(cache=True, nogil=True)
+@njit(cache=True, nogil=True, parallel=True)
 def _bounding_boxes(xy, corners, width, height):
-    """The pixel bounding box of every triangle, clamped to the image, and the range test.
+    """The pixels whose centres lie in each triangle's bounding box, clamped to the image,
+    and the range test.  Triangle by triangle, shared by the threads (each box is its own).
 
     Returns
     -------
     box : (T, 4) int64, ``imin, imax, jmin, jmax``; a triangle with no area,
-        no pixel inside the image or a corner out of range gets an empty box
-        (``jmin > jmax``).
+        no pixel centre in its box inside the image, or a corner out of range
+        gets an empty box (``jmin > jmax``).  Most triangles of a fine mesh
+        are smaller than a pixel and get none.
     out_of_range : (T,) bool, a corner beyond ``MAX_PIXEL`` or not finite.
     """
     n_tri = corners.shape[0]
     box = np.empty((n_tri, 4), np.int64)
     out_of_range = np.zeros(n_tri, np.bool_)
-    for t in range(n_tri):
+    for t in prange(n_tri):
         box[t, 0], box[t, 1], box[t, 2], box[t, 3] = 0, -1, 1, 0
         a, b, c = corners[t, 0], corners[t, 1], corners[t, 2]
         if not (abs(xy[a, 0]) <= MAX_PIXEL and abs(xy[a, 1]) <= MAX_PIXEL and abs(xy[b, 0]) <= MAX_PIXEL
@@ -98,10 +100,9 @@ def _bounding_boxes(xy, corners, width, height):
         f0, f1, f2, area = _corners_fixed(xy, a, b, c)
         if area == 0:
             continue
-        imin = max(min(f0[0], f1[0], f2[0]) >> SUBPIXEL_BITS, 0)
-        imax = min(max(f0[0], f1[0], f2[0]) >> SUBPIXEL_BITS, width - 1)
-        jmin = max(min(f0[1], f1[1], f2[1]) >> SUBPIXEL_BITS, 0)
-        jmax = min(max(f0[1], f1[1], f2[1]) >> SUBPIXEL_BITS, height - 1)
+        imin, imax = centres_within(min(f0[0], f1[0], f2[0]), max(f0[0], f1[0], f2[0]))
+        jmin, jmax = centres_within(min(f0[1], f1[1], f2[1]), max(f0[1], f1[1], f2[1]))
+        imin, imax, jmin, jmax = max(imin, 0), min(imax, width - 1), max(jmin, 0), min(jmax, height - 1)
         if imin <= imax and jmin <= jmax:
             box[t, 0], box[t, 1], box[t, 2], box[t, 3] = imin, imax, jmin, jmax
     return box, out_of_range
@@ -336,3 +337,16 @@ def replay(offsets, frag_pixel, frag_key, frag_passed, poly_color, poly_alpha, s
             if frag_passed[f]:
                 j = frag_pixel[f] // width
                 _write(color, zbuf, j, frag_pixel[f] - j * width, frag_key[f], cs, alpha)
+
+
+@njit(cache=True, nogil=True, parallel=True)
+def depth_image(zbuf, near, far, orthographic):
+    """(H, W) float64, the distance along the viewing axis of each pixel's depth key
+    (:func:`core.object_order.zbuffer.distance_from_window_depth`), +inf where the
+    z-buffer still holds the far plane (nothing drawn).  Rows shared by the threads."""
+    out = np.empty(zbuf.shape)
+    for j in prange(zbuf.shape[0]):
+        for i in range(zbuf.shape[1]):
+            z = zbuf[j, i]
+            out[j, i] = distance_from_window_depth(z, near, far, orthographic) if z < FAR_DEPTH else np.inf
+    return out
