@@ -242,8 +242,14 @@ def clip_triangles(face: np.ndarray, triangles: np.ndarray, clip: np.ndarray, wo
     k = len(face)
     test = np.ones(k, dtype=bool) if test is None else np.asarray(test, dtype=bool)
     triangles = np.ascontiguousarray(triangles, dtype=np.int64)
-    outcome, keep, offsets, vertex, new = kernels.clip_triangles(
-        triangles, np.ascontiguousarray(clip, dtype=float), np.ascontiguousarray(world, dtype=float), test)
+    outcome, counts = np.empty(k, dtype=np.int8), np.empty(k, dtype=np.int64)
+    new = kernels.clip_triangles(triangles, np.ascontiguousarray(clip, dtype=float),
+                                 np.ascontiguousarray(world, dtype=float), test, outcome, counts)
+    keep = np.flatnonzero(counts)
+    offsets = np.zeros(len(keep) + 1, dtype=np.int64)
+    np.cumsum(counts[keep], out=offsets[1:])
+    vertex = np.empty(offsets[-1], dtype=np.int64)
+    kernels.number_vertices(triangles, outcome, keep, offsets, len(clip), vertex)
     if len(new):
         clip, world = np.vstack([clip, new[:, :4]]), np.vstack([world, new[:, 4:]])
     polygons = Polygons(offsets, vertex, clip, world, face[keep], outcome[keep] != kernels.ACCEPTED)

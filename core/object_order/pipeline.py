@@ -267,8 +267,9 @@ def _render(scene: Scene, settings: RasterSettings) -> RasterResult:
 
     # 1. World -> view (camera) space -> clip space, once per vertex.
     view_from_world, clip_from_view = cam.view_from_world, cam.clip_from_view
-    view = transform_points(np.ascontiguousarray(world, dtype=float), view_from_world, 3)
-    clip = transform_points(view, clip_from_view, 4)
+    view, clip = np.empty((len(world), 3)), np.empty((len(world), 4))
+    transform_points(np.ascontiguousarray(world, dtype=float), view_from_world, view)
+    transform_points(view, clip_from_view, clip)
     watch.lap("transform")
 
     # 2. Back-face culling.
@@ -300,13 +301,15 @@ def _render(scene: Scene, settings: RasterSettings) -> RasterResult:
     xy, z_win = rasterization.window_coordinates(polygons.clip, cam.width, cam.height)
     watch.lap("projection")
 
-    # 6. Flat shading, one colour per polygon, in view space.
+    # 6. Flat shading, one colour per polygon, in view space (normals and centroids of the
+    # polygons' faces only).
+    normal, centroid = faces.geometry(polygons.face)
     poly_object = face_object[polygons.face]
     materials = [m.material for m in meshes]
     alpha = np.array([m.opacity for m in materials], dtype=float)[poly_object]
     lights = np.array([(*light.position, 1.0) for light in scene.lights]).reshape(-1, 4)
     colors = flat_shading.face_colors(
-        polygons.face, poly_object, faces.normal, faces.centroid, ortho,
+        np.arange(len(polygons)), poly_object, normal, centroid, ortho,
         np.array([m.color for m in materials], dtype=float), np.array([m.ambient for m in materials]),
         np.array([m.diffuse for m in materials]), (lights @ view_from_world.T)[:, :3],
         np.array([np.multiply(light.color, light.intensity) for light in scene.lights]).reshape(-1, 3),
@@ -315,7 +318,7 @@ def _render(scene: Scene, settings: RasterSettings) -> RasterResult:
 
     # 7. Drawing order: opaque first, then transparent (sorted far to near by face centroid).
     transparent = alpha < 1.0
-    sort_depth = -faces.centroid[polygons.face, 2]
+    sort_depth = -centroid[:, 2]
     order = blending.draw_order(transparent, sort_depth, settings.sort_transparent)
     in_order = not transparent.any()  # all opaque: drawn as they come, no reordering to pay for
 

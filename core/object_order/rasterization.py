@@ -70,7 +70,9 @@ def window_coordinates(clip: np.ndarray, width: int, height: int) -> tuple[np.nd
     """
     from core.object_order.kernels import transform as kernels  # the kernel compiles in this module
 
-    return kernels.window_coordinates(np.ascontiguousarray(clip, dtype=float), width, height)
+    xy, z_win = np.empty((len(clip), 2)), np.empty(len(clip))
+    kernels.window_coordinates(np.ascontiguousarray(clip, dtype=float), width, height, xy, z_win)
+    return xy, z_win
 
 
 @register_jitable

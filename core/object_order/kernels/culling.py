@@ -1,4 +1,5 @@
-"""Back-face culling compiled: the lecture's normal test for every face in one loop.
+"""Back-face culling compiled: the lecture's normal test for every face in one loop
+(shared by the threads; each face on its own), and the bounding sphere of a mesh.
 
 Each face goes through :func:`core.object_order.culling.face_facing`, the
 formula written once in the culling module.  Conventions: view space, eye at
@@ -14,30 +15,43 @@ from core.object_order.culling import face_facing
 
 
 @njit(cache=True, nogil=True, parallel=True)
-def back_face_test(view, triangles, orthographic):
-    """Normals, centroids and the facing value of every face.
+def front_faces(view, triangles, orthographic, visible):
+    """``visible[f] = facing > 0`` for every face ``f`` (:func:`face_facing`): the test
+    alone, keeping none of the normals and centroids it finds on the way.
 
     Parameters
     ----------
     view : (N, 3) float64, vertex positions in view space.
     triangles : (F, 3) int64, vertex indices, counter-clockwise seen from outside.
     orthographic : bool, the parallel projection (else perspective).
-
-    Returns
-    -------
-    normal : (F, 3) float64, unit outward normals.
-    centroid : (F, 3) float64.
-    facing : (F,) float64, > 0 for a front face (:func:`face_facing`).
+    visible : (F,) bool, written.
     """
-    n_faces = triangles.shape[0]
-    normal = np.empty((n_faces, 3))
-    centroid = np.empty((n_faces, 3))
-    facing = np.empty(n_faces)
-    for f in prange(n_faces):
-        (normal[f, 0], normal[f, 1], normal[f, 2], centroid[f, 0], centroid[f, 1], centroid[f, 2],
-         facing[f]) = face_facing(view[triangles[f, 0]], view[triangles[f, 1]], view[triangles[f, 2]],
+    for f in prange(triangles.shape[0]):
+        visible[f] = face_facing(view[triangles[f, 0]], view[triangles[f, 1]], view[triangles[f, 2]],
+                                 orthographic)[6] > 0
+
+
+@njit(cache=True, nogil=True, parallel=True)
+def back_face_test(view, triangles, face, orthographic, normal, centroid, facing):
+    """Normals, centroids and the facing value of the faces ``face``, written into the
+    last three arrays.
+
+    Parameters
+    ----------
+    view : (N, 3) float64, vertex positions in view space.
+    triangles : (F, 3) int64, vertex indices, counter-clockwise seen from outside.
+    face : (K,) int64, the faces wanted (rows of ``triangles``).
+    orthographic : bool, the parallel projection (else perspective).
+
+    normal : (K, 3) float64, unit outward normals.
+    centroid : (K, 3) float64.
+    facing : (K,) float64, > 0 for a front face (:func:`face_facing`).
+    """
+    for k in prange(face.shape[0]):
+        f = face[k]
+        (normal[k, 0], normal[k, 1], normal[k, 2], centroid[k, 0], centroid[k, 1], centroid[k, 2],
+         facing[k]) = face_facing(view[triangles[f, 0]], view[triangles[f, 1]], view[triangles[f, 2]],
                                   orthographic)
-    return normal, centroid, facing
 
 
 @njit(cache=True, nogil=True)

@@ -74,23 +74,21 @@ def _corners_fixed(xy, a, b, c):
 
 
 @njit(cache=True, nogil=True, parallel=True)
-def _bounding_boxes(xy, corners, width, height):
+def _bounding_boxes(xy, corners, width, height, box, out_of_range):
     """The pixels whose centres lie in each triangle's bounding box, clamped to the image,
     and the range test.  Triangle by triangle, shared by the threads (each box is its own).
 
-    Returns
-    -------
+    Writes
+    ------
     box : (T, 4) int64, ``imin, imax, jmin, jmax``; a triangle with no area,
         no pixel centre in its box inside the image, or a corner out of range
         gets an empty box (``jmin > jmax``).  Most triangles of a fine mesh
         are smaller than a pixel and get none.
     out_of_range : (T,) bool, a corner beyond ``MAX_PIXEL`` or not finite.
     """
-    n_tri = corners.shape[0]
-    box = np.empty((n_tri, 4), np.int64)
-    out_of_range = np.zeros(n_tri, np.bool_)
-    for t in prange(n_tri):
+    for t in prange(corners.shape[0]):
         box[t, 0], box[t, 1], box[t, 2], box[t, 3] = 0, -1, 1, 0
+        out_of_range[t] = False
         a, b, c = corners[t, 0], corners[t, 1], corners[t, 2]
         if not (abs(xy[a, 0]) <= MAX_PIXEL and abs(xy[a, 1]) <= MAX_PIXEL and abs(xy[b, 0]) <= MAX_PIXEL
                 and abs(xy[b, 1]) <= MAX_PIXEL and abs(xy[c, 0]) <= MAX_PIXEL
@@ -105,7 +103,6 @@ def _bounding_boxes(xy, corners, width, height):
         imin, imax, jmin, jmax = max(imin, 0), min(imax, width - 1), max(jmin, 0), min(jmax, height - 1)
         if imin <= imax and jmin <= jmax:
             box[t, 0], box[t, 1], box[t, 2], box[t, 3] = imin, imax, jmin, jmax
-    return box, out_of_range
 
 
 @njit(cache=True, nogil=True)
@@ -227,7 +224,7 @@ def _draw_bands_in_parallel(workers, xy, z, corners, tri_poly, poly_color, poly_
 
 @njit(cache=True, nogil=True)
 def draw_triangles(xy, z, corners, tri_poly, poly_color, poly_alpha, color, zbuf, record,
-                   depth_code, z_test, n_workers):
+                   depth_code, z_test, n_workers, box, out_of_range, generated, passed):
     """Rasterize triangles in order into ``color`` and ``zbuf`` (modified in place).
 
     The image is cut into bands of ``BAND_ROWS`` rows.  Binning lists for
@@ -255,10 +252,11 @@ def draw_triangles(xy, z, corners, tri_poly, poly_color, poly_alpha, color, zbuf
         (:func:`core.object_order.depth_formats.format_code`).
     z_test : bool, compare depths; False writes every fragment in drawing order.
     n_workers : int >= 1, threads sharing the bands.
+    box : (T, 4) int64 and out_of_range : (T,) bool, scratch space.
+    generated, passed : (P,) int64, written: fragments per polygon.
 
     Returns
     -------
-    generated, passed : (P,) int64, fragments per polygon.
     frag_pixel : (F,) int32, pixel number ``j * W + i`` of each fragment (empty
         unless ``record``), in drawing order.
     frag_key : (F,) float64, its depth key.
@@ -267,7 +265,7 @@ def draw_triangles(xy, z, corners, tri_poly, poly_color, poly_alpha, color, zbuf
         ``MAX_PIXEL`` or not finite.
     """
     height, width = zbuf.shape
-    box, out_of_range = _bounding_boxes(xy, corners, width, height)
+    _bounding_boxes(xy, corners, width, height, box, out_of_range)
     n_bands = (height + BAND_ROWS - 1) // BAND_ROWS
     piece_tri, piece_band, band_start, band_pieces = _bin(box, n_bands)
     n_pieces = piece_tri.shape[0]
@@ -293,8 +291,8 @@ def draw_triangles(xy, z, corners, tri_poly, poly_color, poly_alpha, color, zbuf
                                 zbuf, depth_code, z_test, box, piece_tri, band_start, band_pieces,
                                 record, slot, scratch_pixel, scratch_key, scratch_passed,
                                 piece_generated, piece_passed)
-    generated = np.zeros(poly_alpha.shape[0], np.int64)
-    passed = np.zeros(poly_alpha.shape[0], np.int64)
+    generated[:] = 0
+    passed[:] = 0
     for k in range(n_pieces):
         p = tri_poly[piece_tri[k]]
         generated[p] += piece_generated[k]
@@ -312,7 +310,7 @@ def draw_triangles(xy, z, corners, tri_poly, poly_color, poly_alpha, color, zbuf
                 frag_pixel[start[k] + f] = scratch_pixel[slot[k] + f]
                 frag_key[start[k] + f] = scratch_key[slot[k] + f]
                 frag_passed[start[k] + f] = scratch_passed[slot[k] + f]
-    return generated, passed, frag_pixel, frag_key, frag_passed, int(out_of_range.sum())
+    return frag_pixel, frag_key, frag_passed, int(out_of_range.sum())
 
 
 @njit(cache=True, nogil=True)

@@ -4,39 +4,35 @@ perspective divide with the viewport mapping, each in one loop shared by the thr
 The pipeline's first stage (world -> view -> clip space) and its projection
 stage (:mod:`core.object_order.pipeline`).  Matrices act on column vectors
 ``[x, y, z, 1]``.  Every point is computed on its own, so the result does not
-depend on the number of threads.
+depend on the number of threads.  The results are written into arrays the caller
+allocates with numpy (see :mod:`core.object_order.kernels`).
 """
 
 from __future__ import annotations
 
-import numpy as np
 from numba import njit, prange
 
 
 @njit(cache=True, nogil=True, parallel=True)
-def transform_points(points, matrix, rows):
-    """``(matrix @ [p, 1])[:rows]`` for every point ``p``.
+def transform_points(points, matrix, out):
+    """``(matrix @ [p, 1])[:rows]`` for every point ``p``, into ``out``.
 
     Parameters
     ----------
     points : (N, 3) float64, in the matrix's source frame.
     matrix : (4, 4) float64, e.g. ``view_from_world``.
-    rows : int, 3 (an affine map's result) or 4 (homogeneous clip coordinates).
-
-    Returns
-    -------
-    (N, rows) float64, in the matrix's target frame.
+    out : (N, rows) float64, written: in the matrix's target frame; ``rows`` is 3
+        (an affine map's result) or 4 (homogeneous clip coordinates).
     """
-    out = np.empty((points.shape[0], rows))
+    rows = out.shape[1]
     for i in prange(points.shape[0]):
         x, y, z = points[i, 0], points[i, 1], points[i, 2]
         for k in range(rows):
             out[i, k] = matrix[k, 0] * x + matrix[k, 1] * y + matrix[k, 2] * z + matrix[k, 3]
-    return out
 
 
 @njit(cache=True, nogil=True, parallel=True, error_model="numpy")
-def window_coordinates(clip, width, height):
+def window_coordinates(clip, width, height, xy, z_win):
     """Clip space to pixels and window depth, with the arithmetic of
     :func:`core.projection.pixel_from_ndc` (bit for bit).
 
@@ -45,17 +41,12 @@ def window_coordinates(clip, width, height):
     clip : (N, 4) float64, homogeneous clip coordinates.
     width, height : image size in pixels.
 
-    Returns
-    -------
-    xy : (N, 2) float64, ``x = (x_ndc + 1) / 2 W``, ``y = (1 - y_ndc) / 2 H``.
-    z_win : (N,) float64, ``(z_ndc + 1) / 2``.  (``w = 0`` gives inf or nan, as in numpy.)
+    xy : (N, 2) float64, written: ``x = (x_ndc + 1) / 2 W``, ``y = (1 - y_ndc) / 2 H``.
+    z_win : (N,) float64, written: ``(z_ndc + 1) / 2``.  (``w = 0`` gives inf or nan, as
+        in numpy.)
     """
-    n = clip.shape[0]
-    xy = np.empty((n, 2))
-    z_win = np.empty(n)
-    for i in prange(n):
+    for i in prange(clip.shape[0]):
         w = clip[i, 3]
         xy[i, 0] = (clip[i, 0] / w + 1.0) * 0.5 * width
         xy[i, 1] = (1.0 - clip[i, 1] / w) * 0.5 * height
         z_win[i] = (clip[i, 2] / w + 1.0) * 0.5
-    return xy, z_win
