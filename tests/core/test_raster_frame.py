@@ -17,7 +17,7 @@ from test_raster import brute_force_coverage  # tests/core is on sys.path
 
 from core import projection, shapes
 from core.camera import Camera
-from core.object_order import fragments, rasterization, zbuffer
+from core.object_order import clipping, fragments, rasterization, zbuffer
 from core.object_order.kernels.culling import bounding_sphere
 from core.object_order.kernels.raster import depth_image
 from core.object_order.pipeline import PARALLEL_WORK, RasterSettings, render_raster
@@ -119,3 +119,19 @@ def test_depth_image_is_the_distance_of_each_covered_pixel_and_infinite_elsewher
     assert np.isinf(depth[~covered]).all()
     assert np.array_equal(depth[covered],
                           zbuffer.distance_from_window_depth(zbuf[covered], 0.5, 20.0, orthographic))
+
+
+def test_triangles_accepted_untested_are_the_polygons_the_clipper_makes_of_them():
+    """Objects inside the frustum skip the clipper's tests; their polygons must be those
+    the clipper itself makes of triangles it finds inside."""
+    rng = np.random.default_rng(6)
+    clip = np.column_stack([rng.uniform(-0.9, 0.9, (300, 3)), np.ones(300)]) * rng.uniform(1, 5, (300, 1))
+    world = rng.normal(size=(300, 3))
+    triangles = rng.integers(0, 300, (200, 3))
+    face = np.arange(200) + 17
+    untested = clipping.clip_triangles(face, triangles, clip, world, np.zeros(200, dtype=bool))
+    tested = clipping.clip_triangles(face, triangles, clip, world, np.ones(200, dtype=bool))
+    assert (untested.accepted, untested.rejected, untested.clipped) == (200, 0, 0)
+    assert (tested.accepted, tested.rejected, tested.clipped) == (200, 0, 0)
+    for name in ("offsets", "vertex", "clip", "world", "face", "clipped"):
+        assert np.array_equal(getattr(untested.polygons, name), getattr(tested.polygons, name)), name

@@ -156,7 +156,8 @@ def _draw_rows(xy, z, corners, tri_poly, poly_color, poly_alpha, color, zbuf, de
     a, b, c = corners[t, 0], corners[t, 1], corners[t, 2]
     f0, f1, f2, _ = _corners_fixed(xy, a, b, c)
     pa, pb, pc = (xy[a, 0], xy[a, 1]), (xy[b, 0], xy[b, 1]), (xy[c, 0], xy[c, 1])
-    plane = depth_plane(pa, pb, pc, z[a], z[b], z[c])  # of the unsnapped corners
+    plane = (0.0, 0.0, 0.0)  # the depth plane, fitted at the first covered centre: most
+    # sub-pixel triangles whose box holds a centre still cover none
     first = (pixel_centre_fixed(imin), pixel_centre_fixed(jlo))
     # The three edge functions at the first pixel centre, with the fill rule's offset
     # so that "E >= 0" means covered, and their exact integer steps per pixel.
@@ -175,6 +176,8 @@ def _draw_rows(xy, z, corners, tri_poly, poly_color, poly_alpha, color, zbuf, de
         w0, w1, w2 = e0, e1, e2
         for i in range(imin, imax + 1):
             if w0 >= 0 and w1 >= 0 and w2 >= 0:
+                if generated == 0:
+                    plane = depth_plane(pa, pb, pc, z[a], z[b], z[c])  # of the unsnapped corners
                 key = depth_key(plane_depth(plane, pa, i + 0.5, j + 0.5), depth_code)
                 ok = not z_test or depth_test(key, zbuf[j, i])
                 if ok:
