@@ -203,10 +203,11 @@ class _Stopwatch:
 DEFAULT_SETTINGS = RasterSettings()
 
 PARALLEL_WORK = 1_000_000
-"""Pixels plus triangles below which a frame runs on one thread.  Each compiled stage
-shares its loop between the threads, and starting them costs tens of microseconds on a
-quiet machine and up to a scheduler time slice (milliseconds) on a busy one: for a
-small frame one thread is quicker.  (The image is the same with any number.)"""
+"""Pixels plus triangles below which a frame runs on one thread.  The back-face test, the
+triangles' bounding boxes and the drawing share their loops between the threads, and
+starting them costs tens of microseconds on a quiet machine and up to a scheduler time
+slice (milliseconds) on a busy one: for a small frame one thread is quicker.  (The
+image is the same with any number.)"""
 
 
 def _warm_up() -> None:

@@ -1,7 +1,6 @@
 """A whole frame shared by the threads, and the compiled stages that replaced array code.
 
-Every compiled stage of a frame (transform, back-face test, window
-coordinates, shading, bounding boxes, drawing, depth image) shares its loop
+The back-face test, the bounding boxes and the drawing share their loops
 between the threads; a frame must come out identical with one thread and with
 two, fragments and all.  Sub-pixel triangles, which a fine mesh is made of,
 are checked against an exact point-in-triangle test, and the compiled

@@ -1,5 +1,6 @@
 """Back-face culling compiled: the lecture's normal test for every face in one loop
-(shared by the threads; each face on its own), and the bounding sphere of a mesh.
+(shared by the threads; each face on its own), the normals and centroids of some
+faces, and the bounding sphere of a mesh.
 
 Each face goes through :func:`core.object_order.culling.face_facing`, the
 formula written once in the culling module.  Conventions: view space, eye at
@@ -31,7 +32,7 @@ def front_faces(view, triangles, orthographic, visible):
                                  orthographic)[6] > 0
 
 
-@njit(cache=True, nogil=True, parallel=True)
+@njit(cache=True, nogil=True)
 def back_face_test(view, triangles, face, orthographic, normal, centroid, facing):
     """Normals, centroids and the facing value of the faces ``face``, written into the
     last three arrays.
@@ -47,7 +48,7 @@ def back_face_test(view, triangles, face, orthographic, normal, centroid, facing
     centroid : (K, 3) float64.
     facing : (K,) float64, > 0 for a front face (:func:`face_facing`).
     """
-    for k in prange(face.shape[0]):
+    for k in range(face.shape[0]):
         f = face[k]
         (normal[k, 0], normal[k, 1], normal[k, 2], centroid[k, 0], centroid[k, 1], centroid[k, 2],
          facing[k]) = face_facing(view[triangles[f, 0]], view[triangles[f, 1]], view[triangles[f, 2]],

@@ -218,7 +218,7 @@ def _draw_bands(w, workers, xy, z, corners, tri_poly, poly_color, poly_alpha, co
 def _draw_bands_in_parallel(workers, xy, z, corners, tri_poly, poly_color, poly_alpha, color, zbuf,
                             depth_code, z_test, box, piece_tri, band_start, band_pieces, record, slot,
                             scratch_pixel, scratch_key, scratch_passed, piece_generated, piece_passed):
-    """All workers at once, one thread each (the only parallel region of the rasterizer)."""
+    """All workers at once, one thread each."""
     for w in prange(workers):
         _draw_bands(w, workers, xy, z, corners, tri_poly, poly_color, poly_alpha, color, zbuf,
                     depth_code, z_test, box, piece_tri, band_start, band_pieces, record, slot,
@@ -340,13 +340,13 @@ def replay(offsets, frag_pixel, frag_key, frag_passed, poly_color, poly_alpha, s
                 _write(color, zbuf, j, frag_pixel[f] - j * width, frag_key[f], cs, alpha)
 
 
-@njit(cache=True, nogil=True, parallel=True)
+@njit(cache=True, nogil=True)
 def depth_image(zbuf, near, far, orthographic):
     """(H, W) float64, the distance along the viewing axis of each pixel's depth key
     (:func:`core.object_order.zbuffer.distance_from_window_depth`), +inf where the
-    z-buffer still holds the far plane (nothing drawn).  Rows shared by the threads."""
+    z-buffer still holds the far plane (nothing drawn)."""
     out = np.empty(zbuf.shape)
-    for j in prange(zbuf.shape[0]):
+    for j in range(zbuf.shape[0]):
         for i in range(zbuf.shape[1]):
             z = zbuf[j, i]
             out[j, i] = distance_from_window_depth(z, near, far, orthographic) if z < FAR_DEPTH else np.inf

@@ -1,19 +1,19 @@
 """Transforming vertices compiled: a 4 x 4 matrix applied to every point, and the
-perspective divide with the viewport mapping, each in one loop shared by the threads.
+perspective divide with the viewport mapping, each in one loop.
 
 The pipeline's first stage (world -> view -> clip space) and its projection
 stage (:mod:`core.object_order.pipeline`).  Matrices act on column vectors
-``[x, y, z, 1]``.  Every point is computed on its own, so the result does not
-depend on the number of threads.  The results are written into arrays the caller
-allocates with numpy (see :mod:`core.object_order.kernels`).
+``[x, y, z, 1]``.  The results are written into arrays the caller allocates with
+numpy (see :mod:`core.object_order.kernels`).  One thread: a few nanoseconds per
+point are less than what sharing the loop costs on a busy machine.
 """
 
 from __future__ import annotations
 
-from numba import njit, prange
+from numba import njit
 
 
-@njit(cache=True, nogil=True, parallel=True)
+@njit(cache=True, nogil=True)
 def transform_points(points, matrix, out):
     """``(matrix @ [p, 1])[:rows]`` for every point ``p``, into ``out``.
 
@@ -25,13 +25,13 @@ def transform_points(points, matrix, out):
         (an affine map's result) or 4 (homogeneous clip coordinates).
     """
     rows = out.shape[1]
-    for i in prange(points.shape[0]):
+    for i in range(points.shape[0]):
         x, y, z = points[i, 0], points[i, 1], points[i, 2]
         for k in range(rows):
             out[i, k] = matrix[k, 0] * x + matrix[k, 1] * y + matrix[k, 2] * z + matrix[k, 3]
 
 
-@njit(cache=True, nogil=True, parallel=True, error_model="numpy")
+@njit(cache=True, nogil=True, error_model="numpy")
 def window_coordinates(clip, width, height, xy, z_win):
     """Clip space to pixels and window depth, with the arithmetic of
     :func:`core.projection.pixel_from_ndc` (bit for bit).
@@ -45,7 +45,7 @@ def window_coordinates(clip, width, height, xy, z_win):
     z_win : (N,) float64, written: ``(z_ndc + 1) / 2``.  (``w = 0`` gives inf or nan, as
         in numpy.)
     """
-    for i in prange(clip.shape[0]):
+    for i in range(clip.shape[0]):
         w = clip[i, 3]
         xy[i, 0] = (clip[i, 0] / w + 1.0) * 0.5 * width
         xy[i, 1] = (1.0 - clip[i, 1] / w) * 0.5 * height
