@@ -242,8 +242,18 @@ def clip_triangles(face: np.ndarray, triangles: np.ndarray, clip: np.ndarray, wo
     k = len(face)
     test = np.ones(k, dtype=bool) if test is None else np.asarray(test, dtype=bool)
     triangles = np.ascontiguousarray(triangles, dtype=np.int64)
-    outcome, keep, offsets, vertex, new = kernels.clip_triangles(
-        triangles, np.ascontiguousarray(clip, dtype=float), np.ascontiguousarray(world, dtype=float), test)
+    if not test.any():  # every triangle accepted whole: each is a polygon of its three corners
+        polygons = Polygons(np.arange(0, 3 * k + 1, 3, dtype=np.int64), triangles.reshape(-1), clip, world,
+                            np.asarray(face, dtype=np.int64), np.zeros(k, dtype=bool))
+        return ClipResult(polygons, k, 0, 0)
+    outcome, counts = np.empty(k, dtype=np.int8), np.empty(k, dtype=np.int64)
+    new = kernels.clip_triangles(triangles, np.ascontiguousarray(clip, dtype=float),
+                                 np.ascontiguousarray(world, dtype=float), test, outcome, counts)
+    keep = np.flatnonzero(counts)
+    offsets = np.zeros(len(keep) + 1, dtype=np.int64)
+    np.cumsum(counts[keep], out=offsets[1:])
+    vertex = np.empty(offsets[-1], dtype=np.int64)
+    kernels.number_vertices(triangles, outcome, keep, offsets, len(clip), vertex)
     if len(new):
         clip, world = np.vstack([clip, new[:, :4]]), np.vstack([world, new[:, 4:]])
     polygons = Polygons(offsets, vertex, clip, world, face[keep], outcome[keep] != kernels.ACCEPTED)

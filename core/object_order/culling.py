@@ -25,6 +25,7 @@ eye is at the origin looking down -z, so the direction toward the observer is
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 from numba.extending import register_jitable
@@ -32,12 +33,21 @@ from numba.extending import register_jitable
 OUTSIDE, INSIDE, CROSSING = "outside", "inside", "crossing"
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class FaceCulling:
     """The back-face test of every face, whether or not culling is switched on.
 
+    Only ``visible`` is found at once (a frame needs no more); the normals,
+    centroids and tested values of all faces are computed when first asked
+    for (a million faces' would cost a frame's worth of memory traffic), and
+    :meth:`geometry` gives those of some faces.
+
     Attributes
     ----------
+    view : (N, 3) float64, vertex positions in view space.
+    triangles : (F, 3) int64, vertex indices of each face.
+    orthographic : the parallel projection was tested (else perspective).
+    visible : (F,) bool, ``facing > 0``: a front face.
     normal : (F, 3) float64, unit outward normal in view space (from the
         counter-clockwise winding).
     nz : (F,) float64, its z component, the lecture's ``Nz`` (> 0: toward the
@@ -46,14 +56,46 @@ class FaceCulling:
     facing : (F,) float64, the value tested: the cosine between the normal and
         the direction from the centroid to the eye (perspective), or ``Nz``
         (orthographic).
-    visible : (F,) bool, ``facing > 0``: a front face.
     """
 
-    normal: np.ndarray
-    nz: np.ndarray
-    centroid: np.ndarray
-    facing: np.ndarray
+    view: np.ndarray
+    triangles: np.ndarray
+    orthographic: bool
     visible: np.ndarray
+
+    @cached_property
+    def _all(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        return self._test(np.arange(len(self.triangles)))
+
+    def _test(self, face: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        from core.object_order.kernels import culling as kernels  # the kernel compiles in this module
+
+        normal, centroid, facing = np.empty((len(face), 3)), np.empty((len(face), 3)), np.empty(len(face))
+        kernels.back_face_test(self.view, self.triangles, face, self.orthographic, normal, centroid, facing)
+        return normal, centroid, facing
+
+    @property
+    def normal(self) -> np.ndarray:
+        return self._all[0]
+
+    @property
+    def nz(self) -> np.ndarray:
+        return self._all[0][:, 2]
+
+    @property
+    def centroid(self) -> np.ndarray:
+        return self._all[1]
+
+    @property
+    def facing(self) -> np.ndarray:
+        return self._all[2]
+
+    def geometry(self, face: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """(K, 3) unit normals and (K, 3) centroids of the faces ``face`` (view space)."""
+        if "_all" in self.__dict__:
+            return self.normal[face], self.centroid[face]
+        normal, centroid, _ = self._test(np.ascontiguousarray(face, dtype=np.int64))
+        return normal, centroid
 
     @property
     def culled(self) -> np.ndarray:
@@ -78,15 +120,16 @@ def back_face_culling(view: np.ndarray, triangles: np.ndarray, orthographic: boo
 
     Notes
     -----
-    Compiled (:func:`core.object_order.kernels.culling.back_face_test`), face
+    Compiled (:func:`core.object_order.kernels.culling.front_faces`), face
     by face with :func:`face_facing`.
     """
     from core.object_order.kernels import culling as kernels  # the kernel compiles in this module
 
-    normal, centroid, facing = kernels.back_face_test(np.ascontiguousarray(view, dtype=float),
-                                                      np.ascontiguousarray(triangles, dtype=np.int64),
-                                                      bool(orthographic))
-    return FaceCulling(normal, normal[:, 2], centroid, facing, facing > 0)
+    view = np.ascontiguousarray(view, dtype=float)
+    triangles = np.ascontiguousarray(triangles, dtype=np.int64)
+    visible = np.empty(len(triangles), dtype=bool)
+    kernels.front_faces(view, triangles, bool(orthographic), visible)
+    return FaceCulling(view, triangles, bool(orthographic), visible)
 
 
 @register_jitable

@@ -85,7 +85,9 @@ def face_colors(face: np.ndarray, material: np.ndarray, normal: np.ndarray, cent
         x = np.asarray(x, dtype=float)
         return np.ascontiguousarray(x if cols is None else x.reshape(-1, cols))
 
-    return kernels.face_colors(np.ascontiguousarray(face, dtype=np.int64),
-                               np.ascontiguousarray(material, dtype=np.int64), f64(normal, 3),
-                               f64(centroid, 3), bool(orthographic), f64(base, 3), f64(ambient),
-                               f64(diffuse), f64(light_position, 3), f64(light_rgb, 3))
+    out = np.empty((len(face), 3))
+    kernels.face_colors(np.ascontiguousarray(face, dtype=np.int64),
+                        np.ascontiguousarray(material, dtype=np.int64), f64(normal, 3),
+                        f64(centroid, 3), bool(orthographic), f64(base, 3), f64(ambient),
+                        f64(diffuse), f64(light_position, 3), f64(light_rgb, 3), out)
+    return out

@@ -102,10 +102,12 @@ def draw(xy: np.ndarray, z: np.ndarray, corners: np.ndarray, position: np.ndarra
     """
     code = format_code(depth_format)
     color, zbuf = zbuffer.cleared_buffers(width, height, background, depth_format)
-    generated, passed, pixel, frag_z, ok, out_of_range = kernels.draw_triangles(
+    generated, passed = np.empty(len(poly_alpha), dtype=np.int64), np.empty(len(poly_alpha), dtype=np.int64)
+    pixel, frag_z, ok, out_of_range = kernels.draw_triangles(
         xy, z, corners, position, np.ascontiguousarray(poly_color, dtype=float),
         np.ascontiguousarray(poly_alpha, dtype=float), color, zbuf, record, code, z_test,
         numba.get_num_threads() if threads is None else max(1, int(threads)),
+        np.empty((len(corners), 4), dtype=np.int64), np.empty(len(corners), dtype=bool), generated, passed,
     )
     return ZBufferPass(color, zbuf, generated, passed, Fragments(pixel, frag_z, ok) if record else None,
                        out_of_range)

@@ -30,6 +30,7 @@ from __future__ import annotations
 import time
 from dataclasses import asdict, dataclass
 
+import numba
 import numpy as np
 
 from core import shapes
@@ -41,10 +42,11 @@ from core.object_order import (
     flat_shading,
     fragments,
     rasterization,
-    zbuffer,
 )
 from core.object_order.clipping import ClipResult, Polygons
 from core.object_order.culling import FaceCulling, ObjectCulling
+from core.object_order.kernels.culling import bounding_sphere
+from core.object_order.kernels.raster import depth_image
 from core.object_order.kernels.transform import transform_points
 from core.object_order.step_history import StepHistory
 from core.presets import zbuffer_piercing
@@ -200,6 +202,13 @@ class _Stopwatch:
 
 DEFAULT_SETTINGS = RasterSettings()
 
+PARALLEL_WORK = 1_000_000
+"""Pixels plus triangles below which a frame runs on one thread.  The back-face test, the
+triangles' bounding boxes and the drawing share their loops between the threads, and
+starting them costs tens of microseconds on a quiet machine and up to a scheduler time
+slice (milliseconds) on a busy one: for a small frame one thread is quicker.  (The
+image is the same with any number.)"""
+
 
 def _warm_up() -> None:
 
@@ -222,25 +231,46 @@ def render_raster(scene: Scene, settings: RasterSettings = DEFAULT_SETTINGS) -> 
     Returns
     -------
     RasterResult
+
+    Notes
+    -----
+    Frames of less work than ``PARALLEL_WORK`` run on one thread.
     """
     compile_s = ensure_compiled()
+    work = scene.camera.width * scene.camera.height + sum(
+        len(obj.triangles) for obj in scene.objects if isinstance(obj, Mesh))
+    threads = numba.get_num_threads()
+    numba.set_num_threads(threads if work >= PARALLEL_WORK else 1)
+    try:
+        result = _render(scene, settings)
+    finally:
+        numba.set_num_threads(threads)
+    result.stats["compile_s"] = compile_s  # compiling or loading the kernels; not part of ``times``
+    return result
+
+
+def _render(scene: Scene, settings: RasterSettings) -> RasterResult:
     cam = scene.camera
     ortho = cam.projection == "orthographic"
     watch = _Stopwatch()
     meshes = tuple(object_mesh(obj) for obj in scene.objects)
     face_counts = np.array([len(m.triangles) for m in meshes], dtype=np.int64)
     face_offsets = np.concatenate([[0], np.cumsum(face_counts)]).astype(np.int64)
-    vertex_offsets = np.cumsum([0] + [len(m.vertices) for m in meshes])
-    world = np.vstack([m.vertices for m in meshes] + [np.empty((0, 3))])
-    triangles = np.vstack([m.triangles + v for m, v in zip(meshes, vertex_offsets[:-1], strict=True)]
-                          + [np.empty((0, 3), np.int64)])
+    if len(meshes) == 1:  # one mesh: its own arrays, no copies
+        world, triangles = meshes[0].vertices, meshes[0].triangles
+    else:
+        vertex_offsets = np.cumsum([0] + [len(m.vertices) for m in meshes])
+        world = np.vstack([m.vertices for m in meshes] + [np.empty((0, 3))])
+        triangles = np.vstack([m.triangles + v for m, v in zip(meshes, vertex_offsets[:-1], strict=True)]
+                              + [np.empty((0, 3), np.int64)])
     face_object = np.repeat(np.arange(len(meshes)), face_counts)
     watch.lap("setup")
 
     # 1. World -> view (camera) space -> clip space, once per vertex.
     view_from_world, clip_from_view = cam.view_from_world, cam.clip_from_view
-    view = transform_points(np.ascontiguousarray(world, dtype=float), view_from_world, 3)
-    clip = transform_points(view, clip_from_view, 4)
+    view, clip = np.empty((len(world), 3)), np.empty((len(world), 4))
+    transform_points(np.ascontiguousarray(world, dtype=float), view_from_world, view)
+    transform_points(view, clip_from_view, clip)
     watch.lap("transform")
 
     # 2. Back-face culling.
@@ -255,8 +285,9 @@ def render_raster(scene: Scene, settings: RasterSettings = DEFAULT_SETTINGS) -> 
         objects = culling.frustum_culling(np.array([c for c, _ in spheres]),
                                           np.array([r for _, r in spheres]), cam.frustum_planes())
         state = np.array(objects.state)
-        candidate &= (state != culling.OUTSIDE)[face_object]
-        may_cross = (state == culling.CROSSING)[face_object]
+        if (state == culling.OUTSIDE).any():
+            candidate &= np.repeat(state != culling.OUTSIDE, face_counts)
+        may_cross = np.repeat(state == culling.CROSSING, face_counts)
         outside_faces = int(face_counts[state == culling.OUTSIDE].sum())
     watch.lap("frustum_culling")
 
@@ -271,13 +302,15 @@ def render_raster(scene: Scene, settings: RasterSettings = DEFAULT_SETTINGS) -> 
     xy, z_win = rasterization.window_coordinates(polygons.clip, cam.width, cam.height)
     watch.lap("projection")
 
-    # 6. Flat shading, one colour per polygon, in view space.
+    # 6. Flat shading, one colour per polygon, in view space (normals and centroids of the
+    # polygons' faces only).
+    normal, centroid = faces.geometry(polygons.face)
     poly_object = face_object[polygons.face]
     materials = [m.material for m in meshes]
     alpha = np.array([m.opacity for m in materials], dtype=float)[poly_object]
     lights = np.array([(*light.position, 1.0) for light in scene.lights]).reshape(-1, 4)
     colors = flat_shading.face_colors(
-        polygons.face, poly_object, faces.normal, faces.centroid, ortho,
+        np.arange(len(polygons)), poly_object, normal, centroid, ortho,
         np.array([m.color for m in materials], dtype=float), np.array([m.ambient for m in materials]),
         np.array([m.diffuse for m in materials]), (lights @ view_from_world.T)[:, :3],
         np.array([np.multiply(light.color, light.intensity) for light in scene.lights]).reshape(-1, 3),
@@ -286,24 +319,31 @@ def render_raster(scene: Scene, settings: RasterSettings = DEFAULT_SETTINGS) -> 
 
     # 7. Drawing order: opaque first, then transparent (sorted far to near by face centroid).
     transparent = alpha < 1.0
-    sort_depth = -faces.centroid[polygons.face, 2]
+    sort_depth = -centroid[:, 2]
     order = blending.draw_order(transparent, sort_depth, settings.sort_transparent)
+    in_order = not transparent.any()  # all opaque: drawn as they come, no reordering to pay for
+
+    def drawn(values):
+        return values if in_order else values[order]
     watch.lap("sorting")
 
     # 8. Rasterization and the z-buffer.
-    fan, position = rasterization.fan_triangles(polygons.offsets, order)
-    zpass = fragments.draw(xy, z_win, polygons.vertex[fan], position, colors[order], alpha[order],
+    if in_order and clipped.clipped == 0:  # whole triangles as they come: each is its own fan
+        corners, position = polygons.vertex.reshape(-1, 3), np.arange(len(polygons))
+    else:
+        fan, position = rasterization.fan_triangles(polygons.offsets, order)
+        corners = polygons.vertex[fan]
+    zpass = fragments.draw(xy, z_win, corners, position, drawn(colors), drawn(alpha),
                            cam.width, cam.height, scene.background, settings.record_steps,
                            settings.depth_format, settings.z_test)
     watch.lap("rasterization")
 
-    covered = zpass.zbuf < zbuffer.FAR_DEPTH
-    distance = zbuffer.distance_from_window_depth(zpass.zbuf, cam.near, cam.far, ortho)
-    depth = np.where(covered, distance, np.inf)
-    object_index = poly_object[order]
-    triangle_index = polygons.face[order] - face_offsets[object_index]
-    draw = DrawList(polygons.take(order), object_index, triangle_index, transparent[order],
-                    colors[order], alpha[order], sort_depth[order], zpass.generated, zpass.passed)
+    depth = depth_image(zpass.zbuf, cam.near, cam.far, ortho)
+    object_index = drawn(poly_object)
+    triangle_index = drawn(polygons.face) - face_offsets[object_index]
+    draw = DrawList(polygons if in_order else polygons.take(order), object_index, triangle_index,
+                    drawn(transparent), drawn(colors), drawn(alpha), drawn(sort_depth), zpass.generated,
+                    zpass.passed)
     history = None
     if settings.record_steps:
         history = StepHistory(
@@ -314,9 +354,8 @@ def render_raster(scene: Scene, settings: RasterSettings = DEFAULT_SETTINGS) -> 
         )
     watch.lap("output")
 
-    stats = _stats(settings, cam.projection, faces, outside_faces, objects, clipped, len(fan),
+    stats = _stats(settings, cam.projection, faces, outside_faces, objects, clipped, len(corners),
                    zpass.out_of_range, draw, history, len(meshes), cam.width, cam.height, watch.times)
-    stats["compile_s"] = compile_s  # compiling or loading the kernels; not part of ``times``
     return RasterResult(zpass.color, depth, zpass.zbuf, stats, settings, meshes, face_offsets, faces,
                         objects, clipped, view_from_world, clip_from_view, draw, history)
 
@@ -324,7 +363,8 @@ def render_raster(scene: Scene, settings: RasterSettings = DEFAULT_SETTINGS) -> 
 def _bounding_sphere(obj: SceneObject, mesh: Mesh) -> tuple[np.ndarray, float]:
     if isinstance(obj, Sphere):
         return np.asarray(obj.center, dtype=float), float(obj.radius)
-    return mesh.bounding_sphere()
+    center, radius = bounding_sphere(np.ascontiguousarray(mesh.vertices, dtype=float))
+    return center, float(radius)
 
 
 def _stats(settings, projection_name, faces, outside_faces, objects, clipped, n_triangles, out_of_range,

@@ -40,8 +40,6 @@ from __future__ import annotations
 import numpy as np
 from numba.extending import register_jitable
 
-from core import projection
-
 SUBPIXEL_BITS = 8
 SUBPIXEL = 1 << SUBPIXEL_BITS
 """Fixed-point steps per pixel (corners are snapped to 1/256 pixel, as on GPUs)."""
@@ -67,10 +65,14 @@ def window_coordinates(clip: np.ndarray, width: int, height: int) -> tuple[np.nd
     -----
     A vertex behind the eye (``w < 0``) lands mirrored through the image
     centre; clipping (:mod:`core.object_order.clipping`) removes such vertices first.
+    Compiled (:func:`core.object_order.kernels.transform.window_coordinates`), with
+    the arithmetic of :func:`core.projection.pixel_from_ndc`.
     """
-    with np.errstate(divide="ignore", invalid="ignore"):
-        ndc = clip[:, :3] / clip[:, 3:4]
-    return projection.pixel_from_ndc(ndc[:, :2], width, height), (ndc[:, 2] + 1.0) * 0.5
+    from core.object_order.kernels import transform as kernels  # the kernel compiles in this module
+
+    xy, z_win = np.empty((len(clip), 2)), np.empty(len(clip))
+    kernels.window_coordinates(np.ascontiguousarray(clip, dtype=float), width, height, xy, z_win)
+    return xy, z_win
 
 
 @register_jitable
@@ -94,6 +96,21 @@ def snap(xy: np.ndarray) -> np.ndarray:
 def pixel_centre_fixed(i):
     """The centre of pixel column (or row) ``i`` in fixed point: ``(i + 1/2) SUBPIXEL``."""
     return i * SUBPIXEL + SUBPIXEL // 2
+
+
+@register_jitable
+def centres_within(lo, hi):
+    """The pixel columns (or rows) whose centres lie in the fixed-point range ``lo .. hi``.
+
+    Returns ``(first, last)``, with ``first > last`` when no centre lies in
+    it: a triangle whose bounding box holds no pixel centre covers none.
+
+    Examples
+    --------
+    >>> [int(v) for v in centres_within(128, 128)], [int(v) for v in centres_within(129, 383)]
+    ([0, 0], [1, 0])
+    """
+    return (lo - SUBPIXEL // 2 + SUBPIXEL - 1) >> SUBPIXEL_BITS, (hi - SUBPIXEL // 2) >> SUBPIXEL_BITS
 
 
 @register_jitable

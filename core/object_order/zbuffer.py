@@ -46,7 +46,8 @@ def cleared_buffers(width: int, height: int, background,
         (``FAR_DEPTH`` in every format).
     """
     color = np.empty((height, width, 3))
-    color[:] = np.asarray(background, dtype=float)
+    for c, value in enumerate(np.asarray(background, dtype=float)):
+        color[..., c] = value  # channel by channel: far quicker than broadcasting the RGB triple
     return color, np.full((height, width), depth_key(FAR_DEPTH, format_code(depth_format)))
 
 
@@ -66,12 +67,15 @@ def depth_test(key, stored_key):
     return key < stored_key
 
 
-def distance_from_window_depth(z_win, near: float, far: float, orthographic: bool):
+@register_jitable
+def distance_from_window_depth(z_win, near, far, orthographic):
     """Window depth back to the distance along the viewing axis (scene units, positive).
 
     Perspective: ``d = 2 n f / ((f + n) - z_ndc (f - n))`` with
     ``z_ndc = 2 z_win - 1`` (the inverse of the perspective matrix's depth
-    row); orthographic: depth is linear, ``d = n + z_win (f - n)``.
+    row); orthographic: depth is linear, ``d = n + z_win (f - n)``.  ``z_win`` is
+    a number or an array; the formula is compiled into the kernels too
+    (:func:`core.object_order.kernels.raster.depth_image`).
 
     Examples
     --------
@@ -80,7 +84,6 @@ def distance_from_window_depth(z_win, near: float, far: float, orthographic: boo
     >>> float(distance_from_window_depth(1.0, 1.0, 30.0, False))   # far plane
     30.0
     """
-    z_win = np.asarray(z_win, dtype=float)
     if orthographic:
         return near + z_win * (far - near)
     return 2.0 * near * far / ((far + near) - (2.0 * z_win - 1.0) * (far - near))

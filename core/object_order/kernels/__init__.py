@@ -6,6 +6,11 @@ After an edit of, say, :mod:`core.object_order.rasterization`, the cached
 rasterizer would silently keep the old fill rule.  So on import this package
 hashes every file its kernels are made of (:data:`SOURCES`) and, when the
 hash changed, deletes its cached kernels before any is loaded.
+
+Memory: the kernels write their large results into arrays the caller allocates
+with numpy, which asks the system for huge pages for large arrays.  Memory a
+kernel allocates itself comes in 4 KB pages, and at a million triangles the
+page faults on a frame's fresh results cost more than the work done in them.
 """
 
 from __future__ import annotations

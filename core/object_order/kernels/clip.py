@@ -26,8 +26,9 @@ ACCEPTED, REJECTED, CUT, CUT_AWAY = range(4)
 
 
 @njit(cache=True, nogil=True)
-def clip_triangles(triangles, clip, world, test):
-    """Clip triangles against the frustum's six planes.
+def clip_triangles(triangles, clip, world, test, outcome, counts):
+    """Clip triangles against the frustum's six planes: what happened to each, and the
+    new vertices (:func:`number_vertices` then numbers the polygons' vertices).
 
     Parameters
     ----------
@@ -36,28 +37,22 @@ def clip_triangles(triangles, clip, world, test):
     world : (N, 3) float64, the same vertices in world space.
     test : (K,) bool, triangles that may cross the frustum; the others are
         accepted untested.
+    outcome : (K,) int8, written: ``ACCEPTED``, ``REJECTED``, ``CUT`` or ``CUT_AWAY``.
+    counts : (K,) int64, written: the vertices left of each triangle (0, 3 or more).
 
     Returns
     -------
-    outcome : (K,) int8, ``ACCEPTED``, ``REJECTED``, ``CUT`` or ``CUT_AWAY``.
-    keep : (P,) int64, the triangles with something left, in order.
-    offsets : (P + 1,) int64, polygon ``p`` (of triangle ``keep[p]``) has the
-        vertices ``vertex[offsets[p] : offsets[p + 1]]``.
-    vertex : (V,) int64, vertex numbers: a whole triangle keeps its corners'
-        numbers, a cut one gets new vertices numbered from ``N`` on, in the
-        order of ``new``.
     new : (V', 7) float64, the vertices of the cut polygons, triangle after
         triangle, each in order around its polygon: clip ``(x, y, z, w)`` then
         world ``(x, y, z)``.
     """
     k_total = triangles.shape[0]
-    outcome = np.empty(k_total, np.int8)
-    counts = np.zeros(k_total, np.int64)
     new = np.empty((64, VERTEX_COMPONENTS))
     n_new = 0
     poly = np.empty((MAX_CLIPPED_VERTICES + 1, VERTEX_COMPONENTS))
     spare = np.empty_like(poly)
     for k in range(k_total):
+        counts[k] = 0
         if not test[k]:
             outcome[k], counts[k] = ACCEPTED, 3
             continue
@@ -90,18 +85,30 @@ def clip_triangles(triangles, clip, world, test):
         new[n_new:n_new + m] = poly[:m]
         n_new += m
         outcome[k], counts[k] = CUT, m
-    keep = np.flatnonzero(counts)
-    offsets = np.zeros(keep.shape[0] + 1, np.int64)
-    for p in range(keep.shape[0]):
-        offsets[p + 1] = offsets[p] + counts[keep[p]]
-    vertex = np.empty(offsets[-1], np.int64)
-    next_new = clip.shape[0]
+    return new[:n_new].copy()
+
+
+@njit(cache=True, nogil=True)
+def number_vertices(triangles, outcome, keep, offsets, first_new, vertex):
+    """The vertex numbers of the polygons left after :func:`clip_triangles`, into ``vertex``.
+
+    Parameters
+    ----------
+    triangles, outcome : as given to and written by :func:`clip_triangles`.
+    keep : (P,) int64, the triangles with something left, in order.
+    offsets : (P + 1,) int64, polygon ``p`` (of triangle ``keep[p]``) has the
+        vertices ``vertex[offsets[p] : offsets[p + 1]]``.
+    first_new : int, the number of the first new vertex (the vertices before clipping).
+    vertex : (V,) int64, written: a whole triangle keeps its corners' numbers, a
+        cut one gets new vertices numbered from ``first_new`` on, in the order of
+        the new vertices.
+    """
+    next_new = first_new
     for p in range(keep.shape[0]):
         k = keep[p]
-        for corner in range(counts[k]):
+        for corner in range(offsets[p + 1] - offsets[p]):
             if outcome[k] == ACCEPTED:
                 vertex[offsets[p] + corner] = triangles[k, corner]
             else:
                 vertex[offsets[p] + corner] = next_new
                 next_new += 1
-    return outcome, keep, offsets, vertex, new[:n_new].copy()

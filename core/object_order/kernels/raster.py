@@ -37,7 +37,7 @@ from core.object_order.blending import blend_over
 from core.object_order.depth_formats import depth_key
 from core.object_order.rasterization import (
     MAX_PIXEL,
-    SUBPIXEL_BITS,
+    centres_within,
     depth_plane,
     edge_function,
     edge_steps,
@@ -46,7 +46,7 @@ from core.object_order.rasterization import (
     plane_depth,
     to_fixed,
 )
-from core.object_order.zbuffer import depth_test
+from core.object_order.zbuffer import FAR_DEPTH, depth_test, distance_from_window_depth
 
 
 @njit(cache=True, nogil=True)
@@ -73,22 +73,22 @@ def _corners_fixed(xy, a, b, c):
     return f0, f1, f2, area
 
 
-@njit(cache=True, nogil=True)
-def _bounding_boxes(xy, corners, width, height):
-    """The pixel bounding box of every triangle, clamped to the image, and the range test.
+@njit(cache=True, nogil=True, parallel=True)
+def _bounding_boxes(xy, corners, width, height, box, out_of_range):
+    """The pixels whose centres lie in each triangle's bounding box, clamped to the image,
+    and the range test.  Triangle by triangle, shared by the threads (each box is its own).
 
-    Returns
-    -------
+    Writes
+    ------
     box : (T, 4) int64, ``imin, imax, jmin, jmax``; a triangle with no area,
-        no pixel inside the image or a corner out of range gets an empty box
-        (``jmin > jmax``).
+        no pixel centre in its box inside the image, or a corner out of range
+        gets an empty box (``jmin > jmax``).  Most triangles of a fine mesh
+        are smaller than a pixel and get none.
     out_of_range : (T,) bool, a corner beyond ``MAX_PIXEL`` or not finite.
     """
-    n_tri = corners.shape[0]
-    box = np.empty((n_tri, 4), np.int64)
-    out_of_range = np.zeros(n_tri, np.bool_)
-    for t in range(n_tri):
+    for t in prange(corners.shape[0]):
         box[t, 0], box[t, 1], box[t, 2], box[t, 3] = 0, -1, 1, 0
+        out_of_range[t] = False
         a, b, c = corners[t, 0], corners[t, 1], corners[t, 2]
         if not (abs(xy[a, 0]) <= MAX_PIXEL and abs(xy[a, 1]) <= MAX_PIXEL and abs(xy[b, 0]) <= MAX_PIXEL
                 and abs(xy[b, 1]) <= MAX_PIXEL and abs(xy[c, 0]) <= MAX_PIXEL
@@ -98,13 +98,11 @@ def _bounding_boxes(xy, corners, width, height):
         f0, f1, f2, area = _corners_fixed(xy, a, b, c)
         if area == 0:
             continue
-        imin = max(min(f0[0], f1[0], f2[0]) >> SUBPIXEL_BITS, 0)
-        imax = min(max(f0[0], f1[0], f2[0]) >> SUBPIXEL_BITS, width - 1)
-        jmin = max(min(f0[1], f1[1], f2[1]) >> SUBPIXEL_BITS, 0)
-        jmax = min(max(f0[1], f1[1], f2[1]) >> SUBPIXEL_BITS, height - 1)
+        imin, imax = centres_within(min(f0[0], f1[0], f2[0]), max(f0[0], f1[0], f2[0]))
+        jmin, jmax = centres_within(min(f0[1], f1[1], f2[1]), max(f0[1], f1[1], f2[1]))
+        imin, imax, jmin, jmax = max(imin, 0), min(imax, width - 1), max(jmin, 0), min(jmax, height - 1)
         if imin <= imax and jmin <= jmax:
             box[t, 0], box[t, 1], box[t, 2], box[t, 3] = imin, imax, jmin, jmax
-    return box, out_of_range
 
 
 @njit(cache=True, nogil=True)
@@ -158,7 +156,8 @@ def _draw_rows(xy, z, corners, tri_poly, poly_color, poly_alpha, color, zbuf, de
     a, b, c = corners[t, 0], corners[t, 1], corners[t, 2]
     f0, f1, f2, _ = _corners_fixed(xy, a, b, c)
     pa, pb, pc = (xy[a, 0], xy[a, 1]), (xy[b, 0], xy[b, 1]), (xy[c, 0], xy[c, 1])
-    plane = depth_plane(pa, pb, pc, z[a], z[b], z[c])  # of the unsnapped corners
+    plane = (0.0, 0.0, 0.0)  # the depth plane, fitted at the first covered centre: most
+    # sub-pixel triangles whose box holds a centre still cover none
     first = (pixel_centre_fixed(imin), pixel_centre_fixed(jlo))
     # The three edge functions at the first pixel centre, with the fill rule's offset
     # so that "E >= 0" means covered, and their exact integer steps per pixel.
@@ -177,6 +176,8 @@ def _draw_rows(xy, z, corners, tri_poly, poly_color, poly_alpha, color, zbuf, de
         w0, w1, w2 = e0, e1, e2
         for i in range(imin, imax + 1):
             if w0 >= 0 and w1 >= 0 and w2 >= 0:
+                if generated == 0:
+                    plane = depth_plane(pa, pb, pc, z[a], z[b], z[c])  # of the unsnapped corners
                 key = depth_key(plane_depth(plane, pa, i + 0.5, j + 0.5), depth_code)
                 ok = not z_test or depth_test(key, zbuf[j, i])
                 if ok:
@@ -217,7 +218,7 @@ def _draw_bands(w, workers, xy, z, corners, tri_poly, poly_color, poly_alpha, co
 def _draw_bands_in_parallel(workers, xy, z, corners, tri_poly, poly_color, poly_alpha, color, zbuf,
                             depth_code, z_test, box, piece_tri, band_start, band_pieces, record, slot,
                             scratch_pixel, scratch_key, scratch_passed, piece_generated, piece_passed):
-    """All workers at once, one thread each (the only parallel region of the rasterizer)."""
+    """All workers at once, one thread each."""
     for w in prange(workers):
         _draw_bands(w, workers, xy, z, corners, tri_poly, poly_color, poly_alpha, color, zbuf,
                     depth_code, z_test, box, piece_tri, band_start, band_pieces, record, slot,
@@ -226,7 +227,7 @@ def _draw_bands_in_parallel(workers, xy, z, corners, tri_poly, poly_color, poly_
 
 @njit(cache=True, nogil=True)
 def draw_triangles(xy, z, corners, tri_poly, poly_color, poly_alpha, color, zbuf, record,
-                   depth_code, z_test, n_workers):
+                   depth_code, z_test, n_workers, box, out_of_range, generated, passed):
     """Rasterize triangles in order into ``color`` and ``zbuf`` (modified in place).
 
     The image is cut into bands of ``BAND_ROWS`` rows.  Binning lists for
@@ -254,10 +255,11 @@ def draw_triangles(xy, z, corners, tri_poly, poly_color, poly_alpha, color, zbuf
         (:func:`core.object_order.depth_formats.format_code`).
     z_test : bool, compare depths; False writes every fragment in drawing order.
     n_workers : int >= 1, threads sharing the bands.
+    box : (T, 4) int64 and out_of_range : (T,) bool, scratch space.
+    generated, passed : (P,) int64, written: fragments per polygon.
 
     Returns
     -------
-    generated, passed : (P,) int64, fragments per polygon.
     frag_pixel : (F,) int32, pixel number ``j * W + i`` of each fragment (empty
         unless ``record``), in drawing order.
     frag_key : (F,) float64, its depth key.
@@ -266,7 +268,7 @@ def draw_triangles(xy, z, corners, tri_poly, poly_color, poly_alpha, color, zbuf
         ``MAX_PIXEL`` or not finite.
     """
     height, width = zbuf.shape
-    box, out_of_range = _bounding_boxes(xy, corners, width, height)
+    _bounding_boxes(xy, corners, width, height, box, out_of_range)
     n_bands = (height + BAND_ROWS - 1) // BAND_ROWS
     piece_tri, piece_band, band_start, band_pieces = _bin(box, n_bands)
     n_pieces = piece_tri.shape[0]
@@ -292,8 +294,8 @@ def draw_triangles(xy, z, corners, tri_poly, poly_color, poly_alpha, color, zbuf
                                 zbuf, depth_code, z_test, box, piece_tri, band_start, band_pieces,
                                 record, slot, scratch_pixel, scratch_key, scratch_passed,
                                 piece_generated, piece_passed)
-    generated = np.zeros(poly_alpha.shape[0], np.int64)
-    passed = np.zeros(poly_alpha.shape[0], np.int64)
+    generated[:] = 0
+    passed[:] = 0
     for k in range(n_pieces):
         p = tri_poly[piece_tri[k]]
         generated[p] += piece_generated[k]
@@ -311,7 +313,7 @@ def draw_triangles(xy, z, corners, tri_poly, poly_color, poly_alpha, color, zbuf
                 frag_pixel[start[k] + f] = scratch_pixel[slot[k] + f]
                 frag_key[start[k] + f] = scratch_key[slot[k] + f]
                 frag_passed[start[k] + f] = scratch_passed[slot[k] + f]
-    return generated, passed, frag_pixel, frag_key, frag_passed, int(out_of_range.sum())
+    return frag_pixel, frag_key, frag_passed, int(out_of_range.sum())
 
 
 @njit(cache=True, nogil=True)
@@ -336,3 +338,16 @@ def replay(offsets, frag_pixel, frag_key, frag_passed, poly_color, poly_alpha, s
             if frag_passed[f]:
                 j = frag_pixel[f] // width
                 _write(color, zbuf, j, frag_pixel[f] - j * width, frag_key[f], cs, alpha)
+
+
+@njit(cache=True, nogil=True)
+def depth_image(zbuf, near, far, orthographic):
+    """(H, W) float64, the distance along the viewing axis of each pixel's depth key
+    (:func:`core.object_order.zbuffer.distance_from_window_depth`), +inf where the
+    z-buffer still holds the far plane (nothing drawn)."""
+    out = np.empty(zbuf.shape)
+    for j in range(zbuf.shape[0]):
+        for i in range(zbuf.shape[1]):
+            z = zbuf[j, i]
+            out[j, i] = distance_from_window_depth(z, near, far, orthographic) if z < FAR_DEPTH else np.inf
+    return out

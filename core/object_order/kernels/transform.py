@@ -1,33 +1,52 @@
-"""Transforming vertices compiled: a 4 x 4 matrix applied to every point in one loop.
+"""Transforming vertices compiled: a 4 x 4 matrix applied to every point, and the
+perspective divide with the viewport mapping, each in one loop.
 
-The pipeline's first stage (world -> view -> clip space,
-:mod:`core.object_order.pipeline`).  Matrices act on column vectors
-``[x, y, z, 1]``.
+The pipeline's first stage (world -> view -> clip space) and its projection
+stage (:mod:`core.object_order.pipeline`).  Matrices act on column vectors
+``[x, y, z, 1]``.  The results are written into arrays the caller allocates with
+numpy (see :mod:`core.object_order.kernels`).  One thread: a few nanoseconds per
+point are less than what sharing the loop costs on a busy machine.
 """
 
 from __future__ import annotations
 
-import numpy as np
 from numba import njit
 
 
 @njit(cache=True, nogil=True)
-def transform_points(points, matrix, rows):
-    """``(matrix @ [p, 1])[:rows]`` for every point ``p``.
+def transform_points(points, matrix, out):
+    """``(matrix @ [p, 1])[:rows]`` for every point ``p``, into ``out``.
 
     Parameters
     ----------
     points : (N, 3) float64, in the matrix's source frame.
     matrix : (4, 4) float64, e.g. ``view_from_world``.
-    rows : int, 3 (an affine map's result) or 4 (homogeneous clip coordinates).
-
-    Returns
-    -------
-    (N, rows) float64, in the matrix's target frame.
+    out : (N, rows) float64, written: in the matrix's target frame; ``rows`` is 3
+        (an affine map's result) or 4 (homogeneous clip coordinates).
     """
-    out = np.empty((points.shape[0], rows))
+    rows = out.shape[1]
     for i in range(points.shape[0]):
         x, y, z = points[i, 0], points[i, 1], points[i, 2]
         for k in range(rows):
             out[i, k] = matrix[k, 0] * x + matrix[k, 1] * y + matrix[k, 2] * z + matrix[k, 3]
-    return out
+
+
+@njit(cache=True, nogil=True, error_model="numpy")
+def window_coordinates(clip, width, height, xy, z_win):
+    """Clip space to pixels and window depth, with the arithmetic of
+    :func:`core.projection.pixel_from_ndc` (bit for bit).
+
+    Parameters
+    ----------
+    clip : (N, 4) float64, homogeneous clip coordinates.
+    width, height : image size in pixels.
+
+    xy : (N, 2) float64, written: ``x = (x_ndc + 1) / 2 W``, ``y = (1 - y_ndc) / 2 H``.
+    z_win : (N,) float64, written: ``(z_ndc + 1) / 2``.  (``w = 0`` gives inf or nan, as
+        in numpy.)
+    """
+    for i in range(clip.shape[0]):
+        w = clip[i, 3]
+        xy[i, 0] = (clip[i, 0] / w + 1.0) * 0.5 * width
+        xy[i, 1] = (1.0 - clip[i, 1] / w) * 0.5 * height
+        z_win[i] = (clip[i, 2] / w + 1.0) * 0.5
