@@ -9,7 +9,8 @@ A tab is any object with
   while it is visible; see :mod:`views.scene_overlays`);
 - ``job(scene, preview)`` : a job for :class:`app.workers.Renderer` that
   renders ``scene`` for this tab, or ``None`` if the tab has nothing to
-  render (a panel that computes on its own, like Hard cases).  With
+  render (a panel that computes on its own, like Hard cases: then its ``idle``
+  text says where the work happens, in the progress bar).  With
   ``preview`` true the job is a coarse, quick one, shown
   while the observer moves (about a quarter of the pixels, upscaled, marked
   "preview"); otherwise it is the full render;
@@ -363,6 +364,7 @@ class HardCasesTab:
 
     title = "Hard cases"
     overlays = ()
+    idle = "Hard cases: pick a case and move its slider; the panel works it out at once"
 
     def __init__(self, model):
         self.model = model
@@ -384,6 +386,7 @@ class CostTab:
 
     title = "Cost"
     overlays = ()
+    idle = "Cost: choose a knob and press Run; the sweep shows its progress in the panel"
 
     def __init__(self, model):
         self.model = model

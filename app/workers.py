@@ -274,7 +274,7 @@ class RenderSchedule(QObject):
         job = tab.job(scene, preview)
         if job is None:
             self._full_shown[tab.title] = scene  # nothing to render: what it shows is current
-            self._set_status(tab, 100, f"{tab.title}: computed in the panel itself")
+            self._set_status(tab, 0, tab.idle)
             return
         self._jobs[tab.title] = (scene, preview)
         tab.renderer.submit(job)

@@ -309,3 +309,10 @@ def test_the_frustum_shows_its_edges_while_moving_and_its_faces_once_at_rest(qtb
     assert edges.GetVisibility() and not faces.GetVisibility()
     qtbot.waitUntil(lambda: faces.GetVisibility(), timeout=5000)
     assert view.plotter.renderer.GetUseFXAA()
+
+
+def test_tabs_that_work_in_their_panel_say_how_to_start_in_the_progress_bar(window):
+    window.show_tab("cost")
+    assert "press Run" in window.progress.format() and window.progress.value() == 0
+    window.show_tab("hard cases")
+    assert window.progress.format().startswith("Hard cases: pick a case")
