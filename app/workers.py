@@ -166,6 +166,7 @@ class RenderSchedule(QObject):
         self._preview_shown: dict[str, object] = {}
         self._status: dict[str, tuple[int, str, str]] = {}  # title -> percent, progress text, caption
         self._moving = False
+        self._held = False
         self._rest = QTimer(self)
         self._rest.setSingleShot(True)
         self._rest.setInterval(self.REST_MS)
@@ -223,6 +224,15 @@ class RenderSchedule(QObject):
         self._jobs.pop(tab.title, None)
         self._set_status(tab, None, f"{tab.title}: cancelled at %p% (F5 renders again)")
 
+    def hold(self) -> None:
+        """Start no render until :meth:`release` (the window's first frame comes first: loading
+        the kernels holds the GIL and would delay it by as much)."""
+        self._held = True
+
+    def release(self) -> None:
+        self._held = False
+        self._update()
+
     def stop(self) -> None:
         self._rest.stop()
         for tab in self.tabs:
@@ -247,7 +257,7 @@ class RenderSchedule(QObject):
     def _update(self, force: bool = False) -> None:
         """Start what the visible tab needs next for the current scene, if anything."""
         tab, scene = self.current, self.model.scene
-        if tab is None:
+        if tab is None or self._held:
             return
         running = self._jobs.get(tab.title)
         if self._moving:
