@@ -19,7 +19,7 @@ from collections.abc import Callable
 
 from PySide6.QtCore import QObject, QRunnable, QThreadPool, QTimer, Signal
 
-from app import render_budget
+from app import render_budget, render_priority
 
 Job = Callable[[threading.Event, Callable[[int, object], None]], object]
 PROGRESS_PER_SECOND = 30
@@ -40,6 +40,7 @@ class _Runnable(QRunnable):
     def run(self):
         if self.cancelled.is_set():  # superseded while it waited for a thread: nothing to do
             return
+        render_priority.give_way_to_the_window()
         try:
             result = self.job(self.cancelled, self._progress)
         except Exception as exc:  # shown to the user by whoever listens to `failed`
