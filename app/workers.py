@@ -227,7 +227,7 @@ class RenderSchedule(QObject):
 
     def hold(self) -> None:
         """Start no render until :meth:`release` (the window's first frame comes first: loading
-        the kernels holds the GIL and would delay it by as much)."""
+        the kernels holds the GIL and would delay it by as much); refusals are still told at once."""
         self._held = True
 
     def release(self) -> None:
@@ -258,7 +258,7 @@ class RenderSchedule(QObject):
     def _update(self, force: bool = False) -> None:
         """Start what the visible tab needs next for the current scene, if anything."""
         tab, scene = self.current, self.model.scene
-        if tab is None or self._held:
+        if tab is None:
             return
         running = self._jobs.get(tab.title)
         if self._moving:
@@ -280,6 +280,8 @@ class RenderSchedule(QObject):
             self._set_status(tab, 0, f"{tab.title}: not rendered, over the memory budget", refusal)
             self.refused.emit(refusal)
             return
+        if self._held:
+            return  # a refusal is told at once; a render waits for release()
         job = tab.job(scene, preview)
         if job is None:
             self._full_shown[tab.title] = scene  # nothing to render: what it shows is current
