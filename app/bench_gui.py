@@ -13,6 +13,9 @@ then lets it rest.  Per tab it prints:
 - the time from the last move to the full-resolution image of the last
   camera (ms).
 
+With ``--why`` it also prints, per tab, what the GUI thread was doing in its
+longest stall (:mod:`app.stall_why`).
+
 The numba kernels are compiled (or loaded from their cache) before the
 window opens, so the figures are the window's, not the compiler's.
 
@@ -34,6 +37,8 @@ def add_arguments(parser) -> None:
     parser.add_argument("--seconds", type=float, default=6.0,
                         help="how long the observer moves on each tab (default 6)")
     parser.add_argument("--size", default="1600x900", help="window size WxH in pixels (default 1600x900)")
+    parser.add_argument("--why", action="store_true",
+                        help="per tab, the GUI thread's stack in its longest stall and where the time went")
 
 
 def _size(text: str) -> tuple[int, int]:
@@ -51,21 +56,29 @@ def _size(text: str) -> tuple[int, int]:
 class _Probe:
     """Counts what the user would notice on one tab: stalls, 3D draws, fresh images."""
 
-    def __init__(self, window, view):
+    def __init__(self, window, view, why: bool = False):
         from PySide6.QtCore import QTimer
 
+        from app.stall_why import StallWhy
+
         self.window, self.view = window, view
+        self.why = StallWhy() if why else None
         self.ticks: list[float] = []
         self.draws = 0
         self.images = 0
         self._last_drawn = None
         self._timer = QTimer()
         self._timer.setInterval(TICK_MS)
-        self._timer.timeout.connect(lambda: self.ticks.append(time.perf_counter()))
+        self._timer.timeout.connect(self._tick)
         ren_win = window.scene_view.plotter.ren_win
         self._observer = ren_win.AddObserver("EndEvent", self._drawn)
         self._original = view.set_image
         view.set_image = self._image_set
+
+    def _tick(self):
+        self.ticks.append(time.perf_counter())
+        if self.why is not None:
+            self.why.tick()
 
     def _drawn(self, *_):
         import numpy as np
@@ -81,11 +94,14 @@ class _Probe:
 
     def start(self):
         self.draws = self.images = 0
-        self.ticks = [time.perf_counter()]
+        self.ticks = []
+        self._tick()
         self._timer.start()
 
     def stop(self):
         self._timer.stop()
+        if self.why is not None:
+            self.why.stop()
         self.window.scene_view.plotter.ren_win.RemoveObserver(self._observer)
         del self.view.set_image
 
@@ -95,6 +111,16 @@ class _Probe:
         gaps = np.diff(self.ticks) * 1000.0 - TICK_MS
         return (float(gaps.max()), float(np.percentile(gaps, 99))) if len(gaps) else (0.0, 0.0)
 
+    def longest_stall_why(self) -> list[str]:
+        """What the GUI thread did in the longest stall (``--why``), innermost frame first."""
+        import numpy as np
+
+        gaps = np.diff(self.ticks) * 1000.0
+        if self.why is None or not len(gaps):
+            return []
+        i = int(np.argmax(gaps))
+        return self.why.explain(i, float(gaps[i]), outer="app/bench_gui.py")
+
 
 def _observer_image(window, title: str):
     """The image pane of ``title``'s tab that shows the observer's own view."""
@@ -103,7 +129,7 @@ def _observer_image(window, title: str):
     return widget.views[key] if key else widget.image
 
 
-def _bench_tab(app, window, title: str, seconds: float) -> dict:
+def _bench_tab(app, window, title: str, seconds: float, why: bool = False) -> dict:
     from PySide6.QtCore import QEventLoop, QTimer
 
     # Sleep until the next event, as the window's own event loop does: a loop that polls
@@ -118,7 +144,7 @@ def _bench_tab(app, window, title: str, seconds: float) -> dict:
 
     window.show_tab(title)
     wait_idle()
-    probe = _Probe(window, _observer_image(window, title))
+    probe = _Probe(window, _observer_image(window, title), why)
     start_cam = window.model.camera
     moves = int(seconds * MOVES_PER_SECOND)
     state = {"i": 0}
@@ -146,10 +172,11 @@ def _bench_tab(app, window, title: str, seconds: float) -> dict:
     settle = time.perf_counter() - stopped
     longest, p99 = probe.stalls_ms()
     probe.stop()
+    reasons = probe.longest_stall_why()
     window.model.set_camera(start_cam)
     wait_idle()
     return {"tab": title, "longest": longest, "p99": p99, "draws": draws / moving,
-            "images": images / moving, "full": settle * 1000.0}
+            "images": images / moving, "full": settle * 1000.0, "why": reasons}
 
 
 def run(args) -> int:
@@ -171,7 +198,7 @@ def run(args) -> int:
     # Tabs that draw what the observer sees; Hard cases and Cost do not follow the observer.
     following = [t for t in window.tab_titles()
                  if hasattr(window.tab(t).widget, "image") or hasattr(window.tab(t).widget, "views")]
-    rows = [_bench_tab(app, window, title, args.seconds) for title in following]
+    rows = [_bench_tab(app, window, title, args.seconds, args.why) for title in following]
     cam = window.model.camera
     print(f"window {width} x {height}, lecture scene {cam.width} x {cam.height}, "
           f"observer moved {MOVES_PER_SECOND}x/s for {args.seconds:g} s per tab")
@@ -180,6 +207,8 @@ def run(args) -> int:
     for r in rows:
         print(f"{r['tab']:<14}{r['longest']:>12.0f} ms{r['p99']:>8.0f} ms{r['draws']:>12.1f}"
               f"{r['images']:>10.1f}{r['full']:>20.0f} ms")
+    for r in rows if args.why else ():
+        print(f"\n{r['tab']}, the longest stall: " + "\n".join(r["why"]))
     window.close()
     QThreadPool.globalInstance().waitForDone()
     return 0

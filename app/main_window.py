@@ -34,6 +34,7 @@ from PySide6.QtWidgets import (
 
 from app import render_budget, session
 from app.export_menu import ExportMenu
+from app.first_frame import AfterFirstFrame
 from app.lesson_runner import LESSON_OVERLAY, LessonRunner
 from app.mesh_files import read_mesh
 from app.scene_editor import SceneEditor
@@ -175,10 +176,9 @@ class MainWindow(QMainWindow):
         object_order.polygon_shown.connect(self.overlays.show_polygon)
         object_order.clipped_shown.connect(self.overlays.show_clipped)
 
+        self.renders.hold()  # the first render starts once the window is on screen
+        AfterFirstFrame(self.tab_widget, self._first_frame_shown)
         self._tab_shown()
-        if self.renders.busy(self.current):  # not when the scene is over the memory budget
-            self.progress.setFormat("compiling the renderers on first use (numba caches them), "
-                                    "then rendering… %p%")
         available = self.screen().availableGeometry()
         self.resize(min(1400, available.width()), min(860, available.height()))
 
@@ -420,6 +420,12 @@ class MainWindow(QMainWindow):
         self.scene_view.show_overlays_only((*tab.overlays, *SCENE_OVERLAYS, LESSON_OVERLAY))
         self.renders.show_tab(tab)
         self._show_status(tab)
+
+    def _first_frame_shown(self) -> None:
+        self.renders.release()
+        if self.renders.busy(self.current):  # not when the scene is over the memory budget
+            self.progress.setFormat("compiling the renderers on first use (numba caches them), "
+                                    "then rendering… %p%")
 
     def _show_status(self, tab) -> None:
         if tab is not self.current:

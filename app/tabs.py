@@ -56,6 +56,7 @@ from views.image_order_panel import ImageOrderPanel
 from views.image_view import display_image
 from views.object_order_panel import ObjectOrderPanel
 from views.scene_overlays import IMAGE_ORDER_OVERLAYS, OBJECT_ORDER_OVERLAYS
+from views.step_picture import step_picture
 
 BAND_ROWS = 32
 PREVIEW_STEP = 2
@@ -223,8 +224,12 @@ class ObjectOrderTab:
 
             return run
 
-        def run(cancelled, progress):
-            return scene, render_raster(scene, settings)
+        step = self.model.step
+
+        def run(cancelled, progress):  # the step's picture too: the window only paints it
+            raster = render_raster(scene, settings)
+            n = raster.history.n_steps
+            return scene, raster, step_picture(raster, scene, n if step is None else min(step, n))
 
         return run
 
@@ -232,8 +237,8 @@ class ObjectOrderTab:
         if isinstance(result, Preview):
             self.widget.show_preview(result.image)
             return f"preview: a quarter of the pixels, without steps, in {_ms(result.seconds)}"
-        scene, raster = result
-        self.widget.show_result(raster, scene)
+        scene, raster, picture = result
+        self.widget.show_result(raster, scene, picture)
         s = raster.stats
         return (f"{len(raster.draw)} polygons drawn · {s.get('fragments_generated', 0):,} fragments · "
                 f"total {_ms(sum(s['times'].values()))}")

@@ -19,7 +19,7 @@ from collections.abc import Callable
 
 from PySide6.QtCore import QObject, QRunnable, QThreadPool, QTimer, Signal
 
-from app import render_budget
+from app import render_budget, render_priority
 from views.stale_cover import cover, uncover
 
 Job = Callable[[threading.Event, Callable[[int, object], None]], object]
@@ -41,6 +41,7 @@ class _Runnable(QRunnable):
     def run(self):
         if self.cancelled.is_set():  # superseded while it waited for a thread: nothing to do
             return
+        render_priority.give_way_to_the_window()
         try:
             result = self.job(self.cancelled, self._progress)
         except Exception as exc:  # shown to the user by whoever listens to `failed`
@@ -167,6 +168,7 @@ class RenderSchedule(QObject):
         self._preview_shown: dict[str, object] = {}
         self._status: dict[str, tuple[int, str, str]] = {}  # title -> percent, progress text, caption
         self._moving = False
+        self._held = False
         self._rest = QTimer(self)
         self._rest.setSingleShot(True)
         self._rest.setInterval(self.REST_MS)
@@ -224,6 +226,15 @@ class RenderSchedule(QObject):
         self._jobs.pop(tab.title, None)
         self._set_status(tab, None, f"{tab.title}: cancelled at %p% (F5 renders again)")
 
+    def hold(self) -> None:
+        """Start no render until :meth:`release` (the window's first frame comes first: loading
+        the kernels holds the GIL and would delay it by as much); refusals are still told at once."""
+        self._held = True
+
+    def release(self) -> None:
+        self._held = False
+        self._update()
+
     def stop(self) -> None:
         self._rest.stop()
         for tab in self.tabs:
@@ -271,6 +282,8 @@ class RenderSchedule(QObject):
             cover(tab.widget, f"Not rendered: what this tab shows is not of the current scene.\n\n{refusal}")
             self.refused.emit(refusal)
             return
+        if self._held:
+            return  # a refusal is told at once; a render waits for release()
         job = tab.job(scene, preview)
         if job is None:
             self._full_shown[tab.title] = scene  # nothing to render: what it shows is current

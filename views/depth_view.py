@@ -13,7 +13,7 @@ import numpy as np
 from PySide6.QtGui import QColor, QLinearGradient, QPainter
 from PySide6.QtWidgets import QHBoxLayout, QLabel, QVBoxLayout, QWidget
 
-from views.image_view import ImageView, display_image
+from views.image_view import DisplayImage, ImageView, display_image
 
 
 def depth_to_grey(depth: np.ndarray, near: float, far: float) -> np.ndarray:
@@ -51,9 +51,14 @@ class DepthView(QWidget):
         layout.addWidget(self.image, 1)
         layout.addLayout(row)
 
-    def set_depth(self, depth: np.ndarray, near: float, far: float) -> None:
-        """Show ``depth`` (H, W), distances along the viewing axis, +inf where nothing was drawn."""
+    def set_depth(self, depth: np.ndarray, near: float, far: float, grey: DisplayImage | None = None) -> None:
+        """Show ``depth`` (H, W), distances along the viewing axis, +inf where nothing was drawn.
+
+        ``grey``: its grey scale when already made (``display_image(depth_to_grey(...), linear=False)``).
+        """
         self.depth, self.near, self.far = depth, near, far
-        self.image.set_image(display_image(depth_to_grey(depth, near, far), linear=False))
+        if grey is None:
+            grey = display_image(depth_to_grey(depth, near, far), linear=False)
+        self.image.set_image(grey)
         self.near_label.setText(f"near {near:g}")
         self.far_label.setText(f"far {far:g}")

@@ -29,7 +29,6 @@ from PySide6.QtWidgets import (
     QWidget,
 )
 
-from core.object_order import zbuffer
 from core.object_order.depth_formats import BYTES_PER_PIXEL, DEPTH_FORMATS
 from core.object_order.pipeline import RasterResult, RasterSettings
 from core.projection import project_point
@@ -38,6 +37,7 @@ from core.srgb import linear_to_srgb
 from views.depth_view import DepthView
 from views.image_view import ImageView
 from views.side_column import SideColumn
+from views.step_picture import StepPicture, polygon_name, step_picture
 from views.step_scrubber import StepScrubber
 from views.worked_math import WorkedMath
 
@@ -232,8 +232,11 @@ class ObjectOrderPanel(QWidget):
         self.step_caption.setText("Preview while the observer moves: the steps and the "
                                   "z-buffer follow once it rests.")
 
-    def show_result(self, result: RasterResult, scene: Scene) -> None:
-        """Show a finished recording render at the model's step (the last, unless one was chosen)."""
+    def show_result(self, result: RasterResult, scene: Scene, picture: StepPicture | None = None) -> None:
+        """Show a finished recording render at the model's step (the last, unless one was chosen).
+
+        ``picture``: that step's picture when a worker made it already (:func:`step_picture`).
+        """
         self.result, self.scene = result, scene
         self.counts.setPlainText(self._counts_text())
         self.vertex_math.follow_camera(scene.camera)
@@ -242,48 +245,28 @@ class ObjectOrderPanel(QWidget):
         self.scrubber.set_count(result.history.n_steps)
         self.scrubber.set_step(self._model_step())
         self.scrubber.blockSignals(False)
-        self.show_step(self.scrubber.step)
+        self.show_step(self.scrubber.step, picture)
 
-    def show_step(self, k: int) -> None:
+    def show_step(self, k: int, picture: StepPicture | None = None) -> None:
         """Buffers after the first ``k`` polygons, with polygon k's fragments outlined."""
         if self.result is None:
             return
+        if picture is None or picture.step != k:
+            picture = step_picture(self.result, self.scene, k)
         self.scrubber.blockSignals(True)
         self.scrubber.set_step(k)
         self.scrubber.blockSignals(False)
         history = self.result.history
-        color, zbuf = history.buffers(k)
-        distance = zbuffer.distance_from_window_depth(zbuf, history.near, history.far,
-                                                      history.orthographic)
-        self.image.set_image(color)
-        self.depth.set_depth(np.where(zbuf >= zbuffer.FAR_DEPTH, np.inf, distance),
-                             history.near, history.far)
-        if k == 0:
-            mask = None
-            self.step_caption.setText(
-                f"Step 0 of {history.n_steps}: image memory cleared to the background, "
-                f"z-buffer cleared to the far plane ({history.far:g}).")
-            self.polygon_shown.emit(None)
-        else:
-            p = k - 1
-            cols, rows, _, passed = history.polygon_fragments(p)
-            mask = np.zeros((history.height, history.width), bool)
-            mask[rows, cols] = True
-            draw = self.result.draw
-            kind = "transparent, blended" if draw.transparent[p] else "opaque"
-            self.step_caption.setText(
-                f"Step {k} of {history.n_steps}: polygon {p} — {self._polygon_name(p)} ({kind}): "
-                f"{len(cols)} fragments, {int(passed.sum())} passed the z-test, "
-                f"{int((~passed).sum())} failed.")
-            self.polygon_shown.emit(draw.polygons.world_vertices(p))
-        self.image.set_highlight(mask)
-        self.depth.image.set_highlight(mask)
+        self.image.set_image(picture.image)
+        self.depth.set_depth(picture.depth, history.near, history.far, picture.depth_image)
+        self.step_caption.setText(picture.caption)
+        self.polygon_shown.emit(picture.polygon)
+        self.image.set_highlight(picture.mask)
+        self.depth.image.set_highlight(picture.mask)
         self._show_pixel(self.picked)
 
     def _polygon_name(self, p: int) -> str:
-        draw = self.result.draw
-        name = self.scene.objects[int(draw.object_index[p])].name
-        return f"{name}, triangle {int(draw.triangle_index[p])}"
+        return polygon_name(self.result, self.scene, p)
 
     def pick_pixel(self, x: int, y: int) -> None:
         """Pick pixel ``(x, y)``: its fragments up to the current step are listed."""

@@ -35,6 +35,7 @@ differs, and the statistics count it.
 from __future__ import annotations
 
 import dataclasses
+import functools
 import time
 from dataclasses import dataclass
 
@@ -106,7 +107,8 @@ def render_trace(scene: Scene, settings: TraceSettings = TraceSettings(),
         raise ValueError(f"rows must satisfy 0 <= first < stop <= {cam.height}, got {rows!r}")
     if not (isinstance(step, int) and step >= 1):
         raise ValueError(f"step must be a whole number >= 1, got {step!r}")
-    compile_s = ensure_compiled()
+    warm_up = _compiled_for.get(settings.accel)  # an unknown method is refused below
+    compile_s = warm_up() if warm_up else 0.0
     times = {}
     start = time.perf_counter()
     flat = trace_scene(scene)
@@ -200,19 +202,28 @@ def describe_structure(structure) -> dict:
     return {}
 
 
-def _warm_up() -> None:
-    """Render a tiny scene so the kernels see exactly the argument types of real renders."""
+def _warm_up(accel: str) -> None:
+    """Render a tiny scene with ``accel`` so the kernels see exactly the argument types of real
+    renders; its structure is built too, so build times exclude compiling."""
     scene = warm_up_scene()
     flat = trace_scene(scene)
-    for accel in ("grid", "bvh"):  # builds both structures, so build times exclude compiling
-        settings = TraceSettings(accel=accel)
-        structure, _, _ = flat.geometry.accel(accel)
-        inputs = kernel_inputs(scene, settings, effects_plan(scene), flat, structure)
-        _run_passes(np.arange(2.0), np.arange(2.0), inputs, {})
-        trace_pixel(scene, 1, 1, settings)
+    settings = TraceSettings(accel=accel)
+    structure, _, _ = flat.geometry.accel(accel)
+    inputs = kernel_inputs(scene, settings, effects_plan(scene), flat, structure)
+    _run_passes(np.arange(2.0), np.arange(2.0), inputs, {})
 
 
-ensure_compiled = WarmUp(_warm_up)
+_compiled_for = {accel: WarmUp(functools.partial(_warm_up, accel)) for accel in lay.ACCEL_CODES}
+"""A render compiles only what its acceleration method needs: the window's first image waits for less."""
+
+
+def _warm_up_all() -> None:
+    for warm_up in _compiled_for.values():
+        warm_up()
+    trace_pixel(warm_up_scene(), 1, 1, TraceSettings())
+
+
+ensure_compiled = WarmUp(_warm_up_all)
 """Compile every tracer kernel once per process; returns the seconds it took (0.0 later)."""
 
 

@@ -146,3 +146,14 @@ def test_the_3d_pane_comes_in_on_its_own_when_no_image_is_shown(qtbot, monkeypat
     qtbot.waitUntil(lambda: win.scene_view.view is not None, timeout=RENDER_TIMEOUT_MS)
     assert shown == []
     assert np.allclose(win.scene_view.frustum.points, win.model.camera.frustum_corners())
+
+
+def test_the_first_render_starts_once_the_window_is_painted(qtbot):
+    win = MainWindow(presets.lecture_scene())
+    qtbot.addWidget(win)
+    assert not win.renders.busy(win.current)  # loading the kernels would hold up the first frame
+    assert win.progress.format() == "Image order: not rendered yet"
+    win.show()
+    qtbot.waitUntil(lambda: win.showing_full("image order"), timeout=RENDER_TIMEOUT_MS)
+    image = win.tab("image order").widget.image
+    assert image.rgb.shape[:2] == (win.model.camera.height, win.model.camera.width)

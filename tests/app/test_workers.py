@@ -1,9 +1,11 @@
 """Background jobs: the newest job wins, a cancelled one stops early, failures are reported."""
 
 import math
+import os
 import threading
 import time
 
+from app.render_priority import RENDER_NICE
 from app.workers import PROGRESS_PER_SECOND, Renderer
 
 
@@ -74,3 +76,14 @@ def test_a_failing_job_is_reported_not_lost(qtbot):
     with qtbot.waitSignal(renderer.failed, timeout=10000) as blocker:
         renderer.submit(broken)
     assert blocker.args == ["ValueError: scene has no camera"]
+
+
+def test_a_job_runs_at_a_lower_priority_than_the_window(qtbot):
+    """Linux: a render thread is nicer than the GUI thread, so the window gets a core first."""
+    renderer = Renderer()
+    got = []
+    renderer.finished.connect(got.append)
+    renderer.submit(lambda cancelled, progress: os.getpriority(os.PRIO_PROCESS, threading.get_native_id()))
+    qtbot.waitUntil(lambda: bool(got))
+    window = os.getpriority(os.PRIO_PROCESS, threading.get_native_id())
+    assert got[0] == max(window, RENDER_NICE) > window
