@@ -40,7 +40,7 @@ from app.mesh_files import read_mesh
 from app.scene_editor import SceneEditor
 from app.state import SceneModel
 from app.tabs import TABS
-from app.window_layout import LEFT_SHARE, fit_window
+from app.window_layout import LEFT_SHARE, fit_window, tabbed_dock
 from app.workers import Renderer, RenderSchedule
 from core import presets, scene_file
 from core.image_order.ray_tree import trace_pixel
@@ -131,14 +131,8 @@ class MainWindow(QMainWindow):
         # the one given until the user picks a step.
         self.lesson_panel = LessonPanel()
         self.lessons = LessonRunner(self)
-        self.lesson_dock = QDockWidget("Lessons", self)
-        self.lesson_dock.setObjectName("lessons")
-        self.lesson_dock.setFeatures(QDockWidget.DockWidgetFeature.DockWidgetMovable
-                                     | QDockWidget.DockWidgetFeature.DockWidgetClosable)
-        self.lesson_dock.setWidget(self.lesson_panel)
         # Beside the controls, as a second tab of the same dock area: the image panes keep the width.
-        self.addDockWidget(Qt.DockWidgetArea.LeftDockWidgetArea, self.lesson_dock)
-        self.tabifyDockWidget(dock, self.lesson_dock)
+        self.lesson_dock = tabbed_dock(self, "Lessons", "lessons", self.lesson_panel, dock)
         self.lesson_dock.raise_()
         self._keyed_actions: list[QAction] = []
         self._editor_keys = EditorsKeepTheirKeys(self)

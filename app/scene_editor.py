@@ -19,12 +19,13 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from PySide6.QtCore import QObject, Qt
+from PySide6.QtCore import QObject
 from PySide6.QtGui import QAction, QKeySequence, QUndoStack
-from PySide6.QtWidgets import QDockWidget, QFileDialog, QMenu, QMessageBox
+from PySide6.QtWidgets import QFileDialog, QMenu, QMessageBox
 
 from app.mesh_files import EXTENSIONS, read_mesh
 from app.scene_edits import SceneEdit
+from app.window_layout import tabbed_dock
 from app.workers import Renderer
 from core import scene_editing, scene_file
 from core.scene_file import SceneFileError
@@ -48,13 +49,7 @@ class SceneEditor(QObject):
         self.window, self.model = window, window.model
         self.stack = QUndoStack(self)
         self.panel = SceneTreePanel(self.model)
-        self.dock = QDockWidget("Edit scene", window)
-        self.dock.setObjectName("scene editor")
-        self.dock.setFeatures(QDockWidget.DockWidgetFeature.DockWidgetMovable
-                              | QDockWidget.DockWidgetFeature.DockWidgetClosable)
-        self.dock.setWidget(self.panel)
-        window.addDockWidget(Qt.DockWidgetArea.LeftDockWidgetArea, self.dock)
-        window.tabifyDockWidget(window.lesson_dock, self.dock)
+        self.dock = tabbed_dock(window, "Edit scene", "scene editor", self.panel, window.lesson_dock)
         window.lesson_dock.raise_()
         self._mesh_reader = Renderer(self)
         self._mesh_reader.finished.connect(self._mesh_read)

@@ -16,6 +16,7 @@ scale changes or a lesson step is shown.
 from __future__ import annotations
 
 from PySide6.QtCore import Qt
+from PySide6.QtWidgets import QDockWidget
 
 LEFT_SHARE = {1.0: 0.28, 1.5: 0.31, 2.0: 0.34}
 """Share of the window's width for the left column (3D pane, controls, lessons), by text scale."""
@@ -25,6 +26,19 @@ MIN_SCENE_SHARE = 0.3
 """The least share of the left column's height the 3D pane keeps when a lesson's words need room."""
 MAX_LEFT_SHARE = 0.42
 """The widest share the left column takes when a lesson's words need room (large text, small screen)."""
+
+
+def tabbed_dock(window, title: str, name: str, widget, beside):
+    """A closable dock of ``widget`` titled ``title`` (saved as ``name``), as one more tab of the
+    left column beside the dock ``beside``; the dock shown stays the one that was."""
+    dock = QDockWidget(title, window)
+    dock.setObjectName(name)
+    dock.setFeatures(QDockWidget.DockWidgetFeature.DockWidgetMovable
+                     | QDockWidget.DockWidgetFeature.DockWidgetClosable)
+    dock.setWidget(widget)
+    window.addDockWidget(Qt.DockWidgetArea.LeftDockWidgetArea, dock)
+    window.tabifyDockWidget(beside, dock)
+    return dock
 
 
 def left_share(scale: float) -> float:

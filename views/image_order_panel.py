@@ -30,6 +30,7 @@ from core.image_order.ray_tracing import TraceSettings
 from core.image_order.ray_tree import RayNode
 from core.scene import Scene
 from views.image_view import ImageView
+from views.panel_layout import pictures_over_details
 from views.raytree_view import KIND_COLORS, RayKindLegend, RayTreeWidget
 from views.side_column import SideColumn
 from views.worked_math import WorkedMath
@@ -146,15 +147,7 @@ class ImageOrderPanel(QWidget):
         top_layout.addWidget(self.image, 1)
         top_layout.addWidget(SideColumn([form_box, self.rays, QLabel("<b>Ray colours</b>"),
                                          RayKindLegend(per_line=1)]))
-        split = QSplitter(Qt.Orientation.Vertical)
-        split.addWidget(top)
-        split.addWidget(self.details)
-        split.setStretchFactor(0, 3)
-        split.setStretchFactor(1, 2)
-        split.setSizes([600, 400])
-        layout = QVBoxLayout(self)
-        layout.setContentsMargins(6, 6, 6, 6)
-        layout.addWidget(split, 1)
+        pictures_over_details(self, top, self.details)
 
         for w in (self.mode, self.accel, self.offset):
             w.currentIndexChanged.connect(self._settings_edited)

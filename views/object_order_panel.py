@@ -36,6 +36,7 @@ from core.scene import Scene
 from core.srgb import linear_to_srgb
 from views.depth_view import DepthView
 from views.image_view import ImageView
+from views.panel_layout import pictures_over_details
 from views.side_column import SideColumn
 from views.step_picture import StepPicture, polygon_name, step_picture
 from views.step_scrubber import StepScrubber
@@ -170,7 +171,6 @@ class ObjectOrderPanel(QWidget):
 
         # The buffers beside the stage switches, the pixel's details under both: the buffers
         # keep the pane's height, the history table gets several rows.
-        split = QSplitter(Qt.Orientation.Vertical)
         top = QWidget()
         tl = QVBoxLayout(top)
         tl.setContentsMargins(0, 0, 0, 0)
@@ -180,14 +180,7 @@ class ObjectOrderPanel(QWidget):
         tl.addLayout(beside, 1)
         tl.addWidget(self.scrubber)
         tl.addWidget(self.step_caption)
-        split.addWidget(top)
-        split.addWidget(self.details)
-        split.setStretchFactor(0, 3)
-        split.setStretchFactor(1, 2)
-        split.setSizes([600, 400])
-        layout = QVBoxLayout(self)
-        layout.setContentsMargins(6, 6, 6, 6)
-        layout.addWidget(split, 1)
+        pictures_over_details(self, top, self.details)
 
         self.scrubber.step_changed.connect(self._step_edited)
         self.image.pixel_clicked.connect(self.pick_pixel)
