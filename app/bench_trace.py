@@ -141,12 +141,13 @@ def _primary_rays(triangles: int, args) -> tuple:
     shape = (args.height, args.width)
     hits, depth = np.zeros((*shape, HIT_SIZE)), np.zeros(shape)
     color, children = np.zeros((*shape, 3)), np.zeros((*shape, 2, layout.CHILD_SIZE))
+    spawned = np.zeros(shape, np.uint8)
     counters = []
 
     def ours():
         counters[:] = [render.render_pass(render.PRIMARY_STAGE, k.cam, xs, ys, hits, depth, color,
-                                          children, k.materials, k.lights, k.opts, k.geo, k.grid, k.bvh,
-                                          k.bvh_depth, numba.get_num_threads())]
+                                          children, spawned, k.materials, k.lights, k.opts, k.geo, k.grid,
+                                          k.bvh, k.bvh_depth, numba.get_num_threads())]
 
     print(f"mesh: {len(mesh.triangles):,} triangles; BVH build {build_s:.3f} s, {len(bvh.nodes)} nodes, "
           f"depth {bvh.depth}")

@@ -143,14 +143,14 @@ def _run_passes(xs, ys, k: KernelInputs, times: dict):
     hits = np.zeros((ny, nx, lay.HIT_SIZE))
     depth = np.full((ny, nx), np.inf)
     color = np.zeros((ny, nx, 3))
-    children = np.zeros((ny, nx, lay.N_SPAWNED, lay.CHILD_SIZE))
+    children = np.zeros((ny, nx, lay.N_SPAWNED, lay.CHILD_SIZE))  # pages only touched where rays go on
+    spawned = np.zeros((ny, nx), np.uint8)
     counters = np.zeros(lay.N_COUNTERS, np.int64)
     for stage, name in ((trace_render.PRIMARY_STAGE, "primary"), (trace_render.SHADE_STAGE, "shading"),
                         (trace_render.SECONDARY_STAGE, "secondary")):
         start = time.perf_counter()
-        spawned = children[..., lay.CHILD_STATUS] == lay.CHILD_TRACED
-        if stage != trace_render.SECONDARY_STAGE or np.any(spawned):
-            counters += trace_render.render_pass(stage, k.cam, xs, ys, hits, depth, color, children,
+        if stage != trace_render.SECONDARY_STAGE or spawned.any():
+            counters += trace_render.render_pass(stage, k.cam, xs, ys, hits, depth, color, children, spawned,
                                                  k.materials, k.lights, k.opts, k.geo, k.grid, k.bvh,
                                                  k.bvh_depth, numba.get_num_threads())
         times[name] = time.perf_counter() - start

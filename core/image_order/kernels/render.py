@@ -94,11 +94,12 @@ def _as_hit(row):
 
 
 @jit
-def _shade_rows(first, last, cam, xs, ys, hits, color, children, materials, lights, opts, geo, grid, bvh,
-                scratch, rec, count):
+def _shade_rows(first, last, cam, xs, ys, hits, color, children, spawned, materials, lights, opts, geo, grid,
+                bvh, scratch, rec, count):
     for j in range(first, last):
         for i in range(xs.shape[0]):
             if hits[j, i, lay.HIT_PRIM] < 0:
+                spawned[j, i] = 0
                 for a in range(3):
                     color[j, i, a] = opts[lay.OPT_BACKGROUND + a]
                 continue
@@ -107,14 +108,22 @@ def _shade_rows(first, last, cam, xs, ys, hits, color, children, materials, ligh
                       count, rec)
             for a in range(3):
                 color[j, i, a] = rec[lay.REC_LOCAL + a]
-            for a in range(lay.CHILD_SIZE):
-                children[j, i, lay.SPAWN_REFLECT, a] = rec[lay.REC_REFLECT + a]
-                children[j, i, lay.SPAWN_REFRACT, a] = rec[lay.REC_REFRACT + a]
+            # Only the rays that go on are written: most pixels spawn none, and their rows of
+            # ``children`` are then never touched (nor paged in).
+            reflected = rec[lay.REC_REFLECT + lay.CHILD_STATUS] == lay.CHILD_TRACED
+            refracted = rec[lay.REC_REFRACT + lay.CHILD_STATUS] == lay.CHILD_TRACED
+            spawned[j, i] = reflected * (1 << lay.SPAWN_REFLECT) + refracted * (1 << lay.SPAWN_REFRACT)
+            if reflected:
+                for a in range(lay.CHILD_SIZE):
+                    children[j, i, lay.SPAWN_REFLECT, a] = rec[lay.REC_REFLECT + a]
+            if refracted:
+                for a in range(lay.CHILD_SIZE):
+                    children[j, i, lay.SPAWN_REFRACT, a] = rec[lay.REC_REFRACT + a]
 
 
 @jit
-def _secondary_rows(first, last, color, children, materials, lights, opts, geo, grid, bvh, scratch, rec,
-                    count):
+def _secondary_rows(first, last, color, children, spawned, materials, lights, opts, geo, grid, bvh, scratch,
+                    rec, count):
     method = int(opts[lay.OPT_ACCEL])
     max_depth = int(opts[lay.OPT_MAX_DEPTH])
     n_spheres = geo[lay.GEO_N_SPHERES]
@@ -123,9 +132,11 @@ def _secondary_rows(first, last, color, children, materials, lights, opts, geo, 
     o_at, d_at = lay.CHILD_ORIGIN, lay.CHILD_DIRECTION
     for j in range(first, last):
         for i in range(color.shape[1]):
+            if spawned[j, i] == 0:
+                continue
             top = 0
             for kind in range(lay.N_SPAWNED):
-                if children[j, i, kind, lay.CHILD_STATUS] == lay.CHILD_TRACED:
+                if spawned[j, i] & (1 << kind):
                     for a in range(lay.CHILD_SIZE):
                         stack[top, a] = children[j, i, kind, a]
                     stack[top, lay.STACK_GENERATION] = 1.0
@@ -163,8 +174,8 @@ def _secondary_rows(first, last, color, children, materials, lights, opts, geo, 
 
 
 @jit
-def _worker(stage, queue, cam, xs, ys, hits, depth, color, children, materials, lights, opts, geo, grid, bvh,
-            bvh_depth, count):
+def _worker(stage, queue, cam, xs, ys, hits, depth, color, children, spawned, materials, lights, opts, geo,
+            grid, bvh, bvh_depth, count):
     scratch = make_scratch(int(opts[lay.OPT_ACCEL]), geo[lay.GEO_ROWS].shape[0], materials.shape[0],
                            bvh_depth)
     rec = np.empty(lay.record_size(lights.shape[0]))
@@ -176,16 +187,16 @@ def _worker(stage, queue, cam, xs, ys, hits, depth, color, children, materials, 
         if stage == PRIMARY_STAGE:
             _primary_rows(first, last, cam, xs, ys, opts, geo, grid, bvh, scratch, hits, depth, count)
         elif stage == SHADE_STAGE:
-            _shade_rows(first, last, cam, xs, ys, hits, color, children, materials, lights, opts, geo, grid,
-                        bvh, scratch, rec, count)
+            _shade_rows(first, last, cam, xs, ys, hits, color, children, spawned, materials, lights, opts,
+                        geo, grid, bvh, scratch, rec, count)
         else:
-            _secondary_rows(first, last, color, children, materials, lights, opts, geo, grid, bvh, scratch,
-                            rec, count)
+            _secondary_rows(first, last, color, children, spawned, materials, lights, opts, geo, grid, bvh,
+                            scratch, rec, count)
 
 
 @jit_parallel
-def render_pass(stage, cam, xs, ys, hits, depth, color, children, materials, lights, opts, geo, grid, bvh,
-                bvh_depth, n_workers):
+def render_pass(stage, cam, xs, ys, hits, depth, color, children, spawned, materials, lights, opts, geo, grid,
+                bvh, bvh_depth, n_workers):
     """Run one stage of the render over the pixels ``xs`` x ``ys``, in parallel; return its counters.
 
     Parameters
@@ -196,7 +207,9 @@ def render_pass(stage, cam, xs, ys, hits, depth, color, children, materials, lig
         its camera-space depth into ``depth`` (ny, nx) (left ``inf`` on a miss).
         ``SHADE_STAGE``: local colour of each hit into ``color`` (ny, nx, 3)
         (the background on a miss) and the reflected and refracted rays it
-        spawns into ``children`` (ny, nx, N_SPAWNED, CHILD_SIZE).
+        spawns: ``spawned`` (ny, nx) uint8 gets bit ``1 << kind`` set for every ray of kind
+        ``SPAWN_*`` that will be traced, and only those rays are written into
+        ``children`` (ny, nx, N_SPAWNED, CHILD_SIZE).
         ``SECONDARY_STAGE``: trace those rays and all their descendants, adding
         ``weight * colour`` of every hit (or of the background) to ``color``.
     cam, opts, materials, lights : arrays laid out as in :mod:`core.image_order.kernels.layout`.
@@ -213,6 +226,6 @@ def render_pass(stage, cam, xs, ys, hits, depth, color, children, materials, lig
     queue = np.zeros(1, np.int64)
     counters = np.zeros((n_workers, _COUNTER_STRIDE), np.int64)
     for w in prange(n_workers):
-        _worker(stage, queue, cam, xs, ys, hits, depth, color, children, materials, lights, opts, geo, grid,
-                bvh, bvh_depth, counters[w])
+        _worker(stage, queue, cam, xs, ys, hits, depth, color, children, spawned, materials, lights, opts,
+                geo, grid, bvh, bvh_depth, counters[w])
     return counters.sum(axis=0)[:lay.N_COUNTERS]
