@@ -18,7 +18,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from PySide6.QtCore import QLineF, QPointF, QRectF, Qt, Signal
+from PySide6.QtCore import QPointF, QRectF, Qt, Signal
 from PySide6.QtGui import QColor, QImage, QPainter, QPen
 from PySide6.QtWidgets import QSizePolicy, QWidget
 
@@ -60,8 +60,16 @@ def display_image(rgb: np.ndarray, note: str = "", linear: bool = True) -> Displ
     return DisplayImage(rgb, to_qimage(rgb, linear), note)
 
 
+def _runs(edges: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Runs of True along each row of ``edges``: (row, first column, one past the last)."""
+    padded = np.pad(edges, ((0, 0), (1, 1)))
+    starts = np.nonzero(padded[:, 1:-1] & ~padded[:, :-2])
+    ends = np.nonzero(padded[:, 1:-1] & ~padded[:, 2:])  # row-major: each end follows its start
+    return starts[0], starts[1], ends[1] + 1
+
+
 def mask_outline(mask: np.ndarray) -> np.ndarray:
-    """The boundary of a set of pixels as unit segments between pixel corners.
+    """The boundary of a set of pixels as segments between pixel corners.
 
     Parameters
     ----------
@@ -70,17 +78,19 @@ def mask_outline(mask: np.ndarray) -> np.ndarray:
     Returns
     -------
     (S, 4) float64, segments ``(x0, y0, x1, y1)`` in pixel-corner coordinates (x to
-    the right, y down), one for every side a masked pixel shares with an unmasked
-    one or with the image border.  Drawn on top, they mark the set while every
-    pixel inside keeps its true colour.
+    the right, y down), horizontal or vertical, covering every side a masked pixel
+    shares with an unmasked one or with the image border exactly once; sides in a
+    straight row are joined into one segment, so a large polygon's outline draws
+    quickly.  Drawn on top, they mark the set while every pixel inside keeps its
+    true colour.
     """
     padded = np.pad(np.asarray(mask, bool), 1)
     horizontal = padded[1:, 1:-1] != padded[:-1, 1:-1]  # (H+1, W): edge above row y
     vertical = padded[1:-1, 1:] != padded[1:-1, :-1]  # (H, W+1): edge left of column x
-    hy, hx = np.nonzero(horizontal)
-    vy, vx = np.nonzero(vertical)
-    return np.concatenate([np.column_stack([hx, hy, hx + 1, hy]),
-                           np.column_stack([vx, vy, vx, vy + 1])]).astype(float)
+    hy, hx0, hx1 = _runs(horizontal)
+    vx, vy0, vy1 = _runs(vertical.T)
+    return np.concatenate([np.column_stack([hx0, hy, hx1, hy]),
+                           np.column_stack([vx, vy0, vx, vy1])]).astype(float)
 
 
 class ImageView(QWidget):
@@ -175,12 +185,14 @@ class ImageView(QWidget):
             sx = rect.width() / self._image.width()
             sy = rect.height() / self._image.height()
             seg = self._highlight * (sx, sy, sx, sy) + (rect.x(), rect.y(), rect.x(), rect.y())
-            lines = [QLineF(*row) for row in seg.tolist()]
             width = max(2.0, 0.25 * min(sx, sy))
-            painter.setPen(QPen(QColor(0, 0, 0, 170), width + 2))  # a dark rim, visible on light colours
-            painter.drawLines(lines)
-            painter.setPen(QPen(self._highlight_color, width))
-            painter.drawLines(lines)
+            # Each segment is axis-aligned: filled as a thin rectangle, far quicker than a wide stroke.
+            painter.setPen(Qt.PenStyle.NoPen)
+            for colour, w in ((QColor(0, 0, 0, 170), width + 2), (self._highlight_color, width)):
+                corner = np.minimum(seg[:, :2], seg[:, 2:]) - w / 2  # a dark rim, visible on light colours
+                size = np.abs(seg[:, 2:] - seg[:, :2]) + w
+                painter.setBrush(colour)
+                painter.drawRects([QRectF(*r) for r in np.hstack([corner, size]).tolist()])
         if self.picked is not None:
             sx = rect.width() / self._image.width()
             sy = rect.height() / self._image.height()

@@ -19,6 +19,16 @@ def _perimeter_by_counting(mask):
     return count
 
 
+def _unit_sides(segments):
+    sides = []
+    for x0, y0, x1, y1 in segments.astype(int).tolist():
+        if y0 == y1:
+            sides += [(x, y0, x + 1, y0) for x in range(x0, x1)]
+        else:
+            sides += [(x0, y, x0, y + 1) for y in range(y0, y1)]
+    return sides
+
+
 def test_the_outline_of_one_pixel_is_its_square_and_of_any_set_its_perimeter():
     single = np.zeros((3, 4), bool)
     single[1, 2] = True
@@ -27,7 +37,18 @@ def test_the_outline_of_one_pixel_is_its_square_and_of_any_set_its_perimeter():
     rng = np.random.default_rng(7)
     for _ in range(20):
         mask = rng.uniform(size=(9, 11)) < 0.4
-        assert len(mask_outline(mask)) == _perimeter_by_counting(mask)
+        segments = mask_outline(mask)
+        assert np.all((segments[:, 0] == segments[:, 2]) | (segments[:, 1] == segments[:, 3]))  # axis-aligned
+        # Joined rows of sides: split back into unit sides, each side appears once, and all are there.
+        sides = _unit_sides(segments)
+        assert len(sides) == len(set(sides)) == _perimeter_by_counting(mask)
+
+
+def test_a_straight_side_is_one_segment():
+    mask = np.zeros((30, 40), bool)
+    mask[5:25, 5:35] = True
+    assert sorted(map(tuple, mask_outline(mask).tolist())) == sorted(
+        [(5, 5, 35, 5), (5, 25, 35, 25), (5, 5, 5, 25), (35, 5, 35, 25)])
 
 
 def test_pixels_inside_an_outlined_polygon_keep_their_true_colour(qtbot):
