@@ -24,11 +24,13 @@ def _require_display(request):
 
 
 @pytest.fixture(autouse=True)
-def _private_settings(tmp_path_factory):
-    """QSettings read and write a fresh folder in every test, never the user's configuration."""
+def _private_settings(tmp_path_factory, monkeypatch):
+    """QSettings read and write a fresh folder in every test, never the user's configuration;
+    so does every ``python -m app`` a test starts (it finds the folder in ``XDG_CONFIG_HOME``)."""
     from PySide6.QtCore import QSettings
 
     folder = str(tmp_path_factory.mktemp("settings"))
+    monkeypatch.setenv("XDG_CONFIG_HOME", folder)
     for settings_format in (QSettings.Format.NativeFormat, QSettings.Format.IniFormat):
         for scope in (QSettings.Scope.UserScope, QSettings.Scope.SystemScope):
             QSettings.setPath(settings_format, scope, folder)
