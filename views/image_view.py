@@ -128,9 +128,13 @@ class ImageView(QWidget):
         """The 8-bit picture shown, at the image's own resolution (``None`` before the first)."""
         return self._image
 
-    def set_highlight(self, mask: np.ndarray | None, color: str = "#ff2bd6") -> None:
-        """Outline the pixels where ``mask`` (H, W) is true, keeping their colours; ``None`` clears it."""
-        self._highlight = None if mask is None else mask_outline(mask)
+    def set_highlight(self, mask: np.ndarray | None, color: str = "#ff2bd6",
+                      outline: np.ndarray | None = None) -> None:
+        """Outline the pixels where ``mask`` (H, W) is true, keeping their colours; ``None`` clears it.
+
+        ``outline``: ``mask_outline(mask)`` when the caller has it already (a worker made it).
+        """
+        self._highlight = None if mask is None else mask_outline(mask) if outline is None else outline
         self._highlight_shape = None if mask is None else mask.shape
         self._highlight_color = QColor(color)
         self.update()

@@ -254,8 +254,8 @@ class ObjectOrderPanel(QWidget):
         self.depth.set_depth(picture.depth, history.near, history.far, picture.depth_image)
         self.step_caption.setText(picture.caption)
         self.polygon_shown.emit(picture.polygon)
-        self.image.set_highlight(picture.mask)
-        self.depth.image.set_highlight(picture.mask)
+        self.image.set_highlight(picture.mask, outline=picture.outline)
+        self.depth.image.set_highlight(picture.mask, outline=picture.outline)
         self._show_pixel(self.picked)
 
     def _polygon_name(self, p: int) -> str:

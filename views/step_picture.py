@@ -15,7 +15,7 @@ from core.object_order import zbuffer
 from core.object_order.pipeline import RasterResult
 from core.scene import Scene
 from views.depth_view import depth_to_grey
-from views.image_view import DisplayImage, display_image
+from views.image_view import DisplayImage, display_image, mask_outline
 
 
 @dataclass(frozen=True)
@@ -31,6 +31,7 @@ class StepPicture:
     mask : (H, W) bool, the fragments of the polygon drawn at this step (``None`` at step 0).
     caption : what happened at this step, in words.
     polygon : (N, 3) world vertices of that polygon (``None`` at step 0).
+    outline : the mask's outline (:func:`views.image_view.mask_outline`), for both buffers.
     """
 
     step: int
@@ -40,6 +41,7 @@ class StepPicture:
     mask: np.ndarray | None
     caption: str
     polygon: np.ndarray | None
+    outline: np.ndarray | None = None
 
 
 def polygon_name(result: RasterResult, scene: Scene, p: int) -> str:
@@ -69,4 +71,4 @@ def step_picture(result: RasterResult, scene: Scene, k: int) -> StepPicture:
                f"{len(cols)} fragments, {int(passed.sum())} passed the z-test, "
                f"{int((~passed).sum())} failed.")
     return StepPicture(k, display_image(color), depth, depth_image, mask, caption,
-                       draw.polygons.world_vertices(p))
+                       draw.polygons.world_vertices(p), mask_outline(mask))
