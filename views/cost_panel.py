@@ -208,6 +208,7 @@ class CostPanel(QWidget):
 
         self.plot_figure = self.canvas = self.image_figure = self.image_canvas = None  # see _make_canvases
         self._dark = False  # the figures were drawn in the dark theme
+        self._dpi = plot_theme.DPI  # the figures' resolution, after the text size they were made for
         self._plot_box, self._image_box = _CanvasBox(), _CanvasBox()
         self._plot_box.setMinimumSize(240, 200)
         self._image_box.setMinimumSize(200, 160)
@@ -250,8 +251,11 @@ class CostPanel(QWidget):
         super().showEvent(event)
 
     def changeEvent(self, event) -> None:  # noqa: N802 (Qt's name)
-        """The plot and the images follow the window's theme (dark in high contrast)."""
+        """The plot and the images follow the window's theme (dark in high contrast) and text size."""
         super().changeEvent(event)
+        if event.type() == QEvent.Type.FontChange and self.canvas is not None \
+                and plot_theme.figure_dpi(self) != self._dpi:
+            self._remake_canvases()
         if event.type() == QEvent.Type.PaletteChange and self.canvas is not None:
             dark = plot_theme.is_dark(self)
             if dark != self._dark:
@@ -266,14 +270,26 @@ class CostPanel(QWidget):
         from matplotlib.backends.backend_qtagg import FigureCanvasQTAgg
         from matplotlib.figure import Figure
 
-        self.plot_figure = Figure(layout="constrained")
+        self._dpi = dpi = plot_theme.figure_dpi(self)
+        self.plot_figure = Figure(layout="constrained", dpi=dpi)
         self.canvas = FigureCanvasQTAgg(self.plot_figure)
         self.canvas.mpl_connect("pick_event", self._on_pick)
-        self.image_figure = Figure(layout="constrained")
+        self.canvas.mpl_connect("resize_event", lambda _: plot_theme.fit_axis_labels(self.plot_figure))
+        self.image_figure = Figure(layout="constrained", dpi=dpi)
         self.image_canvas = FigureCanvasQTAgg(self.image_figure)
         self._plot_box.layout().addWidget(self.canvas)
         self._image_box.layout().addWidget(self.image_canvas)
         self._draw_plot()
+
+    def _remake_canvases(self) -> None:
+        """New figures at the new text size (a figure's resolution is set when it is made)."""
+        for box, canvas in ((self._plot_box, self.canvas), (self._image_box, self.image_canvas)):
+            box.layout().removeWidget(canvas)
+            canvas.deleteLater()
+        self.canvas = None
+        self._make_canvases()
+        if self.selected is not None and self.selected in self._points:
+            self.show_point(self.selected)
 
     # -- inputs ---------------------------------------------------------------
 
@@ -444,6 +460,7 @@ class CostPanel(QWidget):
             if not rows:
                 ax.text(0.5, 0.5, "the curves fill in here, point by point", transform=ax.transAxes,
                         ha="center", va="center", color="gray")
+            plot_theme.fit_axis_labels(self.plot_figure)
         self.canvas.draw_idle()
         self.image_canvas.draw_idle()
 

@@ -5,12 +5,19 @@ A widget that draws with matplotlib asks :func:`is_dark` of its own palette
 and draws inside ``matplotlib.rc_context(plot_style(dark))``: the figure,
 axes, text, ticks, grid and legend take the theme's colours, and the colour
 cycle (``"C0"``, ``"C1"``, ...) becomes one that reads on black.
+
+Its figures follow the window's text size too (presentation mode's ×1.5,
+×2): made at :func:`figure_dpi` dots per inch, every text, line and marker
+(all sized in points) is drawn that many times larger on the same pixels.
 """
 
 from __future__ import annotations
 
 from PySide6.QtGui import QPalette
-from PySide6.QtWidgets import QWidget
+from PySide6.QtWidgets import QApplication, QWidget
+
+DPI = 100.0
+"""matplotlib's own figure resolution, dots per inch: a figure's size at text scale 1."""
 
 DARK_BACKGROUND = "#000000"
 DARK_FOREGROUND = "#ffffff"
@@ -24,6 +31,16 @@ DARK_CYCLE = ["#4fc3ff", "#ffb000", "#5cff7a", "#ff6b6b", "#d29bff", "#ffd400", 
 def is_dark(widget: QWidget) -> bool:
     """Whether ``widget`` is drawn on a dark background now."""
     return widget.palette().color(QPalette.ColorRole.Window).lightness() < 128
+
+
+def text_scale(widget: QWidget) -> float:
+    """How many times the application's text size ``widget``'s text is now (presentation mode's scale)."""
+    return widget.font().pointSizeF() / (QApplication.font().pointSizeF() or widget.font().pointSizeF())
+
+
+def figure_dpi(widget: QWidget) -> float:
+    """The resolution a figure in ``widget`` is made at, so that its text follows the widget's."""
+    return DPI * text_scale(widget)
 
 
 def foreground(dark: bool) -> str:
@@ -47,3 +64,18 @@ def plot_style(dark: bool) -> dict:
 
 def background(dark: bool) -> str:
     return DARK_BACKGROUND if dark else LIGHT_BACKGROUND
+
+
+def fit_axis_labels(figure) -> None:
+    """Break an axis label nearly as long as the figure (large text, small pane) into two lines."""
+    renderer = figure.canvas.get_renderer()
+    box = figure.bbox
+    for ax in figure.axes:
+        for label, room in ((ax.xaxis.label, 0.9 * box.width), (ax.yaxis.label, 0.9 * box.height)):
+            text = label.get_text()
+            extent = label.get_window_extent(renderer)
+            if "\n" in text or " " not in text or max(extent.width, extent.height) <= room:
+                continue
+            spaces = [i for i, c in enumerate(text) if c == " "]
+            cut = min(spaces, key=lambda i: abs(i - len(text) / 2))
+            label.set_text(text[:cut] + "\n" + text[cut + 1:])

@@ -39,6 +39,7 @@ from core.scene import Scene, Sphere
 from views import vtk_convert
 from views.framing import MARGIN, fit_view, label_bounds
 from views.image_plotter import ImagePlotter
+from views.label_placement import GAP_PX, place_label
 from views.scene_colors import FRUSTUM_COLOR, SCREEN_COLOR
 
 TARGET_COLOR = "#ff8c42"
@@ -112,6 +113,7 @@ class SceneView(QWidget):
         self._visible_overlays: set[str] | None = None  # None: all
         self._scene: Scene | None = None
         self._framed_at = None  # the overview camera _frame chose, until the user moves it
+        self._labels_placed_for = None  # the camera, pane and labels _place_labels placed for
         self._view: dict | None = None  # the overview camera look_from was given, if any
         self._render_timer = QTimer(self)
         self._render_timer.setSingleShot(True)
@@ -120,6 +122,7 @@ class SceneView(QWidget):
         self._last_draw = -1.0
         self._changed = False  # something changed since the last frame was drawn
         self.plotter.ren_win.AddObserver("EndEvent", self._drawn)
+        self.plotter.renderer.AddObserver("StartEvent", self._place_labels)
         self._smooth_timer = QTimer(self)
         self._smooth_timer.setSingleShot(True)
         self._smooth_timer.setInterval(SMOOTH_AFTER_MS)
@@ -267,6 +270,7 @@ class SceneView(QWidget):
                 drawn.copy_from(poly)
         else:
             for _, actor, _ in old:
+                self.plotter.remove_actor(getattr(actor, "_leader_actor", actor), render=False)
                 self.plotter.remove_actor(actor, render=False)
             drawn = []
             for i, (poly, style) in enumerate(parts):
@@ -281,8 +285,10 @@ class SceneView(QWidget):
         if "label_size" not in style:
             actor = self.plotter.add_mesh(poly, name=name, render=False, **style)
         else:
+            placed = pv.PolyData(poly.points.copy())  # where the labels go, see _place_labels
+            placed.point_data["labels"] = poly.point_data["labels"]
             mapper = vtkLabeledDataMapper()
-            mapper.SetInputData(poly)  # the same polydata: new points move the labels
+            mapper.SetInputData(placed)
             mapper.SetLabelModeToLabelFieldData()
             mapper.SetFieldDataName("labels")
             text = mapper.GetLabelTextProperty()
@@ -293,7 +299,13 @@ class SceneView(QWidget):
             text.SetVerticalJustificationToBottom()
             actor = vtkActor2D()
             actor.SetMapper(mapper)
+            actor._anchors, actor._placed = poly, placed
             self.plotter.add_actor(actor, name=name, render=False)
+            actor._leader = pv.PolyData()
+            actor._leader.points = poly.points[:1]  # no lines yet; pyvista draws no empty mesh
+            actor._leader_actor = self.plotter.add_mesh(
+                actor._leader, color=style.get("color", "white"), line_width=1, name=f"{name}:leader",
+                render=False)
         self._scale_actor(actor, style)
         return actor
 
@@ -324,7 +336,7 @@ class SceneView(QWidget):
         self.request_render()
 
     def _add_axes(self) -> None:
-        side = min(0.2 * self.line_scale, 0.4)  # the labels' size follows the marker's viewport
+        side = _axes_side(self.line_scale)
         self.plotter.add_axes(line_width=round(3 * self.line_scale), labels_off=False,
                               viewport=(0.0, 0.0, side, side))
 
@@ -339,6 +351,7 @@ class SceneView(QWidget):
         shown = self._visible_overlays is None or name in self._visible_overlays
         for _, actor, _ in self._overlays.get(name, []):
             actor.SetVisibility(shown)
+            getattr(actor, "_leader_actor", actor).SetVisibility(shown)
 
     def overlay_names(self) -> list[str]:
         """Names of the overlays currently shown (with at least one part)."""
@@ -452,11 +465,96 @@ class SceneView(QWidget):
             bounds.append(label_bounds(box[1] - box[0] + 4, box[3] - box[2] + 4, pane).tolist())
         return bounds
 
+    def _place_labels(self, *_) -> None:
+        """Before each draw: move every shown label beside the point it names, clear of its
+        overlay's lines, the observer's frustum and the labels placed before it; a thin
+        leader line joins a label set farther off to its point."""
+        renderer = self.plotter.renderer
+        width, height = self.plotter.ren_win.GetSize()
+        matrix = pv.array_from_vtkmatrix(renderer.GetActiveCamera().GetCompositeProjectionTransformMatrix(
+            width / max(height, 1), -1, 1))
+        names = self.overlay_names()
+        key = (matrix.tobytes(), width, height, self.line_scale,
+               [(p.points.tobytes(), list(p.point_data.get("labels", []))) for n in names
+                for p, _, _ in self._overlays[n]])
+        if width < 2 or height < 2 or key == self._labels_placed_for:
+            return
+        self._labels_placed_for = key
+        to_pixels = np.array([width / 2, height / 2])
+
+        def project(points):
+            h = np.c_[np.asarray(points, float), np.ones(len(points))] @ matrix.T
+            return h, (h[:, :2] / h[:, 3:] + 1) * to_pixels
+
+        own = [(self._frustum_edges, 2.0), (self._screen_edges, 3.0)]
+        measure, box, dpi = vtkTextRenderer(), [0, 0, 0, 0], self.plotter.ren_win.GetDPI()
+        corner = _axes_side(self.line_scale) * np.array([width, height])
+        taken = [(0.0, 0.0, *corner)]  # the axes marker in the lower left corner
+        for name in names:
+            parts = self._overlays[name]
+            ends, halves = [], []
+            for poly, line_width in own + [(poly, style.get("line_width", 1.0)) for poly, _, style in parts
+                                           if "label_size" not in style]:
+                h, xy = project(poly.points)
+                for a, b in _edges(poly):
+                    if h[a, 3] > 0 and h[b, 3] > 0:  # both ends in front of the overview camera
+                        ends.append((xy[a], xy[b]))
+                        halves.append(line_width * self.line_scale / 2)
+            ends = np.array(ends).reshape(-1, 2, 2)
+            segments = (ends[:, 0], ends[:, 1], np.array(halves))
+            for _, actor, style in parts:
+                if "label_size" not in style:
+                    continue
+                anchors, placed = actor._anchors, actor._placed
+                text = actor.GetMapper().GetLabelTextProperty()
+                h, xy = project(anchors.points)
+                spots = np.array(h)
+                for k, label in enumerate(anchors.point_data["labels"]):
+                    measure.GetBoundingBox(text, str(label), box, dpi)
+                    w, t = box[1] - box[0], box[3] - box[2]
+                    cx, bottom = place_label(xy[k], (w, t), segments, (width, height), taken,
+                                             GAP_PX * self.line_scale)
+                    taken.append((cx - w / 2, bottom, cx + w / 2, bottom + t))
+                    at = np.array([cx - (box[0] + box[1]) / 2, bottom - box[2]])
+                    spots[k, :2] = (at / to_pixels - 1) * h[k, 3]  # same depth, moved on the pane
+                world = spots @ np.linalg.inv(matrix).T
+                placed.points = world[:, :3] / world[:, 3:]
+                placed.point_data["labels"] = anchors.point_data["labels"]
+                far = np.hypot(*(project(placed.points)[1] - xy).T) > 3 * GAP_PX * self.line_scale
+                actor._leader.copy_from(_leaders(anchors.points[far], placed.points[far]))
+
     def close(self) -> bool:
         self._render_timer.stop()
         self._smooth_timer.stop()
         self.plotter.close()
         return super().close()
+
+
+def _axes_side(line_scale: float) -> float:
+    """The axes marker's share of the pane's width and height (its labels follow its size)."""
+    return min(0.2 * line_scale, 0.4)
+
+
+def _leaders(starts, ends) -> pv.PolyData:
+    """Lines from each of ``starts`` to the same row of ``ends``."""
+    n = len(starts)
+    lines = np.c_[np.full(n, 2), 2 * np.arange(n), 2 * np.arange(n) + 1].ravel()
+    return pv.PolyData(np.vstack([starts, ends]).reshape(2, n, 3).transpose(1, 0, 2).reshape(-1, 3)
+                       if n else np.zeros((0, 3)), lines=lines if n else None)
+
+
+def _edges(poly: pv.PolyData) -> list[tuple[int, int]]:
+    """The point index pairs of ``poly``'s lines and of its polygons' sides."""
+    pairs = []
+    for cells, closed in ((poly.lines, False), (poly.faces, True)):
+        k = 0
+        while k < len(cells):
+            n, ids = cells[k], cells[k + 1:k + 1 + cells[k]]
+            pairs += list(zip(ids[:-1], ids[1:], strict=True))
+            if closed and n > 2:
+                pairs.append((ids[-1], ids[0]))
+            k += n + 1
+    return pairs
 
 
 def _box_corners(obj) -> np.ndarray:

@@ -1,0 +1,71 @@
+"""Placing a label beside the point it names, clear of the lines drawn around it.
+
+A label in the 3D pane names a point of the drawing (a plane's edge, the
+eye); centred just above that point it often sits on the very lines it
+names, the more so when presentation mode thickens the lines and enlarges
+the text.  :func:`place_label` tries spots around the point, nearest first
+(above, beside, below, then ever farther), and takes the first where the
+text's box stays inside the pane and clear of every line (each as thick as
+it is drawn) and of the labels placed before it.  It is plain 2D geometry
+in pixels, free of VTK.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+GAP_PX = 4.0
+"""Room between a label's box and the lines around it, pixels at text scale 1."""
+_DIRECTIONS = ((0, 1), (1, 1), (-1, 1), (0, -1), (1, 0), (-1, 0), (1, -1), (-1, -1))
+"""Where a label may go from the point it names, (right, up), above first."""
+
+
+def segments_meet_box(p, q, pad, box) -> np.ndarray:
+    """For each segment ``p[i]``-``q[i]`` (as thick as ``2 pad[i]``), whether it meets ``box``
+    ``(x0, y0, x1, y1)``: the segment clipped to the box grown by ``pad`` (Liang–Barsky)."""
+    p, q = np.asarray(p, float).reshape(-1, 2), np.asarray(q, float).reshape(-1, 2)
+    pad = np.asarray(pad, float)
+    low = np.array(box[:2]) - pad[:, None]
+    high = np.array(box[2:]) + pad[:, None]
+    d = q - p
+    flat = np.abs(d) < 1e-12
+    with np.errstate(divide="ignore", invalid="ignore"):
+        a, b = (low - p) / d, (high - p) / d
+    t0 = np.where(flat, 0.0, np.minimum(a, b))
+    t1 = np.where(flat, 1.0, np.maximum(a, b))
+    inside_flat = ~flat | ((low <= p) & (p <= high))
+    return (np.maximum(t0.max(axis=1), 0.0) <= np.minimum(t1.min(axis=1), 1.0)) & inside_flat.all(axis=1)
+
+
+def place_label(anchor, size, segments, pane, taken=(), gap: float = GAP_PX) -> tuple[float, float]:
+    """Where to put the bottom centre of a ``size`` (w, h) label naming the point ``anchor``.
+
+    ``segments`` is ``(p, q, half_width)``: arrays (n, 2), (n, 2), (n,) of the lines
+    drawn, ``pane`` the pane's (width, height) and ``taken`` the boxes
+    ``(x0, y0, x1, y1)`` of labels already placed, all in pixels with y up.  The
+    nearest clear spot wins: first beside the point, then ever farther (a leader line
+    then joins them); if none is clear, the label goes centred above the point.
+    """
+    w, h = size
+    ax, ay = anchor
+    steps = int(np.hypot(*pane) / (h / 2)) + 1
+    for reach in [0.0, *(h / 2 * k for k in range(1, steps))]:
+        for dx, dy in _DIRECTIONS if reach else _DIRECTIONS[:1]:
+            # The box's side nearest the point is ``gap`` + ``reach`` away from it.
+            cx = ax + dx * (w / 2 + gap + reach) if dx else ax
+            bottom = ay + gap + reach if dy > 0 else (ay - gap - h - reach if dy < 0 else ay - h / 2)
+            box = (cx - w / 2, bottom, cx + w / 2, bottom + h)
+            if _clear(box, segments, pane, taken, gap):
+                return cx, bottom
+    return ax, ay + gap
+
+
+def _clear(box, segments, pane, taken, gap) -> bool:
+    x0, y0, x1, y1 = box
+    if x0 < 0 or y0 < 0 or x1 > pane[0] or y1 > pane[1]:
+        return False
+    for other in taken:
+        if x0 < other[2] + gap and other[0] - gap < x1 and y0 < other[3] + gap and other[1] - gap < y1:
+            return False
+    p, q, half = segments
+    return not len(p) or not segments_meet_box(p, q, half + gap, box).any()
