@@ -59,7 +59,6 @@ class LessonRunner:
         for lesson_name, name in MODEL_OVERLAYS.items():
             model.set_overlay(name, lesson_name in step.overlays)
         self._show_panes(step.panes)
-        w.scene_view.look_from(step.view)
         highlight = step.highlight
         zbuffer_step = step.zbuffer_step
         if zbuffer_step is None and "polygon_step" in highlight:
@@ -70,6 +69,7 @@ class LessonRunner:
             model.set_ray_pixel(tuple(pixel))
             model.set_buffer_pixel(tuple(pixel))
         self._highlight(step.scene, highlight)
+        w.scene_view.look_from({**step.view, "frame": step.frame})  # after the highlight it may frame
 
     def _show_panes(self, panes) -> None:
         w = self.window

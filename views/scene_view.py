@@ -57,6 +57,8 @@ LIGHT_MARKER = 0.18
 FOV_RANGE_DEG = (1.0, 179.0)
 FRAMED_OVERLAYS = ("frustum",)
 """Overlays the pane's framing keeps inside it, their labels whole (what a lesson talks about)."""
+HIGHLIGHT_OVERLAY = "lesson"
+"""The overlay that marks what a lesson step talks about (see :meth:`SceneView.look_from`)."""
 ENCLOSING_OPACITY = 0.25
 """A sphere the observer stands inside (as in the lecture's exercise) is drawn this translucent,
 so that the observer and its rays inside stay visible."""
@@ -405,9 +407,12 @@ class SceneView(QWidget):
 
     def look_from(self, view) -> None:
         """Place the overview camera: ``view`` maps ``position``, ``focal_point`` and ``up``
-        (world space, scene units); empty, the pane frames the scene and observer itself.
+        (world space, scene units); without them, the pane frames the scene and observer itself.
         While a :data:`FRAMED_OVERLAYS` overlay (the frustum) is shown, the camera looks the
-        way ``view`` says but stands where that overlay and its labels fit in the pane."""
+        way ``view`` says but stands where that overlay and its labels fit in the pane.
+        ``view["frame"] == "highlight"`` frames instead what the :data:`HIGHLIGHT_OVERLAY`
+        shows, the eye and the screen (with the labels of what lies no deeper), as large
+        as they fit."""
         self._view = dict(view) if view else None
         if self._scene is not None:
             self._frame(self._scene)
@@ -420,14 +425,17 @@ class SceneView(QWidget):
         objects, and the frustum with its labels when that overlay is shown;
         the rest of the frustum may leave the view.
         """
-        view = self._view
+        view = self._view or {}
         framed = [name for name in FRAMED_OVERLAYS if name in self.overlay_names()]
-        if view and not framed:
+        subject = [poly for poly, _, _ in self._overlays.get(HIGHLIGHT_OVERLAY, [])]
+        on_subject = view.get("frame") == "highlight" and bool(subject) \
+            and HIGHLIGHT_OVERLAY in self.overlay_names()
+        if "position" in view and not framed and not on_subject:
             self.plotter.camera_position = [tuple(view["position"]), tuple(view["focal_point"]),
                                             tuple(view.get("up", (0.0, 1.0, 0.0)))]
         else:
             cam = scene.camera
-            if view:
+            if "position" in view:
                 direction = np.subtract(view["focal_point"], view["position"])
                 up = view.get("up", (0.0, 1.0, 0.0))
             else:
@@ -435,16 +443,24 @@ class SceneView(QWidget):
                 side = side / (np.linalg.norm(side) or 1.0)
                 direction = cam.forward * 0.6 - side - np.array([0.0, 0.7, 0.0])
                 up = (0.0, 1.0, 0.0)
-            points = [cam.eye, cam.target, *cam.screen_corners()]
-            for obj in scene.objects:
-                points += list(_box_corners(obj))
+            points = [cam.eye, *cam.screen_corners()]
+            if on_subject:
+                points += [p for poly in subject for p in poly.points]
+                deepest = max(np.dot(np.subtract(p, cam.eye), cam.forward) for p in points)
+            else:
+                points.append(cam.target)
+                for obj in scene.objects:
+                    points += list(_box_corners(obj))
             bounds = [[[-1 + MARGIN, 1 - MARGIN]] * 2] * len(points)
             for name in framed:
                 for poly, actor, style in self._overlays[name]:
-                    points += list(poly.points)
+                    keep = np.ones(poly.n_points, bool) if not on_subject else \
+                        (poly.points - cam.eye) @ cam.forward <= deepest + 1e-9
                     if "label_size" in style:
-                        bounds += self._label_bounds(poly, actor)
-                    else:
+                        bounds += [b for b, k in zip(self._label_bounds(poly, actor), keep, strict=True) if k]
+                        points += list(poly.points[keep])
+                    elif not on_subject:
+                        points += list(poly.points)
                         bounds += [bounds[0]] * poly.n_points
             self.plotter.camera.view_angle = 30.0
             aspect = max(self.plotter.width(), 1) / max(self.plotter.height(), 1)

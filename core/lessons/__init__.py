@@ -46,6 +46,8 @@ VERSION = 1
 PANES = ("scene 3D", "image order", "object order", "four views", "compare", "hard cases", "cost")
 #: The 3D overlays a step can switch on.
 OVERLAYS = ("frustum", "bounding spheres", "grid cells")
+#: What the 3D pane keeps in view: the scene, observer and frustum; or the highlight, eye and screen.
+FRAMES = ("scene", "highlight")
 #: What a step can highlight; see :class:`LessonStep`.
 HIGHLIGHTS = ("polygon_step", "pixel", "face", "vertex", "ray", "object")
 #: Lecture figures a lesson may name: ``VII.1`` to ``VII.14``, optionally with a part letter.
@@ -56,7 +58,7 @@ FILES = Path(__file__).with_name("files")
 _ALL_PRESETS = {**PRESETS, **PRESETS_TRACE}
 _LESSON_FIELDS = ("format", "version", "id", "title", "figures", "questions", "summary", "steps")
 _STEP_FIELDS = ("title", "text", "formulas", "notes", "scene", "camera", "view", "panes",
-                "image_order", "object_order", "highlight", "zbuffer_step", "pixel", "overlays")
+                "image_order", "object_order", "highlight", "zbuffer_step", "pixel", "overlays", "frame")
 _VIEW_FIELDS = ("position", "focal_point", "up")
 
 
@@ -110,6 +112,10 @@ class LessonStep:
     zbuffer_step : int or None, the z-buffer scrubber's step (after that many polygons).
     pixel : (x, y) or None, the picked pixel (ray tree, pixel history, worked math).
     overlays : tuple of str, names from :data:`OVERLAYS` to show in the 3D pane.
+    frame : str, from :data:`FRAMES`, what the 3D pane's own framing keeps in view:
+        ``"scene"`` the objects, the observer and the frustum (when shown) with its
+        labels; ``"highlight"`` what the step highlights, the eye and the screen, as
+        large as they fit (the rest of the frustum may leave the pane).
     """
 
     title: str
@@ -127,6 +133,7 @@ class LessonStep:
     zbuffer_step: int | None
     pixel: tuple[int, int] | None
     overlays: tuple[str, ...]
+    frame: str
 
 
 @dataclass(frozen=True, eq=False)
@@ -351,6 +358,8 @@ def _read_step(r: _Reader, value, path: str, previous: dict) -> dict:
         out["panes"] = panes or ()
     if "overlays" in d:
         out["overlays"] = _names(r, d["overlays"], f"{path}.overlays", OVERLAYS, "overlay") or ()
+    if "frame" in d:
+        out["frame"] = _choice(r, d["frame"], f"{path}.frame", FRAMES, "framing") or "scene"
     for key, kind in (("image_order", TraceSettings), ("object_order", RasterSettings)):
         if key in d:
             out[key] = _settings(r, d[key], f"{path}.{key}", kind) or kind()
@@ -368,7 +377,7 @@ def _read_step(r: _Reader, value, path: str, previous: dict) -> dict:
     return out
 
 
-_STEP_DEFAULTS = dict(view=MappingProxyType({}), overlays=(), zbuffer_step=None, pixel=None,
+_STEP_DEFAULTS = dict(view=MappingProxyType({}), overlays=(), frame="scene", zbuffer_step=None, pixel=None,
                       image_order=TraceSettings(), object_order=RasterSettings(),
                       camera=MappingProxyType({}), preset=None, scene=None, panes=())
 
