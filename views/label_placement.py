@@ -7,7 +7,8 @@ the text.  :func:`place_label` tries spots around the point, nearest first
 (above, beside, below, then ever farther), and takes the first where the
 text's box stays inside the pane and clear of every line (each as thick as
 it is drawn) and of the labels placed before it.  It is plain 2D geometry
-in pixels, free of VTK.
+in pixels, free of VTK.  A label that finds no clear spot may try again
+broken into lines (:func:`broken`).
 """
 
 from __future__ import annotations
@@ -37,27 +38,27 @@ def segments_meet_box(p, q, pad, box) -> np.ndarray:
     return (np.maximum(t0.max(axis=1), 0.0) <= np.minimum(t1.min(axis=1), 1.0)) & inside_flat.all(axis=1)
 
 
-def place_label(anchor, size, segments, pane, taken=(), gap: float = GAP_PX) -> tuple[float, float]:
+def place_label(anchor, size, segments, pane, taken=(), gap: float = GAP_PX) -> tuple[float, float] | None:
     """Where to put the bottom centre of a ``size`` (w, h) label naming the point ``anchor``.
 
     ``segments`` is ``(p, q, half_width)``: arrays (n, 2), (n, 2), (n,) of the lines
     drawn, ``pane`` the pane's (width, height) and ``taken`` the boxes
     ``(x0, y0, x1, y1)`` of labels already placed, all in pixels with y up.  The
     nearest clear spot wins: first beside the point, then ever farther (a leader line
-    then joins them); if none is clear, the label goes centred above the point.
+    then joins them); None if no spot is clear.
     """
     w, h = size
     ax, ay = anchor
-    steps = int(np.hypot(*pane) / (h / 2)) + 1
-    for reach in [0.0, *(h / 2 * k for k in range(1, steps))]:
-        for dx, dy in _DIRECTIONS if reach else _DIRECTIONS[:1]:
+    step = max(h / 4, 2.0)
+    for reach in np.arange(0.0, np.hypot(*pane), step):
+        for dx, dy in _DIRECTIONS:
             # The box's side nearest the point is ``gap`` + ``reach`` away from it.
             cx = ax + dx * (w / 2 + gap + reach) if dx else ax
             bottom = ay + gap + reach if dy > 0 else (ay - gap - h - reach if dy < 0 else ay - h / 2)
             box = (cx - w / 2, bottom, cx + w / 2, bottom + h)
             if _clear(box, segments, pane, taken, gap):
                 return cx, bottom
-    return ax, ay + gap
+    return None
 
 
 def _clear(box, segments, pane, taken, gap) -> bool:
@@ -69,3 +70,8 @@ def _clear(box, segments, pane, taken, gap) -> bool:
             return False
     p, q, half = segments
     return not len(p) or not segments_meet_box(p, q, half + gap, box).any()
+
+
+def broken(text: str) -> str:
+    """``text`` on several lines, broken after its commas and before its brackets: a narrower label."""
+    return text.replace(", ", ",\n").replace(" (", "\n(")

@@ -39,7 +39,7 @@ from core.scene import Scene, Sphere
 from views import vtk_convert
 from views.framing import MARGIN, fit_view, label_bounds
 from views.image_plotter import ImagePlotter
-from views.label_placement import GAP_PX, place_label
+from views.label_placement import GAP_PX, broken, place_label
 from views.scene_colors import FRUSTUM_COLOR, SCREEN_COLOR
 
 TARGET_COLOR = "#ff8c42"
@@ -504,8 +504,9 @@ class SceneView(QWidget):
 
         own = [(self._frustum_edges, 2.0), (self._screen_edges, 3.0)]
         measure, box, dpi = vtkTextRenderer(), [0, 0, 0, 0], self.plotter.ren_win.GetDPI()
-        corner = _axes_side(self.line_scale) * np.array([width, height])
-        taken = [(0.0, 0.0, *corner)]  # the axes marker in the lower left corner
+        side = _axes_side(self.line_scale) * np.array([width, height])
+        square = side.min()  # the axes marker: a square, centred in its corner's viewport
+        taken = [(*(side - square) / 2, *(side + square) / 2)]
         for name in names:
             parts = self._overlays[name]
             ends, halves = [], []
@@ -525,17 +526,28 @@ class SceneView(QWidget):
                 text = actor.GetMapper().GetLabelTextProperty()
                 h, xy = project(anchors.points)
                 spots = np.array(h)
+                shown = []
                 for k, label in enumerate(anchors.point_data["labels"]):
-                    measure.GetBoundingBox(text, str(label), box, dpi)
-                    w, t = box[1] - box[0], box[3] - box[2]
-                    cx, bottom = place_label(xy[k], (w, t), segments, (width, height), taken,
-                                             GAP_PX * self.line_scale)
+                    for words in dict.fromkeys((str(label), broken(str(label)))):  # one line first
+                        measure.GetBoundingBox(text, words, box, dpi)
+                        w, t = box[1] - box[0], box[3] - box[2]
+                        spot = place_label(xy[k], (w, t), segments, (width, height), taken,
+                                           GAP_PX * self.line_scale)
+                        if spot is not None:
+                            break
+                    if spot is None:  # nowhere clear: on one line, centred above the point
+                        words = str(label)
+                        measure.GetBoundingBox(text, words, box, dpi)
+                        w, t = box[1] - box[0], box[3] - box[2]
+                        spot = xy[k][0], xy[k][1] + GAP_PX * self.line_scale
+                    cx, bottom = spot
+                    shown.append(words)
                     taken.append((cx - w / 2, bottom, cx + w / 2, bottom + t))
                     at = np.array([cx - (box[0] + box[1]) / 2, bottom - box[2]])
                     spots[k, :2] = (at / to_pixels - 1) * h[k, 3]  # same depth, moved on the pane
                 world = spots @ np.linalg.inv(matrix).T
                 placed.points = world[:, :3] / world[:, 3:]
-                placed.point_data["labels"] = anchors.point_data["labels"]
+                placed.point_data["labels"] = np.array(shown)
                 far = np.hypot(*(project(placed.points)[1] - xy).T) > 3 * GAP_PX * self.line_scale
                 actor._leader.copy_from(_leaders(anchors.points[far], placed.points[far]))
 
