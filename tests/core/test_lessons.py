@@ -185,6 +185,14 @@ def test_a_broken_lesson_reports_every_problem_with_its_field_path():
         assert any(p.startswith(start) for p in problems), (start, problems)
 
 
+def test_a_steps_framing_is_the_scene_unless_it_says_highlight_and_carries_on_to_the_next_step():
+    lesson = from_dict(_lesson(steps=[GOOD_STEP, {**GOOD_STEP, "frame": "highlight"},
+                                      {"title": "c", "text": "d"}]))
+    assert [step.frame for step in lesson.steps] == ["scene", "highlight", "highlight"]
+    problems = _problems(_lesson(steps=[{**GOOD_STEP, "frame": "highlights"}]))
+    assert problems[0].startswith("steps[0].frame: unknown framing 'highlights' (did you mean 'highlight'?)")
+
+
 def test_a_first_step_must_name_its_scene_and_panes_and_objects_must_exist():
     problems = _problems(_lesson(steps=[{"title": "a", "text": "b"}]))
     assert "steps[0].scene: required field is missing" in problems
