@@ -43,6 +43,7 @@ from core import hard_cases
 from core.hard_cases.result import CaseResult, Parameter
 from core.srgb import linear_to_srgb
 from views.image_view import ImageView
+from views.text_scale import scaled_style
 
 #: Positions of the slider for a linear parameter, and per decade for a log one.
 SLIDER_STEPS, STEPS_PER_DECADE = 120, 20
@@ -182,7 +183,7 @@ class HardCasesPanel(QWidget):
         self.cases.currentRowChanged.connect(self._on_case_chosen)
 
         self.title = QLabel()
-        self.title.setStyleSheet("font-size: 15pt; font-weight: bold;")
+        scaled_style(self.title, "font-weight: bold;", 15)
         self.title.setWordWrap(True)
         self.status = QLabel()
         self.status.setStyleSheet(f"color: {MUTED};")
@@ -230,7 +231,7 @@ class HardCasesPanel(QWidget):
 
         self.explanation = QLabel()
         self.explanation.setWordWrap(True)
-        self.explanation.setStyleSheet("font-size: 11pt;")
+        scaled_style(self.explanation, "", 11)
         self.reference = QLabel()
         self.reference.setWordWrap(True)
         self.reference.setStyleSheet(f"color: {MUTED};")

@@ -23,11 +23,15 @@ _DIRECTIONS = ((0, 1), (1, 1), (-1, 1), (0, -1), (1, 0), (-1, 0), (1, -1), (-1, 
 
 def segments_meet_box(p, q, pad, box) -> np.ndarray:
     """For each segment ``p[i]``-``q[i]`` (as thick as ``2 pad[i]``), whether it meets ``box``
-    ``(x0, y0, x1, y1)``: the segment clipped to the box grown by ``pad`` (Liang–Barsky)."""
+    ``(x0, y0, x1, y1)``: the segment clipped to the box grown by ``pad`` (Liang–Barsky).
+
+    ``box`` may be many boxes, shape (M, 4): the answer is then (M, N), a row per box.
+    """
     p, q = np.asarray(p, float).reshape(-1, 2), np.asarray(q, float).reshape(-1, 2)
-    pad = np.asarray(pad, float)
-    low = np.array(box[:2]) - pad[:, None]
-    high = np.array(box[2:]) + pad[:, None]
+    pad = np.asarray(pad, float)[:, None]
+    box = np.asarray(box, float)
+    low = box[..., None, :2] - pad  # (..., N, 2)
+    high = box[..., None, 2:] + pad
     d = q - p
     flat = np.abs(d) < 1e-12
     with np.errstate(divide="ignore", invalid="ignore"):
@@ -35,7 +39,7 @@ def segments_meet_box(p, q, pad, box) -> np.ndarray:
     t0 = np.where(flat, 0.0, np.minimum(a, b))
     t1 = np.where(flat, 1.0, np.maximum(a, b))
     inside_flat = ~flat | ((low <= p) & (p <= high))
-    return (np.maximum(t0.max(axis=1), 0.0) <= np.minimum(t1.min(axis=1), 1.0)) & inside_flat.all(axis=1)
+    return (np.maximum(t0.max(axis=-1), 0.0) <= np.minimum(t1.min(axis=-1), 1.0)) & inside_flat.all(axis=-1)
 
 
 def place_label(anchor, size, segments, pane, taken=(), gap: float = GAP_PX) -> tuple[float, float] | None:
@@ -50,26 +54,22 @@ def place_label(anchor, size, segments, pane, taken=(), gap: float = GAP_PX) -> 
     w, h = size
     ax, ay = anchor
     step = max(h / 4, 2.0)
-    for reach in np.arange(0.0, np.hypot(*pane), step):
-        for dx, dy in _DIRECTIONS:
-            # The box's side nearest the point is ``gap`` + ``reach`` away from it.
-            cx = ax + dx * (w / 2 + gap + reach) if dx else ax
-            bottom = ay + gap + reach if dy > 0 else (ay - gap - h - reach if dy < 0 else ay - h / 2)
-            box = (cx - w / 2, bottom, cx + w / 2, bottom + h)
-            if _clear(box, segments, pane, taken, gap):
-                return cx, bottom
-    return None
-
-
-def _clear(box, segments, pane, taken, gap) -> bool:
-    x0, y0, x1, y1 = box
-    if x0 < 0 or y0 < 0 or x1 > pane[0] or y1 > pane[1]:
-        return False
+    reach = np.repeat(np.arange(0.0, np.hypot(*pane), step), len(_DIRECTIONS))  # nearest first
+    dx, dy = np.tile(np.array(_DIRECTIONS, float), (len(reach) // len(_DIRECTIONS), 1)).T
+    # The box's side nearest the point is ``gap`` + ``reach`` away from it.
+    cx = np.where(dx != 0, ax + dx * (w / 2 + gap + reach), ax)
+    bottom = np.where(dy > 0, ay + gap + reach, np.where(dy < 0, ay - gap - h - reach, ay - h / 2))
+    boxes = np.stack([cx - w / 2, bottom, cx + w / 2, bottom + h], axis=1)
+    ok = (boxes[:, 0] >= 0) & (boxes[:, 1] >= 0) & (boxes[:, 2] <= pane[0]) & (boxes[:, 3] <= pane[1])
     for other in taken:
-        if x0 < other[2] + gap and other[0] - gap < x1 and y0 < other[3] + gap and other[1] - gap < y1:
-            return False
+        ok &= ~((boxes[:, 0] < other[2] + gap) & (other[0] - gap < boxes[:, 2])
+                & (boxes[:, 1] < other[3] + gap) & (other[1] - gap < boxes[:, 3]))
     p, q, half = segments
-    return not len(p) or not segments_meet_box(p, q, half + gap, box).any()
+    if len(p):
+        inside = np.flatnonzero(ok)
+        ok[inside] = ~segments_meet_box(p, q, np.asarray(half) + gap, boxes[inside]).any(axis=1)
+    first = np.flatnonzero(ok)
+    return (float(cx[first[0]]), float(bottom[first[0]])) if len(first) else None
 
 
 def broken(text: str) -> str:

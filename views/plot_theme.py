@@ -14,7 +14,9 @@ Its figures follow the window's text size too (presentation mode's ×1.5,
 from __future__ import annotations
 
 from PySide6.QtGui import QPalette
-from PySide6.QtWidgets import QApplication, QWidget
+from PySide6.QtWidgets import QWidget
+
+from views.text_scale import text_scale
 
 DPI = 100.0
 """matplotlib's own figure resolution, dots per inch: a figure's size at text scale 1."""
@@ -31,11 +33,6 @@ DARK_CYCLE = ["#4fc3ff", "#ffb000", "#5cff7a", "#ff6b6b", "#d29bff", "#ffd400", 
 def is_dark(widget: QWidget) -> bool:
     """Whether ``widget`` is drawn on a dark background now."""
     return widget.palette().color(QPalette.ColorRole.Window).lightness() < 128
-
-
-def text_scale(widget: QWidget) -> float:
-    """How many times the application's text size ``widget``'s text is now (presentation mode's scale)."""
-    return widget.font().pointSizeF() / (QApplication.font().pointSizeF() or widget.font().pointSizeF())
 
 
 def figure_dpi(widget: QWidget) -> float:

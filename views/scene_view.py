@@ -485,15 +485,17 @@ class SceneView(QWidget):
         """Before each draw: move every shown label beside the point it names, clear of its
         overlay's lines, the observer's frustum and the labels placed before it; a thin
         leader line joins a label set farther off to its point."""
-        renderer = self.plotter.renderer
+        names = [name for name in self.overlay_names()
+                 if any("label_size" in style for _, _, style in self._overlays[name])]
         width, height = self.plotter.ren_win.GetSize()
-        matrix = pv.array_from_vtkmatrix(renderer.GetActiveCamera().GetCompositeProjectionTransformMatrix(
-            width / max(height, 1), -1, 1))
-        names = self.overlay_names()
+        if not names or width < 2 or height < 2:
+            return
+        matrix = pv.array_from_vtkmatrix(self.plotter.renderer.GetActiveCamera()
+                                         .GetCompositeProjectionTransformMatrix(width / height, -1, 1))
         key = (matrix.tobytes(), width, height, self.line_scale,
                [(p.points.tobytes(), list(p.point_data.get("labels", []))) for n in names
                 for p, _, _ in self._overlays[n]])
-        if width < 2 or height < 2 or key == self._labels_placed_for:
+        if key == self._labels_placed_for:
             return
         self._labels_placed_for = key
         to_pixels = np.array([width / 2, height / 2])

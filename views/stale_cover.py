@@ -11,6 +11,8 @@ from __future__ import annotations
 from PySide6.QtCore import QEvent, QObject, Qt
 from PySide6.QtWidgets import QLabel, QWidget
 
+from views.text_scale import scaled_style
+
 
 class StaleCover(QLabel):
     """The sheet itself: a child of the tab that follows its size and says why nothing is current."""
@@ -23,8 +25,7 @@ class StaleCover(QLabel):
         self.setMargin(24)
         # The tab's own settings stay usable under the sheet: one of them may be what brings it back.
         self.setAttribute(Qt.WidgetAttribute.WA_TransparentForMouseEvents)
-        self.setStyleSheet("QLabel#stale\\ cover { background: rgba(40, 40, 40, 200); color: white;"
-                           " font-size: 14pt; }")
+        scaled_style(self, "background: rgba(40, 40, 40, 200); color: white;", 14)
         self.setGeometry(pane.rect())
         pane.installEventFilter(self)
 

@@ -1,0 +1,46 @@
+"""The window's text scale (presentation mode's ×1.5, ×2), for text whose size is set apart.
+
+Presentation mode scales the text by a style sheet on the window
+(:mod:`views.presentation`), which every widget follows unless it sets a
+``font-size`` of its own.  :func:`text_scale` tells a widget how many times
+the application's size its text is now; :func:`scaled_style` keeps a widget's
+own style sheet, with its own size, that many times larger as the scale
+changes (a heading stays 1.5 times the text around it).
+"""
+
+from __future__ import annotations
+
+from PySide6.QtCore import QEvent, QObject
+from PySide6.QtWidgets import QApplication, QWidget
+
+
+def text_scale(widget: QWidget) -> float:
+    """How many times the application's text size ``widget``'s text is now."""
+    return widget.font().pointSizeF() / (QApplication.font().pointSizeF() or widget.font().pointSizeF())
+
+
+class _ScaledStyle(QObject):
+    def __init__(self, widget: QWidget, style: str, size_pt: float):
+        super().__init__(widget)
+        self.widget, self.style, self.size_pt = widget, style, size_pt
+        self.scale = None
+        widget.installEventFilter(self)
+        self.apply()
+
+    def apply(self) -> None:
+        around = self.widget.parentWidget()
+        scale = text_scale(around) if around is not None else 1.0
+        if scale != self.scale:
+            self.scale = scale
+            self.widget.setStyleSheet(f"{self.style} font-size: {self.size_pt * scale:g}pt;")
+
+    def eventFilter(self, watched, event) -> bool:
+        if event.type() in (QEvent.Type.StyleChange, QEvent.Type.ParentChange, QEvent.Type.Show):
+            self.apply()
+        return False
+
+
+def scaled_style(widget: QWidget, style: str, size_pt: float) -> None:
+    """Give ``widget`` the style sheet ``style`` with text ``size_pt`` points at scale 1,
+    times the text scale of the widget around it from then on."""
+    _ScaledStyle(widget, style, size_pt)
