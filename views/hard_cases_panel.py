@@ -24,7 +24,7 @@ import inspect
 import math
 
 import numpy as np
-from PySide6.QtCore import QObject, QRunnable, Qt, QThreadPool, QTimer, Signal
+from PySide6.QtCore import QEvent, QObject, QRunnable, QSize, Qt, QThreadPool, QTimer, Signal
 from PySide6.QtWidgets import (
     QComboBox,
     QGridLayout,
@@ -152,6 +152,37 @@ class _CaseJob(QRunnable):
             getattr(self.relay, signal).emit(self.request_id, payload)
 
 
+class _Sideways(QScrollArea):
+    """Scrolls its widget sideways only, as tall as the widget: a table wider than the pane (large
+    text) scrolls by itself, and the words above and below it keep the pane's width."""
+
+    def __init__(self, widget: QWidget):
+        super().__init__()
+        self.setWidget(widget)
+        self.setWidgetResizable(True)
+        self.setFrameShape(QScrollArea.Shape.NoFrame)
+        self.setVerticalScrollBarPolicy(Qt.ScrollBarPolicy.ScrollBarAlwaysOff)
+        widget.installEventFilter(self)
+
+    def eventFilter(self, watched, event) -> bool:
+        if event.type() == QEvent.Type.LayoutRequest:  # new rows, or larger text: a new height
+            self.updateGeometry()
+        return False
+
+    def resizeEvent(self, event) -> None:
+        super().resizeEvent(event)
+        self.updateGeometry()  # wrapped words take another height at another width
+
+    def sizeHint(self) -> QSize:
+        widget, bar = self.widget(), self.horizontalScrollBar().sizeHint().height()
+        width = max(self.viewport().width(), widget.minimumSizeHint().width())
+        tall = widget.heightForWidth(width) if widget.hasHeightForWidth() else widget.sizeHint().height()
+        return QSize(widget.sizeHint().width(), max(tall, widget.minimumSizeHint().height()) + bar)
+
+    def minimumSizeHint(self) -> QSize:
+        return QSize(0, self.sizeHint().height())
+
+
 class HardCasesPanel(QWidget):
     """The hard-case lab as a standalone widget.
 
@@ -241,7 +272,8 @@ class HardCasesPanel(QWidget):
         column.addWidget(self.title)
         column.addLayout(sweep)
         column.addWidget(self.verdict)
-        column.addWidget(table_box)
+        self._table_area = _Sideways(table_box)
+        column.addWidget(self._table_area)
         column.addWidget(self.image_box, 1)
         column.addWidget(self.explanation)
         column.addWidget(self.reference)

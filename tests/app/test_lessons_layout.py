@@ -15,7 +15,7 @@ FRUSTUM_LESSONS = ("observer", "frustum", "perspective", "orthographic")
 WHOLE_FRUSTUM = ("observer", "frustum")
 """The lessons about the frustum itself show all of it; the projection lessons frame their cube."""
 CUBE_SHARE = 0.15
-"""In the projection lessons the cube is at least this share of the 3D pane's height (it was 5-7 %)."""
+"""In the projection lessons the cube is at least this share of the 3D pane's height (once 6-9 %)."""
 
 
 def _settled(view) -> bool:

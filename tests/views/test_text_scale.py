@@ -1,8 +1,10 @@
 """Text sized apart from the window's (a heading, a note, a sheet over a pane) follows the text scale."""
 
 import pytest
-from PySide6.QtWidgets import QMainWindow, QWidget
+from PySide6.QtCore import QPoint
+from PySide6.QtWidgets import QMainWindow, QScrollArea, QWidget
 
+from core import hard_cases
 from views.hard_cases_panel import HardCasesPanel
 from views.presentation import Presentation
 from views.stale_cover import cover
@@ -16,7 +18,8 @@ def presented(qtbot):
     qtbot.addWidget(window)
     window.resize(1280, 720)
     window.show()
-    return window, panel, Presentation(window)
+    yield window, panel, Presentation(window)
+    panel.shutdown()
 
 
 def _heights(panel) -> tuple[int, int, int]:
@@ -51,3 +54,33 @@ def test_the_sheet_over_a_stale_pane_grows_with_the_text(qtbot, presented):
     presentation.set_scale(2.0)
     qtbot.waitUntil(lambda: sheet.fontMetrics().height() >= 1.8 * small)
     assert sheet.fontMetrics().height() == pytest.approx(2 * small, rel=0.12)
+
+
+def _scroll_area(widget) -> QScrollArea:
+    """The nearest scroll area ``widget`` is drawn in."""
+    while not isinstance(widget, QScrollArea):
+        widget = widget.parentWidget()
+    return widget
+
+
+def test_at_x2_the_hard_cases_words_keep_the_panes_width_and_the_table_shows_every_row(qtbot, presented):
+    _, panel, presentation = presented
+    presentation.set_scale(2.0)
+    panel.select(next(iter(hard_cases.CASES)))  # shown on its own at first; worked out in the background
+    qtbot.waitUntil(lambda: panel.result is not None and bool(panel.table_cells), timeout=60_000)
+    outer = _scroll_area(panel.title)
+    qtbot.waitUntil(lambda: panel.title.width() <= outer.viewport().width())
+    for words in (panel.title, panel.verdict, panel.explanation):  # wrapped within the pane, not cut
+        assert words.width() <= outer.viewport().width(), words.text()
+    table = _scroll_area(panel.table_cells[0][0])
+    assert table is not outer  # the table scrolls sideways by itself
+
+    def rows_cut() -> list[str]:
+        cut = []
+        for cells in panel.table_cells:  # every row whole, however tall the large text makes it
+            top = cells[0].mapTo(table.viewport(), QPoint(0, 0)).y()
+            if not (top >= 0 and top + cells[0].height() <= table.viewport().height()):
+                cut.append(f"{cells[0].text()!r} at {top}, {cells[0].height()} tall")
+        return cut
+
+    qtbot.waitUntil(lambda: rows_cut() == [], timeout=5000)
