@@ -308,6 +308,7 @@ class SceneView(QWidget):
             actor._leader_actor = self.plotter.add_mesh(
                 actor._leader, color=style.get("color", "white"), line_width=1, name=f"{name}:leader",
                 render=False)
+            self._scale_actor(actor._leader_actor)
         self._scale_actor(actor, style)
         return actor
 
