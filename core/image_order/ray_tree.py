@@ -218,7 +218,7 @@ class _Tracer:
         cells = self._cells(o, d, t_min, h[lay.HIT_T])
         rec = self.rec
         shade_hit(o, d, h, weight, generation, k.materials, k.lights, k.opts, k.geo, k.grid, k.bvh,
-                  self.scratch, self.counters, rec)
+                  self.scratch, self.counters, rec, True)
         rec = rec.copy()
         children = [self._shadow(rec, i, generation, weight) for i in range(k.lights.shape[0])]
         local = rec[lay.REC_LOCAL:lay.REC_LOCAL + 3].copy()

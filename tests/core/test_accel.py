@@ -11,8 +11,20 @@ from core.image_order.bounding_spheres import bounding_spheres
 from core.image_order.effects_plan import effects_plan
 from core.image_order.flat_scene import TraceSettings, kernel_inputs, trace_scene
 from core.image_order.grid_of_cuboids import cells_on_ray
+from core.image_order.intersect_sphere import intersect_sphere
+from core.image_order.intersect_triangle import intersect_triangle
 from core.image_order.kernels.closest_hit import closest_hit
-from core.image_order.kernels.layout import ACCEL_CODES, BOUNDS_TESTS, CELLS, N_COUNTERS, PRIM_TESTS
+from core.image_order.kernels.layout import (
+    ACCEL_CODES,
+    BOUNDS_TESTS,
+    CELLS,
+    GEO_N_SPHERES,
+    GEO_ROWS,
+    N_COUNTERS,
+    PRIM_TESTS,
+    ROW_CENTER,
+    ROW_RADIUS,
+)
 from core.image_order.kernels.render import make_scratch
 from core.presets_trace import bumpy_ball
 from core.scene import Material, Scene, Sphere
@@ -90,6 +102,31 @@ def test_every_method_agrees_on_shadow_rays(scene):
         for method in METHODS:
             assert (queries[method](o, d, length, any_hit=True)[0] >= 0) == reference, method
     assert 200 < blocked < 900
+
+
+def test_a_shadow_rays_blocker_is_reported_where_the_ray_crosses_it(scene):
+    """Any-hit gives the blocker's own crossing: the lecture's worked sphere and triangle tests agree."""
+    rng = np.random.default_rng(7)
+    origins, directions = random_rays(rng, 600)
+    lengths = rng.uniform(0.5, 12.0, size=len(origins))
+    queries = {m: Query(scene, m) for m in METHODS}
+    checked = {"sphere": 0, "triangle": 0}
+    for o, d, length in zip(origins, directions, lengths, strict=True):
+        for method, query in queries.items():
+            prim, t, *_ = query(o, d, length, any_hit=True)
+            if prim < 0:
+                continue
+            rows, n_spheres = query.k.geo[GEO_ROWS], query.k.geo[GEO_N_SPHERES]
+            if prim < n_spheres:
+                worked = intersect_sphere(o, d, rows[prim, ROW_CENTER:ROW_CENTER + 3], rows[prim, ROW_RADIUS])
+                roots = [r for r in (worked.t_near, worked.t_far) if r is not None and r >= 0.0]
+                checked["sphere"] += 1
+            else:
+                roots = [intersect_triangle(o, d, *rows[prim].reshape(3, 3)).t]
+                checked["triangle"] += 1
+            assert 0.0 <= t < length, method
+            assert any(math.isclose(t, r, rel_tol=1e-12) for r in roots if r is not None), method
+    assert min(checked.values()) > 100, checked
 
 
 def test_shadow_rays_grazing_edges_and_corners_are_blocked_exactly_when_a_closest_hit_lies_before_the_light(

@@ -63,7 +63,8 @@ def bvh_closest(o, d, shear, t_min, t_max, any_hit, bvh, n_spheres, stack, stack
 
     Returns
     -------
-    (prim, t, b0, b1, b2) : the primitive index (-1 for none) and the crossing.
+    (prim, t, b0, b1, b2) : the primitive index (-1 for none) and the crossing; with ``any_hit``
+        the barycentric weights are left 0 (``t`` is the crossing's, as the tests compute it exactly).
     """
     wide, refs, leaves, groups, order, rows = bvh
     if wide.shape[0] == 0:
@@ -131,6 +132,8 @@ def bvh_closest(o, d, shear, t_min, t_max, any_hit, bvh, n_spheres, stack, stack
     if best_k < 0:
         return no_hit()
     prim = order[best_k]
+    if any_hit:  # a shadow ray needs only its blocker and where it lies
+        return prim, best_t, 0.0, 0.0, 0.0
     if prim < n_spheres:
         return _sphere_crossing(rows, best_k, prim, o, d, t_min)
     t, b0, b1, b2 = triangle_hit(o, shear, rows, best_k, t_min, math.inf)

@@ -105,7 +105,7 @@ def _shade_rows(first, last, cam, xs, ys, hits, color, children, spawned, materi
                 continue
             o, d, _, _ = primary_ray(cam, xs[i], ys[j])
             shade_hit(o, d, _as_hit(hits[j, i]), 1.0, 0, materials, lights, opts, geo, grid, bvh, scratch,
-                      count, rec)
+                      count, rec, False)
             for a in range(3):
                 color[j, i, a] = rec[lay.REC_LOCAL + a]
             # Only the rays that go on are written: most pixels spawn none, and their rows of
@@ -160,7 +160,7 @@ def _secondary_rows(first, last, color, children, spawned, materials, lights, op
                         color[j, i, a] += weight * opts[lay.OPT_BACKGROUND + a]
                     continue
                 shade_hit(o, d, h, weight, depth, materials, lights, opts, geo, grid, bvh, scratch, count,
-                          rec)
+                          rec, False)
                 for a in range(3):
                     color[j, i, a] += weight * rec[lay.REC_LOCAL + a]
                 for kind2 in range(lay.N_SPAWNED):

@@ -15,7 +15,9 @@ it
    one, with their coefficients (Fresnel's split, :mod:`core.image_order.optics`) and
    whether they will be traced (depth limit, minimum weight).
 
-Everything is written into a flat record (:mod:`core.image_order.kernels.layout`).
+Everything is written into a flat record (:mod:`core.image_order.kernels.layout`), or, for
+the full render (``full`` False, a constant, so the compiler drops the other writes), only
+the local colour and the spawned rays the render reads.
 :func:`shade_hit` is inlined into the render's loops: as a call it would bind
 some thirty arrays anew for every hit.
 """
@@ -92,7 +94,7 @@ def _child(rec, at, origin, direction, weight, k, depth, opts):
 
 @jit_inline
 def shade_hit(o, d, hit, weight, depth, materials, lights, opts, geo, grid, bvh, scratch, counters,
-              rec):
+              rec, full):
     """Shade the hit ``hit`` of the unit ray ``o + t d`` and fill the record ``rec``.
 
     Parameters
@@ -104,6 +106,9 @@ def shade_hit(o, d, hit, weight, depth, materials, lights, opts, geo, grid, bvh,
     materials, lights, opts : arrays laid out as in :mod:`core.image_order.kernels.layout`.
     geo, grid, bvh, scratch, counters : as for ``closest_hit`` (shadow rays).
     rec : (record_size(L),) float64, written.
+    full : bool, a constant at each call: True fills the whole record (the ray tree of one pixel
+        shows every number); False writes only what the render reads (``REC_LOCAL`` and the two
+        spawned rays ``REC_REFLECT``, ``REC_REFRACT``), the same numbers by the same formulas.
     """
     prim = hit[lay.HIT_PRIM]
     ob = geo[lay.GEO_PRIM_OBJECT][prim]
@@ -120,14 +125,15 @@ def shade_hit(o, d, hit, weight, depth, materials, lights, opts, geo, grid, bvh,
     color = (materials[ob, lay.MAT_COLOR], materials[ob, lay.MAT_COLOR + 1], materials[ob, lay.MAT_COLOR + 2])
     ambient = w_local * materials[ob, lay.MAT_AMBIENT]
     lr, lg, lb = ambient * color[0], ambient * color[1], ambient * color[2]
-    rec[lay.REC_PRIM] = prim
-    rec[lay.REC_OBJECT] = ob
-    rec[lay.REC_T] = hit[lay.HIT_T]
-    _write3(rec, lay.REC_POINT, p)
-    _write3(rec, lay.REC_NORMAL, n)
-    rec[lay.REC_FRONT] = 1.0 if front else 0.0
-    rec[lay.REC_W_LOCAL] = w_local
-    _write3(rec, lay.REC_AMBIENT, (lr, lg, lb))
+    if full:
+        rec[lay.REC_PRIM] = prim
+        rec[lay.REC_OBJECT] = ob
+        rec[lay.REC_T] = hit[lay.HIT_T]
+        _write3(rec, lay.REC_POINT, p)
+        _write3(rec, lay.REC_NORMAL, n)
+        rec[lay.REC_FRONT] = 1.0 if front else 0.0
+        rec[lay.REC_W_LOCAL] = w_local
+        _write3(rec, lay.REC_AMBIENT, (lr, lg, lb))
 
     # Shadow rays and local shading, light by light.
     for i in range(lights.shape[0]):
@@ -137,14 +143,16 @@ def shade_hit(o, d, hit, weight, depth, materials, lights, opts, geo, grid, bvh,
         to_light = (lx - p[0], ly - p[1], lz - p[2])
         distance = math.sqrt(dot(to_light, to_light))
         to_light = (to_light[0] / distance, to_light[1] / distance, to_light[2] / distance)
-        rec[at + lay.LR_DISTANCE] = distance
-        rec[at + lay.LR_BLOCKER] = -1.0
-        rec[at + lay.LR_BLOCKER_T] = math.inf
-        _write3(rec, at + lay.LR_ORIGIN, p)
-        _write3(rec, at + lay.LR_DIRECTION, to_light)
-        _write3(rec, at + lay.LR_CONTRIBUTION, (0.0, 0.0, 0.0))
+        if full:
+            rec[at + lay.LR_DISTANCE] = distance
+            rec[at + lay.LR_BLOCKER] = -1.0
+            rec[at + lay.LR_BLOCKER_T] = math.inf
+            _write3(rec, at + lay.LR_ORIGIN, p)
+            _write3(rec, at + lay.LR_DIRECTION, to_light)
+            _write3(rec, at + lay.LR_CONTRIBUTION, (0.0, 0.0, 0.0))
         if dot(n, to_light) <= 0.0:
-            rec[at + lay.LR_STATUS] = lay.LIGHT_BEHIND
+            if full:
+                rec[at + lay.LR_STATUS] = lay.LIGHT_BEHIND
             continue
         status = lay.LIGHT_UNBLOCKABLE
         if lights[i, lay.LIGHT_BLOCKABLE] > 0.0:
@@ -162,13 +170,15 @@ def shade_hit(o, d, hit, weight, depth, materials, lights, opts, geo, grid, bvh,
             else:
                 blocker = closest_hit(method, so, sd, t_start, s_dist, True, geo, grid, bvh, scratch,
                                       counters)
-            _write3(rec, at + lay.LR_ORIGIN, so)
-            _write3(rec, at + lay.LR_DIRECTION, sd)
-            rec[at + lay.LR_DISTANCE] = s_dist
-            rec[at + lay.LR_BLOCKER] = blocker[lay.HIT_PRIM]
-            rec[at + lay.LR_BLOCKER_T] = blocker[lay.HIT_T]
+            if full:
+                _write3(rec, at + lay.LR_ORIGIN, so)
+                _write3(rec, at + lay.LR_DIRECTION, sd)
+                rec[at + lay.LR_DISTANCE] = s_dist
+                rec[at + lay.LR_BLOCKER] = blocker[lay.HIT_PRIM]
+                rec[at + lay.LR_BLOCKER_T] = blocker[lay.HIT_T]
             status = lay.LIGHT_BLOCKED if blocker[lay.HIT_PRIM] >= 0 else lay.LIGHT_REACHED
-        rec[at + lay.LR_STATUS] = status
+        if full:
+            rec[at + lay.LR_STATUS] = status
         if status == lay.LIGHT_BLOCKED:
             continue
         diffuse = w_local * materials[ob, lay.MAT_DIFFUSE] * lambert(n, to_light)
@@ -177,7 +187,8 @@ def shade_hit(o, d, hit, weight, depth, materials, lights, opts, geo, grid, bvh,
         cr = lights[i, lay.LIGHT_RGB] * (diffuse * color[0] + highlight)
         cg = lights[i, lay.LIGHT_RGB + 1] * (diffuse * color[1] + highlight)
         cb = lights[i, lay.LIGHT_RGB + 2] * (diffuse * color[2] + highlight)
-        _write3(rec, at + lay.LR_CONTRIBUTION, (cr, cg, cb))
+        if full:
+            _write3(rec, at + lay.LR_CONTRIBUTION, (cr, cg, cb))
         lr += cr
         lg += cg
         lb += cb
@@ -185,25 +196,24 @@ def shade_hit(o, d, hit, weight, depth, materials, lights, opts, geo, grid, bvh,
 
     # Reflected and refracted rays: directions, Fresnel split, whether they go on.
     k_reflect, k_refract = kr, 0.0
-    rec[lay.REC_FRESNEL_R] = math.nan
-    rec[lay.REC_FRESNEL_T] = math.nan
-    rec[lay.REC_TIR] = 0.0
+    fr, ft, tir = math.nan, math.nan, 0.0
     refracted = (0.0, 0.0, 0.0)
     if kt > 0.0:
         ior = materials[ob, lay.MAT_IOR]
         n1, n2 = (1.0, ior) if front else (ior, 1.0)
         ok, bent = refract(d, n, n1 / n2)
         if not ok:
-            fr, ft = 1.0, 0.0
-            rec[lay.REC_TIR] = 1.0
+            fr, ft, tir = 1.0, 0.0, 1.0
         else:
             fr, ft = fresnel_dielectric(min(1.0, -dot(d, n)), n1, n2)
             refracted = _unit(bent)
+        k_reflect, k_refract = kr + kt * fr, kt * ft
+    if full:
         rec[lay.REC_FRESNEL_R] = fr
         rec[lay.REC_FRESNEL_T] = ft
-        k_reflect, k_refract = kr + kt * fr, kt * ft
-    rec[lay.REC_K_REFLECT] = k_reflect
-    rec[lay.REC_K_REFRACT] = k_refract
+        rec[lay.REC_TIR] = tir
+        rec[lay.REC_K_REFLECT] = k_reflect
+        rec[lay.REC_K_REFRACT] = k_refract
     mirrored = _unit(reflect(d, n)) if k_reflect > 0.0 else (0.0, 0.0, 0.0)
     origin = offset_ray_origin(p, n_out, error, mirrored) if scaled and k_reflect > 0.0 else p
     _child(rec, lay.REC_REFLECT, origin, mirrored, weight, k_reflect, depth, opts)
