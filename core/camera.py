@@ -11,9 +11,9 @@ from __future__ import annotations
 from dataclasses import dataclass, replace
 
 import numpy as np
-from numba.extending import register_jitable
 
 from core import projection
+from core.jitable import jitable
 
 PROJECTIONS = ("perspective", "orthographic")
 PITCH_LIMIT_DEG = 89.0  # orbit pitch stays within ±this, so the view never lines up with "up"
@@ -179,7 +179,7 @@ class Camera:
         return origins, directions
 
 
-@register_jitable(inline="always")
+@jitable(inline="always")
 def pixel_ray(x, y, width, height, half_width, half_height, eye, rotation, forward, near, far, orthographic):
     """The primary ray through the centre of pixel ``(x, y)``: ``(origin, direction, t_min, t_max)``.
 

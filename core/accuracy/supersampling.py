@@ -39,7 +39,6 @@ from __future__ import annotations
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass, replace
 
-import numba
 import numpy as np
 
 from core.camera import Camera
@@ -200,6 +199,8 @@ def trace_adaptive(scene: Scene, settings: TraceSettings, threshold: float, n: i
     refined = (quad.max(axis=0) - quad.min(axis=0)).max(axis=-1) > threshold
     # One call of the tracer per pixel row with refined pixels.  Each call is small, and waking a
     # second thread for it costs more than it saves (on a busy machine, far more), so they run on one.
+    import numba
+
     threads = numba.get_num_threads()
     numba.set_num_threads(1)
     try:

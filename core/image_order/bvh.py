@@ -31,16 +31,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from core.image_order.kernels.bvh_build import (
-    WIDE_HI,
-    WIDE_LO,
-    WIDE_REFS,
-    WIDE_SIZE,
-    WIDTH,
-    group_triangles,
-    widen,
-)
-from core.image_order.kernels.bvh_build import build_bvh as _build
+# Kernels are imported where they are used, so importing this module does not load numba (core.jitable).
 
 
 @dataclass(frozen=True, eq=False)
@@ -110,6 +101,8 @@ class Bvh:
 
 def empty_kernel_tuple() -> tuple:
     """The kernels' stand-in when no BVH is used."""
+    from core.image_order.kernels.bvh_build import WIDE_SIZE
+
     wide = np.zeros((0, WIDE_SIZE), np.float32)
     return (wide.reshape(-1), wide.view(np.int32), np.zeros((0, 3), np.int64), np.zeros(0),
             np.zeros(0, np.int64), np.zeros((0, 9)))
@@ -117,6 +110,8 @@ def empty_kernel_tuple() -> tuple:
 
 def pack_wide(boxes: np.ndarray, refs: np.ndarray) -> np.ndarray:
     """The float32 rows of :attr:`Bvh.wide` from :func:`~core.image_order.kernels.bvh_build.widen`."""
+    from core.image_order.kernels.bvh_build import WIDE_HI, WIDE_LO, WIDE_REFS, WIDE_SIZE, WIDTH
+
     lo, hi = boxes[:, 0:3, :], boxes[:, 3:6, :]
     lo32, hi32 = lo.astype(np.float32), hi.astype(np.float32)
     lo32 = np.where(lo32 > lo, np.nextafter(lo32, np.float32(-np.inf)), lo32)
@@ -130,6 +125,9 @@ def pack_wide(boxes: np.ndarray, refs: np.ndarray) -> np.ndarray:
 
 def build_bvh(geometry) -> Bvh:
     """Build the BVH over every primitive of ``geometry`` (a flat_scene ``Geometry``)."""
+    from core.image_order.kernels.bvh_build import build_bvh as _build
+    from core.image_order.kernels.bvh_build import group_triangles, widen
+
     nodes, order, depth = _build(geometry.lo, geometry.hi)
     rows = np.ascontiguousarray(geometry.rows[order])
     boxes, refs, leaves = widen(nodes)

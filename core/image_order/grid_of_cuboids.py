@@ -28,7 +28,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from core.image_order.kernels.accel_grid import walk_cells
+# Kernels are imported where they are used, so importing this module does not load numba (core.jitable).
 
 MAX_RESOLUTION = 64
 
@@ -134,6 +134,8 @@ def cells_on_ray(grid: UniformGrid, origin, direction, t_min: float = 0.0,
     """
     o = tuple(float(x) for x in origin)
     d = tuple(float(x) for x in direction)
+    from core.image_order.kernels.accel_grid import walk_cells
+
     out = np.empty((int(grid.resolution.sum()) + 3, 3), dtype=np.int64)
     count = walk_cells(o, d, float(t_min), float(t_max), grid.kernel_tuple(), out)
     return out[:count].copy()

@@ -33,7 +33,7 @@ root whose numerator cancels.  As pbrt does, this module
 
 One formula, two users
 ----------------------
-:func:`sphere_roots` is that arithmetic, once.  ``register_jitable`` leaves it
+:func:`sphere_roots` is that arithmetic, once.  :func:`~core.jitable.jitable` leaves it
 a plain Python function when :func:`intersect_sphere` calls it for the
 worked solution, and compiles it into the tracer's kernels
 (:mod:`core.image_order.kernels.intersect`) when they call it, so the
@@ -47,7 +47,8 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from numba.extending import register_jitable
+
+from core.jitable import jitable
 
 #: Coordinates may be at most this big, and the radius and ``|d|`` at least its
 #: inverse, so that no square or product in the solution over- or underflows.
@@ -62,7 +63,7 @@ MISSES, TANGENT, CROSSES = 0, 1, 2
 CLASSIFICATIONS = ("misses", "tangent", "crosses")
 
 
-@register_jitable(inline="always")
+@jitable(inline="always")
 def sphere_roots(ox, oy, oz, dx, dy, dz, cx, cy, cz, r):
     """The quadratic of the line ``o + t d`` and a sphere, and its two roots, without cancellation.
 
@@ -111,7 +112,7 @@ def sphere_roots(ox, oy, oz, dx, dy, dz, cx, cy, cz, r):
     return a, half_b, c, dist, discriminant, CROSSES, t0, t1
 
 
-@register_jitable(inline="always")
+@jitable(inline="always")
 def outward_normal(px, py, pz, cx, cy, cz, dx, dy, dz):
     """The unit normal ``(p - centre) / |p - centre|`` at a point ``p`` of a sphere, pointing out.
 

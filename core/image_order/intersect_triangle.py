@@ -53,7 +53,7 @@ Tie rules
   bit for bit.  The tracer's closest-hit search keeps the first of equal
   crossings it meets.
 
-These functions are ``register_jitable``: plain Python when
+These functions are :func:`~core.jitable.jitable`: plain Python when
 :func:`intersect_triangle` calls them for the worked solution, compiled into
 the tracer (:mod:`core.image_order.kernels.intersect`) when a kernel calls
 them, so both compute every crossing with the same operations.
@@ -66,9 +66,9 @@ from dataclasses import dataclass
 from fractions import Fraction
 
 import numpy as np
-from numba.extending import register_jitable
 
 from core.image_order.kernels.layout import ROW_A, ROW_B, ROW_C
+from core.jitable import jitable
 
 _UNIT_ROUNDOFF = 2.0**-53
 #: A rounded ``p*q - r*s`` is trusted when bigger than this times ``|pq| + |rs|``
@@ -87,7 +87,7 @@ PARALLEL_TOLERANCE = 1e-12
 NAMES = ("alpha", "beta", "gamma")
 
 
-@register_jitable
+@jitable
 def two_product(a, b):
     """``a * b`` as an unevaluated sum ``p + e`` that is exact (Dekker, 1971)."""
     p = a * b
@@ -101,7 +101,7 @@ def two_product(a, b):
     return p, e
 
 
-@register_jitable
+@jitable
 def difference_of_products(a, b, c, d):
     """``a*b - c*d`` with the exact sign; swapping the products negates it exactly.
 
@@ -121,7 +121,7 @@ def difference_of_products(a, b, c, d):
     return (l_hi - r_hi) + (l_lo - r_lo)
 
 
-@register_jitable(inline="always")
+@jitable(inline="always")
 def ray_shear(dx, dy, dz):
     """The per-ray constants of the watertight test: ``(kx, ky, kz, sx, sy, sz)``.
 
@@ -147,7 +147,7 @@ def ray_shear(dx, dy, dz):
     return kx, ky, kz, -d[kx] / d[kz], -d[ky] / d[kz], 1.0 / d[kz]
 
 
-@register_jitable(inline="always")
+@jitable(inline="always")
 def to_ray_space(rows, k, o, shear):
     """The corners of triangle ``rows[k]`` seen from along the ray: translate, permute, shear.
 
@@ -180,7 +180,7 @@ def to_ray_space(rows, k, o, shear):
     return x0, y0, z0, x1, y1, z1, x2, y2, z2
 
 
-@register_jitable(inline="always")
+@jitable(inline="always")
 def barycentric_point(rows, k, b0, b1, b2):
     """The point ``b0 A + b1 B + b2 C`` of triangle ``rows[k]`` (as :func:`to_ray_space`), world space."""
     return (b0 * rows[k, ROW_A] + b1 * rows[k, ROW_B] + b2 * rows[k, ROW_C],
@@ -188,7 +188,7 @@ def barycentric_point(rows, k, b0, b1, b2):
             b0 * rows[k, ROW_A + 2] + b1 * rows[k, ROW_B + 2] + b2 * rows[k, ROW_C + 2])
 
 
-@register_jitable(inline="always")
+@jitable(inline="always")
 def edge_functions(x0, y0, x1, y1, x2, y2):
     """``(e0, e1, e2)``: the edge functions of edges BC, CA, AB at the ray (the 2D origin).
 
@@ -202,7 +202,7 @@ def edge_functions(x0, y0, x1, y1, x2, y2):
     return e0, e1, e2
 
 
-@register_jitable(inline="always")
+@jitable(inline="always")
 def straddles(e0, e1, e2):
     """The edge functions have mixed signs: the ray passes outside the triangle."""
     negative = (e0 < 0.0) | (e1 < 0.0) | (e2 < 0.0)
@@ -210,7 +210,7 @@ def straddles(e0, e1, e2):
     return negative & positive
 
 
-@register_jitable(inline="always")
+@jitable(inline="always")
 def plane_crossing(e0, e1, e2, z0, z1, z2, sz):
     """``(det, t, b0, b1, b2)`` where the ray meets the triangle's plane, from the edge functions.
 
@@ -225,7 +225,7 @@ def plane_crossing(e0, e1, e2, z0, z1, z2, sz):
     return det, t, e0 / det, e1 / det, e2 / det
 
 
-@register_jitable(inline="always")
+@jitable(inline="always")
 def crossing(e0, e1, e2, x0, y0, z0, x1, y1, z1, x2, y2, z2, sz):
     """``(det, t, b0, b1, b2)`` of a ray that does not straddle the triangle.
 
@@ -245,7 +245,7 @@ def crossing(e0, e1, e2, x0, y0, z0, x1, y1, z1, x2, y2, z2, sz):
 
 
 # The rare case stays out of line, so that the tracer's hot loops stay small.
-@register_jitable(error_model="numpy")
+@jitable(error_model="numpy")
 def _through_edge_or_corner(e0, e1, e2, x0, y0, z0, x1, y1, z1, x2, y2, z2, sz):
     """:func:`crossing` where an edge function is exactly 0 (and ``e0 + e1 + e2 != 0``)."""
     det = e0 + e1 + e2

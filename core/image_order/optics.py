@@ -17,7 +17,7 @@ Conventions
   of the medium it enters; ``eta = n1 / n2``.  Snell's law reads
   ``n1 sin θ1 = n2 sin θ2``.
 
-The functions take plain numbers and tuples.  ``register_jitable`` leaves
+The functions take plain numbers and tuples.  :func:`~core.jitable.jitable` leaves
 them ordinary Python functions when called from Python and compiles them
 into the tracer's kernels (:mod:`core.image_order.kernels.shade`) when called from
 there, so the explanations and the renderer run the very same code.
@@ -27,16 +27,16 @@ from __future__ import annotations
 
 import math
 
-from numba.extending import register_jitable
+from core.jitable import jitable
 
 
-@register_jitable
+@jitable
 def dot(a, b) -> float:
     """Scalar product of two 3-vectors."""
     return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 
 
-@register_jitable
+@jitable
 def reflect(d, n) -> tuple[float, float, float]:
     """Mirror direction of ``d`` at a surface with unit normal ``n``: ``d - 2 (d . n) n``.
 
@@ -52,7 +52,7 @@ def reflect(d, n) -> tuple[float, float, float]:
     return d[0] - k * n[0], d[1] - k * n[1], d[2] - k * n[2]
 
 
-@register_jitable
+@jitable
 def refract(d, n, eta):
     """Direction of the ray refracted by Snell's law, and whether there is one.
 
@@ -93,7 +93,7 @@ def refract(d, n, eta):
     return True, (eta * d[0] + k * n[0], eta * d[1] + k * n[1], eta * d[2] + k * n[2])
 
 
-@register_jitable
+@jitable
 def fresnel_dielectric(cos_i: float, n1: float, n2: float) -> tuple[float, float]:
     """Reflectance and transmittance of unpolarised light at a dielectric boundary.
 

@@ -21,10 +21,10 @@ rays, and in ray tracing the reflected and refracted rays - is the work of
 from __future__ import annotations
 
 import numpy as np
-from numba.extending import register_jitable
 
 from core.camera import Camera, pixel_ray
 from core.image_order.kernels import layout as lay
+from core.jitable import jitable
 
 
 def camera_array(cam: Camera) -> np.ndarray:
@@ -40,7 +40,7 @@ def camera_array(cam: Camera) -> np.ndarray:
     return c
 
 
-@register_jitable(inline="always")
+@jitable(inline="always")
 def primary_ray(cam, x, y):
     """The ray through the centre of pixel ``(x, y)``: ``(origin, direction, t_min, t_max)``.
 
@@ -56,7 +56,7 @@ def primary_ray(cam, x, y):
                      cam[lay.CAM_ORTHOGRAPHIC] > 0.0)
 
 
-@register_jitable(inline="always")
+@jitable(inline="always")
 def view_depth(cam, o, d, t):
     """Distance along the viewing axis of the point ``o + t d`` (camera space, positive ahead)."""
     f = lay.CAM_FORWARD

@@ -28,12 +28,12 @@ Two remedies, selectable per render (``TraceSettings.offset``):
     of ``10^4``).
 
 Both functions are compiled into the tracer's kernels where those call them
-(``register_jitable``, as in :mod:`core.image_order.optics`).
+(:func:`~core.jitable.jitable`, as in :mod:`core.image_order.optics`).
 """
 
 from __future__ import annotations
 
-from numba.extending import register_jitable
+from core.jitable import jitable
 
 #: Unit roundoff of float64.
 UNIT_ROUNDOFF = 2.0**-53
@@ -44,7 +44,7 @@ UNIT_ROUNDOFF = 2.0**-53
 ERROR_ULPS = 256.0
 
 
-@register_jitable
+@jitable
 def error_bound(magnitude: float) -> float:
     """Distance to push a ray origin off a surface whose coordinates reach ``magnitude``.
 
@@ -56,7 +56,7 @@ def error_bound(magnitude: float) -> float:
     return ERROR_ULPS * UNIT_ROUNDOFF * magnitude
 
 
-@register_jitable
+@jitable
 def offset_ray_origin(p, n, error: float, w) -> tuple[float, float, float]:
     """``p`` moved by ``error`` along the unit normal ``n``, to the side ``w`` points to.
 

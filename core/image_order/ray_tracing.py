@@ -39,7 +39,6 @@ import functools
 import time
 from dataclasses import dataclass
 
-import numba
 import numpy as np
 
 from core.image_order.bvh import Bvh
@@ -47,11 +46,12 @@ from core.image_order.effects_plan import EffectsPlan, effects_plan
 from core.image_order.flat_scene import KernelInputs, TraceSettings, kernel_inputs, trace_scene
 from core.image_order.grid_of_cuboids import UniformGrid
 from core.image_order.kernels import layout as lay
-from core.image_order.kernels import render as trace_render
 from core.image_order.ray_tree import trace_pixel
 from core.presets_trace import warm_up_scene
 from core.scene import Scene
 from core.warm_up import WarmUp
+
+# Kernels are imported where they are used, so importing this module does not load numba (core.jitable).
 
 
 @dataclass(frozen=True, eq=False)
@@ -139,6 +139,10 @@ def render_trace(scene: Scene, settings: TraceSettings = TraceSettings(),
 
 def _run_passes(xs, ys, k: KernelInputs, times: dict):
     """The three compiled stages; fills ``times`` and returns colour, depth, hits and counters."""
+    import numba
+
+    from core.image_order.kernels import render as trace_render
+
     ny, nx = len(ys), len(xs)
     # Left unset where a stage writes every pixel (hits: primary; colour, spawned: shading), and
     # children, written and read only where a ray goes on: no time spent clearing megabytes.

@@ -26,11 +26,10 @@ from core.image_order.effects_plan import effects_plan
 from core.image_order.flat_scene import TraceSettings, kernel_inputs, trace_scene
 from core.image_order.grid_of_cuboids import cells_on_ray
 from core.image_order.kernels import layout as lay
-from core.image_order.kernels.closest_hit import GRID, GRID_SPHERES, closest_hit
-from core.image_order.kernels.render import make_scratch
-from core.image_order.kernels.shade import shade_hit
 from core.image_order.ray_casting import primary_ray
 from core.scene import Scene
+
+# Kernels are imported where they are used, so importing this module does not load numba (core.jitable).
 
 KINDS = ("primary", "shadow", "reflection", "refraction")
 
@@ -187,6 +186,8 @@ class _Tracer:
 
     def __init__(self, scene, settings, flat, structure, k):
         self.scene, self.k, self.structure, self.names = scene, k, structure, flat.names
+        from core.image_order.kernels.render import make_scratch
+
         self.prim_object = flat.geometry.prim_object
         self.scratch = make_scratch(k.method, flat.geometry.n_prims, k.materials.shape[0], k.bvh_depth)
         self.counters = np.zeros(lay.N_COUNTERS, np.int64)
@@ -199,12 +200,17 @@ class _Tracer:
         return {"tests": int(delta[lay.PRIM_TESTS]), "bounds_tests": int(delta[lay.BOUNDS_TESTS])}
 
     def _cells(self, o, d, t_min, t_end):
+        from core.image_order.kernels.closest_hit import GRID, GRID_SPHERES
+
         if self.k.method not in (GRID, GRID_SPHERES):
             return None
 
         return cells_on_ray(self.structure, o, d, t_min, t_end)
 
     def trace(self, kind, o, d, t_min, t_max, generation, coefficient, weight) -> RayNode:
+        from core.image_order.kernels.closest_hit import closest_hit
+        from core.image_order.kernels.shade import shade_hit
+
         k = self.k
         before = self.counters.copy()
         h = closest_hit(k.method, o, d, t_min, t_max, False, k.geo, k.grid, k.bvh, self.scratch,
@@ -269,6 +275,8 @@ class _Tracer:
         t = float(rec[at + lay.LR_BLOCKER_T]) if hit is not None else None
         work, cells = {"tests": 0, "bounds_tests": 0}, None
         if traced:  # the same query again, to count its work and list its cells
+            from core.image_order.kernels.closest_hit import closest_hit
+
             k, before = self.k, self.counters.copy()
             o, d = tuple(float(v) for v in origin), tuple(float(v) for v in direction)
             closest_hit(k.method, o, d, self.t_start, distance, True, k.geo, k.grid, k.bvh, self.scratch,

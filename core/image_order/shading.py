@@ -28,12 +28,11 @@ conventions on vectors).
 
 from __future__ import annotations
 
-from numba.extending import register_jitable
-
 from core.image_order.optics import dot, reflect
+from core.jitable import jitable
 
 
-@register_jitable
+@jitable
 def lambert(n, to_light) -> float:
     """Lambert's cosine law: ``max(0, N . L)`` for unit vectors ``N`` and ``L``.
 
@@ -45,7 +44,7 @@ def lambert(n, to_light) -> float:
     return max(0.0, dot(n, to_light))
 
 
-@register_jitable
+@jitable
 def phong(n, to_light, to_eye, shininess: float) -> float:
     """Phong's highlight factor ``max(0, R . V)^n``, ``R`` the mirror image of ``L``.
 
@@ -64,7 +63,7 @@ def phong(n, to_light, to_eye, shininess: float) -> float:
     return max(0.0, dot(r, to_eye)) ** shininess
 
 
-@register_jitable
+@jitable
 def surface_split(reflectivity: float, transparency: float) -> tuple[float, float, float]:
     """How a surface's light divides: ``(w_local, k_r, k_t)``, summing to 1.
 

@@ -21,10 +21,11 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from numba.extending import register_jitable
+
+from core.jitable import jitable
 
 
-@register_jitable
+@jitable
 def blend_over(alpha, source, destination):
     """The lecture's blend ``c0 = alpha cs + (1 - alpha) cd`` (RGB in [0, 1]).
 

@@ -24,7 +24,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from numba.extending import register_jitable
+
+from core.jitable import jitable
 
 PLANES = ("left", "right", "bottom", "top", "near", "far")
 
@@ -56,7 +57,7 @@ def boundary_distances(clip: np.ndarray) -> np.ndarray:
     return np.stack([boundary_distance(clip, plane) for plane in range(6)], axis=-1)
 
 
-@register_jitable
+@jitable
 def boundary_distance(v, plane):
     """Signed distance of clip-space point ``v = (x, y, z, w, ...)`` from one plane of the frustum.
 
@@ -71,7 +72,7 @@ def boundary_distance(v, plane):
     return v[..., 3] - v[..., axis]
 
 
-@register_jitable
+@jitable
 def sutherland_hodgman(poly, n, spare):
     """Clip the convex polygon ``poly[:n]`` against the six planes, in place.
 

@@ -28,7 +28,8 @@ from dataclasses import dataclass
 from functools import cached_property
 
 import numpy as np
-from numba.extending import register_jitable
+
+from core.jitable import jitable
 
 OUTSIDE, INSIDE, CROSSING = "outside", "inside", "crossing"
 
@@ -132,7 +133,7 @@ def back_face_culling(view: np.ndarray, triangles: np.ndarray, orthographic: boo
     return FaceCulling(view, triangles, bool(orthographic), visible)
 
 
-@register_jitable
+@jitable
 def face_facing(a, b, c, orthographic):
     """The back-face test of one triangle ``a, b, c`` (view space, counter-clockwise from outside).
 

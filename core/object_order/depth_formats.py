@@ -33,7 +33,8 @@ ties exactly as the format's stored values would; the z-test compares keys.
 from __future__ import annotations
 
 import numpy as np
-from numba.extending import register_jitable
+
+from core.jitable import jitable
 
 #: The formats, in the order of their codes (the kernels take the index).
 DEPTH_FORMATS = ("float64", "float32", "float32-reversed", "int24", "int16")
@@ -50,7 +51,7 @@ def format_code(name: str) -> int:
     return DEPTH_FORMATS.index(name)
 
 
-@register_jitable
+@jitable
 def depth_key(z: float, code: int) -> float:
     """Window depth ``z`` in [0, 1] as format ``code`` stores it, as a comparable float64.
 

@@ -20,10 +20,11 @@ written once; :func:`face_colors` runs it over all polygons, compiled
 from __future__ import annotations
 
 import numpy as np
-from numba.extending import register_jitable
+
+from core.jitable import jitable
 
 
-@register_jitable
+@jitable
 def lambert(n, c, toward_viewer, base, ambient, diffuse, light_position, light_rgb):
     """The flat Lambert colour of one face: ``(r, g, b)`` in [0, 1].
 

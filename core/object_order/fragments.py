@@ -13,12 +13,12 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-import numba
 import numpy as np
 
 from core.object_order import zbuffer
 from core.object_order.depth_formats import format_code
-from core.object_order.kernels import raster as kernels
+
+# Kernels are imported where they are used, so importing this module does not load numba (core.jitable).
 
 
 @dataclass(frozen=True)
@@ -100,6 +100,10 @@ def draw(xy: np.ndarray, z: np.ndarray, corners: np.ndarray, position: np.ndarra
     threads : threads sharing the image's bands of rows (default: numba's
         thread count); the result is the same for any number.
     """
+    import numba
+
+    from core.object_order.kernels import raster as kernels
+
     code = format_code(depth_format)
     color, zbuf = zbuffer.cleared_buffers(width, height, background, depth_format)
     generated, passed = np.empty(len(poly_alpha), dtype=np.int64), np.empty(len(poly_alpha), dtype=np.int64)

@@ -30,7 +30,6 @@ from __future__ import annotations
 import time
 from dataclasses import asdict, dataclass
 
-import numba
 import numpy as np
 
 from core import shapes
@@ -45,13 +44,12 @@ from core.object_order import (
 )
 from core.object_order.clipping import ClipResult, Polygons
 from core.object_order.culling import FaceCulling, ObjectCulling
-from core.object_order.kernels.culling import bounding_sphere
-from core.object_order.kernels.raster import depth_image
-from core.object_order.kernels.transform import transform_points
 from core.object_order.step_history import StepHistory
 from core.presets import zbuffer_piercing
 from core.scene import Mesh, Scene, SceneObject, Sphere
 from core.warm_up import WarmUp
+
+# Kernels are imported where they are used, so importing this module does not load numba (core.jitable).
 
 SPHERE_RINGS, SPHERE_SEGMENTS = 32, 64
 """Tessellation of an analytic sphere for object order: 4,032 triangles."""
@@ -236,6 +234,8 @@ def render_raster(scene: Scene, settings: RasterSettings = DEFAULT_SETTINGS) -> 
     -----
     Frames of less work than ``PARALLEL_WORK`` run on one thread.
     """
+    import numba
+
     compile_s = ensure_compiled()
     work = scene.camera.width * scene.camera.height + sum(
         len(obj.triangles) for obj in scene.objects if isinstance(obj, Mesh))
@@ -250,6 +250,9 @@ def render_raster(scene: Scene, settings: RasterSettings = DEFAULT_SETTINGS) -> 
 
 
 def _render(scene: Scene, settings: RasterSettings) -> RasterResult:
+    from core.object_order.kernels.raster import depth_image
+    from core.object_order.kernels.transform import transform_points
+
     cam = scene.camera
     ortho = cam.projection == "orthographic"
     watch = _Stopwatch()
@@ -363,6 +366,8 @@ def _render(scene: Scene, settings: RasterSettings) -> RasterResult:
 def _bounding_sphere(obj: SceneObject, mesh: Mesh) -> tuple[np.ndarray, float]:
     if isinstance(obj, Sphere):
         return np.asarray(obj.center, dtype=float), float(obj.radius)
+    from core.object_order.kernels.culling import bounding_sphere
+
     center, radius = bounding_sphere(np.ascontiguousarray(mesh.vertices, dtype=float))
     return center, float(radius)
 

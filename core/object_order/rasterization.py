@@ -38,7 +38,8 @@ integer edge functions, so such triangles are not drawn.
 from __future__ import annotations
 
 import numpy as np
-from numba.extending import register_jitable
+
+from core.jitable import jitable
 
 SUBPIXEL_BITS = 8
 SUBPIXEL = 1 << SUBPIXEL_BITS
@@ -75,7 +76,7 @@ def window_coordinates(clip: np.ndarray, width: int, height: int) -> tuple[np.nd
     return xy, z_win
 
 
-@register_jitable
+@jitable
 def to_fixed(x):
     """One pixel coordinate to fixed point: the nearest multiple of 1/``SUBPIXEL`` pixel.
 
@@ -92,13 +93,13 @@ def snap(xy: np.ndarray) -> np.ndarray:
     return np.vectorize(to_fixed, otypes=[np.int64])(np.asarray(xy, dtype=float))
 
 
-@register_jitable
+@jitable
 def pixel_centre_fixed(i):
     """The centre of pixel column (or row) ``i`` in fixed point: ``(i + 1/2) SUBPIXEL``."""
     return i * SUBPIXEL + SUBPIXEL // 2
 
 
-@register_jitable
+@jitable
 def centres_within(lo, hi):
     """The pixel columns (or rows) whose centres lie in the fixed-point range ``lo .. hi``.
 
@@ -113,7 +114,7 @@ def centres_within(lo, hi):
     return (lo - SUBPIXEL // 2 + SUBPIXEL - 1) >> SUBPIXEL_BITS, (hi - SUBPIXEL // 2) >> SUBPIXEL_BITS
 
 
-@register_jitable
+@jitable
 def edge_function(a, b, p):
     """``E_ab(p) = (b - a) x (p - a)``: twice the signed area of the triangle ``a, b, p``.
 
@@ -129,7 +130,7 @@ def edge_function(a, b, p):
     return (b[0] - a[0]) * (p[1] - a[1]) - (b[1] - a[1]) * (p[0] - a[0])
 
 
-@register_jitable
+@jitable
 def edge_steps(a, b):
     """How ``E_ab`` changes from one pixel centre to the next: ``(per column, per row)``.
 
@@ -144,7 +145,7 @@ def edge_steps(a, b):
     return (a[1] - b[1]) * SUBPIXEL, (b[0] - a[0]) * SUBPIXEL
 
 
-@register_jitable
+@jitable
 def is_top_left(a, b):
     """Does the edge ``a -> b`` own the pixel centres lying exactly on it?  The tie rule.
 
@@ -168,14 +169,14 @@ def is_top_left(a, b):
     return dy < 0 or (dy == 0 and dx > 0)
 
 
-@register_jitable
+@jitable
 def fill_rule_offset(a, b):
     """0 for a top-left edge, -1 otherwise: added to the integer ``E_ab``, the test
     ``E + offset >= 0`` keeps centres inside and those on owned edges."""
     return 0 if is_top_left(a, b) else -1
 
 
-@register_jitable
+@jitable
 def depth_plane(a, b, c, za, zb, zc):
     """The plane of window depth over the screen through a triangle's three corners.
 
@@ -199,7 +200,7 @@ def depth_plane(a, b, c, za, zb, zc):
     return za, dzdx, dzdy
 
 
-@register_jitable
+@jitable
 def plane_depth(plane, a, px, py):
     """The depth of a fragment: the plane ``(z_a, dz/dx, dz/dy)`` anchored at corner
     ``a`` evaluated at pixel position ``(px, py)`` (a pixel centre).

@@ -25,7 +25,8 @@ import numpy as np
 from core.object_order import zbuffer
 from core.object_order.blending import Blend, blend_over
 from core.object_order.fragments import Fragments
-from core.object_order.kernels import raster as kernels
+
+# Kernels are imported where they are used, so importing this module does not load numba (core.jitable).
 
 
 @dataclass(frozen=True)
@@ -116,6 +117,8 @@ class StepHistory:
             raise ValueError(f"step must be in [0, {self.n_steps}], got {k}")
         color, zbuf = zbuffer.cleared_buffers(self.width, self.height, self.background,
                                               self.depth_format)
+        from core.object_order.kernels import raster as kernels
+
         f = self.fragments
         kernels.replay(self.offsets, f.pixel, f.z, f.passed, self.color, self.alpha, k, color, zbuf)
         return color, zbuf

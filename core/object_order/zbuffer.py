@@ -26,8 +26,8 @@ the algorithm over a whole draw list is :mod:`core.object_order.fragments`.
 from __future__ import annotations
 
 import numpy as np
-from numba.extending import register_jitable
 
+from core.jitable import jitable
 from core.object_order.depth_formats import depth_key, format_code
 
 FAR_DEPTH = 1.0
@@ -51,7 +51,7 @@ def cleared_buffers(width: int, height: int, background,
     return color, np.full((height, width), depth_key(FAR_DEPTH, format_code(depth_format)))
 
 
-@register_jitable
+@jitable
 def depth_test(key, stored_key):
     """The z-buffer test: a fragment passes when it is nearer than what is stored.
 
@@ -67,7 +67,7 @@ def depth_test(key, stored_key):
     return key < stored_key
 
 
-@register_jitable
+@jitable
 def distance_from_window_depth(z_win, near, far, orthographic):
     """Window depth back to the distance along the viewing axis (scene units, positive).
 

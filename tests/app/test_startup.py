@@ -18,12 +18,12 @@ from views import deferred_scene_view
 from views.deferred_scene_view import PLACEHOLDER
 
 ROOT = Path(__file__).resolve().parents[2]
-LATER = ("vtkmodules", "pyvista", "pyvistaqt", "matplotlib", "mpmath")
-"""What the 3D pane, the Cost plot, typesetting a new formula and the hard cases need, and the
-window's first frame does not."""
+LATER = ("vtkmodules", "pyvista", "pyvistaqt", "matplotlib", "mpmath", "numba")
+"""What the 3D pane, the Cost plot, typesetting a new formula, the hard cases and the renders'
+compiled kernels need, and the window's first frame does not."""
 
 
-def test_importing_the_window_loads_no_vtk_pyvista_matplotlib_or_mpmath():
+def test_importing_the_window_loads_nothing_its_first_frame_does_not_need():
     code = ("import sys, app.main_window; "
             f"print(','.join(m for m in {LATER!r} if m in sys.modules))")
     out = subprocess.run([sys.executable, "-c", code], cwd=ROOT, capture_output=True, text=True,
@@ -75,6 +75,44 @@ def test_the_second_start_paints_its_lesson_formulas_without_loading_matplotlib(
         assert out.returncode == 0, out.stderr
         loaded.append(out.stdout.split()[-1])
     assert loaded == ["True", "False"]  # typeset once, then read from the cache
+
+
+NUMBA_AT = """
+import sys
+from app import cli  # as python -m app starts
+from PySide6.QtCore import QEvent, QObject, QTimer
+from PySide6.QtWidgets import QApplication, QMainWindow, QWidget
+
+loaded = {}
+
+class Watch(QObject):
+    def eventFilter(self, obj, event):
+        if event.type() == QEvent.Type.Paint and isinstance(obj, QWidget):
+            if isinstance(obj.window(), QMainWindow):
+                loaded.setdefault("window", "numba" in sys.modules)
+            if type(obj).__name__ == "ImageView" and obj.rgb is not None and obj.isVisible():
+                loaded.setdefault("image", "numba" in sys.modules)
+                QTimer.singleShot(0, app.quit)
+        return False
+
+app = QApplication(sys.argv[:1])
+watch = Watch()
+app.installEventFilter(watch)
+QTimer.singleShot(TIMEOUT_MS, app.quit)
+cli.main([])
+print(loaded.get("window"), loaded.get("image"))
+"""
+
+
+@pytest.mark.gui
+def test_the_window_is_painted_before_numba_loads_and_its_first_image_follows(tmp_path):
+    """numba takes about half a second to import: the window must not wait for it, the render does."""
+    code = NUMBA_AT.replace("TIMEOUT_MS", str(RENDER_TIMEOUT_MS))
+    env = {**os.environ, "XDG_CONFIG_HOME": str(tmp_path)}  # no last session: the lecture scene
+    out = subprocess.run([sys.executable, "-c", code], cwd=ROOT, capture_output=True, text=True, env=env,
+                         timeout=RENDER_TIMEOUT_MS / 1000 + 60)
+    assert out.returncode == 0, out.stderr
+    assert out.stdout.split()[-2:] == ["False", "True"]  # painted without numba; the image needed it
 
 
 @pytest.fixture

@@ -22,6 +22,8 @@ After an edit of, say, :mod:`core.image_order.optics`, the cached shading kernel
 silently keep the old code.  So on import this module hashes every source
 file the tracer's kernels are made of (:data:`SOURCES`) and, when the hash
 changed, deletes the tracer's cache files before any kernel is loaded.
+It also registers the formulas marked :func:`~core.jitable.jitable` with
+numba (:func:`core.jitable.register_all`).
 """
 
 from __future__ import annotations
@@ -30,6 +32,7 @@ from pathlib import Path
 
 from numba import njit
 
+from core.jitable import register_all
 from core.kernel_cache import drop_stale_cache
 
 _OPTIONS = {"cache": True, "nogil": True, "error_model": "numpy"}
@@ -44,10 +47,11 @@ _CORE = _IMAGE_ORDER.parent
 SOURCES = sorted(_KERNELS.rglob("*.py")) + [
     _IMAGE_ORDER / name for name in ("optics.py", "shading.py", "ray_offset.py", "intersect_sphere.py",
                                      "intersect_triangle.py", "ray_casting.py")] + [
-    _CORE / name for name in ("camera.py", "projection.py")]
+    _CORE / name for name in ("camera.py", "projection.py", "jitable.py")]
 
 
 drop_stale_cache(_KERNELS, SOURCES, "trace")
+register_all()  # the lecture modules' formulas, before any kernel is compiled or loaded
 
 
 def jit(func):

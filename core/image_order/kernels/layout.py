@@ -9,7 +9,7 @@ them and the kernels that use them.
 
 from __future__ import annotations
 
-from numba.extending import register_jitable
+from core.jitable import jitable
 
 # --- materials: (O, MAT_SIZE), one row per scene object ----------------------------------
 MAT_COLOR = 0  # 3 columns, RGB
@@ -135,7 +135,7 @@ STACK_KIND = CHILD_SIZE + 1  # SPAWN_REFLECT or SPAWN_REFRACT
 STACK_SIZE = CHILD_SIZE + 2
 
 
-@register_jitable
+@jitable
 def record_size(n_lights: int) -> int:
     """Length of a hit record for a scene with ``n_lights`` lights."""
     return REC_LIGHTS + LIGHT_REC_SIZE * n_lights

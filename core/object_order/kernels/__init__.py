@@ -17,6 +17,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from core.jitable import register_all
 from core.kernel_cache import drop_stale_cache
 
 _KERNELS = Path(__file__).resolve().parent
@@ -26,7 +27,9 @@ _OBJECT_ORDER = _KERNELS.parent
 #: checks that every ``core`` module a kernel imports is listed here.
 SOURCES = sorted(_KERNELS.glob("*.py")) + [
     _OBJECT_ORDER / name for name in ("rasterization.py", "zbuffer.py", "blending.py", "depth_formats.py",
-                                      "clipping.py", "culling.py", "flat_shading.py")]
+                                      "clipping.py", "culling.py", "flat_shading.py")] + [
+    _OBJECT_ORDER.parent / "jitable.py"]
 
 
 drop_stale_cache(_KERNELS, SOURCES, "raster")
+register_all()  # the lecture modules' formulas, before any kernel is compiled or loaded
