@@ -22,6 +22,7 @@ from dataclasses import replace
 
 import numpy as np
 
+from app.kernel_loading import load_kernels
 from app.usage import UsageError
 
 MODES = ("raster", "raycast", "raytrace")
@@ -185,6 +186,7 @@ def run(args) -> int:
     if args.dry_run:
         return 0
 
+    load_kernels(args.mode, args.accel)
     if args.mode == "raster":
         from core.object_order.pipeline import RasterSettings, render_raster
 

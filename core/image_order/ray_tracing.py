@@ -233,6 +233,11 @@ ensure_compiled = WarmUp(_warm_up_all)
 """Compile every tracer kernel once per process; returns the seconds it took (0.0 later)."""
 
 
+def compile_for(accel: str) -> float:
+    """Compile the kernels a render with ``accel`` runs, once per process; the seconds it took (0.0 later)."""
+    return _compiled_for[accel]()
+
+
 def merge_band_stats(parts: list[dict]) -> dict:
     """One image's statistics from its bands': counts and times add up, per-ray figures are redone."""
     merged = {**parts[0], "rays": {}, "times": {}, "accel": dict(parts[0]["accel"])}
