@@ -73,6 +73,44 @@ def _corners_fixed(xy, a, b, c):
     return f0, f1, f2, area
 
 
+SMALL_BOX = 4
+"""Boxes of at most so many pixel centres are shrunk to the centres the triangle covers
+(:func:`_bounding_boxes`)."""
+
+
+@njit(cache=True, nogil=True)
+def _edges_at(f0, f1, f2, p):
+    """The three edge functions of the triangle ``f0, f1, f2`` (fixed point, inside is
+    E > 0) at the point ``p``, with the fill rule's offsets: ``p`` is covered when all
+    three are ``>= 0``."""
+    return (edge_function(f1, f2, p) + fill_rule_offset(f1, f2),
+            edge_function(f2, f0, p) + fill_rule_offset(f2, f0),
+            edge_function(f0, f1, p) + fill_rule_offset(f0, f1))
+
+
+@njit(cache=True, nogil=True)
+def _covered_box(f0, f1, f2, imin, imax, jmin, jmax):
+    """The box of the centres in ``imin .. imax`` x ``jmin .. jmax`` that the triangle
+    covers; empty (``jmin > jmax``) when it covers none."""
+    ilo, ihi, jlo, jhi = imax + 1, imin - 1, jmax + 1, jmin - 1
+    e0, e1, e2 = _edges_at(f0, f1, f2, (pixel_centre_fixed(imin), pixel_centre_fixed(jmin)))
+    step_x0, step_y0 = edge_steps(f1, f2)
+    step_x1, step_y1 = edge_steps(f2, f0)
+    step_x2, step_y2 = edge_steps(f0, f1)
+    for j in range(jmin, jmax + 1):
+        w0, w1, w2 = e0, e1, e2
+        for i in range(imin, imax + 1):
+            if (w0 | w1 | w2) >= 0:  # all three >= 0: no sign bit set in any
+                ilo, ihi, jlo, jhi = min(ilo, i), max(ihi, i), min(jlo, j), max(jhi, j)
+            w0 += step_x0
+            w1 += step_x1
+            w2 += step_x2
+        e0 += step_y0
+        e1 += step_y1
+        e2 += step_y2
+    return ilo, ihi, jlo, jhi
+
+
 @njit(cache=True, nogil=True, parallel=True)
 def _bounding_boxes(xy, corners, width, height, box, out_of_range):
     """The pixels whose centres lie in each triangle's bounding box, clamped to the image,
@@ -83,7 +121,11 @@ def _bounding_boxes(xy, corners, width, height, box, out_of_range):
     box : (T, 4) int64, ``imin, imax, jmin, jmax``; a triangle with no area,
         no pixel centre in its box inside the image, or a corner out of range
         gets an empty box (``jmin > jmax``).  Most triangles of a fine mesh
-        are smaller than a pixel and get none.
+        are smaller than a pixel: a box of at most ``SMALL_BOX`` centres is
+        shrunk to the centres covered, so that the many that cover none get
+        an empty box here, with the threads sharing the test, and are never
+        binned or drawn.  (Shrinking the box drops only centres that make no
+        fragment.)
     out_of_range : (T,) bool, a corner beyond ``MAX_PIXEL`` or not finite.
     """
     for t in prange(corners.shape[0]):
@@ -101,6 +143,8 @@ def _bounding_boxes(xy, corners, width, height, box, out_of_range):
         imin, imax = centres_within(min(f0[0], f1[0], f2[0]), max(f0[0], f1[0], f2[0]))
         jmin, jmax = centres_within(min(f0[1], f1[1], f2[1]), max(f0[1], f1[1], f2[1]))
         imin, imax, jmin, jmax = max(imin, 0), min(imax, width - 1), max(jmin, 0), min(jmax, height - 1)
+        if imin <= imax and jmin <= jmax and (imax - imin + 1) * (jmax - jmin + 1) <= SMALL_BOX:
+            imin, imax, jmin, jmax = _covered_box(f0, f1, f2, imin, imax, jmin, jmax)
         if imin <= imax and jmin <= jmax:
             box[t, 0], box[t, 1], box[t, 2], box[t, 3] = imin, imax, jmin, jmax
 
@@ -161,9 +205,7 @@ def _draw_rows(xy, z, corners, tri_poly, poly_color, poly_alpha, color, zbuf, de
     first = (pixel_centre_fixed(imin), pixel_centre_fixed(jlo))
     # The three edge functions at the first pixel centre, with the fill rule's offset
     # so that "E >= 0" means covered, and their exact integer steps per pixel.
-    e0 = edge_function(f1, f2, first) + fill_rule_offset(f1, f2)
-    e1 = edge_function(f2, f0, first) + fill_rule_offset(f2, f0)
-    e2 = edge_function(f0, f1, first) + fill_rule_offset(f0, f1)
+    e0, e1, e2 = _edges_at(f0, f1, f2, first)
     step_x0, step_y0 = edge_steps(f1, f2)
     step_x1, step_y1 = edge_steps(f2, f0)
     step_x2, step_y2 = edge_steps(f0, f1)
@@ -175,7 +217,7 @@ def _draw_rows(xy, z, corners, tri_poly, poly_color, poly_alpha, color, zbuf, de
     for j in range(jlo, jhi + 1):
         w0, w1, w2 = e0, e1, e2
         for i in range(imin, imax + 1):
-            if w0 >= 0 and w1 >= 0 and w2 >= 0:
+            if (w0 | w1 | w2) >= 0:  # all three >= 0: no sign bit set in any
                 if generated == 0:
                     plane = depth_plane(pa, pb, pc, z[a], z[b], z[c])  # of the unsnapped corners
                 key = depth_key(plane_depth(plane, pa, i + 0.5, j + 0.5), depth_code)

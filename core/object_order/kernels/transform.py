@@ -13,10 +13,10 @@ from __future__ import annotations
 from numba import njit
 
 
-@njit(cache=True, nogil=True)
-def _transform(matrix, x, y, z, out, i):
-    """``out[i] = (matrix @ [x, y, z, 1])[:rows]``, ``rows = out.shape[1]`` (3 or 4)."""
-    for k in range(out.shape[1]):
+@njit(inline="always")
+def _transform(matrix, x, y, z, out, i, rows):
+    """``out[i, :rows] = (matrix @ [x, y, z, 1])[:rows]`` (inlined, so that ``rows`` is a constant)."""
+    for k in range(rows):
         out[i, k] = matrix[k, 0] * x + matrix[k, 1] * y + matrix[k, 2] * z + matrix[k, 3]
 
 
@@ -34,8 +34,8 @@ def view_and_clip(points, view_from_world, clip_from_view, view, clip):
     clip : (N, 4) float64, written: ``clip_from_view @ [view, 1]``, homogeneous.
     """
     for i in range(points.shape[0]):
-        _transform(view_from_world, points[i, 0], points[i, 1], points[i, 2], view, i)
-        _transform(clip_from_view, view[i, 0], view[i, 1], view[i, 2], clip, i)
+        _transform(view_from_world, points[i, 0], points[i, 1], points[i, 2], view, i, 3)
+        _transform(clip_from_view, view[i, 0], view[i, 1], view[i, 2], clip, i, 4)
 
 
 @njit(cache=True, nogil=True, error_model="numpy")
