@@ -158,7 +158,6 @@ def _bin(box, n_bands):
     piece_tri : (E,) int64, the triangle of each piece; pieces are numbered
         triangle by triangle, and within a triangle band by band (top down),
         so piece order is drawing order.
-    piece_band : (E,) int64, its band.
     band_start : (B + 1,) int64, band ``b``'s pieces are
         ``band_pieces[band_start[b] : band_start[b + 1]]``.
     band_pieces : (E,) int64, piece numbers band by band, each band's in
@@ -174,18 +173,16 @@ def _bin(box, n_bands):
     n = band_start[n_bands]
     fill = band_start[:-1].copy()
     piece_tri = np.empty(n, np.int64)
-    piece_band = np.empty(n, np.int64)
     band_pieces = np.empty(n, np.int64)
     k = 0
     for t in range(n_tri):
         if box[t, 2] <= box[t, 3]:
             for b in range(box[t, 2] // BAND_ROWS, box[t, 3] // BAND_ROWS + 1):
                 piece_tri[k] = t
-                piece_band[k] = b
                 band_pieces[fill[b]] = k
                 fill[b] += 1
                 k += 1
-    return piece_tri, piece_band, band_start, band_pieces
+    return piece_tri, band_start, band_pieces
 
 
 @njit(cache=True, nogil=True)
@@ -252,8 +249,8 @@ def _draw_bands(w, workers, xy, z, corners, tri_poly, poly_color, poly_alpha, co
             jhi = min(box[t, 3], b * BAND_ROWS + BAND_ROWS - 1)
             piece_generated[k], piece_passed[k] = _draw_rows(
                 xy, z, corners, tri_poly, poly_color, poly_alpha, color, zbuf, depth_code, z_test,
-                t, box[t, 0], box[t, 1], jlo, jhi, record, slot[k], scratch_pixel, scratch_key,
-                scratch_passed)
+                t, box[t, 0], box[t, 1], jlo, jhi, record, slot[k] if record else 0, scratch_pixel,
+                scratch_key, scratch_passed)
 
 
 @njit(cache=True, nogil=True, parallel=True)
@@ -312,20 +309,23 @@ def draw_triangles(xy, z, corners, tri_poly, poly_color, poly_alpha, color, zbuf
     height, width = zbuf.shape
     _bounding_boxes(xy, corners, width, height, box, out_of_range)
     n_bands = (height + BAND_ROWS - 1) // BAND_ROWS
-    piece_tri, piece_band, band_start, band_pieces = _bin(box, n_bands)
+    piece_tri, band_start, band_pieces = _bin(box, n_bands)
     n_pieces = piece_tri.shape[0]
-    # Room for every fragment a piece may make: the pixels of its box within its band.
-    slot = np.zeros(n_pieces + 1, np.int64)
+    # Room for every fragment a piece may make (``record`` only): the pixels of its box within
+    # its band.  A triangle's pieces follow each other, band after band from its box's top.
+    slot = np.zeros(n_pieces + 1 if record else 1, np.int64)
     if record:
+        b = 0
         for k in range(n_pieces):
-            t, b = piece_tri[k], piece_band[k]
+            t = piece_tri[k]
+            b = b + 1 if k > 0 and piece_tri[k - 1] == t else box[t, 2] // BAND_ROWS
             rows = min(box[t, 3], b * BAND_ROWS + BAND_ROWS - 1) - max(box[t, 2], b * BAND_ROWS) + 1
             slot[k + 1] = slot[k] + rows * (box[t, 1] - box[t, 0] + 1)
-    scratch_pixel = np.empty(slot[n_pieces], np.int32)
-    scratch_key = np.empty(slot[n_pieces], np.float64)
-    scratch_passed = np.empty(slot[n_pieces], np.bool_)
-    piece_generated = np.zeros(n_pieces, np.int64)
-    piece_passed = np.zeros(n_pieces, np.int64)
+    scratch_pixel = np.empty(slot[-1], np.int32)
+    scratch_key = np.empty(slot[-1], np.float64)
+    scratch_passed = np.empty(slot[-1], np.bool_)
+    piece_generated = np.empty(n_pieces, np.int64)  # every piece is drawn, by one worker
+    piece_passed = np.empty(n_pieces, np.int64)
     workers = max(1, min(n_workers, n_bands))
     if workers == 1:
         _draw_bands(0, 1, xy, z, corners, tri_poly, poly_color, poly_alpha, color, zbuf, depth_code,
@@ -343,12 +343,12 @@ def draw_triangles(xy, z, corners, tri_poly, poly_color, poly_alpha, color, zbuf
         generated[p] += piece_generated[k]
         passed[p] += piece_passed[k]
     # Gather the recorded fragments piece by piece, which is drawing order.
-    start = np.zeros(n_pieces + 1, np.int64)
+    start = np.zeros(n_pieces + 1 if record else 1, np.int64)
     if record:
         start[1:] = np.cumsum(piece_generated)
-    frag_pixel = np.empty(start[n_pieces], np.int32)
-    frag_key = np.empty(start[n_pieces], np.float64)
-    frag_passed = np.empty(start[n_pieces], np.bool_)
+    frag_pixel = np.empty(start[-1], np.int32)
+    frag_key = np.empty(start[-1], np.float64)
+    frag_passed = np.empty(start[-1], np.bool_)
     if record:
         for k in range(n_pieces):
             for f in range(piece_generated[k]):
