@@ -28,7 +28,6 @@ Conventions: :mod:`core.projection`.
 from __future__ import annotations
 
 import time
-import weakref
 from dataclasses import asdict, dataclass
 
 import numba
@@ -365,35 +364,10 @@ def _per_face(values: np.ndarray, face_offsets: np.ndarray, face: np.ndarray) ->
     return values[np.searchsorted(face_offsets[1:], face, side="right")]
 
 
-_SPHERES: dict[int, tuple[weakref.ref, np.ndarray, float]] = {}
-"""Bounding spheres of the meshes drawn, by the identity of their vertex array, for arrays
-no one can write (:func:`_read_only`; a mesh makes its vertices read-only), whose sphere
-never changes: a mesh seen again, frame after frame, skips the two passes over its
-vertices.  An entry goes when its array does."""
-
-
-def _read_only(a: np.ndarray) -> bool:
-    """Neither the array nor any array it views is writeable."""
-    while isinstance(a, np.ndarray):
-        if a.flags.writeable:
-            return False
-        a = a.base
-    return a is None or isinstance(a, bytes)
-
-
 def _bounding_sphere(obj: SceneObject, mesh: Mesh) -> tuple[np.ndarray, float]:
     if isinstance(obj, Sphere):
         return np.asarray(obj.center, dtype=float), float(obj.radius)
-    vertices = mesh.vertices
-    known = _SPHERES.get(id(vertices))
-    if known is not None and known[0]() is vertices:
-        return known[1].copy(), known[2]
-    center, radius = bounding_sphere(np.ascontiguousarray(vertices, dtype=float))
-    if not _read_only(vertices):
-        return center, float(radius)
-    key = id(vertices)
-    _SPHERES[key] = (weakref.ref(vertices, lambda _, key=key: _SPHERES.pop(key, None)), center.copy(),
-                     float(radius))
+    center, radius = bounding_sphere(np.ascontiguousarray(mesh.vertices, dtype=float))
     return center, float(radius)
 
 
