@@ -203,8 +203,8 @@ class _Stopwatch:
 DEFAULT_SETTINGS = RasterSettings()
 
 PARALLEL_WORK = 1_000_000
-"""Pixels plus triangles below which a frame runs on one thread.  The back-face test, the
-triangles' bounding boxes and the drawing share their loops between the threads, and
+"""Pixels plus triangles below which a frame runs on one thread.  The back-face test, flat
+shading, the triangles' bounding boxes and the drawing share their loops between the threads, and
 starting them costs tens of microseconds on a quiet machine and up to a scheduler time
 slice (milliseconds) on a busy one: for a small frame one thread is quicker.  (The
 image is the same with any number.)"""
@@ -375,7 +375,7 @@ def _stats(settings, projection_name, faces, outside_faces, objects, clipped, n_
            draw, history, n_objects, width, height, times) -> dict:
     """Counts per stage as plain ints (JSON-serialisable)."""
     generated, passed = int(draw.generated.sum()), int(draw.passed.sum())
-    back = int(faces.culled.sum())
+    back = len(faces.visible) - int(np.count_nonzero(faces.visible))
     return {
         "projection": projection_name,
         "settings": asdict(settings),
