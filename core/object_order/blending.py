@@ -81,6 +81,8 @@ def draw_order(transparent: np.ndarray, depth: np.ndarray, sort: bool = True) ->
     [1, 2, 0]
     """
     transparent = np.asarray(transparent, dtype=bool)
+    if not transparent.any():  # all opaque: the order given
+        return np.arange(len(transparent), dtype=np.int64)
     opaque, clear = np.flatnonzero(~transparent), np.flatnonzero(transparent)
     if sort:
         clear = clear[np.argsort(-np.asarray(depth)[clear], kind="stable")]

@@ -40,8 +40,9 @@ class FaceCulling:
 
     Only ``visible`` is found at once (a frame needs no more); the normals,
     centroids and tested values of all faces are computed when first asked
-    for (a million faces' would cost a frame's worth of memory traffic), and
-    :meth:`geometry` gives those of some faces.
+    for (a million faces' would cost a frame's worth of memory traffic); flat
+    shading finds those of the faces it draws on the spot
+    (:func:`core.object_order.flat_shading.face_colors`).
 
     Attributes
     ----------
@@ -90,13 +91,6 @@ class FaceCulling:
     @property
     def facing(self) -> np.ndarray:
         return self._all[2]
-
-    def geometry(self, face: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """(K, 3) unit normals and (K, 3) centroids of the faces ``face`` (view space)."""
-        if "_all" in self.__dict__:
-            return self.normal[face], self.centroid[face]
-        normal, centroid, _ = self._test(np.ascontiguousarray(face, dtype=np.int64))
-        return normal, centroid
 
     @property
     def culled(self) -> np.ndarray:

@@ -59,16 +59,17 @@ def lambert(n, c, toward_viewer, base, ambient, diffuse, light_position, light_r
             min(max(base[2] * (ambient + diffuse * b), 0.0), 1.0))
 
 
-def face_colors(face: np.ndarray, material: np.ndarray, normal: np.ndarray, centroid: np.ndarray,
+def face_colors(view: np.ndarray, triangles: np.ndarray, face: np.ndarray, material: np.ndarray,
                 orthographic: bool, base: np.ndarray, ambient: np.ndarray, diffuse: np.ndarray,
-                light_position: np.ndarray, light_rgb: np.ndarray) -> np.ndarray:
-    """The flat Lambert colour of each polygon.
+                light_position: np.ndarray, light_rgb: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The flat Lambert colour of each polygon, and its face's depth.
 
     Parameters
     ----------
-    face : (P,) int64, the face each polygon comes from (row of ``normal``, ``centroid``).
+    view : (N, 3) float64, vertex positions in view space.
+    triangles : (F, 3) int64, vertex indices of each face, counter-clockwise seen from outside.
+    face : (P,) int64, the face each polygon comes from (row of ``triangles``).
     material : (P,) int64, its material (row of ``base``, ``ambient``, ``diffuse``).
-    normal, centroid : (F, 3) float64, unit face normals and centroids, view space.
     orthographic : the observer looks along -z from afar (toward him is +z);
         else from the origin (toward him is ``-centroid``).
     base : (M, 3) float64, material colours, RGB in [0, 1].
@@ -78,7 +79,14 @@ def face_colors(face: np.ndarray, material: np.ndarray, normal: np.ndarray, cent
 
     Returns
     -------
-    (P, 3) float64, RGB in [0, 1].
+    colors : (P, 3) float64, RGB in [0, 1].
+    depth : (P,) float64, the distance of the face's centroid along the viewing
+        axis (``-z`` in view space), the key transparent polygons are sorted by.
+
+    Notes
+    -----
+    The face's unit normal and centroid are those of the back-face test
+    (:func:`core.object_order.culling.face_facing`).
     """
     from core.object_order.kernels import flat_shading as kernels  # the kernel compiles in this module
 
@@ -86,9 +94,9 @@ def face_colors(face: np.ndarray, material: np.ndarray, normal: np.ndarray, cent
         x = np.asarray(x, dtype=float)
         return np.ascontiguousarray(x if cols is None else x.reshape(-1, cols))
 
-    out = np.empty((len(face), 3))
-    kernels.face_colors(np.ascontiguousarray(face, dtype=np.int64),
-                        np.ascontiguousarray(material, dtype=np.int64), f64(normal, 3),
-                        f64(centroid, 3), bool(orthographic), f64(base, 3), f64(ambient),
-                        f64(diffuse), f64(light_position, 3), f64(light_rgb, 3), out)
-    return out
+    out, depth = np.empty((len(face), 3)), np.empty(len(face))
+    kernels.face_colors(f64(view, 3), np.ascontiguousarray(triangles, dtype=np.int64),
+                        np.ascontiguousarray(face, dtype=np.int64),
+                        np.ascontiguousarray(material, dtype=np.int64), bool(orthographic), f64(base, 3),
+                        f64(ambient), f64(diffuse), f64(light_position, 3), f64(light_rgb, 3), out, depth)
+    return out, depth

@@ -11,6 +11,7 @@ and, if asked, keeps every fragment for step and pixel history.
 
 from __future__ import annotations
 
+import threading
 from dataclasses import dataclass
 
 import numpy as np
@@ -73,6 +74,28 @@ class ZBufferPass:
         return self.generated - self.passed
 
 
+class _Scratch(threading.local):
+    """The rasterizer's scratch arrays, kept from frame to frame, one set per thread.
+
+    Each triangle's bounding box and range test are overwritten every frame,
+    triangle by triangle, so the arrays can be reused; fresh memory of that
+    size would cost a page fault per 4 KB when first written.  They grow to
+    the largest frame a thread has drawn (33 bytes per triangle) and stay.
+    """
+
+    box = np.empty((0, 4), dtype=np.int64)
+    out_of_range = np.empty(0, dtype=bool)
+
+    def take(self, n: int) -> tuple[np.ndarray, np.ndarray]:
+        """``(n, 4)`` int64 and ``(n,)`` bool arrays of unspecified content."""
+        if len(self.box) < n:
+            self.box, self.out_of_range = np.empty((n, 4), dtype=np.int64), np.empty(n, dtype=bool)
+        return self.box[:n], self.out_of_range[:n]
+
+
+_scratch = _Scratch()
+
+
 def draw(xy: np.ndarray, z: np.ndarray, corners: np.ndarray, position: np.ndarray,
          poly_color: np.ndarray, poly_alpha: np.ndarray, width: int, height: int, background,
          record: bool = False, depth_format: str = "float64", z_test: bool = True,
@@ -111,7 +134,7 @@ def draw(xy: np.ndarray, z: np.ndarray, corners: np.ndarray, position: np.ndarra
         xy, z, corners, position, np.ascontiguousarray(poly_color, dtype=float),
         np.ascontiguousarray(poly_alpha, dtype=float), color, zbuf, record, code, z_test,
         numba.get_num_threads() if threads is None else max(1, int(threads)),
-        np.empty((len(corners), 4), dtype=np.int64), np.empty(len(corners), dtype=bool), generated, passed,
+        *_scratch.take(len(corners)), generated, passed,
     )
     return ZBufferPass(color, zbuf, generated, passed, Fragments(pixel, frag_z, ok) if record else None,
                        out_of_range)

@@ -201,8 +201,8 @@ class _Stopwatch:
 DEFAULT_SETTINGS = RasterSettings()
 
 PARALLEL_WORK = 1_000_000
-"""Pixels plus triangles below which a frame runs on one thread.  The back-face test, the
-triangles' bounding boxes and the drawing share their loops between the threads, and
+"""Pixels plus triangles below which a frame runs on one thread.  The back-face test, flat
+shading, the triangles' bounding boxes and the drawing share their loops between the threads, and
 starting them costs tens of microseconds on a quiet machine and up to a scheduler time
 slice (milliseconds) on a busy one: for a small frame one thread is quicker.  (The
 image is the same with any number.)"""
@@ -251,7 +251,7 @@ def render_raster(scene: Scene, settings: RasterSettings = DEFAULT_SETTINGS) -> 
 
 def _render(scene: Scene, settings: RasterSettings) -> RasterResult:
     from core.object_order.kernels.raster import depth_image
-    from core.object_order.kernels.transform import transform_points
+    from core.object_order.kernels.transform import view_and_clip
 
     cam = scene.camera
     ortho = cam.projection == "orthographic"
@@ -266,37 +266,36 @@ def _render(scene: Scene, settings: RasterSettings) -> RasterResult:
         world = np.vstack([m.vertices for m in meshes] + [np.empty((0, 3))])
         triangles = np.vstack([m.triangles + v for m, v in zip(meshes, vertex_offsets[:-1], strict=True)]
                               + [np.empty((0, 3), np.int64)])
-    face_object = np.repeat(np.arange(len(meshes)), face_counts)
     watch.lap("setup")
 
     # 1. World -> view (camera) space -> clip space, once per vertex.
     view_from_world, clip_from_view = cam.view_from_world, cam.clip_from_view
     view, clip = np.empty((len(world), 3)), np.empty((len(world), 4))
-    transform_points(np.ascontiguousarray(world, dtype=float), view_from_world, view)
-    transform_points(view, clip_from_view, clip)
+    view_and_clip(np.ascontiguousarray(world, dtype=float), view_from_world, clip_from_view, view, clip)
     watch.lap("transform")
 
     # 2. Back-face culling.
     faces = culling.back_face_culling(view, triangles, ortho)
-    candidate = faces.visible.copy() if settings.back_face_culling else np.ones(len(triangles), bool)
+    candidate = faces.visible if settings.back_face_culling else np.ones(len(triangles), bool)
     watch.lap("back_face_culling")
 
     # 3. Frustum culling of whole objects; objects inside skip the clipper's tests.
-    objects, may_cross, outside_faces = None, np.ones(len(triangles), dtype=bool), 0
+    objects, crossing, outside_faces = None, np.ones(len(meshes), dtype=bool), 0
     if settings.frustum_culling and meshes:
         spheres = [_bounding_sphere(obj, mesh) for obj, mesh in zip(scene.objects, meshes, strict=True)]
         objects = culling.frustum_culling(np.array([c for c, _ in spheres]),
                                           np.array([r for _, r in spheres]), cam.frustum_planes())
         state = np.array(objects.state)
         if (state == culling.OUTSIDE).any():
-            candidate &= np.repeat(state != culling.OUTSIDE, face_counts)
-        may_cross = np.repeat(state == culling.CROSSING, face_counts)
+            candidate = candidate & np.repeat(state != culling.OUTSIDE, face_counts)
+        crossing = state == culling.CROSSING
         outside_faces = int(face_counts[state == culling.OUTSIDE].sum())
     watch.lap("frustum_culling")
 
     # 4. Clipping in homogeneous clip space (switched off: every triangle passes whole).
     face_ids = np.flatnonzero(candidate)
-    test = may_cross[face_ids] if settings.clipping else np.zeros(len(face_ids), dtype=bool)
+    test = (_per_face(crossing, face_offsets, face_ids) if settings.clipping
+            else np.zeros(len(face_ids), dtype=bool))
     clipped = clipping.clip_triangles(face_ids, triangles[face_ids], clip, world, test)
     polygons = clipped.polygons
     watch.lap("clipping")
@@ -305,15 +304,14 @@ def _render(scene: Scene, settings: RasterSettings) -> RasterResult:
     xy, z_win = rasterization.window_coordinates(polygons.clip, cam.width, cam.height)
     watch.lap("projection")
 
-    # 6. Flat shading, one colour per polygon, in view space (normals and centroids of the
-    # polygons' faces only).
-    normal, centroid = faces.geometry(polygons.face)
-    poly_object = face_object[polygons.face]
+    # 6. Flat shading, one colour per polygon, in view space (from the normals and centroids
+    # of the polygons' faces, which also give the depth transparent polygons are sorted by).
+    poly_object = _per_face(np.arange(len(meshes)), face_offsets, polygons.face)
     materials = [m.material for m in meshes]
-    alpha = np.array([m.opacity for m in materials], dtype=float)[poly_object]
+    alpha = _per_face(np.array([m.opacity for m in materials], dtype=float), face_offsets, polygons.face)
     lights = np.array([(*light.position, 1.0) for light in scene.lights]).reshape(-1, 4)
-    colors = flat_shading.face_colors(
-        np.arange(len(polygons)), poly_object, normal, centroid, ortho,
+    colors, sort_depth = flat_shading.face_colors(
+        faces.view, faces.triangles, polygons.face, poly_object, ortho,
         np.array([m.color for m in materials], dtype=float), np.array([m.ambient for m in materials]),
         np.array([m.diffuse for m in materials]), (lights @ view_from_world.T)[:, :3],
         np.array([np.multiply(light.color, light.intensity) for light in scene.lights]).reshape(-1, 3),
@@ -322,7 +320,6 @@ def _render(scene: Scene, settings: RasterSettings) -> RasterResult:
 
     # 7. Drawing order: opaque first, then transparent (sorted far to near by face centroid).
     transparent = alpha < 1.0
-    sort_depth = -centroid[:, 2]
     order = blending.draw_order(transparent, sort_depth, settings.sort_transparent)
     in_order = not transparent.any()  # all opaque: drawn as they come, no reordering to pay for
 
@@ -363,6 +360,13 @@ def _render(scene: Scene, settings: RasterSettings) -> RasterResult:
                         objects, clipped, view_from_world, clip_from_view, draw, history)
 
 
+def _per_face(values: np.ndarray, face_offsets: np.ndarray, face: np.ndarray) -> np.ndarray:
+    """``values[o]`` for the object ``o`` of every global face in ``face``."""
+    if len(values) and (values == values[0]).all():  # one object, or all alike: no look-up
+        return np.full(len(face), values[0])
+    return values[np.searchsorted(face_offsets[1:], face, side="right")]
+
+
 def _bounding_sphere(obj: SceneObject, mesh: Mesh) -> tuple[np.ndarray, float]:
     if isinstance(obj, Sphere):
         return np.asarray(obj.center, dtype=float), float(obj.radius)
@@ -376,7 +380,7 @@ def _stats(settings, projection_name, faces, outside_faces, objects, clipped, n_
            draw, history, n_objects, width, height, times) -> dict:
     """Counts per stage as plain ints (JSON-serialisable)."""
     generated, passed = int(draw.generated.sum()), int(draw.passed.sum())
-    back = int(faces.culled.sum())
+    back = len(faces.visible) - int(np.count_nonzero(faces.visible))
     return {
         "projection": projection_name,
         "settings": asdict(settings),

@@ -73,6 +73,44 @@ def _corners_fixed(xy, a, b, c):
     return f0, f1, f2, area
 
 
+SMALL_BOX = 4
+"""Boxes of at most so many pixel centres are shrunk to the centres the triangle covers
+(:func:`_bounding_boxes`)."""
+
+
+@njit(cache=True, nogil=True)
+def _edges_at(f0, f1, f2, p):
+    """The three edge functions of the triangle ``f0, f1, f2`` (fixed point, inside is
+    E > 0) at the point ``p``, with the fill rule's offsets: ``p`` is covered when all
+    three are ``>= 0``."""
+    return (edge_function(f1, f2, p) + fill_rule_offset(f1, f2),
+            edge_function(f2, f0, p) + fill_rule_offset(f2, f0),
+            edge_function(f0, f1, p) + fill_rule_offset(f0, f1))
+
+
+@njit(cache=True, nogil=True)
+def _covered_box(f0, f1, f2, imin, imax, jmin, jmax):
+    """The box of the centres in ``imin .. imax`` x ``jmin .. jmax`` that the triangle
+    covers; empty (``jmin > jmax``) when it covers none."""
+    ilo, ihi, jlo, jhi = imax + 1, imin - 1, jmax + 1, jmin - 1
+    e0, e1, e2 = _edges_at(f0, f1, f2, (pixel_centre_fixed(imin), pixel_centre_fixed(jmin)))
+    step_x0, step_y0 = edge_steps(f1, f2)
+    step_x1, step_y1 = edge_steps(f2, f0)
+    step_x2, step_y2 = edge_steps(f0, f1)
+    for j in range(jmin, jmax + 1):
+        w0, w1, w2 = e0, e1, e2
+        for i in range(imin, imax + 1):
+            if (w0 | w1 | w2) >= 0:  # all three >= 0: no sign bit set in any
+                ilo, ihi, jlo, jhi = min(ilo, i), max(ihi, i), min(jlo, j), max(jhi, j)
+            w0 += step_x0
+            w1 += step_x1
+            w2 += step_x2
+        e0 += step_y0
+        e1 += step_y1
+        e2 += step_y2
+    return ilo, ihi, jlo, jhi
+
+
 @njit(cache=True, nogil=True, parallel=True)
 def _bounding_boxes(xy, corners, width, height, box, out_of_range):
     """The pixels whose centres lie in each triangle's bounding box, clamped to the image,
@@ -83,7 +121,11 @@ def _bounding_boxes(xy, corners, width, height, box, out_of_range):
     box : (T, 4) int64, ``imin, imax, jmin, jmax``; a triangle with no area,
         no pixel centre in its box inside the image, or a corner out of range
         gets an empty box (``jmin > jmax``).  Most triangles of a fine mesh
-        are smaller than a pixel and get none.
+        are smaller than a pixel: a box of at most ``SMALL_BOX`` centres is
+        shrunk to the centres covered, so that the many that cover none get
+        an empty box here, with the threads sharing the test, and are never
+        binned or drawn.  (Shrinking the box drops only centres that make no
+        fragment.)
     out_of_range : (T,) bool, a corner beyond ``MAX_PIXEL`` or not finite.
     """
     for t in prange(corners.shape[0]):
@@ -101,6 +143,8 @@ def _bounding_boxes(xy, corners, width, height, box, out_of_range):
         imin, imax = centres_within(min(f0[0], f1[0], f2[0]), max(f0[0], f1[0], f2[0]))
         jmin, jmax = centres_within(min(f0[1], f1[1], f2[1]), max(f0[1], f1[1], f2[1]))
         imin, imax, jmin, jmax = max(imin, 0), min(imax, width - 1), max(jmin, 0), min(jmax, height - 1)
+        if imin <= imax and jmin <= jmax and (imax - imin + 1) * (jmax - jmin + 1) <= SMALL_BOX:
+            imin, imax, jmin, jmax = _covered_box(f0, f1, f2, imin, imax, jmin, jmax)
         if imin <= imax and jmin <= jmax:
             box[t, 0], box[t, 1], box[t, 2], box[t, 3] = imin, imax, jmin, jmax
 
@@ -114,7 +158,6 @@ def _bin(box, n_bands):
     piece_tri : (E,) int64, the triangle of each piece; pieces are numbered
         triangle by triangle, and within a triangle band by band (top down),
         so piece order is drawing order.
-    piece_band : (E,) int64, its band.
     band_start : (B + 1,) int64, band ``b``'s pieces are
         ``band_pieces[band_start[b] : band_start[b + 1]]``.
     band_pieces : (E,) int64, piece numbers band by band, each band's in
@@ -130,18 +173,16 @@ def _bin(box, n_bands):
     n = band_start[n_bands]
     fill = band_start[:-1].copy()
     piece_tri = np.empty(n, np.int64)
-    piece_band = np.empty(n, np.int64)
     band_pieces = np.empty(n, np.int64)
     k = 0
     for t in range(n_tri):
         if box[t, 2] <= box[t, 3]:
             for b in range(box[t, 2] // BAND_ROWS, box[t, 3] // BAND_ROWS + 1):
                 piece_tri[k] = t
-                piece_band[k] = b
                 band_pieces[fill[b]] = k
                 fill[b] += 1
                 k += 1
-    return piece_tri, piece_band, band_start, band_pieces
+    return piece_tri, band_start, band_pieces
 
 
 @njit(cache=True, nogil=True)
@@ -161,9 +202,7 @@ def _draw_rows(xy, z, corners, tri_poly, poly_color, poly_alpha, color, zbuf, de
     first = (pixel_centre_fixed(imin), pixel_centre_fixed(jlo))
     # The three edge functions at the first pixel centre, with the fill rule's offset
     # so that "E >= 0" means covered, and their exact integer steps per pixel.
-    e0 = edge_function(f1, f2, first) + fill_rule_offset(f1, f2)
-    e1 = edge_function(f2, f0, first) + fill_rule_offset(f2, f0)
-    e2 = edge_function(f0, f1, first) + fill_rule_offset(f0, f1)
+    e0, e1, e2 = _edges_at(f0, f1, f2, first)
     step_x0, step_y0 = edge_steps(f1, f2)
     step_x1, step_y1 = edge_steps(f2, f0)
     step_x2, step_y2 = edge_steps(f0, f1)
@@ -175,7 +214,7 @@ def _draw_rows(xy, z, corners, tri_poly, poly_color, poly_alpha, color, zbuf, de
     for j in range(jlo, jhi + 1):
         w0, w1, w2 = e0, e1, e2
         for i in range(imin, imax + 1):
-            if w0 >= 0 and w1 >= 0 and w2 >= 0:
+            if (w0 | w1 | w2) >= 0:  # all three >= 0: no sign bit set in any
                 if generated == 0:
                     plane = depth_plane(pa, pb, pc, z[a], z[b], z[c])  # of the unsnapped corners
                 key = depth_key(plane_depth(plane, pa, i + 0.5, j + 0.5), depth_code)
@@ -210,8 +249,8 @@ def _draw_bands(w, workers, xy, z, corners, tri_poly, poly_color, poly_alpha, co
             jhi = min(box[t, 3], b * BAND_ROWS + BAND_ROWS - 1)
             piece_generated[k], piece_passed[k] = _draw_rows(
                 xy, z, corners, tri_poly, poly_color, poly_alpha, color, zbuf, depth_code, z_test,
-                t, box[t, 0], box[t, 1], jlo, jhi, record, slot[k], scratch_pixel, scratch_key,
-                scratch_passed)
+                t, box[t, 0], box[t, 1], jlo, jhi, record, slot[k] if record else 0, scratch_pixel,
+                scratch_key, scratch_passed)
 
 
 @njit(cache=True, nogil=True, parallel=True)
@@ -270,20 +309,23 @@ def draw_triangles(xy, z, corners, tri_poly, poly_color, poly_alpha, color, zbuf
     height, width = zbuf.shape
     _bounding_boxes(xy, corners, width, height, box, out_of_range)
     n_bands = (height + BAND_ROWS - 1) // BAND_ROWS
-    piece_tri, piece_band, band_start, band_pieces = _bin(box, n_bands)
+    piece_tri, band_start, band_pieces = _bin(box, n_bands)
     n_pieces = piece_tri.shape[0]
-    # Room for every fragment a piece may make: the pixels of its box within its band.
-    slot = np.zeros(n_pieces + 1, np.int64)
+    # Room for every fragment a piece may make (``record`` only): the pixels of its box within
+    # its band.  A triangle's pieces follow each other, band after band from its box's top.
+    slot = np.zeros(n_pieces + 1 if record else 1, np.int64)
     if record:
+        b = 0
         for k in range(n_pieces):
-            t, b = piece_tri[k], piece_band[k]
+            t = piece_tri[k]
+            b = b + 1 if k > 0 and piece_tri[k - 1] == t else box[t, 2] // BAND_ROWS
             rows = min(box[t, 3], b * BAND_ROWS + BAND_ROWS - 1) - max(box[t, 2], b * BAND_ROWS) + 1
             slot[k + 1] = slot[k] + rows * (box[t, 1] - box[t, 0] + 1)
-    scratch_pixel = np.empty(slot[n_pieces], np.int32)
-    scratch_key = np.empty(slot[n_pieces], np.float64)
-    scratch_passed = np.empty(slot[n_pieces], np.bool_)
-    piece_generated = np.zeros(n_pieces, np.int64)
-    piece_passed = np.zeros(n_pieces, np.int64)
+    scratch_pixel = np.empty(slot[-1], np.int32)
+    scratch_key = np.empty(slot[-1], np.float64)
+    scratch_passed = np.empty(slot[-1], np.bool_)
+    piece_generated = np.empty(n_pieces, np.int64)  # every piece is drawn, by one worker
+    piece_passed = np.empty(n_pieces, np.int64)
     workers = max(1, min(n_workers, n_bands))
     if workers == 1:
         _draw_bands(0, 1, xy, z, corners, tri_poly, poly_color, poly_alpha, color, zbuf, depth_code,
@@ -301,12 +343,12 @@ def draw_triangles(xy, z, corners, tri_poly, poly_color, poly_alpha, color, zbuf
         generated[p] += piece_generated[k]
         passed[p] += piece_passed[k]
     # Gather the recorded fragments piece by piece, which is drawing order.
-    start = np.zeros(n_pieces + 1, np.int64)
+    start = np.zeros(n_pieces + 1 if record else 1, np.int64)
     if record:
         start[1:] = np.cumsum(piece_generated)
-    frag_pixel = np.empty(start[n_pieces], np.int32)
-    frag_key = np.empty(start[n_pieces], np.float64)
-    frag_passed = np.empty(start[n_pieces], np.bool_)
+    frag_pixel = np.empty(start[-1], np.int32)
+    frag_key = np.empty(start[-1], np.float64)
+    frag_passed = np.empty(start[-1], np.bool_)
     if record:
         for k in range(n_pieces):
             for f in range(piece_generated[k]):

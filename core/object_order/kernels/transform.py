@@ -1,5 +1,5 @@
-"""Transforming vertices compiled: a 4 x 4 matrix applied to every point, and the
-perspective divide with the viewport mapping, each in one loop.
+"""Transforming vertices compiled: the 4 x 4 matrices of the first stage applied to
+every point, and the perspective divide with the viewport mapping, each in one loop.
 
 The pipeline's first stage (world -> view -> clip space) and its projection
 stage (:mod:`core.object_order.pipeline`).  Matrices act on column vectors
@@ -13,22 +13,29 @@ from __future__ import annotations
 from numba import njit
 
 
+@njit(inline="always")
+def _transform(matrix, x, y, z, out, i, rows):
+    """``out[i, :rows] = (matrix @ [x, y, z, 1])[:rows]`` (inlined, so that ``rows`` is a constant)."""
+    for k in range(rows):
+        out[i, k] = matrix[k, 0] * x + matrix[k, 1] * y + matrix[k, 2] * z + matrix[k, 3]
+
+
 @njit(cache=True, nogil=True)
-def transform_points(points, matrix, out):
-    """``(matrix @ [p, 1])[:rows]`` for every point ``p``, into ``out``.
+def view_and_clip(points, view_from_world, clip_from_view, view, clip):
+    """Every point to view space, and from there to clip space, in one pass.
 
     Parameters
     ----------
-    points : (N, 3) float64, in the matrix's source frame.
-    matrix : (4, 4) float64, e.g. ``view_from_world``.
-    out : (N, rows) float64, written: in the matrix's target frame; ``rows`` is 3
-        (an affine map's result) or 4 (homogeneous clip coordinates).
+    points : (N, 3) float64, world space.
+    view_from_world : (4, 4) float64, an affine map.
+    clip_from_view : (4, 4) float64, the projection.
+
+    view : (N, 3) float64, written: ``(view_from_world @ [p, 1])[:3]``.
+    clip : (N, 4) float64, written: ``clip_from_view @ [view, 1]``, homogeneous.
     """
-    rows = out.shape[1]
     for i in range(points.shape[0]):
-        x, y, z = points[i, 0], points[i, 1], points[i, 2]
-        for k in range(rows):
-            out[i, k] = matrix[k, 0] * x + matrix[k, 1] * y + matrix[k, 2] * z + matrix[k, 3]
+        _transform(view_from_world, points[i, 0], points[i, 1], points[i, 2], view, i, 3)
+        _transform(clip_from_view, view[i, 0], view[i, 1], view[i, 2], clip, i, 4)
 
 
 @njit(cache=True, nogil=True, error_model="numpy")
