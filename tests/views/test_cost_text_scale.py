@@ -1,10 +1,8 @@
 """Presentation mode's text scale reaches the Cost tab's plot: its text grows on the screen with the rest."""
 
 import pytest
-from PySide6.QtWidgets import QMainWindow
 
 from views.cost_panel import CostPanel
-from views.presentation import Presentation
 
 
 def _texts_px(panel) -> dict[str, tuple[float, object]]:
@@ -26,14 +24,9 @@ def _texts_px(panel) -> dict[str, tuple[float, object]]:
 
 
 @pytest.mark.parametrize("scale", [1.5, 2.0])
-def test_the_cost_plot_text_grows_with_the_presentation_scale_and_stays_on_the_canvas(qtbot, scale):
-    window = QMainWindow()
+def test_the_cost_plot_text_grows_with_the_presentation_scale_and_stays_on_the_canvas(qtbot, present, scale):
     panel = CostPanel()
-    window.setCentralWidget(panel)
-    qtbot.addWidget(window)
-    window.resize(1280, 720)
-    window.show()
-    presentation = Presentation(window)
+    window, presentation = present(panel)
     qtbot.waitUntil(lambda: panel.canvas is not None)
     before = _texts_px(panel)
     presentation.set_scale(scale)

@@ -3,11 +3,9 @@
 import numpy as np
 import pytest
 from matplotlib.colors import to_rgb
-from PySide6.QtWidgets import QMainWindow
 
 from views.cost_panel import CostPanel
 from views.plot_theme import DARK_CYCLE
-from views.presentation import Presentation
 
 
 def _luminance(color) -> float:
@@ -18,14 +16,9 @@ def _luminance(color) -> float:
 
 
 @pytest.fixture
-def themed(qtbot):
-    window = QMainWindow()
+def themed(present):
     panel = CostPanel()
-    window.setCentralWidget(panel)
-    qtbot.addWidget(window)
-    window.resize(1280, 720)
-    window.show()
-    presentation = Presentation(window)
+    window, presentation = present(panel)
     return window, panel, presentation
 
 

@@ -2,23 +2,18 @@
 
 import pytest
 from PySide6.QtCore import QPoint
-from PySide6.QtWidgets import QMainWindow, QScrollArea, QWidget
+from PySide6.QtWidgets import QScrollArea, QWidget
 
 from core import hard_cases
 from views.hard_cases_panel import HardCasesPanel
-from views.presentation import Presentation
 from views.stale_cover import cover
 
 
 @pytest.fixture
-def presented(qtbot):
-    window = QMainWindow()
+def presented(present):
     panel = HardCasesPanel()
-    window.setCentralWidget(panel)
-    qtbot.addWidget(window)
-    window.resize(1280, 720)
-    window.show()
-    yield window, panel, Presentation(window)
+    window, presentation = present(panel)
+    yield window, panel, presentation
     panel.shutdown()
 
 
