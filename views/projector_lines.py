@@ -20,8 +20,9 @@ from views.scene_overlays import LABEL_PT
 
 PROJECTOR_OVERLAY = "projector"
 """The 3D pane's overlay of the projection marks; shown with the frustum."""
-PROJECTOR_COLOR = "#ff4fd8"
-"""Magenta: apart from the yellow frustum, the blue screen and the scene's own colours."""
+PROJECTOR_COLOR = "#ff3030"
+"""Red: apart from the yellow frustum, the blue screen, the magenta polygon of the object-order step
+and the scene's own colours."""
 
 
 def projector_parts(camera, point) -> list[tuple]:
