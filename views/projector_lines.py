@@ -39,7 +39,7 @@ def projector_parts(camera, point) -> list[tuple]:
     labels = pv.PolyData(np.array([a, image]))
     labels.point_data["labels"] = np.array(["A", "A'"])  # VTK labels take ASCII only: a straight prime
     return [(line, {"color": PROJECTOR_COLOR, "line_width": 3}),
-            (dots, {"color": PROJECTOR_COLOR, "point_size": 14, "render_points_as_spheres": True}),
+            (dots, {"color": PROJECTOR_COLOR, "point_size": 10, "render_points_as_spheres": True}),
             (labels, {"label_size": LABEL_PT + 3, "color": PROJECTOR_COLOR})]
 
 
