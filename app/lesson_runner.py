@@ -15,6 +15,7 @@ import numpy as np
 
 from core.lessons import LessonStep
 from core.scene import Mesh, Scene
+from views.projector_lines import ProjectorLines
 from views.scene_overlays import polygon_parts
 
 SCENE_PANE = "scene 3D"
@@ -46,6 +47,7 @@ class LessonRunner:
         self.window = window
         self.step: LessonStep | None = None
         self.highlighted = ""
+        self.projector = ProjectorLines(window.model, window.scene_view)  # A, A′ of a highlighted vertex
 
     def apply(self, step: LessonStep) -> None:
         """Load ``step``'s scene and settings, show its panes, set its view, picks and highlight."""
@@ -83,7 +85,7 @@ class LessonRunner:
 
     def _highlight(self, scene: Scene, highlight) -> None:
         w = self.window
-        parts, words = [], []
+        parts, words, vertex_point = [], [], None
         image_order = w.tab("image order").widget
         image_order.ray_kind = highlight.get("ray")
         image_order.tree.select_kind(image_order.ray_kind)
@@ -105,7 +107,8 @@ class LessonRunner:
         if "vertex" in highlight:
             vertex = highlight["vertex"]
             mesh = _find(scene, vertex["object"])
-            point = np.asarray(mesh.vertices[vertex["index"]] if isinstance(mesh, Mesh) else mesh.center)
+            point = vertex_point = np.asarray(mesh.vertices[vertex["index"]] if isinstance(mesh, Mesh)
+                                              else mesh.center)
             panel = w.tab("object order").widget
             name = f"vertex {vertex['index']} of {mesh.name!r}"
             panel.vertex_math.show_vertex(point, scene.camera, name)
@@ -116,6 +119,7 @@ class LessonRunner:
         if "pixel" in highlight:
             words.append(f"pixel {tuple(highlight['pixel'])}")
         w.scene_view.set_overlay(LESSON_OVERLAY, parts)
+        self.projector.show_point(vertex_point)
         self.highlighted = ", ".join(words)
         if self.highlighted:
             w.statusBar().showMessage(f"Look at {self.highlighted}", 15000)

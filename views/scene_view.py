@@ -59,6 +59,8 @@ FRAMED_OVERLAYS = ("frustum",)
 """Overlays the pane's framing keeps inside it, their labels whole (what a lesson talks about)."""
 HIGHLIGHT_OVERLAY = "lesson"
 """The overlay that marks what a lesson step talks about (see :meth:`SceneView.look_from`)."""
+SHOWN_WITH = {"projector": "frustum"}
+"""Overlays shown exactly when another is (:meth:`SceneView.show_overlays_only` names that one)."""
 ENCLOSING_OPACITY = 0.25
 """A sphere the observer stands inside (as in the lecture's exercise) is drawn this translucent,
 so that the observer and its rays inside stay visible."""
@@ -350,16 +352,18 @@ class SceneView(QWidget):
             self._apply_visibility(name)
         self.request_render()
 
+    def _shown(self, name: str) -> bool:
+        return self._visible_overlays is None or SHOWN_WITH.get(name, name) in self._visible_overlays
+
     def _apply_visibility(self, name: str) -> None:
-        shown = self._visible_overlays is None or name in self._visible_overlays
+        shown = self._shown(name)
         for _, actor, _ in self._overlays.get(name, []):
             actor.SetVisibility(shown)
             getattr(actor, "_leader_actor", actor).SetVisibility(shown)
 
     def overlay_names(self) -> list[str]:
         """Names of the overlays currently shown (with at least one part)."""
-        return [name for name, parts in self._overlays.items()
-                if parts and (self._visible_overlays is None or name in self._visible_overlays)]
+        return [name for name, parts in self._overlays.items() if parts and self._shown(name)]
 
     def overlay_parts(self, name: str) -> list[pv.PolyData]:
         """The polydata drawn for overlay ``name`` (empty if none)."""
