@@ -35,6 +35,7 @@ import sys
 import numpy as np
 
 from app.animation_frames import MAX_FRAMES, orbit_frames, steps_problem, zbuffer_steps
+from app.kernel_loading import load_kernels
 from app.picture_sheet import four_views, zbuffer_sheet
 from app.render_command import ACCELS, MODES, prepare
 from app.usage import UsageError
@@ -129,6 +130,8 @@ def run(args) -> int:
             raise UsageError(f"--what zbuffer-steps: {problem}")
     if args.dry_run:
         return 0
+    for mode in {*_modes(args), *(["raster"] if args.what == "four-views" else [])}:
+        load_kernels(mode, args.accel)
     if args.what in ANIMATIONS:
         from app.image_files import encode_animation
 

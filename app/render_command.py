@@ -186,7 +186,7 @@ def run(args) -> int:
     if args.dry_run:
         return 0
 
-    load_kernels(args.mode, args.accel)
+    compile_s = load_kernels(args.mode, args.accel)
     if args.mode == "raster":
         from core.object_order.pipeline import RasterSettings, render_raster
 
@@ -196,6 +196,8 @@ def run(args) -> int:
 
         settings = TraceSettings(mode=args.mode, max_depth=args.max_depth, accel=args.accel)
         result = render_trace(scene, settings)
+
+    result.stats["compile_s"] += compile_s  # the kernels were loaded just before the render
 
     from app.image_files import OutputError, encode_image
 

@@ -48,7 +48,10 @@ def test_render_writes_image_depth_and_stats(tmp_path, ground_scene, mode, proje
     assert seen[15, 20] and np.allclose(d[seen], 5.0)
     if projection == "perspective":
         assert not seen[0, 0]  # the 6 x 6 plane does not reach the image corners: +inf there
-    assert "times" in json.loads(stats.read_text())
+    numbers = json.loads(stats.read_text())
+    assert "times" in numbers
+    # A fresh process loads its kernels before the render starts; the statistics still count it.
+    assert numbers["compile_s"] > 0
 
 
 def test_bad_size_is_refused_with_exit_2(tmp_path, ground_scene):
