@@ -54,6 +54,7 @@ class ProjectorLines:
     def __init__(self, model, view):
         self.model, self.view = model, view
         self.point: np.ndarray | None = None
+        self._drawn = False  # marks are in the pane
         model.camera_changed.connect(self._draw)
         model.overlays_changed.connect(self._draw)
 
@@ -65,4 +66,6 @@ class ProjectorLines:
     def _draw(self, *_) -> None:
         shown = self.point is not None and "frustum" in self.model.overlays
         parts = projector_parts(self.model.camera, self.point) if shown else []
-        self.view.set_overlay(PROJECTOR_OVERLAY, parts)
+        if parts or self._drawn:  # nothing to draw and nothing to take away: the pane is left alone
+            self.view.set_overlay(PROJECTOR_OVERLAY, parts)
+        self._drawn = bool(parts)

@@ -40,6 +40,7 @@ from views import vtk_convert
 from views.framing import MARGIN, fit_view, label_bounds
 from views.image_plotter import ImagePlotter
 from views.label_placement import GAP_PX, broken, place_label
+from views.projector_lines import PROJECTOR_OVERLAY
 from views.scene_colors import FRUSTUM_COLOR, SCREEN_COLOR
 
 TARGET_COLOR = "#ff8c42"
@@ -59,7 +60,7 @@ FRAMED_OVERLAYS = ("frustum",)
 """Overlays the pane's framing keeps inside it, their labels whole (what a lesson talks about)."""
 HIGHLIGHT_OVERLAY = "lesson"
 """The overlay that marks what a lesson step talks about (see :meth:`SceneView.look_from`)."""
-SHOWN_WITH = {"projector": "frustum"}
+SHOWN_WITH = {PROJECTOR_OVERLAY: "frustum"}
 """Overlays shown exactly when another is (:meth:`SceneView.show_overlays_only` names that one)."""
 ENCLOSING_OPACITY = 0.25
 """A sphere the observer stands inside (as in the lecture's exercise) is drawn this translucent,
