@@ -265,8 +265,10 @@ def _projection_sentences(scene: Scene, pa: str, pb: str) -> list[str]:
 def _zbuffer_against_tracer(scene: Scene, raster: Output, tracer: Output) -> list[str]:
     stats = raster.raster.stats
     same = raster.projection == tracer.projection
+    drawn = stats["polygons_drawn"]
+    polygons = "its one polygon" if drawn == 1 else f"all {drawn:,} polygons"
     sentences = [
-        f"The z-buffer removes hidden surfaces by drawing all {stats['polygons_drawn']:,} polygons and "
+        f"The z-buffer removes hidden surfaces by drawing {polygons} and "
         f"keeping at each pixel the nearest fragment ({stats['fragments_failed']:,} of "
         f"{stats['fragments_generated']:,} fragments failed the z-test); the tracer stops each primary "
         "ray at its first hit instead, so " + (

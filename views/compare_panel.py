@@ -70,7 +70,8 @@ def cost(output: Output) -> str:
     """What rendering ``output`` counted and how long it took."""
     if output.raster is not None:
         stats = output.raster.stats
-        return f"z-buffer: {stats['polygons_drawn']:,} polygons, {_ms(sum(stats['times'].values()))}"
+        drawn = stats["polygons_drawn"]
+        return f"z-buffer: {drawn:,} polygon{'s' * (drawn != 1)}, {_ms(sum(stats['times'].values()))}"
     stats = output.trace.stats
     return f"{stats['rays']['total']:,} rays, {_ms(stats['times']['total'])}"
 

@@ -133,3 +133,19 @@ def test_a_picked_pixel_is_read_in_both_outputs_of_a_comparison():
     corner = result.pixel(0, 0)  # no polygon reaches the image corner: background in both
     assert all("background" in report.found for report in corner)
     assert corner[0].events == () and corner[1].ray_tree.hit is None
+
+
+
+def test_the_polygon_count_reads_right_for_one_polygon_and_for_many():
+    from core.scene import Mesh, PointLight, Scene
+
+    # One triangle facing the observer, who looks at it from straight in front.
+    triangle = Mesh(np.array([[-1.0, -1.0, 0.0], [1.0, -1.0, 0.0], [0.0, 1.0, 0.0]]), np.array([[0, 1, 2]]))
+    camera = lecture_scene().camera.replace(width=80, height=60, eye=(0.0, 0.0, 5.0), target=(0.0, 0.0, 0.0))
+    one = Scene(camera=camera, objects=(triangle,), lights=(PointLight((0.0, 0.0, 4.0)),))
+    assert render_raster(one).stats["polygons_drawn"] == 1
+    text = _text(one, "perspective", "raytrace")
+    assert "drawing its one polygon" in text and "1 polygons" not in text
+    many = _small(lecture_scene())
+    assert f"drawing all {render_raster(many).stats['polygons_drawn']:,} polygons" in _text(
+        many, "perspective", "raytrace")
