@@ -23,10 +23,12 @@ import threading
 def load_kernels(mode: str, accel: str) -> float:
     """Import and load (or compile) the kernels a ``mode`` render with ``accel`` runs; returns the seconds.
 
-    Ctrl+C meanwhile ends the process at once with status 130.
+    Ctrl+C meanwhile ends the process at once with status 130, unless it was started to ignore
+    Ctrl+C (under ``nohup``, or with ``&`` from a script).
     """
     on_main_thread = threading.current_thread() is threading.main_thread()
-    previous = signal.signal(signal.SIGINT, _exit_at_once) if on_main_thread else None
+    take_over = on_main_thread and signal.getsignal(signal.SIGINT) is not signal.SIG_IGN
+    previous = signal.signal(signal.SIGINT, _exit_at_once) if take_over else None
     try:
         if mode == "raster":
             from core.object_order.pipeline import ensure_compiled
@@ -36,7 +38,7 @@ def load_kernels(mode: str, accel: str) -> float:
 
         return compile_for(accel)
     finally:
-        if on_main_thread:
+        if take_over:
             signal.signal(signal.SIGINT, previous)
 
 

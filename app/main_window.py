@@ -24,7 +24,6 @@ from PySide6.QtWidgets import (
     QLabel,
     QMainWindow,
     QMessageBox,
-    QProgressBar,
     QPushButton,
     QScrollArea,
     QTabWidget,
@@ -48,7 +47,7 @@ from core.presets_trace import PRESETS_TRACE
 from core.scene import Scene
 from views.camera_panel import CameraPanel
 from views.deferred_scene_view import DeferredSceneView
-from views.elided_label import ElidedLabel
+from views.elided_label import ElidedLabel, ElidedProgressBar
 from views.lesson_panel import LessonPanel
 from views.observer_keys import MOUSE_GESTURES, OBSERVER_KEYS, EditorsKeepTheirKeys
 from views.presentation import Presentation
@@ -80,7 +79,7 @@ class MainWindow(QMainWindow):
         self.tab_widget.setUsesScrollButtons(False)
         self.tabs: list = []
         self.renders = RenderSchedule(self.model, self)
-        self.progress = QProgressBar()
+        self.progress = ElidedProgressBar()
         self.progress.setRange(0, 100)
         self.progress.setTextVisible(True)
         self.status_caption = QLabel()

@@ -28,11 +28,13 @@ from PySide6.QtWidgets import (
     QComboBox,
     QDoubleSpinBox,
     QFileDialog,
+    QFrame,
     QGridLayout,
     QHBoxLayout,
     QLabel,
     QProgressBar,
     QPushButton,
+    QScrollArea,
     QSizePolicy,
     QSpinBox,
     QSplitter,
@@ -76,6 +78,42 @@ class _CanvasBox(QWidget):
 
     def sizeHint(self) -> QSize:
         return QSize(640, 480)  # matplotlib's default figure, 6.4 x 4.8 inches at 100 dpi
+
+
+class _Words(QScrollArea):
+    """The explanation beside the images: all of it when there is room, scrolling when there is not."""
+
+    def __init__(self, label: QLabel):
+        super().__init__()
+        self.setWidget(label)
+        self.setFrameShape(QFrame.Shape.NoFrame)
+        self.setHorizontalScrollBarPolicy(Qt.ScrollBarPolicy.ScrollBarAlwaysOff)
+
+    def refit(self) -> None:
+        """Size the words to the width there is (call after their text changed)."""
+        self._fit()
+        self.updateGeometry()
+
+    def _fit(self) -> None:
+        width = max(self.width(), 1)
+        height = self.widget().heightForWidth(width)
+        if height > self.height():  # a scroll bar shows: the words get narrower
+            width = max(width - self.verticalScrollBar().sizeHint().width(), 1)
+            height = self.widget().heightForWidth(width)
+        self.widget().resize(width, height)
+
+    def sizeHint(self) -> QSize:
+        width = max(self.width(), 1)
+        return QSize(width, self.widget().heightForWidth(width))
+
+    def minimumSizeHint(self) -> QSize:
+        return QSize(0, 3 * self.fontMetrics().lineSpacing())
+
+    def resizeEvent(self, event) -> None:
+        super().resizeEvent(event)
+        self._fit()
+        if event.size().width() != event.oldSize().width():
+            self.updateGeometry()  # the words' height follows the width
 
 
 class _Signals(QObject):
@@ -223,7 +261,8 @@ class CostPanel(QWidget):
         right_layout = QVBoxLayout(right)
         right_layout.setContentsMargins(0, 0, 0, 0)
         right_layout.addWidget(self._image_box, 1)
-        right_layout.addWidget(self.explanation)
+        self._words = _Words(self.explanation)
+        right_layout.addWidget(self._words)
         split = QSplitter(Qt.Orientation.Horizontal)
         split.addWidget(self._plot_box)
         split.addWidget(right)
@@ -274,7 +313,7 @@ class CostPanel(QWidget):
         self.plot_figure = Figure(layout="constrained", dpi=dpi)
         self.canvas = FigureCanvasQTAgg(self.plot_figure)
         self.canvas.mpl_connect("pick_event", self._on_pick)
-        self.canvas.mpl_connect("resize_event", lambda _: plot_theme.fit_axis_labels(self.plot_figure))
+        self.canvas.mpl_connect("resize_event", lambda _: self._draw_plot())  # the text fitted anew
         self.image_figure = Figure(layout="constrained", dpi=dpi)
         self.image_canvas = FigureCanvasQTAgg(self.image_figure)
         self._plot_box.layout().addWidget(self.canvas)
@@ -450,7 +489,8 @@ class CostPanel(QWidget):
         self._dark = plot_theme.is_dark(self)
         for figure in (self.plot_figure, self.image_figure):  # the images' too, before any is shown
             figure.set_facecolor(plot_theme.background(self._dark))
-        with matplotlib.rc_context(plot_theme.plot_style(self._dark)):
+        style = {**plot_theme.plot_style(self._dark), **plot_theme.fitted_style(self.plot_figure)}
+        with matplotlib.rc_context(style):
             self._lines = draw_cost_plot(self.plot_figure, rows, sorted(self._points))
             ax = self.plot_figure.axes[0]
             if self.selected is not None and self.selected in self._points:
@@ -458,7 +498,7 @@ class CostPanel(QWidget):
                 at.plot([x], [y], "x", color=plot_theme.foreground(self._dark), markersize=10,
                         markeredgewidth=2)
             if not rows:
-                ax.text(0.5, 0.5, "the curves fill in here, point by point", transform=ax.transAxes,
+                ax.text(0.5, 0.5, "the curves fill in here,\npoint by point", transform=ax.transAxes,
                         ha="center", va="center", color="gray")
             plot_theme.fit_axis_labels(self.plot_figure)
         self.canvas.draw_idle()
@@ -527,8 +567,9 @@ class CostPanel(QWidget):
             self.explanation.setText("<b>Every knob</b>: each curve is one setting swept with everything "
                                      "else at its default; the ringed point is its knee, the cheapest "
                                      "setting you cannot tell from the best.  Click a point to see it.")
-            return
-        self.explanation.setText(f"<b>{KNOBS[name].title}</b>: {EXPLANATIONS[name]}")
+        else:
+            self.explanation.setText(f"<b>{KNOBS[name].title}</b>: {EXPLANATIONS[name]}")
+        self._words.refit()
 
     # -- export ---------------------------------------------------------------
 

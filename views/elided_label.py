@@ -1,13 +1,22 @@
-"""A one-line label that shortens its text with "…" to fit, the whole text in its tooltip.
+"""One line of text that shortens with "…" to fit, the whole text in its tooltip.
 
 Status lines and hints change length with the text scale; wrapped, they would
 take two or three lines at a lecture-hall size, which the images need more.
+A progress bar's text does not wrap but is cut off at the top and the bottom
+when it is too long, so :class:`ElidedProgressBar` shortens its text too.
 """
 
 from __future__ import annotations
 
 from PySide6.QtCore import QSize, Qt
-from PySide6.QtWidgets import QLabel, QSizePolicy
+from PySide6.QtWidgets import (
+    QLabel,
+    QProgressBar,
+    QSizePolicy,
+    QStyle,
+    QStyleOptionProgressBar,
+    QStylePainter,
+)
 
 
 class ElidedLabel(QLabel):
@@ -47,3 +56,22 @@ class ElidedLabel(QLabel):
         if event.type() in (event.Type.FontChange, event.Type.StyleChange):
             self.updateGeometry()
             self._elide()
+
+
+class ElidedProgressBar(QProgressBar):
+    """A QProgressBar whose text is drawn shortened to fit; ``format()`` and ``text()`` stay whole."""
+
+    def setFormat(self, text: str) -> None:
+        super().setFormat(text)
+        self.setToolTip(text.replace("%p%", "").replace("%p", "").rstrip(" …") or text)
+
+    def shown_text(self) -> str:
+        """The text as drawn: :meth:`text`, shortened with "…" to the bar's width."""
+        room = self.width() - 2 * self.fontMetrics().averageCharWidth()
+        return self.fontMetrics().elidedText(self.text(), Qt.TextElideMode.ElideRight, max(room, 1))
+
+    def paintEvent(self, event) -> None:
+        option = QStyleOptionProgressBar()
+        self.initStyleOption(option)
+        option.text = self.shown_text()
+        QStylePainter(self).drawControl(QStyle.ControlElement.CE_ProgressBar, option)

@@ -224,6 +224,7 @@ class HardCasesPanel(QWidget):
 
         self.slider = QSlider(Qt.Orientation.Horizontal)
         self.slider_label = QLabel()
+        self.slider_label.setWordWrap(True)  # on a line of its own: the slider keeps its room at large text
         self.slider_value = QLabel()
         self.slider_value.setMinimumWidth(90)
         self.option_label = QLabel("fixed ε")
@@ -233,7 +234,6 @@ class HardCasesPanel(QWidget):
         self.slider.valueChanged.connect(self._on_slider)
         self.option.currentIndexChanged.connect(lambda _: self._debounce.start())
         sweep = QHBoxLayout()
-        sweep.addWidget(self.slider_label)
         sweep.addWidget(self.slider, 1)
         sweep.addWidget(self.slider_value)
         sweep.addWidget(self.option_label)
@@ -270,6 +270,7 @@ class HardCasesPanel(QWidget):
         detail = QWidget()
         column = QVBoxLayout(detail)
         column.addWidget(self.title)
+        column.addWidget(self.slider_label)
         column.addLayout(sweep)
         column.addWidget(self.verdict)
         self._table_area = _Sideways(table_box)

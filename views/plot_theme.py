@@ -40,6 +40,28 @@ def figure_dpi(widget: QWidget) -> float:
     return DPI * text_scale(widget)
 
 
+FULL_SIZE_PX = (300.0, 240.0)
+"""Width and height, in pixels per unit of text scale, a figure needs for its text at full size."""
+LEAST_TEXT = 0.6
+"""The least share of the full text size a crowded figure is drawn with."""
+
+
+def fitted_style(figure) -> dict:
+    """matplotlib's base font size for ``figure``, smaller when its text would crowd it.
+
+    A figure made for large text (:func:`figure_dpi`) in a small pane (a small
+    screen at ×2) would have its title, axis labels and ticks run into each
+    other; below :data:`FULL_SIZE_PX` the text shrinks with the figure, down to
+    :data:`LEAST_TEXT` of its size.
+    """
+    import matplotlib
+
+    scale = figure.dpi / DPI
+    room = min(figure.bbox.width / (FULL_SIZE_PX[0] * scale), figure.bbox.height / (FULL_SIZE_PX[1] * scale))
+    base = matplotlib.rcParamsDefault["font.size"]
+    return {"font.size": base * min(1.0, max(LEAST_TEXT, room))}
+
+
 def foreground(dark: bool) -> str:
     """The colour of text and marks on the theme's background."""
     return DARK_FOREGROUND if dark else LIGHT_FOREGROUND

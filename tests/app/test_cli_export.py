@@ -11,6 +11,7 @@ import imageio.v2 as iio2
 import imageio.v3 as iio
 import numpy as np
 import pytest
+from interrupts import ctrl_c_ignored, ctrl_c_reaches
 
 from app.picture_sheet import MARGIN, TITLE_ROW
 from core import scene_file
@@ -161,19 +162,32 @@ def test_dry_run_checks_and_writes_nothing(tmp_path, lecture):
     assert not out.exists()
 
 
-def test_ctrl_c_during_an_animation_stops_cleanly_and_writes_nothing(tmp_path, lecture):
+def _orbit_interrupted(tmp_path, lecture, frames: int, preexec_fn):
+    """Start an orbit export, press Ctrl+C once its frames are being rendered; ``(status, stderr, out)``."""
     import signal
 
     out = tmp_path / "orbit.gif"
     proc = subprocess.Popen([sys.executable, "-m", "app", "export", str(lecture), "--what", "orbit",
-                             "--frames", "1000", "--out", str(out)], cwd=ROOT, stderr=subprocess.PIPE,
-                            stdout=subprocess.PIPE, text=True)
+                             "--frames", str(frames), "--out", str(out)], cwd=ROOT, stderr=subprocess.PIPE,
+                            stdout=subprocess.PIPE, text=True, preexec_fn=preexec_fn)
     assert "orbit" in proc.stderr.read(40)  # the progress bar has started: frames are being rendered
     proc.send_signal(signal.SIGINT)
     _, err = proc.communicate(timeout=120)
-    assert proc.returncode == 130
+    return proc.returncode, err, out
+
+
+def test_ctrl_c_during_an_animation_stops_cleanly_and_writes_nothing(tmp_path, lecture):
+    status, err, _ = _orbit_interrupted(tmp_path, lecture, 1000, ctrl_c_reaches)
+    assert status == 130
     assert "interrupted" in err and "Traceback" not in err
     assert list(tmp_path.iterdir()) == [lecture]
+
+
+def test_an_export_started_to_ignore_ctrl_c_ignores_it_and_finishes(tmp_path, lecture):
+    # As under nohup, or started with "&" from a script: the user asked for Ctrl+C to be ignored.
+    status, err, out = _orbit_interrupted(tmp_path, lecture, 120, ctrl_c_ignored)
+    assert status == 0 and "Traceback" not in err
+    assert len(iio.imread(out, index=None)) == 120
 
 
 def test_zbuffer_steps_of_too_many_polygons_are_refused_before_rendering(tmp_path):

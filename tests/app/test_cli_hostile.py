@@ -17,6 +17,7 @@ import sys
 from pathlib import Path
 
 import pytest
+from interrupts import ctrl_c_reaches
 
 from core import presets, scene_file
 from core.camera import Camera
@@ -187,7 +188,7 @@ def test_ctrl_c_during_a_render_stops_cleanly_and_writes_nothing(tmp_path):
     out = tmp_path / "x.png"
     proc = subprocess.Popen([sys.executable, "-m", "app", "render", str(scene), "--mode", "raycast",
                              "--accel", "none", "--out", str(out)], cwd=ROOT, env=ENV,
-                            stderr=subprocess.PIPE, text=True)
+                            stderr=subprocess.PIPE, text=True, preexec_fn=ctrl_c_reaches)
     announced = proc.stderr.readline()  # the time estimate, printed just before the render
     assert "estimated time" in announced
     proc.send_signal(signal.SIGINT)

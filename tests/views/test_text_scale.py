@@ -58,14 +58,18 @@ def _scroll_area(widget) -> QScrollArea:
     return widget
 
 
-def test_at_x2_the_hard_cases_words_keep_the_panes_width_and_the_table_shows_every_row(qtbot, presented):
-    _, panel, presentation = presented
+# The panel alone in a 1280 x 720 window, and about the room it gets as a tab of the window there.
+@pytest.mark.parametrize("size", [(1280, 720), (730, 560)])
+def test_at_x2_the_hard_cases_words_keep_the_panes_width_and_the_table_shows_every_row(qtbot, presented,
+                                                                                        size):
+    window, panel, presentation = presented
+    window.resize(*size)
     presentation.set_scale(2.0)
     panel.select(next(iter(hard_cases.CASES)))  # shown on its own at first; worked out in the background
     qtbot.waitUntil(lambda: panel.result is not None and bool(panel.table_cells), timeout=60_000)
     outer = _scroll_area(panel.title)
     qtbot.waitUntil(lambda: panel.title.width() <= outer.viewport().width())
-    for words in (panel.title, panel.verdict, panel.explanation):  # wrapped within the pane, not cut
+    for words in (panel.title, panel.slider_label, panel.verdict, panel.explanation):  # wrapped, not cut
         assert words.width() <= outer.viewport().width(), words.text()
     table = _scroll_area(panel.table_cells[0][0])
     assert table is not outer  # the table scrolls sideways by itself
