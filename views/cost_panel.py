@@ -246,6 +246,7 @@ class CostPanel(QWidget):
 
         self.plot_figure = self.canvas = self.image_figure = self.image_canvas = None  # see _make_canvases
         self._dark = False  # the figures were drawn in the dark theme
+        self._fitted = {}  # the plot's text size when it was drawn (plot_theme.fitted_style)
         self._dpi = plot_theme.DPI  # the figures' resolution, after the text size they were made for
         self._plot_box, self._image_box = _CanvasBox(), _CanvasBox()
         self._plot_box.setMinimumSize(240, 200)
@@ -313,7 +314,7 @@ class CostPanel(QWidget):
         self.plot_figure = Figure(layout="constrained", dpi=dpi)
         self.canvas = FigureCanvasQTAgg(self.plot_figure)
         self.canvas.mpl_connect("pick_event", self._on_pick)
-        self.canvas.mpl_connect("resize_event", lambda _: self._draw_plot())  # the text fitted anew
+        self.canvas.mpl_connect("resize_event", lambda _: self._plot_resized())
         self.image_figure = Figure(layout="constrained", dpi=dpi)
         self.image_canvas = FigureCanvasQTAgg(self.image_figure)
         self._plot_box.layout().addWidget(self.canvas)
@@ -489,8 +490,8 @@ class CostPanel(QWidget):
         self._dark = plot_theme.is_dark(self)
         for figure in (self.plot_figure, self.image_figure):  # the images' too, before any is shown
             figure.set_facecolor(plot_theme.background(self._dark))
-        style = {**plot_theme.plot_style(self._dark), **plot_theme.fitted_style(self.plot_figure)}
-        with matplotlib.rc_context(style):
+        self._fitted = plot_theme.fitted_style(self.plot_figure)
+        with matplotlib.rc_context({**plot_theme.plot_style(self._dark), **self._fitted}):
             self._lines = draw_cost_plot(self.plot_figure, rows, sorted(self._points))
             ax = self.plot_figure.axes[0]
             if self.selected is not None and self.selected in self._points:
@@ -503,6 +504,13 @@ class CostPanel(QWidget):
             plot_theme.fit_axis_labels(self.plot_figure)
         self.canvas.draw_idle()
         self.image_canvas.draw_idle()
+
+    def _plot_resized(self) -> None:
+        """Draw the plot again only when its text takes another size; else just refit its axis labels."""
+        if plot_theme.fitted_style(self.plot_figure) != self._fitted:
+            self._draw_plot()
+        else:
+            plot_theme.fit_axis_labels(self.plot_figure)
 
     def _on_pick(self, event) -> None:
         indices = self._lines.get(event.artist)

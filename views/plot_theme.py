@@ -52,14 +52,15 @@ def fitted_style(figure) -> dict:
     A figure made for large text (:func:`figure_dpi`) in a small pane (a small
     screen at ×2) would have its title, axis labels and ticks run into each
     other; below :data:`FULL_SIZE_PX` the text shrinks with the figure, down to
-    :data:`LEAST_TEXT` of its size.
+    :data:`LEAST_TEXT` of its size, in steps of 5 %.
     """
     import matplotlib
 
     scale = figure.dpi / DPI
     room = min(figure.bbox.width / (FULL_SIZE_PX[0] * scale), figure.bbox.height / (FULL_SIZE_PX[1] * scale))
     base = matplotlib.rcParamsDefault["font.size"]
-    return {"font.size": base * min(1.0, max(LEAST_TEXT, room))}
+    share = round(min(1.0, max(LEAST_TEXT, room)) * 20) / 20  # in steps of 5 %: a drag redraws seldom
+    return {"font.size": base * share}
 
 
 def foreground(dark: bool) -> str:
