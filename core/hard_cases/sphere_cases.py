@@ -23,6 +23,7 @@ from core.image_order.intersect_sphere import (
     intersect_sphere,
     intersect_sphere_segment,
 )
+from core.image_order.optics import dot
 
 VERDICT = "wrong verdicts"
 
@@ -32,14 +33,16 @@ def textbook_discriminant(origin, direction, center, radius, dtype=np.float64):
 
     ``a = d·d``, ``b = 2 (o - centre)·d``, ``c = |o - centre|² - r²``: both
     ``b²`` and ``4ac`` grow like the squared distance to the sphere, so their
-    difference loses that many digits.
+    difference loses that many digits.  Each product and sum is rounded in turn, as
+    the formula is written (``@`` would hand the dot products to BLAS, whose fused and
+    reordered sums differ between builds, and the lab's numbers with them).
     """
     o, d, ctr = (np.asarray(v, dtype=dtype) for v in (origin, direction, center))
     r = dtype(radius)
     f = o - ctr
-    a = d @ d
-    b = dtype(2) * (f @ d)
-    c = f @ f - r * r
+    a = dot(d, d)
+    b = dtype(2) * dot(f, d)
+    c = dot(f, f) - r * r
     return b * b - dtype(4) * a * c, a, b, c
 
 
@@ -207,9 +210,9 @@ def _pbrt_discriminant_float32(origin, direction, center, radius) -> float:
     o, d, ctr = (np.asarray(v, dtype=np.float32) for v in (origin, direction, center))
     r = np.float32(radius)
     f = o - ctr
-    a = d @ d
-    v = f - ((f @ d) / a) * d
-    dist = np.sqrt(v @ v)
+    a = dot(d, d)
+    v = f - (dot(f, d) / a) * d
+    dist = np.sqrt(dot(v, v))
     return float(np.float32(4) * a * (r + dist) * (r - dist))
 
 
@@ -222,7 +225,7 @@ def _exact_disc_mp(origin, direction, center, radius):
         return mpmath.mpf(q.numerator) / q.denominator
 
 
-def far_sphere(distance: float = 1e7) -> CaseResult:
+def far_sphere(distance: float = 1e8) -> CaseResult:
     """A sphere of radius 1 ``distance`` units from the ray's origin; the ray passes 0.5 from its centre.
 
     Parameters

@@ -68,7 +68,7 @@ def test_one_case_prints_a_table_line_and_a_summary():
     assert out.returncode == 0, out.stderr
     header, line, summary = out.stdout.splitlines()
     assert header.split()[:2] == ["case", "parameter"]
-    assert line.startswith("far_sphere") and "distance=1e+07" in line and line.endswith("pass")
+    assert line.startswith("far_sphere") and "distance=1e+08" in line and line.endswith("pass")
     assert summary == "1 of 1 robust methods pass"
 
 

@@ -62,6 +62,17 @@ def test_tangent_rays_textbook_fails_only_below_its_rounding():
     assert sphere_cases.tangent_rays(3e-11).naive_error >= 1
 
 
+def test_textbook_discriminant_rounds_each_step_as_written():
+    # Plain Python floats round every product and sum in the order written, with no fused
+    # multiply-add: the lab's textbook numbers must be those on every machine (BLAS's dot is not).
+    o, d, c, r = (0.1, -0.2, 0.3), tuple(sphere_cases.FAR_DIRECTION), (3.7e7, 8.1e7, -4.5e7), 1.0
+    f = [p - q for p, q in zip(o, c, strict=True)]
+    a = d[0] * d[0] + d[1] * d[1] + d[2] * d[2]
+    b = 2.0 * (f[0] * d[0] + f[1] * d[1] + f[2] * d[2])
+    cc = (f[0] * f[0] + f[1] * f[1] + f[2] * f[2]) - r * r
+    assert float(sphere_cases.textbook_discriminant(o, d, c, r)[0]) == b * b - 4.0 * a * cc
+
+
 @pytest.mark.parametrize("distance", [1.0, 1e3, 1e5, 1e7, 1e9])
 def test_far_sphere_robust_within_tolerance(distance):
     assert sphere_cases.far_sphere(distance).passed
