@@ -40,17 +40,21 @@ ensure_venv() {
     fi
 }
 
-# Debian packages a headless machine lacks for Qt's xcb plugin and VTK's OpenGL under Xvfb.
+# Debian packages that Qt's xcb plugin and VTK's OpenGL need, and that a desktop install may
+# lack (libxcb-cursor0 most often): both README commands install them.
 DEBIAN_GUI_PACKAGES=(
-    xvfb xauth libgl1 libegl1 libglx-mesa0 libgl1-mesa-dri libdbus-1-3 libfontconfig1
+    libgl1 libegl1 libglx-mesa0 libgl1-mesa-dri libdbus-1-3 libfontconfig1
     libxkbcommon0 libxkbcommon-x11-0 libxcb1 libxcb-cursor0 libxcb-icccm4 libxcb-image0
     libxcb-keysyms1 libxcb-randr0 libxcb-render-util0 libxcb-shape0 libxcb-xfixes0
     libxcb-xinerama0 libxcb-xkb1 libxrender1 libxext6 libxi6 fonts-dejavu-core
 )
+# The tests' X server, besides.
+DEBIAN_TEST_PACKAGES=(xvfb xauth)
 
-ensure_debian_gui() {
+# $@: Debian package names; installs those not installed yet.
+ensure_debian() {
     local missing=()
-    for p in "${DEBIAN_GUI_PACKAGES[@]}"; do
+    for p in "$@"; do
         dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "ok installed" || missing+=("$p")
     done
     if [ ${#missing[@]} -gt 0 ]; then

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # README command 2: set up everything the tests need, then run the whole suite under Xvfb.
 source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
-ensure_debian_gui
+ensure_debian "${DEBIAN_GUI_PACKAGES[@]}" "${DEBIAN_TEST_PACKAGES[@]}"
 ensure_venv "[test]"
 export PATH="$VENV/bin:$PATH"
 ruff check .
