@@ -29,6 +29,8 @@ def projector_parts(camera, point) -> list[tuple]:
     """A, A′ and the projector of world point ``point`` for ``camera`` (empty if A′ is not defined)."""
     import pyvista as pv
 
+    from views import vtk_convert
+
     image = screen_image(camera, point)
     if image is None:
         return []
@@ -36,8 +38,7 @@ def projector_parts(camera, point) -> list[tuple]:
     source = image if camera.projection == "orthographic" else np.asarray(camera.eye, float)
     line = pv.PolyData(np.array([a, image, source]), lines=np.array([2, 0, 1, 2, 1, 2]))
     dots = pv.PolyData(np.array([a, image]))
-    labels = pv.PolyData(np.array([a, image]))
-    labels.point_data["labels"] = np.array(["A", "A'"])  # VTK labels take ASCII only: a straight prime
+    labels = vtk_convert.set_labels(pv.PolyData(np.array([a, image])), ["A", "A′"])
     return [(line, {"color": PROJECTOR_COLOR, "line_width": 3}),
             (dots, {"color": PROJECTOR_COLOR, "point_size": 10, "render_points_as_spheres": True}),
             (labels, {"label_size": LABEL_PT + 3, "color": PROJECTOR_COLOR})]

@@ -17,6 +17,8 @@ built, not with the window (see :mod:`views.deferred_scene_view`).
 
 from __future__ import annotations
 
+import importlib.util
+from pathlib import Path
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -39,6 +41,20 @@ SCENE_OVERLAYS = ("frustum",)
 """Overlays of the scene itself, shown whatever the tab."""
 LABEL_PT = 13
 """Size of the 3D pane's labels at text scale 1, points."""
+
+
+def label_font_file() -> str | None:
+    """The 3D pane's label font: DejaVu Sans Bold, the file matplotlib ships (None if it is missing).
+
+    VTK's own Arial has no glyph for many characters the lessons name, the prime of A′ among
+    them; DejaVu Sans has them and is the font the window's own text uses on Debian.  The path
+    is found without importing matplotlib, which the window loads only for its plots.
+    """
+    spec = importlib.util.find_spec("matplotlib")
+    if spec is None or not spec.submodule_search_locations:
+        return None
+    path = Path(spec.submodule_search_locations[0], "mpl-data", "fonts", "ttf", "DejaVuSans-Bold.ttf")
+    return str(path) if path.is_file() else None
 
 
 def sphere_parts(scene) -> list[tuple[pv.PolyData, dict]]:
@@ -95,13 +111,15 @@ def frustum_parts(camera) -> list[tuple[pv.PolyData, dict]]:
     """The viewing frustum emphasised: near and far planes filled, thick edges, labels."""
     import pyvista as pv
 
+    from views import vtk_convert
+
     corners = camera.frustum_corners()
     near, far = corners[:4], corners[4:]
     edges = pv.PolyData(corners, lines=np.hstack([[2, a, b] for a, b in (
         (0, 1), (1, 2), (2, 3), (3, 0), (4, 5), (5, 6), (6, 7), (7, 4), (0, 4), (1, 5), (2, 6), (3, 7))]))
-    labels = pv.PolyData(np.array([(near[2] + near[3]) / 2, (far[2] + far[3]) / 2], float))  # top edges
-    labels.point_data["labels"] = np.array([f"near plane (the screen), n = {camera.near:g}",
-                                            f"far plane, f = {camera.far:g}"])
+    labels = vtk_convert.set_labels(
+        pv.PolyData(np.array([(near[2] + near[3]) / 2, (far[2] + far[3]) / 2], float)),  # top edges
+        [f"near plane (the screen), n = {camera.near:g}", f"far plane, f = {camera.far:g}"])
     return [(pv.PolyData(far.copy(), np.array([4, 0, 1, 2, 3])), {"color": FRUSTUM_COLOR, "opacity": 0.3}),
             (pv.PolyData(near.copy(), np.array([4, 0, 1, 2, 3])), {"color": SCREEN_COLOR, "opacity": 0.6}),
             (edges, {"color": FRUSTUM_COLOR, "line_width": 4}),

@@ -31,6 +31,7 @@ import numpy as np
 import pyvista as pv
 from PySide6.QtCore import QEvent, QObject, QPointF, Qt, QTimer
 from PySide6.QtWidgets import QVBoxLayout, QWidget
+from vtkmodules.vtkCommonCore import VTK_FONT_FILE
 from vtkmodules.vtkRenderingCore import vtkActor2D, vtkTextRenderer
 from vtkmodules.vtkRenderingLabel import vtkLabeledDataMapper
 
@@ -42,6 +43,7 @@ from views.image_plotter import ImagePlotter
 from views.label_placement import GAP_PX, broken, place_label
 from views.projector_lines import PROJECTOR_OVERLAY
 from views.scene_colors import FRUSTUM_COLOR, SCREEN_COLOR
+from views.scene_overlays import label_font_file
 
 TARGET_COLOR = "#ff8c42"
 FRAME_MS = 33
@@ -290,14 +292,18 @@ class SceneView(QWidget):
         if "label_size" not in style:
             actor = self.plotter.add_mesh(poly, name=name, render=False, **style)
         else:
-            placed = pv.PolyData(poly.points.copy())  # where the labels go, see _place_labels
-            placed.point_data["labels"] = poly.point_data["labels"]
+            placed = vtk_convert.set_labels(pv.PolyData(poly.points.copy()),  # where they go: _place_labels
+                                            poly.point_data["labels"])
             mapper = vtkLabeledDataMapper()
             mapper.SetInputData(placed)
             mapper.SetLabelModeToLabelFieldData()
             mapper.SetFieldDataName("labels")
             text = mapper.GetLabelTextProperty()
             text.SetColor(pv.Color(style.get("color", "white")).float_rgb)
+            font = label_font_file()
+            if font is not None:
+                text.SetFontFamily(VTK_FONT_FILE)
+                text.SetFontFile(font)
             text.SetBold(True)
             text.SetShadow(True)
             text.SetJustificationToCentered()  # centred above the point: a label at a pane's edge shows
@@ -555,7 +561,7 @@ class SceneView(QWidget):
                     spots[k, :2] = (at / to_pixels - 1) * h[k, 3]  # same depth, moved on the pane
                 world = spots @ np.linalg.inv(matrix).T
                 placed.points = world[:, :3] / world[:, 3:]
-                placed.point_data["labels"] = np.array(shown)
+                vtk_convert.set_labels(placed, shown)
                 far = np.hypot(*(project(placed.points)[1] - xy).T) > 3 * GAP_PX * self.line_scale
                 actor._leader.copy_from(_leaders(anchors.points[far], placed.points[far]))
 

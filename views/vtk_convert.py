@@ -9,9 +9,24 @@ from __future__ import annotations
 
 import numpy as np
 import pyvista as pv
+from vtkmodules.vtkCommonCore import vtkStringArray
 
 from core.camera import Camera
 from core.scene import Mesh, Sphere
+
+
+def set_labels(poly: pv.PolyData, labels) -> pv.PolyData:
+    """Give ``poly``'s points the texts ``labels`` (its ``"labels"`` array); returns ``poly``.
+
+    The strings go to VTK as they are (UTF-8), so a label may say A′ or Δ: pyvista's own
+    conversion of a string array takes ASCII only.
+    """
+    array = vtkStringArray()
+    array.SetName("labels")
+    for label in labels:
+        array.InsertNextValue(str(label))
+    poly.GetPointData().AddArray(array)
+    return poly
 
 
 def _faces(triangles: np.ndarray) -> np.ndarray:

@@ -50,7 +50,7 @@ def test_the_lesson_marks_a_corner_its_projection_on_the_screen_and_the_projecto
     cube = next(o for o in window.model.scene.objects if o.name == "cube")
     a = cube.vertices[6]
     (drawn_a, image, source), labels = _marks(window)
-    assert labels == ["A", "A'"]
+    assert labels == ["A", "A′"]
     assert np.allclose(drawn_a, a)
     _, _, forward = _basis(cam)
     depth = (a - cam.eye) @ forward
@@ -62,6 +62,23 @@ def test_the_lesson_marks_a_corner_its_projection_on_the_screen_and_the_projecto
         assert np.allclose(image, a - (depth - cam.near) * forward)
         assert np.allclose(source, image)
     assert np.allclose(_pixel_by_hand(cam, image), _shown_pixel(window), atol=1e-3)  # 6 digits shown
+
+
+def test_the_label_font_draws_the_prime_of_a_prime(qtbot, window):
+    # VTK's own Arial has no glyph for ′ and drew "A′" as a bare "A"; the pane's font has one.
+    from vtkmodules.vtkRenderingCore import vtkTextRenderer
+
+    window.lesson_panel.select(LESSONS["perspective"], 0)
+    qtbot.waitUntil(lambda: window.scene_view.view is not None, timeout=RENDER_TIMEOUT_MS)  # VTK loaded
+    (actor,) = [actor for _, actor, style in window.scene_view.view._overlays[PROJECTOR_OVERLAY]
+                if "label_size" in style]
+    text = actor.GetMapper().GetLabelTextProperty()
+    widths = {}
+    for label in ("A", "A′"):
+        box = [0, 0, 0, 0]
+        vtkTextRenderer().GetBoundingBox(text, label, box, 72)
+        widths[label] = box[1] - box[0]
+    assert widths["A′"] >= widths["A"] + 2
 
 
 def test_the_marks_follow_the_observer_and_leave_with_the_lesson_step(qtbot, window):
