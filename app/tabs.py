@@ -89,6 +89,16 @@ def _ms(seconds: float) -> str:
     return f"{seconds * 1000:.0f} ms"
 
 
+def _trace_caption(stats: dict) -> str:
+    """Size, rays and total time of a traced image, then the stages that took a millisecond or more
+    (the Counts and times table lists them all): short enough for two lines at a lecture-hall size."""
+    w, h = stats["size"]
+    times = stats["times"]
+    stages = " · ".join(f"{k} {v * 1000:.0f}" for k, v in times.items() if k != "total" and v >= 0.0005)
+    return (f"{w} × {h} pixels · {stats['rays']['total']:,} rays · total {_ms(times['total'])}"
+            + (f" ({stages} ms)" if stages else ""))
+
+
 def preview_camera(camera: Camera) -> Camera:
     """The same observer with PREVIEW_STEP times fewer pixels each way."""
     return camera.replace(width=max(1, -(-camera.width // PREVIEW_STEP)),
@@ -194,12 +204,8 @@ class ImageOrderTab:
             return f"preview: a quarter of the rays ({result.rays:,}) in {_ms(result.seconds)}"
         image, stats = result
         self.widget.image.set_image(image)
-        times = stats["times"]
         self.widget.show_stats(stats)
-        w, h = stats["size"]
-        return (f"{w} × {h} pixels · {stats['rays']['total']:,} rays · "
-                + " · ".join(f"{k} {_ms(v)}" for k, v in times.items() if k != "total")
-                + f" · total {_ms(times['total'])}")
+        return _trace_caption(stats)
 
 
 class ObjectOrderTab:

@@ -1,6 +1,7 @@
 """The window as a user drives it: move the observer, see the frustum and image follow."""
 
 import json
+import re
 
 import numpy as np
 import pytest
@@ -36,6 +37,18 @@ def test_start_shows_the_lecture_scene_and_its_image(window):
     colours = {tuple(c) for c in np.round(image.reshape(-1, 3), 1)}
     assert len(colours) > 5
     assert "rays" in window.status_caption.text()
+
+
+def test_the_status_line_gives_a_traced_images_total_first_then_the_stages_that_took_time(window):
+    caption = window.status_caption.text()
+    found = re.fullmatch(r"(\d+) × (\d+) pixels · ([\d,]+) rays · total (\d+) ms(?: \((.*) ms\))?", caption)
+    assert found, caption
+    cam = window.model.camera
+    assert (int(found[1]), int(found[2])) == (cam.width, cam.height)
+    stages = {name: int(ms) for name, ms in (part.rsplit(" ", 1) for part in found[5].split(" · "))}
+    assert "primary" in stages and "shading" in stages
+    assert all(ms >= 1 for ms in stages.values())  # a stage under a millisecond is left to the table
+    assert sum(stages.values()) <= int(found[4]) + len(stages)  # each rounded by half a millisecond at most
 
 
 def test_yaw_slider_walks_the_observer_and_everything_follows(qtbot, window):
