@@ -17,7 +17,7 @@ from __future__ import annotations
 import math
 
 from core.image_order.kernels.intersect import sphere_roots
-from core.image_order.kernels.jit import jit
+from core.image_order.kernels.jit import jit, jit_allocating
 from core.image_order.kernels.layout import BOUNDS_TESTS, CELLS, PRIM_TESTS
 from core.image_order.kernels.primitives import no_hit, prim_hit
 
@@ -60,7 +60,7 @@ def _step(d, a):
     return 1 if d[a] > 0.0 else (-1 if d[a] < 0.0 else 0)
 
 
-@jit
+@jit_allocating
 def walk_cells(o, d, t_min, t_max, grid, out):
     """Write the cells crossed by the ray for ``t_min <= t <= t_max`` into ``out``; return their count.
 

@@ -32,7 +32,7 @@ from __future__ import annotations
 import numpy as np
 
 from core.image_order.kernels.intrinsics.triangle4 import AXIS_STRIDE, CORNER_STRIDE, GROUP_SIZE, LANES
-from core.image_order.kernels.jit import jit
+from core.image_order.kernels.jit import jit, jit_allocating
 
 BINS = 16
 #: A leaf holds at most one group of four primitives (a node with more is always split).  Against
@@ -58,7 +58,7 @@ def _groups(n):
     return (n + LANES - 1) // LANES
 
 
-@jit
+@jit_allocating
 def build_bvh(lo, hi):
     """Build the hierarchy over primitives with bounding boxes ``lo``, ``hi``.
 
@@ -188,7 +188,7 @@ def build_bvh(lo, hi):
     return nodes[:n_nodes].copy(), order, max_level
 
 
-@jit
+@jit_allocating
 def widen(nodes):
     """Collapse the binary tree ``nodes`` (as returned by :func:`build_bvh`) into a four-wide tree.
 
@@ -263,7 +263,7 @@ def widen(nodes):
     return boxes[:n_wide].copy(), refs[:n_wide].copy(), leaves
 
 
-@jit
+@jit_allocating
 def group_triangles(leaves, rows, order, n_spheres):
     """Copy the triangles of every leaf into groups of ``LANES`` for the vector test.
 

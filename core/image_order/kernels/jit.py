@@ -11,6 +11,16 @@ run on all cores.  Both
 - follow IEEE 754 for division by zero (``error_model="numpy"``): ``1 / 0``
   is ``inf`` rather than an exception, which the slab test relies on.
 
+``jit`` and ``jit_inline`` helpers also borrow their arrays (numba's
+``_nrt=False``): numba otherwise counts the references of every array a
+function binds, an atomic add on a counter that all threads share, and in the
+render's loops those counts took about a third of the time (perf, lecture
+scene: samples in ``NRT_incref``/``NRT_decref``).
+The arrays belong to the caller for the whole render, so the helpers need no
+count; a borrowing helper must then neither make an array nor return one
+(``tests/core/test_trace_kernels.py`` checks every compiled signature).  The
+few helpers that make arrays are compiled with ``jit_allocating``.
+
 ``fastmath`` stays off: the watertight triangle test needs ``a*b - c*d`` to be
 evaluated exactly as written (no fused multiply-add, no reassociation).
 
@@ -36,6 +46,7 @@ from core.jitable import register_all
 from core.kernel_cache import drop_stale_cache
 
 _OPTIONS = {"cache": True, "nogil": True, "error_model": "numpy"}
+_BORROWING = {**_OPTIONS, "_nrt": False}
 _KERNELS = Path(__file__).resolve().parent
 _IMAGE_ORDER = _KERNELS.parent
 _CORE = _IMAGE_ORDER.parent
@@ -54,15 +65,31 @@ drop_stale_cache(_KERNELS, SOURCES, "trace")
 register_all()  # the lecture modules' formulas, before any kernel is compiled or loaded
 
 
+#: Every kernel compiled to borrow its arrays, for the test that none returns one.
+BORROWING: list = []
+
+
+def _borrowing(func, **options):
+    dispatcher = njit(**options, **_BORROWING)(func)
+    BORROWING.append(dispatcher)
+    return dispatcher
+
+
 def jit(func):
-    """Compile ``func`` with the tracer's options (serial)."""
+    """Compile ``func`` with the tracer's options (serial), borrowing its arrays."""
+    return _borrowing(func)
+
+
+def jit_allocating(func):
+    """Compile ``func`` with the tracer's options (serial), counting references: for the few
+    kernels that make arrays."""
     return njit(**_OPTIONS)(func)
 
 
 def jit_inline(func):
     """Compile ``func`` with the tracer's options, inlined into every caller (for the
     innermost tests, where the cost of a call would exceed the work)."""
-    return njit(inline="always", **_OPTIONS)(func)
+    return _borrowing(func, inline="always")
 
 
 def jit_parallel(func):

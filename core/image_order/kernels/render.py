@@ -37,7 +37,7 @@ from core.image_order.kernels import layout as lay
 from core.image_order.kernels.bvh_traverse import bvh_closest
 from core.image_order.kernels.closest_hit import BVH, GRID, GRID_SPHERES, closest_hit
 from core.image_order.kernels.intrinsics.bands import BAND_ROWS, take_band
-from core.image_order.kernels.jit import jit, jit_parallel
+from core.image_order.kernels.jit import jit, jit_allocating, jit_parallel
 from core.image_order.kernels.shade import shade_hit
 from core.image_order.ray_casting import primary_ray, view_depth
 
@@ -46,7 +46,7 @@ _COUNTER_STRIDE = 8
 PRIMARY_STAGE, SHADE_STAGE, SECONDARY_STAGE = range(3)
 
 
-@jit
+@jit_allocating
 def make_scratch(method, n_prims, n_objects, bvh_depth):
     """Per-thread work arrays for :func:`core.image_order.kernels.closest_hit.closest_hit`.
 
@@ -123,12 +123,10 @@ def _shade_rows(first, last, cam, xs, ys, hits, color, children, spawned, materi
 
 @jit
 def _secondary_rows(first, last, color, children, spawned, materials, lights, opts, geo, grid, bvh, scratch,
-                    rec, count):
+                    rec, stack, count):
     method = int(opts[lay.OPT_ACCEL])
-    max_depth = int(opts[lay.OPT_MAX_DEPTH])
     n_spheres = geo[lay.GEO_N_SPHERES]
     t_start = 0.0 if opts[lay.OPT_SCALED_OFFSET] > 0.0 else opts[lay.OPT_EPSILON]
-    stack = np.empty((2 * max_depth + 4, lay.STACK_SIZE))
     o_at, d_at = lay.CHILD_ORIGIN, lay.CHILD_DIRECTION
     for j in range(first, last):
         for i in range(color.shape[1]):
@@ -173,12 +171,13 @@ def _secondary_rows(first, last, color, children, spawned, materials, lights, op
                         top += 1
 
 
-@jit
+@jit_allocating
 def _worker(stage, queue, cam, xs, ys, hits, depth, color, children, spawned, materials, lights, opts, geo,
             grid, bvh, bvh_depth, count):
     scratch = make_scratch(int(opts[lay.OPT_ACCEL]), geo[lay.GEO_ROWS].shape[0], materials.shape[0],
                            bvh_depth)
     rec = np.empty(lay.record_size(lights.shape[0]))
+    stack = np.empty((2 * int(opts[lay.OPT_MAX_DEPTH]) + 4, lay.STACK_SIZE))  # of the secondary rays
     while True:
         first = take_band(queue) * BAND_ROWS
         if first >= ys.shape[0]:
@@ -191,7 +190,7 @@ def _worker(stage, queue, cam, xs, ys, hits, depth, color, children, spawned, ma
                         geo, grid, bvh, scratch, rec, count)
         else:
             _secondary_rows(first, last, color, children, spawned, materials, lights, opts, geo, grid, bvh,
-                            scratch, rec, count)
+                            scratch, rec, stack, count)
 
 
 @jit_parallel
