@@ -259,33 +259,54 @@ def test_the_stale_cache_guard_hashes_every_core_module_a_kernel_compiles_in():
     assert {"intersect_sphere.py", "intersect_triangle.py", "ray_casting.py", "camera.py"} <= names
 
 
-def test_no_kernel_that_borrows_its_arrays_returns_one():
+_BORROWED_RETURNS = """
+import json
+from dataclasses import replace
+
+from numba import types
+
+from core import presets_trace
+from core.image_order.flat_scene import TraceSettings
+from core.image_order.kernels.jit import BORROWING
+from core.image_order.kernels.layout import ACCEL_CODES
+from core.image_order.ray_tracing import render_trace
+from core.image_order.ray_tree import trace_pixel
+
+
+def arrays_in(returned):
+    if isinstance(returned, types.BaseTuple):
+        return [a for part in returned.types for a in arrays_in(part)]
+    return [returned] if isinstance(returned, types.Array) else []
+
+
+scene = presets_trace.mirror_and_glass()
+scene = replace(scene, camera=scene.camera.replace(width=24, height=18))
+for accel in ACCEL_CODES:
+    for mode in ("raycast", "raytrace"):
+        settings = TraceSettings(mode=mode, accel=accel)
+        render_trace(scene, settings)
+        trace_pixel(scene, 12, 9, settings)
+signatures = [(d.py_func.__name__, sig.return_type) for d in BORROWING for sig in d.nopython_signatures]
+print(json.dumps({"compiled": len(signatures),
+                  "returning arrays": [[name, str(r)] for name, r in signatures if arrays_in(r)]}))
+"""
+
+
+def test_no_kernel_that_borrows_its_arrays_returns_one(tmp_path):
     # A helper compiled without reference counting hands back an array its caller would count as its
-    # own and free too early. Render every method and mode, so that every helper is compiled, then
-    # read the compiled signatures.
-    from dataclasses import replace
+    # own and free too early. Only a fresh compile shows every helper's signature (a kernel loaded
+    # from the cache brings its helpers inside it), so a process with an empty cache renders every
+    # method and mode and a ray tree, then reads the compiled signatures.
+    import json
+    import os
+    import subprocess
+    import sys
 
-    from numba import types
-
-    from core import presets_trace
-    from core.image_order.flat_scene import TraceSettings
-    from core.image_order.kernels.jit import BORROWING
-    from core.image_order.kernels.layout import ACCEL_CODES
-    from core.image_order.ray_tracing import render_trace
-    from core.image_order.ray_tree import trace_pixel
-
-    def arrays_in(returned):
-        if isinstance(returned, types.BaseTuple):
-            return [a for part in returned.types for a in arrays_in(part)]
-        return [returned] if isinstance(returned, types.Array) else []
-
-    scene = presets_trace.mirror_and_glass()
-    scene = replace(scene, camera=scene.camera.replace(width=24, height=18))
-    for accel in ACCEL_CODES:
-        for mode in ("raycast", "raytrace"):
-            settings = TraceSettings(mode=mode, accel=accel)
-            render_trace(scene, settings)
-            trace_pixel(scene, 12, 9, settings)
-    compiled = [(d.py_func.__name__, sig.return_type) for d in BORROWING for sig in d.nopython_signatures]
-    assert len(compiled) >= 20
-    assert [(name, returned) for name, returned in compiled if arrays_in(returned)] == []
+    root = Path(__file__).resolve().parents[2]
+    env = {**os.environ, "NUMBA_CACHE_DIR": str(tmp_path)}
+    done = subprocess.run([sys.executable, "-c", _BORROWED_RETURNS], cwd=root, env=env, capture_output=True,
+                          text=True, timeout=900)
+    assert done.returncode == 0, done.stderr[-2000:]
+    found = json.loads(done.stdout.splitlines()[-1])
+    assert found["compiled"] >= 20
+    assert found["returning arrays"] == []
