@@ -17,6 +17,7 @@ built, not with the window (see :mod:`views.deferred_scene_view`).
 
 from __future__ import annotations
 
+import functools
 import importlib.util
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -43,12 +44,14 @@ LABEL_PT = 13
 """Size of the 3D pane's labels at text scale 1, points."""
 
 
+@functools.cache
 def label_font_file() -> str | None:
     """The 3D pane's label font: DejaVu Sans Bold, the file matplotlib ships (None if it is missing).
 
     VTK's own Arial has no glyph for many characters the lessons name, the prime of A′ among
     them; DejaVu Sans has them and is the font the window's own text uses on Debian.  The path
-    is found without importing matplotlib, which the window loads only for its plots.
+    is found without importing matplotlib, which the window loads only for its plots, and
+    once: each label actor asks for it, and a drag of the observer makes new ones.
     """
     spec = importlib.util.find_spec("matplotlib")
     if spec is None or not spec.submodule_search_locations:
