@@ -139,15 +139,15 @@ def _primary_rays(triangles: int, args) -> tuple:
     xs = np.arange(float(args.width))
     ys = np.arange(float(args.height))
     shape = (args.height, args.width)
-    hits, depth = np.zeros((*shape, HIT_SIZE)), np.zeros(shape)
+    hits, depth, objects = np.zeros((*shape, HIT_SIZE)), np.zeros(shape), np.zeros(shape, np.int64)
     color, children = np.zeros((*shape, 3)), np.zeros((*shape, 2, layout.CHILD_SIZE))
     spawned = np.zeros(shape, np.uint8)
     counters = []
 
     def ours():
-        counters[:] = [render.render_pass(render.PRIMARY_STAGE, k.cam, xs, ys, hits, depth, color,
-                                          children, spawned, k.materials, k.lights, k.opts, k.geo, k.grid,
-                                          k.bvh, k.bvh_depth, numba.get_num_threads())]
+        counters[:] = [render.render_pass(render.PRIMARY_STAGE, k.cam, xs, ys, hits, depth, objects,
+                                          color, children, spawned, k.materials, k.lights, k.opts, k.geo,
+                                          k.grid, k.bvh, k.bvh_depth, numba.get_num_threads())]
 
     # The same rays into an empty scene: what our figure spends before and after the scene itself.
     empty = Scene(camera=scene.camera, objects=(), lights=scene.lights)
@@ -157,9 +157,9 @@ def _primary_rays(triangles: int, args) -> tuple:
     hits_empty, depth_empty = np.zeros_like(hits), np.zeros_like(depth)  # ours' hits stay for the comparison
 
     def nothing_to_hit():
-        render.render_pass(render.PRIMARY_STAGE, e.cam, xs, ys, hits_empty, depth_empty, color, children,
-                           spawned, e.materials, e.lights, e.opts, e.geo, e.grid, e.bvh, e.bvh_depth,
-                           numba.get_num_threads())
+        render.render_pass(render.PRIMARY_STAGE, e.cam, xs, ys, hits_empty, depth_empty, objects, color,
+                           children, spawned, e.materials, e.lights, e.opts, e.geo, e.grid, e.bvh,
+                           e.bvh_depth, numba.get_num_threads())
 
     print(f"mesh: {len(mesh.triangles):,} triangles; BVH build {build_s:.3f} s, {len(bvh.nodes)} nodes, "
           f"depth {bvh.depth}")

@@ -120,12 +120,7 @@ def render_trace(scene: Scene, settings: TraceSettings = TraceSettings(),
     xs = np.arange(0, cam.width, step, dtype=np.float64)
     ys = np.arange(first, stop, step, dtype=np.float64)
     inputs = kernel_inputs(scene, settings, plan, flat, structure)
-    color, depth, hits, counters = _run_passes(xs, ys, inputs, times)
-
-    prims = hits[..., lay.HIT_PRIM].astype(np.int64)
-    object_of = np.append(geometry.prim_object, -1)  # prim -1 (nothing hit) -> object -1
-    object_index = object_of[prims]
-    np.clip(color, 0.0, 1.0, out=color)
+    color, depth, object_index, counters = _run_passes(xs, ys, inputs, times)
     if step > 1:
         h, w = stop - first, cam.width
         color, depth, object_index = (np.repeat(np.repeat(a, step, 0), step, 1)[:h, :w]
@@ -138,16 +133,19 @@ def render_trace(scene: Scene, settings: TraceSettings = TraceSettings(),
 
 
 def _run_passes(xs, ys, k: KernelInputs, times: dict):
-    """The three compiled stages; fills ``times`` and returns colour, depth, hits and counters."""
+    """The three compiled stages; fills ``times`` and returns the image (colour in [0, 1], depth,
+    object index) and the counters."""
     import numba
 
     from core.image_order.kernels import render as trace_render
 
     ny, nx = len(ys), len(xs)
-    # Left unset where a stage writes every pixel (hits: primary; colour, spawned: shading), and
-    # children, written and read only where a ray goes on: no time spent clearing megabytes.
+    # Left unset where a stage writes every pixel (hits, depth, objects: primary; colour, spawned:
+    # shading), and children, written and read only where a ray goes on: no time spent clearing
+    # megabytes.
     hits = np.empty((ny, nx, lay.HIT_SIZE))
-    depth = np.full((ny, nx), np.inf)
+    depth = np.empty((ny, nx))
+    objects = np.empty((ny, nx), np.int64)
     color = np.empty((ny, nx, 3))
     children = np.empty((ny, nx, lay.N_SPAWNED, lay.CHILD_SIZE))
     spawned = np.empty((ny, nx), np.uint8)
@@ -156,11 +154,11 @@ def _run_passes(xs, ys, k: KernelInputs, times: dict):
                         (trace_render.SECONDARY_STAGE, "secondary")):
         start = time.perf_counter()
         if stage != trace_render.SECONDARY_STAGE or spawned.any():
-            counters += trace_render.render_pass(stage, k.cam, xs, ys, hits, depth, color, children, spawned,
-                                                 k.materials, k.lights, k.opts, k.geo, k.grid, k.bvh,
+            counters += trace_render.render_pass(stage, k.cam, xs, ys, hits, depth, objects, color, children,
+                                                 spawned, k.materials, k.lights, k.opts, k.geo, k.grid, k.bvh,
                                                  k.bvh_depth, numba.get_num_threads())
         times[name] = time.perf_counter() - start
-    return color, depth, hits, counters
+    return color, depth, objects, counters
 
 
 def _stats(settings, plan, structure, build_s, cached, counters, times, compile_s, rows, step,
@@ -276,11 +274,10 @@ def sample_tracer(scene: Scene, settings: TraceSettings = TraceSettings()):
     flat = trace_scene(scene)
     structure, _, _ = flat.geometry.accel(settings.accel)
     inputs = kernel_inputs(scene, settings, effects_plan(scene, settings.mode), flat, structure)
-    object_of = np.append(flat.geometry.prim_object, -1)  # prim -1 (nothing hit) -> object -1
 
     def trace(xs, ys):
-        color, depth, hits, _ = _run_passes(np.asarray(xs, dtype=np.float64),
-                                            np.asarray(ys, dtype=np.float64), inputs, {})
-        return np.clip(color, 0.0, 1.0, out=color), depth, object_of[hits[..., 0].astype(np.int64)]
+        color, depth, object_index, _ = _run_passes(np.asarray(xs, dtype=np.float64),
+                                                    np.asarray(ys, dtype=np.float64), inputs, {})
+        return color, depth, object_index
 
     return trace

@@ -60,7 +60,10 @@ def phong(n, to_light, to_eye, shininess: float) -> float:
     if dot(n, to_light) <= 0.0:
         return 0.0
     r = reflect((-to_light[0], -to_light[1], -to_light[2]), n)
-    return max(0.0, dot(r, to_eye)) ** shininess
+    cos_rv = dot(r, to_eye)
+    if cos_rv <= 0.0 and shininess > 0.0:  # 0^n = 0: the same answer without the power, a third
+        return 0.0                          # of shading's arithmetic where half the view is lit
+    return max(0.0, cos_rv) ** shininess
 
 
 @jitable

@@ -134,6 +134,11 @@ def test_lambert_and_phong_by_hand():
     off = tuple(unit([0.0, 1.0, 0.0]))  # 45° off the mirror direction: cos(45°)^n
     assert phong(n, light, off, 4.0) == pytest.approx(math.cos(math.radians(45)) ** 4, rel=1e-14)
     assert phong(n, (0.0, -1.0, 0.0), viewer, 4.0) == 0.0
+    # Viewer on the far side of the mirror direction (R . V = -cos 45°): max(0, R . V)^n is 0 for n > 0,
+    # and 0^0 = 1, a surface whose highlight does not narrow at all.
+    away = tuple(unit([1.0, 0.0, 0.0]))
+    assert phong(n, light, away, 4.0) == 0.0
+    assert phong(n, light, away, 0.0) == 1.0
 
 
 def test_surface_split_adds_up_to_one():

@@ -78,6 +78,26 @@ def test_trace_pixel_colour_equals_the_rendered_pixel(accel, offset):
         np.testing.assert_allclose(root.pixel_color, image.color[y, x], rtol=0, atol=1e-12)
 
 
+def test_an_overbright_pixel_is_clamped_to_one_and_the_rest_kept_exact():
+    """The image's colour is the ray tree's sum clamped to [0, 1], per channel, in pixels with
+    and without reflected or refracted rays alike."""
+    scene = small(presets_trace.mirror_and_glass())
+    scene = replace(scene, lights=tuple(replace(light, intensity=4.0) for light in scene.lights))
+    image = render_trace(scene, TraceSettings(accel="bvh"))
+    special = np.argwhere(np.isin(image.object_index, [3, 4]))  # mirror and glass: secondary rays
+    plain = np.argwhere(~np.isin(image.object_index, [3, 4]))
+    rng = np.random.default_rng(1)
+    for pixels in (special, plain):
+        over = 0
+        for y, x in pixels[rng.choice(len(pixels), 15, replace=False)]:
+            color = trace_pixel(scene, int(x), int(y), TraceSettings(accel="bvh")).color
+            over += int(np.any(color > 1.0))
+            np.testing.assert_allclose(image.color[y, x], np.minimum(np.maximum(color, 0.0), 1.0), rtol=0,
+                                       atol=1e-12)
+        assert over >= 3  # the light is bright enough that clamping is tested in both kinds of pixel
+    assert image.color.max() == 1.0 and image.color.min() >= 0.0
+
+
 def test_ray_trees_count_the_same_rays_as_the_render():
     scene = small(presets_trace.mirror_and_glass(), 16, 12)
     stats = render_trace(scene).stats["rays"]

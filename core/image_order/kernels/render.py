@@ -37,7 +37,7 @@ from core.image_order.kernels import layout as lay
 from core.image_order.kernels.bvh_traverse import bvh_closest
 from core.image_order.kernels.closest_hit import BVH, GRID, GRID_SPHERES, closest_hit
 from core.image_order.kernels.intrinsics.bands import BAND_ROWS, take_band
-from core.image_order.kernels.jit import jit, jit_allocating, jit_parallel
+from core.image_order.kernels.jit import jit, jit_allocating, jit_inline, jit_parallel
 from core.image_order.kernels.shade import shade_hit
 from core.image_order.ray_casting import primary_ray, view_depth
 
@@ -64,9 +64,10 @@ def make_scratch(method, n_prims, n_objects, bvh_depth):
 
 
 @jit
-def _primary_rows(first, last, cam, xs, ys, opts, geo, grid, bvh, scratch, hits, depth, count):
+def _primary_rows(first, last, cam, xs, ys, opts, geo, grid, bvh, scratch, hits, depth, objects, count):
     method = int(opts[lay.OPT_ACCEL])
     n_spheres = geo[lay.GEO_N_SPHERES]
+    prim_object = geo[lay.GEO_PRIM_OBJECT]
     stack, stack_t = scratch[lay.SCRATCH_STACK], scratch[lay.SCRATCH_STACK_T]
     for j in range(first, last):
         for i in range(xs.shape[0]):
@@ -85,6 +86,20 @@ def _primary_rows(first, last, cam, xs, ys, opts, geo, grid, bvh, scratch, hits,
             hits[j, i, lay.HIT_B0], hits[j, i, lay.HIT_B1], hits[j, i, lay.HIT_B2] = b0, b1, b2
             if prim >= 0:
                 depth[j, i] = view_depth(cam, o, d, t)
+                objects[j, i] = prim_object[prim]
+            else:
+                depth[j, i] = math.inf
+                objects[j, i] = -1
+
+
+@jit_inline
+def _clip(color, j, i):
+    """Clamp pixel ``(j, i)``'s finished colour to [0, 1], as ``np.clip`` does (NaN stays NaN)."""
+    for a in range(3):
+        if color[j, i, a] < 0.0:
+            color[j, i, a] = 0.0
+        elif color[j, i, a] > 1.0:
+            color[j, i, a] = 1.0
 
 
 @jit
@@ -102,6 +117,7 @@ def _shade_rows(first, last, cam, xs, ys, hits, color, children, spawned, materi
                 spawned[j, i] = 0
                 for a in range(3):
                     color[j, i, a] = opts[lay.OPT_BACKGROUND + a]
+                _clip(color, j, i)
                 continue
             o, d, _, _ = primary_ray(cam, xs[i], ys[j])
             shade_hit(o, d, _as_hit(hits[j, i]), 1.0, 0, materials, lights, opts, geo, grid, bvh, scratch,
@@ -113,6 +129,8 @@ def _shade_rows(first, last, cam, xs, ys, hits, color, children, spawned, materi
             reflected = rec[lay.REC_REFLECT + lay.CHILD_STATUS] == lay.CHILD_TRACED
             refracted = rec[lay.REC_REFRACT + lay.CHILD_STATUS] == lay.CHILD_TRACED
             spawned[j, i] = reflected * (1 << lay.SPAWN_REFLECT) + refracted * (1 << lay.SPAWN_REFRACT)
+            if spawned[j, i] == 0:  # the colour is final; the secondary stage finishes the others
+                _clip(color, j, i)
             if reflected:
                 for a in range(lay.CHILD_SIZE):
                     children[j, i, lay.SPAWN_REFLECT, a] = rec[lay.REC_REFLECT + a]
@@ -169,11 +187,12 @@ def _secondary_rows(first, last, color, children, spawned, materials, lights, op
                         stack[top, lay.STACK_GENERATION] = depth + 1
                         stack[top, lay.STACK_KIND] = kind2
                         top += 1
+            _clip(color, j, i)
 
 
 @jit_allocating
-def _worker(stage, queue, cam, xs, ys, hits, depth, color, children, spawned, materials, lights, opts, geo,
-            grid, bvh, bvh_depth, count):
+def _worker(stage, queue, cam, xs, ys, hits, depth, objects, color, children, spawned, materials, lights,
+            opts, geo, grid, bvh, bvh_depth, count):
     scratch = make_scratch(int(opts[lay.OPT_ACCEL]), geo[lay.GEO_ROWS].shape[0], materials.shape[0],
                            bvh_depth)
     rec = np.empty(lay.record_size(lights.shape[0]))
@@ -184,7 +203,8 @@ def _worker(stage, queue, cam, xs, ys, hits, depth, color, children, spawned, ma
             break
         last = min(first + BAND_ROWS, ys.shape[0])
         if stage == PRIMARY_STAGE:
-            _primary_rows(first, last, cam, xs, ys, opts, geo, grid, bvh, scratch, hits, depth, count)
+            _primary_rows(first, last, cam, xs, ys, opts, geo, grid, bvh, scratch, hits, depth, objects,
+                          count)
         elif stage == SHADE_STAGE:
             _shade_rows(first, last, cam, xs, ys, hits, color, children, spawned, materials, lights, opts,
                         geo, grid, bvh, scratch, rec, count)
@@ -194,8 +214,8 @@ def _worker(stage, queue, cam, xs, ys, hits, depth, color, children, spawned, ma
 
 
 @jit_parallel
-def render_pass(stage, cam, xs, ys, hits, depth, color, children, spawned, materials, lights, opts, geo, grid,
-                bvh, bvh_depth, n_workers):
+def render_pass(stage, cam, xs, ys, hits, depth, objects, color, children, spawned, materials, lights, opts,
+                geo, grid, bvh, bvh_depth, n_workers):
     """Run one stage of the render over the pixels ``xs`` x ``ys``, in parallel; return its counters.
 
     Parameters
@@ -203,14 +223,17 @@ def render_pass(stage, cam, xs, ys, hits, depth, color, children, spawned, mater
     stage : int
         ``PRIMARY_STAGE``: closest hit of every pixel's primary ray into
         ``hits`` (ny, nx, HIT_SIZE) ``(prim, t, b0, b1, b2)`` (prim -1: nothing hit) and
-        its camera-space depth into ``depth`` (ny, nx) (left ``inf`` on a miss).
+        its camera-space depth into ``depth`` (ny, nx) (``inf`` on a miss), the object hit into
+        ``objects`` (ny, nx) int64 (-1 on a miss).
         ``SHADE_STAGE``: local colour of each hit into ``color`` (ny, nx, 3)
-        (the background on a miss) and the reflected and refracted rays it
+        (the background on a miss), clamped to [0, 1] where no ray goes on, and the
+        reflected and refracted rays it
         spawns: ``spawned`` (ny, nx) uint8 gets bit ``1 << kind`` set for every ray of kind
         ``SPAWN_*`` that will be traced, and only those rays are written into
         ``children`` (ny, nx, N_SPAWNED, CHILD_SIZE).
         ``SECONDARY_STAGE``: trace those rays and all their descendants, adding
-        ``weight * colour`` of every hit (or of the background) to ``color``.
+        ``weight * colour`` of every hit (or of the background) to ``color``, then clamp
+        each of those pixels to [0, 1].  After the three stages ``color`` is the image.
     cam, opts, materials, lights : arrays laid out as in :mod:`core.image_order.kernels.layout`.
     xs, ys : (nx,) and (ny,) float64, pixel columns and rows.
     geo, grid, bvh : kernel tuples of the geometry and its structures.
@@ -225,6 +248,6 @@ def render_pass(stage, cam, xs, ys, hits, depth, color, children, spawned, mater
     queue = np.zeros(1, np.int64)
     counters = np.zeros((n_workers, _COUNTER_STRIDE), np.int64)
     for w in prange(n_workers):
-        _worker(stage, queue, cam, xs, ys, hits, depth, color, children, spawned, materials, lights, opts,
-                geo, grid, bvh, bvh_depth, counters[w])
+        _worker(stage, queue, cam, xs, ys, hits, depth, objects, color, children, spawned, materials, lights,
+                opts, geo, grid, bvh, bvh_depth, counters[w])
     return counters.sum(axis=0)[:lay.N_COUNTERS]
