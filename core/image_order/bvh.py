@@ -3,7 +3,7 @@
 The lecture's bounding spheres put one simple solid around each object; a
 BVH carries the idea on: a box around the whole scene holds two smaller
 boxes, each holds two smaller ones, down to leaves of at most four
-primitives (triangles and analytic spheres alike).  A ray that misses a box skips
+triangles, or one analytic sphere.  A ray that misses a box skips
 everything inside it, so a ray typically tests a few dozen boxes and a handful
 of triangles instead of every triangle.
 
@@ -57,7 +57,7 @@ class Bvh:
     leaves : (L, 3) int64
         Per leaf of the wide tree: its first entry in ``order``, its number of
         primitives, and its first triangle group (-1 when it holds an
-        analytic sphere: then its primitives are tested one by one).
+        analytic sphere, alone: it is tested on its own).
     groups : (G, GROUP_SIZE) float64
         The leaves' triangles in groups of four (see
         :func:`~core.image_order.kernels.bvh_build.group_triangles`).
@@ -128,7 +128,7 @@ def build_bvh(geometry) -> Bvh:
     from core.image_order.kernels.bvh_build import build_bvh as _build
     from core.image_order.kernels.bvh_build import group_triangles, widen
 
-    nodes, order, depth = _build(geometry.lo, geometry.hi)
+    nodes, order, depth = _build(geometry.lo, geometry.hi, geometry.n_spheres)
     rows = np.ascontiguousarray(geometry.rows[order])
     boxes, refs, leaves = widen(nodes)
     groups = group_triangles(leaves, rows, order, geometry.n_spheres)

@@ -186,6 +186,24 @@ def test_grid_and_bvh_do_far_fewer_tests_on_a_big_mesh():
     assert per_ray["bvh"][PRIM_TESTS] < n / 500 and per_ray["bvh"][BOUNDS_TESTS] < 200
 
 
+def test_a_ray_that_passes_far_from_the_spheres_tests_no_sphere():
+    """Two balls resting on a large floor: a ray that meets the floor far from both tests the
+    floor's two triangles and no sphere, though the floor's box holds the balls."""
+    m = Material()
+    scene = Scene(objects=(shapes.quad((0.0, 0.0, 0.0), 100.0, m), Sphere((-1.0, 1.0, 0.0), 1.0, m),
+                           Sphere((1.5, 0.5, 0.0), 0.5, m)))
+    query = Query(scene, "bvh")
+    for x, z in [(30.0, 30.0), (-40.0, 10.0), (20.0, -45.0)]:
+        query.counters[:] = 0
+        prim, t, *_ = query((x, 5.0, z), (0.0, -1.0, 0.0))
+        assert prim >= 2 and t == pytest.approx(5.0, abs=1e-12)  # the floor (primitives 0, 1: the balls)
+        assert query.counters[PRIM_TESTS] == 2
+    query.counters[:] = 0
+    prim, t, *_ = query((-1.0, 5.0, 0.0), (0.0, -1.0, 0.0))
+    assert prim == 0 and t == pytest.approx(3.0, abs=1e-12)  # the top of the first ball
+    assert query.counters[PRIM_TESTS] <= 3
+
+
 def test_bvh_rays_aimed_at_edges_and_vertices_from_inside_a_closed_mesh_always_hit():
     """Watertight through the BVH: its four-at-a-time triangle test must defer exactly these rays."""
     ball = shapes.uv_sphere((0.0, 0.0, 0.0), 1.0, rings=12, segments=16, material=Material())
@@ -255,7 +273,7 @@ def test_wide_bvh_reaches_every_primitive_once_inside_its_float32_boxes(scene):
             assert np.all(geometry.lo[prims] >= lo) and np.all(geometry.hi[prims] <= hi)
             reached.extend(prims.tolist())
             if np.any(prims < geometry.n_spheres):
-                assert group == -1
+                assert count == 1 and group == -1  # a sphere's leaf holds it alone
                 continue
             # groups[g] holds corner, axis, lane: triangle j of the leaf is lane j % 4 of group j // 4.
             lanes = bvh.groups[group:group + (count + 3) // 4].reshape(-1, 3, 3, 4).transpose(0, 3, 1, 2)

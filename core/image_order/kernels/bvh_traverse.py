@@ -6,8 +6,8 @@ inner node it tests the boxes of all four children at once
 it hits and pushes the others, farther first, each with the distance where
 the ray enters it; a pushed subtree whose entry lies beyond the closest hit
 found meanwhile is dropped unvisited.  At a leaf it tests the triangles four
-at a time (:func:`~core.image_order.kernels.intrinsics.triangle4.triangle_test4`), or a leaf
-with a sphere primitive by primitive.  Boxes are only tested against the
+at a time (:func:`~core.image_order.kernels.intrinsics.triangle4.triangle_test4`); a sphere
+has a leaf of its own and its own test.  Boxes are only tested against the
 part of the ray before the closest hit so far, so far subtrees fall away
 quickly.
 
@@ -143,7 +143,8 @@ def bvh_closest(o, d, shear, t_min, t_max, any_hit, bvh, n_spheres, stack, stack
 # The rare cases stay out of line, so that the hot loop above stays small.
 @jit
 def _leaf_one_by_one(rows, order, n_spheres, first, count, o, d, shear, t_min, best_t, best_k):
-    """Test the primitives of a leaf holding a sphere one by one: ``(best_t, best_k)`` updated."""
+    """Test the primitives of a leaf without a triangle group (a sphere's) one by one:
+    ``(best_t, best_k)`` updated."""
     for k in range(first, first + count):
         t = prim_hit(rows, k, order[k] < n_spheres, o, d, shear, t_min, best_t)[0]
         if t < best_t:
