@@ -41,8 +41,11 @@ from core.image_order.kernels.jit import jit, jit_allocating, jit_inline, jit_pa
 from core.image_order.kernels.shade import shade_hit
 from core.image_order.ray_casting import primary_ray, view_depth
 
-#: Counter rows are padded to a cache line so threads do not share one.
-_COUNTER_STRIDE = 8
+#: Each thread's counters lie 256 bytes after the previous thread's.  Every ray adds to them, so
+#: two threads must never share (or prefetch) one cache line of them: numpy aligns the array to
+#: 16 bytes only, and with rows of one 64-byte line (the stride was 8) the two threads' rows
+#: straddled a shared line; the adds then took about a sixth of a lecture frame's samples (perf).
+_COUNTER_STRIDE = 32
 PRIMARY_STAGE, SHADE_STAGE, SECONDARY_STAGE = range(3)
 
 
