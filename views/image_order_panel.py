@@ -9,7 +9,7 @@ from the last hits back to the first.
 
 from __future__ import annotations
 
-from PySide6.QtCore import Qt
+from PySide6.QtCore import QEvent, Qt
 from PySide6.QtGui import QFont
 from PySide6.QtWidgets import (
     QCheckBox,
@@ -35,6 +35,10 @@ from views.raytree_view import KIND_COLORS, RayKindLegend, RayTreeWidget
 from views.side_column import SideColumn
 from views.worked_math import WorkedMath
 
+#: Rows of the ray tree a lesson that points at a ray makes room for (the image gives up height),
+#: and the share of the panel's height the image keeps all the same.
+TREE_ROWS = 4
+IMAGE_SHARE = 0.4
 MODES = [("raytrace", "Ray tracing"), ("raycast", "Ray casting")]
 ACCELS = [("bvh", "BVH"), ("grid+spheres", "Grid + spheres"), ("grid", "Grid of cuboids"),
           ("spheres", "Bounding spheres"), ("none", "None")]
@@ -147,7 +151,10 @@ class ImageOrderPanel(QWidget):
         top_layout.addWidget(self.image, 1)
         top_layout.addWidget(SideColumn([form_box, self.rays, QLabel("<b>Ray colours</b>"),
                                          RayKindLegend(per_line=1)]))
-        pictures_over_details(self, top, self.details)
+        self.split = pictures_over_details(self, top, self.details)
+        self._room_for_tree = False  # asked by a lesson, kept until the user drags the divider
+        self.split.splitterMoved.connect(self._leave_room_as_dragged)
+        self.tree.viewport().installEventFilter(self)
 
         for w in (self.mode, self.accel, self.offset):
             w.currentIndexChanged.connect(self._settings_edited)
@@ -168,6 +175,36 @@ class ImageOrderPanel(QWidget):
             mode=self.mode.currentData(), max_depth=self.depth.value(),
             min_weight=self.min_weight.value(), accel=self.accel.currentData(),
             offset=self.offset.currentData(), epsilon=self.epsilon.value()))
+
+    def show_ray_tree(self) -> None:
+        """Bring the ray tree forward with room for ``TREE_ROWS`` of its rows.
+
+        In a small window or with large text the image above takes most of the
+        height and the tree shows a row or two; then the image gives up what the
+        rows need, but keeps ``IMAGE_SHARE`` of the height.  The panel may just
+        have been shown and not yet laid out, so the room is made again whenever
+        the tree's size changes (a step's panes appearing, the window resized),
+        until the user drags the divider: then the user's choice stands.
+        """
+        self.details.setCurrentIndex(0)
+        self._room_for_tree = True
+        self._make_room_for_tree()
+
+    def _make_room_for_tree(self) -> None:
+        row = max(self.tree.sizeHintForRow(0), self.tree.fontMetrics().lineSpacing() + 6)
+        short = TREE_ROWS * row - self.tree.viewport().height()
+        image, details = self.split.sizes()
+        give = min(short, image - round(IMAGE_SHARE * (image + details)))
+        if give > 0:
+            self.split.setSizes([image - give, details + give])
+
+    def _leave_room_as_dragged(self) -> None:
+        self._room_for_tree = False
+
+    def eventFilter(self, watched, event) -> bool:
+        if self._room_for_tree and event.type() == QEvent.Type.Resize and watched is self.tree.viewport():
+            self._make_room_for_tree()
+        return super().eventFilter(watched, event)
 
     def show_settings(self, settings: TraceSettings) -> None:
         """Show ``settings`` in the controls without writing them back."""

@@ -9,6 +9,7 @@ from vtkmodules.vtkRenderingCore import vtkTextRenderer
 from window_helpers import open_window
 
 from core.lessons import shipped_lessons
+from views.image_order_panel import IMAGE_SHARE, TREE_ROWS
 
 LESSONS = {lesson.id: i for i, lesson in enumerate(shipped_lessons())}
 FRUSTUM_LESSONS = ("observer", "frustum", "perspective", "orthographic")
@@ -129,17 +130,23 @@ LINES = 10
 """At 1280x720 and text x2 a lesson step shows at least this many lines of its words (or all of them)."""
 
 
-def _words_shown(panel) -> int:
-    return panel.scroll.viewport().height()
-
-
-def test_at_1280x720_and_text_x2_every_lesson_step_shows_its_words_whole_or_ten_lines(qtbot, monkeypatch):
+def _lecture_hall_window(qtbot, monkeypatch):
+    """The window on a 1280x720 screen, presenting, with text twice its size."""
     screen = QRect(0, 0, 1280, 720)
     monkeypatch.setattr(QScreen, "availableGeometry", lambda self: screen)
     monkeypatch.setattr(QScreen, "geometry", lambda self: screen)
     window = open_window(qtbot)
     window.presentation.set_presenting(True)
     window.presentation.set_scale(2.0)
+    return window
+
+
+def _words_shown(panel) -> int:
+    return panel.scroll.viewport().height()
+
+
+def test_at_1280x720_and_text_x2_every_lesson_step_shows_its_words_whole_or_ten_lines(qtbot, monkeypatch):
+    window = _lecture_hall_window(qtbot, monkeypatch)
     panel = window.lesson_panel
     line = panel.text.fontMetrics().lineSpacing()
     for row, lesson in enumerate(shipped_lessons()):
@@ -149,4 +156,21 @@ def test_at_1280x720_and_text_x2_every_lesson_step_shows_its_words_whole_or_ten_
                             or panel.scroll.verticalScrollBar().maximum() == 0, timeout=5000)
             if "scene 3D" in step.panes:  # the 3D pane keeps its share all the same
                 assert window.scene_pane.height() >= 0.25 * window.centralWidget().height(), (lesson.id, k)
+    window.presentation.set_presenting(False)
+
+
+def test_at_1280x720_and_text_x2_a_step_pointing_at_a_ray_shows_four_rows_of_the_ray_tree(qtbot, monkeypatch):
+    """The image gives the tree room (it kept about a row and a half), but keeps its share."""
+    window = _lecture_hall_window(qtbot, monkeypatch)
+    panel = window.tab("image order").widget
+    steps = [(row, k) for row, lesson in enumerate(shipped_lessons())
+             for k, step in enumerate(lesson.steps) if "ray" in step.highlight]
+    assert steps  # the ray-casting and ray-tracing lessons point at rays
+    for row, k in steps:
+        window.lesson_panel.select(row, k)
+        qtbot.waitUntil(lambda: panel.tree.topLevelItemCount() > 0)
+        qtbot.waitUntil(lambda: panel.tree.viewport().height() >= TREE_ROWS * panel.tree.sizeHintForRow(0))
+        assert panel.details.currentIndex() == 0, (row, k)
+        image, details = panel.split.sizes()
+        assert image >= IMAGE_SHARE * (image + details) - 1, (row, k)  # the image keeps its share
     window.presentation.set_presenting(False)
