@@ -12,7 +12,6 @@ from __future__ import annotations
 from dataclasses import replace
 
 import numpy as np
-from PySide6.QtCore import QTimer
 
 from core.lessons import LessonStep
 from core.scene import Mesh, Scene
@@ -91,8 +90,7 @@ class LessonRunner:
         image_order.ray_kind = highlight.get("ray")
         image_order.tree.select_kind(image_order.ray_kind)
         if "ray" in highlight:
-            # The ray tree, where that ray is selected, once the step's panes are laid out.
-            QTimer.singleShot(0, image_order, image_order.show_ray_tree)
+            image_order.show_ray_tree()  # where that ray is selected
             words.append(f"the {highlight['ray']} ray")
         if "object" in highlight:
             from views.vtk_convert import object_polydata  # pyvista loads with the 3D pane, not before

@@ -61,8 +61,8 @@ def phong(n, to_light, to_eye, shininess: float) -> float:
         return 0.0
     r = reflect((-to_light[0], -to_light[1], -to_light[2]), n)
     cos_rv = dot(r, to_eye)
-    if cos_rv <= 0.0 and shininess > 0.0:  # 0^n = 0: the same answer without the power, a third
-        return 0.0                          # of shading's arithmetic where half the view is lit
+    if cos_rv <= 0.0 and shininess > 0.0:  # 0^n = 0: the same answer without the power
+        return 0.0
     return max(0.0, cos_rv) ** shininess
 
 
