@@ -49,6 +49,8 @@ WIDTH = 4
 #: Columns of a row of the packed wide tree (:attr:`core.image_order.bvh.Bvh.wide`): the children's ``lo``
 #: sides (x, y, z rows of WIDTH), their ``hi`` sides, their references (int32), padding to 128 bytes.
 WIDE_LO, WIDE_HI, WIDE_REFS, WIDE_SIZE = 0, 3 * WIDTH, 6 * WIDTH, 8 * WIDTH
+#: Columns of a row of the leaves (:attr:`core.image_order.bvh.Bvh.leaves`): first primitive, count, group.
+LEAF_SIZE = 3
 
 
 @jit
@@ -222,7 +224,7 @@ def widen(nodes):
     boxes[:, 0:3, :] = np.inf
     boxes[:, 3:6, :] = -np.inf
     refs = np.zeros((m, WIDTH), np.int64)
-    leaves = np.zeros((nodes.shape[0] - n_inner, 3), np.int64)
+    leaves = np.zeros((nodes.shape[0] - n_inner, LEAF_SIZE), np.int64)
     if nodes.shape[0] == 0:
         return boxes[:0], refs[:0], leaves
     pending = np.empty((m, 2), np.int64)  # (binary node, wide node)

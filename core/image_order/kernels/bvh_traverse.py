@@ -22,10 +22,11 @@ from __future__ import annotations
 
 import math
 
-from core.image_order.kernels.bvh_build import WIDE_HI, WIDE_LO, WIDE_REFS, WIDE_SIZE, WIDTH
+from core.image_order.kernels.bvh_build import LEAF_SIZE, WIDE_HI, WIDE_LO, WIDE_REFS, WIDE_SIZE, WIDTH
 from core.image_order.kernels.intersect import sphere_hit, triangle_hit
 from core.image_order.kernels.intrinsics.slabs4 import slab_test4
 from core.image_order.kernels.intrinsics.triangle4 import GROUP_SIZE, LANES, UNSURE, triangle_test4
+from core.image_order.kernels.intrinsics.unchecked import load_at, store_at
 from core.image_order.kernels.jit import jit, jit_inline
 from core.image_order.kernels.layout import BOUNDS_TESTS, PRIM_TESTS, ROW_CENTER, ROW_RADIUS
 from core.image_order.kernels.primitives import no_hit, prim_hit
@@ -37,12 +38,12 @@ _OTHER_SIDE = WIDE_LO + WIDE_HI
 def _push(stack, stack_t, bottom, top, ref, t):
     """Put ``ref`` entered at ``t`` on the stack above ``bottom`` so that nearer entries lie higher."""
     at = top
-    while at > bottom and stack_t[at - 1] < t:
-        stack[at] = stack[at - 1]
-        stack_t[at] = stack_t[at - 1]
+    while at > bottom and load_at(stack_t, at - 1) < t:
+        store_at(stack, at, load_at(stack, at - 1))
+        store_at(stack_t, at, load_at(stack_t, at - 1))
         at -= 1
-    stack[at] = ref
-    stack_t[at] = t
+    store_at(stack, at, ref)
+    store_at(stack_t, at, t)
     return top + 1
 
 
@@ -101,11 +102,14 @@ def bvh_closest(o, d, shear, t_min, t_max, any_hit, bvh, n_spheres, stack, stack
                     bottom = top
                     for c in range(WIDTH):
                         if c != near and entries[c] < math.inf:
-                            top = _push(stack, stack_t, bottom, top, refs[node, WIDE_REFS + c], entries[c])
-                    node, enter = refs[node, WIDE_REFS + near], near_t
+                            child = load_at(refs, at + WIDE_REFS + c)
+                            top = _push(stack, stack_t, bottom, top, child, entries[c])
+                    node, enter = load_at(refs, at + WIDE_REFS + near), near_t
                     continue
             else:
-                first, count, group = leaves[~node, 0], leaves[~node, 1], leaves[~node, 2]
+                leaf = LEAF_SIZE * ~node
+                first, count = load_at(leaves, leaf), load_at(leaves, leaf + 1)
+                group = load_at(leaves, leaf + 2)
                 tests += count
                 if group >= 0:
                     for j in range(0, count, LANES):
@@ -126,7 +130,7 @@ def bvh_closest(o, d, shear, t_min, t_max, any_hit, bvh, n_spheres, stack, stack
         if top == 0:
             break
         top -= 1
-        node, enter = stack[top], stack_t[top]
+        node, enter = load_at(stack, top), load_at(stack_t, top)
     counters[BOUNDS_TESTS] += boxes
     counters[PRIM_TESTS] += tests
     if best_k < 0:
