@@ -1,10 +1,13 @@
 # Shared setup for the two README commands; sourced, not run.
 # Creates .venv in the checkout and installs the project into it, but only
-# when pyproject.toml changed since the last install (a stamp records its hash).
+# when pyproject.toml or .ci/constraints.txt changed since the last install (a stamp records
+# their hash).
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$ROOT"
 VENV="$ROOT/.venv"
+# The versions the suite last passed with: installed when they can be (see the file's header).
+CONSTRAINTS="$ROOT/.ci/constraints.txt"
 PY="${PYTHON:-python3}"
 
 need_root() {
@@ -27,15 +30,21 @@ ensure_venv() {
     [ -x "$VENV/bin/python" ] || "$PY" -m venv "$VENV"
     local stamp="$VENV/.installed$extras"
     local want
-    want="$(sha256sum pyproject.toml | cut -d' ' -f1)"
+    want="$(cat pyproject.toml "$CONSTRAINTS" | sha256sum | cut -d' ' -f1)"
     # The test install is a superset of the app's: either stamp will do for the app.
     if [ -z "$extras" ] && [ "$(cat "$VENV/.installed[test]" 2>/dev/null)" = "$want" ]; then
         return
     fi
     if [ ! -f "$stamp" ] || [ "$(cat "$stamp")" != "$want" ]; then
-        echo "setup: installing Python packages into .venv (once per change of pyproject.toml)"
+        echo "setup: installing Python packages into .venv (once per change of pyproject.toml" \
+             "or .ci/constraints.txt)"
         "$VENV/bin/python" -m pip install -q --upgrade pip
-        "$VENV/bin/python" -m pip install -q -e ".$extras"
+        if ! "$VENV/bin/python" -m pip install -q -c "$CONSTRAINTS" -e ".$extras"; then
+            echo "setup: the tested versions in .ci/constraints.txt do not install with this Python" \
+                 "($("$VENV/bin/python" --version 2>&1)); installing the newest versions that" \
+                 "pyproject.toml allows instead" >&2
+            "$VENV/bin/python" -m pip install -q -e ".$extras"
+        fi
         echo "$want" > "$stamp"
     fi
 }
