@@ -6,8 +6,10 @@ Three figures, each the median of several runs after a warm-up run:
    100,000 and 1,000,000 triangles (``--triangles``) filling most of a
    640 x 480 view (closest hit with ``t`` and barycentrics per ray; four-wide
    tree, four boxes and four triangles per vector instruction, see
-   :mod:`core.image_order.bvh`), so that a reader sees how the cost grows
-   with the mesh;
+   :mod:`core.image_order.bvh`; rays of 4 x 4 pixels walk the tree together
+   where a packet covers less than a typical triangle, see
+   :mod:`core.image_order.kernels.bvh_packet`), so that a reader sees how the
+   cost grows with the mesh;
 2. the same rays with Intel Embree through the ``embreex`` package (an
    optional extra: ``pip install -e '.[bench]'``), on its fastest path from
    Python: ``run()`` traces a whole array of rays in one call, but on the
@@ -171,7 +173,8 @@ def _primary_rays(triangles: int, args) -> tuple:
     seconds = {name: statistics.median(times) for name, times in runs.items()}
     per_ray = counters[0] / n_rays
     prims = hits[..., HIT_PRIM].reshape(-1)
-    print(f"  ours   (numba 4-wide BVH, float64): {_spread(runs['ours'])}  "
+    walk = "packets of 4 x 4 rays" if k.opts[layout.OPT_PACKETS] else "one ray at a time"
+    print(f"  ours   (numba 4-wide BVH, float64, {walk}): {_spread(runs['ours'])}  "
           f"{n_rays / seconds['ours'] / 1e6:6.2f} Mrays/s  ({(prims >= 0).mean():.0%} of rays hit; per ray "
           f"{per_ray[BOUNDS_TESTS]:.1f} box and {per_ray[PRIM_TESTS]:.1f} triangle tests)")
     print(f"         the same rays, nothing to hit: {_spread(runs['nothing to hit'])}  (making the rays and "

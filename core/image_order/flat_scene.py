@@ -297,6 +297,7 @@ def kernel_inputs(scene: Scene, settings: TraceSettings, plan: EffectsPlan, flat
     opts[lay.OPT_REFLECTION] = plan.reflection_rays
     opts[lay.OPT_REFRACTION] = plan.refraction_rays
     opts[lay.OPT_BACKGROUND:lay.OPT_BACKGROUND + 3] = scene.background
+    opts[lay.OPT_PACKETS] = isinstance(structure, Bvh) and structure.packets_pay(scene.camera)
     lights = np.zeros((len(scene.lights), lay.LIGHT_SIZE))
     for i, (light, lp) in enumerate(zip(scene.lights, plan.lights, strict=True)):
         lights[i, lay.LIGHT_POSITION:lay.LIGHT_POSITION + 3] = light.position

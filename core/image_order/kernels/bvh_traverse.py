@@ -11,8 +11,10 @@ has a leaf of its own and its own test.  Boxes are only tested against the
 part of the ray before the closest hit so far, so far subtrees fall away
 quickly.
 
-:func:`bvh_closest` is inlined into the render's loops of primary and
-secondary rays and into the shadow rays of shading, where a call passing
+:func:`bvh_closest` is inlined into the render's loops of secondary rays,
+into the shadow rays of shading and into the primary rays that cannot go in
+a packet (:mod:`core.image_order.kernels.bvh_packet`, which shares
+:func:`test_leaf`, :func:`hit_record` and :func:`nearest_child`), where a call passing
 the tree's arrays would cost about a fifth of the traversal itself; every
 other caller goes through one compiled copy
 (:mod:`core.image_order.kernels.closest_hit`).
@@ -48,6 +50,45 @@ def _push(stack, stack_t, bottom, top, ref, t):
 
 
 @jit_inline
+def nearest_child(entries, refs, at, stack, stack_t, top, slots):
+    """Of the children of the node at ``at`` with the entries ``entries`` (``inf``: missed), the
+    nearest, ``(child, entry, top)``, after pushing the others that were hit, farther first.
+
+    With ``slots >= 0`` each pushed entry also carries ``slots + child``, the slot of its box
+    (:func:`stack_entry`); with -1 it is the plain node reference.
+    """
+    near, near_t = 0, entries[0]
+    for c in range(1, WIDTH):
+        if entries[c] < near_t:
+            near, near_t = c, entries[c]
+    if near_t < math.inf:
+        bottom = top
+        for c in range(WIDTH):
+            if c != near and entries[c] < math.inf:
+                ref = load_at(refs, at + WIDE_REFS + c)
+                if slots >= 0:
+                    ref = stack_entry(ref, slots + c)
+                top = _push(stack, stack_t, bottom, top, ref, entries[c])
+    return near, near_t, top
+
+
+_SLOT, _HALF = 1 << 32, 1 << 31  # node references are int32
+
+
+@jit_inline
+def stack_entry(ref, slot):
+    """A node reference (negative for a leaf) and the slot of its box in its parent
+    (``parent * WIDTH + child``), packed in one stack entry."""
+    return slot * _SLOT + (ref + _HALF)
+
+
+@jit_inline
+def from_stack_entry(entry):
+    """``(ref, slot)`` of a :func:`stack_entry`."""
+    return entry % _SLOT - _HALF, entry // _SLOT
+
+
+@jit_inline
 def bvh_closest(o, d, shear, t_min, t_max, any_hit, bvh, n_spheres, stack, stack_t, counters):
     """The closest crossing with ``t_min <= t < t_max`` (or any, for shadow rays), through the BVH.
 
@@ -71,7 +112,7 @@ def bvh_closest(o, d, shear, t_min, t_max, any_hit, bvh, n_spheres, stack, stack
     if wide.shape[0] == 0:
         return no_hit()
     ox, oy, oz = o
-    kx, ky, kz, sx, sy, sz = shear
+    kx, ky, kz = shear[0], shear[1], shear[2]
     okx, oky, okz = o[kx], o[ky], o[kz]
     ix, iy, iz = 1.0 / d[0], 1.0 / d[1], 1.0 / d[2]
     # Rows of the near and far sides per axis: lo is near where the direction is positive.
@@ -94,16 +135,8 @@ def bvh_closest(o, d, shear, t_min, t_max, any_hit, bvh, n_spheres, stack, stack
                 entries = slab_test4(wide, at + nx, at + ny, at + nz, at + fx, at + fy, at + fz, ox, oy, oz,
                                      ix, iy, iz, t_min, best_t)
                 boxes += WIDTH
-                near, near_t = 0, entries[0]
-                for c in range(1, WIDTH):
-                    if entries[c] < near_t:
-                        near, near_t = c, entries[c]
+                near, near_t, top = nearest_child(entries, refs, at, stack, stack_t, top, -1)
                 if near_t < math.inf:
-                    bottom = top
-                    for c in range(WIDTH):
-                        if c != near and entries[c] < math.inf:
-                            child = load_at(refs, at + WIDE_REFS + c)
-                            top = _push(stack, stack_t, bottom, top, child, entries[c])
                     node, enter = load_at(refs, at + WIDE_REFS + near), near_t
                     continue
             else:
@@ -111,20 +144,8 @@ def bvh_closest(o, d, shear, t_min, t_max, any_hit, bvh, n_spheres, stack, stack
                 first, count = load_at(leaves, leaf), load_at(leaves, leaf + 1)
                 group = load_at(leaves, leaf + 2)
                 tests += count
-                if group >= 0:
-                    for j in range(0, count, LANES):
-                        start = (group + j // LANES) * GROUP_SIZE
-                        lanes = triangle_test4(groups, start, kx, ky, kz, okx, oky, okz, sx, sy, sz, t_min,
-                                               best_t)
-                        for lane in range(min(LANES, count - j)):
-                            t = lanes[lane]
-                            if t == UNSURE:
-                                t = triangle_hit(o, shear, rows, first + j + lane, t_min, best_t)[0]
-                            if t < best_t:
-                                best_t, best_k = t, first + j + lane
-                else:
-                    best_t, best_k = _leaf_one_by_one(rows, order, n_spheres, first, count, o, d, shear,
-                                                      t_min, best_t, best_k)
+                best_t, best_k = test_leaf(groups, rows, order, n_spheres, first, count, group, o, d, shear,
+                                           okx, oky, okz, t_min, best_t, best_k)
                 if any_hit and best_k >= 0:
                     top = 0
         if top == 0:
@@ -135,9 +156,39 @@ def bvh_closest(o, d, shear, t_min, t_max, any_hit, bvh, n_spheres, stack, stack
     counters[PRIM_TESTS] += tests
     if best_k < 0:
         return no_hit()
-    prim = order[best_k]
     if any_hit:  # a shadow ray needs only its blocker and where it lies
-        return prim, best_t, 0.0, 0.0, 0.0
+        return order[best_k], best_t, 0.0, 0.0, 0.0
+    return hit_record(rows, order, n_spheres, best_k, o, d, shear, t_min)
+
+
+@jit_inline
+def test_leaf(groups, rows, order, n_spheres, first, count, group, o, d, shear, okx, oky, okz, t_min, best_t,
+              best_k):
+    """Test the primitives of one leaf: ``(best_t, best_k)``, the closest crossing before ``best_t``
+    and its place in the leaf order (unchanged if none is closer).  ``okx, oky, okz`` are the
+    origin's coordinates on the shear's axes."""
+    if group < 0:
+        return _leaf_one_by_one(rows, order, n_spheres, first, count, o, d, shear, t_min, best_t, best_k)
+    kx, ky, kz, sx, sy, sz = shear
+    for j in range(0, count, LANES):
+        start = (group + j // LANES) * GROUP_SIZE
+        lanes = triangle_test4(groups, start, kx, ky, kz, okx, oky, okz, sx, sy, sz, t_min, best_t)
+        for lane in range(min(LANES, count - j)):
+            t = lanes[lane]
+            if t == UNSURE:
+                t = triangle_hit(o, shear, rows, first + j + lane, t_min, best_t)[0]
+            if t < best_t:
+                best_t, best_k = t, first + j + lane
+    return best_t, best_k
+
+
+@jit_inline
+def hit_record(rows, order, n_spheres, best_k, o, d, shear, t_min):
+    """``(prim, t, b0, b1, b2)`` of the primitive at ``best_k`` in the leaf order (-1: none), known
+    to be the ray's closest crossing after ``t_min``."""
+    if best_k < 0:
+        return no_hit()
+    prim = order[best_k]
     if prim < n_spheres:
         return _sphere_crossing(rows, best_k, prim, o, d, t_min)
     t, b0, b1, b2 = triangle_hit(o, shear, rows, best_k, t_min, math.inf)

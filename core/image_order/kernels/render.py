@@ -34,6 +34,18 @@ from numba import prange
 
 from core.image_order.intersect_triangle import ray_shear
 from core.image_order.kernels import layout as lay
+from core.image_order.kernels.bvh_packet import (
+    AXIS_FIELDS,
+    PACKET_COLS,
+    PACKET_ROWS,
+    PACKET_SIZE,
+    RAY_FIELDS,
+    can_share_walk,
+    packet_closest,
+    packet_hit,
+    ray_of,
+    set_ray,
+)
 from core.image_order.kernels.bvh_traverse import bvh_closest
 from core.image_order.kernels.closest_hit import BVH, GRID, GRID_SPHERES, closest_hit
 from core.image_order.kernels.intrinsics.bands import BAND_ROWS, take_band
@@ -67,10 +79,16 @@ def make_scratch(method, n_prims, n_objects, bvh_depth):
 
 
 @jit
-def _primary_rows(first, last, cam, xs, ys, opts, geo, grid, bvh, scratch, hits, depth, objects, count):
+def _primary_rows(first, last, cam, xs, ys, opts, geo, grid, bvh, scratch, packet, hits, depth, objects,
+                  count):
     method = int(opts[lay.OPT_ACCEL])
+    if method == BVH and opts[lay.OPT_PACKETS] > 0.0:  # see core.image_order.kernels.bvh_packet
+        for j0 in range(first, last, PACKET_ROWS):
+            for i0 in range(0, xs.shape[0], PACKET_COLS):
+                _primary_packet(j0, min(j0 + PACKET_ROWS, last), i0, min(i0 + PACKET_COLS, xs.shape[0]), cam,
+                                xs, ys, geo, bvh, scratch, packet, hits, depth, objects, count)
+        return
     n_spheres = geo[lay.GEO_N_SPHERES]
-    prim_object = geo[lay.GEO_PRIM_OBJECT]
     stack, stack_t = scratch[lay.SCRATCH_STACK], scratch[lay.SCRATCH_STACK_T]
     for j in range(first, last):
         for i in range(xs.shape[0]):
@@ -84,15 +102,50 @@ def _primary_rows(first, last, cam, xs, ys, opts, geo, grid, bvh, scratch, hits,
                                 stack_t, count)
             else:
                 h = closest_hit(method, o, d, t_min, t_max, False, geo, grid, bvh, scratch, count)
-            prim, t, b0, b1, b2 = h
-            hits[j, i, lay.HIT_PRIM], hits[j, i, lay.HIT_T] = prim, t
-            hits[j, i, lay.HIT_B0], hits[j, i, lay.HIT_B1], hits[j, i, lay.HIT_B2] = b0, b1, b2
-            if prim >= 0:
-                depth[j, i] = view_depth(cam, o, d, t)
-                objects[j, i] = prim_object[prim]
+            _write_primary(cam, geo, hits, depth, objects, j, i, o, d, h)
+
+
+@jit
+def _primary_packet(j0, j1, i0, i1, cam, xs, ys, geo, bvh, scratch, packet, hits, depth, objects, count):
+    """The primary rays of pixels ``[j0, j1) x [i0, i1)`` through the BVH, as one packet when they
+    can share the walk, else one by one."""
+    rays, axes = packet
+    n_spheres = geo[lay.GEO_N_SPHERES]
+    stack, stack_t = scratch[lay.SCRATCH_STACK], scratch[lay.SCRATCH_STACK_T]
+    n = 0
+    for j in range(j0, j1):
+        for i in range(i0, i1):
+            o, d, t_min, t_max = primary_ray(cam, xs[i], ys[j])
+            set_ray(rays, axes, n, o, d, t_min, t_max)
+            n += 1
+    count[lay.PRIMARY] += n
+    shared = bvh[0].shape[0] > 0 and can_share_walk(rays, n)
+    if shared:
+        packet_closest(n, rays, axes, bvh, n_spheres, stack, stack_t, count)
+    r = 0
+    for j in range(j0, j1):
+        for i in range(i0, i1):
+            o, d, shear, t_min, t_max = ray_of(rays, axes, r)
+            if shared:
+                h = packet_hit(rays, axes, r, bvh, n_spheres)
             else:
-                depth[j, i] = math.inf
-                objects[j, i] = -1
+                h = bvh_closest(o, d, shear, t_min, t_max, False, bvh, n_spheres, stack, stack_t, count)
+            _write_primary(cam, geo, hits, depth, objects, j, i, o, d, h)
+            r += 1
+
+
+@jit_inline
+def _write_primary(cam, geo, hits, depth, objects, j, i, o, d, h):
+    """Pixel ``(j, i)``'s closest hit ``h`` into the hits, its depth and the object it shows."""
+    prim, t, b0, b1, b2 = h
+    hits[j, i, lay.HIT_PRIM], hits[j, i, lay.HIT_T] = prim, t
+    hits[j, i, lay.HIT_B0], hits[j, i, lay.HIT_B1], hits[j, i, lay.HIT_B2] = b0, b1, b2
+    if prim >= 0:
+        depth[j, i] = view_depth(cam, o, d, t)
+        objects[j, i] = geo[lay.GEO_PRIM_OBJECT][prim]
+    else:
+        depth[j, i] = math.inf
+        objects[j, i] = -1
 
 
 @jit_inline
@@ -200,14 +253,15 @@ def _worker(stage, queue, cam, xs, ys, hits, depth, objects, color, children, sp
                            bvh_depth)
     rec = np.empty(lay.record_size(lights.shape[0]))
     stack = np.empty((2 * int(opts[lay.OPT_MAX_DEPTH]) + 4, lay.STACK_SIZE))  # of the secondary rays
+    packet = (np.empty(PACKET_SIZE * RAY_FIELDS), np.empty(PACKET_SIZE * AXIS_FIELDS, np.int64))
     while True:
         first = take_band(queue) * BAND_ROWS
         if first >= ys.shape[0]:
             break
         last = min(first + BAND_ROWS, ys.shape[0])
         if stage == PRIMARY_STAGE:
-            _primary_rows(first, last, cam, xs, ys, opts, geo, grid, bvh, scratch, hits, depth, objects,
-                          count)
+            _primary_rows(first, last, cam, xs, ys, opts, geo, grid, bvh, scratch, packet, hits, depth,
+                          objects, count)
         elif stage == SHADE_STAGE:
             _shade_rows(first, last, cam, xs, ys, hits, color, children, spawned, materials, lights, opts,
                         geo, grid, bvh, scratch, rec, count)

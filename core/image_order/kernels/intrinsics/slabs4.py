@@ -13,6 +13,10 @@ in float64, as the scalar test would (see :mod:`core.image_order.kernels.intrins
 The comparisons keep pbrt's rule for a ray lying in a slab's plane:
 ``0 * inf`` is NaN, which fails every comparison and leaves the bound
 unchanged.
+
+:func:`slab_interval4` is the same test for a packet of rays that share an
+origin (:mod:`core.image_order.kernels.bvh_packet`): one test of a node for
+all of them, never missing a box that one of them would enter.
 """
 
 from __future__ import annotations
@@ -48,20 +52,58 @@ def slab_test4(typingctx, rows, near_x, near_y, near_z, far_x, far_y, far_z, ox,
                                                  oz, ix, iy, iz, t_min, t_max)
 
     def codegen(context, builder, sig, args):
-        data = context.make_array(sig.args[0])(context, builder, args[0]).data
+        def near_and_far(distance, axis):
+            inverse = splat(builder, args[10 + axis])
+            return (builder.fmul(distance(1 + axis), inverse), builder.fmul(distance(4 + axis), inverse))
 
-        def side(index):
-            return builder.fpext(load(builder, data, index, FOUR_F32), FOUR_F64)
-
-        origin = [splat(builder, value) for value in args[7:10]]
-        inverse = [splat(builder, value) for value in args[10:13]]
-        enter, leave = splat(builder, args[13]), splat(builder, args[14])
-        for axis in range(3):
-            t_near = builder.fmul(builder.fsub(side(args[1 + axis]), origin[axis]), inverse[axis])
-            t_far = builder.fmul(builder.fsub(side(args[4 + axis]), origin[axis]), inverse[axis])
-            enter = builder.select(builder.fcmp_ordered(">", t_near, enter), t_near, enter)
-            leave = builder.select(builder.fcmp_ordered("<", t_far, leave), t_far, leave)
-        entry = builder.select(builder.fcmp_ordered("<=", enter, leave), enter, constant(math.inf))
-        return lanes(context, builder, sig.return_type, entry)
+        return _slabs(context, builder, sig, args, near_and_far, args[13], args[14])
 
     return signature, codegen
+
+
+@intrinsic
+def slab_interval4(typingctx, rows, near_x, near_y, near_z, far_x, far_y, far_z, ox, oy, oz, ax, ay, az,
+                   bx, by, bz, t_min, t_max):
+    """For a packet of rays from one origin: a lower bound of where any of them enters each of four
+    boxes, ``inf`` where none can enter one.
+
+    The rays' ``1 / d`` lie between ``(ax, ay, az)`` and ``(bx, by, bz)``, one sign per axis
+    for all of them, and their admissible parts of ``t`` inside ``[t_min, t_max]``.  Per axis
+    the test takes the smaller of the two slab distances ``(side - o) * a`` and ``(side - o) * b``
+    for the near side and the larger for the far side.  Rounding is monotonic, so each ray's own
+    rounded distance (:func:`slab_test4`, the same subtraction, a multiplier in between) lies
+    between the two: a ray that would enter a box by its own test makes this test enter it too.
+    """
+    signature = types.UniTuple(types.float64, 4)(rows, near_x, near_y, near_z, far_x, far_y, far_z, ox, oy,
+                                                 oz, ax, ay, az, bx, by, bz, t_min, t_max)
+
+    def codegen(context, builder, sig, args):
+        def near_and_far(distance, axis):
+            low, high = splat(builder, args[10 + axis]), splat(builder, args[13 + axis])
+            near, far = distance(1 + axis), distance(4 + axis)
+            near_a, near_b = builder.fmul(near, low), builder.fmul(near, high)
+            far_a, far_b = builder.fmul(far, low), builder.fmul(far, high)
+            return (builder.select(builder.fcmp_ordered("<", near_a, near_b), near_a, near_b),
+                    builder.select(builder.fcmp_ordered(">", far_a, far_b), far_a, far_b))
+
+        return _slabs(context, builder, sig, args, near_and_far, args[16], args[17])
+
+    return signature, codegen
+
+
+def _slabs(context, builder, sig, args, near_and_far, t_min, t_max):
+    """The four entries, given ``near_and_far(distance, axis)``: the slab distances of an axis made
+    from ``distance(k)`` (side ``args[k]`` minus the origin's coordinate, four lanes)."""
+    data = context.make_array(sig.args[0])(context, builder, args[0]).data
+
+    def distance(k):
+        side = builder.fpext(load(builder, data, args[k], FOUR_F32), FOUR_F64)
+        return builder.fsub(side, splat(builder, args[7 + (k - 1) % 3]))
+
+    enter, leave = splat(builder, t_min), splat(builder, t_max)
+    for axis in range(3):
+        t_near, t_far = near_and_far(distance, axis)
+        enter = builder.select(builder.fcmp_ordered(">", t_near, enter), t_near, enter)
+        leave = builder.select(builder.fcmp_ordered("<", t_far, leave), t_far, leave)
+    entry = builder.select(builder.fcmp_ordered("<=", enter, leave), enter, constant(math.inf))
+    return lanes(context, builder, sig.return_type, entry)

@@ -1,0 +1,205 @@
+"""Primary rays in packets find, ray for ray, the hits that brute force finds.
+
+The packet walk (core.image_order.kernels.bvh_packet) is checked against the
+"none" method, which tests every primitive for every ray and shares no
+traversal code with it, on meshes, spheres and cameras that make packets fall
+apart: image sizes that are no multiple of the packet, an eye inside the mesh,
+rays parallel to an axis plane, an orthographic camera.
+"""
+
+import math
+from dataclasses import replace
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from numba import njit
+
+from core import presets_trace
+from core.camera import Camera
+from core.image_order.effects_plan import effects_plan
+from core.image_order.flat_scene import TraceSettings, kernel_inputs, trace_scene
+from core.image_order.intersect_triangle import intersect_triangle
+from core.image_order.kernels import layout, render
+from core.image_order.kernels.closest_hit import closest_hit
+from core.image_order.kernels.intrinsics.slabs4 import slab_interval4, slab_test4
+from core.image_order.kernels.layout import (
+    BOUNDS_TESTS,
+    HIT_PRIM,
+    HIT_SIZE,
+    HIT_T,
+    N_COUNTERS,
+    OPT_PACKETS,
+    PRIM_TESTS,
+)
+from core.image_order.kernels.render import make_scratch
+from core.scene import Material, Mesh, PointLight, Scene, Sphere
+
+
+def primary_hits(scene: Scene, accel: str, packets: bool | None = True):
+    """The primary stage's hits (ny, nx, HIT_SIZE), depths, objects and counters with ``accel``;
+    with the BVH, ``packets`` True makes the rays go in packets wherever they can share a walk,
+    whether or not packets pay (None: as :meth:`Bvh.packets_pay` decides)."""
+    flat = trace_scene(scene)
+    structure = flat.geometry.accel(accel)[0]
+    k = kernel_inputs(scene, TraceSettings(accel=accel), effects_plan(scene), flat, structure)
+    if packets is not None:
+        k.opts[OPT_PACKETS] = packets
+    w, h = scene.camera.width, scene.camera.height
+    hits, depth, objects = np.zeros((h, w, HIT_SIZE)), np.zeros((h, w)), np.zeros((h, w), np.int64)
+    color, children = np.zeros((h, w, 3)), np.zeros((h, w, 2, layout.CHILD_SIZE))
+    counters = render.render_pass(render.PRIMARY_STAGE, k.cam, np.arange(float(w)), np.arange(float(h)), hits,
+                                  depth, objects, color, children, np.zeros((h, w), np.uint8), k.materials,
+                                  k.lights, k.opts, k.geo, k.grid, k.bvh, k.bvh_depth, 2)
+    return hits, depth, objects, counters, flat
+
+
+def assert_same_as_brute_force(scene: Scene):
+    """Every pixel: the same ``t``, depth and object as brute force; the same primitive, or another
+    one crossed at that very ``t`` (a ray through an edge two triangles share).  Returns the
+    packet run's counters."""
+    hits, depth, objects, counters, flat = primary_hits(scene, "bvh")
+    ref_hits, ref_depth, ref_objects, _, _ = primary_hits(scene, "none")
+    assert np.array_equal(hits[..., HIT_T], ref_hits[..., HIT_T])
+    assert np.array_equal(depth, ref_depth) and np.array_equal(objects, ref_objects)
+    origins, directions = scene.camera.primary_rays()
+    rows, n_spheres = flat.geometry.rows, flat.geometry.n_spheres
+    for y, x in np.argwhere(hits[..., HIT_PRIM] != ref_hits[..., HIT_PRIM]):
+        for prim in (int(hits[y, x, HIT_PRIM]), int(ref_hits[y, x, HIT_PRIM])):
+            assert prim >= n_spheres  # spheres never tie
+            crossing = intersect_triangle(origins[y, x], directions[y, x], *rows[prim].reshape(3, 3))
+            assert crossing.hit and crossing.t == hits[y, x, HIT_T]
+    assert (ref_hits[..., HIT_PRIM] >= 0).mean() > 0.2  # the scene is in view
+    return counters
+
+
+BALL = presets_trace.bumpy_ball(3000)
+LIGHT = (PointLight((4.0, 8.0, 6.0)),)
+
+
+def test_a_mesh_seen_in_perspective_at_a_size_no_packet_fits():
+    camera = presets_trace.BIG_MESH_CAMERA.replace(width=37, height=23)
+    assert_same_as_brute_force(Scene(camera=camera, objects=(BALL,), lights=LIGHT))
+
+
+def flat_bvh(scene):
+    return trace_scene(scene).geometry.accel("bvh")[0]
+
+
+@pytest.mark.parametrize("width, height", [(160, 120), (48, 36)])
+def test_where_packets_are_chosen_they_test_fewer_boxes_and_not_many_more_triangles(width, height):
+    # At 48 x 36 a packet covers more than a triangle of this ball, and the render goes ray by ray.
+    camera = presets_trace.BIG_MESH_CAMERA.replace(width=width, height=height)
+    scene = Scene(camera=camera, objects=(BALL,), lights=LIGHT)
+    assert flat_bvh(scene).packets_pay(camera) == (width >= 160)
+    _, _, _, packets, flat = primary_hits(scene, "bvh", packets=None)
+    structure = flat.geometry.accel("bvh")[0]
+    k = kernel_inputs(scene, TraceSettings(accel="bvh"), effects_plan(scene), flat, structure)
+    scratch = make_scratch(k.method, flat.geometry.n_prims, 1, k.bvh_depth)
+    alone = np.zeros(N_COUNTERS, np.int64)
+    origins, directions = camera.primary_rays()
+    for o, d in zip(origins.reshape(-1, 3), directions.reshape(-1, 3), strict=True):
+        closest_hit(k.method, tuple(map(float, o)), tuple(map(float, d)), 0.0, math.inf, False, k.geo, k.grid,
+                    k.bvh, scratch, alone)
+    if width >= 160:
+        assert packets[BOUNDS_TESTS] < 0.5 * alone[BOUNDS_TESTS]
+        assert packets[PRIM_TESTS] < 1.4 * alone[PRIM_TESTS]
+    else:  # one by one: the same walk as closest_hit's, ray for ray (up to the near plane's start)
+        assert abs(packets[BOUNDS_TESTS] - alone[BOUNDS_TESTS]) < 0.02 * alone[BOUNDS_TESTS]
+
+
+def test_packets_are_chosen_for_the_benchmark_at_640_by_480_and_never_for_an_orthographic_camera():
+    ball = presets_trace.bumpy_ball(100_000)
+    camera = presets_trace.BIG_MESH_CAMERA.replace(width=640, height=480)
+    bvh = flat_bvh(Scene(camera=camera, objects=(ball,), lights=LIGHT))
+    assert bvh.packets_pay(camera)
+    assert not bvh.packets_pay(camera.replace(width=64, height=48))
+    assert not bvh.packets_pay(camera.replace(projection="orthographic"))
+
+
+def test_an_eye_inside_the_mesh():
+    camera = Camera(eye=(0.1, 0.9, 0.2), target=(1.0, 0.5, -1.0), width=30, height=18)
+    assert_same_as_brute_force(Scene(camera=camera, objects=(BALL,), lights=LIGHT))
+
+
+def test_rays_parallel_to_an_axis_plane_and_an_orthographic_camera_go_one_by_one():
+    # Looking straight down -z with an odd width: the middle column's rays have d_x = 0 exactly,
+    # so their packets cannot share a walk (1/d_x is infinite); the others still do.
+    axis = Camera(eye=(0.0, 0.8, 6.0), target=(0.0, 0.8, 0.0), width=33, height=21)
+    origins, directions = axis.primary_rays()
+    assert np.any(directions[..., 0] == 0.0)
+    assert_same_as_brute_force(Scene(camera=axis, objects=(BALL,), lights=LIGHT))
+    ortho = axis.replace(projection="orthographic", ortho_height=5.0)
+    assert_same_as_brute_force(Scene(camera=ortho, objects=(BALL,), lights=LIGHT))
+
+
+def test_spheres_and_a_floor_with_a_shared_diagonal():
+    scene = presets_trace.mirror_and_glass()
+    assert_same_as_brute_force(replace(scene, camera=scene.camera.replace(width=45, height=31)))
+
+
+@settings(max_examples=25, deadline=None)
+@given(seed=st.integers(0, 2**32 - 1), eye=st.tuples(*[st.floats(-4.0, 4.0)] * 3),
+       fov=st.floats(10.0, 120.0))
+def test_random_triangles_and_spheres_from_random_eyes(seed, eye, fov):
+    rng = np.random.default_rng(seed)
+    m = Material()
+    corners = rng.uniform(-1.5, 1.5, (40, 1, 3)) + rng.normal(scale=0.6, size=(40, 3, 3))
+    objects = (Mesh(corners.reshape(-1, 3), np.arange(120).reshape(40, 3), m),
+               Sphere(tuple(rng.uniform(-1.0, 1.0, 3)), float(rng.uniform(0.2, 0.8)), m))
+    if math.hypot(eye[0], eye[2]) < 0.3:  # looking along the up vector leaves no camera frame
+        eye = (eye[0] + 1.0, eye[1], eye[2] + 1.0)
+    camera = Camera(eye=eye, target=(0.0, 0.0, 0.0), fov_y_deg=fov, width=19, height=14)
+    hits, _, _, _, _ = primary_hits(Scene(camera=camera, objects=objects, lights=LIGHT), "bvh")
+    ref_hits, _, _, _, _ = primary_hits(Scene(camera=camera, objects=objects, lights=LIGHT), "none")
+    assert np.array_equal(hits[..., HIT_T], ref_hits[..., HIT_T])
+
+
+# --- the interval slab test never rejects a box one of its rays enters -------------------------
+
+@njit
+def _entries(node, near, far, o, inverses, t_min, t_max):
+    """Each ray's own entries into the node's four boxes, and the packet's lower bounds."""
+    n = inverses.shape[0]
+    own = np.empty((n, 4))
+    for r in range(n):
+        e = slab_test4(node, near[0], near[1], near[2], far[0], far[1], far[2], o[0], o[1], o[2],
+                       inverses[r, 0], inverses[r, 1], inverses[r, 2], t_min, t_max)
+        for c in range(4):
+            own[r, c] = e[c]
+    a = [inverses[:, axis].min() for axis in range(3)]
+    b = [inverses[:, axis].max() for axis in range(3)]
+    e = slab_interval4(node, near[0], near[1], near[2], far[0], far[1], far[2], o[0], o[1], o[2],
+                       a[0], a[1], a[2], b[0], b[1], b[2], t_min, t_max)
+    return own, np.array([e[0], e[1], e[2], e[3]])
+
+
+@settings(max_examples=200, deadline=None)
+@given(seed=st.integers(0, 2**32 - 1), spread=st.sampled_from([1e-9, 1e-4, 0.05, 0.5]))
+def test_the_packets_bound_lies_below_every_rays_own_entry(seed, spread):
+    rng = np.random.default_rng(seed)
+    lo = rng.uniform(-3.0, 3.0, (3, 4))
+    hi = lo + rng.exponential(1.0, (3, 4)) * rng.choice([0.0, 1e-6, 1.0], (3, 4))  # flat boxes too
+    node = np.concatenate([lo, hi]).astype(np.float32).reshape(-1)
+    o = rng.uniform(-4.0, 4.0, 3)
+    base = rng.normal(size=3)
+    base[np.abs(base) < 0.05] = 0.05  # keep each axis' sign over the packet
+    directions = base + rng.normal(scale=spread, size=(16, 3)) * np.abs(base)
+    directions = np.where(np.sign(directions) == np.sign(base), directions, base)
+    inverses = 1.0 / directions
+    negative = inverses[0] < 0.0
+    near = np.array([4 * axis + (12 if negative[axis] else 0) for axis in range(3)])
+    far = np.array([4 * axis + (0 if negative[axis] else 12) for axis in range(3)])
+    own, bound = _entries(node, near, far, o, inverses, 0.0, math.inf)
+    entered = own < math.inf
+    assert np.all(bound[entered.any(axis=0)] < math.inf)
+    assert np.all(bound <= np.where(entered, own, math.inf).min(axis=0))
+
+
+@pytest.mark.parametrize("width, height", [(1, 1), (5, 3)])
+def test_tiny_images(width, height):
+    camera = presets_trace.BIG_MESH_CAMERA.replace(width=width, height=height)
+    hits, _, _, _, _ = primary_hits(Scene(camera=camera, objects=(BALL,), lights=LIGHT), "bvh")
+    ref_hits, _, _, _, _ = primary_hits(Scene(camera=camera, objects=(BALL,), lights=LIGHT), "none")
+    assert np.array_equal(hits[..., HIT_T], ref_hits[..., HIT_T])
