@@ -42,8 +42,14 @@ from __future__ import annotations
 import math
 
 from core.image_order.intersect_triangle import ray_shear
-from core.image_order.kernels.bvh_build import LEAF_SIZE, WIDE_HI, WIDE_LO, WIDE_REFS, WIDE_SIZE, WIDTH
-from core.image_order.kernels.bvh_traverse import from_stack_entry, hit_record, nearest_child, test_leaf
+from core.image_order.kernels.bvh_build import LEAF_SIZE, WIDE_REFS, WIDE_SIZE, WIDTH
+from core.image_order.kernels.bvh_traverse import (
+    from_stack_entry,
+    hit_record,
+    near_and_far_rows,
+    nearest_child,
+    test_leaf,
+)
 from core.image_order.kernels.intrinsics.slabs4 import slab_interval4, slab_test4
 from core.image_order.kernels.intrinsics.unchecked import load_at, store_at
 from core.image_order.kernels.jit import jit, jit_inline
@@ -59,7 +65,6 @@ RAY_FIELDS = 17
 # ... and its integer columns: the shear's axes kx, ky, kz, the closest primitive in leaf order (-1: none).
 A_AXES, A_BEST_K = 0, 3
 AXIS_FIELDS = 4
-_OTHER_SIDE = WIDE_LO + WIDE_HI
 #: A packet's rays test a leaf's box each on their own before its primitives (see the module's
 #: docstring), as long as that pays: for the first ``_TRIAL`` tests, and after them while at least
 #: 2 in 5 rays are turned away (a box test costs about 2/5 of a test of four triangles).
@@ -129,11 +134,7 @@ def packet_closest(n, rays, axes, bvh, n_spheres, stack, stack_t, counters):
         ay, by = min(ay, rays[b + R_INVERSE + 1]), max(by, rays[b + R_INVERSE + 1])
         az, bz = min(az, rays[b + R_INVERSE + 2]), max(bz, rays[b + R_INVERSE + 2])
         t_low, t_high = min(t_low, rays[b + R_T_MIN]), max(t_high, rays[b + R_BEST_T])
-    side_x = WIDE_HI if ax < 0.0 else WIDE_LO
-    side_y = WIDE_HI if ay < 0.0 else WIDE_LO
-    side_z = WIDE_HI if az < 0.0 else WIDE_LO
-    nx, ny, nz = side_x, side_y + WIDTH, side_z + 2 * WIDTH
-    fx, fy, fz = _OTHER_SIDE - side_x, _OTHER_SIDE - side_y + WIDTH, _OTHER_SIDE - side_z + 2 * WIDTH
+    nx, ny, nz, fx, fy, fz = near_and_far_rows(ax, ay, az)  # all the rays' signs agree
     boxes = 0
     tests = 0
     top = 0
@@ -156,7 +157,7 @@ def packet_closest(n, rays, axes, bvh, n_spheres, stack, stack_t, counters):
                 leaf = LEAF_SIZE * ~node
                 first, count = load_at(leaves, leaf), load_at(leaves, leaf + 1)
                 group = load_at(leaves, leaf + 2)
-                box_row, box = (slot // WIDTH) * WIDE_SIZE, slot % WIDTH
+                p, box = (slot // WIDTH) * WIDE_SIZE, slot % WIDTH  # the parent's row, the leaf's box in it
                 t_high = -math.inf
                 for r in range(n):
                     o, d, shear, t_min, best_t = ray_of(rays, axes, r)
@@ -164,8 +165,7 @@ def packet_closest(n, rays, axes, bvh, n_spheres, stack, stack_t, counters):
                     if enter < best_t and slot >= 0 and (checked < _TRIAL or 5 * rejected > 2 * checked):
                         # Only the rays that enter the leaf's box themselves test what it holds.
                         ix, iy, iz = _three(rays, b + R_INVERSE)
-                        q = box_row
-                        own = slab_test4(wide, q + nx, q + ny, q + nz, q + fx, q + fy, q + fz, ox, oy, oz,
+                        own = slab_test4(wide, p + nx, p + ny, p + nz, p + fx, p + fy, p + fz, ox, oy, oz,
                                          ix, iy, iz, t_min, best_t)
                         boxes += WIDTH
                         enters = own[box] < math.inf

@@ -50,6 +50,17 @@ def _push(stack, stack_t, bottom, top, ref, t):
 
 
 @jit_inline
+def near_and_far_rows(ix, iy, iz):
+    """Offsets within a wide node of the rows holding its boxes' near and far sides per axis, for
+    a ray with ``1 / d = (ix, iy, iz)``: ``lo`` is near where the direction is positive."""
+    side_x = WIDE_HI if ix < 0.0 else WIDE_LO
+    side_y = WIDE_HI if iy < 0.0 else WIDE_LO
+    side_z = WIDE_HI if iz < 0.0 else WIDE_LO
+    return (side_x, side_y + WIDTH, side_z + 2 * WIDTH,
+            _OTHER_SIDE - side_x, _OTHER_SIDE - side_y + WIDTH, _OTHER_SIDE - side_z + 2 * WIDTH)
+
+
+@jit_inline
 def nearest_child(entries, refs, at, stack, stack_t, top, slots):
     """Of the children of the node at ``at`` with the entries ``entries`` (``inf``: missed), the
     nearest, ``(child, entry, top)``, after pushing the others that were hit, farther first.
@@ -116,11 +127,7 @@ def bvh_closest(o, d, shear, t_min, t_max, any_hit, bvh, n_spheres, stack, stack
     okx, oky, okz = o[kx], o[ky], o[kz]
     ix, iy, iz = 1.0 / d[0], 1.0 / d[1], 1.0 / d[2]
     # Rows of the near and far sides per axis: lo is near where the direction is positive.
-    side_x = WIDE_HI if ix < 0.0 else WIDE_LO
-    side_y = WIDE_HI if iy < 0.0 else WIDE_LO
-    side_z = WIDE_HI if iz < 0.0 else WIDE_LO
-    nx, ny, nz = side_x, side_y + WIDTH, side_z + 2 * WIDTH
-    fx, fy, fz = _OTHER_SIDE - side_x, _OTHER_SIDE - side_y + WIDTH, _OTHER_SIDE - side_z + 2 * WIDTH
+    nx, ny, nz, fx, fy, fz = near_and_far_rows(ix, iy, iz)
     best_t = t_max
     best_k = -1
     boxes = 0

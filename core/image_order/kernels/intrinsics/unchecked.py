@@ -3,9 +3,9 @@
 numba indexes arrays the Python way: an index below zero counts from the
 end, so every access with an index it cannot prove non-negative carries a
 test and a fix-up.  The BVH traversal's stack pointer and node references
-are such indices, and those fix-ups sat on the traversal's critical path (in
-one process, 15 interleaved frames each, the 100,000-triangle benchmark's
-primary rays ran 4 to 10 % faster without them).  :func:`load_at` and
+are such indices, and those fix-ups sat on the traversal's critical path
+(without them the 100,000-triangle benchmark's primary stage ran about 4 %
+faster, in six alternating processes; an isolated traversal loop, 4 to 10 %).  :func:`load_at` and
 :func:`store_at` address element ``index`` of a C-contiguous array as if it
 were flat, and trust the caller that ``0 <= index < array.size``: as with
 numba's own indexing (bounds checks are off), nothing checks the end.
