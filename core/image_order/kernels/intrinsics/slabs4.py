@@ -17,6 +17,9 @@ unchanged.
 :func:`slab_interval4` is the same test for a packet of rays that share an
 origin (:mod:`core.image_order.kernels.bvh_packet`): one test of a node for
 all of them, never missing a box that one of them would enter.
+:func:`slab_rays4` turns the vector the other way: one box, four rays of
+such a packet, each lane computing exactly what :func:`slab_test4` computes
+for that ray and that box.
 """
 
 from __future__ import annotations
@@ -26,7 +29,7 @@ import math
 from numba import types
 from numba.extending import intrinsic
 
-from core.image_order.kernels.intrinsics.simd import FOUR_F32, FOUR_F64, constant, lanes, load, splat
+from core.image_order.kernels.intrinsics.simd import F64, FOUR_F32, FOUR_F64, constant, lanes, load, splat
 
 
 @intrinsic
@@ -56,7 +59,9 @@ def slab_test4(typingctx, rows, near_x, near_y, near_z, far_x, far_y, far_z, ox,
             inverse = splat(builder, args[10 + axis])
             return (builder.fmul(distance(1 + axis), inverse), builder.fmul(distance(4 + axis), inverse))
 
-        return _slabs(context, builder, sig, args, near_and_far, args[13], args[14])
+        return _slabs(context, builder, sig, _box_sides(context, builder, sig, args, near_and_far),
+                      splat(builder, args[13]),
+                      splat(builder, args[14]))
 
     return signature, codegen
 
@@ -86,23 +91,69 @@ def slab_interval4(typingctx, rows, near_x, near_y, near_z, far_x, far_y, far_z,
             return (builder.select(builder.fcmp_ordered("<", near_a, near_b), near_a, near_b),
                     builder.select(builder.fcmp_ordered(">", far_a, far_b), far_a, far_b))
 
-        return _slabs(context, builder, sig, args, near_and_far, args[16], args[17])
+        return _slabs(context, builder, sig, _box_sides(context, builder, sig, args, near_and_far),
+                      splat(builder, args[16]),
+                      splat(builder, args[17]))
 
     return signature, codegen
 
 
-def _slabs(context, builder, sig, args, near_and_far, t_min, t_max):
-    """The four entries, given ``near_and_far(distance, axis)``: the slab distances of an axis made
-    from ``distance(k)`` (side ``args[k]`` minus the origin's coordinate, four lanes)."""
+@intrinsic
+def slab_rays4(typingctx, rows, near_x, near_y, near_z, far_x, far_y, far_z, ox, oy, oz, rays, ix_at, iy_at,
+               iz_at, t_min_at, t_max_at):
+    """Entry distances of four rays from one origin into one box, ``inf`` for a ray that misses it.
+
+    Parameters
+    ----------
+    rows, near_x ... far_z : as for :func:`slab_test4`, but each index names the one number of
+        the one box (a single float32), the same side for all four rays (their signs agree).
+    ox, oy, oz : float, the rays' common origin.
+    rays : 1-D float64 array; ``ix_at, iy_at, iz_at`` the flat indices of the four rays'
+        ``1 / d`` per axis and ``t_min_at, t_max_at`` of their admissible ranges of ``t``, four
+        numbers side by side at each.
+
+    Returns
+    -------
+    (t0, t1, t2, t3) : floats, lane ``r`` bit for bit :func:`slab_test4`'s entry of ray ``r``.
+    """
+    signature = types.UniTuple(types.float64, 4)(rows, near_x, near_y, near_z, far_x, far_y, far_z, ox, oy,
+                                                 oz, rays, ix_at, iy_at, iz_at, t_min_at, t_max_at)
+
+    def codegen(context, builder, sig, args):
+        data = context.make_array(sig.args[0])(context, builder, args[0]).data
+        per_ray = context.make_array(sig.args[10])(context, builder, args[10]).data
+
+        def distance(k):  # the one side, minus the origin, in every lane: slab_test4's subtraction
+            side = builder.fpext(builder.load(builder.gep(data, [args[k]])), F64)
+            return splat(builder, builder.fsub(side, args[7 + (k - 1) % 3]))
+
+        def near_and_far(axis):
+            inverse = load(builder, per_ray, args[11 + axis], FOUR_F64)
+            return builder.fmul(distance(1 + axis), inverse), builder.fmul(distance(4 + axis), inverse)
+
+        return _slabs(context, builder, sig, near_and_far, load(builder, per_ray, args[14], FOUR_F64),
+                      load(builder, per_ray, args[15], FOUR_F64))
+
+    return signature, codegen
+
+
+def _box_sides(context, builder, sig, args, near_and_far):
+    """``near_and_far(axis)`` for the four boxes of a node, given ``near_and_far(distance, axis)``
+    on ``distance(k)`` (side ``args[k]`` minus the origin's coordinate, four lanes)."""
     data = context.make_array(sig.args[0])(context, builder, args[0]).data
 
     def distance(k):
         side = builder.fpext(load(builder, data, args[k], FOUR_F32), FOUR_F64)
         return builder.fsub(side, splat(builder, args[7 + (k - 1) % 3]))
 
-    enter, leave = splat(builder, t_min), splat(builder, t_max)
+    return lambda axis: near_and_far(distance, axis)
+
+
+def _slabs(context, builder, sig, near_and_far, enter, leave):
+    """The four entries, given ``near_and_far(axis)``, the four lanes' slab distances of an axis,
+    and the four lanes' admissible range ``enter, leave``."""
     for axis in range(3):
-        t_near, t_far = near_and_far(distance, axis)
+        t_near, t_far = near_and_far(axis)
         enter = builder.select(builder.fcmp_ordered(">", t_near, enter), t_near, enter)
         leave = builder.select(builder.fcmp_ordered("<", t_far, leave), t_far, leave)
     entry = builder.select(builder.fcmp_ordered("<=", enter, leave), enter, constant(math.inf))
