@@ -7,9 +7,10 @@ image.  :class:`DeferredSceneView` stands in the window's layout for the
 real view in its place when told to (:meth:`build_soon`: the window does so
 once its first image is shown) or at the latest :data:`BUILD_AFTER_MS` after
 it was first painted.  Not earlier: the imports hold the GIL, so they would
-slow the first render by as much as they take.  pyvista and VTK's Qt widget are
-imported on a thread, so the window keeps answering meanwhile; the view is
-then built, and VTK draws its first frame, on the GUI thread.
+slow the first render by as much as they take.  pyvista, VTK's Qt widget and
+every VTK module the view loads are imported on a thread, so the window keeps
+answering meanwhile; the view is then built, and VTK draws its first frame, on
+the GUI thread.
 
 Until then it keeps what the window asks of the 3D pane (overlays, which of
 them are shown, the overview camera) and hands it to the view when it is
@@ -41,7 +42,7 @@ def _import_pyvista(imported: _Imported) -> None:
     try:
         import pyvista  # noqa: F401
 
-        import views.image_plotter  # noqa: F401  (VTK's Qt widget and OpenGL)
+        import views.scene_picking  # noqa: F401  (the pane, VTK's Qt widget and OpenGL; clicks in the pane)
     finally:
         with contextlib.suppress(RuntimeError):  # RuntimeError: the pane was deleted meanwhile
             imported.done.emit()  # queued: the view is built on the GUI thread

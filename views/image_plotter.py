@@ -26,7 +26,10 @@ import contextlib
 
 import numpy as np
 import vtkmodules.vtkInteractionStyle  # noqa: F401  (VTK's interactor styles)
+import vtkmodules.vtkInteractionWidgets  # noqa: F401  (these three: see below)
 import vtkmodules.vtkRenderingOpenGL2  # noqa: F401  (the OpenGL render window of this platform)
+import vtkmodules.vtkViewsContext2D  # noqa: F401
+import vtkmodules.vtkViewsCore  # noqa: F401
 from PySide6.QtCore import Qt
 from PySide6.QtGui import QColor, QImage, QLinearGradient, QPainter
 from PySide6.QtWidgets import QWidget
@@ -36,6 +39,10 @@ from vtkmodules.qt.QVTKRenderWindowInteractor import QVTKRenderWindowInteractor
 from vtkmodules.util.numpy_support import vtk_to_numpy
 from vtkmodules.vtkCommonCore import vtkUnsignedCharArray
 from vtkmodules.vtkRenderingCore import vtkRenderWindow
+
+# pyvista's interactor loads vtkInteractionWidgets, vtkViewsContext2D and vtkViewsCore on first use, in
+# the plotter's constructor on the GUI thread (about 90 ms); imported above, they load with this module,
+# on the thread that imports it (views.deferred_scene_view).
 
 
 @contextlib.contextmanager

@@ -42,3 +42,18 @@ def test_bench_startup_without_a_display_says_how_to_run_it():
     assert out.returncode == 2
     expected = "python -m app: error: bench startup needs a display; run it under xvfb-run -a"
     assert out.stderr.strip() == expected
+
+
+@pytest.mark.gui
+def test_bench_gui_prints_a_row_per_tab_that_follows_the_observer_and_the_opening_apart():
+    out = _run("bench", "gui", "--seconds", "0.2", "--size", "800x600")
+    assert out.returncode == 0, out.stderr
+    lines = out.stdout.splitlines()
+    rows = {line.split("  ")[0]: line.split() for line in lines[2:]
+            if line and not line.startswith("Opening")}
+    assert set(rows) == {"Image order", "Object order", "Four views", "Compare"}
+    for words in rows.values():  # longest and p99 stall, draws/s, images/s, full image after stop
+        numbers = [float(w) for w in words if w.replace(".", "").isdigit()]
+        assert len(numbers) == 5 and numbers[0] >= numbers[1] >= 0 and numbers[4] > 0
+    opening = next(line for line in lines if line.startswith("Opening"))
+    assert "the 3D pane's first frame after" in opening and "longest stall meanwhile" in opening

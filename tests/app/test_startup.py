@@ -195,3 +195,31 @@ def test_the_first_render_starts_once_the_window_is_painted(qtbot):
     qtbot.waitUntil(lambda: win.showing_full("image order"), timeout=RENDER_TIMEOUT_MS)
     image = win.tab("image order").widget.image
     assert image.rgb.shape[:2] == (win.model.camera.height, win.model.camera.width)
+
+
+BUILD_IMPORTS = """
+import sys
+from PySide6.QtWidgets import QApplication
+from views import deferred_scene_view
+
+deferred_scene_view.BUILD_AFTER_MS = 3_600_000
+app = QApplication(sys.argv[:1])
+from app.main_window import MainWindow
+from core import presets
+window = MainWindow(presets.lecture_scene())
+deferred_scene_view._import_pyvista(deferred_scene_view._Imported())  # what the import thread runs
+before = set(sys.modules)
+window.scene_view.build()  # on the GUI thread
+assert window.scene_view.view is not None
+print(",".join(sorted(set(sys.modules) - before)) or "-")
+"""
+
+
+@pytest.mark.gui
+def test_building_the_3d_pane_on_the_gui_thread_imports_nothing():
+    """Every module the 3D pane loads comes in on the import thread: an import on the GUI thread
+    (VTK's widgets and views took 90 ms, the pane's own modules 100 ms) froze the window."""
+    out = subprocess.run([sys.executable, "-c", BUILD_IMPORTS], cwd=ROOT, capture_output=True, text=True,
+                         timeout=300)
+    assert out.returncode == 0, out.stderr
+    assert out.stdout.split()[-1] == "-"
