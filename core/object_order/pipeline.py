@@ -208,6 +208,12 @@ slice (milliseconds) on a busy one: for a small frame one thread is quicker.  (T
 image is the same with any number.)"""
 
 
+def _read_only(a: np.ndarray) -> np.ndarray:
+    view = a.view()
+    view.flags.writeable = False
+    return view
+
+
 def _warm_up() -> None:
 
     render_raster(zbuffer_piercing(), RasterSettings(record_steps=True)).history.buffers(1)
@@ -266,6 +272,9 @@ def _render(scene: Scene, settings: RasterSettings) -> RasterResult:
         world = np.vstack([m.vertices for m in meshes] + [np.empty((0, 3))])
         triangles = np.vstack([m.triangles + v for m, v in zip(meshes, vertex_offsets[:-1], strict=True)]
                               + [np.empty((0, 3), np.int64)])
+    # Read-only either way: a mesh's own arrays are, and numba compiles a kernel apart for read-only
+    # arguments, so a one-mesh scene would compile (seconds) inside a stage, after the warm-up.
+    world, triangles = _read_only(world), _read_only(triangles)
     watch.lap("setup")
 
     # 1. World -> view (camera) space -> clip space, once per vertex.
