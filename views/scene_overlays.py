@@ -96,8 +96,7 @@ def polygon_parts(vertices) -> list[tuple[pv.PolyData, dict]]:
         return []
     from views import vtk_convert
 
-    outline = vtk_convert.polygon_polydata(vertices).extract_all_edges()
-    return [(outline, {"color": "#ff2bd6", "line_width": 4})]
+    return [(vtk_convert.outlines_polydata([vertices]), {"color": "#ff2bd6", "line_width": 4})]
 
 
 def clipped_parts(polygons) -> list[tuple[pv.PolyData, dict]]:
@@ -106,8 +105,7 @@ def clipped_parts(polygons) -> list[tuple[pv.PolyData, dict]]:
         return []
     from views import vtk_convert
 
-    return [(vtk_convert.polygon_polydata(p).extract_all_edges(),
-             {"color": "#7cff6b", "line_width": 3}) for p in polygons]
+    return [(vtk_convert.outlines_polydata(polygons), {"color": "#7cff6b", "line_width": 3})]
 
 
 def frustum_parts(camera) -> list[tuple[pv.PolyData, dict]]:

@@ -3,8 +3,10 @@
 import numpy as np
 import pytest
 from PySide6.QtGui import QImage, QSurface
+from window_helpers import RENDER_TIMEOUT_MS
 
 from core import presets
+from core.lessons import shipped_lessons
 
 
 def _drawn(view):
@@ -44,3 +46,23 @@ def test_the_pane_shows_what_vtk_draws_background_and_all(qtbot, window):
     drawn_by_vtk = _drawn(view)[..., :3]  # VTK draws the gradient background itself here
     levels = np.abs(painted - drawn_by_vtk).max(axis=2)
     assert np.mean(levels <= 2) >= 0.95  # all but the anti-aliased edges against the background
+
+
+def test_every_polygon_the_frustum_cut_is_outlined_and_all_are_one_actor(qtbot, window):
+    lesson = next(i for i, lesson in enumerate(shipped_lessons()) if lesson.id == "frustum")
+    window.lesson_panel.select(lesson, 0)
+    qtbot.waitUntil(lambda: window.showing_full("object order"), timeout=RENDER_TIMEOUT_MS)
+    cut = window.tab("object order").widget.result.clipping.clipped_polygons()
+    assert len(cut) > 50  # the lesson's spheres cross the frustum's planes
+    qtbot.waitUntil(lambda: bool(window.scene_view.overlay_parts("clipped")))
+    (outlines,) = window.scene_view.overlay_parts("clipped")  # one actor: each was a millisecond a draw
+    assert outlines.n_lines == len(cut)
+    assert np.allclose(outlines.points, np.vstack(cut))
+    cells = outlines.lines
+    start = 0
+    for polygon in cut:  # each polygon's corners in order, back to the first
+        n = cells[start]
+        ids = cells[start + 1:start + 1 + n]
+        assert n == len(polygon) + 1 and ids[0] == ids[-1]
+        assert np.allclose(outlines.points[ids[:-1]], polygon)
+        start += n + 1

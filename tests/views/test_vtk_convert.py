@@ -66,3 +66,15 @@ def test_ray_cast_coverage_matches_vtk_render(cam, caster):
     assert ours.sum() > 0.05 * ours.size
     agreement = np.mean(ours == theirs)
     assert agreement > 0.995, f"coverage agrees on only {agreement:.4f} of pixels"
+
+
+def test_outlines_are_each_polygons_edges_and_no_others():
+    triangle = [(0, 0, 0), (1, 0, 0), (0, 1, 0)]
+    square = [(0, 0, 2), (1, 0, 2), (1, 1, 2), (0, 1, 2)]
+    edges = vtk_convert.outlines_polydata([triangle, square]).extract_all_edges()
+    points = edges.points
+    segments = edges.lines.reshape(-1, 3)[:, 1:]
+    found = {frozenset(tuple(points[i]) for i in pair) for pair in segments}
+    expected = {frozenset((tuple(map(float, p[k])), tuple(map(float, p[(k + 1) % len(p)]))))
+                for p in (triangle, square) for k in range(len(p))}
+    assert found == expected  # 3 + 4 edges, none across a polygon or between the two
