@@ -23,7 +23,7 @@ import threading
 from dataclasses import replace
 
 import numpy as np
-from PySide6.QtCore import QEvent, QObject, QRunnable, QSize, Qt, QThreadPool, Signal
+from PySide6.QtCore import QEvent, QObject, QRunnable, QSize, Qt, QThreadPool, QTimer, Signal
 from PySide6.QtWidgets import (
     QComboBox,
     QDoubleSpinBox,
@@ -67,6 +67,14 @@ MODES = [("raytrace", "Ray tracing"), ("raycast", "Ray casting"), ("raster", "Ra
 DEFAULT_WIDTH = 160
 #: A sweep estimated to take longer than this (seconds) says how long in its status line.
 LONG_SWEEP_SECONDS = 600
+REPLOT_MS = 1000
+"""While a sweep runs, the plot is drawn again at most this often, with the last full layout's axes
+and a fixed legend corner; the finished sweep is drawn in full.  (A full draw, matplotlib's
+constrained layout and a search for the legend's emptiest corner, held the GUI thread about a
+quarter of a second on a small machine, and the points of cheap settings came in several a second.)"""
+QUICK_LEGEND = "upper right"
+"""The legend's corner while a sweep runs: slow and still inaccurate, the corner curves of error against
+time seldom reach (cheap settings sit top left, costly ones bottom right)."""
 
 
 class _CanvasBox(QWidget):
@@ -189,6 +197,11 @@ class CostPanel(QWidget):
         self._points: dict[int, Point] = {}
         self._knees: dict[str, int] = {}
         self._lines: dict = {}
+        self._layout: list | None = None  # the axes' places in the last full draw of the plot
+        self._replot = QTimer(self)
+        self._replot.setSingleShot(True)
+        self._replot.setInterval(REPLOT_MS)
+        self._replot.timeout.connect(lambda: self._draw_plot(quick=True))
         self._run_id = 0
         self._cancel: threading.Event | None = None
         self.selected: int | None = None
@@ -315,6 +328,7 @@ class CostPanel(QWidget):
         self.canvas = FigureCanvasQTAgg(self.plot_figure)
         self.canvas.mpl_connect("pick_event", self._on_pick)
         self.canvas.mpl_connect("resize_event", lambda _: self._plot_resized())
+        self.canvas.mpl_connect("draw_event", lambda _: self._laid_out())
         self.image_figure = Figure(layout="constrained", dpi=dpi)
         self.image_canvas = FigureCanvasQTAgg(self.image_figure)
         self._plot_box.layout().addWidget(self.canvas)
@@ -414,11 +428,13 @@ class CostPanel(QWidget):
             self._cancel.set()
             self._cancel = None
             self._run_id += 1  # whatever the stopped run still reports is dropped
+            self._draw_now()
             self.status.setText(f"Stopped after {len(self._points)} of {len(self.sweep.settings)} "
                                 "settings; Run resumes.")
             self._update_buttons()
 
     def _reset(self) -> None:
+        self._replot.stop()
         drawn = bool(self._points)  # else the empty plot is already shown
         self.sweep, self._swept_with = None, None
         self._points, self._knees, self.selected = {}, {}, None
@@ -437,17 +453,26 @@ class CostPanel(QWidget):
             self.status.setText(event.what + self._slow_note)
         elif isinstance(event, Point):
             self._points[event.index] = event
-            self._draw_plot()
             if self.selected is None:
-                self.show_point(event.index)
+                self.show_point(event.index)  # draws the plot too
+            elif not self._replot.isActive():
+                self._replot.start()
         elif isinstance(event, Knee):
             self._knees[event.knob] = event.index
-            self._draw_plot()
+            if not self._replot.isActive():
+                self._replot.start()
+
+    def _draw_now(self) -> None:
+        """Draw what was found in full, now (a sweep ended or stopped)."""
+        if self._replot.isActive():
+            self._replot.stop()
+        self._draw_plot()
 
     def _on_done(self, run_id: int, finished: bool) -> None:
         if run_id != self._run_id:
             return
         self._cancel = None
+        self._draw_now()
         if finished:
             self.progress.setValue(1000)
             skipped = "; ".join(f"{k} not swept: {r}" for k, r in self.sweep.skipped.items())
@@ -460,6 +485,7 @@ class CostPanel(QWidget):
         if run_id != self._run_id:
             return
         self._cancel = None
+        self._draw_now()
         self.status.setText(f"The sweep failed: {message}")
         self._update_buttons()
 
@@ -481,18 +507,30 @@ class CostPanel(QWidget):
         """The rows received so far, in setting order, knees marked."""
         return marked_rows(self._points, self._knees)
 
-    def _draw_plot(self) -> None:
+    def _draw_plot(self, quick: bool = False) -> None:
+        """Draw the points found so far.  ``quick`` (while a sweep runs): the axes keep the places
+        of the last full draw, when there are as many, and the legend a fixed corner."""
         if self.canvas is None:
             return  # drawn when the canvas is made
         import matplotlib
+        from matplotlib.colors import same_color
 
         rows = self.rows()
         self._dark = plot_theme.is_dark(self)
-        for figure in (self.plot_figure, self.image_figure):  # the images' too, before any is shown
-            figure.set_facecolor(plot_theme.background(self._dark))
+        background = plot_theme.background(self._dark)
+        self.plot_figure.set_facecolor(background)
+        if not same_color(self.image_figure.get_facecolor(), background):  # before any image is shown
+            self.image_figure.set_facecolor(background)
+            self.image_canvas.draw_idle()
         self._fitted = plot_theme.fitted_style(self.plot_figure)
         with matplotlib.rc_context({**plot_theme.plot_style(self._dark), **self._fitted}):
-            self._lines = draw_cost_plot(self.plot_figure, rows, sorted(self._points))
+            self._lines = draw_cost_plot(self.plot_figure, rows, sorted(self._points),
+                                         legend_loc=QUICK_LEGEND if quick else "best")
+            placed = quick and self._layout is not None and len(self._layout) == len(self.plot_figure.axes)
+            self.plot_figure.set_layout_engine("none" if placed else "constrained")
+            if placed:
+                for ax, box in zip(self.plot_figure.axes, self._layout, strict=True):
+                    ax.set_position(box)
             ax = self.plot_figure.axes[0]
             if self.selected is not None and self.selected in self._points:
                 at, x, y = point_position(self.plot_figure, self._points[self.selected].row)
@@ -503,7 +541,13 @@ class CostPanel(QWidget):
                         ha="center", va="center", color="gray")
             plot_theme.fit_axis_labels(self.plot_figure)
         self.canvas.draw_idle()
-        self.image_canvas.draw_idle()
+
+    def _laid_out(self) -> None:
+        """Keep where a full draw placed the axes, for the quick draws while a sweep runs."""
+        from matplotlib.layout_engine import ConstrainedLayoutEngine
+
+        if isinstance(self.plot_figure.get_layout_engine(), ConstrainedLayoutEngine):
+            self._layout = [ax.get_position().frozen() for ax in self.plot_figure.axes]
 
     def _plot_resized(self) -> None:
         """Draw the plot again only when its text takes another size; else just refit its axis labels."""

@@ -87,11 +87,14 @@ def background(dark: bool) -> str:
 
 
 def fit_axis_labels(figure) -> None:
-    """Break an axis label nearly as long as the figure (large text, small pane) into two lines."""
+    """Break an axis label nearly as long as its axes' share of the figure (large text, small pane, or
+    panels stacked) into two lines."""
     renderer = figure.canvas.get_renderer()
     box = figure.bbox
     for ax in figure.axes:
-        for label, room in ((ax.xaxis.label, 0.9 * box.width), (ax.yaxis.label, 0.9 * box.height)):
+        across, down = _share(ax)
+        for label, room in ((ax.xaxis.label, 0.9 * across * box.width),
+                            (ax.yaxis.label, 0.9 * down * box.height)):
             text = label.get_text()
             extent = label.get_window_extent(renderer)
             if "\n" in text or " " not in text or max(extent.width, extent.height) <= room:
@@ -99,3 +102,15 @@ def fit_axis_labels(figure) -> None:
             spaces = [i for i, c in enumerate(text) if c == " "]
             cut = min(spaces, key=lambda i: abs(i - len(text) / 2))
             label.set_text(text[:cut] + "\n" + text[cut + 1:])
+
+
+def _share(ax) -> tuple[float, float]:
+    """The share of its figure's width and height that ``ax``'s cell of the grid takes (1, 1 alone)."""
+    spec = ax.get_subplotspec()
+    if spec is None:
+        return 1.0, 1.0
+    grid = spec.get_gridspec()
+    widths = grid.get_width_ratios() or [1] * grid.ncols
+    heights = grid.get_height_ratios() or [1] * grid.nrows
+    return (sum(widths[i] for i in spec.colspan) / sum(widths),
+            sum(heights[i] for i in spec.rowspan) / sum(heights))

@@ -24,17 +24,24 @@ if TYPE_CHECKING:  # matplotlib loads with the first figure, not with this modul
 
 #: Smallest error drawn: log axes cannot show 0.
 ERROR_FLOOR = 1e-5
+#: A figure at least this wide (points: its text keeps its size whatever the resolution) has the z-buffer
+#: formats' panel beside the cost curves; a narrower one has it below them (side by side in a pane half a
+#: window wide, the two panels' titles and legends ran into each other and the curves were squeezed flat).
+SIDE_BY_SIDE_PT = 576
 #: One fixed colour per knob, so a knob keeps its colour from plot to plot.
 KNOB_COLORS = {name: f"C{i}" for i, name in enumerate(KNOB_NAMES)}
 
 
-def draw_cost_plot(figure: Figure, rows: list[Row], indices: list[int] | None = None) -> dict:
+def draw_cost_plot(figure: Figure, rows: list[Row], indices: list[int] | None = None,
+                   legend_loc: str = "best") -> dict:
     """Draw ``rows`` on ``figure`` (cleared first).
 
     Parameters
     ----------
     rows : the sweep's rows, knees marked.
     indices : each row's setting index (for picking), default ``0 .. len(rows) - 1``.
+    legend_loc : where the curves' legend goes (matplotlib's ``loc``); ``"best"`` looks for the
+        emptiest corner, which costs a sixth of a draw.
 
     Returns
     -------
@@ -45,11 +52,16 @@ def draw_cost_plot(figure: Figure, rows: list[Row], indices: list[int] | None = 
     formats = [(i, r) for i, r in zip(indices, rows, strict=True) if r.knob == "depth-format"]
     others = [(i, r) for i, r in zip(indices, rows, strict=True) if r.knob != "depth-format"]
     if formats and not others:
-        return _draw_depth_formats(figure.add_subplot(1, 1, 1), formats)
-    if formats:  # the cost curves keep two thirds of the width
-        grid = figure.add_gridspec(1, 2, width_ratios=(2, 1))
-        ax = figure.add_subplot(grid[0, 0])
-        lines = _draw_depth_formats(figure.add_subplot(grid[0, 1]), formats)
+        return _draw_depth_formats(figure.add_subplot(1, 1, 1), formats, wide=True)
+    if formats:  # the cost curves keep two thirds of the room: beside the formats' panel, or above it
+        beside = figure.get_figwidth() * 72 >= SIDE_BY_SIDE_PT
+        if beside:
+            grid = figure.add_gridspec(1, 2, width_ratios=(2, 1))
+            ax, formats_ax = figure.add_subplot(grid[0, 0]), figure.add_subplot(grid[0, 1])
+        else:
+            grid = figure.add_gridspec(2, 1, height_ratios=(2, 1))
+            ax, formats_ax = figure.add_subplot(grid[0, 0]), figure.add_subplot(grid[1, 0])
+        lines = _draw_depth_formats(formats_ax, formats, wide=not beside)
     else:
         ax, lines = figure.add_subplot(1, 1, 1), {}
     indices, rows = [i for i, _ in others], [r for _, r in others]
@@ -79,7 +91,7 @@ def draw_cost_plot(figure: Figure, rows: list[Row], indices: list[int] | None = 
     ax.set_title("What accuracy costs in time\n(ringed: each knob's knee)", fontsize="medium")
     ax.grid(True, which="both", alpha=0.3)
     if lines:
-        ax.legend(fontsize=8, loc="best")
+        ax.legend(fontsize=8, loc=legend_loc)
     return lines
 
 
@@ -90,8 +102,9 @@ def point_position(figure: Figure, row: Row):
     return figure.axes[0], max(row.seconds, 1e-6), max(row.reference_flip, ERROR_FLOOR)
 
 
-def _draw_depth_formats(ax, formats: list[tuple[int, Row]]) -> dict:
-    """The z-fighting panel: wrong-object share (%) against the far/near ratio, a curve per format."""
+def _draw_depth_formats(ax, formats: list[tuple[int, Row]], wide: bool) -> dict:
+    """The z-fighting panel: wrong-object share (%) against the far/near ratio, a curve per format.
+    ``wide``: the panel has the figure's width (its title takes two lines, not three)."""
     lines = {}
     for k, name in enumerate(DEPTH_FORMATS):
         mine = sorted(((split_depth_label(r.value)[1], i, r) for i, r in formats
@@ -111,13 +124,15 @@ def _draw_depth_formats(ax, formats: list[tuple[int, Row]]) -> dict:
     highest = max(100 * r.wrong_pixel_fraction for _, r in formats)
     ax.set_ylim(-0.02 * max(highest, 1.0), 1.1 * max(highest, 1.0))
     if highest == 0:
-        ax.text(0.5, 0.4, "no format fights here:\nno two surfaces are\nclose enough in depth",
+        ax.text(0.7 if wide else 0.5, 0.4,  # wide: clear of the legend
+                "no format fights here:\nno two surfaces are\nclose enough in depth",
                 transform=ax.transAxes, ha="center", va="center", color="gray")
     ax.set_xscale("log")
     ax.set_xlabel("far / near ratio (near plane moved)")
-    ax.set_ylabel("pixels showing the wrong object (%)")
-    ax.set_title("z-buffer formats: z-fighting\nagainst float64 (ringed: fewest bytes\nwithin the tolerance)",
-                 fontsize=10)
+    ax.set_ylabel("pixels showing\nthe wrong object (%)" if wide else "pixels showing the wrong object (%)")
+    title = "z-buffer formats: z-fighting against float64\n(ringed: fewest bytes within the tolerance)"
+    ax.set_title(title if wide else "z-buffer formats: z-fighting\nagainst float64 (ringed: fewest bytes\n"
+                 "within the tolerance)", fontsize=10)
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=8, loc="upper left")
     return lines

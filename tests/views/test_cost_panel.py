@@ -1,5 +1,6 @@
 """The Cost panel: a tiny sweep in the background fills the plot point by point; a click shows a point."""
 
+import time
 from dataclasses import replace
 
 import numpy as np
@@ -9,7 +10,7 @@ from PySide6.QtCore import QPoint, Qt
 from core.accuracy.sweep import KNOBS
 from core.presets_trace import mirror_and_glass
 from core.srgb import to_srgb8
-from views.cost_panel import CostPanel
+from views.cost_panel import REPLOT_MS, CostPanel
 
 TIMEOUT_MS = 240_000
 
@@ -63,6 +64,30 @@ def test_sweep_fills_the_plot_and_a_click_shows_the_point(qtbot, panel):
     assert error_map.shape == (24, 32)
     assert float(np.mean(error_map)) == pytest.approx(point.row.flip, rel=1e-4)
     assert "ray depth" in panel.explanation.text()
+
+
+def test_a_running_sweep_draws_its_plot_seldom_and_the_finished_one_in_full(qtbot, panel):
+    # A draw of the plot holds the GUI thread a quarter of a second; the points of cheap settings come
+    # in several a second. Drawn once per point, the window froze for seconds at a time.
+    from matplotlib.layout_engine import ConstrainedLayoutEngine
+
+    _pick(panel, "all")
+    draws = []
+    panel.canvas.mpl_connect("draw_event", lambda _: draws.append(time.perf_counter()))
+    started = time.perf_counter()
+    panel.run()
+    with qtbot.waitSignal(panel.sweep_finished, timeout=TIMEOUT_MS) as finished:
+        pass
+    assert finished.args == [True]
+    done = time.perf_counter()
+    qtbot.waitUntil(lambda: bool(draws) and draws[-1] > done)  # the finished sweep's draw
+    points = len(panel.rows())
+    # The first point (shown with its images), one draw per interval, a new panel's layout, the last.
+    allowed = 3 + (done - started) / (REPLOT_MS / 1000) + 1
+    assert points > allowed  # more points than draws: drawn once per point, this would fail
+    assert len(draws) <= allowed
+    assert isinstance(panel.plot_figure.get_layout_engine(), ConstrainedLayoutEngine)  # the last: in full
+    assert _plotted_points(panel) == points
 
 
 def test_depth_formats_get_their_own_panel_and_a_click_there_shows_the_point(qtbot, panel):
