@@ -45,6 +45,7 @@ from core import presets, scene_file
 from core.image_order.ray_tree import trace_pixel
 from core.presets_trace import PRESETS_TRACE
 from core.scene import Scene
+from views import math_view
 from views.camera_panel import CameraPanel
 from views.deferred_scene_view import DeferredSceneView
 from views.elided_label import ElidedLabel, ElidedProgressBar
@@ -156,6 +157,7 @@ class MainWindow(QMainWindow):
         self.renders.image_shown.connect(self.image_shown)
         self.renders.full_image_shown.connect(self.full_image_shown)
         self.renders.image_shown.connect(self.scene_view.build_soon)  # the first image before VTK
+        self.renders.image_shown.connect(lambda *_: math_view.load_typesetting_soon())  # and mathtext
         self.renders.warned.connect(lambda warning: self.statusBar().showMessage(warning, 10000))
         self.renders.refused.connect(lambda refusal: self.statusBar().showMessage(refusal, 10000))
         self.renders.rested.connect(self._observer_rested)

@@ -6,11 +6,13 @@ label's font size times a scale, in a given colour, at the screen's pixel
 density, so a formula stays sharp when presentation mode enlarges it.
 mathtext has no matrices, so :class:`MatrixView` draws a bracketed grid of
 numbers itself.  matplotlib loads with the first formula that is not in
-:mod:`views.formula_cache` (formulas at their natural size are kept there).
+:mod:`views.formula_cache` (formulas at their natural size are kept there), or
+earlier on a thread of its own when the window asks (:func:`load_typesetting_soon`).
 """
 
 from __future__ import annotations
 
+import threading
 from functools import lru_cache
 
 import numpy as np
@@ -52,7 +54,8 @@ def _typeset(text: str, size_pt: float, color: str, dpi: float, keep: bool) -> n
     from matplotlib.colors import to_rgb
     from matplotlib.font_manager import FontProperties
 
-    ink = np.asarray(_parser().parse(text, dpi=dpi, prop=FontProperties(size=size_pt)).image)
+    with _ONE_AT_A_TIME:
+        ink = np.asarray(_parser().parse(text, dpi=dpi, prop=FontProperties(size=size_pt)).image)
     pad = max(2, int(round(0.15 * size_pt * dpi / 72.0)))  # room for glyphs at the box's edge
     alpha = np.pad(ink, pad)
     rgba = np.empty((*alpha.shape, 4), np.uint8)
@@ -132,6 +135,32 @@ def _parser():
     from matplotlib.mathtext import MathTextParser
 
     return MathTextParser("agg")  # typesets straight into an 8-bit coverage image
+
+
+_ONE_AT_A_TIME = threading.Lock()
+"""The parser is shared; it typesets one formula at a time (:func:`load_typesetting_soon`'s thread too)."""
+loader: threading.Thread | None = None
+"""The thread :func:`load_typesetting_soon` started, once it has."""
+
+
+def load_typesetting_soon() -> threading.Thread:
+    """Load matplotlib's typesetting on a thread of its own (once; returns that thread).
+
+    The first formula not in the cache otherwise waits on the GUI thread for mathtext and its
+    fonts to load and its grammar to be built: about 0.2 s the first time a pixel is picked.
+    """
+    global loader
+    if loader is None:
+        loader = threading.Thread(target=_warm_up, name="load typesetting", daemon=True)
+        loader.start()
+    return loader
+
+
+def _warm_up() -> None:
+    from matplotlib.font_manager import FontProperties
+
+    with _ONE_AT_A_TIME:
+        _parser().parse("$x^2$", dpi=72.0, prop=FontProperties(size=10.0))
 
 
 class MathView(QLabel):

@@ -223,3 +223,41 @@ def test_building_the_3d_pane_on_the_gui_thread_imports_nothing():
                          timeout=300)
     assert out.returncode == 0, out.stderr
     assert out.stdout.split()[-1] == "-"
+
+
+TYPESETTING_LOADED = """
+import sys
+from PySide6.QtCore import QTimer
+from PySide6.QtWidgets import QApplication
+from views import deferred_scene_view, math_view
+
+deferred_scene_view.DeferredSceneView.build_soon = lambda self, *_: None  # no 3D pane: pyvista stays out
+app = QApplication(sys.argv[:1])
+from app.main_window import MainWindow
+from core import presets
+window = MainWindow(presets.lecture_scene())
+window.image_shown.connect(lambda *_: app.quit())
+QTimer.singleShot(TIMEOUT_MS, app.quit)
+window.show()
+app.exec()
+started = math_view.loader is not None  # by the first image
+math_view.load_typesetting_soon().join(60)
+before = set(sys.modules)
+math_view.render_mathtext("$t = 0.123456$", 14.0, "#000000", 96.0)  # a formula no cache holds
+print(started, "pyvista" in sys.modules, ",".join(sorted(set(sys.modules) - before)) or "-")
+"""
+
+
+@pytest.mark.gui
+def test_the_first_image_starts_loading_typesetting_so_a_new_formula_imports_nothing(tmp_path):
+    """A picked pixel's worked math is new formulas: the first one loaded mathtext and its fonts on the
+    GUI thread (about 0.2 s). The first image starts loading them on a thread of their own."""
+    env = {**os.environ, "XDG_CACHE_HOME": str(tmp_path), "XDG_CONFIG_HOME": str(tmp_path)}
+    code = TYPESETTING_LOADED.replace("TIMEOUT_MS", str(RENDER_TIMEOUT_MS))
+    out = subprocess.run([sys.executable, "-c", code], cwd=ROOT, capture_output=True, text=True, env=env,
+                         timeout=RENDER_TIMEOUT_MS / 1000 + 60)
+    assert out.returncode == 0, out.stderr
+    started, pyvista, imported = out.stdout.split()[-3:]
+    assert started == "True"
+    assert pyvista == "False"  # typesetting came in by itself, not with the 3D pane's imports
+    assert imported == "-"
