@@ -13,8 +13,13 @@ then lets it rest.  Per tab it prints:
 - the time from the last move to the full-resolution image of the last
   camera (ms).
 
-With ``--why`` it also prints, per tab, what the GUI thread was doing in its
-longest stall (:mod:`app.stall_why`).
+Then the window's other work that a user waits on (``--actions``), each with the
+GUI thread's longest and 99th-percentile stall: picking pixels of the traced
+image (the ray tree and its worked math), a Cost sweep of every knob, and
+stepping through every step of every lesson.
+
+With ``--why`` it also prints, per tab and action, what the GUI thread was doing
+in its longest stall (:mod:`app.stall_why`).
 
 The numba kernels are compiled (or loaded from their cache) before the
 window opens, so the figures are the window's, not the compiler's.
@@ -30,6 +35,11 @@ import time
 
 MOVES_PER_SECOND = 25
 TICK_MS = 5
+ACTIONS = ("picks", "cost", "lessons")
+PICKS = 12
+"""Pixels picked in the traced image, at places drawn from a seeded generator."""
+AFTER_S = 0.3
+"""How long each action's stalls are still counted after it is done (the 3D pane's draws, repaints)."""
 
 
 def add_arguments(parser) -> None:
@@ -39,6 +49,9 @@ def add_arguments(parser) -> None:
     parser.add_argument("--size", default="1600x900", help="window size WxH in pixels (default 1600x900)")
     parser.add_argument("--why", action="store_true",
                         help="per tab, the GUI thread's stack in its longest stall and where the time went")
+    parser.add_argument("--actions", default=",".join(ACTIONS),
+                        help=f"other work to time, comma-separated from {', '.join(ACTIONS)}, or none "
+                             "(default: all)")
 
 
 def _size(text: str) -> tuple[int, int]:
@@ -135,6 +148,17 @@ class _Probe(_Ticker):
         del self.view.set_image
 
 
+def _actions(text: str) -> list[str]:
+    from app.usage import UsageError
+
+    names = [] if text.strip() == "none" else [n.strip() for n in text.split(",") if n.strip()]
+    unknown = [n for n in names if n not in ACTIONS]
+    if unknown or not names and text.strip() != "none":
+        raise UsageError(f"--actions: expected some of {', '.join(ACTIONS)} (comma-separated) or none, "
+                         f"got {text!r}")
+    return names
+
+
 def _observer_image(window, title: str):
     """The image pane of ``title``'s tab that shows the observer's own view."""
     widget = window.tab(title).widget
@@ -221,8 +245,57 @@ def _bench_tab(app, window, title: str, seconds: float, why: bool = False) -> di
             "images": images / moving, "full": settle * 1000.0, "why": reasons}
 
 
+def _bench_action(app, window, name: str, steps, why: bool) -> dict:
+    """Time the GUI thread while each of ``steps`` (``(start, done)`` callables) is started and
+    waited for, plus :data:`AFTER_S` each."""
+    ticker = _Ticker(why)
+    ticker.start()
+    count = 0
+    for start, done in steps:
+        start()
+        _wait(app, done)
+        end = time.perf_counter() + AFTER_S
+        _wait(app, lambda end=end: time.perf_counter() >= end)
+        count += 1
+    ticker.stop()
+    longest, p99 = ticker.stalls_ms()
+    return {"tab": name, "count": count, "longest": longest, "p99": p99, "why": ticker.longest_stall_why()}
+
+
+def _picks(window):
+    import random
+
+    window.show_tab("image order")
+    cam, rng = window.model.camera, random.Random(0)
+    for _ in range(PICKS):
+        x, y = rng.randrange(cam.width), rng.randrange(cam.height)
+        yield (lambda x=x, y=y: window.pick_ray_tree(x, y),
+               lambda x=x, y=y: window.ray_tree is not None and window.ray_tree[:2] == (x, y))
+
+
+def _cost_sweep(window):
+    window.show_tab("cost")
+    panel = window.tab("cost").widget
+    panel.knob.setCurrentIndex(panel.knob.findData("all"))
+    yield panel.run, lambda: panel.finished or not panel.running
+
+
+def _lesson_steps(window):
+    from core.lessons import shipped_lessons
+
+    for i, lesson in enumerate(shipped_lessons()):
+        for k in range(len(lesson.steps)):
+            yield (lambda i=i, k=k: window.lesson_panel.select(i, k),
+                   lambda: window.showing_full(window.current.title))
+
+
+_ACTION_STEPS = {"picks": ("picked pixels", _picks), "cost": ("Cost sweep, all knobs", _cost_sweep),
+                 "lessons": ("lesson steps", _lesson_steps)}
+
+
 def run(args) -> int:
     width, height = _size(args.size)
+    actions = _actions(args.actions)
     from PySide6.QtCore import QThreadPool
     from PySide6.QtWidgets import QApplication
 
@@ -242,6 +315,8 @@ def run(args) -> int:
                  if hasattr(window.tab(t).widget, "image") or hasattr(window.tab(t).widget, "views")]
     rows = [_bench_tab(app, window, title, args.seconds, args.why) for title in following]
     cam = window.model.camera
+    done = [_bench_action(app, window, _ACTION_STEPS[a][0], _ACTION_STEPS[a][1](window), args.why)
+            for a in actions]
     print(f"window {width} x {height}, lecture scene {cam.width} x {cam.height}, "
           f"observer moved {MOVES_PER_SECOND}x/s for {args.seconds:g} s per tab")
     print(f"{'tab':<14}{'longest stall':>15}{'p99 stall':>11}{'3D draws/s':>12}"
@@ -252,7 +327,11 @@ def run(args) -> int:
     print(f"Opening (once, before the observer moves): the first image and the 3D pane's first frame "
           f"after {opening['seconds']:.2f} s; the GUI thread's longest stall meanwhile "
           f"{opening['longest']:.0f} ms (VTK's first frame is drawn on it)")
-    for r in [opening, *rows] if args.why else ():
+    if done:
+        print(f"\n{'action':<24}{'count':>6}{'longest stall':>15}{'p99 stall':>11}")
+    for r in done:
+        print(f"{r['tab']:<24}{r['count']:>6}{r['longest']:>12.0f} ms{r['p99']:>8.0f} ms")
+    for r in [opening, *rows, *done] if args.why else ():
         print(f"\n{r['tab']}, the longest stall: " + "\n".join(r["why"]))
     window.close()
     QThreadPool.globalInstance().waitForDone()

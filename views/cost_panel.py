@@ -251,6 +251,7 @@ class CostPanel(QWidget):
         self.progress.setTextVisible(False)
         self.status = QLabel("Set a scene, pick a knob and press Run.")
         self.status.setWordWrap(True)
+        self._keep_two_status_lines()
         self.explanation = QLabel()
         self.explanation.setWordWrap(True)
         self.explanation.setTextFormat(Qt.TextFormat.RichText)
@@ -306,6 +307,8 @@ class CostPanel(QWidget):
     def changeEvent(self, event) -> None:  # noqa: N802 (Qt's name)
         """The plot and the images follow the window's theme (dark in high contrast) and text size."""
         super().changeEvent(event)
+        if event.type() == QEvent.Type.FontChange:
+            self._keep_two_status_lines()
         if event.type() == QEvent.Type.FontChange and self.canvas is not None \
                 and plot_theme.figure_dpi(self) != self._dpi:
             self._remake_canvases()
@@ -315,6 +318,11 @@ class CostPanel(QWidget):
                 self._draw_plot()
                 if self.selected is not None and self.selected in self._points:
                     self.show_point(self.selected)
+
+    def _keep_two_status_lines(self) -> None:
+        """The status line keeps room for two lines, so that the finished sweep's two lines (its knees)
+        do not shrink the plot: a new size is a full draw of it, a quarter of a second on the GUI thread."""
+        self.status.setMinimumHeight(2 * self.status.fontMetrics().lineSpacing())
 
     def _make_canvases(self) -> None:
         """Make the plot's and the images' figures and canvases, once (matplotlib loads here)."""

@@ -72,8 +72,15 @@ def test_a_running_sweep_draws_its_plot_seldom_and_the_finished_one_in_full(qtbo
     from matplotlib.layout_engine import ConstrainedLayoutEngine
 
     _pick(panel, "all")
-    draws = []
-    panel.canvas.mpl_connect("draw_event", lambda _: draws.append(time.perf_counter()))
+    panel.resize(900, 720)  # the finished sweep's status (its knees) takes two lines
+    qtbot.waitUntil(lambda: panel.canvas.width() < 600)
+    draws, sizes = [], set()
+
+    def drawn(_):
+        draws.append(time.perf_counter())
+        sizes.add(panel.canvas.size().toTuple())
+
+    panel.canvas.mpl_connect("draw_event", drawn)
     started = time.perf_counter()
     panel.run()
     with qtbot.waitSignal(panel.sweep_finished, timeout=TIMEOUT_MS) as finished:
@@ -88,6 +95,7 @@ def test_a_running_sweep_draws_its_plot_seldom_and_the_finished_one_in_full(qtbo
     assert len(draws) <= allowed
     assert isinstance(panel.plot_figure.get_layout_engine(), ConstrainedLayoutEngine)  # the last: in full
     assert _plotted_points(panel) == points
+    assert len(sizes) == 1  # the plot keeps its size (the knees' two status lines do not shrink it)
 
 
 def test_depth_formats_get_their_own_panel_and_a_click_there_shows_the_point(qtbot, panel):
