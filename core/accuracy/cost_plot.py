@@ -91,7 +91,7 @@ def draw_cost_plot(figure: Figure, rows: list[Row], indices: list[int] | None = 
     ax.set_title("What accuracy costs in time\n(ringed: each knob's knee)", fontsize="medium")
     ax.grid(True, which="both", alpha=0.3)
     if lines:
-        ax.legend(fontsize=8, loc=legend_loc)
+        ax.legend(fontsize=8, loc=legend_loc, framealpha=0.6)  # curves show through where it covers them
     return lines
 
 
