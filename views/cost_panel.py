@@ -73,8 +73,8 @@ and a fixed legend corner; the finished sweep is drawn in full.  (A full draw, m
 constrained layout and a search for the legend's emptiest corner, held the GUI thread about a
 quarter of a second on a small machine, and the points of cheap settings came in several a second.)"""
 QUICK_LEGEND = "upper right"
-"""The legend's corner while a sweep runs: slow and still inaccurate, the corner curves of error against
-time seldom reach (cheap settings sit top left, costly ones bottom right)."""
+"""The legend's corner while a sweep runs: slow and still inaccurate, the corner an error-against-time
+curve seldom reaches (cheap settings sit top left, costly ones bottom right)."""
 
 
 class _CanvasBox(QWidget):
@@ -309,9 +309,8 @@ class CostPanel(QWidget):
         super().changeEvent(event)
         if event.type() == QEvent.Type.FontChange:
             self._keep_two_status_lines()
-        if event.type() == QEvent.Type.FontChange and self.canvas is not None \
-                and plot_theme.figure_dpi(self) != self._dpi:
-            self._remake_canvases()
+            if self.canvas is not None and plot_theme.figure_dpi(self) != self._dpi:
+                self._remake_canvases()
         if event.type() == QEvent.Type.PaletteChange and self.canvas is not None:
             dark = plot_theme.is_dark(self)
             if dark != self._dark:
@@ -472,8 +471,7 @@ class CostPanel(QWidget):
 
     def _draw_now(self) -> None:
         """Draw what was found in full, now (a sweep ended or stopped)."""
-        if self._replot.isActive():
-            self._replot.stop()
+        self._replot.stop()
         self._draw_plot()
 
     def _on_done(self, run_id: int, finished: bool) -> None:
