@@ -302,7 +302,7 @@ class LessonPanel(QWidget):
         self.step_title.setText(step.title)
         self.text.setText(step.text)
         for formula in step.formulas:
-            self.formulas.addWidget(MathView(formula))
+            self.formulas.addWidget(MathView(formula, self.formulas.parentWidget()))
         self.position.setText(f"step {self._step + 1} of {len(lesson.steps)}")
         self.previous_button.setEnabled(self._moved(-1) is not None)
         self.next_button.setEnabled(self._moved(+1) is not None)

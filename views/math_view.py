@@ -176,11 +176,12 @@ class MathView(QLabel):
     complaint in the tooltip.
     """
 
-    def __init__(self, formula: str = "", parent: QWidget | None = None, *, size_pt: float | None = None):
+    def __init__(self, formula: str = "", parent: QWidget | None = None, *, size_pt: float | None = None,
+                 scale: float = 1.0):
         super().__init__(parent)
         self._formula = formula
         self._size_pt = size_pt
-        self._scale = 1.0
+        self._scale = float(scale)
         self._color: QColor | None = None
         self._natural: QSize | None = None
         self._parts: list[tuple[str, str]] = [(formula, "")]
@@ -190,6 +191,7 @@ class MathView(QLabel):
         policy = QSizePolicy(QSizePolicy.Policy.Preferred, QSizePolicy.Policy.Minimum)
         policy.setHeightForWidth(True)
         self.setSizePolicy(policy)
+        self.ensurePolished()  # the window's style sheet (its text size) before the first typesetting
         self._render()
 
     def formula(self) -> str:
@@ -325,7 +327,8 @@ class MathView(QLabel):
         """Draw the formula in the lines :meth:`_layout` chose for the label's width."""
         if self._natural is None:
             return
-        lines, size = self._layout(self.width())
+        # Until a layout gives the label its width, one line (not wrapped to fit Qt's default size).
+        lines, size = self._layout(self.width() if self.testAttribute(Qt.WidgetAttribute.WA_Resized) else 0)
         images = [self._image_of(line, size) for line in lines]
         if len(images) == 1:
             image = images[0]

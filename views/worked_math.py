@@ -134,8 +134,7 @@ class WorkedMath(QScrollArea):
         name.setAlignment(Qt.AlignmentFlag.AlignRight | Qt.AlignmentFlag.AlignVCenter)
         self._grid.addWidget(name, r, 0)
         if formula:
-            view = MathView(formula)
-            view.set_scale(self._scale)
+            view = MathView(formula, self._grid.parentWidget(), scale=self._scale)
             self._grid.addWidget(view, r, 1)
         elif matrix is not None:
             view = MatrixView(matrix)

@@ -175,3 +175,25 @@ def test_the_triangle_shown_is_the_nearest_one_the_ray_crosses(math_pane):
             if (h := intersect_triangle(root.origin, root.direction, *cube.vertices[tri])).hit]
     nearest = min(hits)[1]
     assert math_pane.rows()[0][1].endswith(f"cube, triangle {nearest}")
+
+
+def test_a_presented_pane_typesets_its_formulas_only_at_the_size_shown(qtbot, present, monkeypatch, tmp_path):
+    # Each typesetting is a parse of a few milliseconds. A new formula was typeset at scale 1 before its
+    # scale reached it, and wrapped to fit Qt's default width before its layout gave it one: a picked
+    # pixel held the GUI thread 0.1-0.4 s at x2.
+    from views import math_view
+
+    monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path))  # nothing typeset before
+    pane = WorkedMath()
+    window, presentation = present(pane)
+    presentation.set_scale(2.0)
+    pane.set_scale(2.0)  # as the window does for its panes
+    sizes = []
+    typeset = math_view._typeset
+    monkeypatch.setattr(math_view, "_typeset", lambda *args: (sizes.append(args[1]), typeset(*args))[1])
+    pane.show_sphere(intersect_sphere_segment((2.5, 1.25, 2.125), (10, 6, 6), (6, 4, 6), 10), "ball")
+    views = [v for v in pane.findChildren(MathView) if v.formula()]
+    qtbot.waitUntil(lambda: all(not v.pixmap().isNull() for v in views))
+    assert views and sizes
+    least = min(v.size_pt() for v in views) * math_view.MIN_SHRINK
+    assert min(sizes) >= least - 1e-9  # never at scale 1 (half the size), nor shrunk to a default width
