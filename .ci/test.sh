@@ -5,4 +5,7 @@ ensure_debian "${DEBIAN_GUI_PACKAGES[@]}" "${DEBIAN_TEST_PACKAGES[@]}"
 ensure_venv "[test]"
 export PATH="$VENV/bin:$PATH"
 ruff check .
+# The kernels compile here, once per machine and version of the code, on both cores: no test waits
+# for a compile inside its own time limit.
+python -m app compile
 exec xvfb-run -a -s "-screen 0 1920x1080x24" python -m pytest "$@"

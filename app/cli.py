@@ -11,10 +11,12 @@ import signal
 import sys
 
 from app import (
+    bench_compile,
     bench_gui,
     bench_raster,
     bench_startup,
     bench_trace,
+    compile_command,
     cost_command,
     export_command,
     hardcases_command,
@@ -25,7 +27,8 @@ from app.usage import UsageError
 
 
 def build_parser() -> argparse.ArgumentParser:
-    benchmarks = {"raster": bench_raster, "trace": bench_trace, "gui": bench_gui, "startup": bench_startup}
+    benchmarks = {"raster": bench_raster, "trace": bench_trace, "gui": bench_gui, "startup": bench_startup,
+                  "compile": bench_compile}
 
     parser = argparse.ArgumentParser(
         prog="python -m app",
@@ -42,6 +45,7 @@ def build_parser() -> argparse.ArgumentParser:
     hardcases_command.add_parser(sub)
     cost_command.add_parser(sub)
     export_command.add_parser(sub)
+    compile_command.add_parser(sub)
     bench = sub.add_parser("bench", help="time our pipelines against VTK / Embree (a benchmark, not a test)")
     kinds = bench.add_subparsers(dest="bench", metavar="KIND", required=True)
     for name, module in benchmarks.items():
@@ -52,7 +56,7 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 #: The first words the command line understands; anything else opens the window on it.
-COMMANDS = {"gui", "intersect", "render", "export", "bench", "hardcases", "cost", "-h", "--help"}
+COMMANDS = {"gui", "intersect", "render", "export", "bench", "hardcases", "cost", "compile", "-h", "--help"}
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -23,20 +23,26 @@ import threading
 def load_kernels(mode: str, accel: str) -> float:
     """Import and load (or compile) the kernels a ``mode`` render with ``accel`` runs; returns the seconds.
 
-    Ctrl+C meanwhile ends the process at once with status 130, unless it was started to ignore
-    Ctrl+C (under ``nohup``, or with ``&`` from a script).
+    A compile (not a load from the kernel cache) is announced on stderr first.  Ctrl+C meanwhile
+    ends the process at once with status 130, unless it was started to ignore Ctrl+C (under
+    ``nohup``, or with ``&`` from a script).
     """
     on_main_thread = threading.current_thread() is threading.main_thread()
     take_over = on_main_thread and signal.getsignal(signal.SIGINT) is not signal.SIG_IGN
     previous = signal.signal(signal.SIGINT, _exit_at_once) if take_over else None
     try:
         if mode == "raster":
-            from core.object_order.pipeline import ensure_compiled
+            from core.object_order.pipeline import ensure_compiled as warm_up
+        else:
+            from core.image_order.ray_tracing import warm_up_for
 
-            return ensure_compiled()
-        from core.image_order.ray_tracing import compile_for
-
-        return compile_for(accel)
+            warm_up = warm_up_for(accel)
+        if not warm_up.ready():
+            what = "rasterizer" if mode == "raster" else "tracer"
+            print(f"python -m app: compiling the {what}'s kernels first (once per machine and version of "
+                  "the code, a minute or two; `python -m app compile` does every renderer at once, on "
+                  "every core)", file=sys.stderr, flush=True)
+        return warm_up()
     finally:
         if take_over:
             signal.signal(signal.SIGINT, previous)

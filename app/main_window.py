@@ -32,6 +32,7 @@ from PySide6.QtWidgets import (
 )
 
 from app import render_budget, session
+from app.background_compile import BackgroundCompile
 from app.export_menu import ExportMenu
 from app.first_frame import AfterFirstFrame
 from app.lesson_runner import LESSON_OVERLAY, LessonRunner
@@ -172,6 +173,8 @@ class MainWindow(QMainWindow):
         object_order.clipped_shown.connect(self.overlays.show_clipped)
 
         self.renders.hold()  # the first render starts once the window is on screen
+        self.background_compile = BackgroundCompile()
+        QApplication.instance().aboutToQuit.connect(self.background_compile.stop)
         AfterFirstFrame(self.tab_widget, self._first_frame_shown)
         self._tab_shown()
         available = self.screen().availableGeometry()
@@ -418,9 +421,7 @@ class MainWindow(QMainWindow):
 
     def _first_frame_shown(self) -> None:
         self.renders.release()
-        if self.renders.busy(self.current):  # not when the scene is over the memory budget
-            self.progress.setFormat("compiling the renderers on first use (numba caches them), "
-                                    "then rendering… %p%")
+        self.background_compile.start()
 
     def _show_status(self, tab) -> None:
         if tab is not self.current:
@@ -475,6 +476,7 @@ class MainWindow(QMainWindow):
         QApplication.instance().removeEventFilter(self._editor_keys)
         self.presentation.clicker.remove()
         self.renders.stop()
+        self.background_compile.stop()
         for tab in self.tabs:
             getattr(tab, "shutdown", lambda: None)()
         self._tree_renderer.cancel()

@@ -40,12 +40,14 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from app.compare_pictures import comparison_pictures
-from app.workers import Renderer
+from app.workers import Renderer, Waiting
 from core import budget
 from core.camera import Camera
 from core.compare import compare
+from core.first_look import first_look
+from core.image_order import ray_tracing
 from core.image_order.ray_tracing import TraceSettings, merge_band_stats, render_trace
-from core.object_order import four_views
+from core.object_order import four_views, pipeline
 from core.object_order.pipeline import RasterSettings, render_raster
 from core.scene import Mesh, Scene
 from views.compare_panel import ComparePanel, ComparisonImages
@@ -62,6 +64,8 @@ BAND_ROWS = 32
 PREVIEW_STEP = 2
 """Previews render one pixel in every PREVIEW_STEP x PREVIEW_STEP block: a quarter of the pixels."""
 PREVIEW = "preview"
+FIRST_LOOK = "first look: numpy, no shadows or mirrors, while the renderer compiles"
+COMPILING = "compiling the {}'s kernels (once per machine and version of the code; a minute or two)"
 SLOW_TESTS = 2e9
 """Ray–object tests above which a full render without acceleration gets a warning (minutes here)."""
 BAND_TESTS = 5e7
@@ -128,6 +132,14 @@ def _cost(scene: Scene, preview: bool, runs, shown_images: int) -> budget.Estima
                            shown_images)
 
 
+def say_if_compiling(progress, scene: Scene, renderer: str, ready: bool, picture: bool = True) -> None:
+    """Before a job's first render: if its kernels are not compiled on this machine yet (``ready``
+    false), say in the progress bar that they compile, and show a first look at ``scene`` meanwhile."""
+    if not ready:
+        image = display_image(first_look(scene), FIRST_LOOK) if picture else None
+        progress(0, Waiting(COMPILING.format(renderer), image))
+
+
 def preview_trace_settings(settings: TraceSettings) -> TraceSettings:
     """Previews never go without acceleration: the image is the same, the wait is not."""
     return settings if settings.accel != "none" else replace(settings, accel="bvh")
@@ -164,7 +176,9 @@ class ImageOrderTab:
         cam = scene.camera
         if preview:
             def run(cancelled, progress):
-                coarse = render_trace(scene, preview_trace_settings(settings), step=PREVIEW_STEP)
+                quick = preview_trace_settings(settings)
+                say_if_compiling(progress, scene, "tracer", ray_tracing.compiled_for(quick.accel))
+                coarse = render_trace(scene, quick, step=PREVIEW_STEP)
                 return Preview(display_image(coarse.color, PREVIEW), cam, coarse.stats["times"]["total"],
                                coarse.stats["rays"]["total"])
 
@@ -175,6 +189,8 @@ class ImageOrderTab:
             rows = max(1, min(BAND_ROWS, int(BAND_TESTS // _tests_per_row(scene))))
 
         def run(cancelled, progress):
+            say_if_compiling(progress, scene, "tracer", shown is not None or all(
+                ray_tracing.compiled_for(s.accel) for s in (settings, preview_trace_settings(settings))))
             if shown is not None:  # the bands replace the preview already on screen
                 color = shown.image.rgb.copy()
             else:
@@ -221,10 +237,14 @@ class ObjectOrderTab:
     def cost(self, scene: Scene, preview: bool) -> budget.Estimate:
         return _cost(scene, preview, [("raster",)], 1 if preview else 2)  # full: image and z-buffer
 
+    def show_progress(self, partial) -> None:  # the first look while the rasterizer compiles
+        self.widget.show_preview(partial)
+
     def job(self, scene: Scene, preview: bool):
         settings = self.model.raster_settings
         if preview:
             def run(cancelled, progress):
+                say_if_compiling(progress, scene, "rasterizer", pipeline.ensure_compiled.ready())
                 rgb, seconds = _raster_preview(scene)
                 return Preview(display_image(rgb, PREVIEW), scene.camera, seconds)
 
@@ -233,6 +253,7 @@ class ObjectOrderTab:
         step = self.model.step
 
         def run(cancelled, progress):  # the step's picture too: the window only paints it
+            say_if_compiling(progress, scene, "rasterizer", pipeline.ensure_compiled.ready())
             raster = render_raster(scene, settings)
             n = raster.history.n_steps
             return scene, raster, step_picture(raster, scene, n if step is None else min(step, n))
@@ -271,6 +292,7 @@ class FourViewsTab:
             cameras = {"observer": scene.camera}
 
         def run(cancelled, progress):
+            say_if_compiling(progress, scene, "rasterizer", pipeline.ensure_compiled.ready(), picture=False)
             images = {}
             for i, (key, camera) in enumerate(cameras.items()):
                 if cancelled.is_set():
@@ -326,6 +348,9 @@ class CompareTab:
         rendered = replace(scene, camera=preview_camera(cam)) if preview else scene
 
         def run(cancelled, progress):
+            ready = pipeline.ensure_compiled.ready() and ray_tracing.compiled_for(settings.accel)
+            say_if_compiling(progress, scene, "renderers", ready, picture=False)
+
             def carry_on():  # output A is rendered
                 progress(50, None)
                 return not cancelled.is_set()

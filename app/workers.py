@@ -16,6 +16,7 @@ from __future__ import annotations
 import threading
 import time
 from collections.abc import Callable
+from dataclasses import dataclass
 
 from PySide6.QtCore import QObject, QRunnable, QThreadPool, QTimer, Signal
 
@@ -24,6 +25,15 @@ from views.stale_cover import cover, uncover
 
 Job = Callable[[threading.Event, Callable[[int, object], None]], object]
 PROGRESS_PER_SECOND = 30
+
+
+@dataclass(frozen=True)
+class Waiting:
+    """A job's partial result that says what it waits on (say, kernels compiling) in the progress bar,
+    with a partial result to show meanwhile (or None)."""
+
+    what: str
+    partial: object = None
 
 
 class _Signals(QObject):
@@ -167,6 +177,7 @@ class RenderSchedule(QObject):
         self._full_shown: dict[str, object] = {}  # title -> the scene whose full image the tab shows
         self._preview_shown: dict[str, object] = {}
         self._status: dict[str, tuple[int, str, str]] = {}  # title -> percent, progress text, caption
+        self._waiting: set[str] = set()  # titles whose job said it waits on something (Waiting)
         self._moving = False
         self._held = False
         self._rest = QTimer(self)
@@ -305,11 +316,20 @@ class RenderSchedule(QObject):
         self.status_changed.emit(tab)
 
     def _progress(self, tab, percent, partial):
-        self._set_status(tab, percent)
+        if isinstance(partial, Waiting):  # said until the job's next progress
+            self._waiting.add(tab.title)
+            self._set_status(tab, percent, f"{tab.title}: {partial.what}… %p%")
+            partial = partial.partial
+        elif tab.title in self._waiting:
+            self._waiting.discard(tab.title)
+            self._set_status(tab, percent, f"{tab.title}: rendering… %p%")
+        else:
+            self._set_status(tab, percent)
         if partial is not None and hasattr(tab, "show_progress"):
             tab.show_progress(partial)
 
     def _finished(self, tab, result):
+        self._waiting.discard(tab.title)
         scene, preview = self._jobs.pop(tab.title)
         if not preview and scene is not self.model.scene:
             return  # a full image of a superseded scene is never shown
@@ -329,6 +349,7 @@ class RenderSchedule(QObject):
             self._update()
 
     def _failed(self, tab, message: str):
+        self._waiting.discard(tab.title)
         self._jobs.pop(tab.title, None)
         self._set_status(tab, 0, f"{tab.title}: render failed", f"Render failed — {message}")
         cover(tab.widget, f"Render failed: what this tab shows is not of the current scene.\n\n{message}")

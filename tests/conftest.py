@@ -1,9 +1,19 @@
-"""Shared test set-up: GUI tests need a real X server, and say so instead of skipping."""
+"""Shared test set-up: GUI tests need a real X server, and say so instead of skipping.
+
+The compiled kernels are the user's (``~/.cache/render-explorer/kernels``, compiled
+up front by ``python -m app compile`` in ``.ci/test.sh``): every test, and every
+process a test starts, finds them there even when it points ``XDG_CACHE_HOME``
+at an empty folder, so no test compiles kernels inside its own time limit.
+"""
 
 import os
 
 import pytest
 import pyvista as pv
+
+from core.kernel_cache import cache_root
+
+os.environ["NUMBA_CACHE_DIR"] = str(cache_root())
 
 pv.OFF_SCREEN = True
 

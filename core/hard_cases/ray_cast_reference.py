@@ -17,6 +17,7 @@ from __future__ import annotations
 import numpy as np
 
 from core.camera import Camera
+from core.first_look import first_crossings
 
 #: Distance (pixels) of the four extra samples from the pixel centre.
 JITTER = 1.0 / 64.0
@@ -55,20 +56,7 @@ def nearest_triangle(camera: Camera, triangles: np.ndarray, dx: float = 0.0, dy:
     edge is decided either way; :func:`reference` discards such pixels).
     """
     o, d = _rays(camera, dx, dy)
-    A, B, C = triangles[:, 0], triangles[:, 1], triangles[:, 2]
-    e1, e2 = B - A, C - A
-    h = np.cross(d[:, None, :], e2[None])
-    det = np.einsum("rtk,tk->rt", h, e1)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        s = o[:, None, :] - A[None]
-        u = np.einsum("rtk,rtk->rt", s, h) / det
-        q = np.cross(s, e1[None])
-        v = np.einsum("rk,rtk->rt", d, q) / det
-        t = np.einsum("tk,rtk->rt", e2, q) / det
-    hit = (det != 0) & (u >= 0) & (v >= 0) & (u + v <= 1) & (t >= camera.near) & (t <= camera.far)
-    t = np.where(hit, t, np.inf)
-    first = np.argmin(t, axis=1)
-    first[~np.isfinite(t[np.arange(len(t)), first])] = -1
+    first, _ = first_crossings(np.ascontiguousarray(o), d, triangles, camera.near, camera.far)
     return first.reshape(camera.height, camera.width)
 
 

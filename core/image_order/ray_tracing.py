@@ -206,6 +206,9 @@ def describe_structure(structure) -> dict:
     return {}
 
 
+_KERNELS = "core.image_order.kernels.jit"  # imports numba and puts the tracer's kernels in their cache
+
+
 def _warm_up(accel: str) -> None:
     """Render a tiny scene with ``accel`` so the kernels see exactly the argument types of real
     renders; its structure is built too, so build times exclude compiling."""
@@ -217,7 +220,8 @@ def _warm_up(accel: str) -> None:
     _run_passes(np.arange(2.0), np.arange(2.0), inputs, {})
 
 
-_compiled_for = {accel: WarmUp(functools.partial(_warm_up, accel)) for accel in lay.ACCEL_CODES}
+_compiled_for = {accel: WarmUp(functools.partial(_warm_up, accel), _KERNELS, "trace", accel)
+                 for accel in lay.ACCEL_CODES}
 """A render compiles only what its acceleration method needs: the window's first image waits for less."""
 
 
@@ -227,8 +231,18 @@ def _warm_up_all() -> None:
     trace_pixel(warm_up_scene(), 1, 1, TraceSettings())
 
 
-ensure_compiled = WarmUp(_warm_up_all)
+ensure_compiled = WarmUp(_warm_up_all, _KERNELS, "trace", "all")
 """Compile every tracer kernel once per process; returns the seconds it took (0.0 later)."""
+
+
+def warm_up_for(accel: str) -> WarmUp:
+    """The warm-up that compiles the kernels a render with ``accel`` runs."""
+    return _compiled_for[accel]
+
+
+def compiled_for(accel: str) -> bool:
+    """Whether a render with ``accel`` starts without compiling (see :meth:`WarmUp.ready`)."""
+    return _compiled_for[accel].ready()
 
 
 def compile_for(accel: str) -> float:

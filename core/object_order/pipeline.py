@@ -219,7 +219,7 @@ def _warm_up() -> None:
     render_raster(zbuffer_piercing(), RasterSettings(record_steps=True)).history.buffers(1)
 
 
-ensure_compiled = WarmUp(_warm_up)
+ensure_compiled = WarmUp(_warm_up, "core.object_order.kernels", "raster", "all")
 """Compile the raster kernels once per process; returns the seconds it took (0.0 later)."""
 
 

@@ -24,15 +24,13 @@ few helpers that make arrays are compiled with ``jit_allocating``.
 ``fastmath`` stays off: the watertight triangle test needs ``a*b - c*d`` to be
 evaluated exactly as written (no fused multiply-add, no reassociation).
 
-Stale caches
-------------
-numba checks a cached kernel only against the file that defines it, not
-against the files of the functions it calls (and compiles into itself).
-After an edit of, say, :mod:`core.image_order.optics`, the cached shading kernel would
-silently keep the old code.  So on import this module hashes every source
-file the tracer's kernels are made of (:data:`SOURCES`) and, when the hash
-changed, deletes the tracer's cache files before any kernel is loaded.
-It also registers the formulas marked :func:`~core.jitable.jitable` with
+The cache
+---------
+On import this module caches the tracer's kernels in the user's cache folder, in a
+folder named after the contents of every file they are made of (:data:`SOURCES`;
+:mod:`core.kernel_cache`): every checkout and install of the same code shares them,
+and a changed formula (say in :mod:`core.image_order.optics`) is never served from an
+old kernel.  It also registers the formulas marked :func:`~core.jitable.jitable` with
 numba (:func:`core.jitable.register_all`).
 """
 
@@ -43,7 +41,7 @@ from pathlib import Path
 from numba import njit
 
 from core.jitable import register_all
-from core.kernel_cache import drop_stale_cache
+from core.kernel_cache import share_cache
 
 _OPTIONS = {"cache": True, "nogil": True, "error_model": "numpy"}
 _BORROWING = {**_OPTIONS, "_nrt": False}
@@ -61,7 +59,7 @@ SOURCES = sorted(_KERNELS.rglob("*.py")) + [
     _CORE / name for name in ("camera.py", "projection.py", "jitable.py")]
 
 
-drop_stale_cache(_KERNELS, SOURCES, "trace")
+share_cache(_KERNELS, SOURCES, "trace")
 register_all()  # the lecture modules' formulas, before any kernel is compiled or loaded
 
 

@@ -1,11 +1,9 @@
 """Compiled (numba) hot loops of the object-order pipeline.
 
-Stale caches: numba checks a cached kernel only against the file that defines
-it, not against the files whose ``register_jitable`` formulas it compiles in.
-After an edit of, say, :mod:`core.object_order.rasterization`, the cached
-rasterizer would silently keep the old fill rule.  So on import this package
-hashes every file its kernels are made of (:data:`SOURCES`) and, when the
-hash changed, deletes its cached kernels before any is loaded.
+Cache: on import this package caches its kernels in the user's cache folder, in a
+folder named after the contents of every file its kernels are made of
+(:data:`SOURCES`; :mod:`core.kernel_cache`): every checkout and install of the same
+code shares them, and a changed formula is never served from an old kernel.
 
 Memory: the kernels write their large results into arrays the caller allocates
 with numpy, which asks the system for huge pages for large arrays.  Memory a
@@ -18,7 +16,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from core.jitable import register_all
-from core.kernel_cache import drop_stale_cache
+from core.kernel_cache import share_cache
 
 _KERNELS = Path(__file__).resolve().parent
 _OBJECT_ORDER = _KERNELS.parent
@@ -31,5 +29,5 @@ SOURCES = sorted(_KERNELS.glob("*.py")) + [
     _OBJECT_ORDER.parent / "jitable.py"]
 
 
-drop_stale_cache(_KERNELS, SOURCES, "raster")
+share_cache(_KERNELS, SOURCES, "raster")
 register_all()  # the lecture modules' formulas, before any kernel is compiled or loaded

@@ -1,0 +1,43 @@
+"""The window on a machine whose kernels are not compiled yet: a first look at once, and the compile said."""
+
+import pytest
+from window_helpers import RENDER_TIMEOUT_MS
+
+from app import tabs
+from app.main_window import MainWindow
+from core import presets
+from core.image_order import ray_tracing
+
+
+def _open(qtbot):
+    win = MainWindow(presets.lecture_scene())
+    qtbot.addWidget(win)
+    image = win.tab("image order").widget.image
+    seen = []  # (progress-bar text, the image's note) at every change of either
+    win.renders.status_changed.connect(lambda tab: seen.append((win.progress.format(), image.note)))
+    set_image = image.set_image
+    image.set_image = lambda shown: (set_image(shown), seen.append((win.progress.format(), image.note)))
+    win.show()
+    qtbot.waitUntil(lambda: win.showing_full("image order"), timeout=RENDER_TIMEOUT_MS)
+    return win, seen
+
+
+@pytest.mark.gui
+def test_a_compile_still_to_come_is_said_and_a_first_look_shown_meanwhile(qtbot, monkeypatch):
+    # As on a fresh machine: the tracer's kernels count as not compiled (here they then load from the
+    # cache in a second, so the render goes on as it would after the compile).
+    monkeypatch.setattr(ray_tracing, "compiled_for", lambda accel: False)
+    win, seen = _open(qtbot)
+    said = [k for k, (text, _) in enumerate(seen) if "compiling the tracer's kernels" in text]
+    assert said, seen
+    first_look = [k for k, (_, note) in enumerate(seen) if note == tabs.FIRST_LOOK]
+    assert first_look and first_look[0] >= said[0]  # shown while the compile is said
+    assert seen[-1] == ("Image order: done", "")  # then the traced image, and the bar says so
+    assert all("compiling" not in text for text, _ in seen[first_look[-1] + 1:])
+
+
+@pytest.mark.gui
+def test_nothing_is_said_to_compile_when_everything_is_compiled(qtbot):
+    win, seen = _open(qtbot)
+    assert seen and all("compiling" not in text for text, _ in seen)
+    assert all(note != tabs.FIRST_LOOK for _, note in seen)
