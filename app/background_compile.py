@@ -29,19 +29,29 @@ from core.warm_up import GROUPS, warm_up_of
 class BackgroundCompile:
     """Start with :meth:`start`; :meth:`stop` ends the compile if it still runs."""
 
+    #: What runs: ``python`` and these arguments.
+    COMMAND = ("-m", "app", "compile", "--quiet")
+
     def __init__(self):
         self._process: subprocess.Popen | None = None
         self._stopped = threading.Event()
+        self.checked = threading.Event()
+        """Set once the thread has looked (and started the compile if it was needed)."""
 
     def start(self) -> None:
         """Look in a thread whether anything is to compile, and start compiling it if so."""
         threading.Thread(target=self._start_if_needed, name="background compile", daemon=True).start()
 
     def _start_if_needed(self) -> None:
-        if all(warm_up_of(group).ready() for group in GROUPS) or self._stopped.is_set():
-            return
+        try:
+            if not self._stopped.is_set() and not all(warm_up_of(group).ready() for group in GROUPS):
+                self._start()
+        finally:
+            self.checked.set()
+
+    def _start(self) -> None:
         self._process = subprocess.Popen(
-            [sys.executable, "-m", "app", "compile", "--quiet"], env=child_env(), stdin=subprocess.DEVNULL,
+            [sys.executable, *self.COMMAND], env=child_env(), stdin=subprocess.DEVNULL,
             stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True,
             preexec_fn=lambda: os.nice(5))
 

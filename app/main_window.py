@@ -174,6 +174,7 @@ class MainWindow(QMainWindow):
 
         self.renders.hold()  # the first render starts once the window is on screen
         self.background_compile = BackgroundCompile()
+        self._compile_watch = QTimer(self, interval=1000, timeout=self._say_background_compile)
         QApplication.instance().aboutToQuit.connect(self.background_compile.stop)
         AfterFirstFrame(self.tab_widget, self._first_frame_shown)
         self._tab_shown()
@@ -422,6 +423,17 @@ class MainWindow(QMainWindow):
     def _first_frame_shown(self) -> None:
         self.renders.release()
         self.background_compile.start()
+        self._compile_watch.start()
+
+    def _say_background_compile(self) -> None:
+        """While the kernels compile in the background, the status bar says so."""
+        if self.background_compile.running:
+            self.statusBar().showMessage(BACKGROUND_COMPILE, 2000)
+        elif self.background_compile.checked.is_set():
+            self._compile_watch.stop()
+            if self.statusBar().currentMessage() == BACKGROUND_COMPILE:
+                self.statusBar().showMessage("The renderers' kernels are compiled: they load at once "
+                                             "from now on", 4000)
 
     def _show_status(self, tab) -> None:
         if tab is not self.current:
@@ -482,6 +494,10 @@ class MainWindow(QMainWindow):
         self._tree_renderer.cancel()
         self.scene_view.close()
         super().closeEvent(event)
+
+
+BACKGROUND_COMPILE = ("Compiling the renderers' kernels in the background (once per machine and version of "
+                      "the code)…")
 
 
 def run(scene_path: str | None = None, memory_limit: int | None = None) -> int:

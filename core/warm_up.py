@@ -20,9 +20,11 @@ import threading
 import time
 from pathlib import Path
 
-#: Every kernel group: its name -> ``module:WarmUp`` that compiles all of it.
+#: Every kernel group: its name -> ``module:WarmUp`` that compiles all of it; the largest first, so
+#: that ``python -m app compile`` starts it first.
 GROUPS = {
-    "trace": "core.image_order.ray_tracing:ensure_compiled",
+    "trace": "core.image_order.ray_tracing:compile_renders",
+    "ray-tree": "core.image_order.ray_tracing:compile_ray_tree",
     "raster": "core.object_order.pipeline:ensure_compiled",
 }
 

@@ -225,10 +225,21 @@ _compiled_for = {accel: WarmUp(functools.partial(_warm_up, accel), _KERNELS, "tr
 """A render compiles only what its acceleration method needs: the window's first image waits for less."""
 
 
+def _warm_up_renders() -> None:
+    for accel in sorted(_compiled_for, key=lambda a: a != "bvh"):  # the window's first image's first
+        _compiled_for[accel]()
+
+
+compile_renders = WarmUp(_warm_up_renders, _KERNELS, "trace", "renders")
+"""Compile the kernels of every image render (each acceleration method) once per process."""
+compile_ray_tree = WarmUp(lambda: trace_pixel(warm_up_scene(), 1, 1, TraceSettings()), _KERNELS, "trace",
+                          "ray tree")
+"""Compile the kernels that trace one pixel's ray tree (a picked pixel) once per process."""
+
+
 def _warm_up_all() -> None:
-    for warm_up in _compiled_for.values():
-        warm_up()
-    trace_pixel(warm_up_scene(), 1, 1, TraceSettings())
+    compile_renders()
+    compile_ray_tree()
 
 
 ensure_compiled = WarmUp(_warm_up_all, _KERNELS, "trace", "all")

@@ -3,7 +3,7 @@
 import pytest
 from window_helpers import RENDER_TIMEOUT_MS
 
-from app import tabs
+from app import background_compile, main_window, tabs
 from app.main_window import MainWindow
 from core import presets
 from core.image_order import ray_tracing
@@ -41,3 +41,25 @@ def test_nothing_is_said_to_compile_when_everything_is_compiled(qtbot):
     win, seen = _open(qtbot)
     assert seen and all("compiling" not in text for text, _ in seen)
     assert all(note != tabs.FIRST_LOOK for _, note in seen)
+
+
+class _NotCompiled:
+    def ready(self):
+        return False
+
+
+@pytest.mark.gui
+def test_the_background_compile_is_said_and_ends_with_the_window(qtbot, monkeypatch):
+    # As on a fresh machine: no kernel group compiled. The compile itself is stood in for by a process
+    # that would run for ten minutes: it must be said while it runs and ended when the window closes.
+    monkeypatch.setattr(background_compile, "warm_up_of", lambda group: _NotCompiled())
+    monkeypatch.setattr(background_compile.BackgroundCompile, "COMMAND",
+                        ("-c", "import time; time.sleep(600)"))
+    win = MainWindow(presets.lecture_scene())
+    qtbot.addWidget(win)
+    win.show()
+    qtbot.waitUntil(lambda: win.background_compile.running, timeout=RENDER_TIMEOUT_MS)
+    qtbot.waitUntil(lambda: win.statusBar().currentMessage() == main_window.BACKGROUND_COMPILE, timeout=5000)
+    process = win.background_compile._process
+    win.close()
+    qtbot.waitUntil(lambda: process.poll() is not None, timeout=5000)
