@@ -78,12 +78,13 @@ def test_command_1_installs_qts_xcb_libraries_then_starts_the_app(tmp_path):
     assert log.read_text().splitlines()[-1] == "python -m app --help"
 
 
-def test_command_2_installs_xvfb_and_the_libraries_then_runs_the_tests_under_it(tmp_path):
+def test_command_2_installs_xvfb_and_the_libraries_compiles_then_runs_the_tests_under_it(tmp_path):
     root, log, env = _checkout(tmp_path)
     _run(root, env, "test.sh", "-q")
     assert {XCB_CURSOR, "xvfb", "xauth"} <= _installed(log)
     calls = log.read_text().splitlines()
-    assert calls[-2] == "ruff check ."
+    assert calls[-3] == "ruff check ."
+    assert calls[-2] == "python -m app compile"  # the kernels compile before any test's time limit runs
     assert calls[-1].startswith("xvfb-run -a") and calls[-1].endswith("python -m pytest -q")
 
 
