@@ -16,12 +16,14 @@ from app import (
     bench_startup,
     bench_trace,
     cost_command,
+    ctrl_c,
     export_command,
     hardcases_command,
     intersect_command,
     render_command,
 )
 from app.usage import UsageError
+from core.stopping import StoppedError
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -68,11 +70,12 @@ def main(argv: list[str] | None = None) -> int:
             from app.main_window import run
 
             return run(args.scene, render_command.parse_memory_limit(args.memory_limit))
+        ctrl_c.stop_kernels_on_ctrl_c()
         return args.run(args)
     except UsageError as exc:
         print(f"{parser.prog}: error: {exc}", file=sys.stderr)
         return 2
-    except KeyboardInterrupt:
+    except (KeyboardInterrupt, StoppedError):
         print(f"{parser.prog}: interrupted; no output file was written or changed", file=sys.stderr)
         return 130
     except MemoryError:
