@@ -52,41 +52,41 @@ def _limited(limit_bytes: int):
     return start
 
 
-# (command, arguments before the output, output option, file name): every format a command writes.
+# (command, arguments before the output, output option, file name, file-size limit in bytes): every
+# format a command writes, each larger than the limit (measured without it: the PNG 481 bytes, the
+# depth 13,952, the statistics 1,254, the GIF and MP4 several KB), the other outputs of the run
+# smaller (the image beside the depth, 481 bytes, or beside the statistics at 8 x 6, 99 bytes).
 FORMATS = [
-    ("render", ["--mode", "raytrace"], "--out", "image.png"),
-    ("render", ["--mode", "raster"], "--out", "image.jpg"),
-    ("render", ["--mode", "raster", "--out", "{folder}/ok.png"], "--depth-out", "depth.npy"),
-    ("render", ["--mode", "raster", "--out", "{folder}/ok.png"], "--stats-out", "stats.json"),
-    ("export", ["--what", "four-views"], "--out", "views.png"),
-    ("export", ["--what", "orbit", "--frames", "6"], "--out", "orbit.gif"),
-    ("export", ["--what", "orbit", "--frames", "6"], "--out", "orbit.mp4"),
+    ("render", ["--mode", "raytrace"], "--out", "image.png", 100),
+    ("render", ["--mode", "raster"], "--out", "image.jpg", 100),
+    ("render", ["--mode", "raster", "--out", "{folder}/image.png"], "--depth-out", "depth.npy", 5000),
+    ("render", ["--mode", "raster", "--width", "8", "--height", "6", "--out", "{folder}/image.png"],
+     "--stats-out", "stats.json", 500),
+    ("export", ["--what", "four-views"], "--out", "views.png", 100),
+    ("export", ["--what", "orbit", "--frames", "6"], "--out", "orbit.gif", 100),
+    ("export", ["--what", "orbit", "--frames", "6"], "--out", "orbit.mp4", 100),
 ]
 
 
-@pytest.mark.parametrize("command, before, option, name", FORMATS,
-                         ids=[f"{c} {n.split('.')[-1]} ({o})" for c, _, o, n in FORMATS])
-def test_every_output_format_cut_short_exits_1_naming_it_and_keeps_the_old_file(tmp_path, command, before,
-                                                                             option, name):
+@pytest.mark.parametrize("command, before, option, name, limit", FORMATS,
+                         ids=[f"{c} {n.split('.')[-1]} ({o})" for c, _, o, n, _ in FORMATS])
+def test_every_output_format_cut_short_exits_1_naming_it_and_keeps_the_old_files(tmp_path, command, before,
+                                                                              option, name, limit):
     scene = tmp_path / "scene.json"
     scene.write_text(json.dumps(SCENE))
-    out = tmp_path / name
-    out.write_bytes(OLD)
-    args = [a.replace("{folder}", str(tmp_path)) for a in before]
-    # 1000 bytes: every file here is larger (checked: each run below succeeds without the limit).
-    result = subprocess.run([sys.executable, "-m", "app", command, str(scene), *args, option, str(out)],
-                            cwd=ROOT, env=ENV, capture_output=True, text=True, timeout=300,
-                            preexec_fn=_limited(1000))
+    out, image = tmp_path / name, tmp_path / "image.png"
+    for path in {out, image}:
+        path.write_bytes(OLD)
+    command = [sys.executable, "-m", "app", command, str(scene),
+               *[a.replace("{folder}", str(tmp_path)) for a in before], option, str(out)]
+    result = subprocess.run(command, cwd=ROOT, env=ENV, capture_output=True, text=True, timeout=300,
+                            preexec_fn=_limited(limit))
     assert result.returncode == 1, result.stderr
     assert "Traceback" not in result.stderr
     last = result.stderr.strip().replace("\r", "\n").splitlines()[-1]  # after any progress bar
     assert str(out) in last and "error" in last
-    assert out.read_bytes() == OLD
+    assert out.read_bytes() == OLD and image.read_bytes() == OLD  # all of a run's files, or none
     assert _leftovers(tmp_path) == []
-    unlimited = subprocess.run([sys.executable, "-m", "app", command, str(scene), *args, option, str(out)],
-                               cwd=ROOT, env=ENV, capture_output=True, text=True, timeout=300)
-    assert unlimited.returncode == 0, unlimited.stderr
-    assert out.stat().st_size > 1000
 
 
 def test_cost_files_cut_short_exit_1_and_keep_all_three_old_files(tmp_path):
@@ -96,10 +96,10 @@ def test_cost_files_cut_short_exit_1_and_keep_all_three_old_files(tmp_path):
     out.mkdir()
     for name in ("cost.csv", "cost.png", "cost.svg"):
         (out / name).write_bytes(OLD)
-    command = [sys.executable, "-m", "app", "cost", str(scene), "--knob", "depth", "--width", "16",
-               "--out", str(out)]
+    command = [sys.executable, "-m", "app", "cost", str(scene), "--knob", "depth", "--width", "8",
+               "--reference-spp", "1", "--out", str(out)]
     result = subprocess.run(command, cwd=ROOT, env=ENV, capture_output=True, text=True, timeout=300,
-                            preexec_fn=_limited(1000))
+                            preexec_fn=_limited(100))
     assert result.returncode == 1, result.stderr
     assert "Traceback" not in result.stderr
     assert str(out) in result.stderr.strip().replace("\r", "\n").splitlines()[-1]
