@@ -7,6 +7,7 @@ loading Qt or VTK.
 from __future__ import annotations
 
 import argparse
+import os
 import signal
 import sys
 
@@ -57,6 +58,14 @@ def build_parser() -> argparse.ArgumentParser:
 COMMANDS = {"gui", "intersect", "render", "export", "bench", "hardcases", "cost", "-h", "--help"}
 
 
+def _exit_now(status: int) -> None:
+    """End the process without the interpreter's shutdown: after a stopped render, tearing down
+    numba's worker threads and freeing the render's arrays took about a second on a busy machine."""
+    sys.stdout.flush()
+    sys.stderr.flush()
+    os._exit(status)
+
+
 def main(argv: list[str] | None = None) -> int:
     argv = list(sys.argv[1:] if argv is None else argv)
     if not argv or argv[0] not in COMMANDS:
@@ -77,6 +86,8 @@ def main(argv: list[str] | None = None) -> int:
         return 2
     except (KeyboardInterrupt, StoppedError):
         print(f"{parser.prog}: interrupted; no output file was written or changed", file=sys.stderr)
+        if args.command != "gui":  # every file is closed and every temporary file gone by now
+            _exit_now(130)
         return 130
     except MemoryError:
         print(f"{parser.prog}: error: out of memory; use a smaller image (--width/--height), "
