@@ -58,12 +58,21 @@ def build_parser() -> argparse.ArgumentParser:
 COMMANDS = {"gui", "intersect", "render", "export", "bench", "hardcases", "cost", "-h", "--help"}
 
 
-def _exit_now(status: int) -> None:
-    """End the process without the interpreter's shutdown: after a stopped render, tearing down
-    numba's worker threads and freeing the render's arrays took about a second on a busy machine."""
+INTERRUPTED = "python -m app: interrupted; no output file was written or changed"
+
+
+def interrupted() -> None:
+    """Say so and end the process with status 130 at once, without the interpreter's shutdown.
+
+    After a stopped render, tearing down numba's worker threads and freeing the render's arrays
+    took about a second on a busy machine; and a second Ctrl+C meanwhile is ignored, so that it
+    cannot end the process by the signal (status -2) instead.
+    """
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    print(INTERRUPTED, file=sys.stderr)
     sys.stdout.flush()
     sys.stderr.flush()
-    os._exit(status)
+    os._exit(130)
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -85,9 +94,9 @@ def main(argv: list[str] | None = None) -> int:
         print(f"{parser.prog}: error: {exc}", file=sys.stderr)
         return 2
     except (KeyboardInterrupt, StoppedError):
-        print(f"{parser.prog}: interrupted; no output file was written or changed", file=sys.stderr)
         if args.command != "gui":  # every file is closed and every temporary file gone by now
-            _exit_now(130)
+            interrupted()
+        print(INTERRUPTED, file=sys.stderr)
         return 130
     except MemoryError:
         print(f"{parser.prog}: error: out of memory; use a smaller image (--width/--height), "

@@ -144,7 +144,7 @@ def run(args) -> int:
             data = encode_animation(_animation(scene, args), extension, args.fps, limit)
         else:
             data = encode_image(_picture(scene, args), extension)
-    except OutputError as exc:
+    except OSError as exc:  # the encoder failed (OutputError), or its temporary folder cannot be made
         print(f"python -m app export: error: cannot write {args.out}: {exc}; any previous file there "
               "is unchanged", file=sys.stderr)
         return 1
