@@ -1,9 +1,28 @@
-"""``python -m app``: the Render Explorer command line (see :mod:`app.cli`)."""
+"""``python -m app``: the Render Explorer command line (see :mod:`app.cli`).
 
+Ctrl+C while the modules load is held until they are loaded: numpy turns an
+interrupt inside its C extension's import into an ``ImportError``, which would
+end the program with a traceback and status 1 instead of the one line and 130.
+"""
+
+import signal
 import sys
 
-from app.cli import main
-from app.freed_memory import keep_freed_memory
-
-keep_freed_memory()  # process-wide: the memory of one frame's arrays is reused by the next
-sys.exit(main())
+_pressed = []
+_held = signal.getsignal(signal.SIGINT) is signal.default_int_handler
+if _held:
+    signal.signal(signal.SIGINT, lambda signum, frame: _pressed.append(signum))
+try:
+    from app.cli import interrupted, main
+    from app.freed_memory import keep_freed_memory
+finally:
+    if _held:
+        signal.signal(signal.SIGINT, signal.default_int_handler)
+if _pressed:
+    interrupted()
+try:
+    keep_freed_memory()  # process-wide: the memory of one frame's arrays is reused by the next
+    status = main()
+except KeyboardInterrupt:  # while the command line is read, before the command's own handler
+    interrupted()
+sys.exit(status)

@@ -7,6 +7,7 @@ loading Qt or VTK.
 from __future__ import annotations
 
 import argparse
+import os
 import signal
 import sys
 
@@ -18,12 +19,14 @@ from app import (
     bench_trace,
     compile_command,
     cost_command,
+    ctrl_c,
     export_command,
     hardcases_command,
     intersect_command,
     render_command,
 )
 from app.usage import UsageError
+from core.stopping import StoppedError
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -59,6 +62,23 @@ def build_parser() -> argparse.ArgumentParser:
 COMMANDS = {"gui", "intersect", "render", "export", "bench", "hardcases", "cost", "compile", "-h", "--help"}
 
 
+INTERRUPTED = "python -m app: interrupted; no output file was written or changed"
+
+
+def interrupted() -> None:
+    """Say so and end the process with status 130 at once, without the interpreter's shutdown.
+
+    After a stopped render, tearing down numba's worker threads and freeing the render's arrays
+    took about a second on a busy machine; and a second Ctrl+C meanwhile is ignored, so that it
+    cannot end the process by the signal (status -2) instead.
+    """
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    print(INTERRUPTED, file=sys.stderr)
+    sys.stdout.flush()
+    sys.stderr.flush()
+    os._exit(130)
+
+
 def main(argv: list[str] | None = None) -> int:
     argv = list(sys.argv[1:] if argv is None else argv)
     if not argv or argv[0] not in COMMANDS:
@@ -72,12 +92,15 @@ def main(argv: list[str] | None = None) -> int:
             from app.main_window import run
 
             return run(args.scene, render_command.parse_memory_limit(args.memory_limit))
+        ctrl_c.stop_kernels_on_ctrl_c()
         return args.run(args)
     except UsageError as exc:
         print(f"{parser.prog}: error: {exc}", file=sys.stderr)
         return 2
-    except KeyboardInterrupt:
-        print(f"{parser.prog}: interrupted; no output file was written or changed", file=sys.stderr)
+    except (KeyboardInterrupt, StoppedError):
+        if args.command != "gui":  # every file is closed and every temporary file gone by now
+            interrupted()
+        print(INTERRUPTED, file=sys.stderr)
         return 130
     except MemoryError:
         print(f"{parser.prog}: error: out of memory; use a smaller image (--width/--height), "

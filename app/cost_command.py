@@ -169,12 +169,15 @@ def run(args) -> int:
     rows = job.rows()
     figure = Figure(figsize=(9, 6), layout="constrained")
     draw_cost_plot(figure, rows)
+    from core.safe_files import OutputError, write_atomic_all
+
     try:
-        cost_files.write_csv(rows, out / "cost.csv")
-        cost_files.save_figure(figure, out / "cost.png")
-        cost_files.save_figure(figure, out / "cost.svg")
-    except OSError as exc:
-        raise UsageError(f"--out: cannot write into {out}: {exc.strerror or exc}") from None
+        write_atomic_all({out / "cost.csv": cost_files.csv_text(rows).encode("utf-8"),
+                          out / "cost.png": cost_files.figure_bytes(figure, ".png"),
+                          out / "cost.svg": cost_files.figure_bytes(figure, ".svg")})
+    except OutputError as exc:
+        print(f"python -m app cost: error: {exc}", file=sys.stderr)
+        return 1
     print(_table(rows, job.skipped))
     if args.budget is not None:
         best = sweep.best_within(rows, args.budget)

@@ -28,7 +28,6 @@ nor VTK.
 
 from __future__ import annotations
 
-import copy
 import os
 import sys
 
@@ -37,7 +36,7 @@ import numpy as np
 from app.animation_frames import MAX_FRAMES, orbit_frames, steps_problem, zbuffer_steps
 from app.kernel_loading import load_kernels
 from app.picture_sheet import four_views, zbuffer_sheet
-from app.render_command import ACCELS, MODES, prepare
+from app.render_command import ACCELS, MODES, budget_limit, judge_cost, prepare
 from app.usage import UsageError
 
 WHATS = ("image", "zbuffer", "zbuffer-steps", "four-views", "compare", "orbit")
@@ -119,7 +118,7 @@ def _modes(args) -> list[str]:
 
 def run(args) -> int:
     _check_arguments(args)
-    prepared = prepare(args, _outputs, [_with_mode(args, mode) for mode in _modes(args)])
+    prepared = prepare(args, _outputs, [])
     if prepared is None:
         return 2
     scene, outputs, limit = prepared
@@ -128,21 +127,27 @@ def run(args) -> int:
         problem = steps_problem(scene, extension, limit)
         if problem:
             raise UsageError(f"--what zbuffer-steps: {problem}")
+    cam = scene.camera
+    judge_cost(args, export_cost(scene, args, extension), limit, budget_limit(args)[1],
+               what=f"--what {args.what} at {cam.width} × {cam.height}",
+               summary=f"{args.what}: {cam.width}x{cam.height} pixels, {len(scene.objects)} objects",
+               reduce="use a smaller image (--width/--height), fewer frames or objects, MP4 rather "
+                      "than GIF, or --memory-limit")
     if args.dry_run:
         return 0
     for mode in {*_modes(args), *(["raster"] if args.what == "four-views" else [])}:
         load_kernels(mode, args.accel)
-    if args.what in ANIMATIONS:
-        from app.image_files import encode_animation
+    from app.image_files import OutputError, encode_animation, encode_image
 
-        data = encode_animation(_animation(scene, args), extension, args.fps, limit)
-    else:
-        from app.image_files import encode_image
-
-        data = encode_image(_picture(scene, args), extension)
-
-    from app.image_files import OutputError
-
+    try:
+        if args.what in ANIMATIONS:
+            data = encode_animation(_animation(scene, args), extension, args.fps, limit)
+        else:
+            data = encode_image(_picture(scene, args), extension)
+    except OSError as exc:  # the encoder failed (OutputError), or its temporary folder cannot be made
+        print(f"python -m app export: error: cannot write {args.out}: {exc}; any previous file there "
+              "is unchanged", file=sys.stderr)
+        return 1
     try:
         outputs.write({"--out": data})
     except OutputError as exc:
@@ -152,11 +157,35 @@ def run(args) -> int:
     return 0
 
 
-def _with_mode(args, mode: str):
-    """A copy of the parsed arguments with ``--mode`` changed (for the cost check of each pipeline)."""
-    other = copy.copy(args)
-    other.mode = mode
-    return other
+def export_cost(scene, args, extension: str):
+    """The export's estimated peak memory and time (:class:`core.budget.Estimate`).
+
+    Its renders run one after another, so the time is theirs added up and the
+    memory the largest one's (:func:`core.budget.combined`): one per pipeline
+    for ``image``, ``zbuffer`` and ``compare``; the three orthographic views by
+    the z-buffer and the observer's by ``--mode`` for ``four-views``; one per
+    frame for ``orbit``; one recording every step for ``zbuffer-steps``
+    (:func:`app.animation_frames.steps_problem` checks its frames).  A GIF
+    holds every frame, 3 bytes a pixel, until it is written; an MP4 one.
+    """
+    from core import budget
+
+    def cost(mode):
+        return budget.estimate(scene, mode, args.accel, args.max_depth)
+
+    if args.what == "four-views":
+        runs = [cost("raster")] * 3 + [cost(args.mode)]
+    elif args.what == "orbit":
+        runs = [cost(args.mode)] * args.frames
+    else:
+        runs = [cost(mode) for mode in _modes(args)]
+    total = budget.combined(runs)
+    if args.what == "orbit" and extension == ".gif":
+        cam = scene.camera
+        frames = args.frames * cam.width * cam.height * 3
+        total = budget.Estimate(total.bytes + frames, {**total.parts, "GIF frames": frames}, total.seconds,
+                                total.slow_because)
+    return total
 
 
 # --- rendering --------------------------------------------------------------------------------------------

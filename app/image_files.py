@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import io
 import os
+import signal
 import tempfile
 from pathlib import Path
 
@@ -62,38 +63,92 @@ def write_image(path, rgb: np.ndarray) -> None:
 def encode_animation(frames, extension: str, fps: int, limit: int) -> bytes:
     """The bytes of a GIF or MP4 of ``frames`` (each (H, W, 3) linear RGB, written as sRGB).
 
-    The file is encoded in a private temporary folder and returned as bytes,
-    so the caller writes it into place atomically.  Frames are taken one at a
-    time: an MP4 holds one, a GIF all of them until it is written, and a GIF
-    whose frames would exceed ``limit`` bytes is refused
-    (:class:`app.usage.UsageError`) as soon as they do.
+    The file is encoded in memory (GIF) or by ffmpeg into a private temporary
+    folder (MP4) and returned as bytes, so the caller writes it into place
+    atomically.  Frames are taken one at a time: an MP4 holds one, a GIF all
+    of them until it is written, and a GIF whose frames would exceed
+    ``limit`` bytes is refused (:class:`app.usage.UsageError`) as soon as they do.
+
+    Raises
+    ------
+    OutputError
+        When the encoder fails (ffmpeg's exit status is not 0, its file is
+        empty, or writing its file fails, e.g. over a file-size limit); the
+        message says why.
     """
-    import imageio.v2 as iio2
     import imageio.v3 as iio
 
     from app.usage import UsageError
     from core import budget
 
+    if extension == ".mp4":
+        return _encode_mp4(frames, fps)
+    pixels, held = [], 0
+    for frame in frames:
+        pixels.append(to_srgb8(frame))
+        held += pixels[-1].nbytes
+        if held > limit:
+            raise UsageError(f"the GIF's frames need more than {budget.format_bytes(limit)}; "
+                             "use a smaller image, fewer frames, or MP4")
+    buffer = io.BytesIO()
+    try:
+        iio.imwrite(buffer, pixels, extension=".gif", duration=1000 / fps, loop=0)
+    except (OSError, ValueError) as exc:  # a GIF of no frames, or the encoder's own failure
+        raise OutputError(f"the GIF encoder failed: {exc}") from None
+    return buffer.getvalue()
+
+
+def _encode_mp4(frames, fps: int) -> bytes:
+    """An H.264 MP4 of ``frames`` by ffmpeg (imageio-ffmpeg's), its exit status and file checked."""
+    import subprocess
+
+    import imageio_ffmpeg
+
     with tempfile.TemporaryDirectory(prefix="render-explorer-export-") as folder:
-        path = os.path.join(folder, "animation" + extension)
-        if extension == ".gif":
-            pixels, held = [], 0
+        path = os.path.join(folder, "animation.mp4")
+        encoder = None
+        try:
             for frame in frames:
-                pixels.append(to_srgb8(frame))
-                held += pixels[-1].nbytes
-                if held > limit:
-                    raise UsageError(f"the GIF's frames need more than {budget.format_bytes(limit)}; "
-                                     "use a smaller image, fewer frames, or MP4")
-            iio.imwrite(path, pixels, extension=".gif", duration=1000 / fps, loop=0)
-        else:
-            with iio2.get_writer(path, format="FFMPEG", fps=fps, macro_block_size=2,
-                                 ffmpeg_log_level="error") as writer:
-                for frame in frames:
-                    pixels = to_srgb8(frame)
-                    h, w = pixels.shape[:2]
-                    writer.append_data(np.pad(pixels, ((0, h % 2), (0, w % 2), (0, 0)), mode="edge"))
-        with open(path, "rb") as f:
-            return f.read()
+                pixels = to_srgb8(frame)
+                h, w = pixels.shape[:2]
+                pixels = np.pad(pixels, ((0, h % 2), (0, w % 2), (0, 0)), mode="edge")  # H.264: even sizes
+                if encoder is None:
+                    command = [imageio_ffmpeg.get_ffmpeg_exe(), "-loglevel", "error", "-y", "-f", "rawvideo",
+                               "-pix_fmt", "rgb24", "-s", f"{pixels.shape[1]}x{pixels.shape[0]}",
+                               "-r", str(fps), "-i", "-",
+                               "-an", "-vcodec", "libx264", "-pix_fmt", "yuv420p", "-crf", "25", path]
+                    encoder = subprocess.Popen(command, stdin=subprocess.PIPE, stdout=subprocess.DEVNULL,
+                                               stderr=subprocess.PIPE)
+                encoder.stdin.write(np.ascontiguousarray(pixels).tobytes())
+            if encoder is None:
+                raise OutputError("an MP4 needs at least one frame")
+            encoder.stdin.close()
+            status = encoder.wait()
+        except BrokenPipeError:  # ffmpeg stopped reading: it failed, and says why below
+            status = encoder.wait()
+        except BaseException:  # Ctrl-C or any failure: ffmpeg must not outlive the export
+            if encoder is not None:
+                encoder.kill()
+                encoder.wait()
+            raise
+        finally:
+            if encoder is not None:
+                why = encoder.stderr.read().decode(errors="replace").strip().splitlines()
+                encoder.stderr.close()
+        if status != 0:
+            if status < 0:
+                reason = f"killed by {signal.Signals(-status).name}"
+            else:
+                reason = f"exit status {status}: {why[-1] if why else 'no message'}"
+            raise OutputError(f"the MP4 encoder (ffmpeg) failed ({reason})")
+        try:
+            with open(path, "rb") as f:
+                data = f.read()
+        except OSError as exc:
+            raise OutputError(f"the MP4 encoder's file cannot be read: {exc.strerror or exc}") from None
+        if not data:
+            raise OutputError("the MP4 encoder (ffmpeg) wrote an empty file")
+        return data
 
 
 def _same_file(a: str, b: str) -> bool:

@@ -108,19 +108,29 @@ def check_cost(scene, args, limit: int, limit_source: str) -> None:
 
     cost = budget.estimate(scene, args.mode, args.accel, args.max_depth)
     cam = scene.camera
-    over = budget.refusal(f"{cam.width} × {cam.height} {args.mode} of {len(scene.objects)} objects",
-                          cost, limit, limit_source)
+    judge_cost(args, cost, limit, limit_source,
+               what=f"{cam.width} × {cam.height} {args.mode} of {len(scene.objects)} objects",
+               summary=f"{args.mode}: {cam.width}x{cam.height} pixels, {len(scene.objects)} objects",
+               reduce="use a smaller image (--width/--height), fewer objects or triangles, or --memory-limit")
+
+
+def judge_cost(args, cost, limit: int, limit_source: str, *, what: str, summary: str, reduce: str) -> None:
+    """Refuse work whose estimated ``cost`` is over the memory budget (:class:`UsageError`, naming
+    ``what`` and how to ``reduce`` it); print the estimate after ``summary`` for ``--dry-run``, or
+    announce it on stderr when it will be slow."""
+    from core import budget
+
+    over = budget.refusal(what, cost, limit, limit_source)
     if over:
-        raise UsageError(f"{over}; use a smaller image (--width/--height), fewer objects or "
-                         "triangles, or --memory-limit")
+        raise UsageError(f"{over}; {reduce}")
     if args.dry_run:
-        print(f"{args.mode}: {cam.width}x{cam.height} pixels, {len(scene.objects)} objects: "
-              f"about {budget.format_bytes(cost.bytes)} of memory and "
+        print(f"{summary}: about {budget.format_bytes(cost.bytes)} of memory and "
               f"{budget.format_seconds(cost.seconds)}; nothing rendered (--dry-run)")
     elif cost.seconds > budget.SLOW_SECONDS:
         why = f": {cost.slow_because}" if cost.slow_because else ""
-        print(f"python -m app {args.command}: estimated time about {budget.format_seconds(cost.seconds)}"
-              f" and {budget.format_bytes(cost.bytes)} of memory{why}", file=sys.stderr, flush=True)
+        print(f"python -m app {args.command}: {what}: estimated time about "
+              f"{budget.format_seconds(cost.seconds)} and {budget.format_bytes(cost.bytes)} of memory{why}",
+              file=sys.stderr, flush=True)
 
 
 def load_scene(args, outputs, changes: dict):

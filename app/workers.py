@@ -4,8 +4,9 @@ A *job* is a plain function ``job(cancelled, progress) -> result``: it checks
 ``cancelled`` (a :class:`threading.Event`) between pieces of work and returns
 ``None`` once it is set, and calls ``progress(percent, partial)`` after each
 piece.  :class:`Renderer` runs jobs on the thread pool; a new job supersedes the
-running one (it stops at its next piece), and results of superseded jobs are
-never delivered.  Partial results reach the GUI thread at most
+running one (it stops at its next piece, and a compiled kernel it is running
+stops within a pixel or a triangle, :mod:`core.stopping`), and results of
+superseded jobs are never delivered.  Partial results reach the GUI thread at most
 :data:`PROGRESS_PER_SECOND` times a second; the ones in between are dropped
 (the next one shows more anyway).  Signals are queued onto the GUI thread, so
 receivers may touch widgets and VTK.
@@ -21,6 +22,7 @@ from dataclasses import dataclass
 from PySide6.QtCore import QObject, QRunnable, QThreadPool, QTimer, Signal
 
 from app import render_budget, render_priority
+from core import stopping
 from views.stale_cover import cover, uncover
 
 Job = Callable[[threading.Event, Callable[[int, object], None]], object]
@@ -43,7 +45,7 @@ class _Signals(QObject):
 
 
 class _Runnable(QRunnable):
-    def __init__(self, job_id: int, job: Job, signals: _Signals, cancelled: threading.Event):
+    def __init__(self, job_id: int, job: Job, signals: _Signals, cancelled: stopping.StopRequest):
         super().__init__()
         self.job_id, self.job, self.signals, self.cancelled = job_id, job, signals, cancelled
         self._last_progress = -float("inf")
@@ -53,7 +55,10 @@ class _Runnable(QRunnable):
             return
         render_priority.give_way_to_the_window()
         try:
-            result = self.job(self.cancelled, self._progress)
+            with stopping.stopped_by(self.cancelled):
+                result = self.job(self.cancelled, self._progress)
+        except stopping.StoppedError:  # cancelled in a kernel: nothing to deliver
+            return
         except Exception as exc:  # shown to the user by whoever listens to `failed`
             self._emit("failed", self.job_id, f"{type(exc).__name__}: {exc}")
             return
@@ -108,7 +113,7 @@ class Renderer(QObject):
         """Run ``job`` in the background, cancelling the running one; returns its id."""
         self.cancel()
         self._latest += 1
-        self._cancel = threading.Event()
+        self._cancel = stopping.StopRequest()
         self._pool.start(_Runnable(self._latest, job, self._signals, self._cancel))
         return self._latest
 

@@ -7,8 +7,8 @@ never ends) or a huge file is refused with a message instead of hanging the
 program or filling its memory.
 
 Writing: :func:`write_atomic` writes to a temporary file in the target's own
-folder and renames it over the target (``os.replace``) only once every byte is
-on disk.  A write that fails part-way (a full disk, a file-size limit, Ctrl-C)
+folder, checks that the file holds every byte (its size), and renames it over
+the target (``os.replace``) only then.  A write that fails part-way (a full disk, a file-size limit, Ctrl-C)
 removes the temporary file and leaves the old target byte-for-byte as it was.
 The rename is atomic because both names are in the same folder, hence on the
 same file system.
@@ -17,6 +17,7 @@ same file system.
 from __future__ import annotations
 
 import contextlib
+import errno
 import os
 import stat
 import tempfile
@@ -91,6 +92,9 @@ def _stage(path: Path, data: bytes) -> str:
             f.write(data)
             f.flush()
             os.fsync(f.fileno())
+            written = os.fstat(f.fileno()).st_size
+            if written != len(data):  # never trust a write that did not raise
+                raise OSError(errno.EIO, f"only {written:,} of {len(data):,} bytes were written")
         os.chmod(temp, mode)
     except BaseException:
         with contextlib.suppress(OSError):

@@ -53,6 +53,7 @@ MAX_TRIANGLES = 2_000_000  # of the whole scene: primitives, inline meshes and m
 MAX_NESTING = 32  # levels of JSON arrays and objects; a scene needs 5
 MAX_FILE_BYTES = 100_000_000
 MAX_DIGITS = 100  # of a whole number in the JSON text; any longer one is out of range anyway
+MAX_PROBLEMS_SHOWN = 50  # in a message; the rest are counted
 DEGENERATE_BLOCK = 100_000  # triangles checked for zero area at a time
 
 MeshReader = Callable[[str], tuple[np.ndarray, np.ndarray]]
@@ -84,8 +85,15 @@ class SceneFileError(ValueError):
         if n == 1:
             super().__init__(f"{head}: {self.problems[0]}")
         else:
-            lines = "\n".join(f"  {p}" for p in self.problems)
-            super().__init__(f"{head}: {n} problems:\n{lines}")
+            super().__init__(f"{head}: {n} problems:\n{problem_lines(self.problems)}")
+
+
+def problem_lines(problems: list[str]) -> str:
+    """The problems one per line, indented; past :data:`MAX_PROBLEMS_SHOWN`, only their number."""
+    lines = [f"  {p}" for p in problems[:MAX_PROBLEMS_SHOWN]]
+    if len(problems) > MAX_PROBLEMS_SHOWN:
+        lines.append(f"  ... and {len(problems) - MAX_PROBLEMS_SHOWN:,} more problems")
+    return "\n".join(lines)
 
 
 # --- reading values, collecting problems ------------------------------------
@@ -99,9 +107,13 @@ class _JsonObject(dict):
 
 def _json_object(pairs: list[tuple[str, object]]) -> _JsonObject:
     d = _JsonObject(pairs)
-    if len(d) < len(pairs):
-        keys = [k for k, _ in pairs]
-        d.duplicates = tuple(dict.fromkeys(k for i, k in enumerate(keys) if k in keys[:i]))
+    if len(d) < len(pairs):  # found in one pass: a file may have 200,000 keys
+        seen, repeated = set(), {}
+        for key, _ in pairs:
+            if key in seen:
+                repeated[key] = None
+            seen.add(key)
+        d.duplicates = tuple(repeated)
     return d
 
 
@@ -168,15 +180,17 @@ class _Reader:
         if not isinstance(value, dict):
             self.add(path or "top level", f"expected an object {{...}}, got {_show(value)}")
             return None
-        for key in getattr(value, "duplicates", ()):
-            self.add(_join(path, key), "given more than once")
-        suggested = set()
-        for key in value:
-            if key not in known:
-                close = difflib.get_close_matches(str(key), known, n=1)
-                hint = f"did you mean {close[0]!r}?" if close else f"known: {', '.join(known)}"
-                self.add(_join(path, str(key)), f"unknown field {key!r} ({hint})")
-                suggested.update(close)
+        duplicates = getattr(value, "duplicates", ())
+        self.capped_fields(path, [(key, "given more than once") for key in duplicates[:MAX_LISTED + 1]],
+                           len(duplicates), "keys given more than once")
+        suggested, unknown = set(), [key for key in value if key not in known]
+        reported = []
+        for key in unknown[:MAX_LISTED + 1]:  # a file may have 200,000 of them: a few say enough
+            close = difflib.get_close_matches(str(key), known, n=1)
+            hint = f"did you mean {close[0]!r}?" if close else f"known: {', '.join(known)}"
+            reported.append((str(key), f"unknown field {key!r} ({hint})"))
+            suggested.update(close)
+        self.capped_fields(path, reported, len(unknown), "unknown fields")
         for key in required:
             if key not in value and key not in suggested:  # a typo is reported once
                 self.add(_join(path, key), "required field is missing")
@@ -240,6 +254,13 @@ class _Reader:
             return v
         self.add(path, f"expected a list [...], got {_show(v)}")
         return []
+
+    def capped_fields(self, path: str, items: list[tuple[str, str]], total: int, what: str) -> None:
+        """Report problems of fields ``path.key``, at most MAX_LISTED of the ``total``."""
+        for key, message in items[:MAX_LISTED]:
+            self.add(_join(path, key), message)
+        if total > MAX_LISTED:
+            self.add(path or "top level", f"... and {total - MAX_LISTED:,} more {what}")
 
     def capped(self, path: str, items: list[tuple[int, str]]) -> None:
         """Report per-element problems ``path[k]``, at most MAX_LISTED of them."""
@@ -649,17 +670,39 @@ def load(path_or_dict, read_mesh: MeshReader | None = None) -> Scene:
     if isinstance(path_or_dict, dict):
         return from_dict(path_or_dict, read_mesh=read_mesh)
     path = Path(path_or_dict)
-    problem = safe_files.input_file_problem(path, MAX_FILE_BYTES)
+    data = read_json(path, MAX_FILE_BYTES)
+    try:
+        return from_dict(data, base_dir=path.parent, read_mesh=read_mesh)
+    except SceneFileError as exc:
+        raise SceneFileError(exc.problems, str(path)) from None
+
+
+def read_json(path, limit_bytes: int):
+    """The parsed JSON of the file ``path``, read as guardedly as a scene file.
+
+    Only a regular file of at most ``limit_bytes`` is read (checked before it
+    is opened, see :mod:`core.safe_files`), as UTF-8 (a BOM is skipped);
+    whole numbers longer than :data:`MAX_DIGITS` digits are refused while
+    parsing, and objects remember their repeated keys (``duplicates``) for
+    :meth:`_Reader.fields` to report.  Lesson files are read the same way.
+
+    Raises
+    ------
+    SceneFileError
+        With the one problem (the file's place in the text, where JSON is
+        invalid) and ``where`` = the path.
+    """
+    problem = safe_files.input_file_problem(path, limit_bytes)
     if problem is not None:
         raise SceneFileError([problem], str(path))
     try:
-        text = safe_files.read_bytes_limited(path, MAX_FILE_BYTES).decode("utf-8-sig")
+        text = safe_files.read_bytes_limited(path, limit_bytes).decode("utf-8-sig")
     except UnicodeDecodeError:
         raise SceneFileError(["not a text file (UTF-8 JSON expected)"], str(path)) from None
     except OSError as exc:
         raise SceneFileError([f"cannot read the file: {exc.strerror or exc}"], str(path)) from None
     try:
-        data = json.loads(text, object_pairs_hook=_json_object, parse_int=_parse_int)
+        return json.loads(text, object_pairs_hook=_json_object, parse_int=_parse_int)
     except json.JSONDecodeError as exc:
         problem = f"line {exc.lineno}, column {exc.colno}: invalid JSON: {exc.msg}"
         raise SceneFileError([problem], str(path)) from None
@@ -667,10 +710,6 @@ def load(path_or_dict, read_mesh: MeshReader | None = None) -> Scene:
         raise SceneFileError(["invalid JSON: nested too deeply"], str(path)) from None
     except ValueError as exc:  # from _parse_int
         raise SceneFileError([f"invalid JSON: {exc}"], str(path)) from None
-    try:
-        return from_dict(data, base_dir=path.parent, read_mesh=read_mesh)
-    except SceneFileError as exc:
-        raise SceneFileError(exc.problems, str(path)) from None
 
 
 # --- writing -----------------------------------------------------------------

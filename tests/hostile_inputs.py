@@ -1,9 +1,9 @@
-"""Hypothesis strategies for hostile scene files and mesh files (issue 11's fuzzing).
+"""Hypothesis strategies for hostile scene files, mesh files and lesson files (issues 11 and 35).
 
 Used by ``tests/app/test_fuzz_inputs.py`` (a few diverse examples) and by the
-larger one-off campaign whose figures the issue's note gives.  Every strategy
+larger one-off campaigns whose figures the issues' notes give.  Every strategy
 draws a :class:`Case`: the files to write into an empty folder and the scene
-file to give ``python -m app render``.
+(or lesson) file to read.
 """
 
 from __future__ import annotations
@@ -257,15 +257,87 @@ def path_cases(draw):
     return Case(f"path {special}", {}, scene=special, special=special)
 
 
-def run_case(case: Case, folder: Path, *options: str, timeout: float = 60.0):
-    """Write ``case`` into ``folder`` and run ``python -m app render`` on it.
+# --- lesson files (issue 35) --------------------------------------------------------
 
-    Returns
-    -------
-    returncode : int (negative: killed by that signal; None: timed out, then killed)
-    stderr : str
-    peak_kib : int, the command's own peak resident memory (``ru_maxrss``, KiB)
-    """
+SHIPPED_LESSON = ROOT / "core" / "lessons" / "files" / "02_observer.json"
+
+
+@st.composite
+def lesson_cases(draw):
+    """Class "lesson": a shipped lesson damaged the ways hostile files are, or a path that never ends."""
+    lesson = json.loads(SHIPPED_LESSON.read_text())
+    step = lesson["steps"][draw(st.integers(0, len(lesson["steps"]) - 1))]
+    how = draw(st.sampled_from(["as is", "view", "camera", "field", "scene", "long text", "many keys",
+                                "json", "fifo", "/dev/zero", "folder", "missing"]))
+    if how in ("fifo", "/dev/zero", "folder", "missing"):
+        return Case(f"lesson path {how}", {}, scene=how if how.startswith("/") else "lesson.json",
+                    special=how if how != "missing" else None)
+    if how == "view":  # what the 3D pane cannot look from
+        step["view"] = {"position": draw(maybe(vec(SANE), vec())),
+                        "focal_point": draw(maybe(vec(SANE), vec())),
+                        "up": draw(st.sampled_from([[0, 0, 0], [0, 1, 0], [0, 1e-300, 0], [1, 0, 0]]))}
+        if draw(st.booleans()):
+            step["view"]["focal_point"] = step["view"]["position"]
+    elif how == "camera":
+        step["camera"] = draw(camera())
+    elif how == "field":
+        key = draw(st.sampled_from(["pixel", "zbuffer_step", "panes", "overlays", "highlight", "frame",
+                                    "image_order", "object_order", "formulas", "title"]))
+        step[key] = draw(ANY_JSON)
+    elif how == "scene":
+        step["scene"] = draw(scene_dict())
+    elif how == "long text":
+        step["text"] = "x" * draw(st.sampled_from([20_000, 20_001, 5_000_000]))
+    elif how == "many keys":  # one of them repeated: reported at once, not after minutes
+        n = draw(st.sampled_from([1000, 200_000]))
+        text = json.dumps(lesson)[:-1] + "".join(f', "k{i}": {i}' for i in range(n)) + ', "k7": 0}'
+        return Case(f"lesson ({n:,} keys)", {"lesson.json": text.encode()}, scene="lesson.json")
+    how_text, data = draw(scene_text(lesson))  # truncated, deep, huge int, BOM, garbage, duplicate
+    return Case(f"lesson {how} ({how_text})", {"lesson.json": data}, scene="lesson.json")
+
+
+#: Loads a lesson file as the window's File > Open lesson does; a refusal is one message, exit 2.
+_LOAD_LESSON = """
+import sys
+from core.lessons import LessonFileError, load_lesson
+try:
+    load_lesson(sys.argv[1])
+except LessonFileError as exc:
+    print(exc, file=sys.stderr)
+    sys.exit(2)
+"""
+
+_LESSON_NAMED = re.compile(
+    r"^lesson file .+?: (\d+ problems:\s+)?"
+    r"((top level|format|version|id|title|figures|questions|summary|steps|k\d+)([.\[][^\n]*?)?: "
+    r"|[^\n]*?: unknown field "
+    r"|line \d+, column \d+: |invalid JSON: |file not found$|cannot read the file: |too large: "
+    r"|not a text file)"
+)
+
+
+def run_lesson(case: Case, folder: Path, timeout: float = 60.0):
+    """Write ``case`` into ``folder`` and load its lesson file in a fresh Python; ``(returncode, stderr)``."""
+    path = _materialise(case, folder)
+    env = {**os.environ, "PYTHONPATH": str(ROOT), "PYTHONDONTWRITEBYTECODE": "1"}
+    try:
+        result = subprocess.run([sys.executable, "-c", _LOAD_LESSON, str(path)], cwd=ROOT, env=env,
+                                capture_output=True, text=True, timeout=timeout)
+    except subprocess.TimeoutExpired:
+        return None, ""
+    return result.returncode, result.stderr
+
+
+def lesson_verdict(code, stderr: str) -> str | None:
+    """What is wrong with one lesson load, or None if it was handled (also: a message of at most
+    10,000 characters, so the window's dialog can show it)."""
+    if len(stderr) > 10_000:
+        return f"a message of {len(stderr):,} characters"
+    return verdict(code, stderr, lambda text: bool(_LESSON_NAMED.match(text.strip())))
+
+
+def _materialise(case: Case, folder: Path) -> Path:
+    """Write the case's files into ``folder``; the path of the file to read."""
     for name, data in case.files.items():
         (folder / name).write_bytes(data)
     scene = folder / case.scene
@@ -277,6 +349,19 @@ def run_case(case: Case, folder: Path, *options: str, timeout: float = 60.0):
         os.mkfifo(folder / "pipe.obj")
     elif case.special and case.special.startswith("/dev/"):
         scene = Path(case.special)
+    return scene
+
+
+def run_case(case: Case, folder: Path, *options: str, timeout: float = 60.0):
+    """Write ``case`` into ``folder`` and run ``python -m app render`` on it.
+
+    Returns
+    -------
+    returncode : int (negative: killed by that signal; None: timed out, then killed)
+    stderr : str
+    peak_kib : int, the command's own peak resident memory (``ru_maxrss``, KiB)
+    """
+    scene = _materialise(case, folder)
     command = [sys.executable, "-m", "app", "render", str(scene), "--out",
                str(folder / "out.png"), *options]
     env = {**os.environ, "PYTHONPATH": str(ROOT), "PYTHONDONTWRITEBYTECODE": "1"}
@@ -307,8 +392,9 @@ with open(sys.argv[1], "w") as f:
 """
 
 
-def verdict(code, stderr: str) -> str | None:
-    """What is wrong with one run, or None if it was handled."""
+def verdict(code, stderr: str, names_what=names_a_field) -> str | None:
+    """What is wrong with one run, or None if it was handled; ``names_what(stderr)``: whether a
+    refusal names what is wrong."""
     if code is None:
         return "timed out (a hang)"
     if code < 0:
@@ -317,6 +403,6 @@ def verdict(code, stderr: str) -> str | None:
         return "traceback"
     if code not in (0, 2):
         return f"exit status {code}"
-    if code == 2 and not names_a_field(stderr):
+    if code == 2 and not names_what(stderr):
         return "message names no field"
     return None

@@ -47,5 +47,6 @@ def rasterized_surface(scene: Scene, settings: RasterSettings | None = None) -> 
     passed = np.flatnonzero(fragments.passed)
     last = np.full(history.width * history.height, -1, dtype=np.int64)
     np.maximum.at(last, fragments.pixel[passed].astype(np.int64), passed)
-    objects = np.where(last >= 0, history.object_index[polygon[np.maximum(last, 0)]], -1)
+    objects = np.full(last.shape, -1, dtype=np.int64)  # no fragment passed (nothing drawn): background
+    objects[last >= 0] = history.object_index[polygon[last[last >= 0]]]
     return VisibleSurface(objects.reshape(history.height, history.width), result.depth)

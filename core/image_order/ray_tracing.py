@@ -41,6 +41,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from core import stopping
 from core.image_order.bvh import Bvh
 from core.image_order.effects_plan import EffectsPlan, effects_plan
 from core.image_order.flat_scene import KernelInputs, TraceSettings, kernel_inputs, trace_scene
@@ -154,9 +155,10 @@ def _run_passes(xs, ys, k: KernelInputs, times: dict):
                         (trace_render.SECONDARY_STAGE, "secondary")):
         start = time.perf_counter()
         if stage != trace_render.SECONDARY_STAGE or spawned.any():
-            counters += trace_render.render_pass(stage, k.cam, xs, ys, hits, depth, objects, color, children,
-                                                 spawned, k.materials, k.lights, k.opts, k.geo, k.grid, k.bvh,
-                                                 k.bvh_depth, numba.get_num_threads())
+            with stopping.watching(k.opts, lay.OPT_STOP):  # Ctrl+C or Cancel: StoppedError within a pixel
+                counters += trace_render.render_pass(stage, k.cam, xs, ys, hits, depth, objects, color,
+                                                     children, spawned, k.materials, k.lights, k.opts, k.geo,
+                                                     k.grid, k.bvh, k.bvh_depth, numba.get_num_threads())
         times[name] = time.perf_counter() - start
     return color, depth, objects, counters
 

@@ -31,6 +31,8 @@ from dataclasses import dataclass, fields
 from pathlib import Path
 from types import MappingProxyType
 
+import numpy as np
+
 from core import scene_file
 from core.image_order.flat_scene import TraceSettings
 from core.image_order.ray_tree import KINDS
@@ -38,7 +40,7 @@ from core.object_order.pipeline import RasterSettings
 from core.presets import PRESETS
 from core.presets_trace import PRESETS_TRACE
 from core.scene import Scene, Sphere
-from core.scene_file import SceneFileError, _join, _json_object, _Reader, _show
+from core.scene_file import SceneFileError, _join, _Reader, _show, problem_lines
 
 FORMAT = "render-explorer-lesson"
 VERSION = 1
@@ -54,6 +56,11 @@ HIGHLIGHTS = ("polygon_step", "pixel", "face", "vertex", "ray", "object")
 FIGURE = re.compile(r"^VII\.(1[0-4]|[1-9])[a-d]?$")
 QUESTIONS = range(1, 7)
 FILES = Path(__file__).with_name("files")
+MAX_FILE_BYTES = 10_000_000  # room for inline scenes; a lesson's own text is far smaller
+MAX_NESTING = 40  # levels of JSON arrays and objects: a lesson's own few, and an inline scene's
+#: The longest text each field may hold, in characters: enough for a page, short enough to lay out.
+MAX_CHARS = {"title": 200, "summary": 2000, "text": 20_000, "notes": 20_000, "formula": 2000}
+MAX_STEPS = 200
 
 _ALL_PRESETS = {**PRESETS, **PRESETS_TRACE}
 _LESSON_FIELDS = ("format", "version", "id", "title", "figures", "questions", "summary", "steps")
@@ -78,8 +85,7 @@ class LessonFileError(ValueError):
         if len(self.problems) == 1:
             super().__init__(f"{head}: {self.problems[0]}")
         else:
-            lines = "\n".join(f"  {p}" for p in self.problems)
-            super().__init__(f"{head}: {len(self.problems)} problems:\n{lines}")
+            super().__init__(f"{head}: {len(self.problems)} problems:\n{problem_lines(self.problems)}")
 
 
 @dataclass(frozen=True, eq=False)
@@ -305,7 +311,7 @@ def _highlight(r: _Reader, value, path: str, scene: Scene | None) -> MappingProx
 def _formulas(r: _Reader, value, path: str) -> tuple[str, ...]:
     out = []
     for k, v in enumerate(r.listing(value, path)):
-        text = r.string(v, f"{path}[{k}]")
+        text = _string(r, v, f"{path}[{k}]", MAX_CHARS["formula"])
         if text is None:
             continue
         if not (text.count("$") >= 2 and text.count("$") % 2 == 0):
@@ -318,10 +324,19 @@ def _formulas(r: _Reader, value, path: str) -> tuple[str, ...]:
 def _text(r: _Reader, d: dict, key: str, path: str, required: bool) -> str:
     if key not in d:
         return ""
-    got = r.string(d[key], _join(path, key))
+    got = _string(r, d[key], _join(path, key), MAX_CHARS[key])
     if got is not None and required and not got.strip():
         r.add(_join(path, key), "must not be empty")
     return got or ""
+
+
+def _string(r: _Reader, value, path: str, limit: int) -> str | None:
+    """A string of at most ``limit`` characters (a longer one is a problem)."""
+    got = r.string(value, path)
+    if got is not None and len(got) > limit:
+        r.add(path, f"too long: {len(got):,} characters (at most {limit:,})")
+        return None
+    return got
 
 
 def _read_step(r: _Reader, value, path: str, previous: dict) -> dict:
@@ -351,6 +366,7 @@ def _read_step(r: _Reader, value, path: str, previous: dict) -> dict:
         v = r.fields(d["view"], f"{path}.view", _VIEW_FIELDS, needed) or {}
         got = {k: r.vector(v[k], f"{path}.view.{k}") for k in _VIEW_FIELDS if k in v}
         out["view"] = MappingProxyType({k: x for k, x in got.items() if x is not None})
+        _check_view(r, out["view"], f"{path}.view")
     if "panes" in d:
         panes = _names(r, d["panes"], f"{path}.panes", PANES, "pane")
         if panes is not None and not panes:
@@ -377,6 +393,24 @@ def _read_step(r: _Reader, value, path: str, previous: dict) -> dict:
     return out
 
 
+def _check_view(r: _Reader, view, path: str) -> None:
+    """Refuse a viewpoint the 3D pane cannot look from: the eye on its focal point, no up or an up
+    along the line of sight."""
+    if "position" not in view or "focal_point" not in view:
+        return
+    sight = np.subtract(view["focal_point"], view["position"])
+    if not np.linalg.norm(sight) > 1e-9 * max(1.0, np.abs(view["position"]).max()):
+        r.add(f"{path}.focal_point", "must differ from position (the pane would look nowhere)")
+        return
+    if "up" not in view:
+        return
+    up = np.asarray(view["up"])
+    if not np.linalg.norm(up) > 0:
+        r.add(f"{path}.up", "must not be (0, 0, 0)")
+    elif not np.linalg.norm(np.cross(sight / np.linalg.norm(sight), up)) > 1e-6 * np.linalg.norm(up):
+        r.add(f"{path}.up", "must not point along the line of sight (position to focal_point)")
+
+
 _STEP_DEFAULTS = dict(view=MappingProxyType({}), overlays=(), frame="scene", zbuffer_step=None, pixel=None,
                       image_order=TraceSettings(), object_order=RasterSettings(),
                       camera=MappingProxyType({}), preset=None, scene=None, panes=())
@@ -391,6 +425,8 @@ def from_dict(d, path: Path | None = None) -> Lesson:
         Listing every problem found, each with its field path.
     """
     r = _Reader()
+    if scene_file._nesting_depth(d) > MAX_NESTING:
+        raise LessonFileError([f"top level: arrays and objects nested more than {MAX_NESTING} levels deep"])
     data = r.fields(d, "", _LESSON_FIELDS, ["format", "version", "id", "title", "steps"])
     if data is None:
         raise LessonFileError(r.problems)
@@ -422,6 +458,9 @@ def from_dict(d, path: Path | None = None) -> Lesson:
     raw_steps = r.listing(data.get("steps", []), "steps")
     if "steps" in data and isinstance(data["steps"], list) and not raw_steps:
         r.add("steps", "a lesson needs at least one step")
+    if len(raw_steps) > MAX_STEPS:
+        r.add("steps", f"at most {MAX_STEPS} steps are allowed, got {len(raw_steps):,}")
+        raw_steps = []
     for k, v in enumerate(raw_steps):
         previous = _read_step(r, v, f"steps[{k}]", previous)
         steps.append(previous)
@@ -437,24 +476,15 @@ def load_lesson(path) -> Lesson:
     """Load and check one lesson file.
 
     Raises :class:`LessonFileError` for anything wrong: a missing or unreadable
-    file, invalid JSON (with its line and column), or invalid content.
+    file, a FIFO or device, a file over :data:`MAX_FILE_BYTES`, invalid JSON
+    (with its line and column), or invalid content.  The file is read as a
+    scene file is (:func:`core.scene_file.read_json`).
     """
     path = Path(path)
     try:
-        text = path.read_text(encoding="utf-8")
-    except FileNotFoundError:
-        raise LessonFileError(["file not found"], str(path)) from None
-    except UnicodeDecodeError:
-        raise LessonFileError(["not a text file (UTF-8 JSON expected)"], str(path)) from None
-    except OSError as exc:
-        raise LessonFileError([f"cannot read the file: {exc.strerror or exc}"], str(path)) from None
-    try:
-        data = json.loads(text, object_pairs_hook=_json_object)
-    except json.JSONDecodeError as exc:
-        raise LessonFileError([f"line {exc.lineno}, column {exc.colno}: invalid JSON: {exc.msg}"],
-                              str(path)) from None
-    except RecursionError:
-        raise LessonFileError(["invalid JSON: nested too deeply"], str(path)) from None
+        data = scene_file.read_json(path, MAX_FILE_BYTES)
+    except SceneFileError as exc:
+        raise LessonFileError(exc.problems, str(path)) from None
     try:
         return from_dict(data, path)
     except LessonFileError as exc:

@@ -16,6 +16,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from core import stopping
 from core.object_order import zbuffer
 from core.object_order.depth_formats import format_code
 
@@ -130,11 +131,13 @@ def draw(xy: np.ndarray, z: np.ndarray, corners: np.ndarray, position: np.ndarra
     code = format_code(depth_format)
     color, zbuf = zbuffer.cleared_buffers(width, height, background, depth_format)
     generated, passed = np.empty(len(poly_alpha), dtype=np.int64), np.empty(len(poly_alpha), dtype=np.int64)
-    pixel, frag_z, ok, out_of_range = kernels.draw_triangles(
-        xy, z, corners, position, np.ascontiguousarray(poly_color, dtype=float),
-        np.ascontiguousarray(poly_alpha, dtype=float), color, zbuf, record, code, z_test,
-        numba.get_num_threads() if threads is None else max(1, int(threads)),
-        *_scratch.take(len(corners)), generated, passed,
-    )
+    stop = np.zeros(1)
+    with stopping.watching(stop, 0):  # Ctrl+C or Cancel: StoppedError within a piece of a triangle
+        pixel, frag_z, ok, out_of_range = kernels.draw_triangles(
+            xy, z, corners, position, np.ascontiguousarray(poly_color, dtype=float),
+            np.ascontiguousarray(poly_alpha, dtype=float), color, zbuf, record, code, z_test,
+            numba.get_num_threads() if threads is None else max(1, int(threads)),
+            *_scratch.take(len(corners)), generated, passed, stop,
+        )
     return ZBufferPass(color, zbuf, generated, passed, Fragments(pixel, frag_z, ok) if record else None,
                        out_of_range)

@@ -55,6 +55,8 @@ def feature_edges(mesh: Mesh, camera: Camera) -> np.ndarray:
     lengths = np.linalg.norm(normals, axis=1)
     keep = lengths > 0  # degenerate triangles have no normal and draw nothing
     tris, corners, normals = tris[keep], corners[keep], normals[keep] / lengths[keep, None]
+    if not len(tris):  # every triangle degenerate, e.g. a sphere of radius 1e-300
+        return np.zeros((0, 2, 3))
     if camera.projection == "orthographic":
         facing = normals @ -camera.forward > 0
     else:

@@ -51,7 +51,8 @@ OPT_REFLECTION = 5  # 1.0 when reflection rays may be traced (mode and effects p
 OPT_REFRACTION = 6
 OPT_BACKGROUND = 7  # 3, RGB
 OPT_PACKETS = 10  # 1.0: primary rays walk the BVH in packets (core.image_order.bvh.Bvh.packets_pay)
-OPT_SIZE = 11
+OPT_STOP = 11  # raised (1.0) by another thread while the render runs: stop now (core.stopping)
+OPT_SIZE = 12
 
 #: Acceleration method names in the order of their codes in ``OPT_ACCEL``.
 ACCEL_CODES = ("none", "spheres", "grid", "grid+spheres", "bvh")

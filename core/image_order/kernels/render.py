@@ -49,6 +49,7 @@ from core.image_order.kernels.bvh_packet import (
 from core.image_order.kernels.bvh_traverse import bvh_closest
 from core.image_order.kernels.closest_hit import BVH, GRID, GRID_SPHERES, closest_hit
 from core.image_order.kernels.intrinsics.bands import BAND_ROWS, take_band
+from core.image_order.kernels.intrinsics.stop_flag import flag_raised
 from core.image_order.kernels.jit import jit, jit_allocating, jit_inline, jit_parallel
 from core.image_order.kernels.shade import shade_hit
 from core.image_order.ray_casting import primary_ray, view_depth
@@ -85,6 +86,8 @@ def _primary_rows(first, last, cam, xs, ys, opts, geo, grid, bvh, scratch, packe
     if method == BVH and opts[lay.OPT_PACKETS] > 0.0:  # see core.image_order.kernels.bvh_packet
         for j0 in range(first, last, PACKET_ROWS):
             for i0 in range(0, xs.shape[0], PACKET_COLS):
+                if flag_raised(opts, lay.OPT_STOP):
+                    return
                 _primary_packet(j0, min(j0 + PACKET_ROWS, last), i0, min(i0 + PACKET_COLS, xs.shape[0]), cam,
                                 xs, ys, geo, bvh, scratch, packet, hits, depth, objects, count)
         return
@@ -92,6 +95,8 @@ def _primary_rows(first, last, cam, xs, ys, opts, geo, grid, bvh, scratch, packe
     stack, stack_t = scratch[lay.SCRATCH_STACK], scratch[lay.SCRATCH_STACK_T]
     for j in range(first, last):
         for i in range(xs.shape[0]):
+            if flag_raised(opts, lay.OPT_STOP):
+                return
             o, d, t_min, t_max = primary_ray(cam, xs[i], ys[j])
             count[lay.PRIMARY] += 1
             # BVH rays go straight to the traversal.  Through closest_hit, every array of every
@@ -169,6 +174,8 @@ def _shade_rows(first, last, cam, xs, ys, hits, color, children, spawned, materi
                 bvh, scratch, rec, count):
     for j in range(first, last):
         for i in range(xs.shape[0]):
+            if flag_raised(opts, lay.OPT_STOP):
+                return
             if hits[j, i, lay.HIT_PRIM] < 0:
                 spawned[j, i] = 0
                 for a in range(3):
@@ -215,6 +222,8 @@ def _secondary_rows(first, last, color, children, spawned, materials, lights, op
                     stack[top, lay.STACK_KIND] = kind
                     top += 1
             while top > 0:
+                if flag_raised(opts, lay.OPT_STOP):
+                    return
                 top -= 1
                 o = (stack[top, o_at], stack[top, o_at + 1], stack[top, o_at + 2])
                 d = (stack[top, d_at], stack[top, d_at + 1], stack[top, d_at + 2])
@@ -256,7 +265,7 @@ def _worker(stage, queue, cam, xs, ys, hits, depth, objects, color, children, sp
     packet = (np.empty(PACKET_SIZE * RAY_FIELDS), np.empty(PACKET_SIZE * AXIS_FIELDS, np.int64))
     while True:
         first = take_band(queue) * BAND_ROWS
-        if first >= ys.shape[0]:
+        if first >= ys.shape[0] or flag_raised(opts, lay.OPT_STOP):
             break
         last = min(first + BAND_ROWS, ys.shape[0])
         if stage == PRIMARY_STAGE:

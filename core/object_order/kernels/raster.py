@@ -239,10 +239,17 @@ def _draw_rows(xy, z, corners, tri_poly, poly_color, poly_alpha, color, zbuf, de
 @njit(cache=True, nogil=True)
 def _draw_bands(w, workers, xy, z, corners, tri_poly, poly_color, poly_alpha, color, zbuf, depth_code,
                 z_test, box, piece_tri, band_start, band_pieces, record, slot, scratch_pixel,
-                scratch_key, scratch_passed, piece_generated, piece_passed):
-    """One worker's share: bands ``w, w + workers, ...``, each band's pieces in drawing order."""
+                scratch_key, scratch_passed, piece_generated, piece_passed, stop):
+    """One worker's share: bands ``w, w + workers, ...``, each band's pieces in drawing order.
+
+    ``stop[0]`` raised by another thread (:mod:`core.stopping`) ends it before the next piece
+    (at most ``BAND_ROWS`` rows of one triangle): the stores into the images keep the compiler
+    from reading it once for the whole loop.
+    """
     for b in range(w, band_start.shape[0] - 1, workers):
         for q in range(band_start[b], band_start[b + 1]):
+            if stop[0] != 0.0:
+                return
             k = band_pieces[q]
             t = piece_tri[k]
             jlo = max(box[t, 2], b * BAND_ROWS)
@@ -256,17 +263,17 @@ def _draw_bands(w, workers, xy, z, corners, tri_poly, poly_color, poly_alpha, co
 @njit(cache=True, nogil=True, parallel=True)
 def _draw_bands_in_parallel(workers, xy, z, corners, tri_poly, poly_color, poly_alpha, color, zbuf,
                             depth_code, z_test, box, piece_tri, band_start, band_pieces, record, slot,
-                            scratch_pixel, scratch_key, scratch_passed, piece_generated, piece_passed):
+                            scratch_pixel, scratch_key, scratch_passed, piece_generated, piece_passed, stop):
     """All workers at once, one thread each."""
     for w in prange(workers):
         _draw_bands(w, workers, xy, z, corners, tri_poly, poly_color, poly_alpha, color, zbuf,
                     depth_code, z_test, box, piece_tri, band_start, band_pieces, record, slot,
-                    scratch_pixel, scratch_key, scratch_passed, piece_generated, piece_passed)
+                    scratch_pixel, scratch_key, scratch_passed, piece_generated, piece_passed, stop)
 
 
 @njit(cache=True, nogil=True)
 def draw_triangles(xy, z, corners, tri_poly, poly_color, poly_alpha, color, zbuf, record,
-                   depth_code, z_test, n_workers, box, out_of_range, generated, passed):
+                   depth_code, z_test, n_workers, box, out_of_range, generated, passed, stop):
     """Rasterize triangles in order into ``color`` and ``zbuf`` (modified in place).
 
     The image is cut into bands of ``BAND_ROWS`` rows.  Binning lists for
@@ -296,6 +303,8 @@ def draw_triangles(xy, z, corners, tri_poly, poly_color, poly_alpha, color, zbuf
     n_workers : int >= 1, threads sharing the bands.
     box : (T, 4) int64 and out_of_range : (T,) bool, scratch space.
     generated, passed : (P,) int64, written: fragments per polygon.
+    stop : (1,) float64, the stop flag (:mod:`core.stopping`): raised while the kernel runs, it
+        returns within a piece of a triangle, its results incomplete.
 
     Returns
     -------
@@ -330,12 +339,12 @@ def draw_triangles(xy, z, corners, tri_poly, poly_color, poly_alpha, color, zbuf
     if workers == 1:
         _draw_bands(0, 1, xy, z, corners, tri_poly, poly_color, poly_alpha, color, zbuf, depth_code,
                     z_test, box, piece_tri, band_start, band_pieces, record, slot, scratch_pixel,
-                    scratch_key, scratch_passed, piece_generated, piece_passed)
+                    scratch_key, scratch_passed, piece_generated, piece_passed, stop)
     else:
         _draw_bands_in_parallel(workers, xy, z, corners, tri_poly, poly_color, poly_alpha, color,
                                 zbuf, depth_code, z_test, box, piece_tri, band_start, band_pieces,
                                 record, slot, scratch_pixel, scratch_key, scratch_passed,
-                                piece_generated, piece_passed)
+                                piece_generated, piece_passed, stop)
     generated[:] = 0
     passed[:] = 0
     for k in range(n_pieces):
