@@ -19,6 +19,7 @@ from app import (
     export_command,
     hardcases_command,
     intersect_command,
+    lesson_command,
     render_command,
 )
 from app.usage import UsageError
@@ -42,6 +43,7 @@ def build_parser() -> argparse.ArgumentParser:
     hardcases_command.add_parser(sub)
     cost_command.add_parser(sub)
     export_command.add_parser(sub)
+    lesson_command.add_parser(sub)
     bench = sub.add_parser("bench", help="time our pipelines against VTK / Embree (a benchmark, not a test)")
     kinds = bench.add_subparsers(dest="bench", metavar="KIND", required=True)
     for name, module in benchmarks.items():
@@ -52,7 +54,7 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 #: The first words the command line understands; anything else opens the window on it.
-COMMANDS = {"gui", "intersect", "render", "export", "bench", "hardcases", "cost", "-h", "--help"}
+COMMANDS = {"gui", "intersect", "render", "export", "bench", "hardcases", "cost", "lesson", "-h", "--help"}
 
 
 def main(argv: list[str] | None = None) -> int:

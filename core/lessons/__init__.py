@@ -34,6 +34,7 @@ from types import MappingProxyType
 from core import scene_file
 from core.image_order.flat_scene import TraceSettings
 from core.image_order.ray_tree import KINDS
+from core.lessons import facts
 from core.object_order.pipeline import RasterSettings
 from core.presets import PRESETS
 from core.presets_trace import PRESETS_TRACE
@@ -58,7 +59,8 @@ FILES = Path(__file__).with_name("files")
 _ALL_PRESETS = {**PRESETS, **PRESETS_TRACE}
 _LESSON_FIELDS = ("format", "version", "id", "title", "figures", "questions", "summary", "steps")
 _STEP_FIELDS = ("title", "text", "formulas", "notes", "scene", "camera", "view", "panes",
-                "image_order", "object_order", "highlight", "zbuffer_step", "pixel", "overlays", "frame")
+                "image_order", "object_order", "highlight", "zbuffer_step", "pixel", "overlays", "frame",
+                "facts")
 _VIEW_FIELDS = ("position", "focal_point", "up")
 
 
@@ -116,6 +118,8 @@ class LessonStep:
         ``"scene"`` the objects, the observer and the frustum (when shown) with its
         labels; ``"highlight"`` what the step highlights, the eye and the screen, as
         large as they fit (the rest of the frustum may leave the pane).
+    facts : tuple of :class:`core.lessons.facts.Fact`, what the text claims, in words the
+        pipelines decide (``python -m app lesson check``); they belong to the step they are written in.
     """
 
     title: str
@@ -134,6 +138,7 @@ class LessonStep:
     pixel: tuple[int, int] | None
     overlays: tuple[str, ...]
     frame: str
+    facts: tuple = ()
 
 
 @dataclass(frozen=True, eq=False)
@@ -374,6 +379,7 @@ def _read_step(r: _Reader, value, path: str, previous: dict) -> dict:
         out["pixel"] = None  # a picked pixel belongs to one image
     out["highlight"] = _highlight(r, d["highlight"], f"{path}.highlight", scene) if "highlight" in d \
         else MappingProxyType({})
+    out["facts"] = facts.read_facts(r, d["facts"], f"{path}.facts", scene) if "facts" in d else ()
     return out
 
 
