@@ -111,7 +111,7 @@ class LessonRunner:
                                               else mesh.center)
             panel = w.tab("object order").widget
             name = f"vertex {vertex['index']} of {mesh.name!r}"
-            panel.vertex_math.show_vertex(point, scene.camera, name)
+            panel.show_vertex(point, scene, name)
             panel.details.setCurrentWidget(panel.vertex_math)
             words.append(name)
         if "polygon_step" in highlight:

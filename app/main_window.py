@@ -34,6 +34,7 @@ from PySide6.QtWidgets import (
 from app import render_budget, session
 from app.export_menu import ExportMenu
 from app.first_frame import AfterFirstFrame
+from app.lesson_fact_check import LessonFactCheck
 from app.lesson_runner import LESSON_OVERLAY, LessonRunner
 from app.mesh_files import read_mesh
 from app.scene_editor import SceneEditor
@@ -143,6 +144,8 @@ class MainWindow(QMainWindow):
         self.editor = SceneEditor(self)
         self._keyed_actions += self.editor.keyed_actions
         self.lesson_panel.step_selected.connect(self.apply_lesson_step)
+        self.fact_check = LessonFactCheck(self)  # File → Open lesson: are the new lesson's facts true?
+        self.lesson_panel.lesson_opened.connect(self.fact_check.check)
         self.presentation.presenting_changed.connect(self._presenting_changed)
         self.presentation.scale_changed.connect(self._scale_changed)
         self.scene_pane.visibilityChanged.connect(lambda shown: shown and self._refit())
@@ -358,6 +361,7 @@ class MainWindow(QMainWindow):
         self.scene_path = Path(path)
         self.setWindowTitle(f"Render Explorer — {self.scene_path.name}")
         self.model.set_scene(scene)
+        self.lesson_panel.leave_step(f"The window shows {self.scene_path.name} now.")
         self.explain_if_too_large(self.scene_path.name)
         return True
 
@@ -395,6 +399,7 @@ class MainWindow(QMainWindow):
         self.scene_path = None
         self.setWindowTitle(f"Render Explorer — example: {key}")
         self.model.set_scene(build())
+        self.lesson_panel.leave_step(f"The window shows the example {key!r} now.")
 
     # ------------------------------------------------------------ render
     @property

@@ -1,0 +1,73 @@
+"""Lessons in the window say only what it shows: the first step is applied, not skipped; another
+scene takes the step's words away; a stale vertex path goes; an opened lesson's false facts are shown."""
+
+import json
+
+from PySide6.QtWidgets import QMessageBox
+from window_helpers import RENDER_TIMEOUT_MS
+
+from core.lessons import FILES, shipped_lessons
+
+LESSONS = {lesson.id: i for i, lesson in enumerate(shipped_lessons())}
+
+
+def test_the_first_pagedown_shows_step_one_of_the_first_lesson(window, qtbot):
+    panel = window.lesson_panel
+    first = panel.lessons()[0].steps[0]
+    assert window.lessons.step is None  # opened on the lesson without applying it
+    with qtbot.waitSignal(panel.step_selected):
+        panel.next()
+    assert panel.step_index() == (0, 0) and window.lessons.step is first
+    assert window.model.trace_settings.mode == first.image_order.mode == "raycast"  # step 1's own setting
+
+
+def test_ctrl_l_takes_the_lessons_words_away_and_pagedown_brings_the_step_back(window, qtbot):
+    panel = window.lesson_panel
+    k = LESSONS["zbuffer"]
+    panel.select(k, 2)
+    step = panel.current_step()
+    assert panel.text.text() == step.text
+    window.reset_scene()  # File → Lecture scene, Ctrl+L
+    assert step.text not in panel.text.text() and "lecture" in panel.text.text()
+    assert [o.name for o in window.model.scene.objects] == ["cube", "cone", "ground"]
+    with qtbot.waitSignal(panel.step_selected):
+        panel.next()
+    assert panel.step_index() == (k, 2) and panel.text.text() == step.text
+    assert window.model.scene == step.scene and window.lessons.step is step
+
+
+def test_the_vertex_path_of_one_scene_is_not_shown_with_another(window, qtbot):
+    panel, oo = window.lesson_panel, window.tab("object order").widget
+    panel.select(LESSONS["perspective"], 0)  # follows vertex 6 of the cube
+    assert "vertex 6 of 'cube'" in " ".join(text for _, text in oo.vertex_math.rows())
+    panel.select(LESSONS["zbuffer"], 0)  # three triangles, no cube
+    qtbot.waitUntil(lambda: window.showing_full("object order") and oo.scene is window.model.scene,
+                    timeout=RENDER_TIMEOUT_MS)
+    shown = " ".join(text for _, text in oo.vertex_math.rows())
+    assert "cube" not in shown and "Click a pixel" in shown
+
+
+def _open(window, qtbot, data, tmp_path):
+    path = tmp_path / "mine.json"
+    path.write_text(json.dumps(data), encoding="utf-8")
+    assert window.lesson_panel.open_lesson_file(path) is not None
+    qtbot.waitUntil(lambda: not window.fact_check.busy, timeout=RENDER_TIMEOUT_MS)
+
+
+def test_an_opened_lesson_with_a_false_fact_shows_the_author_what_was_computed(window, qtbot, tmp_path):
+    data = json.loads((FILES / "03_frustum.json").read_text(encoding="utf-8"))
+    _open(window, qtbot, data, tmp_path)  # every fact true: no dialog, the status bar says so
+    assert window.fact_check.failures == [] and window.fact_check.dialog is None
+    assert "Every fact" in window.statusBar().currentMessage()
+
+    fact = data["steps"][1]["facts"][0]
+    assert fact == {"fact": "frustum", "object": "box behind the observer", "is": "outside"}
+    fact["is"] = "inside"  # false: the box stands behind the eye
+    _open(window, qtbot, data, tmp_path)
+    box = window.findChild(QMessageBox, "lesson_facts")
+    qtbot.waitUntil(lambda: box is not None and box.isVisible())
+    (line,) = window.fact_check.failures
+    assert "steps[1].facts[0]" in line
+    assert line.endswith("computed 'box behind the observer' is outside the frustum")
+    assert line in box.informativeText()
+    box.close()
