@@ -262,7 +262,18 @@ class ObjectOrderPanel(QWidget):
         self.polygon_shown.emit(picture.polygon)
         self.image.set_highlight(picture.mask, outline=picture.outline)
         self.depth.image.set_highlight(picture.mask, outline=picture.outline)
+        self.image.set_edges(self._window_corners(picture.polygon))
         self._show_pixel(self.picked)
+
+    def _window_corners(self, polygon) -> np.ndarray | None:
+        """The drawn polygon's corners (world) in pixel coordinates (None at step 0 or behind the eye);
+        the image draws them where its pixels show large enough to see which centres are covered."""
+        if polygon is None:
+            return None
+        cam = self.scene.camera
+        pixels = [project_point(c, cam.view_from_world, cam.clip_from_view, cam.width, cam.height).pixel
+                  for c in polygon]
+        return None if any(q is None for q in pixels) else np.array(pixels)
 
     def _polygon_name(self, p: int) -> str:
         return polygon_name(self.result, self.scene, p)

@@ -71,3 +71,32 @@ def test_an_opened_lesson_with_a_false_fact_shows_the_author_what_was_computed(w
     assert line.endswith("computed 'box behind the observer' is outside the frustum")
     assert line in box.informativeText()
     box.close()
+
+
+def _lesson_labels(window) -> list[str]:
+    return [str(t) for poly in window.scene_view.overlay_parts("lesson")
+            if "labels" in poly.point_data for t in poly.point_data["labels"]]
+
+
+def test_the_objects_the_text_names_are_labelled_in_the_3d_pane(window, qtbot):
+    window.lesson_panel.select(LESSONS["observer"], 1)  # "Object 5 is now outside ... objects 1 to 4"
+    labels = _lesson_labels(window)
+    assert {"object 1", "object 2", "object 3", "object 4", "object 5"} <= set(labels)
+    window.lesson_panel.select(LESSONS["perspective"], 0)  # names no object
+    assert _lesson_labels(window) == []
+
+
+def test_the_highlighted_back_face_has_its_normal_drawn_pointing_away_from_the_eye(window, qtbot):
+    import numpy as np
+
+    window.lesson_panel.select(LESSONS["back_faces"], 0)
+    step = window.lesson_panel.current_step()
+    pyramid = step.scene.objects[0]
+    a, b, c = pyramid.vertices[pyramid.triangles[step.highlight["face"]["triangle"]]]
+    normal = np.cross(b - a, c - a)  # outward: the faces wind counter-clockwise seen from outside
+    centroid = (a + b + c) / 3
+    assert np.dot(normal, np.asarray(step.scene.camera.eye) - centroid) < 0  # a back face, by hand
+    assert "N: away from the eye (back face)" in _lesson_labels(window)
+    arrow = max(window.scene_view.overlay_parts("lesson"), key=lambda p: p.n_points)  # the arrow mesh
+    tip = arrow.points[np.argmax(arrow.points @ normal)]
+    assert np.dot(tip - centroid, normal) > 0  # drawn from the face outwards, along N

@@ -124,3 +124,43 @@ def test_lesson_check_passes_on_the_shipped_lessons_fails_on_a_false_fact_and_re
     assert "broken.json" in out.stderr and "invalid JSON" in out.stderr and "Traceback" not in out.stderr
     assert load_lesson(FILES / "05_zbuffer.json").steps  # the other file was still checked: no line for it
     assert out.stdout == ""
+
+
+def test_no_bounding_sphere_shown_by_a_lesson_swamps_the_scene():
+    """A step that shows bounding spheres keeps each well inside the scene's extent (a ground
+    plane's sphere, as wide as the ground, once filled the 3D pane)."""
+    from core.object_order.pipeline import _bounding_sphere, object_mesh
+
+    for lesson in LESSONS:
+        for step in lesson.steps:
+            if "bounding spheres" not in step.overlays:
+                continue
+            points = np.vstack([np.asarray(object_mesh(o).vertices) for o in step.scene.objects])
+            diagonal = float(np.linalg.norm(points.max(axis=0) - points.min(axis=0)))
+            radii = [_bounding_sphere(o, object_mesh(o))[1] for o in step.scene.objects]
+            assert max(radii) < diagonal / 3, (lesson.id, step.title, max(radii), diagonal)
+
+
+def test_drawn_in_the_other_order_draws_blue_first_and_ends_with_the_same_picture():
+    from dataclasses import replace
+
+    from core.object_order.pipeline import render_raster
+
+    first, other, final = BY_ID["zbuffer_piercing"].steps
+    assert "other order" in other.title
+    pictures = []
+    for step in (first, final):
+        result = render_raster(step.scene, replace(step.object_order, record_steps=True))
+        names = [step.scene.objects[k].name for k in result.draw.object_index]
+        pictures.append((names, result.color))
+    assert pictures[0][0] == ["green", "blue"] and pictures[1][0] == ["blue", "green"]
+    assert np.array_equal(pictures[0][1], pictures[1][1])  # pixel for pixel, as the text says
+    assert other.highlight["polygon_step"] == 0 and other.zbuffer_step == 1  # blue alone first
+
+
+def test_only_steps_showing_an_image_order_pane_speak_of_shadows():
+    """Object order draws no shadows (they come with the next lecture's shading)."""
+    for lesson in LESSONS:
+        for step in lesson.steps:
+            if "shadow" in step.text.lower():
+                assert "image order" in step.panes, (lesson.id, step.title)
