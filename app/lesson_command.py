@@ -7,8 +7,10 @@ Examples::
 
 Each file is loaded (every problem with its field path, as File → Open lesson
 shows them) and every step's scene is run through the pipelines to decide its
-facts (:mod:`core.lessons.facts`).  It prints one line per fact that does not
-hold (lesson, step, fact, what was computed) and exits 1; 0 when every fact of
+facts (:mod:`core.lessons.facts`) and answer its exercises
+(:mod:`core.lessons.exercises`: exactly one right choice, some right pixel, a
+number).  It prints one line per fact that does not hold (lesson, step, fact,
+what was computed) or exercise the pipelines cannot answer, and exits 1; 0 when every fact of
 every file holds; 2 when a file cannot be read or is not a valid lesson (the
 other files are still checked).  Only :mod:`core` is imported, so it answers
 without Qt.
@@ -20,6 +22,7 @@ import argparse
 import sys
 
 from core.lessons import LessonFileError, load_lesson
+from core.lessons.exercises import check_exercises
 from core.lessons.facts import check_lesson
 
 
@@ -38,7 +41,7 @@ def add_parser(sub) -> argparse.ArgumentParser:
 
 
 def run_check(args) -> int:
-    status, facts = 0, 0
+    status, facts, exercises = 0, 0, 0
     for name in args.files:
         try:
             lesson = load_lesson(name)
@@ -47,11 +50,13 @@ def run_check(args) -> int:
             status = 2
             continue
         facts += sum(len(step.facts) for step in lesson.steps)
-        failures = check_lesson(lesson)
+        exercises += len(lesson.exercises)
+        failures = check_lesson(lesson) + check_exercises(lesson)
         for line in failures:
             print(f"{name}: {line}")
         if failures and status == 0:
             status = 1
     if status == 0:
-        print(f"{len(args.files)} lesson file(s): all {facts} facts hold")
+        print(f"{len(args.files)} lesson file(s): all {facts} facts hold; "
+              f"the pipelines answer all {exercises} exercises")
     return status

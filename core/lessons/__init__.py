@@ -34,7 +34,7 @@ from types import MappingProxyType
 from core import scene_file
 from core.image_order.flat_scene import TraceSettings
 from core.image_order.ray_tree import KINDS
-from core.lessons import facts
+from core.lessons import exercises, facts
 from core.object_order.pipeline import RasterSettings
 from core.presets import PRESETS
 from core.presets_trace import PRESETS_TRACE
@@ -57,7 +57,7 @@ QUESTIONS = range(1, 7)
 FILES = Path(__file__).with_name("files")
 
 _ALL_PRESETS = {**PRESETS, **PRESETS_TRACE}
-_LESSON_FIELDS = ("format", "version", "id", "title", "figures", "questions", "summary", "steps")
+_LESSON_FIELDS = ("format", "version", "id", "title", "figures", "questions", "summary", "steps", "exercises")
 _STEP_FIELDS = ("title", "text", "formulas", "notes", "scene", "camera", "view", "panes",
                 "image_order", "object_order", "highlight", "zbuffer_step", "pixel", "overlays", "frame",
                 "facts")
@@ -154,6 +154,7 @@ class Lesson:
     summary : str, one sentence for the lesson list.
     steps : tuple of LessonStep, at least one.
     path : Path or None, the file it was read from.
+    exercises : tuple of :class:`core.lessons.exercises.Exercise`, asked at the end of the lesson.
     """
 
     id: str
@@ -163,6 +164,7 @@ class Lesson:
     summary: str
     steps: tuple[LessonStep, ...]
     path: Path | None = None
+    exercises: tuple = ()
 
 
 def _choice(r: _Reader, value, path: str, names, what: str) -> str | None:
@@ -435,8 +437,11 @@ def from_dict(d, path: Path | None = None) -> Lesson:
     if r.problems:
         raise LessonFileError(r.problems)
     resolved = tuple(LessonStep(**{**_STEP_DEFAULTS, **s}) for s in steps)
+    asked = exercises.read_exercises(r, data.get("exercises", []), "exercises", resolved)
+    if r.problems:
+        raise LessonFileError(r.problems)
     return Lesson(id=lesson_id, title=title, figures=tuple(figures), questions=tuple(questions),
-                  summary=summary, steps=resolved, path=path)
+                  summary=summary, steps=resolved, path=path, exercises=asked)
 
 
 def load_lesson(path) -> Lesson:

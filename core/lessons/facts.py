@@ -71,7 +71,7 @@ from core.scene_file import _join, _show
 FRUSTUM_STATES = (INSIDE, CROSSING, OUTSIDE)
 EVENTS = ("reflect", "refract", "total_reflection")
 SPHERE_VALUES = ("a", "b", "c", "half_b", "discriminant", "line_distance", "t_near", "t_far", "t",
-                 "ray_hit_t", "hit", "origin_inside", "point", "classification")
+                 "ray_hit_t", "hit", "origin_inside", "point", "classification", "chosen")
 TRIANGLE_VALUES = ("t", "alpha", "beta", "gamma", "hit", "point", "determinant")
 DEFAULT_TOLERANCE = 1e-9
 
@@ -364,14 +364,25 @@ def _clipped(a, p):
     return (a["plane"] in planes) == a.get("is", True), computed
 
 
-def _events(a, p):
+def events_before(p: StepPipelines, pixel, after: int | None) -> tuple:
+    """The fragments that reached ``pixel`` in the first ``after`` polygons (default: the step's
+    ``zbuffer_step``, else all), as :meth:`core.object_order.step_history.StepHistory.pixel_history`."""
     r = p.raster
     if r.history is None or not r.history.n_steps:
-        return (), 0
-    after = a.get("after")
-    if after is None:
-        after = p.step.zbuffer_step if p.step.zbuffer_step is not None else r.history.n_steps
-    return tuple(e for e in r.history.pixel_history(*a["pixel"]) if e.polygon < after), after
+        return ()
+    after = _after(p, after)
+    return tuple(e for e in r.history.pixel_history(*pixel) if e.polygon < after)
+
+
+def _after(p: StepPipelines, after: int | None) -> int:
+    if after is not None:
+        return after
+    n = p.raster.history.n_steps if p.raster.history is not None else 0
+    return p.step.zbuffer_step if p.step.zbuffer_step is not None else n
+
+
+def _events(a, p):
+    return events_before(p, a["pixel"], a.get("after")), _after(p, a.get("after"))
 
 
 def _object_name(p, index: int) -> str:
@@ -514,21 +525,24 @@ def _value(a, result):
     return holds, f"{a['value']} = {shown}"
 
 
-def _ray_sphere(a, p):
+def solve_intersection(kind: str, a):
+    """The worked crossing a ``ray_sphere`` or ``ray_triangle`` fact (or exercise) names."""
     from core.image_order.intersect_sphere import intersect_sphere, intersect_sphere_segment
+    from core.image_order.intersect_triangle import intersect_triangle
 
+    if kind == "ray_triangle":
+        return intersect_triangle(a["origin"], a["direction"], a["a"], a["b"], a["c"])
     if "end" in a:
-        s = intersect_sphere_segment(a["origin"], a["end"], a["center"], a["radius"])
-    else:
-        s = intersect_sphere(a["origin"], a["direction"], a["center"], a["radius"])
-    return _value(a, s)
+        return intersect_sphere_segment(a["origin"], a["end"], a["center"], a["radius"])
+    return intersect_sphere(a["origin"], a["direction"], a["center"], a["radius"])
+
+
+def _ray_sphere(a, p):
+    return _value(a, solve_intersection("ray_sphere", a))
 
 
 def _ray_triangle(a, p):
-    from core.image_order.intersect_triangle import intersect_triangle
-
-    h = intersect_triangle(a["origin"], a["direction"], a["a"], a["b"], a["c"])
-    return _value(a, h)
+    return _value(a, solve_intersection("ray_triangle", a))
 
 
 def _vec(v) -> str:
