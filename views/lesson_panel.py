@@ -189,6 +189,12 @@ class LessonPanel(QWidget):
         else:
             self._show()
 
+    def set_note(self, lesson: int, note: str) -> None:
+        """Show ``note`` (e.g. exercise progress) under lesson ``lesson``'s line in the list."""
+        item = self.list.item(lesson)
+        label = lesson_label(self._lessons[lesson])
+        item.setText(f"{label}\n    {note}" if note else label)
+
     def current_lesson(self) -> Lesson | None:
         return self._lessons[self._lesson] if 0 <= self._lesson < len(self._lessons) else None
 

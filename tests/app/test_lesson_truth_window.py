@@ -100,3 +100,19 @@ def test_the_highlighted_back_face_has_its_normal_drawn_pointing_away_from_the_e
     arrow = max(window.scene_view.overlay_parts("lesson"), key=lambda p: p.n_points)  # the arrow mesh
     tip = arrow.points[np.argmax(arrow.points @ normal)]
     assert np.dot(tip - centroid, normal) > 0  # drawn from the face outwards, along N
+
+
+def test_exercises_follow_the_lesson_a_click_answers_and_progress_shows_in_the_list(window, qtbot):
+    panel, exercises = window.lesson_panel, window.exercise_panel
+    k = LESSONS["ray_casting"]
+    panel.select(k, 0)
+    assert exercises.lesson is panel.current_lesson()
+    assert exercises.question.text() == "Click a pixel in the cone's shadow."
+    with qtbot.waitSignal(panel.step_selected):  # "show me": the shadow step, a pixel in the shadow
+        exercises.show_button.click()
+    qtbot.waitUntil(lambda: window.model.ray_pixel is not None, timeout=RENDER_TIMEOUT_MS)
+    assert panel.step_index() == (k, 1)
+    pixel = window.model.ray_pixel
+    window.tab("image order").widget.image.pixel_clicked.emit(*pixel)  # the student clicks it
+    qtbot.waitUntil(lambda: exercises.feedback.text().startswith("Right"), timeout=RENDER_TIMEOUT_MS)
+    assert "1/2 done, 1 right at first try" in panel.list.item(k).text()
