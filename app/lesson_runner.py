@@ -68,7 +68,7 @@ def _normal_parts(corners: np.ndarray, eye) -> list:
     normal /= np.linalg.norm(normal)
     size = 0.6 * float(np.max(np.linalg.norm(corners - centroid, axis=1)))
     toward = float(np.dot(normal, np.asarray(eye, dtype=float) - centroid)) > 0  # the culling test
-    words = "N: toward the eye (front face)" if toward else "N: away from the eye (back face)"
+    words = "N: front face" if toward else "N: back face"  # short: it must fit the pane at x2
     tip = pv.PolyData(np.array([centroid + 1.15 * size * normal]))
     return [(pv.Arrow(start=centroid, direction=normal, scale=size), {"color": NORMAL_COLOR}),
             (set_labels(tip, [words]), {"label_size": LABEL_PT, "color": NORMAL_COLOR})]

@@ -96,7 +96,7 @@ def test_the_highlighted_back_face_has_its_normal_drawn_pointing_away_from_the_e
     normal = np.cross(b - a, c - a)  # outward: the faces wind counter-clockwise seen from outside
     centroid = (a + b + c) / 3
     assert np.dot(normal, np.asarray(step.scene.camera.eye) - centroid) < 0  # a back face, by hand
-    assert "N: away from the eye (back face)" in _lesson_labels(window)
+    assert "N: back face" in _lesson_labels(window)
     arrow = max(window.scene_view.overlay_parts("lesson"), key=lambda p: p.n_points)  # the arrow mesh
     tip = arrow.points[np.argmax(arrow.points @ normal)]
     assert np.dot(tip - centroid, normal) > 0  # drawn from the face outwards, along N
