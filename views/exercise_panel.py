@@ -12,10 +12,12 @@ large, with the answers hidden until Space (or "Show answers") reveals them.
 
 :class:`ExerciseProgress` keeps, per lesson, which exercises were answered and
 which right at the first try, in ``QSettings`` (so across restarts), and can
-forget them.
+forget them, and the student's seed, which draws their variant of each exercise.
 """
 
 from __future__ import annotations
+
+import random
 
 from PySide6.QtCore import QSettings, Qt, Signal
 from PySide6.QtGui import QFont
@@ -41,6 +43,7 @@ from core.lessons.exercises import (
     number,
     right_choices,
     right_order,
+    variant,
 )
 from core.lessons.facts import StepPipelines
 
@@ -77,6 +80,15 @@ class ExerciseProgress:
         if not done:
             return ""
         return f"{done}/{len(outcomes)} done, {outcomes.count(FIRST_TRY)} right at first try"
+
+    def seed(self) -> int:
+        """This student's seed for exercise variants, drawn once and kept."""
+        value = self.settings.value("exercise_seed")
+        if value is None:
+            value = random.randrange(1 << 30)
+            self.settings.setValue("exercise_seed", value)
+            self.settings.sync()
+        return int(value)
 
     def reset(self, lesson_id: str | None = None) -> None:
         """Forget one lesson's progress, or every lesson's."""
@@ -175,9 +187,10 @@ class ExercisePanel(QWidget):
         self.go(0)
 
     def exercise(self) -> Exercise | None:
+        """The exercise shown: this student's variant of it (:func:`core.lessons.exercises.variant`)."""
         if self.lesson is None or not self.lesson.exercises:
             return None
-        return self.lesson.exercises[self.index]
+        return variant(self.lesson.exercises[self.index], self.progress.seed(), self.index)
 
     def go(self, index: int) -> None:
         """Show exercise ``index`` (clamped) with a fresh answer."""

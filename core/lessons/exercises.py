@@ -26,12 +26,19 @@ polygons), ``hit_t`` (the distance to the first hit of ``pixel``'s ray),
 ``blend`` (channel ``channel`` of the c0 a transparent ``object`` writes at
 ``pixel``).  ``order`` ``by`` ``drawing_order`` puts the named objects in the
 order object order draws them.
+
+Variants: an exercise may list ``"variants"`` (pixels, or any JSON values);
+``"$at"`` in its fact or value, and ``{at}`` in its question, stand for one of
+them, and :func:`variant` draws one from a student's seed, so each student gets
+another pixel; the answer is the pipelines' for that draw.  A lesson check
+answers every variant.
 """
 
 from __future__ import annotations
 
 import copy
-from dataclasses import dataclass
+import random
+from dataclasses import dataclass, field
 from types import MappingProxyType
 
 import numpy as np
@@ -44,9 +51,9 @@ KINDS = ("choose_one", "click_pixel", "number", "order")
 NUMBERS = ("ray_sphere", "ray_triangle", "depth", "hit_t", "blend")
 ORDERS = ("drawing_order",)
 _FIELDS = {
-    "choose_one": (("kind", "question", "choices", "fact"), ("step", "why")),
+    "choose_one": (("kind", "question", "choices", "fact"), ("step", "why", "variants")),
     "click_pixel": (("kind", "question", "fact"), ("step", "why")),
-    "number": (("kind", "question", "value", "tolerance"), ("step", "why")),
+    "number": (("kind", "question", "value", "tolerance"), ("step", "why", "variants")),
     "order": (("kind", "question", "items", "by"), ("step", "why")),
 }
 #: How far apart the pixels are that "show me" tries for a click exercise (every n-th row and column).
@@ -65,6 +72,7 @@ class Exercise:
     step : int, the lesson step (0-based) whose scene and settings it is asked about.
     args : the kind's fields as read.
     path : where it was written, e.g. ``"exercises[2]"``.
+    variants : the exercise drawn with each of its ``variants`` (empty when it has none).
     """
 
     kind: str
@@ -73,6 +81,30 @@ class Exercise:
     step: int
     args: MappingProxyType
     path: str
+    variants: tuple = field(default=())
+
+
+def variant(ex: Exercise, seed: int, index: int = 0) -> Exercise:
+    """The variant of ``ex`` a student with ``seed`` gets (``index``: the exercise's place, so that
+    one seed does not draw the same variant everywhere); ``ex`` itself when it has none."""
+    if not ex.variants:
+        return ex
+    return ex.variants[random.Random(seed * 1009 + index).randrange(len(ex.variants))]
+
+
+def _put(value, at):
+    """``value`` (JSON) with every ``"$at"`` replaced by ``at``."""
+    if value == "$at":
+        return at
+    if isinstance(value, dict):
+        return {k: _put(v, at) for k, v in value.items()}
+    if isinstance(value, list):
+        return [_put(v, at) for v in value]
+    return value
+
+
+def _shown(at) -> str:
+    return "(" + ", ".join(str(v) for v in at) + ")" if isinstance(at, list) else str(at)
 
 
 @dataclass(frozen=True)
@@ -103,6 +135,22 @@ def read_exercises(r, value, path: str, steps) -> tuple[Exercise, ...]:
 
 
 def _read(r, value, path: str, steps) -> Exercise | None:
+    if isinstance(value, dict) and "variants" in value:
+        listed = r.listing(value["variants"], _join(path, "variants"))
+        if not listed:
+            r.add(_join(path, "variants"), "give at least one variant")
+            return None
+        base = {k: v for k, v in value.items() if k != "variants"}
+        drawn = []
+        for i, at in enumerate(listed):
+            concrete = _put(base, at)
+            if isinstance(concrete.get("question"), str):
+                concrete["question"] = concrete["question"].replace("{at}", _shown(at))
+            drawn.append(_read(r, concrete, f"{path}.variants[{i}]", steps))
+        if None in drawn:
+            return None
+        first = drawn[0]
+        return Exercise(first.kind, first.question, first.why, first.step, first.args, path, tuple(drawn))
     if not isinstance(value, dict):
         r.add(path, f"expected an exercise object {{\"kind\": ...}}, got {_show(value)}")
         return None
@@ -302,7 +350,7 @@ def check_exercises(lesson) -> list[str]:
     right pixel; no number; an item not drawn)."""
     lines = []
     pipelines = {}
-    for ex in lesson.exercises:
+    for ex in (v for e in lesson.exercises for v in (e.variants or (e,))):
         p = pipelines.setdefault(ex.step, StepPipelines(lesson.steps[ex.step]))
         problem = None
         if ex.kind == "choose_one":

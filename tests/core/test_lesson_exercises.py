@@ -115,3 +115,21 @@ def test_an_exercise_the_pipelines_cannot_answer_is_reported_and_bad_ones_refuse
         'exercises[2].value.of: unknown quantity "weight" '
         "(known: ray_sphere, ray_triangle, depth, hit_t, blend)",
         "exercises[3].step: the lesson has steps 0 to 0, got 3"]
+
+
+def test_variants_draw_other_pixels_by_seed_and_each_is_judged_by_its_own_answer():
+    from core.lessons.exercises import variant
+
+    ex = BY_ID["zbuffer"].exercises[0]
+    assert len(ex.variants) == 5
+    drawn = {variant(ex, seed).question for seed in range(40)}
+    assert len(drawn) >= 4  # different students, different pixels
+    assert variant(ex, 7) is variant(ex, 7)  # one student keeps one variant
+    # By hand from the three planes (see test_lesson_facts): at the centre (80, 60) blue is nearest;
+    # at (58, 59), left of blue's corner (-0.6, -0.9), only green covers the pixel.
+    answers = {}
+    for v in ex.variants:
+        p = StepPipelines(BY_ID["zbuffer"].steps[v.step])
+        (right,) = right_choices(v, p)
+        answers[v.question.split("pixel ")[1].rstrip("?")] = v.args["choices"][right]
+    assert answers["(80, 60)"] == "blue" and answers["(58, 59)"] == "green"
