@@ -20,7 +20,6 @@ from __future__ import annotations
 import random
 
 from PySide6.QtCore import QSettings, Qt, Signal
-from PySide6.QtGui import QFont
 from PySide6.QtWidgets import (
     QButtonGroup,
     QFrame,
@@ -357,11 +356,11 @@ class ExercisePanel(QWidget):
     def set_room(self, room: bool) -> None:
         """Put the question to the room: large, with its answers hidden until Space shows them."""
         self.room = room
-        font = QFont(self.font())
-        if room:
-            font.setPointSizeF(font.pointSizeF() * ROOM_SCALE)
-        font.setBold(room)
-        self.question.setFont(font)
+        self.ensurePolished()  # the panel's font as the window's style sheet (presentation scale) sets it
+        size = self.font().pointSizeF() * ROOM_SCALE
+        # A style sheet, not setFont: the window's style sheet would override a font set in code.
+        self.question.setStyleSheet(f"font-size: {size:.1f}pt; font-weight: bold;" if room else "")
+        self.question.ensurePolished()
         self.set_answers_hidden(room)
 
     def set_answers_hidden(self, hidden: bool) -> None:
