@@ -2,7 +2,7 @@
 
 The student predicts, then checks: :class:`ExercisePanel` shows the question
 and an answer widget for its kind (choices, a number, a pixel, a list to put in
-order), and judges the answer with :func:`core.lessons.exercises.judge`, which
+order), or pictures to pick from, and judges the answer with :func:`core.lessons.exercises.judge`, which
 asks the pipelines.  Feedback comes at once: right or wrong and one sentence
 why; a wrong first answer gets a second try; "Show me" asks the window to show
 the step (and for a pixel exercise, a right pixel); "Reveal" gives the answer.
@@ -23,6 +23,7 @@ from PySide6.QtCore import QSettings, Qt, Signal
 from PySide6.QtWidgets import (
     QButtonGroup,
     QFrame,
+    QGridLayout,
     QHBoxLayout,
     QLabel,
     QLineEdit,
@@ -40,16 +41,22 @@ from core.lessons.exercises import (
     choice_label,
     judge,
     number,
+    pictures,
     right_choices,
     right_order,
     variant,
 )
 from core.lessons.facts import StepPipelines
+from views.image_view import ImageView
 
 FIRST_TRY, LATER, REVEALED = "first try", "later", "revealed"
 RIGHT_COLOR, WRONG_COLOR = "#1b8a3a", "#c62828"
 ROOM_SCALE = 1.8
 """The question's size, put to the room, relative to the panel's font."""
+
+
+class Missing(str):
+    """What an answer lacks, in a sentence (an answer may itself be a string: a view's name)."""
 
 
 class ExerciseProgress:
@@ -133,6 +140,10 @@ class ExercisePanel(QWidget):
         self.pixel_edit.setPlaceholderText("x, y — or click the pixel in the image")
         self.order_list = QListWidget()
         self.order_list.setDragDropMode(QListWidget.DragDropMode.InternalMove)
+        self.picture_grid = QWidget()  # pick_picture: the pictures, each with its radio button
+        self.picture_layout = QGridLayout(self.picture_grid)
+        self.picture_views: list[ImageView] = []
+        self.picture_keys: list[str] = []
         self.feedback = QLabel()
         self.feedback.setWordWrap(True)
         self.check_button = QPushButton("Check")
@@ -201,8 +212,12 @@ class ExercisePanel(QWidget):
 
     def _fill(self) -> None:
         ex = self.exercise()
-        for w in (self.number_edit, self.pixel_edit, self.order_list):
+        for w in (self.number_edit, self.pixel_edit, self.order_list, self.picture_grid):
             w.setParent(None)
+        while self.picture_layout.count():
+            widget = self.picture_layout.takeAt(0).widget()
+            widget.deleteLater()
+        self.picture_views, self.picture_keys = [], []
         for button in self.choices.buttons():
             self.choices.removeButton(button)
             button.deleteLater()
@@ -230,11 +245,33 @@ class ExercisePanel(QWidget):
         elif ex.kind == "click_pixel":
             self.pixel_edit.clear()
             self.answer_layout.addWidget(self.pixel_edit)
+        elif ex.kind == "pick_picture":
+            self.answer_layout.addWidget(self.picture_grid)
+            p = self._p(ex)
+            self._run(lambda: pictures(ex, p), lambda drawn: self._show_pictures(ex, drawn))
         else:
             self.order_list.clear()
             self.order_list.addItems(list(ex.args["items"]))
             self.answer_layout.addWidget(self.order_list)
         self.set_answers_hidden(self.room)
+
+    def _show_pictures(self, ex: Exercise, drawn: dict) -> None:
+        """The pictures in this student's order (their seed shuffles them), each with a button."""
+        if ex is not self.exercise():
+            return
+        keys = list(drawn)
+        random.Random(self.progress.seed() + self.index).shuffle(keys)
+        for i, key in enumerate(keys):
+            view = ImageView()
+            view.set_image(drawn[key])
+            view.setMinimumSize(120, 90)
+            button = QRadioButton(f"picture {i + 1}")
+            view.pixel_clicked.connect(lambda _x, _y, b=button: b.setChecked(True))
+            self.choices.addButton(button, i)
+            self.picture_layout.addWidget(view, 2 * (i // 2), i % 2)
+            self.picture_layout.addWidget(button, 2 * (i // 2) + 1, i % 2)
+            self.picture_views.append(view)
+        self.picture_keys = keys
 
     def _p(self, ex: Exercise) -> StepPipelines:
         if ex.step not in self._pipelines:
@@ -245,25 +282,28 @@ class ExercisePanel(QWidget):
 
     def given(self):
         """The answer as entered, in the form :func:`core.lessons.exercises.judge` takes, or a
-        sentence saying what is missing."""
+        :class:`Missing` sentence saying what is lacking."""
         ex = self.exercise()
         if ex.kind == "choose_one":
             i = self.choices.checkedId()
-            return i if i >= 0 else "Choose one of the answers first."
+            return i if i >= 0 else Missing("Choose one of the answers first.")
+        if ex.kind == "pick_picture":
+            i = self.choices.checkedId()
+            return self.picture_keys[i] if i >= 0 else Missing("Pick one of the pictures first.")
         if ex.kind == "number":
             try:
                 return float(self.number_edit.text().replace(",", "."))
             except ValueError:
-                return "Type a number (for example 1.56)."
+                return Missing("Type a number (for example 1.56).")
         if ex.kind == "click_pixel":
             parts = self.pixel_edit.text().replace("(", "").replace(")", "").split(",")
             try:
                 x, y = (int(v) for v in parts)
             except ValueError:
-                return "Click a pixel in the image, or type its column and row: x, y."
+                return Missing("Click a pixel in the image, or type its column and row: x, y.")
             cam = self.lesson.steps[ex.step].scene.camera
             if not (0 <= x < cam.width and 0 <= y < cam.height):
-                return f"Pixel ({x}, {y}) is outside the {cam.width} x {cam.height} image."
+                return Missing(f"Pixel ({x}, {y}) is outside the {cam.width} x {cam.height} image.")
             return x, y
         return [self.order_list.item(i).text() for i in range(self.order_list.count())]
 
@@ -278,7 +318,7 @@ class ExercisePanel(QWidget):
         """Judge the answer: right or wrong and why; a wrong first answer may be tried again."""
         ex = self.exercise()
         given = self.given()
-        if isinstance(given, str):
+        if isinstance(given, Missing):
             self._say(given, None)
             return
         p = self._p(ex)
@@ -303,7 +343,8 @@ class ExercisePanel(QWidget):
         ex = self.exercise()
         p = self._p(ex)
         work = {"choose_one": lambda: right_choices(ex, p), "number": lambda: number(ex, p),
-                "click_pixel": lambda: a_right_pixel(ex, p), "order": lambda: right_order(ex, p)}[ex.kind]
+                "click_pixel": lambda: a_right_pixel(ex, p), "order": lambda: right_order(ex, p),
+                "pick_picture": lambda: ex.args["view"]}[ex.kind]
         self._run(work, lambda answer: self._revealed(ex, answer))
 
     def _revealed(self, ex: Exercise, computed) -> None:
@@ -316,6 +357,13 @@ class ExercisePanel(QWidget):
         elif ex.kind == "number":
             answer = f"{computed:.6g}"
             self.number_edit.setText(answer)
+        elif ex.kind == "pick_picture":
+            if computed in self.picture_keys:
+                k = self.picture_keys.index(computed)
+                self.choices.button(k).setChecked(True)
+                answer = f"picture {k + 1}"
+            else:
+                answer = f"the {computed} view"
         elif ex.kind == "click_pixel":
             answer = f"pixel {computed}, for example"
             self.pixel_edit.setText(f"{computed[0]}, {computed[1]}")

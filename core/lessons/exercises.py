@@ -16,6 +16,7 @@ answer typed into the file.  Kinds::
                "radius": 10, "value": "discriminant"}, "why": "..."}
     {"kind": "order", "question": "In which order are the panes drawn?",
      "items": ["red pane", "green pane", "blue pane"], "by": "drawing_order", "why": "..."}
+    {"kind": "pick_picture", "question": "Which picture is the top view?", "view": "top"}
 
 A ``choose_one`` choice is right when its fact (``$choice`` put in) holds; a
 lesson check demands exactly one right choice.  A ``click_pixel`` answer is
@@ -25,7 +26,10 @@ data), ``depth`` (the distance the z-buffer stores at ``pixel`` after ``after``
 polygons), ``hit_t`` (the distance to the first hit of ``pixel``'s ray),
 ``blend`` (channel ``channel`` of the c0 a transparent ``object`` writes at
 ``pixel``).  ``order`` ``by`` ``drawing_order`` puts the named objects in the
-order object order draws them.
+order object order draws them.  ``pick_picture`` offers the four pictures the
+Four views tab draws (front, side, top, the observer's) and is right when the
+picture picked is the one drawn from the named ``view``; a lesson check
+demands that no two pictures look alike.
 
 Variants: an exercise may list ``"variants"`` (pixels, or any JSON values);
 ``"$at"`` in its fact or value, and ``{at}`` in its question, stand for one of
@@ -47,7 +51,11 @@ from core.lessons import facts as facts_mod
 from core.lessons.facts import StepPipelines, check_fact, read_fact
 from core.scene_file import _join, _show
 
-KINDS = ("choose_one", "click_pixel", "number", "order")
+KINDS = ("choose_one", "click_pixel", "number", "order", "pick_picture")
+VIEWS = ("front", "side", "top", "observer")
+"""The pictures of a ``pick_picture`` exercise: :data:`core.object_order.four_views.PANES`."""
+PICTURE_SIZE = (160, 120)
+"""Width and height (pixels) of each picture to pick from."""
 NUMBERS = ("ray_sphere", "ray_triangle", "depth", "hit_t", "blend")
 ORDERS = ("drawing_order",)
 _FIELDS = {
@@ -55,6 +63,7 @@ _FIELDS = {
     "click_pixel": (("kind", "question", "fact"), ("step", "why")),
     "number": (("kind", "question", "value", "tolerance"), ("step", "why", "variants")),
     "order": (("kind", "question", "items", "by"), ("step", "why")),
+    "pick_picture": (("kind", "question", "view"), ("step", "why")),
 }
 #: How far apart the pixels are that "show me" tries for a click exercise (every n-th row and column).
 SEARCH_STRIDE = 4
@@ -194,6 +203,10 @@ def _read(r, value, path: str, steps) -> Exercise | None:
     elif kind == "number":
         args.update(value=_read_number(r, d["value"], _join(path, "value"), scene),
                     tolerance=r.number(d["tolerance"], _join(path, "tolerance"), ge=0))
+    elif kind == "pick_picture":
+        if d["view"] not in VIEWS:
+            r.add(_join(path, "view"), f"unknown view {_show(d['view'])} (known: {', '.join(VIEWS)})")
+        args.update(view=d["view"])
     else:
         listed = r.listing(d["items"], _join(path, "items"))
         items = [r.string(c, f"{path}.items[{i}]") for i, c in enumerate(listed)]
@@ -320,6 +333,18 @@ def right_order(ex: Exercise, p: StepPipelines) -> list[str]:
     return sorted(ex.args["items"], key=lambda item: names.index(item) if item in names else len(names))
 
 
+def pictures(ex: Exercise, p: StepPipelines) -> dict[str, np.ndarray]:
+    """The pictures a ``pick_picture`` exercise offers, drawn by object order as the Four views tab
+    draws them: the front, side and top orthographic views and the observer's, by key."""
+    from dataclasses import replace
+
+    from core.object_order.four_views import four_cameras, inked_view
+
+    scene = p.step.scene
+    small = replace(scene, camera=scene.camera.replace(width=PICTURE_SIZE[0], height=PICTURE_SIZE[1]))
+    return {key: inked_view(small, camera)[0] for key, camera in four_cameras(small).items()}
+
+
 def judge(ex: Exercise, p: StepPipelines, given) -> Verdict:
     """Right or wrong, with one sentence why: ``given`` is a choice index, a pixel ``(x, y)``, a number,
     or a list of the items in order."""
@@ -340,9 +365,17 @@ def judge(ex: Exercise, p: StepPipelines, given) -> Verdict:
         ok = bool(abs(float(given) - value) <= tol)
         return Verdict(ok, f"{'Right' if ok else 'Not quite'}: the pipelines compute {value:.6g} "
                            f"(within {tol:g}).{why}")
+    if ex.kind == "pick_picture":
+        ok = given == ex.args["view"]
+        return Verdict(ok, f"{'Right' if ok else 'Not that one'}: that is the {_view_words(given)}."
+                           + ("" if ok else f" The {_view_words(ex.args['view'])} is another.") + why)
     order = right_order(ex, p)
     ok = list(given) == order
     return Verdict(ok, f"{'Right' if ok else 'Not that order'}: {' → '.join(order)}.{why}")
+
+
+def _view_words(key: str) -> str:
+    return "observer's own view" if key == "observer" else f"{key} view"
 
 
 def check_exercises(lesson) -> list[str]:
@@ -366,6 +399,11 @@ def check_exercises(lesson) -> list[str]:
             drawn = {p.step.scene.objects[k].name for k in p.raster.draw.object_index.tolist()}
             missing = [item for item in ex.args["items"] if item not in drawn]
             problem = f"not drawn: {', '.join(missing)}" if missing else None
+        elif ex.kind == "pick_picture":
+            shown = list(pictures(ex, p).items())
+            alike = [f"{a} and {b}" for i, (a, x) in enumerate(shown) for b, y in shown[i + 1:]
+                     if np.mean(np.abs(x - y) > 0.05) < 0.01]  # under 1 % of pixels differ
+            problem = f"pictures alike: {', '.join(alike)}" if alike else None
         if problem:
             lines.append(f"lesson {lesson.id}, {ex.path} ({ex.question}): {problem}")
     return lines

@@ -4,6 +4,7 @@ independent computations, and a wrong answer is refused."""
 import math
 from fractions import Fraction
 
+import numpy as np
 import pytest
 
 from core.lessons import LessonFileError, from_dict, shipped_lessons
@@ -24,7 +25,7 @@ def test_every_lesson_ends_with_exercises_the_pipelines_answer():
     assert all(lesson.exercises for lesson in LESSONS)
     assert sum(len(lesson.exercises) for lesson in LESSONS) >= 30
     kinds = {ex.kind for lesson in LESSONS for ex in lesson.exercises}
-    assert kinds == {"choose_one", "click_pixel", "number", "order"}
+    assert kinds == {"choose_one", "click_pixel", "number", "order", "pick_picture"}
     for lesson in LESSONS:
         assert check_exercises(lesson) == [], lesson.id
 
@@ -110,7 +111,8 @@ def test_an_exercise_the_pipelines_cannot_answer_is_reported_and_bad_ones_refuse
     with pytest.raises(LessonFileError) as info:
         from_dict(lesson)
     assert info.value.problems == [
-        "exercises[0].kind: unknown exercise kind \"guess\" (known: choose_one, click_pixel, number, order)",
+        "exercises[0].kind: unknown exercise kind \"guess\" "
+        "(known: choose_one, click_pixel, number, order, pick_picture)",
         'exercises[1].fact: the fact must say "pixel": "$pixel" (the clicked pixel)',
         'exercises[2].value.of: unknown quantity "weight" '
         "(known: ray_sphere, ray_triangle, depth, hit_t, blend)",
@@ -133,3 +135,25 @@ def test_variants_draw_other_pixels_by_seed_and_each_is_judged_by_its_own_answer
         (right,) = right_choices(v, p)
         answers[v.question.split("pixel ")[1].rstrip("?")] = v.args["choices"][right]
     assert answers["(80, 60)"] == "blue" and answers["(58, 59)"] == "green"
+
+
+def test_questions_2_and_3_pick_the_picture_drawn_from_the_named_view():
+    from core import presets
+    from core.lessons.exercises import pictures
+
+    ex, p = _exercise("three_views", "Question 3. Which picture is the top view?")
+    drawn = pictures(ex, p)
+    assert set(drawn) == {"front", "side", "top", "observer"}
+
+    def cone_box(rgb):  # the cone is the only blue object: (0.15, 0.55, 0.75) lit
+        ys, xs = np.nonzero((rgb[..., 2] > rgb[..., 0] + 0.2) & (rgb[..., 2] > 0.2))
+        return xs.max() - xs.min() + 1, ys.max() - ys.min() + 1
+
+    # From above the cone is a circle (as wide as deep); from the side a triangle 2r wide and h high.
+    w, h = cone_box(drawn["top"])
+    assert abs(w / h - 1) < 0.15
+    w, h = cone_box(drawn["side"])
+    assert w / h == pytest.approx(2 * presets.CONE_RADIUS / presets.CONE_HEIGHT, rel=0.15)
+    assert judge(ex, p, "top").right
+    wrong = judge(ex, p, "front")
+    assert not wrong.right and wrong.sentence.startswith("Not that one: that is the front view.")

@@ -101,3 +101,19 @@ def test_put_to_the_room_the_question_is_large_and_the_answers_wait_for_space(pa
     assert panel.answer_area.isVisible()
     panel.go(1)  # the next question hides its answers again
     assert not panel.answer_area.isVisible()
+
+
+def test_a_picture_is_picked_by_clicking_it_and_judged(panel, qtbot):
+    lesson = BY_ID["three_views"]
+    panel.set_lesson(lesson)
+    k = next(i for i, e in enumerate(lesson.exercises) if e.question.endswith("top view?"))
+    panel.go(k)
+    qtbot.waitUntil(lambda: len(panel.picture_views) == 4)
+    assert sorted(panel.picture_keys) == ["front", "observer", "side", "top"]
+    wrong = next(i for i, key in enumerate(panel.picture_keys) if key != "top")
+    panel.picture_views[wrong].pixel_clicked.emit(5, 5)  # a click on a picture picks it
+    panel.check()
+    assert panel.feedback.text().startswith("Not that one")
+    panel.picture_views[panel.picture_keys.index("top")].pixel_clicked.emit(5, 5)
+    panel.check()
+    assert panel.feedback.text().startswith("Right: that is the top view.")
