@@ -36,6 +36,7 @@ from app.exercise_jobs import ExerciseJobs
 from app.export_menu import ExportMenu
 from app.first_frame import AfterFirstFrame
 from app.lesson_fact_check import LessonFactCheck
+from app.lesson_recorder import LessonRecorder
 from app.lesson_runner import LESSON_OVERLAY, LessonRunner
 from app.mesh_files import read_mesh
 from app.scene_editor import SceneEditor
@@ -345,6 +346,10 @@ class MainWindow(QMainWindow):
         sizes = view.addMenu("Text size")
         for key in ("scale 1", "scale 1.5", "scale 2"):
             sizes.addAction(acts[key])
+        lessons_menu = self.menuBar().addMenu("&Lessons")
+        self.recorder = LessonRecorder(self)
+        self._action(lessons_menu, "&Add this view as a step…", self.recorder.ask,
+                     tip="Record the scene, observer, panes, settings, step and pixel into a lesson file")
         help_menu = self.menuBar().addMenu("&Help")
         self._action(help_menu, "&Keys and mouse", self.show_keys, tip="Every key and mouse gesture")
 

@@ -116,3 +116,34 @@ def test_exercises_follow_the_lesson_a_click_answers_and_progress_shows_in_the_l
     window.tab("image order").widget.image.pixel_clicked.emit(*pixel)  # the student clicks it
     qtbot.waitUntil(lambda: exercises.feedback.text().startswith("Right"), timeout=RENDER_TIMEOUT_MS)
     assert "1/2 done, 1 right at first try" in panel.list.item(k).text()
+
+
+def test_add_this_view_as_a_step_round_trips_the_window_state(window, qtbot, tmp_path):
+    panel = window.lesson_panel
+    k = LESSONS["zbuffer"]
+    panel.select(k, 2)  # blue drawn: step 2, the object-order tab in front
+    window.model.set_buffer_pixel((87, 74))
+    before = (window.model.scene, window.model.trace_settings, window.model.raster_settings,
+              window.model.step, window.visible_panes(), window.current.title)
+    path = tmp_path / "my lesson.json"
+    facts = '[{"fact": "zbuffer_keeps", "pixel": [87, 74], "object": "blue"}]'
+    assert window.recorder.record(path, "Blue wins", "Blue is nearest here.", facts)
+    assert window.recorder.record(path, "Again", "The same view twice.")
+    window.reset_scene()  # something else in the window
+    lesson = panel.open_lesson_file(path)  # the file loads, and its first step is shown
+    assert [s.title for s in lesson.steps] == ["Blue wins", "Again"] and lesson.id == "my_lesson"
+    qtbot.waitUntil(lambda: not window.fact_check.busy, timeout=RENDER_TIMEOUT_MS)
+    assert window.fact_check.failures == []  # the recorded fact holds
+    after = (window.model.scene, window.model.trace_settings, window.model.raster_settings,
+             window.model.step, window.visible_panes(), window.current.title)
+    assert after[0] == before[0] and after[1:4] == before[1:4]
+    assert set(after[4]) == set(before[4]) and after[5] == before[5]
+    assert window.model.buffer_pixel == (87, 74)
+
+    bad = '[{"fact": "zbuffer_keeps", "pixel": [87, 74], "object": "purple"}]'
+    assert not window.recorder.record(path, "Bad", "words", bad)
+    box = window.findChild(QMessageBox, "lesson_record_error")
+    qtbot.waitUntil(lambda: box is not None and box.isVisible())
+    assert "steps[2].facts[0].object: no object 'purple' in the scene" in box.informativeText()
+    box.close()
+    assert len(json.loads(path.read_text(encoding="utf-8"))["steps"]) == 2  # nothing written
