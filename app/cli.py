@@ -23,6 +23,7 @@ from app import (
     export_command,
     hardcases_command,
     intersect_command,
+    lesson_command,
     render_command,
 )
 from app.usage import UsageError
@@ -49,6 +50,7 @@ def build_parser() -> argparse.ArgumentParser:
     cost_command.add_parser(sub)
     export_command.add_parser(sub)
     compile_command.add_parser(sub)
+    lesson_command.add_parser(sub)
     bench = sub.add_parser("bench", help="time our pipelines against VTK / Embree (a benchmark, not a test)")
     kinds = bench.add_subparsers(dest="bench", metavar="KIND", required=True)
     for name, module in benchmarks.items():
@@ -59,7 +61,8 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 #: The first words the command line understands; anything else opens the window on it.
-COMMANDS = {"gui", "intersect", "render", "export", "bench", "hardcases", "cost", "compile", "-h", "--help"}
+COMMANDS = {"gui", "intersect", "render", "export", "bench", "hardcases", "cost", "compile", "lesson", "-h",
+            "--help"}
 
 
 INTERRUPTED = "python -m app: interrupted; no output file was written or changed"

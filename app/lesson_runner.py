@@ -9,6 +9,7 @@ user had made the same choices by hand.
 
 from __future__ import annotations
 
+import re
 from dataclasses import replace
 
 import numpy as np
@@ -25,6 +26,65 @@ LESSON_OVERLAY = "lesson"
 MODEL_OVERLAYS = {"bounding spheres": "spheres", "grid cells": "grid", "frustum": "frustum"}
 """Lesson overlay names and the model's names for them."""
 OBJECT_STYLE = {"color": "#ffd400", "style": "wireframe", "line_width": 3}
+NORMAL_COLOR = "#ff2bd6"
+"""The highlighted face's outward normal, drawn as an arrow (the colour of its outline)."""
+
+
+def named_objects(scene: Scene, text: str) -> list:
+    """The objects ``text`` speaks of: by their name ("the cone"), or, for objects named
+    "object N", by their number in a sentence about objects ("objects 1 and 4")."""
+    lowered = text.lower()
+    numbers = set()  # the numbers of sentences about objects, "1 to 4" counting 2 and 3 too
+    for sentence in re.split(r"(?<=[.;:])\s+", lowered):
+        if re.search(r"\bobjects?\b", sentence):
+            numbers |= {int(n) for n in re.findall(r"\b\d+\b", sentence)}
+            for a, b in re.findall(r"\b(\d+) to (\d+)\b", sentence):
+                numbers |= set(range(int(a), int(b) + 1))
+    named = []
+    for obj in scene.objects:
+        number = re.fullmatch(r"object (\d+)", obj.name.lower())
+        if obj.name.lower() in lowered or (number and int(number.group(1)) in numbers):
+            named.append(obj)
+    return named
+
+
+def _top(obj) -> np.ndarray:
+    """A point just above the object, where its name is written."""
+    points = np.asarray(obj.vertices if isinstance(obj, Mesh) else [obj.center], dtype=float)
+    low, high = points.min(axis=0), points.max(axis=0)
+    lift = getattr(obj, "radius", 0.0) + 0.08 * float(np.linalg.norm(high - low) + 1.0)
+    return np.array([(low[0] + high[0]) / 2, high[1] + lift, (low[2] + high[2]) / 2])
+
+
+def _normal_parts(corners: np.ndarray, eye) -> list:
+    """The face's outward normal as an arrow from its centroid, labelled with where it points."""
+    import pyvista as pv
+
+    from views.scene_overlays import LABEL_PT
+    from views.vtk_convert import set_labels
+
+    centroid = corners.mean(axis=0)
+    normal = np.cross(corners[1] - corners[0], corners[2] - corners[0])
+    normal /= np.linalg.norm(normal)
+    size = 0.6 * float(np.max(np.linalg.norm(corners - centroid, axis=1)))
+    toward = float(np.dot(normal, np.asarray(eye, dtype=float) - centroid)) > 0  # the culling test
+    words = "N: front face" if toward else "N: back face"  # short: it must fit the pane at x2
+    tip = pv.PolyData(np.array([centroid + 1.15 * size * normal]))
+    return [(pv.Arrow(start=centroid, direction=normal, scale=size), {"color": NORMAL_COLOR}),
+            (set_labels(tip, [words]), {"label_size": LABEL_PT, "color": NORMAL_COLOR})]
+
+
+def _name_parts(objects) -> list:
+    """The objects' names written above them."""
+    if not objects:
+        return []
+    import pyvista as pv
+
+    from views.scene_overlays import LABEL_PT
+    from views.vtk_convert import set_labels
+
+    points = pv.PolyData(np.array([_top(obj) for obj in objects]))
+    return [(set_labels(points, [obj.name for obj in objects]), {"label_size": LABEL_PT, "color": "white"})]
 
 
 def _find(scene: Scene, name: str):
@@ -103,6 +163,7 @@ class LessonRunner:
             mesh = _find(scene, face["object"])
             corners = mesh.vertices[mesh.triangles[face["triangle"]]]
             parts += polygon_parts(corners)
+            parts += _normal_parts(np.asarray(corners, dtype=float), scene.camera.eye)
             words.append(f"triangle {face['triangle']} of {mesh.name!r}")
         if "vertex" in highlight:
             vertex = highlight["vertex"]
@@ -111,13 +172,14 @@ class LessonRunner:
                                               else mesh.center)
             panel = w.tab("object order").widget
             name = f"vertex {vertex['index']} of {mesh.name!r}"
-            panel.vertex_math.show_vertex(point, scene.camera, name)
+            panel.show_vertex(point, scene, name)
             panel.details.setCurrentWidget(panel.vertex_math)
             words.append(name)
         if "polygon_step" in highlight:
             words.append(f"the polygon drawn at step {highlight['polygon_step'] + 1}")
         if "pixel" in highlight:
             words.append(f"pixel {tuple(highlight['pixel'])}")
+        parts += _name_parts(named_objects(scene, self.step.text if self.step is not None else ""))
         w.scene_view.set_overlay(LESSON_OVERLAY, parts)
         self.projector.show_point(vertex_point)
         self.highlighted = ", ".join(words)

@@ -33,13 +33,17 @@ from PySide6.QtWidgets import (
 
 from app import render_budget, session
 from app.background_compile import BackgroundCompile
+from app.exercise_jobs import ExerciseJobs
 from app.export_menu import ExportMenu
 from app.first_frame import AfterFirstFrame
+from app.lesson_fact_check import LessonFactCheck
+from app.lesson_recorder import LessonRecorder
 from app.lesson_runner import LESSON_OVERLAY, LessonRunner
 from app.mesh_files import read_mesh
 from app.scene_editor import SceneEditor
 from app.state import SceneModel
 from app.tabs import TABS
+from app.user_settings import user_settings
 from app.window_layout import LEFT_SHARE, fit_window, tabbed_dock
 from app.workers import Renderer, RenderSchedule
 from core import presets, scene_file
@@ -50,6 +54,7 @@ from views import math_view
 from views.camera_panel import CameraPanel
 from views.deferred_scene_view import DeferredSceneView
 from views.elided_label import ElidedLabel, ElidedProgressBar
+from views.exercise_panel import ExercisePanel, ExerciseProgress
 from views.lesson_panel import LessonPanel
 from views.observer_keys import MOUSE_GESTURES, OBSERVER_KEYS, EditorsKeepTheirKeys
 from views.presentation import Presentation
@@ -134,6 +139,10 @@ class MainWindow(QMainWindow):
         self.lessons = LessonRunner(self)
         # Beside the controls, as a second tab of the same dock area: the image panes keep the width.
         self.lesson_dock = tabbed_dock(self, "Lessons", "lessons", self.lesson_panel, dock)
+        self.exercise_jobs = ExerciseJobs(self, lambda why: self.statusBar().showMessage(
+            f"The exercise could not be checked: {why}", 10000))
+        self.exercise_panel = ExercisePanel(ExerciseProgress(user_settings()), run=self.exercise_jobs)
+        self.exercise_dock = tabbed_dock(self, "Exercises", "exercises", self.exercise_panel, dock)
         self.lesson_dock.raise_()
         self._keyed_actions: list[QAction] = []
         self._editor_keys = EditorsKeepTheirKeys(self)
@@ -144,6 +153,9 @@ class MainWindow(QMainWindow):
         self.editor = SceneEditor(self)
         self._keyed_actions += self.editor.keyed_actions
         self.lesson_panel.step_selected.connect(self.apply_lesson_step)
+        self._wire_exercises()
+        self.fact_check = LessonFactCheck(self)  # File → Open lesson: are the new lesson's facts true?
+        self.lesson_panel.lesson_opened.connect(self.fact_check.check)
         self.presentation.presenting_changed.connect(self._presenting_changed)
         self.presentation.scale_changed.connect(self._scale_changed)
         self.scene_pane.visibilityChanged.connect(lambda shown: shown and self._refit())
@@ -222,6 +234,32 @@ class MainWindow(QMainWindow):
         if self.editor.may_replace_scene():
             self.lessons.apply(step)
             self._refit()  # the step's words may need another share of the left column
+
+    def _wire_exercises(self) -> None:
+        """The exercises follow the lesson; clicks in the images answer pixel exercises; "show me"
+        shows the exercise's step (and pixel); progress shows in the lesson list."""
+        panel, exercises = self.lesson_panel, self.exercise_panel
+        panel.step_selected.connect(lambda _step: exercises.set_lesson(panel.current_lesson()))
+        for tab in ("image order", "object order"):
+            self.tab(tab).widget.image.pixel_clicked.connect(exercises.click)
+
+        def show_me(step: int, pixel) -> None:
+            panel.select(panel.step_index()[0], step)
+            if pixel is not None:
+                self.model.set_ray_pixel(tuple(pixel))
+                self.model.set_buffer_pixel(tuple(pixel))
+
+        exercises.show_me.connect(show_me)
+        self.presentation.presenting_changed.connect(exercises.set_room)
+
+        def progressed(lesson_id: str) -> None:
+            for k, lesson in enumerate(panel.lessons()):
+                if lesson.id == lesson_id:
+                    panel.set_note(k, exercises.progress.summary(lesson))
+
+        exercises.progressed.connect(progressed)
+        for lesson in panel.lessons():
+            progressed(lesson.id)
 
     def _presenting_changed(self, presenting: bool) -> None:
         # Esc leaves full screen while presenting; one key, one meaning.
@@ -312,6 +350,10 @@ class MainWindow(QMainWindow):
         sizes = view.addMenu("Text size")
         for key in ("scale 1", "scale 1.5", "scale 2"):
             sizes.addAction(acts[key])
+        lessons_menu = self.menuBar().addMenu("&Lessons")
+        self.recorder = LessonRecorder(self)
+        self._action(lessons_menu, "&Add this view as a step…", self.recorder.ask,
+                     tip="Record the scene, observer, panes, settings, step and pixel into a lesson file")
         help_menu = self.menuBar().addMenu("&Help")
         self._action(help_menu, "&Keys and mouse", self.show_keys, tip="Every key and mouse gesture")
 
@@ -362,6 +404,7 @@ class MainWindow(QMainWindow):
         self.scene_path = Path(path)
         self.setWindowTitle(f"Render Explorer — {self.scene_path.name}")
         self.model.set_scene(scene)
+        self.lesson_panel.leave_step(f"The window shows {self.scene_path.name} now.")
         self.explain_if_too_large(self.scene_path.name)
         return True
 
@@ -399,6 +442,7 @@ class MainWindow(QMainWindow):
         self.scene_path = None
         self.setWindowTitle(f"Render Explorer — example: {key}")
         self.model.set_scene(build())
+        self.lesson_panel.leave_step(f"The window shows the example {key!r} now.")
 
     # ------------------------------------------------------------ render
     @property

@@ -104,6 +104,12 @@ def zbuffer_piercing() -> Scene:
     return Scene(camera=ZBUFFER_CAMERA, objects=(green, blue))
 
 
+def zbuffer_piercing_blue_first() -> Scene:
+    """:func:`zbuffer_piercing` drawn in the other order: blue first, then green (the same final picture)."""
+    scene = zbuffer_piercing()
+    return Scene(camera=scene.camera, objects=scene.objects[::-1])
+
+
 CULLING_CAMERA = Camera(eye=(2.5, 3.2, 6.5), target=(0.0, 0.7, 0.0), near=1.0, far=20.0)
 
 
@@ -164,7 +170,7 @@ def transparent_panes() -> Scene:
 
 #: Observers A and B of :func:`observers_top_view`.
 OBSERVER_A = Camera(eye=(0.0, 1.0, 8.0), target=(0.0, 1.0, 0.0), near=0.5, far=20.0)
-OBSERVER_B = Camera(eye=(10.0, 1.2, -3.0), target=(-1.0, 1.0, 1.0), near=0.5, far=20.0)
+OBSERVER_B = Camera(eye=(8.0, 1.5, 7.0), target=(0.0, 1.0, -1.5), near=0.5, far=20.0)
 
 
 def observers_top_view() -> Scene:
@@ -215,6 +221,8 @@ PRESETS: dict[str, tuple[str, Callable[[], Scene]]] = {
     "zbuffer_three_polygons": ("Z-buffer: three polygons drawn green, blue, yellow",
                                zbuffer_three_polygons),
     "zbuffer_piercing": ("Z-buffer: two polygons piercing each other", zbuffer_piercing),
+    "zbuffer_piercing_blue_first": ("Z-buffer: the piercing polygons drawn blue first",
+                                    zbuffer_piercing_blue_first),
     "culling_pyramid": ("Back-face culling: a convex pyramid", culling_pyramid),
     "culling_notched": ("Back-face culling: a non-convex notched prism", culling_notched),
     "frustum_cases": ("Frustum culling: inside, crossing, outside, behind the observer", frustum_cases),

@@ -4,7 +4,9 @@ Pixels are drawn as crisp squares (nearest neighbour) so a student can see
 that the image is a grid of samples, scaled to fit the pane with its aspect
 ratio kept.  Clicking a pixel reports which one it was; a picked pixel and a
 set of highlighted pixels (for example one polygon's fragments) can be
-outlined on top; the outline leaves every pixel's colour true.
+outlined on top, and a polygon's edges drawn; the outline leaves every pixel's
+colour true.  When each pixel is shown large (a small image), the pixel grid and
+every pixel's centre are drawn too: a fragment is made where a triangle covers a centre.
 
 Renderers produce *linear* RGB; :func:`core.srgb.to_srgb8` encodes it for
 the screen.  That conversion, and the QImage, can be made off the GUI thread
@@ -23,6 +25,11 @@ from PySide6.QtGui import QColor, QImage, QPainter, QPen
 from PySide6.QtWidgets import QSizePolicy, QWidget
 
 from core.srgb import to_srgb8
+
+GRID_CELL_PX = 14
+"""On-screen size (px) of one pixel from which its square's border and its centre are drawn."""
+EDGE_COLOR = "#00e5ff"
+"""A polygon's edges drawn over the image (cyan: apart from the magenta fragment outline)."""
 
 
 @dataclass(frozen=True)
@@ -112,6 +119,7 @@ class ImageView(QWidget):
         self.rgb: np.ndarray | None = None
         self.note = ""
         self.picked: tuple[int, int] | None = None
+        self.edges: np.ndarray | None = None  # (N, 2) polygon corners in pixel coordinates, or None
         self._placeholder = placeholder
         self.setMinimumSize(120, 90)
         self.setSizePolicy(QSizePolicy.Policy.Expanding, QSizePolicy.Policy.Expanding)
@@ -138,6 +146,17 @@ class ImageView(QWidget):
         self._highlight_shape = None if mask is None else mask.shape
         self._highlight_color = QColor(color)
         self.update()
+
+    def set_edges(self, corners: np.ndarray | None) -> None:
+        """A polygon's edges to draw over the grid (when :meth:`grid_shown`): ``corners`` (N, 2) in pixel
+        coordinates (x right, y down, pixel ``(i, j)``'s centre at ``(i + 0.5, j + 0.5)``); None clears."""
+        self.edges = None if corners is None else np.asarray(corners, dtype=float)
+        self.update()
+
+    def grid_shown(self) -> bool:
+        """Each pixel is drawn large enough (:data:`GRID_CELL_PX`) to show its square and centre."""
+        rect = self.image_rect()
+        return self._image is not None and rect.width() / self._image.width() >= GRID_CELL_PX
 
     def set_picked(self, pixel: tuple[int, int] | None) -> None:
         """Outline one pixel ``(x, y)``; ``None`` clears it."""
@@ -173,6 +192,24 @@ class ImageView(QWidget):
             self.set_picked(pixel)
             self.pixel_clicked.emit(*pixel)
 
+    def _paint_grid(self, painter: QPainter, rect: QRectF) -> None:
+        """The pixel squares' borders and a dot at each pixel's centre, where fragments are sampled."""
+        w, h = self._image.width(), self._image.height()
+        sx, sy = rect.width() / w, rect.height() / h
+        painter.setPen(QPen(QColor(0, 0, 0, 90), 1))
+        for i in range(w + 1):
+            painter.drawLine(QPointF(rect.x() + i * sx, rect.y()), QPointF(rect.x() + i * sx, rect.bottom()))
+        for j in range(h + 1):
+            painter.drawLine(QPointF(rect.x(), rect.y() + j * sy), QPointF(rect.right(), rect.y() + j * sy))
+        radius = max(1.5, min(sx, sy) / 12)
+        painter.setPen(QPen(QColor(0, 0, 0, 200), 1))
+        painter.setBrush(QColor("#ffffff"))
+        for j in range(h):
+            for i in range(w):
+                centre = QPointF(rect.x() + (i + 0.5) * sx, rect.y() + (j + 0.5) * sy)
+                painter.drawEllipse(centre, radius, radius)
+        painter.setBrush(Qt.BrushStyle.NoBrush)
+
     def paintEvent(self, event):
         painter = QPainter(self)
         painter.fillRect(self.rect(), QColor("#15181f"))
@@ -197,6 +234,15 @@ class ImageView(QWidget):
                 size = np.abs(seg[:, 2:] - seg[:, :2]) + w
                 painter.setBrush(colour)
                 painter.drawRects([QRectF(*r) for r in np.hstack([corner, size]).tolist()])
+        if self.grid_shown():
+            self._paint_grid(painter, rect)
+        if self.grid_shown() and self.edges is not None and len(self.edges) >= 2:
+            sx = rect.width() / self._image.width()
+            sy = rect.height() / self._image.height()
+            points = [QPointF(rect.x() + x * sx, rect.y() + y * sy) for x, y in self.edges.tolist()]
+            for colour, w in ((QColor(0, 0, 0, 200), 4.0), (QColor(EDGE_COLOR), 2.0)):
+                painter.setPen(QPen(colour, w))
+                painter.drawPolygon(points)
         if self.picked is not None:
             sx = rect.width() / self._image.width()
             sy = rect.height() / self._image.height()

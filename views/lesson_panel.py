@@ -68,15 +68,18 @@ class LessonPanel(QWidget):
     Signals
     -------
     step_selected(LessonStep) : a step became current; the window applies it.
+    lesson_opened(Lesson) : a lesson file was loaded (the window checks its facts).
     """
 
     step_selected = Signal(object)
+    lesson_opened = Signal(object)
 
     def __init__(self, lessons: list[Lesson] | None = None, parent: QWidget | None = None):
         super().__init__(parent)
         self._lessons: list[Lesson] = []
         self._lesson = -1
         self._step = 0
+        self._pending = False  # the current step is not what the window shows (see leave_step)
         self.setFocusPolicy(Qt.FocusPolicy.StrongFocus)
 
         self.list = QListWidget()
@@ -157,6 +160,9 @@ class LessonPanel(QWidget):
         layout.addWidget(self.splitter)
 
         self.set_lessons(shipped_lessons() if lessons is None else lessons)
+        # Opened before anyone listens: the window does not show this step yet, so the first
+        # Next shows it rather than skipping it.
+        self._pending = True
 
     def set_compact(self, compact: bool) -> None:
         """Hide the lesson list (presentation mode: the room sees only the lesson)."""
@@ -182,6 +188,12 @@ class LessonPanel(QWidget):
             self.select(0, 0)
         else:
             self._show()
+
+    def set_note(self, lesson: int, note: str) -> None:
+        """Show ``note`` (e.g. exercise progress) under lesson ``lesson``'s line in the list."""
+        item = self.list.item(lesson)
+        label = lesson_label(self._lessons[lesson])
+        item.setText(f"{label}\n    {note}" if note else label)
 
     def current_lesson(self) -> Lesson | None:
         return self._lessons[self._lesson] if 0 <= self._lesson < len(self._lessons) else None
@@ -210,6 +222,7 @@ class LessonPanel(QWidget):
         if not 0 <= step < len(steps):
             raise IndexError(f"no step {step}: lesson {self._lessons[lesson].id!r} has {len(steps)}")
         self._lesson, self._step = lesson, step
+        self._pending = False
         self.list.blockSignals(True)
         self.list.setCurrentRow(lesson)
         self.list.blockSignals(False)
@@ -236,8 +249,28 @@ class LessonPanel(QWidget):
             step = len(self._lessons[lesson].steps) - 1 if lesson >= 0 else 0
         return (lesson, step) if 0 <= lesson < len(self._lessons) else None
 
+    def leave_step(self, why: str) -> None:
+        """The window no longer shows the current step (``why``: what it shows instead).
+
+        The step's text gives way to ``why``, so no sentence describes a picture that is gone;
+        the next Next (PageDown) shows the step again instead of skipping it.
+        """
+        if self.current_step() is None:
+            return
+        self._pending = True
+        self._show()
+        self.text.setText(f"{why} Press Next (PageDown) to show this step again.")
+        self._clear_formulas()
+
     def next(self) -> bool:
-        """Go to the next step, or the next lesson's first step; False at the very end."""
+        """Go to the next step, or the next lesson's first step; False at the very end.
+
+        When the window does not show the current step (just opened, or :meth:`leave_step`), show
+        that step instead.
+        """
+        if self._pending and self.current_step() is not None:
+            self.select(*self.step_index())
+            return True
         target = self._moved(+1)
         if target is not None:
             self.select(*target)
@@ -278,6 +311,7 @@ class LessonPanel(QWidget):
         item.setToolTip(f"{lesson.summary}\n{path}")
         self.list.addItem(item)
         self.select(len(self._lessons) - 1, 0)
+        self.lesson_opened.emit(lesson)
         return lesson
 
     # --- showing the step ---------------------------------------------------
@@ -286,11 +320,14 @@ class LessonPanel(QWidget):
         """The typeset formulas of the current step, top to bottom."""
         return [self.formulas.itemAt(i).widget() for i in range(self.formulas.count())]
 
-    def _show(self) -> None:
+    def _clear_formulas(self) -> None:
         while self.formulas.count():
             widget = self.formulas.takeAt(0).widget()
             widget.hide()
             widget.deleteLater()
+
+    def _show(self) -> None:
+        self._clear_formulas()
         lesson, step = self.current_lesson(), self.current_step()
         if lesson is None:
             for label in (self.lesson_title, self.step_title, self.text, self.position):
@@ -305,7 +342,7 @@ class LessonPanel(QWidget):
             self.formulas.addWidget(MathView(formula, self.formulas.parentWidget()))
         self.position.setText(f"step {self._step + 1} of {len(lesson.steps)}")
         self.previous_button.setEnabled(self._moved(-1) is not None)
-        self.next_button.setEnabled(self._moved(+1) is not None)
+        self.next_button.setEnabled(self._pending or self._moved(+1) is not None)
 
     def keyPressEvent(self, event) -> None:
         if event.key() in NEXT_KEYS:

@@ -88,6 +88,9 @@ def _text_box() -> QPlainTextEdit:
     return box
 
 
+VERTEX_PROMPT = ("Click a pixel in either buffer: the corner of its visible polygon "
+                 "nearest to it is followed from world space to the pixel.")
+
 class ObjectOrderPanel(QWidget):
     """Stage switches, step scrubber, image memory and z-buffer, pixel history.
 
@@ -165,8 +168,8 @@ class ObjectOrderPanel(QWidget):
         self.details.addTab(self.numbers, "Numbers")
         self.details.addTab(self.counts, "Counts and times")
         self.vertex_math = WorkedMath()
-        self.vertex_math.clear("Click a pixel in either buffer: the corner of its visible polygon "
-                               "nearest to it is followed from world space to the pixel.")
+        self.vertex_math.clear(VERTEX_PROMPT)
+        self._vertex_objects = None  # the objects of the scene whose vertex the Vertex path shows
         self.details.addTab(self.vertex_math, "Vertex path")
 
         # The buffers beside the stage switches, the pixel's details under both: the buffers
@@ -232,6 +235,9 @@ class ObjectOrderPanel(QWidget):
         """
         self.result, self.scene = result, scene
         self.counts.setPlainText(self._counts_text())
+        if self._vertex_objects is not None and self._vertex_objects != scene.objects:
+            self._vertex_objects = None  # another scene: its vertex is not in this one
+            self.vertex_math.clear(VERTEX_PROMPT)
         self.vertex_math.follow_camera(scene.camera)
         self.clipped_shown.emit(result.clipping.clipped_polygons())
         self.scrubber.blockSignals(True)
@@ -256,7 +262,18 @@ class ObjectOrderPanel(QWidget):
         self.polygon_shown.emit(picture.polygon)
         self.image.set_highlight(picture.mask, outline=picture.outline)
         self.depth.image.set_highlight(picture.mask, outline=picture.outline)
+        self.image.set_edges(self._window_corners(picture.polygon))
         self._show_pixel(self.picked)
+
+    def _window_corners(self, polygon) -> np.ndarray | None:
+        """The drawn polygon's corners (world) in pixel coordinates (None at step 0 or behind the eye);
+        the image draws them where its pixels show large enough to see which centres are covered."""
+        if polygon is None:
+            return None
+        cam = self.scene.camera
+        pixels = [project_point(c, cam.view_from_world, cam.clip_from_view, cam.width, cam.height).pixel
+                  for c in polygon]
+        return None if any(q is None for q in pixels) else np.array(pixels)
 
     def _polygon_name(self, p: int) -> str:
         return polygon_name(self.result, self.scene, p)
@@ -310,7 +327,13 @@ class ObjectOrderPanel(QWidget):
                   for c in corners]
         gaps = [np.inf if q is None else np.hypot(q[0] - x - 0.5, q[1] - y - 0.5) for q in pixels]
         k = int(np.argmin(gaps))
-        self.vertex_math.show_vertex(corners[k], cam, f"corner {k} of {self._polygon_name(p)}")
+        self.show_vertex(corners[k], self.scene, f"corner {k} of {self._polygon_name(p)}")
+
+    def show_vertex(self, point, scene: Scene, name: str) -> None:
+        """Follow world point ``point``, a vertex of ``scene``'s objects called ``name``, to its pixel
+        in the Vertex path tab; it is cleared when a scene with other objects is shown."""
+        self._vertex_objects = scene.objects
+        self.vertex_math.show_vertex(point, scene.camera, name)
 
     def _numbers_text(self, events) -> str:
         r = self.result

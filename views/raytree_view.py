@@ -133,6 +133,10 @@ class RayTreeWidget(QTreeWidget):
         label = node.kind if node.kind != "shadow" else f"shadow → light {node.light}"
         if node.hit_name:
             hit = node.hit_name
+        elif not node.traced and node.kind == "shadow":
+            # No shadow ray was sent, yet the light's share is known: the whole of it when nothing
+            # can block the light, none when it is behind the surface.
+            hit = "lit: no ray needed" if np.any(node.color > 0) else "unlit: light behind"
         elif not node.traced:
             hit = "not traced"
         else:

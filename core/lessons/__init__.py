@@ -36,6 +36,7 @@ import numpy as np
 from core import scene_file
 from core.image_order.flat_scene import TraceSettings
 from core.image_order.ray_tree import KINDS
+from core.lessons import exercises, facts
 from core.object_order.pipeline import RasterSettings
 from core.presets import PRESETS
 from core.presets_trace import PRESETS_TRACE
@@ -63,9 +64,10 @@ MAX_CHARS = {"title": 200, "summary": 2000, "text": 20_000, "notes": 20_000, "fo
 MAX_STEPS = 200
 
 _ALL_PRESETS = {**PRESETS, **PRESETS_TRACE}
-_LESSON_FIELDS = ("format", "version", "id", "title", "figures", "questions", "summary", "steps")
+_LESSON_FIELDS = ("format", "version", "id", "title", "figures", "questions", "summary", "steps", "exercises")
 _STEP_FIELDS = ("title", "text", "formulas", "notes", "scene", "camera", "view", "panes",
-                "image_order", "object_order", "highlight", "zbuffer_step", "pixel", "overlays", "frame")
+                "image_order", "object_order", "highlight", "zbuffer_step", "pixel", "overlays", "frame",
+                "facts")
 _VIEW_FIELDS = ("position", "focal_point", "up")
 
 
@@ -122,6 +124,8 @@ class LessonStep:
         ``"scene"`` the objects, the observer and the frustum (when shown) with its
         labels; ``"highlight"`` what the step highlights, the eye and the screen, as
         large as they fit (the rest of the frustum may leave the pane).
+    facts : tuple of :class:`core.lessons.facts.Fact`, what the text claims, in words the
+        pipelines decide (``python -m app lesson check``); they belong to the step they are written in.
     """
 
     title: str
@@ -140,6 +144,7 @@ class LessonStep:
     pixel: tuple[int, int] | None
     overlays: tuple[str, ...]
     frame: str
+    facts: tuple = ()
 
 
 @dataclass(frozen=True, eq=False)
@@ -155,6 +160,7 @@ class Lesson:
     summary : str, one sentence for the lesson list.
     steps : tuple of LessonStep, at least one.
     path : Path or None, the file it was read from.
+    exercises : tuple of :class:`core.lessons.exercises.Exercise`, asked at the end of the lesson.
     """
 
     id: str
@@ -164,6 +170,7 @@ class Lesson:
     summary: str
     steps: tuple[LessonStep, ...]
     path: Path | None = None
+    exercises: tuple = ()
 
 
 def _choice(r: _Reader, value, path: str, names, what: str) -> str | None:
@@ -390,6 +397,7 @@ def _read_step(r: _Reader, value, path: str, previous: dict) -> dict:
         out["pixel"] = None  # a picked pixel belongs to one image
     out["highlight"] = _highlight(r, d["highlight"], f"{path}.highlight", scene) if "highlight" in d \
         else MappingProxyType({})
+    out["facts"] = facts.read_facts(r, d["facts"], f"{path}.facts", scene) if "facts" in d else ()
     return out
 
 
@@ -468,8 +476,11 @@ def from_dict(d, path: Path | None = None) -> Lesson:
     if r.problems:
         raise LessonFileError(r.problems)
     resolved = tuple(LessonStep(**{**_STEP_DEFAULTS, **s}) for s in steps)
+    asked = exercises.read_exercises(r, data.get("exercises", []), "exercises", resolved)
+    if r.problems:
+        raise LessonFileError(r.problems)
     return Lesson(id=lesson_id, title=title, figures=tuple(figures), questions=tuple(questions),
-                  summary=summary, steps=resolved, path=path)
+                  summary=summary, steps=resolved, path=path, exercises=asked)
 
 
 def load_lesson(path) -> Lesson:

@@ -162,7 +162,8 @@ def test_what_a_lesson_asks_of_the_3d_pane_before_it_exists_shows_once_it_is_bui
     qtbot.waitUntil(lambda: win.scene_view.view is not None, timeout=RENDER_TIMEOUT_MS)
     view = win.scene_view.view
     assert set(asked) <= set(view.overlay_names())
-    (lit,) = view.overlay_parts("lesson")
+    lit, names = view.overlay_parts("lesson")  # the highlighted object, and the names the text speaks of
+    assert "object 3" in list(names.point_data["labels"])
     obj = next(o for o in step.scene.objects if o.name == step.highlight["object"])
     low, high = np.array(lit.bounds).reshape(3, 2).T
     assert np.allclose(low, obj.vertices.min(axis=0)) and np.allclose(high, obj.vertices.max(axis=0))

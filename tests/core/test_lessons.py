@@ -71,7 +71,7 @@ def test_a_step_keeps_the_previous_steps_scene_and_panes_but_not_its_highlight()
     names = [o.name for o in zbuffer.steps[0].scene.objects]
     assert names == ["green", "blue", "yellow"]  # drawn in the lecture's order
     observer = BY_ID["observer"]
-    assert observer.steps[1].scene.camera.eye == (10.0, 1.2, -3.0)  # the camera override moved to B
+    assert observer.steps[1].scene.camera.eye == presets.OBSERVER_B.eye  # the camera override moved to B
     assert observer.steps[1].scene.objects == observer.steps[0].scene.objects
 
 

@@ -70,3 +70,38 @@ def test_pixels_inside_an_outlined_polygon_keep_their_true_colour(qtbot):
     assert (centre.red(), centre.green(), centre.blue()) == tuple(to_srgb8(np.array(blue)).tolist())
     edge = shot.pixelColor(int(rect.x() + rect.width() * 5 / 40), int(rect.y() + rect.height() * 15 / 30))
     assert (edge.red(), edge.green(), edge.blue()) != tuple(to_srgb8(np.array(blue)).tolist())
+
+
+def _shown(view, qtbot, rgb, size):
+    view.resize(*size)
+    view.set_image(rgb)
+    view.show()
+    qtbot.waitExposed(view)
+    return view.grab().toImage()
+
+
+def test_a_small_image_shows_its_pixel_grid_centres_and_a_polygons_edges(qtbot):
+    """16 x 12 pixels at 640 x 480: each pixel is 40 px, its centre dotted white on a black image."""
+    view = ImageView()
+    qtbot.addWidget(view)
+    black = np.zeros((12, 16, 3))
+    picture = _shown(view, qtbot, black, (640, 480))
+    assert view.grid_shown()
+    centre, between = view.widget_pos(3, 7), view.widget_pos(3, 7) + type(view.widget_pos(0, 0))(10, 10)
+    assert picture.pixelColor(centre.toPoint()).lightness() > 200  # the centre's dot
+    assert picture.pixelColor(between.toPoint()).lightness() < 60  # the pixel's own colour around it
+    # An edge from pixel (1, 1)'s centre to (14, 1)'s: drawn cyan halfway between two centres.
+    view.set_edges(np.array([[1.5, 1.5], [14.5, 1.5], [8.0, 10.0]]))
+    picture = view.grab().toImage()
+    half = (view.widget_pos(7, 1) + view.widget_pos(8, 1)) / 2
+    colour = picture.pixelColor(half.toPoint())
+    assert colour.blue() > 200 and colour.green() > 200 and colour.red() < 80
+
+
+def test_a_large_image_shows_no_grid(qtbot):
+    view = ImageView()
+    qtbot.addWidget(view)
+    picture = _shown(view, qtbot, np.zeros((240, 320, 3)), (640, 480))  # 2 px a pixel
+    assert not view.grid_shown()
+    row = [picture.pixelColor(view.widget_pos(x, 100).toPoint()).lightness() for x in range(100, 140)]
+    assert max(row) < 30  # no centre dots

@@ -94,6 +94,9 @@ def test_page_keys_step_from_any_widget_and_do_nothing_else(panel, qtbot):
     keys.install()
     try:
         spin.setFocus()
+        with qtbot.waitSignal(panel.step_selected) as first:
+            qtbot.keyClick(spin, Qt.Key.Key_PageDown)
+        assert panel.step_index() == (0, 0) and first.args[0] is panel.lessons()[0].steps[0]  # shown
         qtbot.keyClick(spin, Qt.Key.Key_PageDown)
         assert panel.step_index() == (0, 1)
         qtbot.keyClick(spin, Qt.Key.Key_PageUp)
@@ -135,3 +138,26 @@ def test_a_good_lesson_file_is_added_at_the_end_and_started(panel, qtbot, tmp_pa
     assert lesson.title == "My own lesson" and signal.args[0] is lesson.steps[0]
     assert panel.list.count() == len(LESSONS) + 1 and panel.list.currentRow() == len(LESSONS)
     assert panel.text.text() == "Look at the green polygon."
+
+
+def test_the_first_next_shows_the_step_the_panel_opened_on_then_moves_on(panel, qtbot):
+    """The window opens on lesson 1 step 1 without applying it: the first Next applies it, not step 2."""
+    with qtbot.waitSignal(panel.step_selected) as signal:
+        assert panel.next()
+    assert signal.args[0] is panel.lessons()[0].steps[0] and panel.step_index() == (0, 0)
+    with qtbot.waitSignal(panel.step_selected) as signal:
+        panel.next()
+    assert signal.args[0] is panel.lessons()[0].steps[1] and panel.step_index() == (0, 1)
+
+
+def test_leaving_a_step_replaces_its_words_and_next_shows_it_again(panel, qtbot):
+    k = _index("zbuffer")
+    panel.select(k, 1)
+    step = panel.lessons()[k].steps[1]
+    assert panel.text.text() == step.text and panel.formula_views()
+    panel.leave_step("The window shows the example 'lecture' now.")
+    assert step.text not in panel.text.text() and "example 'lecture'" in panel.text.text()
+    qtbot.waitUntil(lambda: not panel.formula_views())
+    with qtbot.waitSignal(panel.step_selected) as signal:
+        panel.next()
+    assert signal.args[0] is step and panel.text.text() == step.text and panel.step_index() == (k, 1)

@@ -87,6 +87,9 @@ def test_page_down_advances_the_step_and_arrows_do_too_while_presenting(hall, qt
     other = window.centralWidget().widget(1)
     other.setFocusPolicy(Qt.FocusPolicy.StrongFocus)
     other.setFocus()
+    with qtbot.waitSignal(panel.step_selected) as first:
+        qtbot.keyClick(other, Qt.Key.Key_PageDown)
+    assert panel.step_index() == (0, 0) and first.args[0] is panel.lessons()[0].steps[0]  # shown, not skipped
     qtbot.keyClick(other, Qt.Key.Key_PageDown)
     assert panel.step_index() == (0, 1)
     qtbot.keyClick(other, Qt.Key.Key_Right)

@@ -1,0 +1,62 @@
+"""``python -m app lesson check FILE...``: does every lesson step say what the pipelines compute?
+
+Examples::
+
+    python -m app lesson check core/lessons/files/*.json
+    python -m app lesson check my_lesson.json
+
+Each file is loaded (every problem with its field path, as File → Open lesson
+shows them) and every step's scene is run through the pipelines to decide its
+facts (:mod:`core.lessons.facts`) and answer its exercises
+(:mod:`core.lessons.exercises`: exactly one right choice, some right pixel, a
+number).  It prints one line per fact that does not hold (lesson, step, fact,
+what was computed) or exercise the pipelines cannot answer, and exits 1; 0 when every fact of
+every file holds; 2 when a file cannot be read or is not a valid lesson (the
+other files are still checked).  Only :mod:`core` is imported, so it answers
+without Qt.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+
+from core.lessons import LessonFileError, load_lesson
+from core.lessons.exercises import check_exercises
+from core.lessons.facts import check_lesson
+
+
+def add_parser(sub) -> argparse.ArgumentParser:
+    """Add the ``lesson`` command (with ``check``) to ``sub``."""
+    parser = sub.add_parser("lesson", help="check lesson files against the pipelines",
+                            description="Work with lesson files.")
+    actions = parser.add_subparsers(dest="action", metavar="ACTION", required=True)
+    check = actions.add_parser(
+        "check", help="run every step's scene and check every fact it states",
+        description="Load each lesson, run every step's scene through the pipelines and check every "
+                    "fact. Exit status 0 when all hold, 1 when one does not, 2 for an unreadable file.")
+    check.add_argument("files", nargs="+", metavar="FILE", help="lesson JSON files")
+    check.set_defaults(run=run_check)
+    return parser
+
+
+def run_check(args) -> int:
+    status, facts, exercises = 0, 0, 0
+    for name in args.files:
+        try:
+            lesson = load_lesson(name)
+        except LessonFileError as exc:
+            print(f"error: {exc}", file=sys.stderr)
+            status = 2
+            continue
+        facts += sum(len(step.facts) for step in lesson.steps)
+        exercises += len(lesson.exercises)
+        failures = check_lesson(lesson) + check_exercises(lesson)
+        for line in failures:
+            print(f"{name}: {line}")
+        if failures and status == 0:
+            status = 1
+    if status == 0:
+        print(f"{len(args.files)} lesson file(s): all {facts} facts hold; "
+              f"the pipelines answer all {exercises} exercises")
+    return status

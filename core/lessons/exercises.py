@@ -1,0 +1,409 @@
+"""Exercises: the student predicts, the pipelines answer.
+
+A lesson ends with exercises.  Each one is asked about the scene of one of the
+lesson's steps (``"step"``, the last by default) and is checked against what the
+pipelines compute for that scene (:mod:`core.lessons.facts`), never against an
+answer typed into the file.  Kinds::
+
+    {"kind": "choose_one", "question": "Which polygon does the z-buffer keep at (87, 74)?",
+     "choices": ["green", "blue", "yellow"],
+     "fact": {"fact": "zbuffer_keeps", "pixel": [87, 74], "object": "$choice"},
+     "why": "Blue is the nearest of the three there."}
+    {"kind": "click_pixel", "question": "Click a pixel in the cone's shadow.",
+     "fact": {"fact": "shadow", "pixel": "$pixel", "object": "cone"}, "why": "..."}
+    {"kind": "number", "question": "What is Δ?", "tolerance": 0.5,
+     "value": {"of": "ray_sphere", "origin": [2, 1, 2], "end": [10, 6, 6], "center": [6, 4, 6],
+               "radius": 10, "value": "discriminant"}, "why": "..."}
+    {"kind": "order", "question": "In which order are the panes drawn?",
+     "items": ["red pane", "green pane", "blue pane"], "by": "drawing_order", "why": "..."}
+    {"kind": "pick_picture", "question": "Which picture is the top view?", "view": "top"}
+
+A ``choose_one`` choice is right when its fact (``$choice`` put in) holds; a
+lesson check demands exactly one right choice.  A ``click_pixel`` answer is
+right when the fact holds at the clicked pixel (``$pixel``).  A ``number``'s
+``value`` is computed: ``ray_sphere`` / ``ray_triangle`` values (the lecture's
+data), ``depth`` (the distance the z-buffer stores at ``pixel`` after ``after``
+polygons), ``hit_t`` (the distance to the first hit of ``pixel``'s ray),
+``blend`` (channel ``channel`` of the c0 a transparent ``object`` writes at
+``pixel``).  ``order`` ``by`` ``drawing_order`` puts the named objects in the
+order object order draws them.  ``pick_picture`` offers the four pictures the
+Four views tab draws (front, side, top, the observer's) and is right when the
+picture picked is the one drawn from the named ``view``; a lesson check
+demands that no two pictures look alike.
+
+Variants: an exercise may list ``"variants"`` (pixels, or any JSON values);
+``"$at"`` in its fact or value, and ``{at}`` in its question, stand for one of
+them, and :func:`variant` draws one from a student's seed, so each student gets
+another pixel; the answer is the pipelines' for that draw.  A lesson check
+answers every variant.
+"""
+
+from __future__ import annotations
+
+import copy
+import random
+from dataclasses import dataclass, field
+from types import MappingProxyType
+
+import numpy as np
+
+from core.lessons import facts as facts_mod
+from core.lessons.facts import StepPipelines, check_fact, read_fact
+from core.scene_file import _join, _show
+
+KINDS = ("choose_one", "click_pixel", "number", "order", "pick_picture")
+VIEWS = ("front", "side", "top", "observer")
+"""The pictures of a ``pick_picture`` exercise: :data:`core.object_order.four_views.PANES`."""
+PICTURE_SIZE = (160, 120)
+"""Width and height (pixels) of each picture to pick from."""
+NUMBERS = ("ray_sphere", "ray_triangle", "depth", "hit_t", "blend")
+ORDERS = ("drawing_order",)
+_FIELDS = {
+    "choose_one": (("kind", "question", "choices", "fact"), ("step", "why", "variants")),
+    "click_pixel": (("kind", "question", "fact"), ("step", "why")),
+    "number": (("kind", "question", "value", "tolerance"), ("step", "why", "variants")),
+    "order": (("kind", "question", "items", "by"), ("step", "why")),
+    "pick_picture": (("kind", "question", "view"), ("step", "why")),
+}
+#: How far apart the pixels are that "show me" tries for a click exercise (every n-th row and column).
+SEARCH_STRIDE = 4
+
+
+@dataclass(frozen=True, eq=False)
+class Exercise:
+    """One exercise, read and resolved to the step whose scene it asks about.
+
+    Attributes
+    ----------
+    kind : one of :data:`KINDS`.
+    question : str.
+    why : str, one sentence shown with the verdict.
+    step : int, the lesson step (0-based) whose scene and settings it is asked about.
+    args : the kind's fields as read.
+    path : where it was written, e.g. ``"exercises[2]"``.
+    variants : the exercise drawn with each of its ``variants`` (empty when it has none).
+    """
+
+    kind: str
+    question: str
+    why: str
+    step: int
+    args: MappingProxyType
+    path: str
+    variants: tuple = field(default=())
+
+
+def variant(ex: Exercise, seed: int, index: int = 0) -> Exercise:
+    """The variant of ``ex`` a student with ``seed`` gets (``index``: the exercise's place, so that
+    one seed does not draw the same variant everywhere); ``ex`` itself when it has none."""
+    if not ex.variants:
+        return ex
+    return ex.variants[random.Random(seed * 1009 + index).randrange(len(ex.variants))]
+
+
+def _put(value, at):
+    """``value`` (JSON) with every ``"$at"`` replaced by ``at``."""
+    if value == "$at":
+        return at
+    if isinstance(value, dict):
+        return {k: _put(v, at) for k, v in value.items()}
+    if isinstance(value, list):
+        return [_put(v, at) for v in value]
+    return value
+
+
+def _shown(at) -> str:
+    return "(" + ", ".join(str(v) for v in at) + ")" if isinstance(at, list) else str(at)
+
+
+@dataclass(frozen=True)
+class Verdict:
+    """What the student is told: right or wrong, and one sentence why."""
+
+    right: bool
+    sentence: str
+
+
+def _substituted(template, placeholder: str, value):
+    """``template`` (a fact object) with ``"$choice"``/``"$pixel"`` replaced by ``value``."""
+    out = copy.deepcopy(dict(template))
+    for key, v in out.items():
+        if v == placeholder:
+            out[key] = value
+    return out
+
+
+def read_exercises(r, value, path: str, steps) -> tuple[Exercise, ...]:
+    """The lesson's ``exercises`` list; every problem goes to ``r``."""
+    out = []
+    for k, item in enumerate(r.listing(value, path)):
+        exercise = _read(r, item, f"{path}[{k}]", steps)
+        if exercise is not None:
+            out.append(exercise)
+    return tuple(out)
+
+
+def _read(r, value, path: str, steps) -> Exercise | None:
+    if isinstance(value, dict) and "variants" in value:
+        listed = r.listing(value["variants"], _join(path, "variants"))
+        if not listed:
+            r.add(_join(path, "variants"), "give at least one variant")
+            return None
+        base = {k: v for k, v in value.items() if k != "variants"}
+        drawn = []
+        for i, at in enumerate(listed):
+            concrete = _put(base, at)
+            if isinstance(concrete.get("question"), str):
+                concrete["question"] = concrete["question"].replace("{at}", _shown(at))
+            drawn.append(_read(r, concrete, f"{path}.variants[{i}]", steps))
+        if None in drawn:
+            return None
+        first = drawn[0]
+        return Exercise(first.kind, first.question, first.why, first.step, first.args, path, tuple(drawn))
+    if not isinstance(value, dict):
+        r.add(path, f"expected an exercise object {{\"kind\": ...}}, got {_show(value)}")
+        return None
+    kind = value.get("kind")
+    if kind not in KINDS:
+        r.add(_join(path, "kind"), f"unknown exercise kind {_show(kind)} (known: {', '.join(KINDS)})")
+        return None
+    required, optional = _FIELDS[kind]
+    d = r.fields(value, path, required + optional, required)
+    before = len(r.problems)
+    question = r.string(d.get("question", ""), _join(path, "question")) or ""
+    why = r.string(d.get("why", ""), _join(path, "why")) or ""
+    step = len(steps) - 1
+    if "step" in d:
+        step = r.integer(d["step"], _join(path, "step"))
+        if step is not None and not 0 <= step < len(steps):
+            r.add(_join(path, "step"), f"the lesson has steps 0 to {len(steps) - 1}, got {step}")
+            return None
+    if step is None or any(key not in d for key in required):
+        return None
+    scene = steps[step].scene
+    args = {}
+    if kind == "choose_one":
+        listed = r.listing(d["choices"], _join(path, "choices"))
+        choices = []
+        for i, c in enumerate(listed):
+            if c is not None and not isinstance(c, (str, bool)):
+                r.add(f"{path}.choices[{i}]", f"expected a name, true, false or null, got {_show(c)}")
+            choices.append(c)
+        if len(choices) < 2:
+            r.add(_join(path, "choices"), "give at least two choices")
+        for i, choice in enumerate(choices):  # each choice must make a readable fact
+            read_fact(r, _substituted(d["fact"], "$choice", choice), f"{path}.fact (choice {i})", scene)
+        args.update(choices=tuple(choices), fact=MappingProxyType(dict(d["fact"])))
+    elif kind == "click_pixel":
+        if not isinstance(d["fact"], dict) or "$pixel" not in d["fact"].values():
+            r.add(_join(path, "fact"), 'the fact must say "pixel": "$pixel" (the clicked pixel)')
+        else:
+            read_fact(r, _substituted(d["fact"], "$pixel", [0, 0]), _join(path, "fact"), scene)
+        args.update(fact=MappingProxyType(dict(d["fact"])) if isinstance(d["fact"], dict) else None)
+    elif kind == "number":
+        args.update(value=_read_number(r, d["value"], _join(path, "value"), scene),
+                    tolerance=r.number(d["tolerance"], _join(path, "tolerance"), ge=0))
+    elif kind == "pick_picture":
+        if d["view"] not in VIEWS:
+            r.add(_join(path, "view"), f"unknown view {_show(d['view'])} (known: {', '.join(VIEWS)})")
+        args.update(view=d["view"])
+    else:
+        listed = r.listing(d["items"], _join(path, "items"))
+        items = [r.string(c, f"{path}.items[{i}]") for i, c in enumerate(listed)]
+        names = [o.name for o in scene.objects]
+        for i, item in enumerate(items):
+            if item is not None and item not in names:
+                r.add(f"{path}.items[{i}]", f"no object {item!r} in the scene (objects: {', '.join(names)})")
+        if d["by"] not in ORDERS:
+            r.add(_join(path, "by"), f"unknown order {_show(d['by'])} (known: {', '.join(ORDERS)})")
+        args.update(items=tuple(items), by=d["by"])
+    if len(r.problems) > before:
+        return None
+    return Exercise(kind, question, why, step, MappingProxyType(args), path)
+
+
+def choice_label(choice) -> str:
+    """A choice as the student reads it."""
+    if choice is None:
+        return "nothing (the background)"
+    if isinstance(choice, bool):
+        return "yes" if choice else "no"
+    return str(choice)
+
+
+def _read_number(r, value, path: str, scene):
+    d = r.fields(value, path, ("of", "origin", "end", "direction", "center", "radius", "a", "b", "c",
+                               "value", "component", "pixel", "after", "object", "channel"), ("of",))
+    if d is None or d.get("of") not in NUMBERS:
+        if d is not None:
+            r.add(_join(path, "of"), f"unknown quantity {_show(d.get('of'))} (known: {', '.join(NUMBERS)})")
+        return None
+    of = d["of"]
+    if of in ("ray_sphere", "ray_triangle"):  # read as the fact of that name, with a dummy answer
+        given = {k: v for k, v in d.items() if k not in ("of", "component")}
+        fact = read_fact(r, {**given, "fact": of, "equals": 0}, path, scene)
+        component = r.integer(d["component"], _join(path, "component")) if "component" in d else None
+        if component is not None and component not in (0, 1, 2):
+            r.add(_join(path, "component"), f"0 (x), 1 (y) or 2 (z), got {component}")
+        return None if fact is None else MappingProxyType({"of": of, "component": component, **fact.args})
+    needs = {"depth": ("pixel",), "hit_t": ("pixel",), "blend": ("pixel", "object", "channel")}[of]
+    for key in needs:
+        if key not in d:
+            r.add(_join(path, key), "required field is missing")
+    fact = read_fact(r, {"fact": "zbuffer_keeps", "pixel": d.get("pixel"), "object": d.get("object"),
+                         **({"after": d["after"]} if "after" in d else {})}, path, scene)
+    if fact is None:
+        return None
+    out = {"of": of, "pixel": fact.args["pixel"], "after": fact.args.get("after"), "object": d.get("object")}
+    if of == "blend":
+        channel = r.integer(d["channel"], _join(path, "channel"))
+        if channel is not None and channel not in (0, 1, 2):
+            r.add(_join(path, "channel"), f"0 (red), 1 (green) or 2 (blue), got {channel}")
+        out["channel"] = channel
+    return MappingProxyType(out)
+
+
+# --- the pipelines' answers ---------------------------------------------------------------------
+
+
+def _fact(template, placeholder: str, value, path: str) -> facts_mod.Fact:
+    d = _substituted(template, placeholder, list(value) if isinstance(value, tuple) else value)
+    args = {k: (tuple(v) if k == "pixel" else v) for k, v in d.items() if k != "fact"}
+    return facts_mod.Fact(d["fact"], MappingProxyType(args), path)
+
+
+def right_choices(ex: Exercise, p: StepPipelines) -> list[int]:
+    """The choices of a ``choose_one`` for which its fact holds."""
+    return [i for i, choice in enumerate(ex.args["choices"])
+            if check_fact(_fact(ex.args["fact"], "$choice", choice, ex.path), p)[0]]
+
+
+def pixel_is_right(ex: Exercise, p: StepPipelines, pixel) -> tuple[bool, str]:
+    """Does the ``click_pixel`` fact hold at ``pixel``? (holds, what was computed there)."""
+    return check_fact(_fact(ex.args["fact"], "$pixel", tuple(pixel), ex.path), p)
+
+
+def a_right_pixel(ex: Exercise, p: StepPipelines) -> tuple[int, int] | None:
+    """A pixel where a ``click_pixel`` answer is right ("show me"), searched on a grid from the centre."""
+    template = ex.args["fact"]
+    if template["fact"] == "projects_to":  # one pixel: where the vertex projects
+        obj = next(o for o in p.step.scene.objects if o.name == template["object"])
+        cam = p.step.scene.camera
+        from core.projection import project_point
+
+        q = project_point(obj.vertices[template["vertex"]], cam.view_from_world, cam.clip_from_view,
+                          cam.width, cam.height).pixel
+        return None if q is None else (int(q[0]), int(q[1]))
+    cam = p.step.scene.camera
+    xs, ys = np.meshgrid(np.arange(SEARCH_STRIDE // 2, cam.width, SEARCH_STRIDE),
+                         np.arange(SEARCH_STRIDE // 2, cam.height, SEARCH_STRIDE))
+    order = np.argsort((xs - cam.width / 2) ** 2 + (ys - cam.height / 2) ** 2, axis=None)
+    for x, y in zip(xs.ravel()[order].tolist(), ys.ravel()[order].tolist(), strict=True):
+        if pixel_is_right(ex, p, (x, y))[0]:
+            return x, y
+    return None
+
+
+def number(ex: Exercise, p: StepPipelines) -> float:
+    """The value a ``number`` exercise asks for, as the pipelines compute it."""
+    v = ex.args["value"]
+    of = v["of"]
+    if of in ("ray_sphere", "ray_triangle"):
+        got = getattr(facts_mod.solve_intersection(of, v), v["value"])
+        if got is None:
+            return float("nan")
+        return float(got[v["component"]] if v["component"] is not None else got)
+    x, y = v["pixel"]
+    if of == "hit_t":
+        root = p.tree((x, y))
+        return float("nan") if root.t is None else float(root.t)
+    events = facts_mod.events_before(p, v["pixel"], v.get("after"))
+    if of == "depth":
+        kept = [e for e in events if e.passed]
+        return kept[-1].distance if kept else float(p.step.scene.camera.far)
+    names = [o.name for o in p.step.scene.objects]
+    blends = [e for e in events if e.blend is not None and names[e.object_index] == v["object"]]
+    return float(blends[-1].blend.result[v["channel"]]) if blends else float("nan")
+
+
+def right_order(ex: Exercise, p: StepPipelines) -> list[str]:
+    """The ``order`` exercise's items as the pipelines order them."""
+    draw = p.raster.draw
+    names = [p.step.scene.objects[k].name for k in draw.object_index.tolist()]
+    return sorted(ex.args["items"], key=lambda item: names.index(item) if item in names else len(names))
+
+
+def pictures(ex: Exercise, p: StepPipelines) -> dict[str, np.ndarray]:
+    """The pictures a ``pick_picture`` exercise offers, drawn by object order as the Four views tab
+    draws them: the front, side and top orthographic views and the observer's, by key."""
+    from dataclasses import replace
+
+    from core.object_order.four_views import four_cameras, inked_view
+
+    scene = p.step.scene
+    small = replace(scene, camera=scene.camera.replace(width=PICTURE_SIZE[0], height=PICTURE_SIZE[1]))
+    return {key: inked_view(small, camera)[0] for key, camera in four_cameras(small).items()}
+
+
+def judge(ex: Exercise, p: StepPipelines, given) -> Verdict:
+    """Right or wrong, with one sentence why: ``given`` is a choice index, a pixel ``(x, y)``, a number,
+    or a list of the items in order."""
+    why = f" {ex.why}" if ex.why else ""
+    if ex.kind == "choose_one":
+        right = right_choices(ex, p)
+        names = [choice_label(c) for c in ex.args["choices"]]
+        if given in right:
+            return Verdict(True, f"Right: {names[given]}.{why}")
+        answer = ", ".join(names[i] for i in right)
+        return Verdict(False, f"Not {names[given]}: the pipelines give {answer}.{why}")
+    if ex.kind == "click_pixel":
+        holds, computed = pixel_is_right(ex, p, given)
+        head = "Right" if holds else "Not there"
+        return Verdict(holds, f"{head}: at pixel {tuple(given)} {computed}.{why}")
+    if ex.kind == "number":
+        value, tol = number(ex, p), ex.args["tolerance"]
+        ok = bool(abs(float(given) - value) <= tol)
+        return Verdict(ok, f"{'Right' if ok else 'Not quite'}: the pipelines compute {value:.6g} "
+                           f"(within {tol:g}).{why}")
+    if ex.kind == "pick_picture":
+        ok = given == ex.args["view"]
+        return Verdict(ok, f"{'Right' if ok else 'Not that one'}: that is the {_view_words(given)}."
+                           + ("" if ok else f" The {_view_words(ex.args['view'])} is another.") + why)
+    order = right_order(ex, p)
+    ok = list(given) == order
+    return Verdict(ok, f"{'Right' if ok else 'Not that order'}: {' → '.join(order)}.{why}")
+
+
+def _view_words(key: str) -> str:
+    return "observer's own view" if key == "observer" else f"{key} view"
+
+
+def check_exercises(lesson) -> list[str]:
+    """One line per exercise the pipelines cannot answer as asked (no right choice, or several; no
+    right pixel; no number; an item not drawn)."""
+    lines = []
+    pipelines = {}
+    for ex in (v for e in lesson.exercises for v in (e.variants or (e,))):
+        p = pipelines.setdefault(ex.step, StepPipelines(lesson.steps[ex.step]))
+        problem = None
+        if ex.kind == "choose_one":
+            right = right_choices(ex, p)
+            if len(right) != 1:
+                names = ", ".join(choice_label(ex.args["choices"][i]) for i in right)
+                problem = f"{len(right)} choices are right ({names})"
+        elif ex.kind == "click_pixel" and a_right_pixel(ex, p) is None:
+            problem = "no pixel makes the answer right"
+        elif ex.kind == "number" and not np.isfinite(number(ex, p)):
+            problem = "the pipelines give no number"
+        elif ex.kind == "order":
+            drawn = {p.step.scene.objects[k].name for k in p.raster.draw.object_index.tolist()}
+            missing = [item for item in ex.args["items"] if item not in drawn]
+            problem = f"not drawn: {', '.join(missing)}" if missing else None
+        elif ex.kind == "pick_picture":
+            shown = list(pictures(ex, p).items())
+            alike = [f"{a} and {b}" for i, (a, x) in enumerate(shown) for b, y in shown[i + 1:]
+                     if np.mean(np.abs(x - y) > 0.05) < 0.01]  # under 1 % of pixels differ
+            problem = f"pictures alike: {', '.join(alike)}" if alike else None
+        if problem:
+            lines.append(f"lesson {lesson.id}, {ex.path} ({ex.question}): {problem}")
+    return lines

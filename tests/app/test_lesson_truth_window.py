@@ -1,0 +1,149 @@
+"""Lessons in the window say only what it shows: the first step is applied, not skipped; another
+scene takes the step's words away; a stale vertex path goes; an opened lesson's false facts are shown."""
+
+import json
+
+from PySide6.QtWidgets import QMessageBox
+from window_helpers import RENDER_TIMEOUT_MS
+
+from core.lessons import FILES, shipped_lessons
+
+LESSONS = {lesson.id: i for i, lesson in enumerate(shipped_lessons())}
+
+
+def test_the_first_pagedown_shows_step_one_of_the_first_lesson(window, qtbot):
+    panel = window.lesson_panel
+    first = panel.lessons()[0].steps[0]
+    assert window.lessons.step is None  # opened on the lesson without applying it
+    with qtbot.waitSignal(panel.step_selected):
+        panel.next()
+    assert panel.step_index() == (0, 0) and window.lessons.step is first
+    assert window.model.trace_settings.mode == first.image_order.mode == "raycast"  # step 1's own setting
+
+
+def test_ctrl_l_takes_the_lessons_words_away_and_pagedown_brings_the_step_back(window, qtbot):
+    panel = window.lesson_panel
+    k = LESSONS["zbuffer"]
+    panel.select(k, 2)
+    step = panel.current_step()
+    assert panel.text.text() == step.text
+    window.reset_scene()  # File → Lecture scene, Ctrl+L
+    assert step.text not in panel.text.text() and "lecture" in panel.text.text()
+    assert [o.name for o in window.model.scene.objects] == ["cube", "cone", "ground"]
+    with qtbot.waitSignal(panel.step_selected):
+        panel.next()
+    assert panel.step_index() == (k, 2) and panel.text.text() == step.text
+    assert window.model.scene == step.scene and window.lessons.step is step
+
+
+def test_the_vertex_path_of_one_scene_is_not_shown_with_another(window, qtbot):
+    panel, oo = window.lesson_panel, window.tab("object order").widget
+    panel.select(LESSONS["perspective"], 0)  # follows vertex 6 of the cube
+    assert "vertex 6 of 'cube'" in " ".join(text for _, text in oo.vertex_math.rows())
+    panel.select(LESSONS["zbuffer"], 0)  # three triangles, no cube
+    qtbot.waitUntil(lambda: window.showing_full("object order") and oo.scene is window.model.scene,
+                    timeout=RENDER_TIMEOUT_MS)
+    shown = " ".join(text for _, text in oo.vertex_math.rows())
+    assert "cube" not in shown and "Click a pixel" in shown
+
+
+def _open(window, qtbot, data, tmp_path):
+    path = tmp_path / "mine.json"
+    path.write_text(json.dumps(data), encoding="utf-8")
+    assert window.lesson_panel.open_lesson_file(path) is not None
+    qtbot.waitUntil(lambda: not window.fact_check.busy, timeout=RENDER_TIMEOUT_MS)
+
+
+def test_an_opened_lesson_with_a_false_fact_shows_the_author_what_was_computed(window, qtbot, tmp_path):
+    data = json.loads((FILES / "03_frustum.json").read_text(encoding="utf-8"))
+    _open(window, qtbot, data, tmp_path)  # every fact true: no dialog, the status bar says so
+    assert window.fact_check.failures == [] and window.fact_check.dialog is None
+    assert "Every fact" in window.statusBar().currentMessage()
+
+    fact = data["steps"][1]["facts"][0]
+    assert fact == {"fact": "frustum", "object": "box behind the observer", "is": "outside"}
+    fact["is"] = "inside"  # false: the box stands behind the eye
+    _open(window, qtbot, data, tmp_path)
+    box = window.findChild(QMessageBox, "lesson_facts")
+    qtbot.waitUntil(lambda: box is not None and box.isVisible())
+    (line,) = window.fact_check.failures
+    assert "steps[1].facts[0]" in line
+    assert line.endswith("computed 'box behind the observer' is outside the frustum")
+    assert line in box.informativeText()
+    box.close()
+
+
+def _lesson_labels(window) -> list[str]:
+    return [str(t) for poly in window.scene_view.overlay_parts("lesson")
+            if "labels" in poly.point_data for t in poly.point_data["labels"]]
+
+
+def test_the_objects_the_text_names_are_labelled_in_the_3d_pane(window, qtbot):
+    window.lesson_panel.select(LESSONS["observer"], 1)  # "Object 5 is now outside ... objects 1 to 4"
+    labels = _lesson_labels(window)
+    assert {"object 1", "object 2", "object 3", "object 4", "object 5"} <= set(labels)
+    window.lesson_panel.select(LESSONS["perspective"], 0)  # names no object
+    assert _lesson_labels(window) == []
+
+
+def test_the_highlighted_back_face_has_its_normal_drawn_pointing_away_from_the_eye(window, qtbot):
+    import numpy as np
+
+    window.lesson_panel.select(LESSONS["back_faces"], 0)
+    step = window.lesson_panel.current_step()
+    pyramid = step.scene.objects[0]
+    a, b, c = pyramid.vertices[pyramid.triangles[step.highlight["face"]["triangle"]]]
+    normal = np.cross(b - a, c - a)  # outward: the faces wind counter-clockwise seen from outside
+    centroid = (a + b + c) / 3
+    assert np.dot(normal, np.asarray(step.scene.camera.eye) - centroid) < 0  # a back face, by hand
+    assert "N: back face" in _lesson_labels(window)
+    arrow = max(window.scene_view.overlay_parts("lesson"), key=lambda p: p.n_points)  # the arrow mesh
+    tip = arrow.points[np.argmax(arrow.points @ normal)]
+    assert np.dot(tip - centroid, normal) > 0  # drawn from the face outwards, along N
+
+
+def test_exercises_follow_the_lesson_a_click_answers_and_progress_shows_in_the_list(window, qtbot):
+    panel, exercises = window.lesson_panel, window.exercise_panel
+    k = LESSONS["ray_casting"]
+    panel.select(k, 0)
+    assert exercises.lesson is panel.current_lesson()
+    assert exercises.question.text() == "Click a pixel in the cone's shadow."
+    with qtbot.waitSignal(panel.step_selected):  # "show me": the shadow step, a pixel in the shadow
+        exercises.show_button.click()
+    qtbot.waitUntil(lambda: window.model.ray_pixel is not None, timeout=RENDER_TIMEOUT_MS)
+    assert panel.step_index() == (k, 1)
+    pixel = window.model.ray_pixel
+    window.tab("image order").widget.image.pixel_clicked.emit(*pixel)  # the student clicks it
+    qtbot.waitUntil(lambda: exercises.feedback.text().startswith("Right"), timeout=RENDER_TIMEOUT_MS)
+    assert "1/2 done, 1 right at first try" in panel.list.item(k).text()
+
+
+def test_add_this_view_as_a_step_round_trips_the_window_state(window, qtbot, tmp_path):
+    panel = window.lesson_panel
+    k = LESSONS["zbuffer"]
+    panel.select(k, 2)  # blue drawn: step 2, the object-order tab in front
+    window.model.set_buffer_pixel((87, 74))
+    before = (window.model.scene, window.model.trace_settings, window.model.raster_settings,
+              window.model.step, window.visible_panes(), window.current.title)
+    path = tmp_path / "my lesson.json"
+    facts = '[{"fact": "zbuffer_keeps", "pixel": [87, 74], "object": "blue"}]'
+    assert window.recorder.record(path, "Blue wins", "Blue is nearest here.", facts)
+    assert window.recorder.record(path, "Again", "The same view twice.")
+    window.reset_scene()  # something else in the window
+    lesson = panel.open_lesson_file(path)  # the file loads, and its first step is shown
+    assert [s.title for s in lesson.steps] == ["Blue wins", "Again"] and lesson.id == "my_lesson"
+    qtbot.waitUntil(lambda: not window.fact_check.busy, timeout=RENDER_TIMEOUT_MS)
+    assert window.fact_check.failures == []  # the recorded fact holds
+    after = (window.model.scene, window.model.trace_settings, window.model.raster_settings,
+             window.model.step, window.visible_panes(), window.current.title)
+    assert after[0] == before[0] and after[1:4] == before[1:4]
+    assert set(after[4]) == set(before[4]) and after[5] == before[5]
+    assert window.model.buffer_pixel == (87, 74)
+
+    bad = '[{"fact": "zbuffer_keeps", "pixel": [87, 74], "object": "purple"}]'
+    assert not window.recorder.record(path, "Bad", "words", bad)
+    box = window.findChild(QMessageBox, "lesson_record_error")
+    qtbot.waitUntil(lambda: box is not None and box.isVisible())
+    assert "steps[2].facts[0].object: no object 'purple' in the scene" in box.informativeText()
+    box.close()
+    assert len(json.loads(path.read_text(encoding="utf-8"))["steps"]) == 2  # nothing written
