@@ -19,6 +19,7 @@ from app import (
     export_command,
     hardcases_command,
     intersect_command,
+    pixel_command,
     render_command,
 )
 from app.usage import UsageError
@@ -39,6 +40,7 @@ def build_parser() -> argparse.ArgumentParser:
                           "(default: half of the memory available)")
     intersect_command.add_parser(sub)
     render_command.add_parser(sub)
+    pixel_command.add_parser(sub)
     hardcases_command.add_parser(sub)
     cost_command.add_parser(sub)
     export_command.add_parser(sub)
@@ -52,7 +54,7 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 #: The first words the command line understands; anything else opens the window on it.
-COMMANDS = {"gui", "intersect", "render", "export", "bench", "hardcases", "cost", "-h", "--help"}
+COMMANDS = {"gui", "intersect", "render", "pixel", "export", "bench", "hardcases", "cost", "-h", "--help"}
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -33,14 +33,7 @@ MAX_DEPTH = 64
 def add_parser(sub) -> None:
     p = sub.add_parser("render", help="render a scene file to PNG (object order or image order)",
                        description=__doc__.split("\n\n")[0])
-    p.add_argument("scene", help="scene JSON file")
-    p.add_argument("--mode", choices=MODES, default="raytrace",
-                   help="raster: object order (z-buffer); raycast / raytrace: image order")
-    p.add_argument("--projection", choices=("perspective", "orthographic"),
-                   help="override the scene camera's projection")
-    p.add_argument("--width", type=int, help="image width in pixels (overrides the scene)")
-    p.add_argument("--height", type=int, help="image height in pixels (overrides the scene)")
-    p.add_argument("--max-depth", type=int, default=5, help="ray tracing: deepest bounce (default 5)")
+    add_scene_arguments(p)
     p.add_argument("--accel", choices=ACCELS, default="bvh",
                    help="image order: how rays find objects (default bvh)")
     p.add_argument("--out", required=True, help="image file to write: .png, or .jpg/.jpeg (JPEG)")
@@ -53,6 +46,18 @@ def add_parser(sub) -> None:
                    help="refuse a render estimated to need more memory, e.g. 8G or 512M "
                         "(default: half of the memory available)")
     p.set_defaults(run=run)
+
+
+def add_scene_arguments(p) -> None:
+    """The scene file, the pipeline and the camera's overrides, as ``render`` and ``pixel`` take them."""
+    p.add_argument("scene", help="scene JSON file")
+    p.add_argument("--mode", choices=MODES, default="raytrace",
+                   help="raster: object order (z-buffer); raycast / raytrace: image order")
+    p.add_argument("--projection", choices=("perspective", "orthographic"),
+                   help="override the scene camera's projection")
+    p.add_argument("--width", type=int, help="image width in pixels (overrides the scene)")
+    p.add_argument("--height", type=int, help="image height in pixels (overrides the scene)")
+    p.add_argument("--max-depth", type=int, default=5, help="ray tracing: deepest bounce (default 5)")
 
 
 def camera_overrides(args) -> dict:
