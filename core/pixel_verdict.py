@@ -183,24 +183,29 @@ def covering_faces(result: RasterResult, x: int, y: int) -> tuple[np.ndarray, np
     depth : (K,) float64, its distance along the viewing axis (scene units).
     """
     faces = result.faces
-    cam_w, cam_h = result.history.width, result.history.height
-    x_ndc, y_ndc = 2.0 * (x + 0.5) / cam_w - 1.0, 1.0 - 2.0 * (y + 0.5) / cam_h
-    view = faces.view
-    clip = view @ result.clip_from_view[:, :3].T + result.clip_from_view[:, 3]
-    corners = clip[faces.triangles]  # (F, 3, 4)
-    a = corners[..., 0] - x_ndc * corners[..., 3]
-    b = corners[..., 1] - y_ndc * corners[..., 3]
-    beta = np.cross(a, b)
+    x_ndc = 2.0 * (x + 0.5) / result.history.width - 1.0
+    y_ndc = 1.0 - 2.0 * (y + 0.5) / result.history.height
+    m = result.clip_from_view
+    # Per vertex first (a face's corners are shared), then gathered per face.
+    clip_x, clip_y, w = (faces.view @ m[row, :3] + m[row, 3] for row in (0, 1, 3))
+    a, b = clip_x - x_ndc * w, clip_y - y_ndc * w
+    # A face whose corners all have a > 0 (or all a < 0, b > 0, b < 0) cannot have weights
+    # beta >= 0 with sum(beta a) = 0: one bit per sign, kept by a face only if all corners share it.
+    signs = ((a > 0) | (a < 0) << 1 | (b > 0) << 2 | (b < 0) << 3).astype(np.uint8)
+    corner_signs = signs[faces.triangles]
+    maybe = np.flatnonzero((corner_signs[:, 0] & corner_signs[:, 1] & corner_signs[:, 2]) == 0)
+    tri = faces.triangles[maybe]
+    beta = np.cross(a[tri], b[tri])
     total = beta.sum(axis=1)
     with np.errstate(divide="ignore", invalid="ignore"):
-        beta = beta / total[:, None]
+        beta /= total[:, None]
         inside = (total != 0) & np.all(beta >= 0.0, axis=1)
-    face = np.flatnonzero(inside)
-    point = np.einsum("fk,fkc->fc", beta[face], corners[face])
-    ahead = point[:, 3] > 0.0  # the projecting ray starts at the eye: the line behind it is not seen
-    face, point = face[ahead], point[ahead]
-    depth = -np.einsum("fk,fk->f", beta[face], view[faces.triangles[face], 2])
-    return face, point, depth
+    beta, corners = beta[inside], tri[inside]
+    face = maybe[inside]
+    view = np.einsum("fk,fkc->fc", beta, faces.view[corners])
+    clip = view @ m[:, :3].T + m[:, 3]
+    ahead = clip[:, 3] > 0.0  # the projecting ray starts at the eye: the line behind it is not seen
+    return face[ahead], clip[ahead], -view[ahead, 2]
 
 
 def _object_of(result: RasterResult, face: int) -> tuple[int, int]:
@@ -208,9 +213,15 @@ def _object_of(result: RasterResult, face: int) -> tuple[int, int]:
     return o, int(face - result.face_offsets[o])
 
 
-def _dropped(result: RasterResult, x: int, y: int, drawn: set[int]) -> list[Fragment]:
-    """The fragments culling and clipping dropped at pixel ``(x, y)``, nearest first."""
+def dropped_fragments(result: RasterResult, x: int, y: int) -> tuple[Fragment, ...]:
+    """The fragments culling and clipping dropped at pixel ``(x, y)``, nearest first.
+
+    They do not depend on the drawing step, and finding them tests every face of
+    the scene (a tenth of a second for a million), so a view scrubbing through the
+    steps finds them once per pixel and passes them to :func:`raster_verdict`.
+    """
     settings = result.settings
+    drawn = {result.face_index(e.object_index, e.triangle_index) for e in result.history.pixel_history(x, y)}
     out = []
     face, point, depth = covering_faces(result, x, y)
     distance = clipping.boundary_distances(point)
@@ -226,10 +237,11 @@ def _dropped(result: RasterResult, x: int, y: int, drawn: set[int]) -> list[Frag
             out.append(Fragment(mesh.name, o, t, None, d, "clipped", clipping.PLANES[int(np.argmin(dist))],
                                 alpha))
         # Otherwise the face covers the centre only to rounding (the rasterizer's fill rule decided).
-    return sorted(out, key=lambda frag: frag.depth)
+    return tuple(sorted(out, key=lambda frag: frag.depth))
 
 
-def raster_verdict(result: RasterResult, x: int, y: int, step: int | None = None) -> PixelVerdict:
+def raster_verdict(result: RasterResult, x: int, y: int, step: int | None = None,
+                   dropped: tuple[Fragment, ...] | None = None) -> PixelVerdict:
     """What decided pixel ``(x, y)`` (column, row) of an object-order render.
 
     Parameters
@@ -237,6 +249,7 @@ def raster_verdict(result: RasterResult, x: int, y: int, step: int | None = None
     result : a render with its step history (``RasterSettings(record_steps=True)``).
     x, y : the pixel.
     step : only the first ``step`` polygons drawn count (default all: the finished image).
+    dropped : :func:`dropped_fragments` of the pixel, when already found.
 
     Raises
     ------
@@ -249,7 +262,6 @@ def raster_verdict(result: RasterResult, x: int, y: int, step: int | None = None
     events = history.pixel_history(x, y)  # refuses a pixel outside the image
     step = history.n_steps if step is None else step
     names = [m.name for m in result.meshes]
-    drawn_faces = {result.face_index(e.object_index, e.triangle_index) for e in events}
     events = [e for e in events if e.polygon < step]
     passed = [i for i, e in enumerate(events) if e.passed]
     opaque = [i for i in passed if events[i].blend is None]
@@ -260,8 +272,8 @@ def raster_verdict(result: RasterResult, x: int, y: int, step: int | None = None
                 else "kept" if i == kept else "overwritten")
         fragments.append(Fragment(names[e.object_index], e.object_index, e.triangle_index, e.polygon + 1,
                                   e.distance, fate, alpha=float(history.alpha[e.polygon])))
-    dropped = _dropped(result, x, y, drawn_faces)
-    fragments = tuple(fragments + dropped)
+    dropped = dropped_fragments(result, x, y) if dropped is None else dropped
+    fragments = (*fragments, *dropped)
     verdict, obj, sentence = _raster_sentence(result, fragments, events, kept, step)
     return PixelVerdict((x, y), "raster", verdict, obj, sentence, fragments=fragments)
 

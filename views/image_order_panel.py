@@ -4,7 +4,8 @@ Every pixel is computed on its own: a ray from the eye through the pixel,
 its first hit, shadow rays toward the lights, and (in ray tracing) reflected
 and refracted rays.  Clicking a pixel traces it again with every ray kept,
 shows the tree in the 3D pane and lists it here with the colours combined
-from the last hits back to the first.
+from the last hits back to the first, under one sentence that says what
+decided the pixel (:mod:`core.pixel_verdict`).
 """
 
 from __future__ import annotations
@@ -28,11 +29,13 @@ from PySide6.QtWidgets import (
 
 from core.image_order.ray_tracing import TraceSettings
 from core.image_order.ray_tree import RayNode
+from core.pixel_verdict import trace_verdict
 from core.scene import Scene
 from views.image_view import ImageView
 from views.panel_layout import pictures_over_details
 from views.raytree_view import KIND_COLORS, RayKindLegend, RayTreeWidget
 from views.side_column import SideColumn
+from views.verdict_label import VerdictLabel
 from views.worked_math import WorkedMath
 
 #: Rows of the ray tree a lesson that points at a ray makes room for (the image gives up height),
@@ -125,12 +128,11 @@ class ImageOrderPanel(QWidget):
         self.explanation.setPlaceholderText(
             "Click a pixel to trace it again with every ray kept: its ray tree appears in the "
             "3D pane and here, with the colours computed from the last hits back to the first.")
-        self.tree_caption = QLabel()
-        self.tree_caption.setWordWrap(True)  # a long caption must not widen the window
         tree_page = QWidget()
         tl = QVBoxLayout(tree_page)
         tl.setContentsMargins(0, 0, 0, 0)
-        tl.addWidget(self.tree_caption)
+        self.verdict = VerdictLabel()  # the tree's caption: what decided the pixel, its figures on hover
+        tl.addWidget(self.verdict)
         beside = QSplitter(Qt.Orientation.Horizontal)  # side by side: both get the page's height
         beside.addWidget(self.tree)
         beside.addWidget(self.explanation)
@@ -231,7 +233,7 @@ class ImageOrderPanel(QWidget):
         self.image.set_picked(pixel)
         if pixel is None:
             self.tree.clear()
-            self.tree_caption.clear()
+            self.verdict.show_verdict(None)
             self.explanation.clear()
             self.worked_math.clear()
 
@@ -253,12 +255,13 @@ class ImageOrderPanel(QWidget):
     def show_tree(self, x: int, y: int, root: RayNode, scene: Scene) -> None:
         """Pixel ``(x, y)``'s ray tree ``root``, traced in ``scene``, and the worked math of its first hit."""
         self.image.set_picked((x, y))
+        n = sum(1 for node in root.walk() if node.traced)
+        self.verdict.show_verdict(trace_verdict(root, scene, self.model.trace_settings.mode, x, y),
+                                  f"Ray tree of pixel ({x}, {y}): {n} rays traced; pixel colour "
+                                  f"({', '.join(f'{c:.3f}' for c in root.pixel_color)})")
         self.tree.set_tree(root)
         self.worked_math.show_ray(scene, root)
         self.tree.select_kind(self.ray_kind)
-        n = sum(1 for node in root.walk() if node.traced)
-        self.tree_caption.setText(f"<b>Ray tree of pixel ({x}, {y})</b>: {n} rays traced; "
-                                  f"pixel colour ({', '.join(f'{c:.3f}' for c in root.pixel_color)})")
         self.explanation.setPlainText(
             "Second stage: colours from the last hits back to the first\n"
             + "\n".join(root.explain()))
