@@ -36,7 +36,7 @@ from core.object_order.pipeline import RasterResult, RasterSettings, render_rast
 from core.object_order.step_history import PixelEvent
 from core.pixel_verdict import PixelVerdict, raster_verdict, trace_verdict
 from core.scene import Scene, Sphere
-from core.srgb import srgb_to_linear
+from core.srgb import colormapped
 
 OUTPUTS = {
     "orthographic": "orthographic z-buffer",
@@ -139,19 +139,12 @@ class Difference:
 
     def colorbar(self, length: int = 256, thickness: int = 12) -> np.ndarray:
         """The colour scale as a (thickness, length, 3) linear-RGB strip: 0 left, ``scale`` right."""
-        ramp = _colormapped(np.linspace(0.0, 1.0, length), self.colormap)
+        ramp = colormapped(np.linspace(0.0, 1.0, length), self.colormap)
         return np.repeat(ramp[None], thickness, axis=0)
 
     def ticks(self, n: int = 5) -> list[tuple[float, float]]:
         """``n`` labelled points of the scale: (position along the bar in [0, 1], difference there)."""
         return [(float(p), float(p * self.scale)) for p in np.linspace(0.0, 1.0, n)]
-
-
-def _colormapped(level: np.ndarray, colormap: str) -> np.ndarray:
-    """Levels in [0, 1] through a matplotlib colour map, as linear RGB."""
-    from matplotlib import colormaps
-
-    return srgb_to_linear(colormaps[colormap](np.clip(level, 0.0, 1.0))[..., :3])
 
 
 def difference(a: np.ndarray, b: np.ndarray, colormap: str = "magma") -> Difference:
@@ -170,7 +163,7 @@ def difference(a: np.ndarray, b: np.ndarray, colormap: str = "magma") -> Differe
     magnitude = delta.max(axis=2)
     scale = float(magnitude.max()) if magnitude.size else 0.0
     level = magnitude / scale if scale > 0 else np.zeros_like(magnitude)
-    return Difference(delta, magnitude, scale, colormap, _colormapped(level, colormap))
+    return Difference(delta, magnitude, scale, colormap, colormapped(level, colormap))
 
 
 @dataclass(frozen=True, eq=False)

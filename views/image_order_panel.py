@@ -10,6 +10,7 @@ decided the pixel (:mod:`core.pixel_verdict`).
 
 from __future__ import annotations
 
+import numpy as np
 from PySide6.QtCore import QEvent, Qt
 from PySide6.QtGui import QFont
 from PySide6.QtWidgets import (
@@ -27,11 +28,14 @@ from PySide6.QtWidgets import (
     QWidget,
 )
 
+from core.heat_map import heat_map
+from core.image_order.kernels.layout import HEAT_BOUNDS_TESTS, HEAT_PRIM_TESTS
 from core.image_order.ray_tracing import TraceSettings
 from core.image_order.ray_tree import RayNode
 from core.pixel_verdict import trace_verdict
 from core.scene import Scene
-from views.image_view import ImageView
+from views.color_scale import ColorScale
+from views.image_view import DisplayImage, ImageView, display_image
 from views.panel_layout import pictures_over_details
 from views.raytree_view import KIND_COLORS, RayKindLegend, RayTreeWidget
 from views.side_column import SideColumn
@@ -43,6 +47,8 @@ from views.worked_math import WorkedMath
 TREE_ROWS = 4
 IMAGE_SHARE = 0.4
 MODES = [("raytrace", "Ray tracing"), ("raycast", "Ray casting")]
+HEATS = [("off", "Off"), ("prim", "Primitive tests"), ("bounds", "Box and sphere tests")]
+HEAT_INDEX = {"prim": HEAT_PRIM_TESTS, "bounds": HEAT_BOUNDS_TESTS}
 ACCELS = [("bvh", "BVH"), ("grid+spheres", "Grid + spheres"), ("grid", "Grid of cuboids"),
           ("spheres", "Bounding spheres"), ("none", "None")]
 
@@ -89,6 +95,15 @@ class ImageOrderPanel(QWidget):
         self.epsilon.setSingleStep(1e-4)
         self.epsilon.setValue(1e-4)
         self.epsilon.setToolTip("The fixed offset ε (used with 'Fixed ε')")
+        self.heat = _combo(HEATS, "Colour each pixel by the intersection tests its rays cost (all of them: "
+                                  "primary, shadow, reflected, refracted), over the traced image; change "
+                                  "the acceleration to see where each method spends its tests")
+        self.heat.currentIndexChanged.connect(self._show_heat)
+        self.heat_scale = ColorScale("Heat map colour scale: the map's darkest colour means no test, its "
+                                     "brightest the most any pixel of this image took")
+        self.heat_scale.hide()
+        self._traced: DisplayImage | None = None  # the traced image, under the heat map
+        self._heat: np.ndarray | None = None  # (H, W, 2) its pixels' tests, or None
         self.show_spheres = QCheckBox("bounding spheres")
         self.show_grid = QCheckBox("grid cells")
         self.show_walk = QCheckBox("cells the ray walks")
@@ -106,7 +121,7 @@ class ImageOrderPanel(QWidget):
         form.setRowWrapPolicy(QFormLayout.RowWrapPolicy.WrapLongRows)  # narrow: labels above the fields
         for label, widget in [("Method", self.mode), ("Acceleration", self.accel), ("Max depth", self.depth),
                               ("Min weight", self.min_weight), ("Ray offset", self.offset),
-                              ("ε", self.epsilon)]:
+                              ("ε", self.epsilon), ("Heat map", self.heat)]:
             form.addRow(label, widget)
         form.addRow(QLabel("Show in 3D:"))
         for box in (self.show_spheres, self.show_grid, self.show_walk):
@@ -151,7 +166,7 @@ class ImageOrderPanel(QWidget):
         top_layout = QHBoxLayout(top)
         top_layout.setContentsMargins(0, 0, 0, 0)
         top_layout.addWidget(self.image, 1)
-        top_layout.addWidget(SideColumn([form_box, self.rays, QLabel("<b>Ray colours</b>"),
+        top_layout.addWidget(SideColumn([form_box, self.heat_scale, self.rays, QLabel("<b>Ray colours</b>"),
                                          RayKindLegend(per_line=1)]))
         self.split = pictures_over_details(self, top, self.details)
         self._room_for_tree = False  # asked by a lesson, kept until the user drags the divider
@@ -251,6 +266,28 @@ class ImageOrderPanel(QWidget):
             + (f"<br>{accel['cells_per_ray']:.1f} grid cells a ray" if accel["cells_per_ray"] else ""))
         self.plan.setText(f"<b>What this scene calls for</b> — only these effects are simulated:"
                           f"<br>{reasons}")
+
+    def show_traced(self, image: DisplayImage, heat: np.ndarray | None = None) -> None:
+        """Show the traced ``image`` (or a part of it), with its pixels' tests ``heat`` (H, W, 2)
+        when the whole image came with them: the heat map is laid over it if one is chosen."""
+        self._traced, self._heat = image, heat
+        self._show_heat()
+
+    def _show_heat(self) -> None:
+        kind = self.heat.currentData()
+        on = kind != "off" and self._heat is not None
+        self.heat_scale.setVisible(on)
+        if self._traced is None:
+            return
+        if not on:
+            self.image.set_image(self._traced)
+            return
+        what = dict(HEATS)[kind].lower()
+        heat = heat_map(self._heat[..., HEAT_INDEX[kind]], what)
+        self.image.set_image(display_image(heat.over(self._traced.rgb), f"heat map: {what}"))
+        self.heat_scale.set_scale(display_image(heat.colorbar()), "0", f"{heat.top:,}",
+                                  f"{what} a pixel; {heat.total:,} in all, {heat.mean:.1f} a pixel "
+                                  f"({self.accel.currentText()})")
 
     def show_tree(self, x: int, y: int, root: RayNode, scene: Scene) -> None:
         """Pixel ``(x, y)``'s ray tree ``root``, traced in ``scene``, and the worked math of its first hit."""

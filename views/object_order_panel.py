@@ -30,14 +30,16 @@ from PySide6.QtWidgets import (
     QWidget,
 )
 
+from core.heat_map import heat_map
 from core.object_order.depth_formats import BYTES_PER_PIXEL, DEPTH_FORMATS
 from core.object_order.pipeline import RasterResult, RasterSettings
 from core.pixel_verdict import dropped_fragments, raster_verdict
 from core.projection import project_point
 from core.scene import Scene
 from core.srgb import linear_to_srgb
+from views.color_scale import ColorScale
 from views.depth_view import DepthView
-from views.image_view import ImageView
+from views.image_view import ImageView, display_image
 from views.panel_layout import pictures_over_details
 from views.side_column import SideColumn
 from views.step_picture import StepPicture, polygon_name, step_picture
@@ -136,6 +138,15 @@ class ObjectOrderPanel(QWidget):
         depth_label.setToolTip(DEPTH_FORMAT_TIP)
         switches.addWidget(depth_label)
         switches.addWidget(self.depth_format)
+        self.overdraw = QCheckBox("Overdraw heat map")
+        self.overdraw.setToolTip("Colour each pixel by the fragments that reached it so far (passed or "
+                                 "failed), over the image memory: where the z-buffer did its work")
+        self.overdraw.toggled.connect(lambda _: self.show_step(self.scrubber.step))
+        self.overdraw_scale = ColorScale("Overdraw colour scale: the map's darkest colour means no "
+                                         "fragment, its brightest the most any pixel received so far")
+        self.overdraw_scale.hide()
+        switches.addWidget(self.overdraw)
+        switches.addWidget(self.overdraw_scale)
 
         self.scrubber = StepScrubber()
         self.image = ImageView(placeholder="image memory")
@@ -256,7 +267,15 @@ class ObjectOrderPanel(QWidget):
         self.scrubber.set_step(k)
         self.scrubber.blockSignals(False)
         history = self.result.history
-        self.image.set_image(picture.image)
+        self.overdraw_scale.setVisible(self.overdraw.isChecked())
+        if self.overdraw.isChecked():
+            heat = heat_map(history.fragments_per_pixel(k), "fragments")
+            self.image.set_image(display_image(heat.over(picture.image.rgb), "overdraw"))
+            self.overdraw_scale.set_scale(display_image(heat.colorbar()), "0", f"{heat.top:,}",
+                                          f"fragments a pixel up to step {k}; {heat.total:,} in all, "
+                                          f"{heat.mean:.2f} a pixel")
+        else:
+            self.image.set_image(picture.image)
         self.depth.set_depth(picture.depth, history.near, history.far, picture.depth_image)
         self.step_caption.setText(picture.caption)
         self.polygon_shown.emit(picture.polygon)

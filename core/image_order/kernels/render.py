@@ -125,7 +125,7 @@ def _primary_packet(j0, j1, i0, i1, cam, xs, ys, geo, bvh, scratch, packet, hits
                     heat):
     """The primary rays of pixels ``[j0, j1) x [i0, i1)`` through the BVH, as one packet when they
     can share the walk, else one by one.  The tests of a shared walk go to the heat map in equal
-    parts, the remainder to the packet's first pixel."""
+    parts (:func:`_share_walk`)."""
     rays, axes = packet
     n_spheres = geo[lay.GEO_N_SPHERES]
     stack, stack_t = scratch[lay.SCRATCH_STACK], scratch[lay.SCRATCH_STACK_T]
@@ -160,13 +160,13 @@ def _primary_packet(j0, j1, i0, i1, cam, xs, ys, geo, bvh, scratch, packet, hits
 @jit
 def _share_walk(heat, j0, j1, i0, i1, n, prims, bounds):
     """A packet's shared walk, ``prims`` and ``bounds`` tests, into the heat of its ``n`` pixels
-    ``[j0, j1) x [i0, i1)``: equal parts, the remainder to the first pixel."""
+    ``[j0, j1) x [i0, i1)``: equal parts, the remainders one each to the first pixels."""
+    r = 0
     for j in range(j0, j1):
         for i in range(i0, i1):
-            heat[j, i, lay.HEAT_PRIM_TESTS] += prims // n
-            heat[j, i, lay.HEAT_BOUNDS_TESTS] += bounds // n
-    heat[j0, i0, lay.HEAT_PRIM_TESTS] += prims % n
-    heat[j0, i0, lay.HEAT_BOUNDS_TESTS] += bounds % n
+            heat[j, i, lay.HEAT_PRIM_TESTS] += prims // n + (r < prims % n)
+            heat[j, i, lay.HEAT_BOUNDS_TESTS] += bounds // n + (r < bounds % n)
+            r += 1
 
 
 @jit_inline
