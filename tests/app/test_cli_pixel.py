@@ -87,3 +87,12 @@ def test_a_bad_pixel_is_refused_in_one_line(tmp_path, at, says):
     assert result.returncode == 2
     assert "--at" in result.stderr and says in result.stderr
     assert "Traceback" not in result.stderr and len(result.stderr.strip().splitlines()) == 1
+
+
+def test_a_broken_scene_file_is_refused_in_one_line(tmp_path):
+    path = tmp_path / "broken.json"
+    path.write_text('{"objects": [')
+    result = _run(str(path), "--at", "1,1", "--mode", "raster", "--json")
+    assert result.returncode == 2 and result.stdout == ""
+    assert "broken.json" in result.stderr and "Traceback" not in result.stderr
+    assert len(result.stderr.strip().splitlines()) == 1
