@@ -149,7 +149,8 @@ def _primary_rays(triangles: int, args) -> tuple:
     def ours():
         counters[:] = [render.render_pass(render.PRIMARY_STAGE, k.cam, xs, ys, hits, depth, objects,
                                           color, children, spawned, k.materials, k.lights, k.opts, k.geo,
-                                          k.grid, k.bvh, k.bvh_depth, numba.get_num_threads())]
+                                          k.grid, k.bvh, k.bvh_depth, numba.get_num_threads(),
+                                          render.no_heat())]
 
     # The same rays into an empty scene: what our figure spends before and after the scene itself.
     empty = Scene(camera=scene.camera, objects=(), lights=scene.lights)
@@ -161,7 +162,7 @@ def _primary_rays(triangles: int, args) -> tuple:
     def nothing_to_hit():
         render.render_pass(render.PRIMARY_STAGE, e.cam, xs, ys, hits_empty, depth_empty, objects, color,
                            children, spawned, e.materials, e.lights, e.opts, e.geo, e.grid, e.bvh,
-                           e.bvh_depth, numba.get_num_threads())
+                           e.bvh_depth, numba.get_num_threads(), render.no_heat())
 
     print(f"mesh: {len(mesh.triangles):,} triangles; BVH build {build_s:.3f} s, {len(bvh.nodes)} nodes, "
           f"depth {bvh.depth}")

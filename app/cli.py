@@ -24,6 +24,7 @@ from app import (
     hardcases_command,
     intersect_command,
     lesson_command,
+    pixel_command,
     render_command,
 )
 from app.usage import UsageError
@@ -46,6 +47,7 @@ def build_parser() -> argparse.ArgumentParser:
                           "(default: half of the memory available)")
     intersect_command.add_parser(sub)
     render_command.add_parser(sub)
+    pixel_command.add_parser(sub)
     hardcases_command.add_parser(sub)
     cost_command.add_parser(sub)
     export_command.add_parser(sub)
@@ -61,8 +63,8 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 #: The first words the command line understands; anything else opens the window on it.
-COMMANDS = {"gui", "intersect", "render", "export", "bench", "hardcases", "cost", "compile", "lesson", "-h",
-            "--help"}
+COMMANDS = {"gui", "intersect", "render", "pixel", "export", "bench", "hardcases", "cost", "compile",
+            "lesson", "-h", "--help"}
 
 
 INTERRUPTED = "python -m app: interrupted; no output file was written or changed"

@@ -2,8 +2,9 @@
 
 Writes the image as sRGB PNG (or JPEG for ``.jpg``/``.jpeg``) and, on request,
 the depth of the visible surface per pixel (``.npy``: camera-space distance
-along the viewing axis, +inf where only background is seen) and the render's
-statistics (JSON: counts and times per stage).  Imports neither Qt nor VTK.
+along the viewing axis, +inf where only background is seen), what each pixel
+cost (``--heat-out``, ``.npy``: its intersection tests, or in object order its
+fragments) and the render's statistics (JSON: counts and times per stage).  Imports neither Qt nor VTK.
 
 Before any work it checks every output path, loads the scene, and estimates
 the render's memory (:mod:`core.budget`): a render over the budget (half of
@@ -33,6 +34,27 @@ MAX_DEPTH = 64
 def add_parser(sub) -> None:
     p = sub.add_parser("render", help="render a scene file to PNG (object order or image order)",
                        description=__doc__.split("\n\n")[0])
+    add_scene_arguments(p)
+    p.add_argument("--accel", choices=ACCELS, default="bvh",
+                   help="image order: how rays find objects (default bvh)")
+    p.add_argument("--out", required=True, help="image file to write: .png, or .jpg/.jpeg (JPEG)")
+    p.add_argument("--depth-out", help="write the depth per pixel as .npy")
+    p.add_argument("--stats-out", help="write counts and times per stage as JSON")
+    p.add_argument("--heat-out", metavar="TESTS.npy",
+                   help="write what each pixel cost as .npy: image order, (H, W, 2) int64, the primitive "
+                        "tests and the bounding-volume tests of all its rays; raster, (H, W) int64, the "
+                        "fragments that reached it; they add up to --stats-out's totals")
+    p.add_argument("--dry-run", action="store_true",
+                   help="check the scene and the output paths, print the estimated cost, "
+                        "and stop before rendering")
+    p.add_argument("--memory-limit", metavar="SIZE",
+                   help="refuse a render estimated to need more memory, e.g. 8G or 512M "
+                        "(default: half of the memory available)")
+    p.set_defaults(run=run)
+
+
+def add_scene_arguments(p) -> None:
+    """The scene file, the pipeline and the camera's overrides, as ``render`` and ``pixel`` take them."""
     p.add_argument("scene", help="scene JSON file")
     p.add_argument("--mode", choices=MODES, default="raytrace",
                    help="raster: object order (z-buffer); raycast / raytrace: image order")
@@ -41,18 +63,6 @@ def add_parser(sub) -> None:
     p.add_argument("--width", type=int, help="image width in pixels (overrides the scene)")
     p.add_argument("--height", type=int, help="image height in pixels (overrides the scene)")
     p.add_argument("--max-depth", type=int, default=5, help="ray tracing: deepest bounce (default 5)")
-    p.add_argument("--accel", choices=ACCELS, default="bvh",
-                   help="image order: how rays find objects (default bvh)")
-    p.add_argument("--out", required=True, help="image file to write: .png, or .jpg/.jpeg (JPEG)")
-    p.add_argument("--depth-out", help="write the depth per pixel as .npy")
-    p.add_argument("--stats-out", help="write counts and times per stage as JSON")
-    p.add_argument("--dry-run", action="store_true",
-                   help="check the scene and the output paths, print the estimated cost, "
-                        "and stop before rendering")
-    p.add_argument("--memory-limit", metavar="SIZE",
-                   help="refuse a render estimated to need more memory, e.g. 8G or 512M "
-                        "(default: half of the memory available)")
-    p.set_defaults(run=run)
 
 
 def camera_overrides(args) -> dict:
@@ -81,6 +91,8 @@ def _outputs(args):
             outputs.add("--depth-out", args.depth_out, (".npy",))
         if args.stats_out:
             outputs.add("--stats-out", args.stats_out, (".json",))
+        if args.heat_out:
+            outputs.add("--heat-out", args.heat_out, (".npy",))
     except ValueError as exc:
         raise UsageError(str(exc)) from None
     return outputs
@@ -200,22 +212,25 @@ def run(args) -> int:
     if args.mode == "raster":
         from core.object_order.pipeline import RasterSettings, render_raster
 
-        result = render_raster(scene, RasterSettings())
+        result = render_raster(scene, RasterSettings(record_steps=bool(args.heat_out)))
+        heat = result.history.fragments_per_pixel() if args.heat_out else None
     else:
         from core.image_order.ray_tracing import TraceSettings, render_trace
 
         settings = TraceSettings(mode=args.mode, max_depth=args.max_depth, accel=args.accel)
-        result = render_trace(scene, settings)
+        result = render_trace(scene, settings, heat=bool(args.heat_out))
+        heat = result.heat
 
     result.stats["compile_s"] += compile_s  # the kernels were loaded just before the render
 
     from app.image_files import OutputError, encode_image
 
     contents = {"--out": encode_image(result.color, os.path.splitext(outputs.paths["--out"])[1])}
-    if args.depth_out:
-        buffer = io.BytesIO()
-        np.save(buffer, result.depth)
-        contents["--depth-out"] = buffer.getvalue()
+    for option, array in (("--depth-out", result.depth), ("--heat-out", heat)):
+        if getattr(args, option[2:].replace("-", "_")):
+            buffer = io.BytesIO()
+            np.save(buffer, array)
+            contents[option] = buffer.getvalue()
     if args.stats_out:
         contents["--stats-out"] = (json.dumps(result.stats, indent=2) + "\n").encode()
     try:

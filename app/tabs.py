@@ -200,26 +200,27 @@ class ImageOrderTab:
             for first in range(0, cam.height, rows):
                 if cancelled.is_set():
                     return None
-                band = render_trace(scene, settings, rows=(first, min(first + rows, cam.height)))
+                band = render_trace(scene, settings, rows=(first, min(first + rows, cam.height)), heat=True)
                 color[first:first + len(band.color)] = band.color
                 bands.append(band)
                 done = first + len(band.color)
                 progress(round(100 * done / cam.height),
                          display_image(color.copy(), "" if done == cam.height else "rendering…"))
-            return display_image(color), merge_band_stats([b.stats for b in bands])
+            return (display_image(color), merge_band_stats([b.stats for b in bands]),
+                    np.concatenate([b.heat for b in bands]))  # each pixel's tests, for the heat map
 
         return run
 
     def show_progress(self, partial) -> None:
-        self.widget.image.set_image(partial)
+        self.widget.show_traced(partial)
 
     def show(self, result) -> str:
         if isinstance(result, Preview):
             self._preview = result
-            self.widget.image.set_image(result.image)
+            self.widget.show_traced(result.image)
             return f"preview: a quarter of the rays ({result.rays:,}) in {_ms(result.seconds)}"
-        image, stats = result
-        self.widget.image.set_image(image)
+        image, stats, heat = result
+        self.widget.show_traced(image, heat)
         self.widget.show_stats(stats)
         return _trace_caption(stats)
 

@@ -34,8 +34,9 @@ from core.image_order.ray_tracing import TraceResult, render_trace
 from core.image_order.ray_tree import RayNode, trace_pixel
 from core.object_order.pipeline import RasterResult, RasterSettings, render_raster
 from core.object_order.step_history import PixelEvent
+from core.pixel_verdict import PixelVerdict, raster_verdict, trace_verdict
 from core.scene import Scene, Sphere
-from core.srgb import srgb_to_linear
+from core.srgb import colormapped
 
 OUTPUTS = {
     "orthographic": "orthographic z-buffer",
@@ -138,19 +139,12 @@ class Difference:
 
     def colorbar(self, length: int = 256, thickness: int = 12) -> np.ndarray:
         """The colour scale as a (thickness, length, 3) linear-RGB strip: 0 left, ``scale`` right."""
-        ramp = _colormapped(np.linspace(0.0, 1.0, length), self.colormap)
+        ramp = colormapped(np.linspace(0.0, 1.0, length), self.colormap)
         return np.repeat(ramp[None], thickness, axis=0)
 
     def ticks(self, n: int = 5) -> list[tuple[float, float]]:
         """``n`` labelled points of the scale: (position along the bar in [0, 1], difference there)."""
         return [(float(p), float(p * self.scale)) for p in np.linspace(0.0, 1.0, n)]
-
-
-def _colormapped(level: np.ndarray, colormap: str) -> np.ndarray:
-    """Levels in [0, 1] through a matplotlib colour map, as linear RGB."""
-    from matplotlib import colormaps
-
-    return srgb_to_linear(colormaps[colormap](np.clip(level, 0.0, 1.0))[..., :3])
 
 
 def difference(a: np.ndarray, b: np.ndarray, colormap: str = "magma") -> Difference:
@@ -169,7 +163,7 @@ def difference(a: np.ndarray, b: np.ndarray, colormap: str = "magma") -> Differe
     magnitude = delta.max(axis=2)
     scale = float(magnitude.max()) if magnitude.size else 0.0
     level = magnitude / scale if scale > 0 else np.zeros_like(magnitude)
-    return Difference(delta, magnitude, scale, colormap, _colormapped(level, colormap))
+    return Difference(delta, magnitude, scale, colormap, colormapped(level, colormap))
 
 
 @dataclass(frozen=True, eq=False)
@@ -180,16 +174,22 @@ class PixelReport:
     ----------
     output : the output's key in :data:`OUTPUTS`.
     color : (3,) float64, the pixel's linear RGB.
-    found : one sentence on what decided the pixel.
+    verdict : what decided the pixel, in one sentence with its evidence
+        (:mod:`core.pixel_verdict`).
     events : the fragments that reached the pixel, in drawing order (z-buffer outputs).
     ray_tree : the pixel's ray tree (tracer outputs).
     """
 
     output: str
     color: np.ndarray
-    found: str
+    verdict: PixelVerdict
     events: tuple[PixelEvent, ...] | None = None
     ray_tree: RayNode | None = None
+
+    @property
+    def found(self) -> str:
+        """One sentence on what decided the pixel."""
+        return self.verdict.sentence
 
 
 def probe(output: Output, x: int, y: int) -> PixelReport:
@@ -204,29 +204,64 @@ def probe(output: Output, x: int, y: int) -> PixelReport:
     if not (0 <= x < w and 0 <= y < h):
         raise ValueError(f"pixel ({x}, {y}) is outside the {w} x {h} image")
     color = output.color[y, x].copy()
-    names = [o.name for o in output.scene.objects]
     if output.raster is not None:
         events = output.raster.history.pixel_history(x, y)
-        passed = [e for e in events if e.passed]
-        if not events:
-            found = "no polygon covers this pixel: it keeps the background colour"
-        else:
-            last = passed[-1]
-            found = (f"{len(events)} fragment(s) reached this pixel and {len(passed)} passed the z-test; "
-                     f"the last to pass came from {names[last.object_index]} (triangle "
-                     f"{last.triangle_index}) at distance {last.distance:.3g}")
-        return PixelReport(output.name, color, found, events=events)
+        return PixelReport(output.name, color, raster_verdict(output.raster, x, y), events=events)
     tree = trace_pixel(output.scene, x, y, output.settings)
-    rays = {}
-    for node in tree.walk():
-        if node.traced:
-            rays[node.kind] = rays.get(node.kind, 0) + 1
-    counted = ", ".join(f"{n} {kind}" for kind, n in rays.items())
-    if tree.hit is None:
-        found = "the primary ray hits nothing: the background colour"
-    else:
-        found = f"the primary ray first hits {tree.hit_name} at distance {tree.t:.3g}; rays traced: {counted}"
-    return PixelReport(output.name, color, found, ray_tree=tree)
+    return PixelReport(output.name, color, trace_verdict(tree, output.scene, output.name, x, y),
+                       ray_tree=tree)
+
+
+def why_here(a: Output, b: Output, ra: PixelReport, rb: PixelReport) -> str:
+    """Why outputs ``a`` and ``b`` differ at the pixel their reports ``ra`` and ``rb`` read.
+
+    One sentence, chosen from what each found there: different objects under
+    different projections, a faceted sphere against a true one, a shadow only
+    the tracer computes, a reflection or refraction only ray tracing follows,
+    flat shading against shading per hit point.
+    """
+    va, vb = ra.verdict, rb.verdict
+    if a.name == b.name:
+        return f"Both sides are the {a.title} image."
+    raster = [v for v in (va, vb) if v.mode == "raster"]
+    traced = [v for v in (va, vb) if v.mode != "raster"]
+    if va.object != vb.object:
+        said = f"{a.title} shows {va.object or 'the background'}, {b.title} {vb.object or 'the background'}"
+        spheres = [o.name for o in a.scene.objects
+                   if isinstance(o, Sphere) and o.name in (va.object, vb.object)]
+        if a.projection != b.projection:
+            why = f"the {a.projection} and {b.projection} projections put different things on this pixel"
+        elif raster and traced and spheres:
+            why = (f"the z-buffer draws {_names(spheres)} as flat triangles, so the outline is a polygon "
+                   "inside the true sphere the tracer meets")
+        elif raster and raster[0].verdict in ("culled", "clipped"):
+            why = f"the z-buffer {raster[0].verdict} what reaches this pixel; a ray has no such stage"
+        else:
+            why = "the pixel lies on an edge, which each pipeline's rule decides on its own"
+        return f"{said}: {why}."
+    if va.object is None:
+        return "Both show the background here."
+    obj = next(o for o in a.scene.objects if o.name == va.object)
+    reasons = []
+    if raster and traced:
+        blocked = [light for light in traced[0].lights if light.blocked_by]
+        if blocked:
+            reasons.append("a shadow only the tracer computes ("
+                           + "; ".join(f"{light.blocked_by} blocks {light.name}" for light in blocked) + ")")
+        if isinstance(obj, Sphere):
+            reasons.append(f"a faceted sphere: the z-buffer gives a facet of {obj.name} one flat colour, "
+                           "the tracer shades the true sphere's point")
+        else:
+            reasons.append("flat shading: the z-buffer gives the polygon one colour, the tracer shades "
+                           "the hit point itself")
+    followed = [v for v in traced if v.mode == "raytrace" and (v.rays["reflection"] or v.rays["refraction"])]
+    if len(followed) == 1 and len(traced) + len(raster) == 2 and (raster or traced[0].mode != traced[1].mode):
+        reasons.append(f"only ray tracing follows the reflected and refracted rays of {obj.name}")
+    if a.projection != b.projection:
+        reasons.append(f"the two projections land on other points of {obj.name}")
+    if not reasons:
+        return f"Both show {obj.name} here, found the same way."
+    return f"Both show {obj.name} here; they differ by " + "; ".join(reasons) + "."
 
 
 def _names(names: list[str]) -> str:

@@ -31,3 +31,11 @@ def srgb_to_linear(srgb: np.ndarray) -> np.ndarray:
 def to_srgb8(rgb: np.ndarray) -> np.ndarray:
     """Linear RGB in [0, 1] to 8-bit sRGB (uint8), rounded to nearest, for display and files."""
     return np.round(linear_to_srgb(rgb) * 255.0).astype(np.uint8)
+
+
+def colormapped(level: np.ndarray, colormap: str) -> np.ndarray:
+    """Levels in [0, 1] through a matplotlib colour map, as linear RGB (so that
+    :func:`to_srgb8` shows exactly the map's colours)."""
+    from matplotlib import colormaps
+
+    return srgb_to_linear(colormaps[colormap](np.clip(level, 0.0, 1.0))[..., :3])

@@ -5,8 +5,9 @@ perspective z-buffer, ray cast, ray traced; see :mod:`core.compare`).  The
 panel shows them side by side with the difference image, the absolute
 difference of their linear RGB colour-mapped with its scale.  A click on a
 pixel of any of the three images marks the same pixel in all of them and
-reads it in both outputs: its colour, what each pipeline found there (the
-fragments of the z-buffer, the ray tree of the tracer) and the difference.
+reads it in both outputs: its colour, what decided it in each, in one sentence
+(:mod:`core.pixel_verdict`; hover for the fragments of the z-buffer or the ray
+tree of the tracer), and the difference with why the two differ there.
 Under the images, a few sentences say what differs and why for this scene.
 """
 
@@ -29,7 +30,7 @@ from PySide6.QtWidgets import (
     QWidget,
 )
 
-from core.compare import DIFFERENCE_UNITS, OUTPUTS, Comparison, Output, PixelReport
+from core.compare import DIFFERENCE_UNITS, OUTPUTS, Comparison, Output, PixelReport, why_here
 from core.srgb import linear_to_srgb
 from views.color_scale import ColorScale
 from views.image_view import DisplayImage, ImageView
@@ -277,7 +278,8 @@ class ComparePanel(QWidget):
                                       tip=_details(report, names))
         diff = comparison.difference
         magnitude = float(diff.magnitude[y, x])
-        found = (f"largest channel difference {magnitude:.3f} (linear RGB units)" if magnitude > 0
+        found = (f"largest channel difference {magnitude:.3f} (linear RGB units). "
+                 + why_here(comparison.a, comparison.b, *reports) if magnitude > 0
                  else "no difference: both outputs give this pixel the same colour")
         self.readout[2].set_row("|A − B|", diff.delta[y, x], diff.colored[y, x], found,
                                 "The swatch shows the difference image's colour at this pixel")

@@ -4,11 +4,13 @@ Every pixel is computed on its own: a ray from the eye through the pixel,
 its first hit, shadow rays toward the lights, and (in ray tracing) reflected
 and refracted rays.  Clicking a pixel traces it again with every ray kept,
 shows the tree in the 3D pane and lists it here with the colours combined
-from the last hits back to the first.
+from the last hits back to the first, under one sentence that says what
+decided the pixel (:mod:`core.pixel_verdict`).
 """
 
 from __future__ import annotations
 
+import numpy as np
 from PySide6.QtCore import QEvent, Qt
 from PySide6.QtGui import QFont
 from PySide6.QtWidgets import (
@@ -26,13 +28,18 @@ from PySide6.QtWidgets import (
     QWidget,
 )
 
+from core.heat_map import heat_map
+from core.image_order.kernels.layout import HEAT_BOUNDS_TESTS, HEAT_PRIM_TESTS
 from core.image_order.ray_tracing import TraceSettings
 from core.image_order.ray_tree import RayNode
+from core.pixel_verdict import trace_verdict
 from core.scene import Scene
-from views.image_view import ImageView
+from views.color_scale import ColorScale
+from views.image_view import DisplayImage, ImageView, display_image
 from views.panel_layout import pictures_over_details
 from views.raytree_view import KIND_COLORS, RayKindLegend, RayTreeWidget
 from views.side_column import SideColumn
+from views.verdict_label import VerdictLabel
 from views.worked_math import WorkedMath
 
 #: Rows of the ray tree a lesson that points at a ray makes room for (the image gives up height),
@@ -40,6 +47,8 @@ from views.worked_math import WorkedMath
 TREE_ROWS = 4
 IMAGE_SHARE = 0.4
 MODES = [("raytrace", "Ray tracing"), ("raycast", "Ray casting")]
+HEATS = [("off", "Off"), ("prim", "Primitive tests"), ("bounds", "Box and sphere tests")]
+HEAT_INDEX = {"prim": HEAT_PRIM_TESTS, "bounds": HEAT_BOUNDS_TESTS}
 ACCELS = [("bvh", "BVH"), ("grid+spheres", "Grid + spheres"), ("grid", "Grid of cuboids"),
           ("spheres", "Bounding spheres"), ("none", "None")]
 
@@ -86,6 +95,15 @@ class ImageOrderPanel(QWidget):
         self.epsilon.setSingleStep(1e-4)
         self.epsilon.setValue(1e-4)
         self.epsilon.setToolTip("The fixed offset ε (used with 'Fixed ε')")
+        self.heat = _combo(HEATS, "Colour each pixel by the intersection tests its rays cost (all of them: "
+                                  "primary, shadow, reflected, refracted), over the traced image; change "
+                                  "the acceleration to see where each method spends its tests")
+        self.heat.currentIndexChanged.connect(self._show_heat)
+        self.heat_scale = ColorScale("Heat map colour scale: the map's darkest colour means no test, its "
+                                     "brightest the most any pixel of this image took")
+        self.heat_scale.hide()
+        self._traced: DisplayImage | None = None  # the traced image, under the heat map
+        self._heat: np.ndarray | None = None  # (H, W, 2) its pixels' tests, or None
         self.show_spheres = QCheckBox("bounding spheres")
         self.show_grid = QCheckBox("grid cells")
         self.show_walk = QCheckBox("cells the ray walks")
@@ -103,7 +121,7 @@ class ImageOrderPanel(QWidget):
         form.setRowWrapPolicy(QFormLayout.RowWrapPolicy.WrapLongRows)  # narrow: labels above the fields
         for label, widget in [("Method", self.mode), ("Acceleration", self.accel), ("Max depth", self.depth),
                               ("Min weight", self.min_weight), ("Ray offset", self.offset),
-                              ("ε", self.epsilon)]:
+                              ("ε", self.epsilon), ("Heat map", self.heat)]:
             form.addRow(label, widget)
         form.addRow(QLabel("Show in 3D:"))
         for box in (self.show_spheres, self.show_grid, self.show_walk):
@@ -125,12 +143,11 @@ class ImageOrderPanel(QWidget):
         self.explanation.setPlaceholderText(
             "Click a pixel to trace it again with every ray kept: its ray tree appears in the "
             "3D pane and here, with the colours computed from the last hits back to the first.")
-        self.tree_caption = QLabel()
-        self.tree_caption.setWordWrap(True)  # a long caption must not widen the window
         tree_page = QWidget()
         tl = QVBoxLayout(tree_page)
         tl.setContentsMargins(0, 0, 0, 0)
-        tl.addWidget(self.tree_caption)
+        self.verdict = VerdictLabel()  # the tree's caption: what decided the pixel, its figures on hover
+        tl.addWidget(self.verdict)
         beside = QSplitter(Qt.Orientation.Horizontal)  # side by side: both get the page's height
         beside.addWidget(self.tree)
         beside.addWidget(self.explanation)
@@ -149,7 +166,7 @@ class ImageOrderPanel(QWidget):
         top_layout = QHBoxLayout(top)
         top_layout.setContentsMargins(0, 0, 0, 0)
         top_layout.addWidget(self.image, 1)
-        top_layout.addWidget(SideColumn([form_box, self.rays, QLabel("<b>Ray colours</b>"),
+        top_layout.addWidget(SideColumn([form_box, self.heat_scale, self.rays, QLabel("<b>Ray colours</b>"),
                                          RayKindLegend(per_line=1)]))
         self.split = pictures_over_details(self, top, self.details)
         self._room_for_tree = False  # asked by a lesson, kept until the user drags the divider
@@ -231,7 +248,7 @@ class ImageOrderPanel(QWidget):
         self.image.set_picked(pixel)
         if pixel is None:
             self.tree.clear()
-            self.tree_caption.clear()
+            self.verdict.show_verdict(None)
             self.explanation.clear()
             self.worked_math.clear()
 
@@ -250,15 +267,38 @@ class ImageOrderPanel(QWidget):
         self.plan.setText(f"<b>What this scene calls for</b> — only these effects are simulated:"
                           f"<br>{reasons}")
 
+    def show_traced(self, image: DisplayImage, heat: np.ndarray | None = None) -> None:
+        """Show the traced ``image`` (or a part of it), with its pixels' tests ``heat`` (H, W, 2)
+        when the whole image came with them: the heat map is laid over it if one is chosen."""
+        self._traced, self._heat = image, heat
+        self._show_heat()
+
+    def _show_heat(self) -> None:
+        kind = self.heat.currentData()
+        on = kind != "off" and self._heat is not None
+        self.heat_scale.setVisible(on)
+        if self._traced is None:
+            return
+        if not on:
+            self.image.set_image(self._traced)
+            return
+        what = dict(HEATS)[kind].lower()
+        heat = heat_map(self._heat[..., HEAT_INDEX[kind]], what)
+        self.image.set_image(display_image(heat.over(self._traced.rgb), f"heat map: {what}"))
+        self.heat_scale.set_scale(display_image(heat.colorbar()), "0", f"{heat.top:,}",
+                                  f"{what} a pixel; {heat.total:,} in all, {heat.mean:.1f} a pixel "
+                                  f"({self.accel.currentText()})")
+
     def show_tree(self, x: int, y: int, root: RayNode, scene: Scene) -> None:
         """Pixel ``(x, y)``'s ray tree ``root``, traced in ``scene``, and the worked math of its first hit."""
         self.image.set_picked((x, y))
+        n = sum(1 for node in root.walk() if node.traced)
+        self.verdict.show_verdict(trace_verdict(root, scene, self.model.trace_settings.mode, x, y),
+                                  f"Ray tree of pixel ({x}, {y}): {n} rays traced; pixel colour "
+                                  f"({', '.join(f'{c:.3f}' for c in root.pixel_color)})")
         self.tree.set_tree(root)
         self.worked_math.show_ray(scene, root)
         self.tree.select_kind(self.ray_kind)
-        n = sum(1 for node in root.walk() if node.traced)
-        self.tree_caption.setText(f"<b>Ray tree of pixel ({x}, {y})</b>: {n} rays traced; "
-                                  f"pixel colour ({', '.join(f'{c:.3f}' for c in root.pixel_color)})")
         self.explanation.setPlainText(
             "Second stage: colours from the last hits back to the first\n"
             + "\n".join(root.explain()))

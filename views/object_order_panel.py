@@ -5,7 +5,8 @@ at step k the image memory and the z-buffer are shown exactly as they stand
 after the first k polygons, the polygon drawn at that step has its fragments
 outlined in both buffers, and a click on a pixel lists every fragment that
 reached it: which polygon, its depth against the stored depth, whether it
-passed, and for transparent polygons the blend.
+passed, and for transparent polygons the blend; above them one sentence says
+what decided the pixel (:mod:`core.pixel_verdict`).
 """
 
 from __future__ import annotations
@@ -29,17 +30,21 @@ from PySide6.QtWidgets import (
     QWidget,
 )
 
+from core.heat_map import heat_map
 from core.object_order.depth_formats import BYTES_PER_PIXEL, DEPTH_FORMATS
 from core.object_order.pipeline import RasterResult, RasterSettings
+from core.pixel_verdict import dropped_fragments, raster_verdict
 from core.projection import project_point
 from core.scene import Scene
 from core.srgb import linear_to_srgb
+from views.color_scale import ColorScale
 from views.depth_view import DepthView
-from views.image_view import ImageView
+from views.image_view import ImageView, display_image
 from views.panel_layout import pictures_over_details
 from views.side_column import SideColumn
 from views.step_picture import StepPicture, polygon_name, step_picture
 from views.step_scrubber import StepScrubber
+from views.verdict_label import VerdictLabel
 from views.worked_math import WorkedMath
 
 STAGES = [
@@ -114,6 +119,7 @@ class ObjectOrderPanel(QWidget):
         self.model = model
         self.result: RasterResult | None = None
         self.scene: Scene | None = None
+        self._dropped = (None, ())  # ((result, pixel), its fragments culling and clipping dropped)
         self.switches: dict[str, QCheckBox] = {}
         stages = QWidget()
         switches = QVBoxLayout(stages)
@@ -135,6 +141,15 @@ class ObjectOrderPanel(QWidget):
         depth_label.setToolTip(DEPTH_FORMAT_TIP)
         switches.addWidget(depth_label)
         switches.addWidget(self.depth_format)
+        self.overdraw = QCheckBox("Overdraw heat map")
+        self.overdraw.setToolTip("Colour each pixel by the fragments that reached it so far (passed or "
+                                 "failed), over the image memory: where the z-buffer did its work")
+        self.overdraw.toggled.connect(lambda _: self.show_step(self.scrubber.step))
+        self.overdraw_scale = ColorScale("Overdraw colour scale: the map's darkest colour means no "
+                                         "fragment, its brightest the most any pixel received so far")
+        self.overdraw_scale.hide()
+        switches.addWidget(self.overdraw)
+        switches.addWidget(self.overdraw_scale)
 
         self.scrubber = StepScrubber()
         self.image = ImageView(placeholder="image memory")
@@ -157,8 +172,10 @@ class ObjectOrderPanel(QWidget):
         self.history.setEditTriggers(QTableWidget.EditTrigger.NoEditTriggers)
         self.history_caption = QLabel("Click a pixel in either buffer to see its history.")
         self.history_caption.setWordWrap(True)
+        self.verdict = VerdictLabel()
         history_page = QWidget()
         hl = QVBoxLayout(history_page)
+        hl.addWidget(self.verdict)
         hl.addWidget(self.history_caption)
         hl.addWidget(self.history, 1)
         self.numbers = _text_box()
@@ -256,7 +273,15 @@ class ObjectOrderPanel(QWidget):
         self.scrubber.set_step(k)
         self.scrubber.blockSignals(False)
         history = self.result.history
-        self.image.set_image(picture.image)
+        self.overdraw_scale.setVisible(self.overdraw.isChecked())
+        if self.overdraw.isChecked():
+            heat = heat_map(history.fragments_per_pixel(k), "fragments")
+            self.image.set_image(display_image(heat.over(picture.image.rgb), "overdraw"))
+            self.overdraw_scale.set_scale(display_image(heat.colorbar()), "0", f"{heat.top:,}",
+                                          f"fragments a pixel up to step {k}; {heat.total:,} in all, "
+                                          f"{heat.mean:.2f} a pixel")
+        else:
+            self.image.set_image(picture.image)
         self.depth.set_depth(picture.depth, history.near, history.far, picture.depth_image)
         self.step_caption.setText(picture.caption)
         self.polygon_shown.emit(picture.polygon)
@@ -292,10 +317,14 @@ class ObjectOrderPanel(QWidget):
         self.depth.image.set_picked(pixel)
         if pixel is None or history is None:
             self.history.setRowCount(0)
+            self.verdict.show_verdict(None)
             self.history_caption.setText("Click a pixel in either buffer to see its history.")
             self.numbers.clear()
             return
         x, y = pixel
+        if self._dropped[0] != (self.result, pixel):  # found once per pixel, not at every step
+            self._dropped = ((self.result, pixel), dropped_fragments(self.result, x, y))
+        self.verdict.show_verdict(raster_verdict(self.result, x, y, self.scrubber.step, self._dropped[1]))
         events = [e for e in self.result.history.pixel_history(x, y)
                   if e.polygon < self.scrubber.step]
         self.history.setRowCount(len(events))

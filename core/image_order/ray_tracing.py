@@ -72,6 +72,10 @@ class TraceResult:
     rows : (first, stop), the band of image rows rendered.
     step : int, one ray per ``step x step`` block of pixels.
     plan : EffectsPlan.
+    heat : (H, W, 2) int64 or None, what each pixel cost (with ``heat=True``):
+        the primitive tests (``[..., HEAT_PRIM_TESTS]``) and the bounding-volume tests
+        (``[..., HEAT_BOUNDS_TESTS]``, :mod:`core.image_order.kernels.layout`) of all
+        its rays; they add up to ``stats["accel"]["prim_tests"]`` and ``["bounds_tests"]``.
     """
 
     color: np.ndarray
@@ -81,10 +85,11 @@ class TraceResult:
     rows: tuple[int, int]
     step: int
     plan: EffectsPlan
+    heat: np.ndarray | None = None
 
 
 def render_trace(scene: Scene, settings: TraceSettings = TraceSettings(),
-                 rows: tuple[int, int] | None = None, step: int = 1) -> TraceResult:
+                 rows: tuple[int, int] | None = None, step: int = 1, heat: bool = False) -> TraceResult:
     """Render ``scene`` from its camera by ray casting or ray tracing.
 
     Parameters
@@ -97,6 +102,9 @@ def render_trace(scene: Scene, settings: TraceSettings = TraceSettings(),
     step : int >= 1
         Trace one ray per ``step x step`` block (through the block's top-left
         pixel) and repeat its colour over the block: a coarse image, fast.
+    heat : bool
+        Keep what each pixel cost, its intersection tests (``TraceResult.heat``);
+        only with ``step = 1``.
 
     Returns
     -------
@@ -108,6 +116,8 @@ def render_trace(scene: Scene, settings: TraceSettings = TraceSettings(),
         raise ValueError(f"rows must satisfy 0 <= first < stop <= {cam.height}, got {rows!r}")
     if not (isinstance(step, int) and step >= 1):
         raise ValueError(f"step must be a whole number >= 1, got {step!r}")
+    if heat and step != 1:
+        raise ValueError(f"a heat map counts every pixel: step must be 1, got {step}")
     warm_up = _compiled_for.get(settings.accel)  # an unknown method is refused below
     compile_s = warm_up() if warm_up else 0.0
     times = {}
@@ -121,7 +131,8 @@ def render_trace(scene: Scene, settings: TraceSettings = TraceSettings(),
     xs = np.arange(0, cam.width, step, dtype=np.float64)
     ys = np.arange(first, stop, step, dtype=np.float64)
     inputs = kernel_inputs(scene, settings, plan, flat, structure)
-    color, depth, object_index, counters = _run_passes(xs, ys, inputs, times)
+    tests = np.zeros((len(ys), len(xs), lay.HEAT_SIZE), np.int64) if heat else None
+    color, depth, object_index, counters = _run_passes(xs, ys, inputs, times, tests)
     if step > 1:
         h, w = stop - first, cam.width
         color, depth, object_index = (np.repeat(np.repeat(a, step, 0), step, 1)[:h, :w]
@@ -130,12 +141,13 @@ def render_trace(scene: Scene, settings: TraceSettings = TraceSettings(),
     stats = _stats(settings, plan, structure, build_s, cached, counters, times, compile_s,
                    (first, stop), step, len(xs) * len(ys), geometry.n_prims, cam)
     return TraceResult(np.ascontiguousarray(color), np.ascontiguousarray(depth),
-                       np.ascontiguousarray(object_index), stats, (first, stop), step, plan)
+                       np.ascontiguousarray(object_index), stats, (first, stop), step, plan, tests)
 
 
-def _run_passes(xs, ys, k: KernelInputs, times: dict):
+def _run_passes(xs, ys, k: KernelInputs, times: dict, heat: np.ndarray | None = None):
     """The three compiled stages; fills ``times`` and returns the image (colour in [0, 1], depth,
-    object index) and the counters."""
+    object index) and the counters.  ``heat`` (ny, nx, HEAT_SIZE) int64, if given, gets each
+    pixel's tests added."""
     import numba
 
     from core.image_order.kernels import render as trace_render
@@ -151,14 +163,16 @@ def _run_passes(xs, ys, k: KernelInputs, times: dict):
     children = np.empty((ny, nx, lay.N_SPAWNED, lay.CHILD_SIZE))
     spawned = np.empty((ny, nx), np.uint8)
     counters = np.zeros(lay.N_COUNTERS, np.int64)
+    heat = trace_render.no_heat() if heat is None else heat
     for stage, name in ((trace_render.PRIMARY_STAGE, "primary"), (trace_render.SHADE_STAGE, "shading"),
                         (trace_render.SECONDARY_STAGE, "secondary")):
         start = time.perf_counter()
         if stage != trace_render.SECONDARY_STAGE or spawned.any():
             with stopping.watching(k.opts, lay.OPT_STOP):  # Ctrl+C or Cancel: StoppedError within a pixel
                 counters += trace_render.render_pass(stage, k.cam, xs, ys, hits, depth, objects, color,
-                                                     children, spawned, k.materials, k.lights, k.opts, k.geo,
-                                                     k.grid, k.bvh, k.bvh_depth, numba.get_num_threads())
+                                                     children, spawned, k.materials, k.lights, k.opts,
+                                                     k.geo, k.grid, k.bvh, k.bvh_depth,
+                                                     numba.get_num_threads(), heat)
         times[name] = time.perf_counter() - start
     return color, depth, objects, counters
 

@@ -33,7 +33,7 @@ from core.scene import Scene
 
 KINDS = ("primary", "shadow", "reflection", "refraction")
 
-_LIGHT_STATUS = {
+LIGHT_STATUS = {  # what a shadow ray did (RayNode.status), by the kernels' status code
     lay.LIGHT_BEHIND: "light behind the surface: no shadow ray",
     lay.LIGHT_UNBLOCKABLE: "nothing can block this light: no shadow ray needed",
     lay.LIGHT_REACHED: "reached the light",
@@ -284,7 +284,7 @@ class _Tracer:
             work = self._work(before)
             cells = self._cells(o, d, self.t_start, t if t is not None else distance)
         return RayNode(
-            kind="shadow", generation=generation, traced=traced, status=_LIGHT_STATUS[status],
+            kind="shadow", generation=generation, traced=traced, status=LIGHT_STATUS[status],
             origin=origin, direction=direction, t_min=self.t_start, t_max=distance, hit=hit,
             hit_name=self.names[hit] if hit is not None else None, t=t,
             point=origin + t * direction if t is not None else None,

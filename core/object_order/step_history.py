@@ -123,6 +123,17 @@ class StepHistory:
         kernels.replay(self.offsets, f.pixel, f.z, f.passed, self.color, self.alpha, k, color, zbuf)
         return color, zbuf
 
+    def fragments_per_pixel(self, k: int | None = None) -> np.ndarray:
+        """(H, W) int64, how many fragments of the first ``k`` polygons (default all) reached each
+        pixel: the overdraw's heat map.
+
+        They add up to every fragment generated, passed or failed.
+        """
+        k = self.n_steps if k is None else k
+        pixels = self.fragments.pixel[:self.offsets[k]]
+        counts = np.bincount(pixels, minlength=self.width * self.height)
+        return counts.astype(np.int64).reshape(self.height, self.width)
+
     def polygon_fragments(self, p: int) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
         """The fragments of polygon ``p`` (drawn at step ``p``): columns, rows, depth keys, passed."""
         part = slice(self.offsets[p], self.offsets[p + 1])

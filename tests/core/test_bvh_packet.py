@@ -51,7 +51,7 @@ def primary_hits(scene: Scene, accel: str, packets: bool | None = True):
     color, children = np.zeros((h, w, 3)), np.zeros((h, w, 2, layout.CHILD_SIZE))
     counters = render.render_pass(render.PRIMARY_STAGE, k.cam, np.arange(float(w)), np.arange(float(h)), hits,
                                   depth, objects, color, children, np.zeros((h, w), np.uint8), k.materials,
-                                  k.lights, k.opts, k.geo, k.grid, k.bvh, k.bvh_depth, 2)
+                                  k.lights, k.opts, k.geo, k.grid, k.bvh, k.bvh_depth, 2, render.no_heat())
     return hits, depth, objects, counters, flat
 
 

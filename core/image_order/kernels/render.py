@@ -79,9 +79,22 @@ def make_scratch(method, n_prims, n_objects, bvh_depth):
             np.zeros(stack_size))
 
 
+def no_heat() -> np.ndarray:
+    """The ``heat`` argument of :func:`render_pass` that counts nothing (an empty array of its type)."""
+    return np.zeros((0, 0, lay.HEAT_SIZE), np.int64)
+
+
+@jit_inline
+def _add_heat(heat, j, i, count, prim_before, bounds_before):
+    """Add the tests counted since ``prim_before, bounds_before`` to pixel ``(j, i)``'s heat, if kept."""
+    if heat.shape[0] > 0:
+        heat[j, i, lay.HEAT_PRIM_TESTS] += count[lay.PRIM_TESTS] - prim_before
+        heat[j, i, lay.HEAT_BOUNDS_TESTS] += count[lay.BOUNDS_TESTS] - bounds_before
+
+
 @jit
 def _primary_rows(first, last, cam, xs, ys, opts, geo, grid, bvh, scratch, packet, hits, depth, objects,
-                  count):
+                  count, heat):
     method = int(opts[lay.OPT_ACCEL])
     if method == BVH and opts[lay.OPT_PACKETS] > 0.0:  # see core.image_order.kernels.bvh_packet
         for j0 in range(first, last, PACKET_ROWS):
@@ -89,7 +102,7 @@ def _primary_rows(first, last, cam, xs, ys, opts, geo, grid, bvh, scratch, packe
                 if flag_raised(opts, lay.OPT_STOP):
                     return
                 _primary_packet(j0, min(j0 + PACKET_ROWS, last), i0, min(i0 + PACKET_COLS, xs.shape[0]), cam,
-                                xs, ys, geo, bvh, scratch, packet, hits, depth, objects, count)
+                                xs, ys, geo, bvh, scratch, packet, hits, depth, objects, count, heat)
         return
     n_spheres = geo[lay.GEO_N_SPHERES]
     stack, stack_t = scratch[lay.SCRATCH_STACK], scratch[lay.SCRATCH_STACK_T]
@@ -99,6 +112,7 @@ def _primary_rows(first, last, cam, xs, ys, opts, geo, grid, bvh, scratch, packe
                 return
             o, d, t_min, t_max = primary_ray(cam, xs[i], ys[j])
             count[lay.PRIMARY] += 1
+            prim_before, bounds_before = count[lay.PRIM_TESTS], count[lay.BOUNDS_TESTS]
             # BVH rays go straight to the traversal.  Through closest_hit, every array of every
             # structure would be bound anew for each ray, and numba updates the reference count of
             # each array it binds: a quarter of a primary ray's time.
@@ -107,13 +121,16 @@ def _primary_rows(first, last, cam, xs, ys, opts, geo, grid, bvh, scratch, packe
                                 stack_t, count)
             else:
                 h = closest_hit(method, o, d, t_min, t_max, False, geo, grid, bvh, scratch, count)
+            _add_heat(heat, j, i, count, prim_before, bounds_before)
             _write_primary(cam, geo, hits, depth, objects, j, i, o, d, h)
 
 
 @jit
-def _primary_packet(j0, j1, i0, i1, cam, xs, ys, geo, bvh, scratch, packet, hits, depth, objects, count):
+def _primary_packet(j0, j1, i0, i1, cam, xs, ys, geo, bvh, scratch, packet, hits, depth, objects, count,
+                    heat):
     """The primary rays of pixels ``[j0, j1) x [i0, i1)`` through the BVH, as one packet when they
-    can share the walk, else one by one."""
+    can share the walk, else one by one.  The tests of a shared walk go to the heat map in equal
+    parts (:func:`_share_walk`)."""
     rays, axes = packet
     n_spheres = geo[lay.GEO_N_SPHERES]
     stack, stack_t = scratch[lay.SCRATCH_STACK], scratch[lay.SCRATCH_STACK_T]
@@ -126,7 +143,11 @@ def _primary_packet(j0, j1, i0, i1, cam, xs, ys, geo, bvh, scratch, packet, hits
     count[lay.PRIMARY] += n
     shared = bvh[0].shape[0] > 0 and can_share_walk(rays, n)
     if shared:
+        prim_before, bounds_before = count[lay.PRIM_TESTS], count[lay.BOUNDS_TESTS]
         packet_closest(n, rays, axes, bvh, n_spheres, stack, stack_t, count)
+        if heat.shape[0] > 0:
+            _share_walk(heat, j0, j1, i0, i1, n, count[lay.PRIM_TESTS] - prim_before,
+                        count[lay.BOUNDS_TESTS] - bounds_before)
     r = 0
     for j in range(j0, j1):
         for i in range(i0, i1):
@@ -134,8 +155,22 @@ def _primary_packet(j0, j1, i0, i1, cam, xs, ys, geo, bvh, scratch, packet, hits
             if shared:
                 h = packet_hit(rays, axes, r, bvh, n_spheres)
             else:
+                prim_before, bounds_before = count[lay.PRIM_TESTS], count[lay.BOUNDS_TESTS]
                 h = bvh_closest(o, d, shear, t_min, t_max, False, bvh, n_spheres, stack, stack_t, count)
+                _add_heat(heat, j, i, count, prim_before, bounds_before)
             _write_primary(cam, geo, hits, depth, objects, j, i, o, d, h)
+            r += 1
+
+
+@jit
+def _share_walk(heat, j0, j1, i0, i1, n, prims, bounds):
+    """A packet's shared walk, ``prims`` and ``bounds`` tests, into the heat of its ``n`` pixels
+    ``[j0, j1) x [i0, i1)``: equal parts, the remainders one each to the first pixels."""
+    r = 0
+    for j in range(j0, j1):
+        for i in range(i0, i1):
+            heat[j, i, lay.HEAT_PRIM_TESTS] += prims // n + (r < prims % n)
+            heat[j, i, lay.HEAT_BOUNDS_TESTS] += bounds // n + (r < bounds % n)
             r += 1
 
 
@@ -171,7 +206,7 @@ def _as_hit(row):
 
 @jit
 def _shade_rows(first, last, cam, xs, ys, hits, color, children, spawned, materials, lights, opts, geo, grid,
-                bvh, scratch, rec, count):
+                bvh, scratch, rec, count, heat):
     for j in range(first, last):
         for i in range(xs.shape[0]):
             if flag_raised(opts, lay.OPT_STOP):
@@ -183,8 +218,10 @@ def _shade_rows(first, last, cam, xs, ys, hits, color, children, spawned, materi
                 _clip(color, j, i)
                 continue
             o, d, _, _ = primary_ray(cam, xs[i], ys[j])
+            prim_before, bounds_before = count[lay.PRIM_TESTS], count[lay.BOUNDS_TESTS]
             shade_hit(o, d, _as_hit(hits[j, i]), 1.0, 0, materials, lights, opts, geo, grid, bvh, scratch,
                       count, rec, False)
+            _add_heat(heat, j, i, count, prim_before, bounds_before)
             for a in range(3):
                 color[j, i, a] = rec[lay.REC_LOCAL + a]
             # Only the rays that go on are written: most pixels spawn none, and their rows of
@@ -204,7 +241,7 @@ def _shade_rows(first, last, cam, xs, ys, hits, color, children, spawned, materi
 
 @jit
 def _secondary_rows(first, last, color, children, spawned, materials, lights, opts, geo, grid, bvh, scratch,
-                    rec, stack, count):
+                    rec, stack, count, heat):
     method = int(opts[lay.OPT_ACCEL])
     n_spheres = geo[lay.GEO_N_SPHERES]
     t_start = 0.0 if opts[lay.OPT_SCALED_OFFSET] > 0.0 else opts[lay.OPT_EPSILON]
@@ -213,6 +250,7 @@ def _secondary_rows(first, last, color, children, spawned, materials, lights, op
         for i in range(color.shape[1]):
             if spawned[j, i] == 0:
                 continue
+            prim_before, bounds_before = count[lay.PRIM_TESTS], count[lay.BOUNDS_TESTS]
             top = 0
             for kind in range(lay.N_SPAWNED):
                 if spawned[j, i] & (1 << kind):
@@ -252,12 +290,13 @@ def _secondary_rows(first, last, color, children, spawned, materials, lights, op
                         stack[top, lay.STACK_GENERATION] = depth + 1
                         stack[top, lay.STACK_KIND] = kind2
                         top += 1
+            _add_heat(heat, j, i, count, prim_before, bounds_before)
             _clip(color, j, i)
 
 
 @jit_allocating
 def _worker(stage, queue, cam, xs, ys, hits, depth, objects, color, children, spawned, materials, lights,
-            opts, geo, grid, bvh, bvh_depth, count):
+            opts, geo, grid, bvh, bvh_depth, count, heat):
     scratch = make_scratch(int(opts[lay.OPT_ACCEL]), geo[lay.GEO_ROWS].shape[0], materials.shape[0],
                            bvh_depth)
     rec = np.empty(lay.record_size(lights.shape[0]))
@@ -270,18 +309,18 @@ def _worker(stage, queue, cam, xs, ys, hits, depth, objects, color, children, sp
         last = min(first + BAND_ROWS, ys.shape[0])
         if stage == PRIMARY_STAGE:
             _primary_rows(first, last, cam, xs, ys, opts, geo, grid, bvh, scratch, packet, hits, depth,
-                          objects, count)
+                          objects, count, heat)
         elif stage == SHADE_STAGE:
             _shade_rows(first, last, cam, xs, ys, hits, color, children, spawned, materials, lights, opts,
-                        geo, grid, bvh, scratch, rec, count)
+                        geo, grid, bvh, scratch, rec, count, heat)
         else:
             _secondary_rows(first, last, color, children, spawned, materials, lights, opts, geo, grid, bvh,
-                            scratch, rec, stack, count)
+                            scratch, rec, stack, count, heat)
 
 
 @jit_parallel
 def render_pass(stage, cam, xs, ys, hits, depth, objects, color, children, spawned, materials, lights, opts,
-                geo, grid, bvh, bvh_depth, n_workers):
+                geo, grid, bvh, bvh_depth, n_workers, heat):
     """Run one stage of the render over the pixels ``xs`` x ``ys``, in parallel; return its counters.
 
     Parameters
@@ -306,6 +345,8 @@ def render_pass(stage, cam, xs, ys, hits, depth, objects, color, children, spawn
     bvh_depth : int, depth of the BVH (size of the traversal stack).
     n_workers : int, threads to share the bands (``numba.get_num_threads()``; asked
         by the caller, as a compiled call to it would keep this kernel out of the cache).
+    heat : (ny, nx, HEAT_SIZE) int64, each pixel's primitive and bounding-volume tests
+        (all its rays, this stage's) are added to it; :func:`no_heat` to keep none.
 
     Returns
     -------
@@ -315,5 +356,5 @@ def render_pass(stage, cam, xs, ys, hits, depth, objects, color, children, spawn
     counters = np.zeros((n_workers, _COUNTER_STRIDE), np.int64)
     for w in prange(n_workers):
         _worker(stage, queue, cam, xs, ys, hits, depth, objects, color, children, spawned, materials, lights,
-                opts, geo, grid, bvh, bvh_depth, counters[w])
+                opts, geo, grid, bvh, bvh_depth, counters[w], heat)
     return counters.sum(axis=0)[:lay.N_COUNTERS]

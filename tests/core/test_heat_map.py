@@ -1,0 +1,67 @@
+"""What each pixel cost: the heat maps of both pipelines add up to their counters and change no pixel."""
+
+from dataclasses import replace
+
+import numpy as np
+import pytest
+import verdict_scenes as vs
+
+from core.image_order.kernels.layout import HEAT_BOUNDS_TESTS, HEAT_PRIM_TESTS
+from core.image_order.ray_tracing import TraceSettings, render_trace
+from core.object_order.pipeline import RasterSettings, render_raster
+from core.presets_trace import big_mesh, mirror_and_glass
+
+ACCELS = ("none", "spheres", "grid", "grid+spheres", "bvh")
+
+
+def _small(scene, width=48, height=36):
+    return replace(scene, camera=scene.camera.replace(width=width, height=height))
+
+
+@pytest.mark.parametrize("accel", ACCELS)
+def test_traced_heat_adds_up_to_the_counters_and_changes_no_pixel(accel):
+    # Mirrors and glass: primary, shadow, reflected and refracted rays all count.
+    scene = _small(mirror_and_glass())
+    settings = TraceSettings(accel=accel)
+    plain, counted = render_trace(scene, settings), render_trace(scene, settings, heat=True)
+    assert plain.heat is None
+    assert counted.heat.shape == (36, 48, 2) and counted.heat.dtype == np.int64
+    accel_stats = counted.stats["accel"]
+    assert counted.heat[..., HEAT_PRIM_TESTS].sum() == accel_stats["prim_tests"] > 0
+    assert counted.heat[..., HEAT_BOUNDS_TESTS].sum() == accel_stats["bounds_tests"]
+    assert (counted.heat >= 0).all()
+    assert counted.stats["rays"]["reflection"] > 0 and counted.stats["rays"]["refraction"] > 0
+    for a, b in ((plain.color, counted.color), (plain.depth, counted.depth),
+                 (plain.object_index, counted.object_index)):
+        assert np.array_equal(a, b)  # bit for bit
+
+
+def test_without_acceleration_every_primary_ray_tests_every_primitive():
+    # Ray casting of one 12-triangle box: no shadow rays (no lights), no secondary rays, so
+    # each pixel's ray makes exactly 12 primitive tests and no bounding-volume test.
+    scene = _small(vs.pane_over_box())
+    scene = replace(scene, objects=scene.objects[1:])  # the box alone
+    heat = render_trace(scene, TraceSettings(mode="raycast", accel="none"), heat=True).heat
+    assert (heat[..., HEAT_PRIM_TESTS] == 12).all() and (heat[..., HEAT_BOUNDS_TESTS] == 0).all()
+
+
+def test_on_a_large_mesh_the_bvh_tests_fewer_primitives_a_pixel_than_the_grid_and_the_grid_than_none():
+    scene = _small(big_mesh(), 64, 48)
+    mean = {accel: render_trace(scene, TraceSettings(mode="raycast", accel=accel), heat=True)
+            .heat[..., HEAT_PRIM_TESTS].mean() for accel in ("none", "grid", "bvh")}
+    assert mean["bvh"] < mean["grid"] < mean["none"]
+
+
+def test_a_coarse_image_has_no_heat_map():
+    with pytest.raises(ValueError, match="step must be 1"):
+        render_trace(_small(mirror_and_glass()), TraceSettings(), step=2, heat=True)
+
+
+def test_overdraw_counts_every_fragment_at_its_pixel():
+    result = render_raster(vs.two_quads(), RasterSettings(record_steps=True))
+    overdraw = result.history.fragments_per_pixel()
+    assert overdraw.shape == (30, 40)
+    assert overdraw.sum() == result.stats["fragments_generated"]
+    x, y = vs.PIXEL
+    assert overdraw[y, x] == 2  # both quads cover it (see verdict_scenes.two_quads)
+    assert overdraw[0, 0] == 0  # the corner's ray passes beside both quads
