@@ -18,6 +18,7 @@ from PySide6.QtCore import Qt, QThreadPool, QTimer, Signal
 from PySide6.QtGui import QAction, QFont, QKeySequence
 from PySide6.QtWidgets import (
     QApplication,
+    QDialog,
     QDockWidget,
     QFileDialog,
     QHBoxLayout,
@@ -51,8 +52,10 @@ from views.deferred_scene_view import DeferredSceneView
 from views.elided_label import ElidedLabel, ElidedProgressBar
 from views.lesson_panel import LessonPanel
 from views.observer_keys import MOUSE_GESTURES, OBSERVER_KEYS, EditorsKeepTheirKeys
+from views.on_screen import KeepWindowsOnScreen
 from views.presentation import Presentation
 from views.scene_overlays import SCENE_OVERLAYS, SceneOverlays
+from views.text_dialog import text_dialog
 
 
 class MainWindow(QMainWindow):
@@ -137,6 +140,8 @@ class MainWindow(QMainWindow):
         self._keyed_actions: list[QAction] = []
         self._editor_keys = EditorsKeepTheirKeys(self)
         QApplication.instance().installEventFilter(self._editor_keys)
+        self._on_screen = KeepWindowsOnScreen(self)  # the window and its dialogs, frames and all
+        QApplication.instance().installEventFilter(self._on_screen)
         # After the editors' filter, so that PageUp/PageDown reach the lessons first, from anywhere.
         self.presentation = Presentation(self, self.lesson_panel)
         self._build_menus()
@@ -323,8 +328,12 @@ class MainWindow(QMainWindow):
         lines += [f"  {gesture}: {what}" for gesture, what in MOUSE_GESTURES]
         return "\n".join(lines)
 
-    def show_keys(self) -> None:
-        QMessageBox.information(self, "Keys and mouse", self.keys_text())
+    def show_keys(self) -> QDialog:
+        """Show every key and mouse gesture (scrolled on a small screen); returns the dialog."""
+        dialog = text_dialog(self, "Keys and mouse", self.keys_text())
+        dialog.setAttribute(Qt.WidgetAttribute.WA_DeleteOnClose)
+        dialog.show()
+        return dialog
 
     def scale_text(self, factor: float) -> None:
         app = QApplication.instance()
@@ -473,6 +482,7 @@ class MainWindow(QMainWindow):
             event.ignore()
             return
         QApplication.instance().removeEventFilter(self._editor_keys)
+        QApplication.instance().removeEventFilter(self._on_screen)
         self.presentation.clicker.remove()
         self.renders.stop()
         for tab in self.tabs:
