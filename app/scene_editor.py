@@ -25,7 +25,7 @@ from PySide6.QtWidgets import QFileDialog, QMenu, QMessageBox
 
 from app.mesh_files import EXTENSIONS, read_mesh
 from app.scene_edits import SceneEdit
-from app.window_layout import tabbed_dock
+from app.window_layout import in_front, tabbed_dock
 from app.workers import Renderer
 from core import scene_editing, scene_file
 from core.scene_file import SceneFileError
@@ -137,7 +137,17 @@ class SceneEditor(QObject):
 
         self.picker = ScenePicker(self.model, view)
         self.picker.move_requested.connect(self.move)
-        self.picker.picked.connect(lambda item: item is not None and self.dock.raise_())
+        self.picker.picked.connect(self._picked)
+
+    def _picked(self, item) -> None:
+        """Bring the picked item's fields to the front, unless a lesson's words are shown there."""
+        if item is None:
+            return
+        if self.window.lessons.step is not None and in_front(self.window.lesson_dock):
+            self.window.statusBar().showMessage(
+                "Selected; its fields are in the Edit scene tab, beside Lessons", 6000)
+        else:
+            self.dock.raise_()
 
     def _selection_changed(self, item) -> None:
         editable = item is not None and item[0] in EDITABLE

@@ -16,6 +16,7 @@ from window_helpers import RENDER_TIMEOUT_MS
 from app import session
 from app.main_window import MainWindow, run
 from app.user_settings import user_settings
+from app.window_layout import in_front
 from core import presets, scene_file
 from core.scene import Sphere
 
@@ -401,6 +402,18 @@ def test_clicking_an_object_in_the_3d_pane_selects_it(qtbot, window):
     empty = view.widget_pos(np.add(model.camera.target, (0.0, 40.0, 0.0)))
     qtbot.mouseClick(view.plotter, Qt.MouseButton.LeftButton, pos=empty.toPoint())
     assert model.selection is None and window.editor.picker.handle_center is None
+
+
+def test_clicking_an_object_during_a_lesson_keeps_the_lesson_in_front(qtbot, window):
+    view, model = window.scene_view, window.model
+    window.lesson_panel.select(0, 0)  # a lesson step is shown: its words are in the left dock
+    assert in_front(window.lesson_dock)
+    at = view.widget_pos(_centre(model.scene.objects[0]))
+    assert view.grabbable_at(at) is None
+    qtbot.mouseClick(view.plotter, Qt.MouseButton.LeftButton, pos=at.toPoint())
+    assert model.selection == ("object", 0)
+    assert in_front(window.lesson_dock) and not in_front(window.editor.dock)
+    assert "Edit scene" in window.statusBar().currentMessage()
 
 
 def test_dragging_the_handle_moves_the_object_in_one_undo_step(qtbot, window):
