@@ -183,6 +183,7 @@ class SceneEditor(QObject):
             edited = scene_editing.with_field(scene, item, key, value, self.base_dir, read_mesh)
         except SceneFileError as exc:
             return self._field_problem(item, key, "\n".join(exc.problems))
+        self._field_problem(item, key, "")  # an unchanged value (the old one typed again) is fine too
         if edited != scene:
             self._push(text, edited, item)
         return True
@@ -195,14 +196,17 @@ class SceneEditor(QObject):
         except SceneFileError as exc:
             key = scene_editing.position_key(scene, item) or "position"
             return self._field_problem(item, key, "\n".join(exc.problems))
+        self._field_problem(item, scene_editing.position_key(scene, item) or "position", "")
         if edited != scene:
             self._push(f"Move {scene_editing.name_of(scene, item)}", edited, item)
         return True
 
     def _field_problem(self, item, key, message: str) -> bool:
+        """Show ``message`` beside field ``key`` of ``item`` (or in the status bar if the field is not
+        shown); an empty message clears the field's problem.  Returns False (not changed)."""
         if self.model.selection == item and key in self.panel.fields:
             self.panel.show_problem(key, message)
-        else:
+        elif message:
             self.window.statusBar().showMessage(f"Not changed — {message}", 10000)
         return False
 

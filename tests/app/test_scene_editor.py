@@ -19,6 +19,7 @@ from app.user_settings import user_settings
 from app.window_layout import in_front
 from core import presets, scene_file
 from core.scene import Sphere
+from views.scene_tree_panel import show_value
 
 
 @pytest.fixture
@@ -175,6 +176,56 @@ def test_a_typed_centre_moves_the_object_and_text_is_refused(qtbot, window):
     cube = model.scene.objects[0]
     assert np.allclose((cube.vertices.min(axis=0) + cube.vertices.max(axis=0)) / 2, (x, 2.0, z))
     assert window.editor.undo_action.text() == "Undo Change centre of cube"
+
+
+def test_the_old_value_typed_again_clears_the_red_problem(qtbot, window):
+    model, panel = window.model, window.editor.panel
+    model.set_selection(("object", 0))
+    before = model.scene
+    _type_into(qtbot, panel.fields["material.opacity"].boxes[0], "1.5")
+    assert panel.problem("material.opacity")
+    old = show_value(before.objects[0].material.opacity)
+    _type_into(qtbot, panel.fields["material.opacity"].boxes[0], old)
+    assert panel.problem("material.opacity") == ""  # the scene is as it was, and nothing is wrong
+    assert model.scene is before and window.editor.stack.count() == 0
+
+
+def test_a_problem_on_two_lines_is_shown_whole(qtbot, window):
+    model, panel = window.model, window.editor.panel
+    window.editor.dock.raise_()
+    model.set_selection(("object", 0))
+    _type_into(qtbot, panel.fields["center"].boxes[1], "abc")
+    problem = panel.fields["center"].problem
+    line = problem.fontMetrics().lineSpacing()
+
+    def whole():
+        assert problem.isVisible()
+        lines = problem.fontMetrics().boundingRect(problem.contentsRect(), Qt.TextFlag.TextWordWrap,
+                                                   problem.text()).height() / line
+        assert lines >= 2, lines  # the message takes two lines in the narrow dock...
+        assert problem.height() >= problem.heightForWidth(problem.width())  # ...and has room for them
+
+    qtbot.waitUntil(whole, timeout=5000)
+
+
+@pytest.mark.parametrize(("linear", "levels"), [
+    ((1.0, 0.0, 0.0), (255, 0, 0)),
+    # sRGB's curve: 1.055 * 0.5 ** (1 / 2.4) - 0.055 = 0.7354, 0.7354 * 255 = 187.5 -> 188;
+    # 12.92 * 0.002 = 0.0258 -> 6.6 -> 7.
+    ((0.5, 0.002, 0.0), (188, 7, 0)),
+])
+def test_the_colour_swatch_shows_the_colour_itself(qtbot, window, linear, levels):
+    # Linear red (1, 0, 0) was drawn pink (252, 115, 115): the button's own shading was mixed in.
+    model, panel, editor = window.model, window.editor.panel, window.editor
+    window.editor.dock.raise_()
+    model.set_selection(("object", 0))
+    assert editor.change_field(("object", 0), "material.color", list(linear))
+    swatch = panel.fields["material.color"].swatch
+    qtbot.waitUntil(swatch.isVisible, timeout=5000)
+    picture = swatch.grab().toImage()
+    middle = QColor(picture.pixel(picture.width() // 2, picture.height() // 2))
+    assert abs(middle.red() - levels[0]) <= 1 and abs(middle.green() - levels[1]) <= 1
+    assert abs(middle.blue() - levels[2]) <= 1
 
 
 def test_observer_moves_are_not_edits(qtbot, window):
