@@ -253,9 +253,11 @@ class ObjectOrderPanel(QWidget):
         self.image.set_image(picture.image)
         self.depth.set_depth(picture.depth, history.near, history.far, picture.depth_image)
         self.step_caption.setText(picture.caption)
-        self.polygon_shown.emit(picture.polygon)
-        self.image.set_highlight(picture.mask, outline=picture.outline)
-        self.depth.image.set_highlight(picture.mask, outline=picture.outline)
+        # The whole picture (no step chosen, as a lesson shows it) singles out no polygon.
+        chosen = self.model.step is not None
+        self.polygon_shown.emit(picture.polygon if chosen else None)
+        for view in (self.image, self.depth.image):
+            view.set_highlight(picture.mask if chosen else None, outline=picture.outline)
         self._show_pixel(self.picked)
 
     def _polygon_name(self, p: int) -> str:
