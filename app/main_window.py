@@ -20,7 +20,6 @@ from PySide6.QtWidgets import (
     QApplication,
     QDialog,
     QDockWidget,
-    QFileDialog,
     QHBoxLayout,
     QLabel,
     QMainWindow,
@@ -50,6 +49,7 @@ from views import math_view
 from views.camera_panel import CameraPanel
 from views.deferred_scene_view import DeferredSceneView
 from views.elided_label import ElidedLabel, ElidedProgressBar
+from views.file_dialogs import ask_open, ask_save
 from views.lesson_panel import LessonPanel
 from views.observer_keys import MOUSE_GESTURES, OBSERVER_KEYS, EditorsKeepTheirKeys
 from views.on_screen import KeepWindowsOnScreen
@@ -351,7 +351,7 @@ class MainWindow(QMainWindow):
 
     # ------------------------------------------------------------- files
     def open_scene_dialog(self) -> None:
-        path, _ = QFileDialog.getOpenFileName(self, "Open scene", "", "Scene files (*.json)")
+        path = ask_open(self, "Open scene", "Scene files (*.json)")
         if path:
             self.open_scene(path)
 
@@ -385,8 +385,7 @@ class MainWindow(QMainWindow):
         box.open()  # the window stays responsive behind it
 
     def save_scene_dialog(self) -> None:
-        path, _ = QFileDialog.getSaveFileName(self, "Save scene", "scene.json",
-                                              "Scene files (*.json)")
+        path, _ = ask_save(self, "Save scene", "scene.json", "Scene files (*.json)") or ("", "")
         if path:
             try:
                 scene_file.save(self.model.scene, path)

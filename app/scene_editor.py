@@ -21,7 +21,7 @@ from pathlib import Path
 
 from PySide6.QtCore import QObject
 from PySide6.QtGui import QAction, QKeySequence, QUndoStack
-from PySide6.QtWidgets import QFileDialog, QMenu, QMessageBox
+from PySide6.QtWidgets import QMenu, QMessageBox
 
 from app.mesh_files import EXTENSIONS, read_mesh
 from app.scene_edits import SceneEdit
@@ -29,6 +29,7 @@ from app.window_layout import in_front, tabbed_dock
 from app.workers import Renderer
 from core import scene_editing, scene_file
 from core.scene_file import SceneFileError
+from views.file_dialogs import ask_open
 from views.scene_tree_panel import SceneTreePanel, label
 
 EDITABLE = ("object", "light")
@@ -231,7 +232,7 @@ class SceneEditor(QObject):
 
     def add_mesh_dialog(self) -> None:
         kinds = " ".join(f"*{ext}" for ext in EXTENSIONS)
-        path, _ = QFileDialog.getOpenFileName(self.window, "Add a mesh", "", f"Meshes ({kinds})")
+        path = ask_open(self.window, "Add a mesh", f"Meshes ({kinds})")
         if path:
             self.add_mesh_file(path)
 

@@ -27,7 +27,6 @@ from PySide6.QtCore import QEvent, QObject, QRunnable, QSize, Qt, QThreadPool, Q
 from PySide6.QtWidgets import (
     QComboBox,
     QDoubleSpinBox,
-    QFileDialog,
     QFrame,
     QGridLayout,
     QHBoxLayout,
@@ -61,6 +60,7 @@ from core.accuracy.sweep import (
 from core.scene import Scene
 from core.srgb import to_srgb8
 from views import plot_theme
+from views.file_dialogs import ask_save
 
 MODES = [("raytrace", "Ray tracing"), ("raycast", "Ray casting"), ("raster", "Rasterization")]
 #: The sweep's image is at most this wide (the scene's aspect kept), so a sweep takes minutes, not hours.
@@ -641,12 +641,12 @@ class CostPanel(QWidget):
         cost_files.save_figure(self.plot_figure, path)
 
     def _ask_export_csv(self) -> None:
-        path, _ = QFileDialog.getSaveFileName(self, "Export the sweep as CSV", "cost.csv", "CSV (*.csv)")
+        path, _ = ask_save(self, "Export the sweep as CSV", "cost.csv", "CSV (*.csv)") or ("", "")
         if path:
             self._export(self.export_csv, path)
 
     def _ask_export_plot(self) -> None:
-        path, _ = QFileDialog.getSaveFileName(self, "Export the plot", "cost.png", "PNG (*.png);;SVG (*.svg)")
+        path, _ = ask_save(self, "Export the plot", "cost.png", "PNG (*.png);;SVG (*.svg)") or ("", "")
         if path:
             self._export(self.export_plot, path)
 

@@ -15,11 +15,11 @@ from window_helpers import RENDER_TIMEOUT_MS
 
 from app import session
 from app.main_window import MainWindow, run
-from app.user_settings import user_settings
 from app.window_layout import in_front
 from core import presets, scene_file
 from core.scene import Sphere
 from views.scene_tree_panel import show_value
+from views.user_settings import user_settings
 
 
 @pytest.fixture
