@@ -75,3 +75,20 @@ def test_the_keys_dialog_and_its_ok_button_are_on_screen(qtbot, monkeypatch, fra
 
     qtbot.waitUntil(on_screen, timeout=5000)
     dialog.close()
+
+
+def test_on_one_screen_the_presenter_window_sits_beside_the_main_window(qtbot, monkeypatch, framed):
+    # With one screen the presenter window opened over the main window and hid it.
+    screen = _small_screen(monkeypatch, 1920, 1080)
+    window = _open(qtbot)
+    window.setGeometry(screen.adjusted(BORDER, TITLE_BAR + BORDER, -BORDER, -BORDER))  # the whole screen
+    presenter = window.presentation.show_presenter()
+    qtbot.addWidget(presenter)
+    qtbot.waitExposed(presenter)
+
+    def apart():
+        assert screen.contains(presenter.frameGeometry()) and screen.contains(window.frameGeometry())
+        assert not presenter.frameGeometry().intersects(window.frameGeometry())
+
+    qtbot.waitUntil(apart, timeout=5000)
+    assert window.width() >= 0.6 * screen.width()  # the main window keeps most of the screen
