@@ -19,6 +19,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import numpy as np
 from PySide6.QtCore import QObject
 from PySide6.QtGui import QAction, QKeySequence, QUndoStack
 from PySide6.QtWidgets import QMenu, QMessageBox
@@ -221,9 +222,19 @@ class SceneEditor(QObject):
         return True
 
     def add_object(self, type_name: str) -> bool:
-        """Add a primitive of ``type_name`` at the observer's target, and select it."""
+        """Add a primitive of ``type_name`` near the observer's target where the observer sees it
+        (:func:`core.scene_editing.plain_view_spot`), and select it."""
         scene = self.model.scene
-        return self._add("object", scene_editing.new_object(scene, type_name, scene.camera.target))
+        target = np.asarray(scene.camera.target, float)
+        try:  # the new object's extent, made at the target
+            at_target = scene_editing.new_object(scene, type_name, target)
+            probe, item = scene_editing.added(scene, "object", at_target, None, self.base_dir, read_mesh)
+        except SceneFileError:
+            spot = target  # refused (the scene is full): _add says why
+        else:
+            low, high = scene_editing.object_bounds(probe.objects[item[1]])
+            spot = scene_editing.plain_view_spot(scene, low - target, high - target)
+        return self._add("object", scene_editing.new_object(scene, type_name, spot))
 
     def add_light(self) -> bool:
         """Add a white point light above the observer's target, and select it."""

@@ -6,6 +6,8 @@ answered by a timer that clicks in them once they are open.
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import numpy as np
 import pytest
 from PySide6.QtCore import QPointF, Qt, QTimer
@@ -16,7 +18,7 @@ from window_helpers import RENDER_TIMEOUT_MS
 from app import session
 from app.main_window import MainWindow, run
 from app.window_layout import in_front
-from core import presets, scene_file
+from core import presets, scene_editing, scene_file
 from core.scene import Sphere
 from views.scene_tree_panel import show_value
 from views.user_settings import user_settings
@@ -93,7 +95,7 @@ def test_add_a_sphere_colour_it_undo_twice_redo_once(qtbot, window):
     _editor_action(window, "sphere").trigger()
     assert [o.name for o in model.scene.objects] == ["cube", "cone", "ground", "sphere"]
     sphere = model.scene.objects[-1]
-    assert isinstance(sphere, Sphere) and sphere.center == model.camera.target
+    assert isinstance(sphere, Sphere) and np.linalg.norm(np.subtract(sphere.center, model.camera.target)) < 3
     assert model.selection == ("object", 3)
     assert len(_object_actors(window)) == 4
 
@@ -297,6 +299,32 @@ def test_every_primitive_and_a_light_can_be_added(qtbot, window):
     assert types == [None, "box", "cone", "pyramid", "quad", "uv_sphere", "notched_prism"]
     assert [light.name for light in window.model.scene.lights] == ["light", "light 2"]
     assert len(_object_actors(window)) == 10
+
+
+def _covered(scene) -> np.ndarray:
+    """The pixels where the z-buffer keeps a surface, with their distances."""
+    from core.object_order.pipeline import RasterSettings, render_raster
+
+    return render_raster(scene, RasterSettings()).depth
+
+
+@pytest.mark.parametrize("type_name", ["sphere", "box", "cone"])
+def test_an_added_object_is_seen_by_the_observer(qtbot, window, type_name):
+    # Edit > Add put the new object at the observer's target, which in the lecture scene lies
+    # behind the cone: the new object was hidden.
+    model = window.model
+    before = model.scene
+    assert window.editor.add_object(type_name)
+    after = model.scene
+    new = after.objects[-1]
+    low, high = scene_editing.object_bounds(new)
+    for other in before.objects:  # it takes a place of its own
+        other_low, other_high = scene_editing.object_bounds(other)
+        assert np.any(low >= other_high) or np.any(high <= other_low), other.name
+    alone = np.isfinite(_covered(replace(after, objects=(new,))))  # where it would be seen alone
+    seen = _covered(after) < _covered(before)  # where it is the nearest surface
+    assert alone.sum() > 100
+    assert (seen & alone).sum() >= 0.9 * alone.sum()  # seen whole (nothing in front of it)
 
 
 def test_a_mesh_file_is_added_through_the_safe_reader(qtbot, window, tmp_path):
