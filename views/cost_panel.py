@@ -259,6 +259,7 @@ class CostPanel(QWidget):
         self.explanation.setSizePolicy(QSizePolicy.Policy.Preferred, QSizePolicy.Policy.Minimum)
 
         self.plot_figure = self.canvas = self.image_figure = self.image_canvas = None  # see _make_canvases
+        self._plot_stale = False  # the plot waits to be drawn until the pane is shown
         self._dark = False  # the figures were drawn in the dark theme
         self._fitted = {}  # the plot's text size when it was drawn (plot_theme.fitted_style)
         self._dpi = plot_theme.DPI  # the figures' resolution, after the text size they were made for
@@ -301,7 +302,10 @@ class CostPanel(QWidget):
         self._update_buttons()
 
     def showEvent(self, event) -> None:
-        self._make_canvases()
+        if self.canvas is None:
+            self._make_canvases()
+        elif self._plot_stale:
+            self._draw_plot()
         super().showEvent(event)
 
     def changeEvent(self, event) -> None:  # noqa: N802 (Qt's name)
@@ -513,11 +517,15 @@ class CostPanel(QWidget):
         """The rows received so far, in setting order, knees marked."""
         return marked_rows(self._points, self._knees)
 
-    def _draw_plot(self, quick: bool = False) -> None:
+    def _draw_plot(self, quick: bool = False, hidden: bool = False) -> None:
         """Draw the points found so far.  ``quick`` (while a sweep runs): the axes keep the places
-        of the last full draw, when there are as many, and the legend a fixed corner."""
+        of the last full draw, when there are as many, and the legend a fixed corner.  A hidden
+        pane is drawn when it is shown, unless ``hidden`` (for an export)."""
         if self.canvas is None:
             return  # drawn when the canvas is made
+        self._plot_stale = not (self.isVisible() or hidden)
+        if self._plot_stale:
+            return  # drawn when the pane is shown (a lesson step resets the plot of a hidden tab)
         import matplotlib
         from matplotlib.colors import same_color
 
@@ -638,6 +646,8 @@ class CostPanel(QWidget):
     def export_plot(self, path) -> None:
         """Write the plot as PNG or SVG, after the suffix (atomically)."""
         self._make_canvases()
+        if self._plot_stale:
+            self._draw_plot(hidden=True)
         cost_files.save_figure(self.plot_figure, path)
 
     def _ask_export_csv(self) -> None:
