@@ -23,3 +23,17 @@ def test_dragging_away_from_the_camera_and_target_turns_the_view_live(qtbot, win
     assert not np.array_equal(_pixels(view), before)
     qtbot.mouseRelease(plotter, Qt.MouseButton.LeftButton, pos=(start - QPointF(60, 0)).toPoint())
     assert plotter.rect().contains(QPoint(0, 0))
+
+
+def test_the_camera_glyph_stays_in_the_pane_while_the_observer_orbits(qtbot, window):
+    # Orbiting with the arrow keys walked the observer's camera glyph out of the pane.
+    from views.observer_keys import ORBIT_STEP_DEG, orbit
+
+    view, model = window.scene_view, window.model
+    plotter = view.plotter
+    for _ in range(round(360 / ORBIT_STEP_DEG)):  # once around the target, as the Right key does
+        model.set_camera(orbit(model.camera, ORBIT_STEP_DEG, 0))
+        eye = view.widget_pos(model.camera.eye)
+        assert 0 <= eye.x() <= plotter.width() and 0 <= eye.y() <= plotter.height(), model.camera.eye
+        target = view.widget_pos(model.camera.target)
+        assert 0 <= target.x() <= plotter.width() and 0 <= target.y() <= plotter.height()
