@@ -41,7 +41,7 @@ QAbstractItemView { alternate-background-color: #262626; }
 QAbstractButton, QComboBox, QSpinBox, QDoubleSpinBox, QLineEdit {
     border: 2px solid #ffffff; padding: 3px; }
 QAbstractButton:checked, QAbstractButton:pressed { background-color: #ffd400; color: #000000; }
-QToolButton { background-color: #ffffff; }
+QToolButton { background-color: #ffffff; color: #000000; }
 QCheckBox, QRadioButton { border: none; }
 QCheckBox:checked, QRadioButton:checked { background-color: #000000; color: #ffffff; }
 QCheckBox::indicator, QRadioButton::indicator {
