@@ -250,9 +250,11 @@ class SceneView(QWidget):
     def set_camera(self, camera: Camera) -> None:
         """Move the observer, its frustum, its screen and its target marker to ``camera``; an eye
         that walks out of the pane (orbiting with the arrow keys) is followed (:meth:`_follow_eye`)."""
-        was_seen = self._eye is not None and self._in_pane(self._eye, inset=0)
-        self._eye = np.asarray(camera.eye, float)
-        if was_seen and not self._in_pane(camera.eye):
+        eye = np.asarray(camera.eye, float)
+        walked = self._eye is not None and not np.array_equal(eye, self._eye) \
+            and self._in_pane(self._eye, inset=0)
+        self._eye = eye
+        if walked and not self._in_pane(eye):
             self._follow_eye(camera)
         corners = camera.frustum_corners()
         self.frustum.points = corners
