@@ -2,8 +2,9 @@
 
 - *z-buffer steps*: frame 0 shows the cleared buffers (image memory holds the
   background, the z-buffer the far plane); frame k the buffers after the
-  first k polygons, the fragments of polygon k tinted (magenta where they
-  passed the z-test, cyan where they failed) and a frame counter under them.
+  first k polygons, the fragments of polygon k outlined (magenta where they
+  passed the z-test, cyan where they failed; inside, the polygon keeps its
+  own colour) and a frame counter under them.
 - *orbit*: the observer walks once around the target, yaw growing by
   360° / frames; each frame is one pane's picture from there.
 
@@ -103,19 +104,25 @@ def zbuffer_steps(scene, settings) -> tuple[int, Iterator[np.ndarray]]:
                 p = k - 1
                 cols, rows, _, passed = history.polygon_fragments(p)
                 for image in (color, depth):
-                    _tint(image, cols[passed], rows[passed], PASSED_TINT)
-                    _tint(image, cols[~passed], rows[~passed], FAILED_TINT)
+                    _outline(image, cols[passed], rows[passed], PASSED_TINT)
+                    _outline(image, cols[~passed], rows[~passed], FAILED_TINT)
                 text = (f"polygon {p} of {names[history.object_index[p]]} (triangle "
                         f"{history.triangle_index[p]}): {int(passed.sum()):,} fragments passed the "
-                        f"z-test (magenta), {int((~passed).sum()):,} failed (cyan)")
+                        f"z-test (outlined magenta), {int((~passed).sum()):,} failed (cyan)")
             yield compose(_step_panels(color, depth, cam.near, cam.far), 2,
                           [f"frame {k} / {n}, step {k}: {text}"], lines=CAPTION_LINES)
 
     return n + 1, frames()
 
 
-def _tint(image: np.ndarray, cols, rows, color) -> None:
-    image[rows, cols] = 0.5 * image[rows, cols] + 0.5 * np.asarray(color)
+def _outline(image: np.ndarray, cols, rows, color) -> None:
+    """Paint ``color`` on the pixels ``(rows, cols)`` that border a pixel outside them (or the
+    image's edge); the pixels inside keep their colour."""
+    mask = np.zeros(image.shape[:2], bool)
+    mask[rows, cols] = True
+    padded = np.pad(mask, 1)
+    inside = padded[:-2, 1:-1] & padded[2:, 1:-1] & padded[1:-1, :-2] & padded[1:-1, 2:]
+    image[mask & ~inside] = color
 
 
 def orbit_frames(scene, frames: int, picture: Callable) -> Iterator[np.ndarray]:

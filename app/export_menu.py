@@ -16,7 +16,7 @@ The sheets and frames are those of ``python -m app export``
 off the GUI thread (:class:`app.workers.Renderer`) behind a progress dialog
 with Cancel.  Every file is written atomically (:mod:`core.safe_files`); a
 failure shows a dialog naming the file and the cause.  The file dialogs start
-in the folder used last, also after a restart (:mod:`app.user_settings`).  An
+in the folder used last, also after a restart (:mod:`views.file_dialogs`).  An
 entry with nothing to export is disabled and its tooltip says why.
 
 The ``export_*`` methods take the file's path; the menu asks for it with
@@ -31,7 +31,7 @@ from dataclasses import replace
 
 from PySide6.QtCore import QObject, Qt, QTimer, Signal
 from PySide6.QtGui import QAction
-from PySide6.QtWidgets import QApplication, QFileDialog, QInputDialog, QMenu, QMessageBox, QProgressDialog
+from PySide6.QtWidgets import QApplication, QInputDialog, QMenu, QMessageBox, QProgressDialog
 
 from app.animation_frames import MAX_FRAMES, orbit_frames, steps_problem, zbuffer_steps
 from app.image_files import (
@@ -46,11 +46,11 @@ from app.lesson_runner import LESSON_OVERLAY
 from app.pane_pictures import PanePicture, tab_pictures
 from app.picture_sheet import four_views
 from app.ray_tree_json import ray_tree_json
-from app.user_settings import user_settings
 from app.workers import Renderer
 from core import budget
 from core.safe_files import write_atomic
 from core.srgb import srgb_to_linear
+from views.file_dialogs import ask_save
 
 SCREENSHOT_SCALE = 2
 """The 3D pane is saved at this many times its size on screen."""
@@ -58,7 +58,6 @@ FPS = 10
 ORBIT_FRAMES = 36
 PICTURE_FILTERS = [("PNG image", ".png"), ("JPEG image", ".jpg")]
 ANIMATION_FILTERS = [("GIF animation", ".gif"), ("MP4 video", ".mp4")]
-FOLDER_SETTING = "export/folder"
 NO_PICKED_PIXEL = "No picked pixel: click a pixel of the Image order tab's image first"
 
 
@@ -91,7 +90,6 @@ class ExportMenu(QObject):
     ----------
     menu : the QMenu, rebuilt each time it opens, so it lists what can be exported now.
     actions : its entries by path, e.g. ``"Object order/Image memory"``, ``"Ray tree/JSON"``.
-    folder : where the next file dialog starts (the folder of the last export, kept in the settings).
 
     Signals
     -------
@@ -115,16 +113,6 @@ class ExportMenu(QObject):
         self._writing: str | None = None
         QApplication.instance().aboutToQuit.connect(self.cancel)
         QTimer.singleShot(0, self.refresh)  # once the window is built: the entries ask it what it shows
-
-    @property
-    def folder(self) -> str:
-        """Where the next file dialog starts: the folder of the last export, kept between sessions."""
-        folder = user_settings().value(FOLDER_SETTING, "", str)
-        return folder if folder and os.path.isdir(folder) else os.getcwd()
-
-    @folder.setter
-    def folder(self, folder: str) -> None:
-        user_settings().setValue(FOLDER_SETTING, folder)
 
     # ------------------------------------------------------------------ menu
     def refresh(self) -> None:
@@ -178,13 +166,12 @@ class ExportMenu(QObject):
     def ask_path(self, title: str, name: str, filters: list[tuple[str, str]]) -> str | None:
         """Ask where to save (starting in the last folder used); ``None`` if the user cancels."""
         text = ";;".join(f"{label} (*{extension})" for label, extension in filters)
-        path, chosen = QFileDialog.getSaveFileName(self.window, title,
-                                                   os.path.join(self.folder, name + filters[0][1]), text)
-        if not path:
+        asked = ask_save(self.window, title, name + filters[0][1], text)
+        if asked is None:
             return None
+        path, chosen = asked
         if not os.path.splitext(path)[1]:
             path += next((e for label, e in filters if chosen.startswith(label)), filters[0][1])
-        self.folder = os.path.dirname(os.path.abspath(path))
         return path
 
     def _ask_picture(self, picture: PanePicture) -> None:

@@ -18,8 +18,8 @@ from PySide6.QtCore import Qt, QThreadPool, QTimer, Signal
 from PySide6.QtGui import QAction, QFont, QKeySequence
 from PySide6.QtWidgets import (
     QApplication,
+    QDialog,
     QDockWidget,
-    QFileDialog,
     QHBoxLayout,
     QLabel,
     QMainWindow,
@@ -43,7 +43,6 @@ from app.mesh_files import read_mesh
 from app.scene_editor import SceneEditor
 from app.state import SceneModel
 from app.tabs import TABS
-from app.user_settings import user_settings
 from app.window_layout import LEFT_SHARE, fit_window, tabbed_dock
 from app.workers import Renderer, RenderSchedule
 from core import presets, scene_file
@@ -55,10 +54,14 @@ from views.camera_panel import CameraPanel
 from views.deferred_scene_view import DeferredSceneView
 from views.elided_label import ElidedLabel, ElidedProgressBar
 from views.exercise_panel import ExercisePanel, ExerciseProgress
+from views.file_dialogs import ask_open, ask_save
 from views.lesson_panel import LessonPanel
 from views.observer_keys import MOUSE_GESTURES, OBSERVER_KEYS, EditorsKeepTheirKeys
+from views.on_screen import KeepWindowsOnScreen
 from views.presentation import Presentation
 from views.scene_overlays import SCENE_OVERLAYS, SceneOverlays
+from views.text_dialog import text_dialog
+from views.user_settings import user_settings
 
 
 class MainWindow(QMainWindow):
@@ -147,6 +150,8 @@ class MainWindow(QMainWindow):
         self._keyed_actions: list[QAction] = []
         self._editor_keys = EditorsKeepTheirKeys(self)
         QApplication.instance().installEventFilter(self._editor_keys)
+        self._on_screen = KeepWindowsOnScreen(self)  # the window and its dialogs, frames and all
+        QApplication.instance().installEventFilter(self._on_screen)
         # After the editors' filter, so that PageUp/PageDown reach the lessons first, from anywhere.
         self.presentation = Presentation(self, self.lesson_panel)
         self._build_menus()
@@ -369,8 +374,12 @@ class MainWindow(QMainWindow):
         lines += [f"  {gesture}: {what}" for gesture, what in MOUSE_GESTURES]
         return "\n".join(lines)
 
-    def show_keys(self) -> None:
-        QMessageBox.information(self, "Keys and mouse", self.keys_text())
+    def show_keys(self) -> QDialog:
+        """Show every key and mouse gesture (scrolled on a small screen); returns the dialog."""
+        dialog = text_dialog(self, "Keys and mouse", self.keys_text())
+        dialog.setAttribute(Qt.WidgetAttribute.WA_DeleteOnClose)
+        dialog.show()
+        return dialog
 
     def scale_text(self, factor: float) -> None:
         app = QApplication.instance()
@@ -388,7 +397,7 @@ class MainWindow(QMainWindow):
 
     # ------------------------------------------------------------- files
     def open_scene_dialog(self) -> None:
-        path, _ = QFileDialog.getOpenFileName(self, "Open scene", "", "Scene files (*.json)")
+        path = ask_open(self, "Open scene", "Scene files (*.json)")
         if path:
             self.open_scene(path)
 
@@ -423,8 +432,7 @@ class MainWindow(QMainWindow):
         box.open()  # the window stays responsive behind it
 
     def save_scene_dialog(self) -> None:
-        path, _ = QFileDialog.getSaveFileName(self, "Save scene", "scene.json",
-                                              "Scene files (*.json)")
+        path, _ = ask_save(self, "Save scene", "scene.json", "Scene files (*.json)") or ("", "")
         if path:
             try:
                 scene_file.save(self.model.scene, path)
@@ -530,6 +538,7 @@ class MainWindow(QMainWindow):
             event.ignore()
             return
         QApplication.instance().removeEventFilter(self._editor_keys)
+        QApplication.instance().removeEventFilter(self._on_screen)
         self.presentation.clicker.remove()
         self.renders.stop()
         self.background_compile.stop()

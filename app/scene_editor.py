@@ -19,16 +19,18 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import numpy as np
 from PySide6.QtCore import QObject
 from PySide6.QtGui import QAction, QKeySequence, QUndoStack
-from PySide6.QtWidgets import QFileDialog, QMenu, QMessageBox
+from PySide6.QtWidgets import QMenu, QMessageBox
 
 from app.mesh_files import EXTENSIONS, read_mesh
 from app.scene_edits import SceneEdit
-from app.window_layout import tabbed_dock
+from app.window_layout import in_front, tabbed_dock
 from app.workers import Renderer
 from core import scene_editing, scene_file
 from core.scene_file import SceneFileError
+from views.file_dialogs import ask_open
 from views.scene_tree_panel import SceneTreePanel, label
 
 EDITABLE = ("object", "light")
@@ -137,7 +139,17 @@ class SceneEditor(QObject):
 
         self.picker = ScenePicker(self.model, view)
         self.picker.move_requested.connect(self.move)
-        self.picker.picked.connect(lambda item: item is not None and self.dock.raise_())
+        self.picker.picked.connect(self._picked)
+
+    def _picked(self, item) -> None:
+        """Bring the picked item's fields to the front, unless a lesson's words are shown there."""
+        if item is None:
+            return
+        if self.window.lessons.step is not None and in_front(self.window.lesson_dock):
+            self.window.statusBar().showMessage(
+                "Selected; its fields are in the Edit scene tab, beside Lessons", 6000)
+        else:
+            self.dock.raise_()
 
     def _selection_changed(self, item) -> None:
         editable = item is not None and item[0] in EDITABLE
@@ -173,6 +185,7 @@ class SceneEditor(QObject):
             edited = scene_editing.with_field(scene, item, key, value, self.base_dir, read_mesh)
         except SceneFileError as exc:
             return self._field_problem(item, key, "\n".join(exc.problems))
+        self._field_problem(item, key, "")  # an unchanged value (the old one typed again) is fine too
         if edited != scene:
             self._push(text, edited, item)
         return True
@@ -185,14 +198,17 @@ class SceneEditor(QObject):
         except SceneFileError as exc:
             key = scene_editing.position_key(scene, item) or "position"
             return self._field_problem(item, key, "\n".join(exc.problems))
+        self._field_problem(item, scene_editing.position_key(scene, item) or "position", "")
         if edited != scene:
             self._push(f"Move {scene_editing.name_of(scene, item)}", edited, item)
         return True
 
     def _field_problem(self, item, key, message: str) -> bool:
+        """Show ``message`` beside field ``key`` of ``item`` (or in the status bar if the field is not
+        shown); an empty message clears the field's problem.  Returns False (not changed)."""
         if self.model.selection == item and key in self.panel.fields:
             self.panel.show_problem(key, message)
-        else:
+        elif message:
             self.window.statusBar().showMessage(f"Not changed — {message}", 10000)
         return False
 
@@ -206,9 +222,19 @@ class SceneEditor(QObject):
         return True
 
     def add_object(self, type_name: str) -> bool:
-        """Add a primitive of ``type_name`` at the observer's target, and select it."""
+        """Add a primitive of ``type_name`` near the observer's target where the observer sees it
+        (:func:`core.scene_editing.plain_view_spot`), and select it."""
         scene = self.model.scene
-        return self._add("object", scene_editing.new_object(scene, type_name, scene.camera.target))
+        target = np.asarray(scene.camera.target, float)
+        try:  # the new object's extent, made at the target
+            at_target = scene_editing.new_object(scene, type_name, target)
+            probe, item = scene_editing.added(scene, "object", at_target, None, self.base_dir, read_mesh)
+        except SceneFileError:
+            spot = target  # refused (the scene is full): _add says why
+        else:
+            low, high = scene_editing.object_bounds(probe.objects[item[1]])
+            spot = scene_editing.plain_view_spot(scene, low - target, high - target)
+        return self._add("object", scene_editing.new_object(scene, type_name, spot))
 
     def add_light(self) -> bool:
         """Add a white point light above the observer's target, and select it."""
@@ -217,7 +243,7 @@ class SceneEditor(QObject):
 
     def add_mesh_dialog(self) -> None:
         kinds = " ".join(f"*{ext}" for ext in EXTENSIONS)
-        path, _ = QFileDialog.getOpenFileName(self.window, "Add a mesh", "", f"Meshes ({kinds})")
+        path = ask_open(self.window, "Add a mesh", f"Meshes ({kinds})")
         if path:
             self.add_mesh_file(path)
 

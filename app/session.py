@@ -2,7 +2,7 @@
 
 When the app ends (its window closed), :func:`remember` stores the scene (as the text of a
 scene file, or only its file's path when that text would be very long) and the
-observer (the camera) in the user's settings (:mod:`app.user_settings`).  Edits the user
+observer (the camera) in the user's settings (:mod:`views.user_settings`).  Edits the user
 chose to discard are not stored: the scene kept is the one last saved (or
 opened).  At the next start without a scene file on the command line,
 :func:`restore` loads them back through the scene file's loader, so stored
@@ -18,8 +18,8 @@ from pathlib import Path
 
 from app.mesh_files import read_mesh
 from app.scene_edits import scene_at
-from app.user_settings import user_settings
 from core import scene_file
+from views.user_settings import user_settings
 
 MAX_SCENE_CHARS = 2_000_000
 """A longer scene text (large inline meshes) is not stored; its file's path is, if it has one."""

@@ -41,6 +41,12 @@ def tabbed_dock(window, title: str, name: str, widget, beside):
     return dock
 
 
+def in_front(dock: QDockWidget) -> bool:
+    """Whether ``dock`` is seen: shown and, if tabbed with others, the tab in front (a dock behind
+    another tab stays "visible" to Qt, only covered)."""
+    return dock.isVisible() and not dock.visibleRegion().isEmpty()
+
+
 def left_share(scale: float) -> float:
     """:data:`LEFT_SHARE` at ``scale`` (the nearest scale offered below it)."""
     return LEFT_SHARE[max((s for s in LEFT_SHARE if s <= scale), default=1.0)]

@@ -255,6 +255,63 @@ def new_object(scene: Scene, type_name: str, at) -> dict:
     return value
 
 
+def plain_view_spot(scene: Scene, low, high) -> np.ndarray:
+    """Where to put a new object whose bounding box, relative to its position, is ``low`` to
+    ``high`` (scene units), so that the observer sees it: the point nearest the observer's
+    target, stepping sideways (along the screen's right) and then towards the eye, at which the
+    object's box touches no other object's box, its position lies in the frustum and the line
+    from the eye to it passes no object's box.  The target itself when no such point is near.
+
+    (The lecture scene's target lies behind the cone: a new object put there was hidden.)
+    """
+    cam = scene.camera
+    eye, target = np.asarray(cam.eye, float), np.asarray(cam.target, float)
+    low, high = np.asarray(low, float), np.asarray(high, float)
+    forward = cam.forward
+    right = np.cross(forward, np.asarray(cam.up, float))
+    right /= np.linalg.norm(right)
+    boxes = [object_bounds(obj) for obj in scene.objects]
+    step = float(np.max(high - low))
+    sideways = [0.0] + [sign * k * step for k in range(1, 6) for sign in (1.0, -1.0)]
+    for back in np.arange(0.0, max(cam.distance - cam.near - step, 0.0), step):
+        for side in sideways:
+            spot = target - back * forward + side * right
+            if (_free(spot + low, spot + high, boxes) and cam.project(spot).inside
+                    and all(_misses(eye, spot, box) for box in boxes)):
+                return spot
+    return target
+
+
+def object_bounds(obj) -> tuple[np.ndarray, np.ndarray]:
+    """The object's axis-aligned bounding box: its lowest and highest corner (world space)."""
+    if isinstance(obj, Mesh):
+        return obj.vertices.min(axis=0), obj.vertices.max(axis=0)
+    center = np.asarray(obj.center, float)
+    return center - obj.radius, center + obj.radius
+
+
+def _free(low, high, boxes) -> bool:
+    """Whether the box ``low`` to ``high`` shares no inner point with any of ``boxes``."""
+    return not any(np.all(high > other_low) and np.all(low < other_high) for other_low, other_high in boxes)
+
+
+def _misses(start, end, box) -> bool:
+    """Whether the segment from ``start`` to ``end`` misses ``box`` (the slab test: the segment's
+    parameter interval inside all three slabs is empty)."""
+    low, high = box
+    direction = end - start
+    enter, leave = 0.0, 1.0
+    for axis in range(3):
+        if direction[axis] == 0.0:
+            if not low[axis] <= start[axis] <= high[axis]:
+                return True
+            continue
+        t0, t1 = sorted(((low[axis] - start[axis]) / direction[axis],
+                         (high[axis] - start[axis]) / direction[axis]))
+        enter, leave = max(enter, t0), min(leave, t1)
+    return enter > leave
+
+
 def new_mesh_file(scene: Scene, path) -> dict:
     """The form of a mesh read from the file ``path`` (kept as an absolute path)."""
     path = os.path.abspath(path)

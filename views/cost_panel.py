@@ -27,7 +27,6 @@ from PySide6.QtCore import QEvent, QObject, QRunnable, QSize, Qt, QThreadPool, Q
 from PySide6.QtWidgets import (
     QComboBox,
     QDoubleSpinBox,
-    QFileDialog,
     QFrame,
     QGridLayout,
     QHBoxLayout,
@@ -61,6 +60,7 @@ from core.accuracy.sweep import (
 from core.scene import Scene
 from core.srgb import to_srgb8
 from views import plot_theme
+from views.file_dialogs import ask_save
 
 MODES = [("raytrace", "Ray tracing"), ("raycast", "Ray casting"), ("raster", "Rasterization")]
 #: The sweep's image is at most this wide (the scene's aspect kept), so a sweep takes minutes, not hours.
@@ -259,6 +259,7 @@ class CostPanel(QWidget):
         self.explanation.setSizePolicy(QSizePolicy.Policy.Preferred, QSizePolicy.Policy.Minimum)
 
         self.plot_figure = self.canvas = self.image_figure = self.image_canvas = None  # see _make_canvases
+        self._plot_stale = False  # the plot waits to be drawn until the pane is shown
         self._dark = False  # the figures were drawn in the dark theme
         self._fitted = {}  # the plot's text size when it was drawn (plot_theme.fitted_style)
         self._dpi = plot_theme.DPI  # the figures' resolution, after the text size they were made for
@@ -301,7 +302,10 @@ class CostPanel(QWidget):
         self._update_buttons()
 
     def showEvent(self, event) -> None:
-        self._make_canvases()
+        if self.canvas is None:
+            self._make_canvases()
+        elif self._plot_stale:
+            self._draw_plot()
         super().showEvent(event)
 
     def changeEvent(self, event) -> None:  # noqa: N802 (Qt's name)
@@ -513,11 +517,15 @@ class CostPanel(QWidget):
         """The rows received so far, in setting order, knees marked."""
         return marked_rows(self._points, self._knees)
 
-    def _draw_plot(self, quick: bool = False) -> None:
+    def _draw_plot(self, quick: bool = False, hidden: bool = False) -> None:
         """Draw the points found so far.  ``quick`` (while a sweep runs): the axes keep the places
-        of the last full draw, when there are as many, and the legend a fixed corner."""
+        of the last full draw, when there are as many, and the legend a fixed corner.  A hidden
+        pane is drawn when it is shown, unless ``hidden`` (for an export)."""
         if self.canvas is None:
             return  # drawn when the canvas is made
+        self._plot_stale = not (self.isVisible() or hidden)
+        if self._plot_stale:
+            return  # drawn when the pane is shown (a lesson step resets the plot of a hidden tab)
         import matplotlib
         from matplotlib.colors import same_color
 
@@ -638,15 +646,17 @@ class CostPanel(QWidget):
     def export_plot(self, path) -> None:
         """Write the plot as PNG or SVG, after the suffix (atomically)."""
         self._make_canvases()
+        if self._plot_stale:
+            self._draw_plot(hidden=True)
         cost_files.save_figure(self.plot_figure, path)
 
     def _ask_export_csv(self) -> None:
-        path, _ = QFileDialog.getSaveFileName(self, "Export the sweep as CSV", "cost.csv", "CSV (*.csv)")
+        path, _ = ask_save(self, "Export the sweep as CSV", "cost.csv", "CSV (*.csv)") or ("", "")
         if path:
             self._export(self.export_csv, path)
 
     def _ask_export_plot(self) -> None:
-        path, _ = QFileDialog.getSaveFileName(self, "Export the plot", "cost.png", "PNG (*.png);;SVG (*.svg)")
+        path, _ = ask_save(self, "Export the plot", "cost.png", "PNG (*.png);;SVG (*.svg)") or ("", "")
         if path:
             self._export(self.export_plot, path)
 

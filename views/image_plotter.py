@@ -83,6 +83,10 @@ class ImagePlotter(QVTKRenderWindowInteractor, BasePlotter):
         for renderer in self.renderers:
             renderer.view_isometric()
             window.AddRenderer(renderer)
+        # Every draw is shown, also those VTK's trackball makes while the mouse turns, pans or
+        # zooms the view (they were drawn off screen and never painted until the next change).
+        self._grabbing = True
+        window.AddObserver("EndEvent", lambda *_: self._grab())
         self.iren = RenderWindowInteractor(self, interactor=window.GetInteractor())
         self.iren.interactor.RemoveObservers("MouseMoveEvent")  # pyvista's own: a draw per mouse move
         self.iren.initialize()
@@ -113,10 +117,12 @@ class ImagePlotter(QVTKRenderWindowInteractor, BasePlotter):
     def screenshot(self, *args, **kwargs):
         """pyvista's screenshot, with the background drawn by VTK (gradient and all)."""
         self._vtk_draws_background(True)
+        self._grabbing = False  # its pictures (at another size, background drawn) are not the pane's
         try:
             BasePlotter.render(self)
             return BasePlotter.screenshot(self, *args, **kwargs)
         finally:
+            self._grabbing = True
             self._vtk_draws_background(False)
 
     def paintEngine(self):
@@ -143,7 +149,12 @@ class ImagePlotter(QVTKRenderWindowInteractor, BasePlotter):
         """Draw the scene now and show it (nothing once closed or while hidden)."""
         if getattr(self, "_closed", False) or not self.isVisible():
             return
-        BasePlotter.render(self)
+        BasePlotter.render(self)  # VTK's EndEvent: _grab shows the picture
+
+    def _grab(self) -> None:
+        """Read back the picture VTK just drew and paint it with the next frame."""
+        if not self._grabbing or getattr(self, "_closed", False) or not self.isVisible():
+            return
         w, h = self.ren_win.GetSize()
         self.ren_win.GetRGBACharPixelData(0, 0, w - 1, h - 1, False, self._pixels)
         rgba = np.ascontiguousarray(vtk_to_numpy(self._pixels).reshape(h, w, 4)[::-1])  # row 0 on top

@@ -32,7 +32,6 @@ from PySide6.QtCore import QEvent, QObject, Qt, Signal
 from PySide6.QtGui import QFont
 from PySide6.QtWidgets import (
     QApplication,
-    QFileDialog,
     QFrame,
     QHBoxLayout,
     QLabel,
@@ -48,6 +47,7 @@ from PySide6.QtWidgets import (
 )
 
 from core.lessons import Lesson, LessonFileError, LessonStep, load_lesson, shipped_lessons
+from views.file_dialogs import ask_open
 from views.math_view import MathView
 
 #: Keys that go forward and back.  PageDown/PageUp act everywhere (ClickerKeys);
@@ -290,8 +290,7 @@ class LessonPanel(QWidget):
         problem, and nothing else changes.
         """
         if path is None:
-            path, _ = QFileDialog.getOpenFileName(self, "Open lesson file", str(Path.cwd()),
-                                                  "Lesson files (*.json);;All files (*)")
+            path = ask_open(self, "Open lesson file", "Lesson files (*.json);;All files (*)")
             if not path:
                 return None
         try:

@@ -284,10 +284,12 @@ class ObjectOrderPanel(QWidget):
             self.image.set_image(picture.image)
         self.depth.set_depth(picture.depth, history.near, history.far, picture.depth_image)
         self.step_caption.setText(picture.caption)
-        self.polygon_shown.emit(picture.polygon)
-        self.image.set_highlight(picture.mask, outline=picture.outline)
-        self.depth.image.set_highlight(picture.mask, outline=picture.outline)
-        self.image.set_edges(self._window_corners(picture.polygon))
+        # The whole picture (no step chosen, as a lesson shows it) singles out no polygon.
+        chosen = self.model.step is not None
+        self.polygon_shown.emit(picture.polygon if chosen else None)
+        for view in (self.image, self.depth.image):
+            view.set_highlight(picture.mask if chosen else None, outline=picture.outline)
+        self.image.set_edges(self._window_corners(picture.polygon))  # drawn only where pixels are large
         self._show_pixel(self.picked)
 
     def _window_corners(self, polygon) -> np.ndarray | None:

@@ -30,6 +30,8 @@ from views.lesson_panel import ClickerKeys, LessonPanel
 SCALES = (1.0, 1.5, 2.0)
 #: The scale presentation mode starts with.
 PRESENTING_SCALE = 1.5
+#: On one screen, the share of its width the presenter window takes (at its right edge).
+PRESENTER_SHARE = 0.25
 
 #: Black and white with a yellow accent; colours only, so the font scale stays the window's.
 HIGH_CONTRAST = """
@@ -39,7 +41,7 @@ QAbstractItemView { alternate-background-color: #262626; }
 QAbstractButton, QComboBox, QSpinBox, QDoubleSpinBox, QLineEdit {
     border: 2px solid #ffffff; padding: 3px; }
 QAbstractButton:checked, QAbstractButton:pressed { background-color: #ffd400; color: #000000; }
-QToolButton { background-color: #ffffff; }
+QToolButton { background-color: #ffffff; color: #000000; }
 QCheckBox, QRadioButton { border: none; }
 QCheckBox:checked, QRadioButton:checked { background-color: #000000; color: #ffffff; }
 QCheckBox::indicator, QRadioButton::indicator {
@@ -242,8 +244,26 @@ class Presentation(QObject):
         others = [s for s in screens if s is not mine]
         if others:
             self.presenter.setGeometry(others[0].availableGeometry())
+        else:
+            self._beside_the_window(mine.availableGeometry())
         self.presenter.show()
         return self.presenter
+
+    def _beside_the_window(self, screen) -> None:
+        """One screen: the presenter window takes a column at its right edge, and the main window
+        (unless full screen or maximized) the rest, so that neither covers the other."""
+        window = self.window
+        frame, inner = window.frameGeometry(), window.geometry()  # the window manager's frame, as the
+        left_edge, top_edge = inner.left() - frame.left(), inner.top() - frame.top()  # presenter gets it
+        extra_width, extra_height = frame.width() - inner.width(), frame.height() - inner.height()
+        column = round(screen.width() * PRESENTER_SHARE)
+        right = screen.right() + 1 - column  # the column's left edge
+        self.presenter.setGeometry(right + left_edge, screen.top() + top_edge, column - extra_width,
+                                   screen.height() - extra_height)
+        if not (window.isFullScreen() or window.isMaximized()) and frame.right() >= right:
+            left = max(screen.left(), min(frame.left(), right - frame.width()))
+            window.setGeometry(left + left_edge, inner.top(), min(inner.width(), right - left - extra_width),
+                               inner.height())
 
 
 class PresenterWindow(QWidget):

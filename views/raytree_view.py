@@ -12,9 +12,17 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 import numpy as np
-from PySide6.QtCore import Qt
+from PySide6.QtCore import QEvent, Qt, QTimer
 from PySide6.QtGui import QColor
-from PySide6.QtWidgets import QGridLayout, QHeaderView, QLabel, QTreeWidget, QTreeWidgetItem, QWidget
+from PySide6.QtWidgets import (
+    QGridLayout,
+    QHeaderView,
+    QLabel,
+    QSplitter,
+    QTreeWidget,
+    QTreeWidgetItem,
+    QWidget,
+)
 
 from core.image_order.ray_tree import RayNode
 
@@ -30,6 +38,8 @@ KIND_COLORS = {
 }
 BLOCKED_COLOR = "#8a8a8a"
 COLUMNS = ["ray", "hit", "t", "weight", "returns colour"]
+MOST_OF_SPLITTER = 0.75
+"""The most of a splitter's width the tree takes to show every column whole; the rest stays beside it."""
 
 
 def _segment_end(node: RayNode, miss_length: float) -> np.ndarray:
@@ -104,6 +114,28 @@ class RayTreeWidget(QTreeWidget):
         self.clear()
         self.addTopLevelItem(self._item(root))
         self.expandAll()
+        QTimer.singleShot(0, self, self.widen_to_columns)  # once the columns took their widths
+
+    def changeEvent(self, event) -> None:  # noqa: N802 (Qt's name)
+        super().changeEvent(event)
+        if event.type() == QEvent.Type.FontChange:  # the columns grow with the text
+            QTimer.singleShot(0, self, self.widen_to_columns)
+
+    def widen_to_columns(self) -> None:
+        """In a splitter, take the width every column needs (the last one, the returned colours,
+        was cut off at large text), if that leaves the others a quarter of it (else the columns
+        scroll sideways, as on a small screen)."""
+        splitter = self.parentWidget()
+        if not isinstance(splitter, QSplitter) or splitter.orientation() != Qt.Orientation.Horizontal:
+            return
+        need = self.header().length() + 2 * self.frameWidth() + self.verticalScrollBar().sizeHint().width()
+        sizes = splitter.sizes()
+        index, total = splitter.indexOf(self), sum(sizes)
+        if total <= 0 or sizes[index] >= need or need > total * MOST_OF_SPLITTER:
+            return
+        others = [s for i, s in enumerate(sizes) if i != index]
+        share = [(total - need) * s / max(sum(others), 1) for s in others]
+        splitter.setSizes([need if i == index else round(share.pop(0)) for i in range(len(sizes))])
 
     def select_kind(self, kind: str | None) -> bool:
         """Select and show the first ray of ``kind`` (``None``: no selection); whether there was one."""

@@ -174,7 +174,9 @@ class _ColorField(_Field):
     def set_value(self, value) -> None:
         super().set_value(value)
         r, g, b = (np.round(linear_to_srgb(np.asarray(value, float)) * 255)).astype(int)
-        self.swatch.setStyleSheet(f"background-color: rgb({r}, {g}, {b});")
+        # With a border of its own the button is drawn flat in the colour; with only a background,
+        # the style shades it (linear red came out pink).
+        self.swatch.setStyleSheet(f"background-color: rgb({r}, {g}, {b}); border: 1px solid gray;")
         self._linear = list(value)
 
     def pick(self) -> None:

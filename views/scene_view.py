@@ -120,6 +120,7 @@ class SceneView(QWidget):
         self._visible_overlays: set[str] | None = None  # None: all
         self._scene: Scene | None = None
         self._framed_at = None  # the overview camera _frame chose, until the user moves it
+        self._eye = None  # where the observer's eye was drawn last (world space)
         self._labels_placed_for = None  # the camera, pane and labels _place_labels placed for
         self._view: dict | None = None  # the overview camera look_from was given, if any
         self._render_timer = QTimer(self)
@@ -247,7 +248,14 @@ class SceneView(QWidget):
             self.request_render()
 
     def set_camera(self, camera: Camera) -> None:
-        """Move the observer, its frustum, its screen and its target marker to ``camera``."""
+        """Move the observer, its frustum, its screen and its target marker to ``camera``; an eye
+        that walks out of the pane (orbiting with the arrow keys) is followed (:meth:`_follow_eye`)."""
+        eye = np.asarray(camera.eye, float)
+        walked = self._eye is not None and not np.array_equal(eye, self._eye) \
+            and self._in_pane(self._eye, inset=0)
+        self._eye = eye
+        if walked and not self._in_pane(eye):
+            self._follow_eye(camera)
         corners = camera.frustum_corners()
         self.frustum.points = corners
         self._frustum_edges.points = corners.copy()
@@ -262,6 +270,25 @@ class SceneView(QWidget):
         target[:3, 3] = camera.target
         self._target.user_matrix = target
         self.request_render()
+
+    def _in_pane(self, point, inset: float = GRAB_RADIUS_PX) -> bool:
+        """Whether the world point ``point`` is drawn inside the pane, ``inset`` pixels clear of its
+        edges (by default the glyph's grab radius: the camera glyph stays whole and can be grabbed)."""
+        at = self.widget_pos(point)
+        return (inset <= at.x() <= self.plotter.width() - inset
+                and inset <= at.y() <= self.plotter.height() - inset)
+
+    def _follow_eye(self, camera: Camera) -> None:
+        """Step the overview camera back along its line of sight until the eye, the target and the
+        objects are all in the pane again (the direction the user chose is kept)."""
+        view = self.plotter.camera
+        points = [camera.eye, camera.target]
+        for obj in self._scene.objects if self._scene is not None else ():
+            points += list(_box_corners(obj))
+        aspect = max(self.plotter.width(), 1) / max(self.plotter.height(), 1)
+        self.plotter.camera_position = [tuple(v) for v in fit_view(
+            points, view.direction, view.up, view.view_angle, aspect)]
+        self.plotter.reset_camera_clipping_range()
 
     def set_overlay(self, name: str, parts: list[tuple[pv.PolyData, dict]]) -> None:
         """Show extra geometry under ``name`` (replacing what was there), e.g. a ray tree.

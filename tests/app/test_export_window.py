@@ -10,7 +10,7 @@ from pathlib import Path
 import imageio.v3 as iio
 import numpy as np
 import pytest
-from PySide6.QtCore import Qt, QThreadPool
+from PySide6.QtCore import QStandardPaths, Qt, QThreadPool
 from PySide6.QtWidgets import QFileDialog, QMessageBox, QProgressDialog, QPushButton, QWidget
 from window_helpers import RENDER_TIMEOUT_MS
 
@@ -243,11 +243,12 @@ def test_the_remembered_folder_survives_a_new_window(qtbot, window, tmp_path, mo
 
     for written in slides.iterdir():
         written.unlink()
-    slides.rmdir()  # a folder that is gone: the dialog starts in the working folder instead
+    slides.rmdir()  # a folder that is gone: the dialog starts in the user's Documents (or home) instead
     monkeypatch.setattr(QFileDialog, "getSaveFileName",
                         lambda parent, title, start, filters: (asked.append(start), ("", ""))[1])  # Cancel
     _export(again, "3D pane")
-    assert Path(asked[-1]).parent == Path.cwd()
+    documents = QStandardPaths.writableLocation(QStandardPaths.StandardLocation.DocumentsLocation)
+    assert Path(asked[-1]).parent in {Path(documents), Path.home()}
 
 
 def test_the_hard_cases_pictures_are_named_after_their_method(qtbot, window, tmp_path, monkeypatch):

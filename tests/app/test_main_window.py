@@ -9,6 +9,7 @@ from PySide6.QtCore import Qt
 from PySide6.QtWidgets import QApplication, QMessageBox
 from window_helpers import RENDER_TIMEOUT_MS
 
+from core import presets
 from core.presets_trace import PRESETS_TRACE
 
 
@@ -121,6 +122,21 @@ def test_arrow_keys_walk_around_the_target(qtbot, window):
 def _show_tab(qtbot, win, name):
     win.show_tab(name)
     qtbot.waitUntil(lambda: win.showing_full(name), timeout=RENDER_TIMEOUT_MS)
+
+
+def test_the_whole_z_buffer_picture_singles_out_no_polygon(qtbot, window):
+    # A lesson showing the lecture's figure whole (no z-buffer step chosen) outlined the last
+    # polygon drawn in magenta in the 3D pane and both buffers, over the figure's own colours.
+    window.model.set_scene(presets.zbuffer_three_polygons())
+    window.model.set_step(None)
+    _show_tab(qtbot, window, "object order")
+    panel = window.tab("object order").widget
+    assert panel.scrubber.step == panel.result.history.n_steps > 0
+    assert "polygon" not in window.scene_view.overlay_names()
+    assert panel.image._highlight is None and panel.depth.image._highlight is None
+    window.model.set_step(1)  # a step chosen: its polygon is outlined
+    assert "polygon" in window.scene_view.overlay_names()
+    assert panel.image._highlight is not None
 
 
 def test_object_order_steps_through_the_z_buffer(qtbot, window):

@@ -6,6 +6,8 @@ answered by a timer that clicks in them once they are open.
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import numpy as np
 import pytest
 from PySide6.QtCore import QPointF, Qt, QTimer
@@ -15,9 +17,11 @@ from window_helpers import RENDER_TIMEOUT_MS
 
 from app import session
 from app.main_window import MainWindow, run
-from app.user_settings import user_settings
-from core import presets, scene_file
+from app.window_layout import in_front
+from core import presets, scene_editing, scene_file
 from core.scene import Sphere
+from views.scene_tree_panel import show_value
+from views.user_settings import user_settings
 
 
 @pytest.fixture
@@ -91,7 +95,7 @@ def test_add_a_sphere_colour_it_undo_twice_redo_once(qtbot, window):
     _editor_action(window, "sphere").trigger()
     assert [o.name for o in model.scene.objects] == ["cube", "cone", "ground", "sphere"]
     sphere = model.scene.objects[-1]
-    assert isinstance(sphere, Sphere) and sphere.center == model.camera.target
+    assert isinstance(sphere, Sphere) and np.linalg.norm(np.subtract(sphere.center, model.camera.target)) < 3
     assert model.selection == ("object", 3)
     assert len(_object_actors(window)) == 4
 
@@ -176,6 +180,56 @@ def test_a_typed_centre_moves_the_object_and_text_is_refused(qtbot, window):
     assert window.editor.undo_action.text() == "Undo Change centre of cube"
 
 
+def test_the_old_value_typed_again_clears_the_red_problem(qtbot, window):
+    model, panel = window.model, window.editor.panel
+    model.set_selection(("object", 0))
+    before = model.scene
+    _type_into(qtbot, panel.fields["material.opacity"].boxes[0], "1.5")
+    assert panel.problem("material.opacity")
+    old = show_value(before.objects[0].material.opacity)
+    _type_into(qtbot, panel.fields["material.opacity"].boxes[0], old)
+    assert panel.problem("material.opacity") == ""  # the scene is as it was, and nothing is wrong
+    assert model.scene is before and window.editor.stack.count() == 0
+
+
+def test_a_problem_on_two_lines_is_shown_whole(qtbot, window):
+    model, panel = window.model, window.editor.panel
+    window.editor.dock.raise_()
+    model.set_selection(("object", 0))
+    _type_into(qtbot, panel.fields["center"].boxes[1], "abc")
+    problem = panel.fields["center"].problem
+    line = problem.fontMetrics().lineSpacing()
+
+    def whole():
+        assert problem.isVisible()
+        lines = problem.fontMetrics().boundingRect(problem.contentsRect(), Qt.TextFlag.TextWordWrap,
+                                                   problem.text()).height() / line
+        assert lines >= 2, lines  # the message takes two lines in the narrow dock...
+        assert problem.height() >= problem.heightForWidth(problem.width())  # ...and has room for them
+
+    qtbot.waitUntil(whole, timeout=5000)
+
+
+@pytest.mark.parametrize(("linear", "levels"), [
+    ((1.0, 0.0, 0.0), (255, 0, 0)),
+    # sRGB's curve: 1.055 * 0.5 ** (1 / 2.4) - 0.055 = 0.7354, 0.7354 * 255 = 187.5 -> 188;
+    # 12.92 * 0.002 = 0.0258 -> 6.6 -> 7.
+    ((0.5, 0.002, 0.0), (188, 7, 0)),
+])
+def test_the_colour_swatch_shows_the_colour_itself(qtbot, window, linear, levels):
+    # Linear red (1, 0, 0) was drawn pink (252, 115, 115): the button's own shading was mixed in.
+    model, panel, editor = window.model, window.editor.panel, window.editor
+    window.editor.dock.raise_()
+    model.set_selection(("object", 0))
+    assert editor.change_field(("object", 0), "material.color", list(linear))
+    swatch = panel.fields["material.color"].swatch
+    qtbot.waitUntil(swatch.isVisible, timeout=5000)
+    picture = swatch.grab().toImage()
+    middle = QColor(picture.pixel(picture.width() // 2, picture.height() // 2))
+    assert abs(middle.red() - levels[0]) <= 1 and abs(middle.green() - levels[1]) <= 1
+    assert abs(middle.blue() - levels[2]) <= 1
+
+
 def test_observer_moves_are_not_edits(qtbot, window):
     editor, model = window.editor, window.model
     model.set_selection(("light", 0))
@@ -245,6 +299,32 @@ def test_every_primitive_and_a_light_can_be_added(qtbot, window):
     assert types == [None, "box", "cone", "pyramid", "quad", "uv_sphere", "notched_prism"]
     assert [light.name for light in window.model.scene.lights] == ["light", "light 2"]
     assert len(_object_actors(window)) == 10
+
+
+def _covered(scene) -> np.ndarray:
+    """The pixels where the z-buffer keeps a surface, with their distances."""
+    from core.object_order.pipeline import RasterSettings, render_raster
+
+    return render_raster(scene, RasterSettings()).depth
+
+
+@pytest.mark.parametrize("type_name", ["sphere", "box", "cone"])
+def test_an_added_object_is_seen_by_the_observer(qtbot, window, type_name):
+    # Edit > Add put the new object at the observer's target, which in the lecture scene lies
+    # behind the cone: the new object was hidden.
+    model = window.model
+    before = model.scene
+    assert window.editor.add_object(type_name)
+    after = model.scene
+    new = after.objects[-1]
+    low, high = scene_editing.object_bounds(new)
+    for other in before.objects:  # it takes a place of its own
+        other_low, other_high = scene_editing.object_bounds(other)
+        assert np.any(low >= other_high) or np.any(high <= other_low), other.name
+    alone = np.isfinite(_covered(replace(after, objects=(new,))))  # where it would be seen alone
+    seen = _covered(after) < _covered(before)  # where it is the nearest surface
+    assert alone.sum() > 100
+    assert (seen & alone).sum() >= 0.9 * alone.sum()  # seen whole (nothing in front of it)
 
 
 def test_a_mesh_file_is_added_through_the_safe_reader(qtbot, window, tmp_path):
@@ -401,6 +481,18 @@ def test_clicking_an_object_in_the_3d_pane_selects_it(qtbot, window):
     empty = view.widget_pos(np.add(model.camera.target, (0.0, 40.0, 0.0)))
     qtbot.mouseClick(view.plotter, Qt.MouseButton.LeftButton, pos=empty.toPoint())
     assert model.selection is None and window.editor.picker.handle_center is None
+
+
+def test_clicking_an_object_during_a_lesson_keeps_the_lesson_in_front(qtbot, window):
+    view, model = window.scene_view, window.model
+    window.lesson_panel.select(0, 0)  # a lesson step is shown: its words are in the left dock
+    assert in_front(window.lesson_dock)
+    at = view.widget_pos(_centre(model.scene.objects[0]))
+    assert view.grabbable_at(at) is None
+    qtbot.mouseClick(view.plotter, Qt.MouseButton.LeftButton, pos=at.toPoint())
+    assert model.selection == ("object", 0)
+    assert in_front(window.lesson_dock) and not in_front(window.editor.dock)
+    assert "Edit scene" in window.statusBar().currentMessage()
 
 
 def test_dragging_the_handle_moves_the_object_in_one_undo_step(qtbot, window):

@@ -9,7 +9,7 @@ ROOT = Path(__file__).resolve().parents[2]
 
 
 def test_a_program_a_test_starts_keeps_its_settings_in_the_tests_folder():
-    ask = "from app.user_settings import user_settings; print(user_settings().fileName())"
+    ask = "from views.user_settings import user_settings; print(user_settings().fileName())"
     child = subprocess.run([sys.executable, "-c", ask], cwd=ROOT, capture_output=True, text=True, timeout=120)
     assert child.returncode == 0, child.stderr
     where = Path(child.stdout.strip())

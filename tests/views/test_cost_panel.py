@@ -159,3 +159,24 @@ def test_knobs_the_scene_cannot_use_are_disabled(panel):
     panel.set_scene(lecture_scene())
     item = panel.knob.model().item(panel.knob.findData("tessellation"))
     assert not item.isEnabled() and "no analytic spheres" in item.toolTip()
+
+
+def test_a_hidden_cost_pane_draws_its_plot_only_when_shown(qtbot, panel, monkeypatch):
+    # A lesson step (a new scene) reset the plot of the hidden Cost tab and drew it in full on
+    # the GUI thread, a quarter of a second for a pane nobody saw.
+    import views.cost_panel as cost_panel
+
+    _pick(panel, "depth")
+    with qtbot.waitSignal(panel.sweep_finished, timeout=TIMEOUT_MS):
+        panel.run()
+    assert _plotted_points(panel) > 0
+    drawn = []
+    original = cost_panel.draw_cost_plot
+    monkeypatch.setattr(cost_panel, "draw_cost_plot", lambda *a, **k: (drawn.append(1), original(*a, **k))[1])
+    panel.hide()
+    scene = mirror_and_glass()
+    panel.set_scene(replace(scene, camera=scene.camera.replace(width=160, height=120)))
+    assert drawn == []  # hidden: not drawn
+    panel.show()
+    qtbot.waitUntil(lambda: drawn == [1], timeout=5000)  # shown: drawn once, the new scene's empty plot
+    assert _plotted_points(panel) == 0

@@ -9,6 +9,7 @@ from PySide6.QtWidgets import (
     QMainWindow,
     QSpinBox,
     QSplitter,
+    QToolButton,
     QTreeWidget,
     QTreeWidgetItem,
 )
@@ -166,3 +167,19 @@ def test_high_contrast_check_boxes_show_their_box_and_whether_they_are_on(hall, 
     box.setChecked(True)
     assert "#ffd400" in indicator_colours()  # filled with the accent when on
     assert background_right() == "#000000"  # only the box, not the whole row, turns yellow
+
+
+def test_high_contrast_tool_buttons_keep_their_words_readable(hall, qtbot):
+    # The scene editor's Add, Duplicate, Rename and Delete (tool buttons) were white on white.
+    window, panel, presentation = hall
+    presentation.set_high_contrast(True)
+    button = QToolButton(window)
+    button.setText("Duplicate")
+    button.show()
+    button.resize(button.sizeHint())
+    picture = button.grab().toImage()
+    colours = [picture.pixelColor(x, y) for x in range(4, picture.width() - 4)
+               for y in range(4, picture.height() - 4)]
+    light = sum(c.lightnessF() > 0.8 for c in colours)
+    dark = sum(c.lightnessF() < 0.3 for c in colours)
+    assert light > 0 and dark > 0.03 * len(colours)  # dark letters on the white button
