@@ -48,7 +48,7 @@ from types import MappingProxyType
 import numpy as np
 
 from core.lessons import facts as facts_mod
-from core.lessons.facts import StepPipelines, check_fact, read_fact
+from core.lessons.facts import StepPipelines, check_fact, read_fact, read_list, read_tagged
 from core.scene_file import _join, _show
 
 KINDS = ("choose_one", "click_pixel", "number", "order", "pick_picture")
@@ -135,12 +135,7 @@ def _substituted(template, placeholder: str, value):
 
 def read_exercises(r, value, path: str, steps) -> tuple[Exercise, ...]:
     """The lesson's ``exercises`` list; every problem goes to ``r``."""
-    out = []
-    for k, item in enumerate(r.listing(value, path)):
-        exercise = _read(r, item, f"{path}[{k}]", steps)
-        if exercise is not None:
-            out.append(exercise)
-    return tuple(out)
+    return read_list(r, value, path, _read, steps)
 
 
 def _read(r, value, path: str, steps) -> Exercise | None:
@@ -160,15 +155,11 @@ def _read(r, value, path: str, steps) -> Exercise | None:
             return None
         first = drawn[0]
         return Exercise(first.kind, first.question, first.why, first.step, first.args, path, tuple(drawn))
-    if not isinstance(value, dict):
-        r.add(path, f"expected an exercise object {{\"kind\": ...}}, got {_show(value)}")
+    tagged = read_tagged(r, value, path, "kind", _FIELDS, "an exercise", "exercise kind")
+    if tagged is None:
         return None
-    kind = value.get("kind")
-    if kind not in KINDS:
-        r.add(_join(path, "kind"), f"unknown exercise kind {_show(kind)} (known: {', '.join(KINDS)})")
-        return None
-    required, optional = _FIELDS[kind]
-    d = r.fields(value, path, required + optional, required)
+    kind, d = tagged
+    required = _FIELDS[kind][0]
     before = len(r.problems)
     question = r.string(d.get("question", ""), _join(path, "question")) or ""
     why = r.string(d.get("why", ""), _join(path, "why")) or ""

@@ -161,27 +161,44 @@ def _part(a) -> str:
 # --- reading ---------------------------------------------------------------------------------
 
 
+def read_list(r, value, path: str, read_one, *context) -> tuple:
+    """Each item of the list at ``path``, read by ``read_one(r, item, item_path, *context)``; the bad ones
+    are left out, their problems in ``r`` (a :class:`core.scene_file._Reader`)."""
+    items = (read_one(r, item, f"{path}[{k}]", *context) for k, item in enumerate(r.listing(value, path)))
+    return tuple(item for item in items if item is not None)
+
+
 def read_facts(r, value, path: str, scene: Scene | None) -> tuple[Fact, ...]:
-    """The ``facts`` list of a step; every problem goes to ``r`` (a :class:`core.scene_file._Reader`)."""
-    out = []
-    for k, item in enumerate(r.listing(value, path)):
-        fact = read_fact(r, item, f"{path}[{k}]", scene)
-        if fact is not None:
-            out.append(fact)
-    return tuple(out)
+    """The ``facts`` list of a step; every problem goes to ``r``."""
+    return read_list(r, value, path, read_fact, scene)
+
+
+_TAGGED = {kind: (("fact", *required), optional) for kind, (required, optional) in KINDS.items()}
+"""Each fact's fields with its tag ``fact`` among the required ones."""
+
+
+def read_tagged(r, value, path: str, key: str, fields, thing: str, kind_word: str) -> tuple[str, dict] | None:
+    """An object whose ``key`` names its kind, one of ``fields`` (kind -> (required, optional) field
+    names, ``key`` among them): its kind and its fields, checked; None (and problems in ``r``) if bad.
+    ``thing`` ("a fact") and ``kind_word`` ("fact") name it in the messages."""
+    if not isinstance(value, dict):
+        r.add(path, f"expected {thing} object {{\"{key}\": ...}}, got {_show(value)}")
+        return None
+    kind = value.get(key)
+    if kind not in fields:
+        r.add(_join(path, key), f"unknown {kind_word} {_show(kind)} (known: {', '.join(fields)})")
+        return None
+    required, optional = fields[kind]
+    return kind, r.fields(value, path, (*required, *optional), required)
 
 
 def read_fact(r, value, path: str, scene: Scene | None) -> Fact | None:
     """One fact object, checked field by field against ``scene``; None (and problems in ``r``) if bad."""
-    if not isinstance(value, dict):
-        r.add(path, f"expected a fact object {{\"fact\": ...}}, got {_show(value)}")
+    tagged = read_tagged(r, value, path, "fact", _TAGGED, "a fact", "fact")
+    if tagged is None:
         return None
-    kind = value.get("fact")
-    if kind not in KINDS:
-        r.add(_join(path, "fact"), f"unknown fact {_show(kind)} (known: {', '.join(KINDS)})")
-        return None
+    kind, d = tagged
     required, optional = KINDS[kind]
-    d = r.fields(value, path, ("fact", *required, *optional), ("fact", *required))
     before = len(r.problems)
     args = {}
     for key, v in d.items():
