@@ -107,6 +107,16 @@ def main(argv: list[str] | None = None) -> int:
             interrupted()
         print(INTERRUPTED, file=sys.stderr)
         return 130
+    except SystemError as exc:
+        # Ctrl+C that reaches the main thread inside a compiled kernel can come out of numba's
+        # dispatcher as "returned a result with an exception set", the interrupt at the root of
+        # its causes.
+        cause = exc
+        while cause is not None and not isinstance(cause, KeyboardInterrupt):
+            cause = cause.__cause__
+        if cause is None:
+            raise
+        interrupted()
     except MemoryError:
         print(f"{parser.prog}: error: out of memory; use a smaller image (--width/--height), "
               "fewer objects, or a lower --memory-limit", file=sys.stderr)

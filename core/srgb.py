@@ -28,9 +28,21 @@ def srgb_to_linear(srgb: np.ndarray) -> np.ndarray:
     return np.where(c <= 0.04045, c / 12.92, np.power((c + 0.055) / 1.055, 2.4))
 
 
+#: Values converted at a time by :func:`to_srgb8`: a 4096 x 4096 frame in one go made several
+#: 400 MB temporaries and held the program for seconds, deaf to Ctrl+C (checked between blocks).
+BLOCK_VALUES = 1 << 20
+
+
 def to_srgb8(rgb: np.ndarray) -> np.ndarray:
     """Linear RGB in [0, 1] to 8-bit sRGB (uint8), rounded to nearest, for display and files."""
-    return np.round(linear_to_srgb(rgb) * 255.0).astype(np.uint8)
+    rgb = np.asarray(rgb)
+    if rgb.ndim == 0 or rgb.size <= BLOCK_VALUES:
+        return np.round(linear_to_srgb(rgb) * 255.0).astype(np.uint8)
+    out = np.empty(rgb.shape, np.uint8)
+    rows = max(1, BLOCK_VALUES * len(rgb) // rgb.size)  # of the first axis (image rows) per block
+    for start in range(0, len(rgb), rows):
+        out[start:start + rows] = np.round(linear_to_srgb(rgb[start:start + rows]) * 255.0)
+    return out
 
 
 def colormapped(level: np.ndarray, colormap: str) -> np.ndarray:
