@@ -3,10 +3,11 @@
 Pick a knob (or all), run: the sweep (:class:`core.accuracy.sweep.Sweep`)
 runs on the thread pool, one render at a time, and every finished setting
 becomes a point on the error-against-time plot as it arrives.  Cancel stops
-between renders; Run again resumes where it stopped.  Clicking a point shows
-that setting's image, the reference and the FLIP error map side by side (and
-the samples per pixel for adaptive supersampling), with a sentence on why the
-knob's curve has its shape.  The CSV and the plot can be exported.
+the running render within a pixel or a triangle (:mod:`core.stopping`); Run
+again resumes where it stopped.  Clicking a point shows that setting's image,
+the reference and the FLIP error map side by side (and the samples per pixel
+for adaptive supersampling), with a sentence on why the knob's curve has its
+shape.  The CSV and the plot can be exported.
 
 Before a sweep starts its cost is estimated (:mod:`core.accuracy.sweep_cost`):
 one over the memory budget does not start and says what to reduce; a long one
@@ -41,7 +42,7 @@ from PySide6.QtWidgets import (
     QWidget,
 )
 
-from core import budget
+from core import budget, stopping
 from core.accuracy import cost_files, sweep_cost
 from core.accuracy.cost_plot import draw_cost_plot, point_position
 from core.accuracy.explanations import EXPLANATIONS
@@ -131,18 +132,19 @@ class _Signals(QObject):
 
 
 class _SweepRun(QRunnable):
-    """Runs a sweep's events off the GUI thread, stopping between renders when cancelled."""
+    """Runs a sweep's events off the GUI thread; cancelled, it stops inside the running render."""
 
-    def __init__(self, run_id: int, sweep: Sweep, signals: _Signals, cancelled: threading.Event,
+    def __init__(self, run_id: int, sweep: Sweep, signals: _Signals, cancelled: stopping.StopRequest,
                  lock: threading.Lock):
         super().__init__()
         self.run_id, self.sweep, self.signals, self.cancelled = run_id, sweep, signals, cancelled
         self.lock = lock
 
     def run(self):
-        with self.lock:  # a stopped run finishes its render before the resumed one starts
+        with self.lock:  # a stopped run ends before the resumed one starts
             if not self.cancelled.is_set():
-                self._run()
+                with stopping.stopped_by(self.cancelled):
+                    self._run()
 
     def _run(self):
         # Settings a stopped run finished after it was cancelled were never shown: report them first.
@@ -156,6 +158,8 @@ class _SweepRun(QRunnable):
                 if self.cancelled.is_set():
                     break
                 self._emit("event", self.run_id, event)
+        except stopping.StoppedError:  # cancelled inside a render: what was measured so far stays shown
+            return
         except Exception as exc:  # shown in the panel's status line
             self._emit("failed", self.run_id, f"{type(exc).__name__}: {exc}")
             return
@@ -203,7 +207,7 @@ class CostPanel(QWidget):
         self._replot.setInterval(REPLOT_MS)
         self._replot.timeout.connect(lambda: self._draw_plot(quick=True))
         self._run_id = 0
-        self._cancel: threading.Event | None = None
+        self._cancel: stopping.StopRequest | None = None
         self.selected: int | None = None
         self._swept_with: tuple | None = None
         self._sweep_lock = threading.Lock()  # one run at a time, even just after a cancel
@@ -415,7 +419,7 @@ class CostPanel(QWidget):
         if not self._within_budget():
             return
         self._run_id += 1
-        self._cancel = threading.Event()
+        self._cancel = stopping.StopRequest()
         self._pool.start(_SweepRun(self._run_id, self.sweep, self._signals, self._cancel, self._sweep_lock))
         self.status.setText("Starting…")
         self._update_buttons()
@@ -434,7 +438,7 @@ class CostPanel(QWidget):
         return True
 
     def cancel(self) -> None:
-        """Stop the running sweep after its current render (Run resumes it)."""
+        """Stop the running sweep inside its current render, within a pixel or a triangle (Run resumes it)."""
         if self._cancel is not None:
             self._cancel.set()
             self._cancel = None
