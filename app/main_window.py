@@ -11,6 +11,7 @@ Tabs are registered in :data:`app.tabs.TABS` and found by name,
 
 from __future__ import annotations
 
+import os
 import sys
 from pathlib import Path
 
@@ -549,6 +550,8 @@ class MainWindow(QMainWindow):
         super().closeEvent(event)
 
 
+EXIT_WAIT_MS = 3000
+"""How long a closing window waits for its render threads before it ends the process regardless."""
 BACKGROUND_COMPILE = ("Compiling the renderers' kernels in the background (once per machine and version of "
                       "the code)…")
 
@@ -579,5 +582,11 @@ def run(scene_path: str | None = None, memory_limit: int | None = None) -> int:
         window.explain_if_too_large(Path(scene_path).name)
     status = app.exec()
     session.remember(window)
-    QThreadPool.globalInstance().waitForDone()
+    if not QThreadPool.globalInstance().waitForDone(EXIT_WAIT_MS):
+        # A render thread still inside a kernel compile (minutes on a fresh machine; it cannot be
+        # interrupted): end the process now rather than hang after the window closed. Every file is
+        # written whole or not at all, and numba writes each compiled kernel by renaming it into place.
+        sys.stdout.flush()
+        sys.stderr.flush()
+        os._exit(status)
     return status

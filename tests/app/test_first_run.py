@@ -1,5 +1,7 @@
 """The window on a machine whose kernels are not compiled yet: a first look at once, and the compile said."""
 
+from pathlib import Path
+
 import pytest
 from window_helpers import RENDER_TIMEOUT_MS
 
@@ -63,3 +65,41 @@ def test_the_background_compile_is_said_and_ends_with_the_window(qtbot, monkeypa
     process = win.background_compile._process
     win.close()
     qtbot.waitUntil(lambda: process.poll() is not None, timeout=5000)
+
+
+CLOSE_WHILE_COMPILING = """
+import sys, time
+from app import cli, tabs
+from core import warm_up
+from core.image_order import ray_tracing
+from PySide6.QtCore import QTimer
+from PySide6.QtWidgets import QApplication
+
+ray_tracing.compiled_for = lambda accel: False
+warm_up.WarmUp.__call__ = lambda self: time.sleep(600)  # a compile of ten minutes, which nothing interrupts
+shown = tabs.ImageOrderTab.show_progress
+
+def show_progress(self, partial):  # the first look is on screen: the user closes the window
+    shown(self, partial)
+    QTimer.singleShot(0, QApplication.instance().closeAllWindows)
+
+tabs.ImageOrderTab.show_progress = show_progress
+app = QApplication(sys.argv[:1])
+sys.exit(cli.main([]))
+"""
+
+
+@pytest.mark.gui
+def test_closing_the_window_during_a_compile_ends_the_program(tmp_path):
+    import os
+    import subprocess
+    import sys
+    import time
+
+    env = {**os.environ, "XDG_CONFIG_HOME": str(tmp_path)}
+    start = time.monotonic()
+    root = Path(tabs.__file__).resolve().parents[1]
+    done = subprocess.run([sys.executable, "-c", CLOSE_WHILE_COMPILING], cwd=root, env=env, capture_output=True,
+                          text=True, timeout=300)
+    assert done.returncode == 0, done.stderr[-2000:]
+    assert time.monotonic() - start < 120  # not the ten minutes of the compile still running
