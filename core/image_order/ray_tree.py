@@ -128,26 +128,37 @@ class RayNode:
         for child in self.children:
             yield from child.walk()
 
+    def colour_order(self, path: str | None = None) -> Iterator[tuple[str, RayNode]]:
+        """The order of the second stage: every traced ray but the shadow rays, children before
+        their parent, so the last hits come first (Fig. VII.11: C, then B, then A).
+
+        Each ray comes with its path from this node, the kinds joined by ``/``, e.g.
+        ``"primary/refraction/reflection"`` (a ray has at most one reflected and one refracted child).
+        """
+        path = path or self.kind
+        for child in self.children:
+            yield from child.colour_order(f"{path}/{child.kind}")
+        if self.kind != "shadow" and self.traced:
+            yield path, self
+
     def explain(self) -> list[str]:
         """The second stage of ray tracing: colours from the last hits back to the first.
 
-        One line per traced ray that hit something, deepest first, e.g.
+        One line per traced ray, in :meth:`colour_order`, e.g.
         ``reflection (gen 1) at mirror ball: C = local (0.1, 0.1, 0.1) +
         0.85 x (0.5, 0.2, 0.1) = (0.525, 0.27, 0.185)``.
         """
-        lines = []
-        for child in self.children:
-            lines += child.explain()
-        if self.kind == "shadow" or not self.traced:
-            return lines
+        return [node._colour_line() for _, node in self.colour_order()]
+
+    def _colour_line(self) -> str:
         label = f"{self.kind} (gen {self.generation})"
         if self.hit is None:
-            return lines + [f"{label} hits nothing: C = background {_rgb(self.color)}"]
+            return f"{label} hits nothing: C = background {_rgb(self.color)}"
         terms = [f"local {_rgb(self.local_color)}"]
         for child in self.children:
             if child.kind != "shadow" and child.traced:
                 terms.append(f"{child.coefficient:.3g} x {_rgb(child.color)}")
-        return lines + [f"{label} at {self.hit_name}: C = " + " + ".join(terms) + f" = {_rgb(self.color)}"]
+        return f"{label} at {self.hit_name}: C = " + " + ".join(terms) + f" = {_rgb(self.color)}"
 
 
 def _rgb(c) -> str:

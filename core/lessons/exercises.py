@@ -16,6 +16,9 @@ answer typed into the file.  Kinds::
                "radius": 10, "value": "discriminant"}, "why": "..."}
     {"kind": "order", "question": "In which order are the panes drawn?",
      "items": ["red pane", "green pane", "blue pane"], "by": "drawing_order", "why": "..."}
+    {"kind": "order", "question": "In which order are the colours of A, B and C computed?",
+     "items": ["primary", "primary/refraction", "primary/refraction/refraction"],
+     "by": "ray_tree_colours", "pixel": [205, 132], "why": "..."}
     {"kind": "pick_picture", "question": "Which picture is the top view?", "view": "top"}
 
 A ``choose_one`` choice is right when its fact (``$choice`` put in) holds; a
@@ -26,7 +29,12 @@ data), ``depth`` (the distance the z-buffer stores at ``pixel`` after ``after``
 polygons), ``hit_t`` (the distance to the first hit of ``pixel``'s ray),
 ``blend`` (channel ``channel`` of the c0 a transparent ``object`` writes at
 ``pixel``).  ``order`` ``by`` ``drawing_order`` puts the named objects in the
-order object order draws them.  ``pick_picture`` offers the four pictures the
+order object order draws them; ``ray_tree_colours`` puts rays of ``pixel``'s ray
+tree, named by their path from the primary ray (``"primary"``,
+``"primary/refraction"``, ``"primary/refraction/reflection"``...), in the order
+the second stage of ray tracing computes their colours: the last hits first
+(Fig. VII.11: C, then B, then A); a lesson check demands that they lie on one
+branch, so that one order is right.  ``pick_picture`` offers the four pictures the
 Four views tab draws (front, side, top, the observer's) and is right when the
 picture picked is the one drawn from the named ``view``; a lesson check
 demands that no two pictures look alike.
@@ -57,12 +65,14 @@ VIEWS = ("front", "side", "top", "observer")
 PICTURE_SIZE = (160, 120)
 """Width and height (pixels) of each picture to pick from."""
 NUMBERS = ("ray_sphere", "ray_triangle", "depth", "hit_t", "blend")
-ORDERS = ("drawing_order",)
+ORDERS = ("drawing_order", "ray_tree_colours")
+RAY_STEPS = ("reflection", "refraction")
+"""What may follow ``primary`` in a ray's path (``ray_tree_colours``): the rays whose colours are gathered."""
 _FIELDS = {
     "choose_one": (("kind", "question", "choices", "fact"), ("step", "why", "variants")),
     "click_pixel": (("kind", "question", "fact"), ("step", "why")),
     "number": (("kind", "question", "value", "tolerance"), ("step", "why", "variants")),
-    "order": (("kind", "question", "items", "by"), ("step", "why")),
+    "order": (("kind", "question", "items", "by"), ("step", "why", "pixel")),
     "pick_picture": (("kind", "question", "view"), ("step", "why")),
 }
 #: How far apart the pixels are that "show me" tries for a click exercise (every n-th row and column).
@@ -201,16 +211,36 @@ def _read(r, value, path: str, steps) -> Exercise | None:
     else:
         listed = r.listing(d["items"], _join(path, "items"))
         items = [r.string(c, f"{path}.items[{i}]") for i, c in enumerate(listed)]
-        names = [o.name for o in scene.objects]
-        for i, item in enumerate(items):
-            if item is not None and item not in names:
-                r.add(f"{path}.items[{i}]", f"no object {item!r} in the scene (objects: {', '.join(names)})")
         if d["by"] not in ORDERS:
             r.add(_join(path, "by"), f"unknown order {_show(d['by'])} (known: {', '.join(ORDERS)})")
+        elif d["by"] == "ray_tree_colours":
+            _read_ray_paths(r, items, d.get("pixel"), path, scene)
+            args["pixel"] = tuple(d["pixel"]) if isinstance(d.get("pixel"), list) else None
+        else:
+            names = [o.name for o in scene.objects]
+            for i, item in enumerate(items):
+                if item is not None and item not in names:
+                    r.add(f"{path}.items[{i}]",
+                          f"no object {item!r} in the scene (objects: {', '.join(names)})")
         args.update(items=tuple(items), by=d["by"])
     if len(r.problems) > before:
         return None
     return Exercise(kind, question, why, step, MappingProxyType(args), path)
+
+
+def _read_ray_paths(r, items, pixel, path: str, scene) -> None:
+    """Check a ``ray_tree_colours`` order's ``pixel`` and its items, rays named by their paths."""
+    from core.lessons import _pixel  # the loader's own check (it imports this module first)
+
+    if pixel is None:
+        r.add(_join(path, "pixel"), "required field is missing (the pixel whose ray tree is ordered)")
+    else:
+        _pixel(r, pixel, _join(path, "pixel"), scene)
+    for i, item in enumerate(items):
+        kinds = item.split("/") if item is not None else None
+        if kinds is not None and (kinds[0] != "primary" or any(k not in RAY_STEPS for k in kinds[1:])):
+            r.add(f"{path}.items[{i}]", f"expected a ray's path such as \"primary/refraction/reflection\" "
+                                        f"(primary, then {' or '.join(RAY_STEPS)}), got {item!r}")
 
 
 def choice_label(choice) -> str:
@@ -318,7 +348,12 @@ def number(ex: Exercise, p: StepPipelines) -> float:
 
 
 def right_order(ex: Exercise, p: StepPipelines) -> list[str]:
-    """The ``order`` exercise's items as the pipelines order them."""
+    """The ``order`` exercise's items as the pipelines order them (items the pipelines do not draw or
+    trace go last)."""
+    if ex.args["by"] == "ray_tree_colours":
+        computed = [path for path, _ in p.tree(ex.args["pixel"]).colour_order()]
+        return sorted(ex.args["items"], key=lambda item: computed.index(item) if item in computed
+                      else len(computed))
     draw = p.raster.draw
     names = [p.step.scene.objects[k].name for k in draw.object_index.tolist()]
     return sorted(ex.args["items"], key=lambda item: names.index(item) if item in names else len(names))
@@ -365,6 +400,21 @@ def judge(ex: Exercise, p: StepPipelines, given) -> Verdict:
     return Verdict(ok, f"{'Right' if ok else 'Not that order'}: {' → '.join(order)}.{why}")
 
 
+def _order_problem(ex: Exercise, p: StepPipelines) -> str | None:
+    """Why the pipelines cannot order ``ex``'s items one way, or None."""
+    if ex.args["by"] == "drawing_order":
+        drawn = {p.step.scene.objects[k].name for k in p.raster.draw.object_index.tolist()}
+        missing = [item for item in ex.args["items"] if item not in drawn]
+        return f"not drawn: {', '.join(missing)}" if missing else None
+    traced = {path for path, _ in p.tree(ex.args["pixel"]).colour_order()}
+    missing = [item for item in ex.args["items"] if item not in traced]
+    if missing:
+        return f"not traced at pixel {ex.args['pixel']}: {', '.join(missing)}"
+    order = right_order(ex, p)  # the last hits first: each ray's parent path comes after it
+    apart = [f"{a} and {b}" for a, b in zip(order, order[1:], strict=False) if not a.startswith(b + "/")]
+    return f"on separate branches, so in no one order: {', '.join(apart)}" if apart else None
+
+
 def _view_words(key: str) -> str:
     return "observer's own view" if key == "observer" else f"{key} view"
 
@@ -387,9 +437,7 @@ def check_exercises(lesson) -> list[str]:
         elif ex.kind == "number" and not np.isfinite(number(ex, p)):
             problem = "the pipelines give no number"
         elif ex.kind == "order":
-            drawn = {p.step.scene.objects[k].name for k in p.raster.draw.object_index.tolist()}
-            missing = [item for item in ex.args["items"] if item not in drawn]
-            problem = f"not drawn: {', '.join(missing)}" if missing else None
+            problem = _order_problem(ex, p)
         elif ex.kind == "pick_picture":
             shown = list(pictures(ex, p).items())
             alike = [f"{a} and {b}" for i, (a, x) in enumerate(shown) for b, y in shown[i + 1:]

@@ -157,3 +157,60 @@ def test_questions_2_and_3_pick_the_picture_drawn_from_the_named_view():
     assert judge(ex, p, "top").right
     wrong = judge(ex, p, "front")
     assert not wrong.right and wrong.sentence.startswith("Not that one: that is the front view.")
+
+
+def _glass_ball_lesson(exercise):
+    # Looking down -z at a glass ball (centre 0, radius 1) with an opaque ball (centre (0, 0, -10),
+    # radius 3) behind it.  The centre pixel's ray runs along the axis, so it meets every surface
+    # head-on and refraction does not bend it: A at z = 1 (t = 9 from the eye at z = 10), B where it
+    # leaves the glass at z = -1 (2 further on), C on the opaque ball at z = -7 (6 further on).
+    scene = {"format": "render-explorer-scene", "version": 1,
+             "camera": {"eye": [0, 0, 10], "target": [0, 0, 0], "up": [0, 1, 0], "near": 0.1, "far": 50,
+                        "width": 41, "height": 41},
+             "lights": [{"position": [5, 5, 10]}],
+             "objects": [{"type": "sphere", "name": "glass", "center": [0, 0, 0], "radius": 1,
+                          "material": {"transparency": 0.9, "ior": 1.5}},
+                         {"type": "sphere", "name": "wall", "center": [0, 0, -10], "radius": 3}]}
+    step = {"title": "one", "text": "words", "scene": scene, "panes": ["image order"],
+            "image_order": {"mode": "raytrace"}}
+    return from_dict({"format": "render-explorer-lesson", "version": 1, "id": "tree", "title": "Tree",
+                      "steps": [step], "exercises": [exercise]})
+
+
+def test_the_ray_tree_is_put_in_order_last_hits_first_as_in_fig_vii_11():
+    a, b, c = "primary", "primary/refraction", "primary/refraction/refraction"
+    lesson = _glass_ball_lesson({"kind": "order", "question": "?", "items": [a, b, c],
+                                 "by": "ray_tree_colours", "pixel": [20, 20]})
+    (ex,) = lesson.exercises
+    p = StepPipelines(lesson.steps[0])
+    rays = dict(p.tree((20, 20)).colour_order())
+    hits = [(rays[k].hit_name, rays[k].t, rays[k].front_face) for k in (a, b, c)]
+    assert hits == [("glass", pytest.approx(9), True), ("glass", pytest.approx(2), False),
+                    ("wall", pytest.approx(6), True)]
+    assert check_exercises(lesson) == []
+    # The second stage: C's colour first, then B's (it needs C's), then A's (it needs B's): the pixel.
+    assert judge(ex, p, [c, b, a]).right
+    wrong = judge(ex, p, [a, b, c])
+    assert not wrong.right and wrong.sentence.startswith(f"Not that order: {c} → {b} → {a}.")
+
+
+def test_a_ray_tree_order_off_one_branch_or_not_traced_is_reported_and_bad_paths_refused():
+    branches = _glass_ball_lesson({"kind": "order", "question": "?", "by": "ray_tree_colours",
+                                   "pixel": [20, 20], "items": ["primary/reflection", "primary/refraction"]})
+    assert check_exercises(branches) == [
+        "lesson tree, exercises[0] (?): on separate branches, so in no one order: "
+        "primary/reflection and primary/refraction"]
+    # The wall is opaque: nothing is refracted at C.
+    beyond = _glass_ball_lesson({"kind": "order", "question": "?", "by": "ray_tree_colours",
+                                 "pixel": [20, 20],
+                                 "items": ["primary", "primary/refraction/refraction/refraction"]})
+    assert check_exercises(beyond) == [
+        "lesson tree, exercises[0] (?): not traced at pixel (20, 20): "
+        "primary/refraction/refraction/refraction"]
+    with pytest.raises(LessonFileError) as info:
+        _glass_ball_lesson({"kind": "order", "question": "?", "by": "ray_tree_colours",
+                            "items": ["primary", "refraction/primary"]})
+    assert info.value.problems == [
+        "exercises[0].pixel: required field is missing (the pixel whose ray tree is ordered)",
+        'exercises[0].items[1]: expected a ray\'s path such as "primary/refraction/reflection" '
+        "(primary, then reflection or refraction), got 'refraction/primary'"]
