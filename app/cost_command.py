@@ -140,11 +140,12 @@ def run(args) -> int:
     width, height = _size(scene.camera, args.width, args.height)
     scene = replace(scene, camera=scene.camera.replace(width=width, height=height))
 
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.figure import Figure
     from tqdm import tqdm
 
     from core.accuracy import cost_files, sweep
-    from core.accuracy.cost_plot import draw_cost_plot
+    from core.accuracy.cost_plot import draw_cost_plot, tidy_cost_plot
 
     knobs = sweep.KNOB_NAMES if args.knob == "all" else (args.knob,)
     job = sweep.Sweep(scene, knobs, args.mode, args.tolerance, args.runs, args.reference_spp, args.seed)
@@ -168,7 +169,13 @@ def run(args) -> int:
                 bar.refresh()
     rows = job.rows()
     figure = Figure(figsize=(9, 6), layout="constrained")
+    FigureCanvasAgg(figure)
     draw_cost_plot(figure, rows)
+    figure.canvas.draw()
+    tidy_cost_plot(figure)  # the legend under the axis label: laid out again, then the labels thinned
+    figure.canvas.draw()
+    figure.set_layout_engine("none")
+    tidy_cost_plot(figure)
     from core.safe_files import OutputError, write_atomic_all
 
     try:

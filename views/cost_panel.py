@@ -15,7 +15,9 @@ says how long, in its status line, while it runs.
 
 Images are encoded to sRGB in :mod:`core.srgb` before they are shown.
 matplotlib loads, and the figures are made, when the panel is first shown
-(or first asked for a point), so the main window opens without it.
+(or first asked for a point), so the main window opens without it.  The plot
+is laid out and drawn off the GUI thread (:mod:`views.figure_image`), never
+while the pane is hidden; the window only paints its picture.
 """
 
 from __future__ import annotations
@@ -44,7 +46,7 @@ from PySide6.QtWidgets import (
 
 from core import budget, stopping
 from core.accuracy import cost_files, sweep_cost
-from core.accuracy.cost_plot import draw_cost_plot, point_position
+from core.accuracy.cost_plot import draw_cost_plot, point_position, tidy_cost_plot
 from core.accuracy.explanations import EXPLANATIONS
 from core.accuracy.reference import REFERENCE_SPP
 from core.accuracy.sweep import (
@@ -61,6 +63,7 @@ from core.accuracy.sweep import (
 from core.scene import Scene
 from core.srgb import to_srgb8
 from views import plot_theme
+from views.figure_image import MATPLOTLIB, Drawn, FigureImage, agg_figure, pixels
 from views.file_dialogs import ask_save
 
 MODES = [("raytrace", "Ray tracing"), ("raycast", "Ray casting"), ("raster", "Rasterization")]
@@ -69,13 +72,16 @@ DEFAULT_WIDTH = 160
 #: A sweep estimated to take longer than this (seconds) says how long in its status line.
 LONG_SWEEP_SECONDS = 600
 REPLOT_MS = 1000
-"""While a sweep runs, the plot is drawn again at most this often, with the last full layout's axes
-and a fixed legend corner; the finished sweep is drawn in full.  (A full draw, matplotlib's
-constrained layout and a search for the legend's emptiest corner, held the GUI thread about a
-quarter of a second on a small machine, and the points of cheap settings came in several a second.)"""
-QUICK_LEGEND = "upper right"
-"""The legend's corner while a sweep runs: slow and still inaccurate, the corner an error-against-time
-curve seldom reaches (cheap settings sit top left, costly ones bottom right)."""
+"""While a sweep runs, the plot is drawn again at most this often, with the last full layout's axes;
+the finished sweep is drawn in full.  (A full draw, matplotlib's constrained layout done three times
+to tidy the labels, takes a core about half a second on a small machine, and the points of cheap
+settings come in several a second.)"""
+
+
+TEXT_SHARES = (1.0, 0.85, 0.7, 0.6, 0.5)
+"""The shares of its text size the plot tries, largest first, until the curves get :data:`ROOM`."""
+ROOM = (0.5, 0.3)
+"""The least share of the figure's width and height the curves' axes keep (else the text shrinks)."""
 
 
 class _CanvasBox(QWidget):
@@ -181,6 +187,7 @@ class CostPanel(QWidget):
     -------
     point_selected(int) : the setting index of the clicked point.
     sweep_finished(bool) : a run ended, ``True`` when every setting is done.
+    plot_drawn() : a new picture of the plot is shown.
 
     Attributes
     ----------
@@ -190,6 +197,7 @@ class CostPanel(QWidget):
 
     point_selected = Signal(int)
     sweep_finished = Signal(bool)
+    plot_drawn = Signal()
 
     def __init__(self, parent: QWidget | None = None, pool: QThreadPool | None = None):
         super().__init__(parent)
@@ -262,10 +270,9 @@ class CostPanel(QWidget):
         self.explanation.setAlignment(Qt.AlignmentFlag.AlignTop | Qt.AlignmentFlag.AlignLeft)
         self.explanation.setSizePolicy(QSizePolicy.Policy.Preferred, QSizePolicy.Policy.Minimum)
 
-        self.plot_figure = self.canvas = self.image_figure = self.image_canvas = None  # see _make_canvases
+        self.canvas = self.image_figure = self.image_canvas = None  # see _make_canvases
         self._plot_stale = False  # the plot waits to be drawn until the pane is shown
         self._dark = False  # the figures were drawn in the dark theme
-        self._fitted = {}  # the plot's text size when it was drawn (plot_theme.fitted_style)
         self._dpi = plot_theme.DPI  # the figures' resolution, after the text size they were made for
         self._plot_box, self._image_box = _CanvasBox(), _CanvasBox()
         self._plot_box.setMinimumSize(240, 200)
@@ -318,7 +325,8 @@ class CostPanel(QWidget):
         if event.type() == QEvent.Type.FontChange:
             self._keep_two_status_lines()
             if self.canvas is not None and plot_theme.figure_dpi(self) != self._dpi:
-                self._remake_canvases()
+                self._remake_image_canvas()
+                self._draw_plot()
         if event.type() == QEvent.Type.PaletteChange and self.canvas is not None:
             dark = plot_theme.is_dark(self)
             if dark != self._dark:
@@ -328,37 +336,44 @@ class CostPanel(QWidget):
 
     def _keep_two_status_lines(self) -> None:
         """The status line keeps room for two lines, so that the finished sweep's two lines (its knees)
-        do not shrink the plot: a new size is a full draw of it, a quarter of a second on the GUI thread."""
+        do not shrink the plot: a new size is a full draw of it."""
         self.status.setMinimumHeight(2 * self.status.fontMetrics().lineSpacing())
 
     def _make_canvases(self) -> None:
         """Make the plot's and the images' figures and canvases, once (matplotlib loads here)."""
         if self.canvas is not None:
             return
+        self.canvas = FigureImage()
+        self.canvas.clicked.connect(self._on_click)
+        self.canvas.resized.connect(self._draw_plot)
+        self.canvas.drawn.connect(self._plot_drawn)
+        self.canvas.failed.connect(lambda message: self.status.setText(f"The plot failed: {message}"))
+        self._plot_box.layout().addWidget(self.canvas)
+        self._make_image_canvas()
+        self._draw_plot()
+
+    def _make_image_canvas(self) -> None:
         from matplotlib.backends.backend_qtagg import FigureCanvasQTAgg
         from matplotlib.figure import Figure
 
-        self._dpi = dpi = plot_theme.figure_dpi(self)
-        self.plot_figure = Figure(layout="constrained", dpi=dpi)
-        self.canvas = FigureCanvasQTAgg(self.plot_figure)
-        self.canvas.mpl_connect("pick_event", self._on_pick)
-        self.canvas.mpl_connect("resize_event", lambda _: self._plot_resized())
-        self.canvas.mpl_connect("draw_event", lambda _: self._laid_out())
-        self.image_figure = Figure(layout="constrained", dpi=dpi)
+        self._dpi = plot_theme.figure_dpi(self)
+        self.image_figure = Figure(layout="constrained", dpi=self._dpi)
         self.image_canvas = FigureCanvasQTAgg(self.image_figure)
-        self._plot_box.layout().addWidget(self.canvas)
         self._image_box.layout().addWidget(self.image_canvas)
-        self._draw_plot()
 
-    def _remake_canvases(self) -> None:
-        """New figures at the new text size (a figure's resolution is set when it is made)."""
-        for box, canvas in ((self._plot_box, self.canvas), (self._image_box, self.image_canvas)):
-            box.layout().removeWidget(canvas)
-            canvas.deleteLater()
-        self.canvas = None
-        self._make_canvases()
+    def _remake_image_canvas(self) -> None:
+        """A new images' figure at the new text size (a figure's resolution is set when it is made)."""
+        self._image_box.layout().removeWidget(self.image_canvas)
+        self.image_canvas.deleteLater()
+        self._make_image_canvas()
         if self.selected is not None and self.selected in self._points:
             self.show_point(self.selected)
+
+    @property
+    def plot_figure(self):
+        """The figure of the plot shown now (drawn off the GUI thread; read it only), or ``None``."""
+        shown = self.canvas.shown if self.canvas is not None else None
+        return shown.figure if shown is not None else None
 
     # -- inputs ---------------------------------------------------------------
 
@@ -522,71 +537,110 @@ class CostPanel(QWidget):
         return marked_rows(self._points, self._knees)
 
     def _draw_plot(self, quick: bool = False, hidden: bool = False) -> None:
-        """Draw the points found so far.  ``quick`` (while a sweep runs): the axes keep the places
-        of the last full draw, when there are as many, and the legend a fixed corner.  A hidden
-        pane is drawn when it is shown, unless ``hidden`` (for an export)."""
+        """Ask for the points found so far to be drawn, off the GUI thread.  ``quick`` (while a sweep
+        runs): the axes keep the places of the last full draw, when there are as many.  A hidden pane
+        is drawn when it is shown, unless ``hidden``."""
         if self.canvas is None:
             return  # drawn when the canvas is made
         self._plot_stale = not (self.isVisible() or hidden)
         if self._plot_stale:
             return  # drawn when the pane is shown (a lesson step resets the plot of a hidden tab)
-        import matplotlib
         from matplotlib.colors import same_color
 
-        rows = self.rows()
         self._dark = plot_theme.is_dark(self)
         background = plot_theme.background(self._dark)
-        self.plot_figure.set_facecolor(background)
         if not same_color(self.image_figure.get_facecolor(), background):  # before any image is shown
             self.image_figure.set_facecolor(background)
             self.image_canvas.draw_idle()
-        self._fitted = plot_theme.fitted_style(self.plot_figure)
-        with matplotlib.rc_context({**plot_theme.plot_style(self._dark), **self._fitted}):
-            self._lines = draw_cost_plot(self.plot_figure, rows, sorted(self._points),
-                                         legend_loc=QUICK_LEGEND if quick else "best")
-            placed = quick and self._layout is not None and len(self._layout) == len(self.plot_figure.axes)
-            self.plot_figure.set_layout_engine("none" if placed else "constrained")
-            if placed:
-                for ax, box in zip(self.plot_figure.axes, self._layout, strict=True):
-                    ax.set_position(box)
-            ax = self.plot_figure.axes[0]
-            if self.selected is not None and self.selected in self._points:
-                at, x, y = point_position(self.plot_figure, self._points[self.selected].row)
-                at.plot([x], [y], "x", color=plot_theme.foreground(self._dark), markersize=10,
-                        markeredgewidth=2)
-            if not rows:
-                ax.text(0.5, 0.5, "the curves fill in here,\npoint by point", transform=ax.transAxes,
-                        ha="center", va="center", color="gray")
-            plot_theme.fit_axis_labels(self.plot_figure)
-        self.canvas.draw_idle()
+        ratio = self.canvas.devicePixelRatioF()
+        self.canvas.request(self._plot_drawing(self.canvas.width() * ratio, self.canvas.height() * ratio,
+                                               plot_theme.figure_dpi(self) * ratio,
+                                               self._layout if quick else None))
 
-    def _laid_out(self) -> None:
-        """Keep where a full draw placed the axes, for the quick draws while a sweep runs."""
-        from matplotlib.layout_engine import ConstrainedLayoutEngine
+    def _plot_drawing(self, width: float, height: float, dpi: float, layout: list | None):
+        """A function that draws the plot as it is now on a new figure, for any thread."""
+        rows, indices, dark = self.rows(), sorted(self._points), self._dark
+        selected = self._points[self.selected].row if self.selected in self._points else None
 
-        if isinstance(self.plot_figure.get_layout_engine(), ConstrainedLayoutEngine):
-            self._layout = [ax.get_position().frozen() for ax in self.plot_figure.axes]
+        def draw() -> Drawn:
+            import matplotlib
 
-    def _plot_resized(self) -> None:
-        """Draw the plot again only when its text takes another size; else just refit its axis labels."""
-        if plot_theme.fitted_style(self.plot_figure) != self._fitted:
-            self._draw_plot()
-        else:
-            plot_theme.fit_axis_labels(self.plot_figure)
+            with MATPLOTLIB:
+                figure = agg_figure(width, height, dpi)
+                style = {**plot_theme.plot_style(dark), **plot_theme.fitted_style(figure)}
+                with matplotlib.rc_context(style):
+                    lines = CostPanel._lay_out_plot(figure, rows, indices, dark, selected, layout)
+                full = [ax.get_position().frozen() for ax in figure.axes] if layout is None else None
+                return Drawn(figure, pixels(figure), {"lines": lines, "layout": full})
 
-    def _on_pick(self, event) -> None:
-        indices = self._lines.get(event.artist)
-        if indices is None or not len(event.ind):
-            return
-        self.show_point(indices[int(event.ind[0])])
+        return draw
+
+    @staticmethod
+    def _lay_out_plot(figure, rows, indices, dark, selected, layout) -> dict:
+        """Draw ``rows`` on ``figure``, laid out and tidied (:func:`tidy_cost_plot`); its lines.  When
+        the text leaves the curves too little room (a small pane, large text), the text is drawn smaller,
+        down to :data:`LEAST_TEXT` of matplotlib's ``font.size`` of the caller."""
+        import matplotlib
+
+        size = matplotlib.rcParams["font.size"]
+        for share in TEXT_SHARES:  # the last is drawn however little room the curves get
+            with matplotlib.rc_context({"font.size": share * size}):
+                lines = CostPanel._first_layout(figure, rows, indices, dark, selected, layout)
+            curves = figure.axes[0].bbox
+            if layout is not None or (curves.height >= ROOM[1] * figure.bbox.height
+                                      and curves.width >= ROOM[0] * figure.bbox.width):
+                break
+        with matplotlib.rc_context({"font.size": share * size}):
+            figure.set_layout_engine("none")  # the tick labels thinned stay where they were measured
+            tidy_cost_plot(figure)
+            figure.canvas.draw()
+        return lines
+
+    @staticmethod
+    def _first_layout(figure, rows, indices, dark, selected, layout) -> dict:
+        """Draw ``rows`` on ``figure`` and lay it out, the curves' legend under their axis label."""
+        figure.set_facecolor(plot_theme.background(dark))
+        figure.set_layout_engine("constrained")
+        lines = draw_cost_plot(figure, rows, indices)
+        if layout is not None and len(layout) == len(figure.axes):
+            figure.set_layout_engine("none")
+            for ax, box in zip(figure.axes, layout, strict=True):
+                ax.set_position(box)
+        ax = figure.axes[0]
+        if selected is not None:
+            at, x, y = point_position(figure, selected)
+            at.plot([x], [y], "x", color=plot_theme.foreground(dark), markersize=10, markeredgewidth=2)
+        if not rows:
+            ax.text(0.5, 0.5, "the curves fill in here,\npoint by point", transform=ax.transAxes,
+                    ha="center", va="center", color="gray")
+        figure.canvas.draw()
+        plot_theme.fit_axis_labels(figure)
+        tidy_cost_plot(figure)  # the legend under the axis label: laid out again to make room for it
+        figure.canvas.draw()
+        return lines
+
+    def _plot_drawn(self, drawn: Drawn) -> None:
+        """A new picture of the plot is shown: its lines answer clicks; a full one's places are kept."""
+        self._lines = drawn.extra["lines"]
+        if drawn.extra["layout"] is not None:
+            self._layout = drawn.extra["layout"]
+        self.plot_drawn.emit()
+
+    def _on_click(self, x: float, y: float) -> None:
+        """A press on the plot at (x, y), the shown figure's pixels: the point under it is shown."""
+        from matplotlib.backend_bases import MouseEvent
+
+        event = MouseEvent("button_press_event", self.plot_figure.canvas, x, y, button=1)
+        for line, indices in self._lines.items():
+            hit, info = line.contains(event)
+            if hit and len(info["ind"]):
+                self.show_point(indices[int(info["ind"][0])])
+                return
 
     def point_position(self, index: int) -> tuple[float, float]:
         """Where setting ``index``'s point is drawn on the plot canvas, in widget pixels (x right, y down)."""
-        self._make_canvases()
         ax, x, y = point_position(self.plot_figure, self._points[index].row)
-        x, y = ax.transData.transform((x, y))
-        ratio = self.canvas.device_pixel_ratio or 1.0
-        return x / ratio, self.canvas.height() - y / ratio
+        return self.canvas.to_widget(*ax.transData.transform((x, y)))
 
     def show_point(self, index: int) -> None:
         """Show setting ``index``'s image, the reference and the error map side by side."""
@@ -607,7 +661,7 @@ class CostPanel(QWidget):
         self.image_figure.clear()
         dark = plot_theme.is_dark(self)
         self.image_figure.set_facecolor(plot_theme.background(dark))
-        with matplotlib.rc_context(plot_theme.plot_style(dark)):
+        with MATPLOTLIB, matplotlib.rc_context(plot_theme.plot_style(dark)):
             for k, (image, title, cmap) in enumerate(panels):
                 ax = self.image_figure.add_subplot(2, 2, k + 1)
                 if cmap == "magma":
@@ -650,9 +704,10 @@ class CostPanel(QWidget):
     def export_plot(self, path) -> None:
         """Write the plot as PNG or SVG, after the suffix (atomically)."""
         self._make_canvases()
-        if self._plot_stale:
-            self._draw_plot(hidden=True)
-        cost_files.save_figure(self.plot_figure, path)
+        ratio = self.canvas.devicePixelRatioF()
+        drawn = self._plot_drawing(self.canvas.width() * ratio, self.canvas.height() * ratio,
+                                   plot_theme.figure_dpi(self) * ratio, None)()
+        cost_files.save_figure(drawn.figure, path)
 
     def _ask_export_csv(self) -> None:
         path, _ = ask_save(self, "Export the sweep as CSV", "cost.csv", "CSV (*.csv)") or ("", "")

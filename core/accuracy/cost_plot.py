@@ -32,16 +32,14 @@ SIDE_BY_SIDE_PT = 576
 KNOB_COLORS = {name: f"C{i}" for i, name in enumerate(KNOB_NAMES)}
 
 
-def draw_cost_plot(figure: Figure, rows: list[Row], indices: list[int] | None = None,
-                   legend_loc: str = "best") -> dict:
-    """Draw ``rows`` on ``figure`` (cleared first).
+def draw_cost_plot(figure: Figure, rows: list[Row], indices: list[int] | None = None) -> dict:
+    """Draw ``rows`` on ``figure`` (cleared first).  The curves' legend goes below their axes; after a
+    layout, :func:`tidy_cost_plot` puts it below the axis label and thins the labels that would overlap.
 
     Parameters
     ----------
     rows : the sweep's rows, knees marked.
     indices : each row's setting index (for picking), default ``0 .. len(rows) - 1``.
-    legend_loc : where the curves' legend goes (matplotlib's ``loc``); ``"best"`` looks for the
-        emptiest corner, which costs a sixth of a draw.
 
     Returns
     -------
@@ -72,14 +70,14 @@ def draw_cost_plot(figure: Figure, rows: list[Row], indices: list[int] | None = 
         xs = [max(r.seconds, 1e-6) for _, r in mine]
         ys = [max(r.reference_flip, ERROR_FLOOR) for _, r in mine]
         knob = KNOBS[name]
-        label = knob.title + (" (time only)" if knob.time_only else "")
+        label = knob.title.split(" (")[0].split(",")[0] + (" (time only)" if knob.time_only else "")
         color = KNOB_COLORS[name]
         (line,) = ax.plot(xs, ys, "o-", color=color, markersize=5, label=label, picker=True, pickradius=6)
         lines[line] = [i for i, _ in mine]
         for k, ((_, r), x, y) in enumerate(zip(mine, xs, ys, strict=True)):
             # the methods of a time-only knob share one error: their names go below, slanted, alternating
             offset, rotation = ((0, -10 - 10 * (k % 2)), -30) if knob.time_only else ((4, 4), 0)
-            ax.annotate(r.value, (x, y), textcoords="offset points", xytext=offset, fontsize=7,
+            ax.annotate(r.value, (x, y), textcoords="offset points", xytext=offset, fontsize="x-small",
                         color=color, rotation=rotation, ha="left", va="top" if knob.time_only else "bottom")
             if r.knee:
                 ax.plot([x], [y], "o", markersize=13, markerfacecolor="none",
@@ -87,12 +85,80 @@ def draw_cost_plot(figure: Figure, rows: list[Row], indices: list[int] | None = 
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.set_xlabel("render time (s, median)")
-    ax.set_ylabel("mean FLIP error against the reference")
+    ax.set_ylabel("mean FLIP error\nagainst the reference")  # one line was longer than a short figure
     ax.set_title("What accuracy costs in time\n(ringed: each knob's knee)", fontsize="medium")
     ax.grid(True, which="both", alpha=0.3)
-    if lines:
-        ax.legend(fontsize=8, loc=legend_loc, framealpha=0.6)  # curves show through where it covers them
+    if any(line.axes is ax for line in lines):
+        ax.legend(fontsize="small", loc="upper center", bbox_to_anchor=(0.5, 0.0), ncols=2)
     return lines
+
+
+def tidy_cost_plot(figure: Figure) -> None:
+    """Make a drawn cost plot readable (the figure has been drawn once, so its texts have their extents):
+    the curves' legend below the x axis label, in as many columns as the figure's width holds; tick labels
+    and point labels that would overlap one kept before them hidden.  Draw the figure again after."""
+    renderer = figure.canvas.get_renderer()
+    ax = figure.axes[0]
+    if ax.get_legend() is not None and ax.get_xlabel().startswith("render time"):
+        _below_the_axis_label(figure, ax, renderer)
+    formats = figure.axes[-1]
+    if formats.get_legend() is not None and formats.get_xlabel().startswith("far / near"):
+        _in_columns(formats, renderer, formats.bbox.width, loc="upper left")  # fewer rows over the panel
+    for each in figure.axes:
+        for axis in (each.xaxis, each.yaxis):
+            _thin(shown_tick_labels(axis), renderer)
+    legends = [each.get_legend().get_window_extent(renderer) for each in figure.axes if each.get_legend()]
+    from matplotlib.text import Annotation
+
+    _thin([t for t in ax.texts if isinstance(t, Annotation) and t.get_visible()], renderer, avoid=legends,
+          inside=figure.bbox)
+
+
+def shown_tick_labels(axis) -> list:
+    """The tick labels ``axis`` shows: visible, with text, at a tick within its view."""
+    low, high = sorted(axis.get_view_interval())
+    return [label for ticks in (axis.get_major_ticks(), axis.get_minor_ticks())
+            for tick, label in ((t, t.label1) for t in ticks)
+            if label.get_visible() and label.get_text().strip() and low <= tick.get_loc() <= high]
+
+
+def _overlap(a, b, pad: float = 1.0) -> bool:
+    return a.x0 < b.x1 + pad and b.x0 < a.x1 + pad and a.y0 < b.y1 + pad and b.y0 < a.y1 + pad
+
+
+def _thin(texts: list, renderer, avoid: list | None = None, inside=None) -> None:
+    """Hide each text that overlaps one kept before it, or a box of ``avoid``, or leaves ``inside``."""
+    kept = list(avoid or [])
+    for text in texts:
+        box = text.get_window_extent(renderer)
+        outside = inside is not None and not (inside.x0 <= box.x0 and box.x1 <= inside.x1
+                                               and inside.y0 <= box.y0 and box.y1 <= inside.y1)
+        if outside or any(_overlap(box, other) for other in kept):
+            text.set_visible(False)
+        else:
+            kept.append(box)
+
+
+def _below_the_axis_label(figure: Figure, ax, renderer) -> None:
+    """Anchor ``ax``'s legend under its x axis label (constrained layout then makes room for it), in as
+    many columns (at most 3) as the width of ``ax``'s cell of the figure holds."""
+    from matplotlib.transforms import offset_copy
+
+    label = ax.xaxis.label.get_window_extent(renderer)
+    below = ax.get_window_extent(renderer).y0 - label.y0 + 4  # pixels from the axes' bottom
+    cell = ax.get_subplotspec().get_position(figure).width * figure.bbox.width
+    _in_columns(ax, renderer, 0.98 * cell, loc="upper center", bbox_to_anchor=(0.5, 0.0),
+                bbox_transform=offset_copy(ax.transAxes, figure, 0, -below, units="dots"))
+
+
+def _in_columns(ax, renderer, room: float, **where) -> None:
+    """Lay ``ax``'s legend out again at ``where``, in the most columns (at most 3) that fit ``room``
+    pixels wide."""
+    handles, labels = ax.get_legend_handles_labels()
+    for ncols in (3, 2, 1):
+        legend = ax.legend(handles, labels, fontsize="small", ncols=ncols, **where)
+        if legend.get_window_extent(renderer).width <= room:
+            return
 
 
 def point_position(figure: Figure, row: Row):
@@ -131,8 +197,8 @@ def _draw_depth_formats(ax, formats: list[tuple[int, Row]], wide: bool) -> dict:
     ax.set_xlabel("far / near ratio (near plane moved)")
     ax.set_ylabel("pixels showing\nthe wrong object (%)" if wide else "pixels showing the wrong object (%)")
     title = "z-buffer formats: z-fighting against float64\n(ringed: fewest bytes within the tolerance)"
-    ax.set_title(title if wide else "z-buffer formats: z-fighting\nagainst float64 (ringed: fewest bytes\n"
-                 "within the tolerance)", fontsize=10)
+    ax.set_title(title if wide else "z-buffer formats:\nz-fighting against float64\n(ringed: fewest bytes\n"
+                 "within the tolerance)", fontsize="medium")
     ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=8, loc="upper left")
+    ax.legend(fontsize="small", loc="upper left")
     return lines

@@ -13,7 +13,7 @@ import pytest
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
-from core.accuracy.cost_plot import draw_cost_plot
+from core.accuracy.cost_plot import draw_cost_plot, tidy_cost_plot
 from core.accuracy.sweep import DEPTH_RATIOS, Row
 from core.object_order.depth_formats import DEPTH_FORMATS
 
@@ -39,6 +39,8 @@ def test_the_formats_panel_sits_where_there_is_room_and_no_text_runs_into_anothe
     figure = Figure(figsize=size, dpi=100, layout="constrained")
     canvas = FigureCanvasAgg(figure)
     draw_cost_plot(figure, _rows())
+    canvas.draw()
+    tidy_cost_plot(figure)  # the legend under the axis label, laid out again
     canvas.draw()
     curves, formats = (ax.get_window_extent() for ax in figure.axes)
     if beside:

@@ -39,6 +39,11 @@ def _plotted_points(panel):
     return sum(len(indices) for indices in panel._lines.values())
 
 
+def _drawn(qtbot, panel):
+    """Wait for the plot's newest picture (drawn off the GUI thread) to be shown."""
+    qtbot.waitUntil(lambda: panel.plot_figure is not None and not panel.canvas.pending, timeout=TIMEOUT_MS)
+
+
 def test_sweep_fills_the_plot_and_a_click_shows_the_point(qtbot, panel):
     _pick(panel, "depth")
     qtbot.mouseClick(panel.run_button, Qt.MouseButton.LeftButton)
@@ -46,13 +51,13 @@ def test_sweep_fills_the_plot_and_a_click_shows_the_point(qtbot, panel):
     with qtbot.waitSignal(panel.sweep_finished, timeout=TIMEOUT_MS) as finished:
         pass
     assert finished.args == [True]
+    _drawn(qtbot, panel)
     n = len(KNOBS["depth"].values)
     assert _plotted_points(panel) == n
     rows = panel.rows()
     assert len(rows) == n and sum(r.knee for r in rows) == 1
     assert "Knees: depth" in panel.status.text()
 
-    panel.canvas.draw()
     x, y = panel.point_position(0)
     with qtbot.waitSignal(panel.point_selected, timeout=5000) as picked:
         qtbot.mouseClick(panel.canvas, Qt.MouseButton.LeftButton, pos=QPoint(round(x), round(y)))
@@ -67,33 +72,32 @@ def test_sweep_fills_the_plot_and_a_click_shows_the_point(qtbot, panel):
 
 
 def test_a_running_sweep_draws_its_plot_seldom_and_the_finished_one_in_full(qtbot, panel):
-    # A draw of the plot holds the GUI thread a quarter of a second; the points of cheap settings come
-    # in several a second. Drawn once per point, the window froze for seconds at a time.
-    from matplotlib.layout_engine import ConstrainedLayoutEngine
-
+    # A draw of the plot takes a core half a second; the points of cheap settings come in several a
+    # second. Drawn once per point, the window froze for seconds at a time (now: the drawer fell behind).
     _pick(panel, "all")
     panel.resize(900, 720)  # the finished sweep's status (its knees) takes two lines
     qtbot.waitUntil(lambda: panel.canvas.width() < 600)
     draws, sizes = [], set()
 
-    def drawn(_):
+    def drawn():
         draws.append(time.perf_counter())
-        sizes.add(panel.canvas.size().toTuple())
+        sizes.add(panel.canvas.shown.rgba.shape)
 
-    panel.canvas.mpl_connect("draw_event", drawn)
+    panel.plot_drawn.connect(drawn)
     started = time.perf_counter()
     panel.run()
     with qtbot.waitSignal(panel.sweep_finished, timeout=TIMEOUT_MS) as finished:
         pass
     assert finished.args == [True]
     done = time.perf_counter()
-    qtbot.waitUntil(lambda: bool(draws) and draws[-1] > done)  # the finished sweep's draw
+    qtbot.waitUntil(lambda: bool(draws) and draws[-1] > done, timeout=TIMEOUT_MS)  # the finished sweep's
+    _drawn(qtbot, panel)
     points = len(panel.rows())
     # The first point (shown with its images), one draw per interval, a new panel's layout, the last.
     allowed = 3 + (done - started) / (REPLOT_MS / 1000) + 1
     assert points > allowed  # more points than draws: drawn once per point, this would fail
     assert len(draws) <= allowed
-    assert isinstance(panel.plot_figure.get_layout_engine(), ConstrainedLayoutEngine)  # the last: in full
+    assert panel.canvas.shown.extra["layout"] is not None  # the last: laid out in full
     assert _plotted_points(panel) == points
     assert len(sizes) == 1  # the plot keeps its size (the knees' two status lines do not shrink it)
 
@@ -103,11 +107,11 @@ def test_depth_formats_get_their_own_panel_and_a_click_there_shows_the_point(qtb
     panel.run()
     with qtbot.waitSignal(panel.sweep_finished, timeout=TIMEOUT_MS):
         pass
+    _drawn(qtbot, panel)
     n = len(KNOBS["depth-format"].values)
     assert _plotted_points(panel) == n and len(panel.rows()) == n
     (ax,) = panel.plot_figure.axes
     assert "near ratio" in ax.get_xlabel() and "wrong object" in ax.get_ylabel()
-    panel.canvas.draw()
     last = n - 1  # int16 at the largest ratio
     x, y = panel.point_position(last)
     with qtbot.waitSignal(panel.point_selected, timeout=5000) as picked:
@@ -131,6 +135,7 @@ def test_cancel_stops_between_renders_and_run_resumes(qtbot, panel):
     panel.run()
     with qtbot.waitSignal(panel.sweep_finished, timeout=TIMEOUT_MS):
         pass
+    _drawn(qtbot, panel)
     assert panel.finished and _plotted_points(panel) == len(KNOBS["spp"].values)
     assert sorted(panel._points) == list(range(len(KNOBS["spp"].values)))
 
@@ -169,6 +174,7 @@ def test_a_hidden_cost_pane_draws_its_plot_only_when_shown(qtbot, panel, monkeyp
     _pick(panel, "depth")
     with qtbot.waitSignal(panel.sweep_finished, timeout=TIMEOUT_MS):
         panel.run()
+    _drawn(qtbot, panel)
     assert _plotted_points(panel) > 0
     drawn = []
     original = cost_panel.draw_cost_plot
@@ -179,4 +185,5 @@ def test_a_hidden_cost_pane_draws_its_plot_only_when_shown(qtbot, panel, monkeyp
     assert drawn == []  # hidden: not drawn
     panel.show()
     qtbot.waitUntil(lambda: drawn == [1], timeout=5000)  # shown: drawn once, the new scene's empty plot
+    _drawn(qtbot, panel)
     assert _plotted_points(panel) == 0

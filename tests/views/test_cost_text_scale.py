@@ -7,9 +7,8 @@ from views.cost_panel import CostPanel
 
 def _texts_px(panel) -> dict[str, tuple[float, object]]:
     """Every shown text of the plot: its height on the canvas (logical pixels) and its box."""
-    panel.canvas.draw()
-    renderer = panel.canvas.get_renderer()
-    ratio = panel.canvas.device_pixel_ratio or 1.0
+    renderer = panel.plot_figure.canvas.get_renderer()
+    ratio = panel.canvas.devicePixelRatioF()
     ax = panel.plot_figure.axes[0]
     ticks = [label for axis in (ax.xaxis, ax.yaxis) for at, label in zip(
         axis.get_majorticklocs(), axis.get_majorticklabels(), strict=True)
@@ -27,10 +26,10 @@ def _texts_px(panel) -> dict[str, tuple[float, object]]:
 def test_the_cost_plot_text_grows_with_the_presentation_scale_and_stays_on_the_canvas(qtbot, present, scale):
     panel = CostPanel()
     window, presentation = present(panel)
-    qtbot.waitUntil(lambda: panel.canvas is not None)
+    qtbot.waitUntil(lambda: panel.plot_figure is not None and not panel.canvas.pending)
     before = _texts_px(panel)
     presentation.set_scale(scale)
-    qtbot.waitUntil(lambda: panel.canvas is not None and panel.canvas.figure.dpi > 100 * (scale - 0.1))
+    qtbot.waitUntil(lambda: panel.plot_figure.dpi > 100 * (scale - 0.1) and not panel.canvas.pending)
     after = _texts_px(panel)
     common = before.keys() & after.keys()
     assert len(common) >= 5  # the title, axis label, the tick labels, the empty plot's note
@@ -54,11 +53,11 @@ def test_a_small_pane_at_double_text_keeps_the_plot_apart_and_the_words_readable
     window, presentation = present(panel)
     window.resize(700, 470)
     presentation.set_scale(2.0)
-    qtbot.waitUntil(lambda: panel.canvas is not None and panel.canvas.figure.dpi > 190)
-    qtbot.waitUntil(lambda: panel.plot_figure.bbox.height < 420)
+    qtbot.waitUntil(lambda: panel.plot_figure is not None and panel.plot_figure.dpi > 190)
+    qtbot.waitUntil(lambda: panel.plot_figure.bbox.height < 420 and not panel.canvas.pending)
     shown = _texts_px(panel)
     ax = panel.plot_figure.axes[0]
-    renderer = panel.canvas.get_renderer()
+    renderer = panel.plot_figure.canvas.get_renderer()
     title, ylabel = ax.title.get_window_extent(renderer), ax.yaxis.label.get_window_extent(renderer)
     xlabel = ax.xaxis.label.get_window_extent(renderer)
     assert not _overlap(title, ylabel) and not _overlap(xlabel, ylabel)

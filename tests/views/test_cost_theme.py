@@ -23,13 +23,12 @@ def themed(present):
 
 
 def _canvas_mean(panel) -> float:
-    panel.canvas.draw()
-    return float(np.asarray(panel.canvas.buffer_rgba())[..., :3].mean())
+    return float(panel.canvas.shown.rgba[..., :3].mean())
 
 
 def test_the_cost_plot_turns_dark_in_high_contrast_and_light_again(qtbot, themed):
     _, panel, presentation = themed
-    qtbot.waitUntil(lambda: panel.canvas is not None)
+    qtbot.waitUntil(lambda: panel.plot_figure is not None)
     assert to_rgb(panel.plot_figure.get_facecolor()) == (1.0, 1.0, 1.0)
     assert _canvas_mean(panel) > 200
     presentation.set_high_contrast(True)

@@ -1,0 +1,174 @@
+"""A matplotlib figure drawn off the GUI thread into an image that the window only paints.
+
+Laying out and drawing a figure (constrained layout, legend placement, text
+extents) held the GUI thread a quarter of a second or more.  A
+:class:`FigureImage` asks its drawer for a picture: the drawer runs the given
+function on a thread pool of its own (one thread), which makes a new figure,
+draws it with matplotlib's Agg backend and returns it with its RGBA pixels.
+The widget paints those pixels scaled to its size.  A newer request supersedes
+an older one: a request made while another is drawn waits, replacing any
+waiting before it, and the picture of a superseded request is not shown.
+
+matplotlib's settings (``rcParams``) are global: whoever draws inside
+``matplotlib.rc_context`` holds :data:`MATPLOTLIB` meanwhile, so that two
+threads never change them at once.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import threading
+from collections.abc import Callable
+from dataclasses import dataclass
+
+import numpy as np
+from PySide6.QtCore import QObject, QPointF, QRectF, QRunnable, QThreadPool, Signal
+from PySide6.QtGui import QImage, QPainter
+from PySide6.QtWidgets import QWidget
+
+MATPLOTLIB = threading.Lock()
+"""Held while matplotlib's global settings are changed and used (``rc_context``), by any thread."""
+
+
+@dataclass
+class Drawn:
+    """A figure drawn off the GUI thread.
+
+    Attributes
+    ----------
+    figure : the matplotlib figure (on an Agg canvas); read it, do not draw it again.
+    rgba : its pixels, (height, width, 4) uint8, row 0 at the top.
+    extra : whatever the drawing function returned besides (e.g. its lines, for picking).
+    """
+
+    figure: object
+    rgba: np.ndarray
+    extra: object = None
+
+
+class _Signals(QObject):
+    drawn = Signal(int, object)  # request id, Drawn | str (the error)
+
+
+class _Draw(QRunnable):
+    def __init__(self, request: int, draw: Callable[[], Drawn], signals: _Signals):
+        super().__init__()
+        self.request, self.draw, self.signals = request, draw, signals
+
+    def run(self):
+        try:
+            result = self.draw()
+        except Exception as exc:  # shown by the widget instead of a picture
+            result = f"{type(exc).__name__}: {exc}"
+        with contextlib.suppress(RuntimeError):  # the widget was deleted meanwhile
+            self.signals.drawn.emit(self.request, result)
+
+
+def agg_figure(width_px: float, height_px: float, dpi: float):
+    """A new figure of ``width_px`` x ``height_px`` pixels at ``dpi``, on an Agg canvas, laid out by
+    constrained layout."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+
+    figure = Figure(figsize=(max(width_px, 1) / dpi, max(height_px, 1) / dpi), dpi=dpi, layout="constrained")
+    FigureCanvasAgg(figure)
+    return figure
+
+
+def pixels(figure) -> np.ndarray:
+    """The figure's last drawn pixels, a copy, (height, width, 4) uint8."""
+    return np.array(figure.canvas.buffer_rgba(), copy=True)
+
+
+class FigureImage(QWidget):
+    """Paints the newest figure drawn for it, scaled to its size.
+
+    Signals
+    -------
+    drawn(object) : a new picture is shown (its :class:`Drawn`).
+    failed(str) : drawing the newest request raised; the message.
+    clicked(float, float) : a press, in the shown figure's pixels (x right, y up, matplotlib's).
+    resized() : the widget took another size (its owner asks for a picture of that size).
+    """
+
+    drawn = Signal(object)
+    failed = Signal(str)
+    clicked = Signal(float, float)
+    resized = Signal()
+
+    def __init__(self, parent: QWidget | None = None):
+        super().__init__(parent)
+        self.shown: Drawn | None = None
+        self._image: QImage | None = None
+        self._pool = QThreadPool(self)
+        self._pool.setMaxThreadCount(1)
+        self._signals = _Signals()
+        self._signals.drawn.connect(self._on_drawn)
+        self._request = 0  # the newest request's id
+        self._busy = False  # a request is being drawn
+        self._waiting: Callable[[], Drawn] | None = None
+
+    @property
+    def pending(self) -> bool:
+        """A request is being drawn or waits."""
+        return self._busy or self._waiting is not None
+
+    def request(self, draw: Callable[[], Drawn]) -> None:
+        """Draw with ``draw`` (called on the drawer's thread), superseding every earlier request."""
+        self._request += 1
+        self._waiting = draw
+        self._start()
+
+    def _start(self) -> None:
+        if self._busy or self._waiting is None:
+            return
+        self._busy = True
+        draw, self._waiting = self._waiting, None
+        self._pool.start(_Draw(self._request, draw, self._signals))
+
+    def _on_drawn(self, request: int, result) -> None:
+        self._busy = False
+        newest = request == self._request
+        self._start()
+        if not newest:
+            return  # superseded: a newer request is drawn next
+        if isinstance(result, str):
+            self.failed.emit(result)
+            return
+        self.shown = result
+        height, width, _ = result.rgba.shape
+        self._image = QImage(result.rgba.data, width, height, 4 * width, QImage.Format.Format_RGBA8888).copy()
+        self.update()
+        self.drawn.emit(result)
+
+    def to_figure(self, x: float, y: float) -> tuple[float, float]:
+        """Widget pixels (y down) -> the shown figure's pixels (y up)."""
+        height, width, _ = self.shown.rgba.shape
+        return x * width / max(self.width(), 1), (self.height() - y) * height / max(self.height(), 1)
+
+    def to_widget(self, x: float, y: float) -> tuple[float, float]:
+        """The shown figure's pixels (y up) -> widget pixels (y down)."""
+        height, width, _ = self.shown.rgba.shape
+        return x * self.width() / width, self.height() - y * self.height() / height
+
+    def paintEvent(self, event) -> None:  # noqa: N802 (Qt's name)
+        if self._image is None:
+            return
+        painter = QPainter(self)
+        painter.setRenderHint(QPainter.RenderHint.SmoothPixmapTransform)
+        painter.drawImage(QRectF(0, 0, self.width(), self.height()), self._image)
+        painter.end()
+
+    def resizeEvent(self, event) -> None:  # noqa: N802 (Qt's name)
+        super().resizeEvent(event)
+        self.resized.emit()
+
+    def mousePressEvent(self, event) -> None:  # noqa: N802 (Qt's name)
+        if self.shown is not None:
+            at: QPointF = event.position()
+            self.clicked.emit(*self.to_figure(at.x(), at.y()))
+        super().mousePressEvent(event)
+
+    def closeEvent(self, event) -> None:  # noqa: N802 (Qt's name)
+        self._waiting = None
+        super().closeEvent(event)
