@@ -99,7 +99,7 @@ def test_closing_the_window_during_a_compile_ends_the_program(tmp_path):
     env = {**os.environ, "XDG_CONFIG_HOME": str(tmp_path)}
     start = time.monotonic()
     root = Path(tabs.__file__).resolve().parents[1]
-    done = subprocess.run([sys.executable, "-c", CLOSE_WHILE_COMPILING], cwd=root, env=env, capture_output=True,
-                          text=True, timeout=300)
+    done = subprocess.run([sys.executable, "-c", CLOSE_WHILE_COMPILING], cwd=root, env=env,
+                          capture_output=True, text=True, timeout=300)
     assert done.returncode == 0, done.stderr[-2000:]
     assert time.monotonic() - start < 120  # not the ten minutes of the compile still running
