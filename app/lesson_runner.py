@@ -121,6 +121,7 @@ class LessonRunner:
         for lesson_name, name in MODEL_OVERLAYS.items():
             model.set_overlay(name, lesson_name in step.overlays)
         self._show_panes(step.panes)
+        self._show_heat_map(step.heat_map)
         highlight = step.highlight
         zbuffer_step = step.zbuffer_step
         if zbuffer_step is None and "polygon_step" in highlight:
@@ -142,6 +143,11 @@ class LessonRunner:
             for tab in w.tabs:
                 index = w.tab_widget.indexOf(tab.widget)
                 w.tab_widget.setTabVisible(index, tab.title.lower() in titles)
+
+    def _show_heat_map(self, name: str) -> None:
+        """Choose the image-order pane's heat map named ``name`` (its choice's text, in lower case)."""
+        choice = self.window.tab("image order").widget.heat
+        choice.setCurrentIndex(next(k for k in range(choice.count()) if choice.itemText(k).lower() == name))
 
     def _highlight(self, scene: Scene, highlight) -> None:
         w = self.window

@@ -42,6 +42,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from core.image_order.kernels import layout as lay
+from core.image_order.optics import critical_angle_deg
 from core.image_order.ray_tree import LIGHT_STATUS, RayNode
 from core.object_order import clipping
 from core.object_order.culling import OUTSIDE
@@ -119,6 +120,27 @@ class LightVerdict:
 
 
 @dataclass(frozen=True)
+class InternalReflection:
+    """A ray inside a transparent object that meets its surface beyond the critical angle and is
+    reflected whole (no refracted part).
+
+    Attributes
+    ----------
+    object : the object's name.
+    point : (x, y, z) world space, where the ray meets the surface.
+    critical_deg : the critical angle asin(1 / ior) of the object's material into air, degrees from
+        the normal.
+    """
+
+    object: str
+    point: tuple[float, float, float]
+    critical_deg: float
+
+    def to_dict(self) -> dict:
+        return {"object": self.object, "point": list(self.point), "critical_deg": self.critical_deg}
+
+
+@dataclass(frozen=True)
 class PixelVerdict:
     """What decided one pixel, in one sentence, with the data it comes from.
 
@@ -133,6 +155,8 @@ class PixelVerdict:
         order, then those dropped before drawing, nearest first.
     lights : (traced) each light seen from the primary hit, in scene order.
     rays : (traced) rays traced for the pixel, by kind.
+    total_internal_reflection : (traced) every total internal reflection in the pixel's ray tree,
+        in the order the tree's rays are walked (parents before children).
     """
 
     pixel: tuple[int, int]
@@ -143,6 +167,7 @@ class PixelVerdict:
     fragments: tuple[Fragment, ...] | None = None
     lights: tuple[LightVerdict, ...] | None = None
     rays: dict[str, int] | None = None
+    total_internal_reflection: tuple[InternalReflection, ...] | None = None
 
     def to_dict(self) -> dict:
         """JSON-serialisable (no NaN or infinity)."""
@@ -154,6 +179,8 @@ class PixelVerdict:
             out["lights"] = [light.to_dict() for light in self.lights]
         if self.rays is not None:
             out["rays"] = dict(self.rays)
+        if self.total_internal_reflection is not None:
+            out["total_internal_reflection"] = [r.to_dict() for r in self.total_internal_reflection]
         return out
 
 
@@ -380,7 +407,8 @@ def trace_verdict(root: RayNode, scene: Scene, mode: str, x: int, y: int) -> Pix
     if root.hit is None:
         return PixelVerdict((x, y), mode, "miss", None,
                             "The primary ray misses everything between the near and the far plane, so the "
-                            "pixel shows the background colour.", lights=(), rays=rays)
+                            "pixel shows the background colour.", lights=(), rays=rays,
+                            total_internal_reflection=())
     lights = _lights(root, scene)
     parts = [f"The primary ray hits {root.hit_name} at t = {root.t:.3g}"]
     lit = [v.name for v in lights if v.lit]
@@ -404,7 +432,19 @@ def trace_verdict(root: RayNode, scene: Scene, mode: str, x: int, y: int) -> Pix
     elif reflected is not None:
         sentence += (f"; {root.hit_name} is a mirror, {root.k_reflect:.0%} of its colour comes from the "
                      f"reflected ray, which {_seen(reflected)}")
-    tir = [n.hit_name for n in root.walk() if n.total_internal_reflection]
-    if tir:
-        sentence += f"; total internal reflection inside {_names(tir)}"
-    return PixelVerdict((x, y), mode, "hit", root.hit_name, sentence + ".", lights=lights, rays=rays)
+    tir = tuple(InternalReflection(n.hit_name, tuple(float(c) for c in n.point),
+                                   critical_angle_deg(scene.objects[n.hit].material.ior, 1.0))
+                for n in root.walk() if n.total_internal_reflection)
+    for name in dict.fromkeys(r.object for r in tir):
+        first = next(r for r in tir if r.object == name)
+        times = sum(r.object == name for r in tir)
+        sentence += (f"; total internal reflection inside {name}: a ray inside meets its surface beyond "
+                     f"the critical angle {first.critical_deg:.1f}° at {_point(first.point)}"
+                     + (f" ({times} times in all)" if times > 1 else ""))
+    return PixelVerdict((x, y), mode, "hit", root.hit_name, sentence + ".", lights=lights, rays=rays,
+                        total_internal_reflection=tir)
+
+
+def _point(p) -> str:
+    """``(1, 0.293, 0)``: three digits, and no ``-0`` or ``1e-17`` for what is zero."""
+    return "(" + ", ".join(f"{round(c, 9) + 0.0:.3g}" for c in p) + ")"

@@ -11,6 +11,8 @@ off every edge.
 
 from __future__ import annotations
 
+import math
+
 from core.camera import Camera
 from core.scene import Material, PointLight, Scene, Sphere
 from core.shapes import box, quad
@@ -110,3 +112,27 @@ def glass_ball() -> Scene:
     glass = Sphere((0.0, 0.0, 0.0), 1.0, Material(transparency=0.9, ior=1.5), name="glass")
     backdrop = box((0, 0, -4), (8.0, 8.0, 0.2), name="backdrop")
     return Scene(camera=cam, objects=(glass, backdrop), lights=(PointLight((0.0, 4.0, 4.0), name="lamp"),))
+
+
+def glass_block() -> Scene:
+    """A ray inside a ``glass`` block (ior 1.5) meets its side beyond the critical angle.
+
+    The block: a box of side 2 at the origin (top y = 1, sides x = +-1, bottom y = -1).
+    The centre pixel (20, 15) of the 41 x 31 image looks through the target P = (0.5, 1, 0)
+    on the top face along d = (sin 60, -cos 60, 0) = (0.866, -0.5, 0), from the eye
+    P - 4 d, so t = 4 and the angle of incidence is 60 degrees.  Fresnel there, cos 60 = 0.5 and
+    cos(theta2) = 0.8165: r_s = (0.5 - 1.5 x 0.8165) / (0.5 + 1.5 x 0.8165) = -0.4202, r_p = (0.8165 -
+    1.5 x 0.5) / (0.8165 + 1.5 x 0.5) = 0.0425, R = (r_s^2 + r_p^2) / 2 = 0.0892.  Snell: sin(theta2) =
+    sin 60 / 1.5 = 0.577, theta2 = 35.3 degrees; the refracted ray (0.577, -0.816, 0) crosses
+    the 0.5 to the side x = 1 after 0.866, at y = 1 - 0.707 = 0.293, inside the side face.
+    There its angle of incidence is 90 - 35.3 = 54.7 degrees, beyond the critical angle
+    asin(1 / 1.5) = 41.8 degrees: total internal reflection inside the glass (the second
+    surface the pixel's rays meet).  The ray reflected back (-0.577, -0.816, 0) reaches the
+    bottom y = -1 at x = 1 - 1.293 x 0.707 = 0.086, at 35.3 degrees: it leaves the glass, and
+    its part reflected there (-0.577, 0.816, 0) climbs 1.086 x sqrt(2) = 1.536 on its way to the
+    side x = -1, meeting it at y = 0.536, again at 54.7 degrees: a second total internal reflection.
+    """
+    eye = (0.5 - 4.0 * math.sqrt(3.0) / 2.0, 1.0 + 4.0 * 0.5, 0.0)  # P - 4 d
+    cam = Camera(eye=eye, target=(0.5, 1.0, 0.0), width=41, height=31)
+    glass = box((0, 0, 0), 2.0, Material(transparency=0.9, ior=1.5), name="glass")
+    return Scene(camera=cam, objects=(glass,), lights=(PointLight((0.0, 6.0, 0.0), name="lamp"),))

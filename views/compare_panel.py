@@ -7,7 +7,8 @@ difference of their linear RGB colour-mapped with its scale.  A click on a
 pixel of any of the three images marks the same pixel in all of them and
 reads it in both outputs: its colour, what decided it in each, in one sentence
 (:mod:`core.pixel_verdict`; hover for the fragments of the z-buffer or the ray
-tree of the tracer), and the difference with why the two differ there.
+tree of the tracer), A and B side by side, and under them the difference with
+why the two differ there.
 Under the images, a few sentences say what differs and why for this scene.
 """
 
@@ -91,7 +92,7 @@ class ReadoutRow(QWidget):
         self.swatch, self.title, self.numbers, self.found = QLabel(), QLabel(), QLabel(), QLabel()
         self.swatch.setFixedSize(14, 14)
         self.numbers.setTextInteractionFlags(Qt.TextInteractionFlag.TextSelectableByMouse)
-        for label in (self.title, self.found):
+        for label in (self.title, self.numbers, self.found):  # numbers too: a column is narrow at x2
             label.setWordWrap(True)
         grid = QGridLayout(self)
         grid.setContentsMargins(0, 0, 0, 4)
@@ -183,18 +184,21 @@ class ComparePanel(QWidget):
                 caption.setWordWrap(True)
                 layout.addWidget(caption)
             self.boxes[key] = box
-            grid.addWidget(box, i // 2, i % 2)
+            grid.addWidget(box, 0, i)
         self.boxes["difference"].setTitle("Difference |A − B|")
         self.readout = [ReadoutRow() for _ in range(3)]
         self.pixel_box = QGroupBox("Picked pixel")
         self.pixel_box.setToolTip("The picked pixel in both outputs; hover a line for every fragment "
                                   "(z-buffer) or the colours of the ray tree (tracer)")
         rows = QWidget()
-        rows_layout = QVBoxLayout(rows)
+        rows_layout = QGridLayout(rows)  # A and B side by side, why they differ under both
         rows_layout.setContentsMargins(0, 0, 0, 0)
-        for row in self.readout:
-            rows_layout.addWidget(row)
-        rows_layout.addStretch(1)
+        rows_layout.addWidget(self.readout[0], 0, 0, Qt.AlignmentFlag.AlignTop)
+        rows_layout.addWidget(self.readout[1], 0, 1, Qt.AlignmentFlag.AlignTop)
+        rows_layout.addWidget(self.readout[2], 1, 0, 1, 2)
+        rows_layout.setColumnStretch(0, 1)
+        rows_layout.setColumnStretch(1, 1)
+        rows_layout.setRowStretch(2, 1)
         rows_scroll = QScrollArea()
         rows_scroll.setWidgetResizable(True)
         rows_scroll.setFrameShape(QFrame.Shape.NoFrame)
@@ -203,7 +207,8 @@ class ComparePanel(QWidget):
         pixel_layout = QVBoxLayout(self.pixel_box)
         pixel_layout.setContentsMargins(4, 4, 4, 4)
         pixel_layout.addWidget(rows_scroll)
-        grid.addWidget(self.pixel_box, 1, 1)
+        for column in range(len(PANES)):
+            grid.setColumnStretch(column, 1)
         images = QWidget()
         images.setLayout(grid)
 
@@ -217,9 +222,11 @@ class ComparePanel(QWidget):
         scroll.setToolTip("What differs between A and B for this scene, and why")
         splitter = QSplitter(Qt.Orientation.Vertical)
         splitter.addWidget(images)
+        splitter.addWidget(self.pixel_box)  # under the images, the whole width: A and B in two columns
         splitter.addWidget(scroll)
         splitter.setStretchFactor(0, 1)
-        splitter.setSizes([400, 110])  # the images keep the larger share; drag to read more
+        splitter.setStretchFactor(1, 1)
+        splitter.setSizes([260, 200, 90])  # the images keep the larger share; drag to read more
         splitter.setChildrenCollapsible(False)
         layout = QVBoxLayout(self)
         layout.setContentsMargins(6, 6, 6, 6)

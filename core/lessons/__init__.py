@@ -49,6 +49,8 @@ VERSION = 1
 PANES = ("scene 3D", "image order", "object order", "four views", "compare", "hard cases", "cost")
 #: The 3D overlays a step can switch on.
 OVERLAYS = ("frustum", "bounding spheres", "grid cells")
+#: The image-order heat maps a step can lay over the traced image: none, or a count of each pixel's tests.
+HEAT_MAPS = ("off", *facts.HEAT_TESTS)
 #: What the 3D pane keeps in view: the scene, observer and frustum; or the highlight, eye and screen.
 FRAMES = ("scene", "highlight")
 #: What a step can highlight; see :class:`LessonStep`.
@@ -67,7 +69,7 @@ _ALL_PRESETS = {**PRESETS, **PRESETS_TRACE}
 _LESSON_FIELDS = ("format", "version", "id", "title", "figures", "questions", "summary", "steps", "exercises")
 _STEP_FIELDS = ("title", "text", "formulas", "notes", "scene", "camera", "view", "panes",
                 "image_order", "object_order", "highlight", "zbuffer_step", "pixel", "overlays", "frame",
-                "facts")
+                "facts", "heat_map")
 _VIEW_FIELDS = ("position", "focal_point", "up")
 
 
@@ -126,6 +128,8 @@ class LessonStep:
         large as they fit (the rest of the frustum may leave the pane).
     facts : tuple of :class:`core.lessons.facts.Fact`, what the text claims, in words the
         pipelines decide (``python -m app lesson check``); they belong to the step they are written in.
+    heat_map : str, from :data:`HEAT_MAPS`, the heat map laid over the traced image: ``"off"``, or
+        each pixel's ``"primitive tests"`` or ``"box and sphere tests"`` with the step's acceleration.
     """
 
     title: str
@@ -145,6 +149,7 @@ class LessonStep:
     overlays: tuple[str, ...]
     frame: str
     facts: tuple = ()
+    heat_map: str = "off"
 
 
 @dataclass(frozen=True, eq=False)
@@ -383,6 +388,8 @@ def _read_step(r: _Reader, value, path: str, previous: dict) -> dict:
         out["overlays"] = _names(r, d["overlays"], f"{path}.overlays", OVERLAYS, "overlay") or ()
     if "frame" in d:
         out["frame"] = _choice(r, d["frame"], f"{path}.frame", FRAMES, "framing") or "scene"
+    if "heat_map" in d:
+        out["heat_map"] = _choice(r, d["heat_map"], f"{path}.heat_map", HEAT_MAPS, "heat map") or "off"
     for key, kind in (("image_order", TraceSettings), ("object_order", RasterSettings)):
         if key in d:
             out[key] = _settings(r, d[key], f"{path}.{key}", kind) or kind()
@@ -421,7 +428,7 @@ def _check_view(r: _Reader, view, path: str) -> None:
 
 _STEP_DEFAULTS = dict(view=MappingProxyType({}), overlays=(), frame="scene", zbuffer_step=None, pixel=None,
                       image_order=TraceSettings(), object_order=RasterSettings(),
-                      camera=MappingProxyType({}), preset=None, scene=None, panes=())
+                      camera=MappingProxyType({}), preset=None, scene=None, panes=(), heat_map="off")
 
 
 def from_dict(d, path: Path | None = None) -> Lesson:

@@ -25,6 +25,7 @@ Every fact is one JSON object whose ``"fact"`` names its kind (pixels are
     {"fact": "shadow", "pixel": [230, 155], "object": "cone", "light": 0}
     {"fact": "ray_event", "pixel": [205, 132], "hit": 1, "event": "refract"}
     {"fact": "rays", "pixel": [205, 132], "kind": "shadow", "count": 3}
+    {"fact": "tests_per_pixel", "accel": "bvh", "fewer_than": "grid", "tests": "primitive tests"}
     {"fact": "ray_sphere", "origin": [2, 1, 2], "end": [10, 6, 6], "center": [6, 4, 6],
      "radius": 10, "value": "a", "equals": 105, "tolerance": 1e-9}
     {"fact": "ray_triangle", "origin": [0, 0, 0], "direction": [1, 1, 1], "a": [3, 0, 0],
@@ -43,8 +44,12 @@ direction) or ``"point"``, with a ``"tolerance"``, and ``"front_face"``.
 ``ray_event``'s events are ``reflect``, ``refract`` and ``total_reflection``
 at the ``hit``-th surface along some path of the pixel's ray tree (1 = the
 primary ray's hit), optionally on a named ``object``.  ``rays`` counts the
-rays of a kind that were traced.  ``ray_sphere`` takes the lecture's segment
-(``end``) or a ray (``direction``); its values are those of
+rays of a kind that were traced.  ``tests_per_pixel`` compares two acceleration
+methods by the mean intersection tests a pixel's rays cost (all of them, as the image-order
+heat map counts them; ``tests`` is ``"primitive tests"``, the default, or ``"box and sphere
+tests"``): it holds when the whole image traced with ``accel`` (and the step's other
+image-order settings) costs fewer a pixel than with ``fewer_than``.  ``ray_sphere`` takes the
+lecture's segment (``end``) or a ray (``direction``); its values are those of
 :class:`core.image_order.intersect_sphere.SphereIntersection` (``a``, ``b``,
 ``c``, ``discriminant``, ``t_near``, ``t_far``, ``t``, ``ray_hit_t``, ``hit``,
 ``point``, ...), ``ray_triangle``'s those of
@@ -62,6 +67,7 @@ from types import MappingProxyType
 
 import numpy as np
 
+from core.image_order.kernels.layout import ACCEL_CODES, HEAT_BOUNDS_TESTS, HEAT_PRIM_TESTS
 from core.image_order.ray_tree import KINDS as RAY_KINDS
 from core.object_order.clipping import PLANES
 from core.object_order.culling import CROSSING, INSIDE, OUTSIDE
@@ -74,6 +80,8 @@ SPHERE_VALUES = ("a", "b", "c", "half_b", "discriminant", "line_distance", "t_ne
                  "ray_hit_t", "hit", "origin_inside", "point", "classification", "chosen")
 TRIANGLE_VALUES = ("t", "alpha", "beta", "gamma", "hit", "point", "determinant")
 DEFAULT_TOLERANCE = 1e-9
+#: The counts an image-order heat map shows, by name, and where the tracer keeps each per pixel.
+HEAT_TESTS = MappingProxyType({"primitive tests": HEAT_PRIM_TESTS, "box and sphere tests": HEAT_BOUNDS_TESTS})
 
 #: Fact kind -> (required fields, optional fields).
 KINDS = MappingProxyType({
@@ -89,6 +97,7 @@ KINDS = MappingProxyType({
     "shadow": (("pixel", "object"), ("light", "is")),
     "ray_event": (("pixel", "hit", "event"), ("object", "is")),
     "rays": (("pixel", "kind", "count"), ()),
+    "tests_per_pixel": (("accel", "fewer_than"), ("tests", "is")),
     "ray_sphere": (("origin", "center", "radius", "value", "equals"), ("end", "direction", "tolerance")),
     "ray_triangle": (("origin", "direction", "a", "b", "c", "value", "equals"), ("tolerance",)),
 })
@@ -144,8 +153,15 @@ class Fact:
             return f"a ray of pixel {a['pixel']} does {neg}{event} at hit {a['hit']}{on}"
         if self.kind == "rays":
             return f"pixel {a['pixel']} traces {a['count']} {a['kind']} ray(s)"
+        if self.kind == "tests_per_pixel":
+            return f"{a['accel']} {'costs' if yes else 'does not cost'} fewer {a.get('tests', _TESTS)} " \
+                   f"a pixel than {a['fewer_than']}"
         tolerance = a.get("tolerance", DEFAULT_TOLERANCE)
         return f"{self.kind} {a['value']} = {_show(a['equals'])} (within {tolerance:g})"
+
+
+_TESTS = "primitive tests"
+"""What ``tests_per_pixel`` counts when it does not say."""
 
 
 def _name(obj) -> str:
@@ -255,6 +271,10 @@ def _read_arg(r, kind: str, key: str, v, path: str, scene: Scene | None, d: dict
         return _one_of(r, v, path, EVENTS, "event")
     if key == "kind":
         return _one_of(r, v, path, RAY_KINDS, "ray kind")
+    if key in ("accel", "fewer_than"):
+        return _one_of(r, v, path, tuple(ACCEL_CODES), "acceleration method")
+    if key == "tests":
+        return _one_of(r, v, path, tuple(HEAT_TESTS), "count")
     if key == "front_face":
         if not isinstance(v, bool):
             r.add(path, f"expected true or false, got {_show(v)}")
@@ -301,6 +321,7 @@ class StepPipelines:
         self.step = step
         self._raster = None
         self._trees: dict[tuple[int, int], object] = {}
+        self._heat: dict[str, np.ndarray] = {}
 
     @property
     def raster(self):
@@ -320,6 +341,18 @@ class StepPipelines:
 
             self._trees[pixel] = trace_pixel(self.step.scene, *pixel, self.step.image_order)
         return self._trees[pixel]
+
+    def heat(self, accel: str) -> np.ndarray:
+        """Each pixel's intersection tests (H, W, HEAT_SIZE), the whole image traced with the step's
+        image-order settings and the acceleration method ``accel``."""
+        if accel not in self._heat:
+            from dataclasses import replace
+
+            from core.image_order.ray_tracing import render_trace
+
+            settings = replace(self.step.image_order, accel=accel)
+            self._heat[accel] = render_trace(self.step.scene, settings, heat=True).heat
+        return self._heat[accel]
 
     def object_index(self, name: str) -> int:
         return [o.name for o in self.step.scene.objects].index(name)
@@ -529,6 +562,15 @@ def _rays(a, p):
     return count == a["count"], f"{count} {a['kind']} ray(s) traced"
 
 
+def _tests_per_pixel(a, p):
+    tests = a.get("tests", _TESTS)
+    methods = (a["accel"], a["fewer_than"])
+    mean = {accel: float(p.heat(accel)[..., HEAT_TESTS[tests]].mean()) for accel in methods}
+    fewer = mean[a["accel"]] < mean[a["fewer_than"]]
+    return fewer == a.get("is", True), ", ".join(f"{accel} {m:.4g}" for accel, m in mean.items()) + \
+        f" {tests} a pixel"
+
+
 def _value(a, result):
     got = getattr(result, a["value"])
     want = a["equals"]
@@ -570,6 +612,7 @@ _CHECKS = {
     "frustum": _frustum, "back_face": _back_face, "clipped": _clipped, "zbuffer_keeps": _zbuffer_keeps,
     "ztest_fails": _ztest_fails, "seen": _seen, "blend": _blend, "projects_to": _projects_to,
     "first_hit": _first_hit, "shadow": _shadow, "ray_event": _ray_event, "rays": _rays,
+    "tests_per_pixel": _tests_per_pixel,
     "ray_sphere": _ray_sphere, "ray_triangle": _ray_triangle,
 }
 

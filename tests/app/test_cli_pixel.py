@@ -72,6 +72,17 @@ def test_traced_mirror_and_glass(tmp_path):
     assert glass["rays"]["refraction"] >= 1
 
 
+def test_total_internal_reflection_inside_a_glass_block(tmp_path):
+    data = _json(tmp_path, vs.glass_block(), (20, 15), "raytrace")  # worked in its docstring
+    assert (data["verdict"], data["object"]) == ("hit", "glass")
+    assert "total internal reflection inside glass" in data["sentence"]
+    assert "critical angle 41.8°" in data["sentence"]
+    first = data["total_internal_reflection"][0]
+    assert first["object"] == "glass" and first["critical_deg"] == pytest.approx(41.8103149, abs=1e-6)
+    assert first["point"] == pytest.approx([1, 1 - 2 ** -0.5, 0], abs=1e-9)
+    assert len(data["total_internal_reflection"]) == 2
+
+
 def test_without_json_the_sentence_comes_first_then_the_fragments(tmp_path):
     result = _run(_saved(tmp_path, vs.two_quads()), "--at", "22,14", "--mode", "raster")
     assert result.returncode == 0, result.stderr

@@ -116,3 +116,36 @@ def test_every_tab_and_lesson_step_fits_a_small_screen_at_every_text_scale(qtbot
             hint = window.minimumSizeHint()
             assert hint.width() <= 1280 and hint.height() <= 720, (lesson.id, si, hint)
             assert window.width() <= 1280 and window.height() <= 720, (lesson.id, si, window.size())
+
+
+def test_compare_reads_the_picked_pixel_in_two_columns_that_fit_a_small_screen_at_x2(qtbot, monkeypatch,
+                                                                                      normal_text):
+    monkeypatch.setattr(QScreen, "availableGeometry", lambda self: QRect(0, 0, 1280, 720))
+    window = open_window(qtbot)
+    window.presentation.set_scale(2.0)
+    window.setGeometry(window.screen().availableGeometry())
+    window.show_tab("compare")
+    qtbot.waitUntil(lambda: window.showing_full("compare"), timeout=RENDER_TIMEOUT_MS)
+    panel = window.tab("compare").widget
+    cam = window.model.camera
+    panel.pick(cam.width // 2, cam.height // 2)  # the cone, in both outputs
+    qtbot.waitUntil(lambda: panel.readout[0].rgb is not None, timeout=RENDER_TIMEOUT_MS)
+    a, b, why = panel.readout
+    assert "cone" in a.found.text() and "cone" in b.found.text() and why.found.text()
+
+    def laid_out():
+        hint = window.minimumSizeHint()
+        assert hint.width() <= 1280 and hint.height() <= 720, hint
+        assert window.width() <= 1280 and window.height() <= 720, window.size()
+        ga, gb, gw = a.geometry(), b.geometry(), why.geometry()
+        assert ga.top() == gb.top() and ga.right() < gb.left(), (ga, gb)  # A and B side by side
+        assert gw.top() > max(ga.bottom(), gb.bottom()), (gw, ga, gb)  # why they differ under both
+        assert gw.left() <= ga.left() and gw.right() >= gb.right(), (gw, ga, gb)
+        shown = a.parentWidget().parentWidget().width()  # the scroll area's viewport: nothing beyond it
+        assert max(gb.right(), gw.right()) < shown, (gb, gw, shown)
+        for row in panel.readout:
+            for label in (row.title, row.numbers, row.found):  # every word on screen, whole
+                assert label.width() >= label.minimumSizeHint().width(), label.text()
+                assert label.height() >= label.heightForWidth(label.width()), label.text()
+
+    qtbot.waitUntil(laid_out, timeout=5000)

@@ -143,6 +143,30 @@ def test_a_glass_ball_is_split_by_fresnel():
     assert v.rays["refraction"] >= 1
 
 
+def test_a_ray_inside_glass_beyond_the_critical_angle_is_totally_reflected():
+    v = _traced(vs.glass_block())
+    assert (v.verdict, v.object) == ("hit", "glass")
+    assert "R = 0.0892" in v.sentence  # Fresnel at 60 degrees, worked in the scene's docstring
+    assert "total internal reflection inside glass" in v.sentence
+    assert "critical angle 41.8°" in v.sentence and "at (1, 0.293, 0) (2 times in all)" in v.sentence
+    # Where (tan(theta2) = 1/sqrt(2) inside): the side x = 1 at y = 1 - 1/sqrt(2); the bottom at
+    # x = 1 - (2 - 1/sqrt(2)) / sqrt(2) = 1.5 - sqrt(2); the side x = -1 at y = -1 + sqrt(2) (2.5 - sqrt(2)).
+    first, second = v.total_internal_reflection
+    assert first.object == second.object == "glass"
+    assert np.allclose(first.point, (1, 1 - 1 / np.sqrt(2), 0), atol=1e-9)
+    assert np.allclose(second.point, (-1, 2.5 * np.sqrt(2) - 3, 0), atol=1e-9)
+    assert first.critical_deg == pytest.approx(np.degrees(np.arcsin(1 / 1.5)), abs=1e-12)  # 41.81
+    data = json.loads(json.dumps(v.to_dict(), allow_nan=False))
+    assert [r["object"] for r in data["total_internal_reflection"]] == ["glass", "glass"]
+
+
+def test_a_glass_ball_never_reflects_totally():
+    # Inside a sphere a refracted ray meets the surface at the angle it entered at, always below
+    # the critical angle: the glass ball's pixel has no total internal reflection.
+    v = _traced(vs.glass_ball())
+    assert v.total_internal_reflection == () and "total internal" not in v.sentence
+
+
 def test_a_ray_past_everything_is_a_miss():
     v = _traced(vs.mirror_ball(), pixel=(0, 0))
     assert (v.verdict, v.object, v.lights) == ("miss", None, ())
