@@ -1,9 +1,33 @@
 """What the views' tests share."""
 
+from dataclasses import replace
+
 import pytest
 from PySide6.QtWidgets import QMainWindow
 
+from core.presets_trace import mirror_and_glass
+from views.cost_panel import CostPanel
 from views.presentation import Presentation
+
+COST_TIMEOUT_MS = 240_000
+
+
+@pytest.fixture
+def cost_panel(qtbot):
+    """A Cost panel at 1280 x 720 on a small mirror-and-glass scene, set for quick sweeps (32 pixels
+    wide, 2 samples in the reference); cancelled and its sweep finished after the test."""
+    widget = CostPanel()
+    qtbot.addWidget(widget)
+    widget.resize(1280, 720)
+    widget.show()
+    scene = mirror_and_glass()
+    widget.set_scene(replace(scene, camera=scene.camera.replace(width=320, height=240)))
+    widget.width_px.setValue(32)
+    widget.reference_spp.setValue(2)
+    yield widget
+    widget.cancel()
+    qtbot.waitUntil(lambda: widget._sweep_lock.acquire(blocking=False), timeout=COST_TIMEOUT_MS)
+    widget._sweep_lock.release()
 
 
 @pytest.fixture

@@ -10,25 +10,14 @@ from PySide6.QtCore import QPoint, Qt
 from core.accuracy.sweep import KNOBS
 from core.presets_trace import mirror_and_glass
 from core.srgb import to_srgb8
-from views.cost_panel import REPLOT_MS, CostPanel
+from views.cost_panel import REPLOT_MS
 
 TIMEOUT_MS = 240_000
 
 
 @pytest.fixture
-def panel(qtbot):
-    widget = CostPanel()
-    qtbot.addWidget(widget)
-    widget.resize(1280, 720)
-    widget.show()
-    scene = mirror_and_glass()
-    widget.set_scene(replace(scene, camera=scene.camera.replace(width=320, height=240)))
-    widget.width_px.setValue(32)
-    widget.reference_spp.setValue(2)
-    yield widget
-    widget.cancel()
-    qtbot.waitUntil(lambda: widget._sweep_lock.acquire(blocking=False), timeout=TIMEOUT_MS)
-    widget._sweep_lock.release()
+def panel(cost_panel):
+    return cost_panel
 
 
 def _pick(panel, name):

@@ -6,13 +6,11 @@ from __future__ import annotations
 
 import itertools
 import threading
-from dataclasses import replace
 
 import pytest
 
 from core.accuracy.cost_plot import shown_tick_labels
 from core.accuracy.sweep import KNOB_NAMES, KNOBS, Row
-from core.presets_trace import mirror_and_glass
 from views import plot_theme
 from views.cost_panel import CostPanel
 from views.figure_image import agg_figure
@@ -78,18 +76,11 @@ def test_the_finished_all_knobs_plot_reads_at_1280x720(qtbot, present, scale):
     assert not any(_overlap(a, legend) for a in shown)
 
 
-def test_a_sweep_never_draws_the_plot_on_the_gui_thread(qtbot, monkeypatch):
+def test_a_sweep_never_draws_the_plot_on_the_gui_thread(qtbot, monkeypatch, cost_panel):
     # A Cost sweep of every knob held the GUI thread up to 850 ms drawing the plot with matplotlib.
     from matplotlib.backends.backend_agg import FigureCanvasAgg
 
-    panel = CostPanel()
-    qtbot.addWidget(panel)
-    panel.resize(1280, 720)
-    panel.show()
-    scene = mirror_and_glass()
-    panel.set_scene(replace(scene, camera=scene.camera.replace(width=320, height=240)))
-    panel.width_px.setValue(32)
-    panel.reference_spp.setValue(2)
+    panel = cost_panel
     panel.knob.setCurrentIndex(panel.knob.findData("depth"))
     draws = []
     original = FigureCanvasAgg.draw
