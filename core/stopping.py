@@ -51,8 +51,8 @@ class StopRequest(threading.Event):
         try:
             yield
         finally:
-            with self._lock:
-                self._flags.remove(entry)
+            with self._lock:  # by identity: ``==`` on two entries would compare their arrays
+                self._flags = [flag for flag in self._flags if flag is not entry]
 
 
 EVERY_JOB = StopRequest()

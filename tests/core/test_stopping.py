@@ -76,3 +76,15 @@ def test_a_request_of_another_thread_does_not_stop_this_one():
     with stopping.stopped_by(stopping.StopRequest()):
         assert render_trace(small, TraceSettings(accel="none")).color.shape == (6, 8, 3)
         assert render_raster(small).color.shape == (6, 8, 3)
+
+
+def test_kernels_of_two_threads_watch_and_stop_watching_the_same_request():
+    # Two renders at once (a tab's and an export's) both watch Ctrl+C's request; the one that ends
+    # first must leave the other's flag watched. (Removing an entry by == compared the flag arrays.)
+    first, second = np.zeros(8), np.zeros(8)
+    request = stopping.StopRequest()
+    with request._watched(first, 0):
+        with request._watched(second, 3):
+            pass
+        request.set()
+    assert first[0] == 1 and second[3] == 0  # the first still watched; the ended second left alone
