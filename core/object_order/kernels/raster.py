@@ -347,6 +347,8 @@ def draw_triangles(xy, z, corners, tri_poly, poly_color, poly_alpha, color, zbuf
                                 piece_generated, piece_passed, stop)
     generated[:] = 0
     passed[:] = 0
+    if stop[0] != 0.0:  # stopped: the pieces not drawn have no counts; gather nothing from them
+        return np.empty(0, np.int32), np.empty(0, np.float64), np.empty(0, np.bool_), 0
     for k in range(n_pieces):
         p = tri_poly[piece_tri[k]]
         generated[p] += piece_generated[k]
