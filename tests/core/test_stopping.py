@@ -17,7 +17,7 @@ import pytest
 from core import stopping
 from core.camera import Camera
 from core.image_order.ray_tracing import TraceSettings, render_trace
-from core.object_order.pipeline import render_raster
+from core.object_order.pipeline import RasterSettings, render_raster
 from core.scene import Material, Mesh, PointLight, Scene
 from core.shapes import uv_sphere
 
@@ -66,6 +66,16 @@ def test_a_stop_request_ends_a_render_of_hours_without_acceleration(seconds):
 def test_a_stop_request_ends_a_raster_fill_of_minutes():
     outcome = _stopped_after(lambda: render_raster(_minutes_of_filling()), 1.5)
     assert "stopped" in outcome and "result" not in outcome
+
+
+def test_a_stopped_draw_that_records_its_steps_gathers_no_fragment():
+    # Recording the steps gathers every drawn fragment afterwards: a draw stopped before its first
+    # piece must gather none (the pieces it never drew have no counts; reading them wrote out of
+    # bounds, and a superseded lesson step's render crashed the window).
+    request = stopping.StopRequest()
+    request.set()
+    with stopping.stopped_by(request), pytest.raises(stopping.StoppedError):
+        render_raster(_minutes_of_filling(50), RasterSettings(record_steps=True))
 
 
 def test_a_request_of_another_thread_does_not_stop_this_one():
