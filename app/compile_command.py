@@ -64,8 +64,9 @@ def run(args) -> int:
         if not args.quiet:
             print(f"python -m app compile: every kernel group is compiled already (in {cache_root()})")
         return 0
+    cores = min(len(missing), os.cpu_count() or 1)
     print(f"python -m app compile: compiling the renderers' kernels ({', '.join(missing)}) on "
-          f"{min(len(missing), os.cpu_count() or 1)} cores; this happens once per machine and version of "
+          f"{cores} core{'s' if cores > 1 else ''}; this happens once per machine and version of "
           f"the code, and they are kept in {cache_root()}", flush=True)
     return compile_groups(missing)
 
