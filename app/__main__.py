@@ -14,7 +14,7 @@ if _held:
     signal.signal(signal.SIGINT, lambda signum, frame: _pressed.append(signum))
 try:
     from app.cli import interrupted, main
-    from app.freed_memory import keep_freed_memory
+    from app.process.freed_memory import keep_freed_memory
 finally:
     if _held:
         signal.signal(signal.SIGINT, signal.default_int_handler)

@@ -11,50 +11,31 @@ import os
 import signal
 import sys
 
-from app import (
-    bench_compile,
-    bench_gui,
-    bench_raster,
-    bench_startup,
-    bench_trace,
-    compile_command,
-    cost_command,
-    ctrl_c,
-    export_command,
-    hardcases_command,
-    intersect_command,
-    lesson_command,
-    pixel_command,
-    render_command,
-)
+from app.bench import compile_time, gui, raster, startup, trace
+from app.commands import compile_kernels, cost, export, hardcases, intersect, lesson, pixel, render
+from app.process import ctrl_c
 from app.usage import UsageError
 from core.stopping import StoppedError
 
 
 def build_parser() -> argparse.ArgumentParser:
-    benchmarks = {"raster": bench_raster, "trace": bench_trace, "gui": bench_gui, "startup": bench_startup,
-                  "compile": bench_compile}
+    benchmarks = {"raster": raster, "trace": trace, "gui": gui, "startup": startup, "compile": compile_time}
 
     parser = argparse.ArgumentParser(
         prog="python -m app",
         description="Render Explorer: see how a 3D scene becomes pixels.",
     )
     sub = parser.add_subparsers(dest="command", metavar="COMMAND")
-    gui = sub.add_parser("gui", help="open the window (the default when no command is given)")
-    gui.add_argument("scene", nargs="?", help="a scene JSON file (default: the lecture scene)")
-    gui.add_argument("--memory-limit", metavar="SIZE",
-                     help="refuse renders estimated to need more memory, e.g. 8G or 512M "
-                          "(default: half of the memory available)")
-    intersect_command.add_parser(sub)
-    render_command.add_parser(sub)
-    pixel_command.add_parser(sub)
-    hardcases_command.add_parser(sub)
-    cost_command.add_parser(sub)
-    export_command.add_parser(sub)
-    compile_command.add_parser(sub)
-    lesson_command.add_parser(sub)
-    bench = sub.add_parser("bench", help="time our pipelines against VTK / Embree (a benchmark, not a test)")
-    kinds = bench.add_subparsers(dest="bench", metavar="KIND", required=True)
+    window = sub.add_parser("gui", help="open the window (the default when no command is given)")
+    window.add_argument("scene", nargs="?", help="a scene JSON file (default: the lecture scene)")
+    window.add_argument("--memory-limit", metavar="SIZE",
+                        help="refuse renders estimated to need more memory, e.g. 8G or 512M "
+                           "(default: half of the memory available)")
+    for command in (intersect, render, pixel, hardcases, cost, export, compile_kernels, lesson):
+        command.add_parser(sub)
+    bench_parser = sub.add_parser("bench",
+                                  help="time our pipelines against VTK / Embree (a benchmark, not a test)")
+    kinds = bench_parser.add_subparsers(dest="bench", metavar="KIND", required=True)
     for name, module in benchmarks.items():
         p = kinds.add_parser(name, help=module.__doc__.split("\n")[0].split(": ", 1)[-1])
         module.add_arguments(p)
@@ -94,9 +75,9 @@ def main(argv: list[str] | None = None) -> int:
     args = parser.parse_args(argv)
     try:
         if args.command == "gui":
-            from app.main_window import run
+            from app.window.main_window import run
 
-            return run(args.scene, render_command.parse_memory_limit(args.memory_limit))
+            return run(args.scene, render.parse_memory_limit(args.memory_limit))
         ctrl_c.stop_kernels_on_ctrl_c()
         return args.run(args)
     except UsageError as exc:

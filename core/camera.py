@@ -13,7 +13,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from core import projection
-from core.jitable import jitable
+from core.compiling.jitable import jitable
 
 PROJECTIONS = ("perspective", "orthographic")
 PITCH_LIMIT_DEG = 89.0  # orbit pitch stays within ±this, so the view never lines up with "up"

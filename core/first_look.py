@@ -1,7 +1,7 @@
 """A first look at the scene in plain numpy, for the seconds before the compiled kernels are ready.
 
 The first render on a machine compiles the renderers' kernels (a minute or
-more on a small machine; :mod:`core.kernel_cache` keeps them afterwards).  So
+more on a small machine; :mod:`core.compiling.kernel_cache` keeps them afterwards).  So
 that the window shows the scene at once, it first casts one ray per block of
 pixels with numpy: the lecture's ray "from the eye through the pixel"
 (:meth:`core.camera.Camera.primary_rays`), its first crossing with a triangle

@@ -11,7 +11,7 @@ point outwards.  Solids stand on their base: ``base_center`` is the centre of
 the bottom face and the solid rises along +y.
 
 :data:`PRIMITIVES` maps each type name to its builder and parameters; the scene
-file loader (:mod:`core.scene_file`) reads and checks parameters with it.
+file loader (:mod:`core.files.scene_file`) reads and checks parameters with it.
 """
 
 from __future__ import annotations

@@ -56,7 +56,7 @@ class StopRequest(threading.Event):
 
 
 EVERY_JOB = StopRequest()
-"""Set by Ctrl+C on the command line (:mod:`app.ctrl_c`): every running kernel stops."""
+"""Set by Ctrl+C on the command line (:mod:`app.process.ctrl_c`): every running kernel stops."""
 
 _thread = threading.local()
 

@@ -1,58 +1,18 @@
-"""Shared test set-up: GUI tests need a real X server, and say so instead of skipping.
+"""Shared test set-up, free of Qt and pyvista: ``pytest tests/core`` runs where neither is installed.
 
 The compiled kernels are the user's (``~/.cache/render-explorer/kernels``, compiled
 up front by ``python -m app compile`` in ``.ci/test.sh``): every test, and every
 process a test starts, finds them there even when it points ``XDG_CACHE_HOME``
 at an empty folder, so no test compiles kernels inside its own time limit.
+The fixtures of the window and view tests are in :mod:`qt_fixtures`.
 """
 
 import os
 
-import pytest
-import pyvista as pv
-
-from core.kernel_cache import cache_root
+from core.compiling.kernel_cache import cache_root
 
 os.environ["NUMBA_CACHE_DIR"] = str(cache_root())
-
-pv.OFF_SCREEN = True
 
 
 def pytest_configure(config):
     config.addinivalue_line("markers", "gui: needs an X server (Qt xcb plugin, OpenGL for VTK)")
-
-
-@pytest.fixture(autouse=True)
-def _require_display(request):
-    needs_gui = "qtbot" in request.fixturenames or request.node.get_closest_marker("gui")
-    if needs_gui and not os.environ.get("DISPLAY"):
-        pytest.fail(
-            "This GUI test needs an X server (VTK gets no OpenGL context offscreen). "
-            "Run the suite with `bash .ci/test.sh`, which starts Xvfb, "
-            "or wrap pytest in `xvfb-run -a`."
-        )
-
-
-@pytest.fixture(autouse=True)
-def _private_settings(tmp_path_factory, monkeypatch):
-    """QSettings read and write a fresh folder in every test, never the user's configuration;
-    so does every ``python -m app`` a test starts (it finds the folder in ``XDG_CONFIG_HOME``)."""
-    from PySide6.QtCore import QSettings
-
-    folder = str(tmp_path_factory.mktemp("settings"))
-    monkeypatch.setenv("XDG_CONFIG_HOME", folder)
-    for settings_format in (QSettings.Format.NativeFormat, QSettings.Format.IniFormat):
-        for scope in (QSettings.Scope.UserScope, QSettings.Scope.SystemScope):
-            QSettings.setPath(settings_format, scope, folder)
-
-
-@pytest.fixture(autouse=True)
-def _application_font_restored():
-    """A test that enlarges the application's text (presentation mode, Ctrl++) leaves it as it was."""
-    from PySide6.QtWidgets import QApplication
-
-    app = QApplication.instance()
-    font = None if app is None else QApplication.font()
-    yield
-    if font is not None and QApplication.instance() is not None:
-        QApplication.setFont(font)

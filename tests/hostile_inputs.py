@@ -1,6 +1,6 @@
 """Hypothesis strategies for hostile scene files, mesh files and lesson files (issues 11 and 35).
 
-Used by ``tests/app/test_fuzz_inputs.py`` (a few diverse examples) and by the
+Used by ``tests/app/commands/test_fuzz_inputs.py`` (a few diverse examples) and by the
 larger one-off campaigns whose figures the issues' notes give.  Every strategy
 draws a :class:`Case`: the files to write into an empty folder and the scene
 (or lesson) file to read.
@@ -19,9 +19,8 @@ import tempfile
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from checkout import ROOT
 from hypothesis import strategies as st
-
-ROOT = Path(__file__).resolve().parents[1]
 
 #: After the command's and the file's prefix, a refusal starts with what is wrong: a field
 #: path (``objects[2].radius``), an option (``--width``), a place in the text or a

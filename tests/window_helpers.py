@@ -1,6 +1,6 @@
 """The main window as the GUI tests open it: on the lecture scene, its first image shown."""
 
-from app.main_window import MainWindow
+from app.window.main_window import MainWindow
 from core import presets
 
 RENDER_TIMEOUT_MS = 180_000  # the first render compiles the numba kernels when no cache exists
@@ -8,7 +8,7 @@ RENDER_TIMEOUT_MS = 180_000  # the first render compiles the numba kernels when 
 
 def open_window(qtbot) -> MainWindow:
     """Open the window on the lecture scene; wait until the image-order tab shows its full image
-    and the 3D pane is built (it comes in after the first image, see views.deferred_scene_view)."""
+    and the 3D pane is built (it comes in after the first image, see views.scene3d.deferred_scene_view)."""
     win = MainWindow(presets.lecture_scene())
     qtbot.addWidget(win)
     win.show()

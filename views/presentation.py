@@ -10,7 +10,7 @@
   widen their lines;
 - ``.`` and ``B`` (what clickers send for "blank") black the window out and
   bring it back, while presenting;
-- with a :class:`views.lesson_panel.LessonPanel`, the arrow keys join
+- with a :class:`views.panels.lesson_panel.LessonPanel`, the arrow keys join
   PageDown/PageUp in moving through the steps while presenting, and the
   panel hides its lesson list so the step's text and formulas get the room.
 
@@ -24,7 +24,7 @@ from PySide6.QtCore import QEvent, QObject, Qt, QTime, QTimer, Signal
 from PySide6.QtGui import QAction, QActionGroup, QFont, QGuiApplication, QKeySequence
 from PySide6.QtWidgets import QLabel, QMainWindow, QVBoxLayout, QWidget
 
-from views.lesson_panel import ClickerKeys, LessonPanel
+from views.panels.lesson_panel import ClickerKeys, LessonPanel
 
 #: The text scales offered (1 is the normal size).
 SCALES = (1.0, 1.5, 2.0)

@@ -32,7 +32,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-# Kernels are imported where they are used, so importing this module does not load numba (core.jitable).
+# Kernels are imported where they are used, so importing this module does not load numba
+# (core.compiling.jitable).
 
 
 @dataclass(frozen=True, eq=False)

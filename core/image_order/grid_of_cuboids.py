@@ -28,7 +28,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-# Kernels are imported where they are used, so importing this module does not load numba (core.jitable).
+# Kernels are imported where they are used, so importing this module does not load numba
+# (core.compiling.jitable).
 
 MAX_RESOLUTION = 64
 

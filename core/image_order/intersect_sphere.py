@@ -33,7 +33,7 @@ root whose numerator cancels.  As pbrt does, this module
 
 One formula, two users
 ----------------------
-:func:`sphere_roots` is that arithmetic, once.  :func:`~core.jitable.jitable` leaves it
+:func:`sphere_roots` is that arithmetic, once.  :func:`~core.compiling.jitable.jitable` leaves it
 a plain Python function when :func:`intersect_sphere` calls it for the
 worked solution, and compiles it into the tracer's kernels
 (:mod:`core.image_order.kernels.intersect`) when they call it, so the
@@ -48,7 +48,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from core.jitable import jitable
+from core.compiling.jitable import jitable
 
 #: Coordinates may be at most this big, and the radius and ``|d|`` at least its
 #: inverse, so that no square or product in the solution over- or underflows.

@@ -53,7 +53,7 @@ Tie rules
   bit for bit.  The tracer's closest-hit search keeps the first of equal
   crossings it meets.
 
-These functions are :func:`~core.jitable.jitable`: plain Python when
+These functions are :func:`~core.compiling.jitable.jitable`: plain Python when
 :func:`intersect_triangle` calls them for the worked solution, compiled into
 the tracer (:mod:`core.image_order.kernels.intersect`) when a kernel calls
 them, so both compute every crossing with the same operations.
@@ -67,8 +67,8 @@ from fractions import Fraction
 
 import numpy as np
 
+from core.compiling.jitable import jitable
 from core.image_order.kernels.layout import ROW_A, ROW_B, ROW_C
-from core.jitable import jitable
 
 _UNIT_ROUNDOFF = 2.0**-53
 #: A rounded ``p*q - r*s`` is trusted when bigger than this times ``|pq| + |rs|``

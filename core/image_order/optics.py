@@ -17,7 +17,7 @@ Conventions
   of the medium it enters; ``eta = n1 / n2``.  Snell's law reads
   ``n1 sin θ1 = n2 sin θ2``.
 
-The functions take plain numbers and tuples.  :func:`~core.jitable.jitable` leaves
+The functions take plain numbers and tuples.  :func:`~core.compiling.jitable.jitable` leaves
 them ordinary Python functions when called from Python and compiles them
 into the tracer's kernels (:mod:`core.image_order.kernels.shade`) when called from
 there, so the explanations and the renderer run the very same code.
@@ -27,7 +27,7 @@ from __future__ import annotations
 
 import math
 
-from core.jitable import jitable
+from core.compiling.jitable import jitable
 
 
 @jitable

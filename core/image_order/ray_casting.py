@@ -23,8 +23,8 @@ from __future__ import annotations
 import numpy as np
 
 from core.camera import Camera, pixel_ray
+from core.compiling.jitable import jitable
 from core.image_order.kernels import layout as lay
-from core.jitable import jitable
 
 
 def camera_array(cam: Camera) -> np.ndarray:

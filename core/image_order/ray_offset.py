@@ -28,12 +28,12 @@ Two remedies, selectable per render (``TraceSettings.offset``):
     of ``10^4``).
 
 Both functions are compiled into the tracer's kernels where those call them
-(:func:`~core.jitable.jitable`, as in :mod:`core.image_order.optics`).
+(:func:`~core.compiling.jitable.jitable`, as in :mod:`core.image_order.optics`).
 """
 
 from __future__ import annotations
 
-from core.jitable import jitable
+from core.compiling.jitable import jitable
 
 #: Unit roundoff of float64.
 UNIT_ROUNDOFF = 2.0**-53

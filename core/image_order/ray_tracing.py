@@ -42,6 +42,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from core import stopping
+from core.compiling.warm_up import WarmUp
 from core.image_order.bvh import Bvh
 from core.image_order.effects_plan import EffectsPlan, effects_plan
 from core.image_order.flat_scene import KernelInputs, TraceSettings, kernel_inputs, trace_scene
@@ -50,9 +51,9 @@ from core.image_order.kernels import layout as lay
 from core.image_order.ray_tree import trace_pixel
 from core.presets_trace import warm_up_scene
 from core.scene import Scene
-from core.warm_up import WarmUp
 
-# Kernels are imported where they are used, so importing this module does not load numba (core.jitable).
+# Kernels are imported where they are used, so importing this module does not load numba
+# (core.compiling.jitable).
 
 
 @dataclass(frozen=True, eq=False)

@@ -29,7 +29,8 @@ from core.image_order.kernels import layout as lay
 from core.image_order.ray_casting import primary_ray
 from core.scene import Scene
 
-# Kernels are imported where they are used, so importing this module does not load numba (core.jitable).
+# Kernels are imported where they are used, so importing this module does not load numba
+# (core.compiling.jitable).
 
 KINDS = ("primary", "shadow", "reflection", "refraction")
 

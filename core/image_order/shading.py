@@ -28,8 +28,8 @@ conventions on vectors).
 
 from __future__ import annotations
 
+from core.compiling.jitable import jitable
 from core.image_order.optics import dot, reflect
-from core.jitable import jitable
 
 
 @jitable

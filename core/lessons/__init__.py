@@ -18,7 +18,7 @@ out, keeps the previous step's value (so the first step must give ``scene``
 and ``panes``).  The loader resolves this, so each :class:`LessonStep` is
 complete.  Loading reports *every* problem at once, each with its field path
 (``steps[2].panes[0]: unknown pane 'zbufer' (did you mean 'object order'?)``),
-as one :class:`LessonFileError`, in the style of :mod:`core.scene_file`.  The
+as one :class:`LessonFileError`, in the style of :mod:`core.files.scene_file`.  The
 README's "Lesson files" section documents the fields.
 """
 
@@ -33,7 +33,8 @@ from types import MappingProxyType
 
 import numpy as np
 
-from core import scene_file
+from core.files import scene_file
+from core.files.scene_file import SceneFileError, _join, _Reader, _show, problem_lines
 from core.image_order.flat_scene import TraceSettings
 from core.image_order.ray_tree import KINDS
 from core.lessons import exercises, facts
@@ -41,7 +42,6 @@ from core.object_order.pipeline import RasterSettings
 from core.presets import PRESETS
 from core.presets_trace import PRESETS_TRACE
 from core.scene import Scene, Sphere
-from core.scene_file import SceneFileError, _join, _Reader, _show, problem_lines
 
 FORMAT = "render-explorer-lesson"
 VERSION = 1
@@ -496,7 +496,7 @@ def load_lesson(path) -> Lesson:
     Raises :class:`LessonFileError` for anything wrong: a missing or unreadable
     file, a FIFO or device, a file over :data:`MAX_FILE_BYTES`, invalid JSON
     (with its line and column), or invalid content.  The file is read as a
-    scene file is (:func:`core.scene_file.read_json`).
+    scene file is (:func:`core.files.scene_file.read_json`).
     """
     path = Path(path)
     try:

@@ -17,9 +17,9 @@ import re
 from dataclasses import asdict
 from pathlib import Path
 
-from core import scene_file
+from core.files import scene_file
+from core.files.safe_files import write_atomic
 from core.lessons import FORMAT, VERSION, Lesson, LessonFileError, from_dict
-from core.safe_files import write_atomic
 
 
 def step_record(*, title: str, text: str, scene, panes, image_order, object_order,

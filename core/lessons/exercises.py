@@ -55,9 +55,9 @@ from types import MappingProxyType
 
 import numpy as np
 
+from core.files.scene_file import _join, _show
 from core.lessons import facts as facts_mod
 from core.lessons.facts import StepPipelines, check_fact, read_fact, read_list, read_tagged
-from core.scene_file import _join, _show
 
 KINDS = ("choose_one", "click_pixel", "number", "order", "pick_picture")
 VIEWS = ("front", "side", "top", "observer")

@@ -67,12 +67,12 @@ from types import MappingProxyType
 
 import numpy as np
 
+from core.files.scene_file import _join, _show
 from core.image_order.kernels.layout import ACCEL_CODES, HEAT_BOUNDS_TESTS, HEAT_PRIM_TESTS
 from core.image_order.ray_tree import KINDS as RAY_KINDS
 from core.object_order.clipping import PLANES
 from core.object_order.culling import CROSSING, INSIDE, OUTSIDE
 from core.scene import Mesh, Scene, Sphere
-from core.scene_file import _join, _show
 
 FRUSTUM_STATES = (INSIDE, CROSSING, OUTSIDE)
 EVENTS = ("reflect", "refract", "total_reflection")
@@ -179,7 +179,7 @@ def _part(a) -> str:
 
 def read_list(r, value, path: str, read_one, *context) -> tuple:
     """Each item of the list at ``path``, read by ``read_one(r, item, item_path, *context)``; the bad ones
-    are left out, their problems in ``r`` (a :class:`core.scene_file._Reader`)."""
+    are left out, their problems in ``r`` (a :class:`core.files.scene_file._Reader`)."""
     items = (read_one(r, item, f"{path}[{k}]", *context) for k, item in enumerate(r.listing(value, path)))
     return tuple(item for item in items if item is not None)
 

@@ -22,7 +22,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from core.jitable import jitable
+from core.compiling.jitable import jitable
 
 
 @jitable

@@ -25,7 +25,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from core.jitable import jitable
+from core.compiling.jitable import jitable
 
 PLANES = ("left", "right", "bottom", "top", "near", "far")
 

@@ -29,7 +29,7 @@ from functools import cached_property
 
 import numpy as np
 
-from core.jitable import jitable
+from core.compiling.jitable import jitable
 
 OUTSIDE, INSIDE, CROSSING = "outside", "inside", "crossing"
 

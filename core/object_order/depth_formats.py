@@ -34,7 +34,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from core.jitable import jitable
+from core.compiling.jitable import jitable
 
 #: The formats, in the order of their codes (the kernels take the index).
 DEPTH_FORMATS = ("float64", "float32", "float32-reversed", "int24", "int16")

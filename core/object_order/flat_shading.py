@@ -21,7 +21,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from core.jitable import jitable
+from core.compiling.jitable import jitable
 
 
 @jitable

@@ -20,7 +20,8 @@ from core import stopping
 from core.object_order import zbuffer
 from core.object_order.depth_formats import format_code
 
-# Kernels are imported where they are used, so importing this module does not load numba (core.jitable).
+# Kernels are imported where they are used, so importing this module does not load numba
+# (core.compiling.jitable).
 
 
 @dataclass(frozen=True)

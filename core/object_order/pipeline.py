@@ -33,6 +33,7 @@ from dataclasses import asdict, dataclass
 import numpy as np
 
 from core import shapes
+from core.compiling.warm_up import WarmUp
 from core.object_order import (
     blending,
     clipping,
@@ -47,9 +48,9 @@ from core.object_order.culling import FaceCulling, ObjectCulling
 from core.object_order.step_history import StepHistory
 from core.presets import zbuffer_piercing
 from core.scene import Mesh, Scene, SceneObject, Sphere
-from core.warm_up import WarmUp
 
-# Kernels are imported where they are used, so importing this module does not load numba (core.jitable).
+# Kernels are imported where they are used, so importing this module does not load numba
+# (core.compiling.jitable).
 
 SPHERE_RINGS, SPHERE_SEGMENTS = 32, 64
 """Tessellation of an analytic sphere for object order: 4,032 triangles."""

@@ -39,7 +39,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from core.jitable import jitable
+from core.compiling.jitable import jitable
 
 SUBPIXEL_BITS = 8
 SUBPIXEL = 1 << SUBPIXEL_BITS

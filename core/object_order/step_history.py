@@ -26,7 +26,8 @@ from core.object_order import zbuffer
 from core.object_order.blending import Blend, blend_over
 from core.object_order.fragments import Fragments
 
-# Kernels are imported where they are used, so importing this module does not load numba (core.jitable).
+# Kernels are imported where they are used, so importing this module does not load numba
+# (core.compiling.jitable).
 
 
 @dataclass(frozen=True)

@@ -27,7 +27,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from core.jitable import jitable
+from core.compiling.jitable import jitable
 from core.object_order.depth_formats import depth_key, format_code
 
 FAR_DEPTH = 1.0

@@ -1,6 +1,7 @@
 """Fixtures of the window tests."""
 
 import pytest
+from qt_fixtures import application_font_restored, private_settings, require_display  # noqa: F401
 from window_helpers import open_window
 
 

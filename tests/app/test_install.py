@@ -7,11 +7,11 @@ import sysconfig
 from pathlib import Path
 
 import numpy as np
+from checkout import ROOT
 from imageio.v3 import imread
 
-from core import presets, scene_file
-
-ROOT = Path(__file__).resolve().parents[2]
+from core import presets
+from core.files import scene_file
 
 
 def _run(args, **kwargs):

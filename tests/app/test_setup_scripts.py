@@ -16,7 +16,8 @@ import shutil
 import subprocess
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[2]
+from checkout import ROOT
+
 XCB_CURSOR = "libxcb-cursor0"  # the library desktop installs most often lack for Qt 6
 
 

@@ -4,9 +4,10 @@ from dataclasses import replace
 
 import pytest
 from PySide6.QtWidgets import QMainWindow
+from qt_fixtures import application_font_restored, private_settings, require_display  # noqa: F401
 
 from core.presets_trace import mirror_and_glass
-from views.cost_panel import CostPanel
+from views.panels.cost_panel import CostPanel
 from views.presentation import Presentation
 
 COST_TIMEOUT_MS = 240_000

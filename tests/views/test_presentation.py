@@ -14,9 +14,9 @@ from PySide6.QtWidgets import (
     QTreeWidgetItem,
 )
 
-from views.lesson_panel import LessonPanel
-from views.math_view import MathView
+from views.panels.lesson_panel import LessonPanel
 from views.presentation import PRESENTING_SCALE, Presentation
+from views.text.math_view import MathView
 
 
 @pytest.fixture

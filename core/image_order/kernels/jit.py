@@ -18,7 +18,7 @@ render's loops those counts took about a third of the time (perf, lecture
 scene: samples in ``NRT_incref``/``NRT_decref``).
 The arrays belong to the caller for the whole render, so the helpers need no
 count; a borrowing helper must then neither make an array nor return one
-(``tests/core/test_trace_kernels.py`` checks every compiled signature).  The
+(``tests/core/image_order/test_trace_kernels.py`` checks every compiled signature).  The
 few helpers that make arrays are compiled with ``jit_allocating``.
 
 ``fastmath`` stays off: the watertight triangle test needs ``a*b - c*d`` to be
@@ -28,10 +28,10 @@ The cache
 ---------
 On import this module caches the tracer's kernels in the user's cache folder, in a
 folder named after the contents of every file they are made of (:data:`SOURCES`;
-:mod:`core.kernel_cache`): every checkout and install of the same code shares them,
+:mod:`core.compiling.kernel_cache`): every checkout and install of the same code shares them,
 and a changed formula (say in :mod:`core.image_order.optics`) is never served from an
-old kernel.  It also registers the formulas marked :func:`~core.jitable.jitable` with
-numba (:func:`core.jitable.register_all`).
+old kernel.  It also registers the formulas marked :func:`~core.compiling.jitable.jitable` with
+numba (:func:`core.compiling.jitable.register_all`).
 """
 
 from __future__ import annotations
@@ -40,8 +40,8 @@ from pathlib import Path
 
 from numba import njit
 
-from core.jitable import register_all
-from core.kernel_cache import share_cache
+from core.compiling.jitable import register_all
+from core.compiling.kernel_cache import share_cache
 
 _OPTIONS = {"cache": True, "nogil": True, "error_model": "numpy"}
 _BORROWING = {**_OPTIONS, "_nrt": False}
@@ -51,12 +51,12 @@ _CORE = _IMAGE_ORDER.parent
 #: Every file whose code ends up inside the tracer's compiled kernels: the kernels
 #: themselves (this folder and its sub-folders), the lecture modules whose
 #: ``register_jitable`` formulas they compile in, and the shared modules those import
-#: (the primary ray's formula lives with the camera).  ``tests/core/test_trace_kernels.py``
+#: (the primary ray's formula lives with the camera).  ``tests/core/image_order/test_trace_kernels.py``
 #: checks that every ``core`` module a listed file imports is listed too.
 SOURCES = sorted(_KERNELS.rglob("*.py")) + [
     _IMAGE_ORDER / name for name in ("optics.py", "shading.py", "ray_offset.py", "intersect_sphere.py",
                                      "intersect_triangle.py", "ray_casting.py")] + [
-    _CORE / name for name in ("camera.py", "projection.py", "jitable.py")]
+    _CORE / name for name in ("camera.py", "projection.py", "compiling/jitable.py")]
 
 
 share_cache(_KERNELS, SOURCES, "trace")

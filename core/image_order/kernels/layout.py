@@ -9,7 +9,7 @@ them and the kernels that use them.
 
 from __future__ import annotations
 
-from core.jitable import jitable
+from core.compiling.jitable import jitable
 
 # --- materials: (O, MAT_SIZE), one row per scene object ----------------------------------
 MAT_COLOR = 0  # 3 columns, RGB

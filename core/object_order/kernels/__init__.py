@@ -2,7 +2,7 @@
 
 Cache: on import this package caches its kernels in the user's cache folder, in a
 folder named after the contents of every file its kernels are made of
-(:data:`SOURCES`; :mod:`core.kernel_cache`): every checkout and install of the same
+(:data:`SOURCES`; :mod:`core.compiling.kernel_cache`): every checkout and install of the same
 code shares them, and a changed formula is never served from an old kernel.
 
 Memory: the kernels write their large results into arrays the caller allocates
@@ -15,18 +15,18 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from core.jitable import register_all
-from core.kernel_cache import share_cache
+from core.compiling.jitable import register_all
+from core.compiling.kernel_cache import share_cache
 
 _KERNELS = Path(__file__).resolve().parent
 _OBJECT_ORDER = _KERNELS.parent
 #: Every file whose code ends up inside the compiled kernels: this folder and the
-#: lecture modules whose formulas they compile in.  ``tests/core/test_raster.py``
+#: lecture modules whose formulas they compile in.  ``tests/core/object_order/test_raster.py``
 #: checks that every ``core`` module a kernel imports is listed here.
 SOURCES = sorted(_KERNELS.glob("*.py")) + [
     _OBJECT_ORDER / name for name in ("rasterization.py", "zbuffer.py", "blending.py", "depth_formats.py",
                                       "clipping.py", "culling.py", "flat_shading.py")] + [
-    _OBJECT_ORDER.parent / "jitable.py"]
+    _OBJECT_ORDER.parent / "compiling" / "jitable.py"]
 
 
 share_cache(_KERNELS, SOURCES, "raster")

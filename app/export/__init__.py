@@ -1,0 +1,1 @@
+"""Export: pictures, sheets and animations of what the window shows, written atomically."""

@@ -1,0 +1,1 @@
+"""Lessons in the window: applying a step, recording one, checking facts and asking exercises."""

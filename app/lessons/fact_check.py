@@ -1,0 +1,70 @@
+"""File → Open lesson checks the lesson's facts, off the GUI thread, and shows the author what is false.
+
+:func:`core.lessons.facts.check_step` runs each step's scene through the
+pipelines; for a lesson of many steps that takes seconds, so
+:class:`LessonFactCheck` runs it as a job (:class:`app.window.workers.Renderer`, the
+newest lesson opened wins), reports progress in the status bar and, when a
+fact does not hold, opens a dialog listing every failure in the words of
+``python -m app lesson check``.
+"""
+
+from __future__ import annotations
+
+from PySide6.QtCore import QObject
+from PySide6.QtWidgets import QMessageBox, QWidget
+
+from app.window.workers import Renderer
+from core.lessons.facts import check_lesson
+
+
+class LessonFactCheck(QObject):
+    """Checks the facts of opened lessons for ``window`` (a QMainWindow with a status bar).
+
+    Attributes
+    ----------
+    failures : the failure lines of the last lesson checked (empty when every fact held).
+    dialog : the dialog that listed them, or None.
+    """
+
+    def __init__(self, window: QWidget):
+        super().__init__(window)
+        self.window = window
+        self.failures: list[str] = []
+        self.dialog: QMessageBox | None = None
+        self._lesson = None
+        self._renderer = Renderer(self)
+        self._renderer.finished.connect(self._done)
+        self._renderer.failed.connect(lambda message: self._done([f"the check stopped: {message}"]))
+
+    @property
+    def busy(self) -> bool:
+        return self._renderer.busy
+
+    def check(self, lesson) -> None:
+        """Check every fact of ``lesson`` in the background; a dialog lists those that do not hold."""
+        self._lesson = lesson
+        facts = sum(len(step.facts) for step in lesson.steps)
+        self.window.statusBar().showMessage(f"Checking the {facts} facts of lesson {lesson.title!r}…")
+
+        def job(cancelled, progress):
+            return None if cancelled.is_set() else check_lesson(lesson)
+
+        self._renderer.submit(job)
+
+    def _done(self, failures: list[str]) -> None:
+        self.failures = list(failures)
+        lesson = self._lesson
+        if not failures:
+            self.window.statusBar().showMessage(f"Every fact of lesson {lesson.title!r} holds", 8000)
+            return
+        self.window.statusBar().showMessage(
+            f"{len(failures)} fact(s) of lesson {lesson.title!r} do not hold", 15000)
+        box = QMessageBox(QMessageBox.Icon.Warning, "Facts that do not hold",
+                          f"{len(failures)} fact(s) of {lesson.title!r} are not what the pipelines compute:",
+                          QMessageBox.StandardButton.Ok, self.window)
+        box.setInformativeText("\n".join(failures[:8]) + (
+            f"\n... and {len(failures) - 8} more" if len(failures) > 8 else ""))
+        box.setDetailedText("\n".join(failures))
+        box.setObjectName("lesson_facts")
+        self.dialog = box
+        box.open()

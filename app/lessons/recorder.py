@@ -1,0 +1,99 @@
+"""Lessons → Add this view as a step: the window's state recorded into a lesson file.
+
+A small form asks for the step's title, text and (optionally) its facts as JSON;
+the window's scene and observer, the panes shown (the one in front first), the
+image- and object-order settings, the z-buffer step and the picked pixel are
+recorded (:func:`core.lessons.authoring.step_record`) and appended to the lesson
+file chosen (:func:`core.lessons.authoring.add_step`).  Any problem (bad facts,
+an unreadable file) is shown in one dialog, field path first; nothing is written.
+"""
+
+from __future__ import annotations
+
+import json
+
+from PySide6.QtWidgets import (
+    QDialog,
+    QDialogButtonBox,
+    QFileDialog,
+    QFormLayout,
+    QLineEdit,
+    QMessageBox,
+    QPlainTextEdit,
+)
+
+from core.files.safe_files import OutputError
+from core.lessons import LessonFileError
+from core.lessons.authoring import add_step, step_record
+
+
+class StepForm(QDialog):
+    """Title, text and facts (a JSON list, may be empty) of the step to record."""
+
+    def __init__(self, parent=None):
+        super().__init__(parent)
+        self.setWindowTitle("Add this view as a lesson step")
+        self.title = QLineEdit()
+        self.text = QPlainTextEdit()
+        self.facts = QPlainTextEdit()
+        self.facts.setPlaceholderText('[{"fact": "zbuffer_keeps", "pixel": [80, 60], "object": "blue"}]')
+        form = QFormLayout(self)
+        form.addRow("Title", self.title)
+        form.addRow("Text", self.text)
+        form.addRow("Facts (JSON)", self.facts)
+        ok_cancel = QDialogButtonBox.StandardButton.Ok | QDialogButtonBox.StandardButton.Cancel
+        buttons = QDialogButtonBox(ok_cancel)
+        buttons.accepted.connect(self.accept)
+        buttons.rejected.connect(self.reject)
+        form.addRow(buttons)
+
+
+class LessonRecorder:
+    """Records ``window``'s state (a :class:`app.window.main_window.MainWindow`) as lesson steps."""
+
+    def __init__(self, window):
+        self.window = window
+
+    def state_step(self, title: str, text: str, facts=()) -> dict:
+        """The window's state as one step of the lesson-file format."""
+        w, model = self.window, self.window.model
+        shown = w.visible_panes()
+        front = w.current.title.lower()
+        panes = [front] + [p for p in shown if p != front]
+        return step_record(title=title, text=text, scene=model.scene, panes=panes,
+                           image_order=model.trace_settings, object_order=model.raster_settings,
+                           zbuffer_step=model.step, pixel=model.ray_pixel or model.buffer_pixel, facts=facts)
+
+    def record(self, path, title: str, text: str, facts_json: str = "") -> bool:
+        """Append the window's state to the lesson file ``path``; False (and a dialog) on a problem."""
+        try:
+            facts = json.loads(facts_json) if facts_json.strip() else []
+        except json.JSONDecodeError as exc:
+            return self._refuse([f"facts: line {exc.lineno}, column {exc.colno}: invalid JSON: {exc.msg}"])
+        try:
+            add_step(path, self.state_step(title, text, facts))
+        except LessonFileError as exc:
+            return self._refuse(exc.problems)
+        except OutputError as exc:
+            return self._refuse([str(exc)])
+        self.window.statusBar().showMessage(f"Step {title!r} added to {path}", 8000)
+        return True
+
+    def ask(self) -> None:
+        """The menu action: the form, then the file to add the step to."""
+        form = StepForm(self.window)
+        if form.exec() != QDialog.DialogCode.Accepted:
+            return
+        path, _ = QFileDialog.getSaveFileName(self.window, "Add the step to lesson file", "lesson.json",
+                                              "Lesson files (*.json)",
+                                              options=QFileDialog.Option.DontConfirmOverwrite)
+        if path:
+            self.record(path, form.title.text(), form.text.toPlainText(), form.facts.toPlainText())
+
+    def _refuse(self, problems) -> bool:
+        box = QMessageBox(QMessageBox.Icon.Warning, "Cannot add the step",
+                          "The step was not added:", QMessageBox.StandardButton.Ok, self.window)
+        box.setInformativeText("\n".join(problems[:12]))
+        box.setObjectName("lesson_record_error")
+        box.open()
+        return False

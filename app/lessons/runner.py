@@ -1,0 +1,197 @@
+"""Applying a lesson step to the window: its scene, panes, settings, view and highlight.
+
+A :class:`core.lessons.LessonStep` says what the room should see; the
+:class:`LessonRunner` makes the window show it.  Everything it changes goes
+through the window's one model (scene, settings, step, picks, overlays) or
+through the panes' own setters, so afterwards the window behaves as if the
+user had made the same choices by hand.
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import replace
+
+import numpy as np
+
+from core.lessons import LessonStep
+from core.scene import Mesh, Scene
+from views.scene3d.projector_lines import ProjectorLines
+from views.scene3d.scene_overlays import polygon_parts
+
+SCENE_PANE = "scene 3D"
+"""The lesson name of the 3D pane (the others are tab titles)."""
+LESSON_OVERLAY = "lesson"
+"""The 3D overlay that marks a step's highlighted object or face; shown with every tab."""
+MODEL_OVERLAYS = {"bounding spheres": "spheres", "grid cells": "grid", "frustum": "frustum"}
+"""Lesson overlay names and the model's names for them."""
+OBJECT_STYLE = {"color": "#ffd400", "style": "wireframe", "line_width": 3}
+NORMAL_COLOR = "#ff2bd6"
+"""The highlighted face's outward normal, drawn as an arrow (the colour of its outline)."""
+
+
+def named_objects(scene: Scene, text: str) -> list:
+    """The objects ``text`` speaks of: by their name ("the cone"), or, for objects named
+    "object N", by their number in a sentence about objects ("objects 1 and 4")."""
+    lowered = text.lower()
+    numbers = set()  # the numbers of sentences about objects, "1 to 4" counting 2 and 3 too
+    for sentence in re.split(r"(?<=[.;:])\s+", lowered):
+        if re.search(r"\bobjects?\b", sentence):
+            numbers |= {int(n) for n in re.findall(r"\b\d+\b", sentence)}
+            for a, b in re.findall(r"\b(\d+) to (\d+)\b", sentence):
+                numbers |= set(range(int(a), int(b) + 1))
+    named = []
+    for obj in scene.objects:
+        number = re.fullmatch(r"object (\d+)", obj.name.lower())
+        if obj.name.lower() in lowered or (number and int(number.group(1)) in numbers):
+            named.append(obj)
+    return named
+
+
+def _top(obj) -> np.ndarray:
+    """A point just above the object, where its name is written."""
+    points = np.asarray(obj.vertices if isinstance(obj, Mesh) else [obj.center], dtype=float)
+    low, high = points.min(axis=0), points.max(axis=0)
+    lift = getattr(obj, "radius", 0.0) + 0.08 * float(np.linalg.norm(high - low) + 1.0)
+    return np.array([(low[0] + high[0]) / 2, high[1] + lift, (low[2] + high[2]) / 2])
+
+
+def _normal_parts(corners: np.ndarray, eye) -> list:
+    """The face's outward normal as an arrow from its centroid, labelled with where it points."""
+    import pyvista as pv
+
+    from views.scene3d.scene_overlays import LABEL_PT
+    from views.scene3d.vtk_convert import set_labels
+
+    centroid = corners.mean(axis=0)
+    normal = np.cross(corners[1] - corners[0], corners[2] - corners[0])
+    normal /= np.linalg.norm(normal)
+    size = 0.6 * float(np.max(np.linalg.norm(corners - centroid, axis=1)))
+    toward = float(np.dot(normal, np.asarray(eye, dtype=float) - centroid)) > 0  # the culling test
+    words = "N: front face" if toward else "N: back face"  # short: it must fit the pane at x2
+    tip = pv.PolyData(np.array([centroid + 1.15 * size * normal]))
+    return [(pv.Arrow(start=centroid, direction=normal, scale=size), {"color": NORMAL_COLOR}),
+            (set_labels(tip, [words]), {"label_size": LABEL_PT, "color": NORMAL_COLOR})]
+
+
+def _name_parts(objects) -> list:
+    """The objects' names written above them."""
+    if not objects:
+        return []
+    import pyvista as pv
+
+    from views.scene3d.scene_overlays import LABEL_PT
+    from views.scene3d.vtk_convert import set_labels
+
+    points = pv.PolyData(np.array([_top(obj) for obj in objects]))
+    return [(set_labels(points, [obj.name for obj in objects]), {"label_size": LABEL_PT, "color": "white"})]
+
+
+def _find(scene: Scene, name: str):
+    for obj in scene.objects:
+        if obj.name == name:
+            return obj
+    raise KeyError(f"the scene has no object named {name!r}")
+
+
+class LessonRunner:
+    """Shows lesson steps in ``window`` (a :class:`app.window.main_window.MainWindow`).
+
+    Attributes
+    ----------
+    step : the step applied last, or None.
+    highlighted : what that step marks, in words (``"object 'cube'"``), or "".
+    """
+
+    def __init__(self, window):
+        self.window = window
+        self.step: LessonStep | None = None
+        self.highlighted = ""
+        self.projector = ProjectorLines(window.model, window.scene_view)  # A, A′ of a highlighted vertex
+
+    def apply(self, step: LessonStep) -> None:
+        """Load ``step``'s scene and settings, show its panes, set its view, picks and highlight."""
+        w, model = self.window, self.window.model
+        self.step = step
+        w.scene_path = None
+        w.setWindowTitle(f"Render Explorer — lesson: {step.title}")
+        model.set_trace_settings(step.image_order)
+        model.set_raster_settings(replace(step.object_order, record_steps=True))
+        model.set_scene(step.scene)
+        for lesson_name, name in MODEL_OVERLAYS.items():
+            model.set_overlay(name, lesson_name in step.overlays)
+        self._show_panes(step.panes)
+        self._show_heat_map(step.heat_map)
+        highlight = step.highlight
+        zbuffer_step = step.zbuffer_step
+        if zbuffer_step is None and "polygon_step" in highlight:
+            zbuffer_step = highlight["polygon_step"] + 1  # the step at which that polygon is drawn
+        model.set_step(zbuffer_step)
+        pixel = step.pixel if step.pixel is not None else highlight.get("pixel")
+        if pixel is not None:
+            model.set_ray_pixel(tuple(pixel))
+            model.set_buffer_pixel(tuple(pixel))
+        self._highlight(step.scene, highlight)
+        w.scene_view.look_from({**step.view, "frame": step.frame})  # after the highlight it may frame
+
+    def _show_panes(self, panes) -> None:
+        w = self.window
+        w.scene_pane.setVisible(SCENE_PANE in panes)
+        titles = [p for p in panes if p != SCENE_PANE]
+        if titles:
+            w.show_tab(titles[0])
+            for tab in w.tabs:
+                index = w.tab_widget.indexOf(tab.widget)
+                w.tab_widget.setTabVisible(index, tab.title.lower() in titles)
+
+    def _show_heat_map(self, name: str) -> None:
+        """Choose the image-order pane's heat map named ``name`` (its choice's text, in lower case)."""
+        choice = self.window.tab("image order").widget.heat
+        choice.setCurrentIndex(next(k for k in range(choice.count()) if choice.itemText(k).lower() == name))
+
+    def _highlight(self, scene: Scene, highlight) -> None:
+        w = self.window
+        parts, words, vertex_point = [], [], None
+        image_order = w.tab("image order").widget
+        image_order.ray_kind = highlight.get("ray")
+        image_order.tree.select_kind(image_order.ray_kind)
+        if "ray" in highlight:
+            image_order.show_ray_tree()  # where that ray is selected
+            words.append(f"the {highlight['ray']} ray")
+        if "object" in highlight:
+            from views.scene3d.vtk_convert import (
+                object_polydata,  # pyvista loads with the 3D pane, not before
+            )
+
+            obj = _find(scene, highlight["object"])
+            parts.append((object_polydata(obj), OBJECT_STYLE))
+            words.append(f"object {obj.name!r}")
+        if "face" in highlight:
+            face = highlight["face"]
+            mesh = _find(scene, face["object"])
+            corners = mesh.vertices[mesh.triangles[face["triangle"]]]
+            parts += polygon_parts(corners)
+            parts += _normal_parts(np.asarray(corners, dtype=float), scene.camera.eye)
+            words.append(f"triangle {face['triangle']} of {mesh.name!r}")
+        if "vertex" in highlight:
+            vertex = highlight["vertex"]
+            mesh = _find(scene, vertex["object"])
+            point = vertex_point = np.asarray(mesh.vertices[vertex["index"]] if isinstance(mesh, Mesh)
+                                              else mesh.center)
+            panel = w.tab("object order").widget
+            name = f"vertex {vertex['index']} of {mesh.name!r}"
+            panel.show_vertex(point, scene, name)
+            panel.details.setCurrentWidget(panel.vertex_math)
+            words.append(name)
+        if "polygon_step" in highlight:
+            words.append(f"the polygon drawn at step {highlight['polygon_step'] + 1}")
+        if "pixel" in highlight:
+            words.append(f"pixel {tuple(highlight['pixel'])}")
+        parts += _name_parts(named_objects(scene, self.step.text if self.step is not None else ""))
+        w.scene_view.set_overlay(LESSON_OVERLAY, parts)
+        self.projector.show_point(vertex_point)
+        self.highlighted = ", ".join(words)
+        if self.highlighted:
+            w.statusBar().showMessage(f"Look at {self.highlighted}", 15000)
+        else:
+            w.statusBar().clearMessage()  # the previous step's pointer no longer applies

@@ -1,0 +1,1 @@
+"""The process itself: kernel loading, Ctrl+C, thread priority and memory tuning."""

@@ -1,0 +1,593 @@
+"""The main window: builds the panes and connects them to the one model.
+
+No algorithms and no drawing live here.  The model (:class:`app.window.state.SceneModel`)
+holds the window's state; panels write to it and views follow its signals.
+When each tab renders (only the visible one; previews while the observer
+moves) is decided by :class:`app.window.workers.RenderSchedule`.
+
+Tabs are registered in :data:`app.window.tabs.TABS` and found by name,
+``window.tab("image order")``.
+"""
+
+from __future__ import annotations
+
+import os
+import sys
+from pathlib import Path
+
+from PySide6.QtCore import Qt, QThreadPool, QTimer, Signal
+from PySide6.QtGui import QAction, QFont, QKeySequence
+from PySide6.QtWidgets import (
+    QApplication,
+    QDialog,
+    QDockWidget,
+    QHBoxLayout,
+    QLabel,
+    QMainWindow,
+    QMessageBox,
+    QPushButton,
+    QScrollArea,
+    QTabWidget,
+    QVBoxLayout,
+    QWidget,
+)
+
+from app.export.export_menu import ExportMenu
+from app.lessons.exercise_jobs import ExerciseJobs
+from app.lessons.fact_check import LessonFactCheck
+from app.lessons.recorder import LessonRecorder
+from app.lessons.runner import LESSON_OVERLAY, LessonRunner
+from app.window import render_budget, session
+from app.window.background_compile import BackgroundCompile
+from app.window.first_frame import AfterFirstFrame
+from app.window.scene_editor import SceneEditor
+from app.window.state import SceneModel
+from app.window.tabs import TABS
+from app.window.window_layout import LEFT_SHARE, fit_window, tabbed_dock
+from app.window.workers import Renderer, RenderSchedule
+from core import presets
+from core.files import scene_file
+from core.files.mesh_files import read_mesh
+from core.image_order.ray_tree import trace_pixel
+from core.presets_trace import PRESETS_TRACE
+from core.scene import Scene
+from views.file_dialogs import ask_open, ask_save
+from views.on_screen import KeepWindowsOnScreen
+from views.panels.camera_panel import CameraPanel
+from views.panels.exercise_panel import ExercisePanel, ExerciseProgress
+from views.panels.lesson_panel import LessonPanel
+from views.presentation import Presentation
+from views.scene3d.deferred_scene_view import DeferredSceneView
+from views.scene3d.observer_keys import MOUSE_GESTURES, OBSERVER_KEYS, EditorsKeepTheirKeys
+from views.scene3d.scene_overlays import SCENE_OVERLAYS, SceneOverlays
+from views.text import math_view
+from views.text.elided_label import ElidedLabel, ElidedProgressBar
+from views.text.text_dialog import text_dialog
+from views.user_settings import user_settings
+
+
+class MainWindow(QMainWindow):
+    """Render Explorer's window: 3D scene with the observer, and what the observer sees.
+
+    Signals
+    -------
+    image_shown(str title, bool preview) : a tab showed a new image (a preview or the full one).
+    full_image_shown(str title) : a tab showed the full render of the current scene.
+    """
+
+    image_shown = Signal(str, bool)
+    full_image_shown = Signal(str)
+
+    def __init__(self, scene: Scene, memory_limit: int | None = None):
+        super().__init__()
+        self.setWindowTitle("Render Explorer")
+        self.model = SceneModel(scene, self, memory_limit)
+        self.scene_path: Path | None = None
+        self.scene_view = DeferredSceneView(self.model)  # VTK loads once the window is on screen
+        self.overlays = SceneOverlays(self.model, self.scene_view)
+        self.camera_panel = CameraPanel(self.model)
+        self.tab_widget = QTabWidget()
+        self.tab_widget.setElideMode(Qt.TextElideMode.ElideRight)  # every tab stays in view, however narrow
+        self.tab_widget.setUsesScrollButtons(False)
+        self.tabs: list = []
+        self.renders = RenderSchedule(self.model, self)
+        self.progress = ElidedProgressBar()
+        self.progress.setRange(0, 100)
+        self.progress.setTextVisible(True)
+        self.status_caption = QLabel()
+        self.status_caption.setWordWrap(True)
+        for cls in TABS:
+            self.add_tab(cls(self.model))
+
+        right = QWidget()
+        right_layout = QVBoxLayout(right)
+        right_layout.setContentsMargins(0, 0, 0, 0)
+        right_layout.addWidget(self.tab_widget, 1)
+        progress_row = QHBoxLayout()
+        progress_row.addWidget(self.progress, 1)
+        self.cancel_button = QPushButton("Cancel")
+        self.cancel_button.setToolTip("Stop the render in progress (Esc)")
+        self.cancel_button.setShortcut(QKeySequence("Esc"))
+        self.cancel_button.clicked.connect(self.cancel_render)
+        self.cancel_button.setEnabled(False)
+        progress_row.addWidget(self.cancel_button)
+        right_layout.addLayout(progress_row)
+        right_layout.addWidget(self.status_caption)
+        scene_pane = QWidget()
+        scene_layout = QVBoxLayout(scene_pane)
+        scene_layout.setContentsMargins(2, 2, 2, 2)
+        scene_hint = ElidedLabel("Drag the camera or the orange target to move them; "
+                                 "drag elsewhere to turn the view")
+        scene_layout.addWidget(self.scene_view, 1)
+        scene_layout.addWidget(scene_hint)
+        # Above the controls and lessons, beside the tabs: the tabs' images get the window's width.
+        self.scene_pane = QDockWidget("The scene: observer, frustum, screen", self)
+        self.scene_pane.setObjectName("scene")
+        self.scene_pane.setFeatures(QDockWidget.DockWidgetFeature.DockWidgetMovable)
+        self.scene_pane.setWidget(scene_pane)
+        self.addDockWidget(Qt.DockWidgetArea.LeftDockWidgetArea, self.scene_pane)
+        self.setCentralWidget(right)
+
+        dock = QDockWidget("Controls", self)
+        dock.setFeatures(QDockWidget.DockWidgetFeature.DockWidgetMovable)
+        dock.setTitleBarWidget(QWidget())  # the group boxes carry the titles
+        self._controls = QScrollArea()
+        self._controls.setWidgetResizable(True)
+        self._controls.setWidget(self.camera_panel)
+        dock.setWidget(self._controls)
+        self._fit_controls()
+        self.addDockWidget(Qt.DockWidgetArea.LeftDockWidgetArea, dock)
+        self.splitDockWidget(self.scene_pane, dock, Qt.Orientation.Vertical)
+        # The panel opens on the first lesson without applying it: the scene stays
+        # the one given until the user picks a step.
+        self.lesson_panel = LessonPanel()
+        self.lessons = LessonRunner(self)
+        # Beside the controls, as a second tab of the same dock area: the image panes keep the width.
+        self.lesson_dock = tabbed_dock(self, "Lessons", "lessons", self.lesson_panel, dock)
+        self.exercise_jobs = ExerciseJobs(self, lambda why: self.statusBar().showMessage(
+            f"The exercise could not be checked: {why}", 10000))
+        self.exercise_panel = ExercisePanel(ExerciseProgress(user_settings()), run=self.exercise_jobs)
+        self.exercise_dock = tabbed_dock(self, "Exercises", "exercises", self.exercise_panel, dock)
+        self.lesson_dock.raise_()
+        self._keyed_actions: list[QAction] = []
+        self._editor_keys = EditorsKeepTheirKeys(self)
+        QApplication.instance().installEventFilter(self._editor_keys)
+        self._on_screen = KeepWindowsOnScreen(self)  # the window and its dialogs, frames and all
+        QApplication.instance().installEventFilter(self._on_screen)
+        # After the editors' filter, so that PageUp/PageDown reach the lessons first, from anywhere.
+        self.presentation = Presentation(self, self.lesson_panel)
+        self._build_menus()
+        self.editor = SceneEditor(self)
+        self._keyed_actions += self.editor.keyed_actions
+        self.lesson_panel.step_selected.connect(self.apply_lesson_step)
+        self._wire_exercises()
+        self.fact_check = LessonFactCheck(self)  # File → Open lesson: are the new lesson's facts true?
+        self.lesson_panel.lesson_opened.connect(self.fact_check.check)
+        self.presentation.presenting_changed.connect(self._presenting_changed)
+        self.presentation.scale_changed.connect(self._scale_changed)
+        self.scene_pane.visibilityChanged.connect(lambda shown: shown and self._refit())
+
+        self.model.camera_refused.connect(
+            lambda why: self.statusBar().showMessage(f"Observer not moved — {why}", 6000))
+        self.model.trace_settings_changed.connect(
+            lambda _: self.renders.settings_changed(self.tab("image order")))
+        self.model.raster_settings_changed.connect(
+            lambda _: self.renders.settings_changed(self.tab("object order")))
+        self.renders.status_changed.connect(self._show_status)
+        self.renders.image_shown.connect(self.image_shown)
+        self.renders.full_image_shown.connect(self.full_image_shown)
+        self.renders.image_shown.connect(self.scene_view.build_soon)  # the first image before VTK
+        self.renders.image_shown.connect(lambda *_: math_view.load_typesetting_soon())  # and mathtext
+        self.renders.warned.connect(lambda warning: self.statusBar().showMessage(warning, 10000))
+        self.renders.refused.connect(lambda refusal: self.statusBar().showMessage(refusal, 10000))
+        self.renders.rested.connect(self._observer_rested)
+        self.model.ray_pixel_changed.connect(self._ray_pixel_changed)
+        self.tab_widget.currentChanged.connect(self._tab_shown)
+        self.ray_tree = None
+        self._tree_renderer = Renderer(self)
+        self._tree_renderer.finished.connect(self._show_ray_tree)
+        self._tree_renderer.failed.connect(lambda message: self.statusBar().showMessage(message, 6000))
+        object_order = self.tab("object order").widget
+        object_order.polygon_shown.connect(self.overlays.show_polygon)
+        object_order.clipped_shown.connect(self.overlays.show_clipped)
+
+        self.renders.hold()  # the first render starts once the window is on screen
+        self.background_compile = BackgroundCompile()
+        self._compile_watch = QTimer(self, interval=1000, timeout=self._say_background_compile)
+        QApplication.instance().aboutToQuit.connect(self.background_compile.stop)
+        AfterFirstFrame(self.tab_widget, self._first_frame_shown)
+        self._tab_shown()
+        available = self.screen().availableGeometry()
+        self.resize(min(1400, available.width()), min(860, available.height()))
+
+    # ------------------------------------------------------------------ tabs
+    def add_tab(self, tab) -> None:
+        """Show ``tab`` (see :mod:`app.window.tabs` for what a tab provides) as the last tab."""
+        self.tabs.append(tab)
+        self.tab_widget.addTab(tab.widget, tab.title)
+        self.renders.add(tab)
+
+    def tab(self, name: str):
+        """The tab titled ``name`` (case does not matter)."""
+        for tab in self.tabs:
+            if tab.title.lower() == name.lower():
+                return tab
+        raise KeyError(f"no tab named {name!r}; the tabs are {self.tab_titles()}")
+
+    def tab_titles(self) -> list[str]:
+        return [tab.title for tab in self.tabs]
+
+    def show_tab(self, name: str) -> None:
+        """Bring the tab titled ``name`` to the front (showing it if a lesson had hidden it)."""
+        widget = self.tab(name).widget
+        self.tab_widget.setTabVisible(self.tab_widget.indexOf(widget), True)
+        self.tab_widget.setCurrentWidget(widget)
+
+    def show_all_panes(self) -> None:
+        """Every tab and the 3D pane, as before any lesson."""
+        self.scene_pane.setVisible(True)
+        for i in range(self.tab_widget.count()):
+            self.tab_widget.setTabVisible(i, True)
+
+    def visible_panes(self) -> list[str]:
+        """The panes shown, by their lesson names ("scene 3D" and the tab titles, lower case)."""
+        shown = ["scene 3D"] if self.scene_pane.isVisible() else []
+        return shown + [t.title.lower() for t in self.tabs
+                        if self.tab_widget.isTabVisible(self.tab_widget.indexOf(t.widget))]
+
+    # --------------------------------------------------------------- lessons
+    def apply_lesson_step(self, step) -> None:
+        """Show lesson step ``step`` (a :class:`core.lessons.LessonStep`); see :mod:`app.lessons.runner`."""
+        if self.editor.may_replace_scene():
+            self.lessons.apply(step)
+            self._refit()  # the step's words may need another share of the left column
+
+    def _wire_exercises(self) -> None:
+        """The exercises follow the lesson; clicks in the images answer pixel exercises; "show me"
+        shows the exercise's step (and pixel); progress shows in the lesson list."""
+        panel, exercises = self.lesson_panel, self.exercise_panel
+        panel.step_selected.connect(lambda _step: exercises.set_lesson(panel.current_lesson()))
+        for tab in ("image order", "object order"):
+            self.tab(tab).widget.image.pixel_clicked.connect(exercises.click)
+
+        def show_me(step: int, pixel) -> None:
+            panel.select(panel.step_index()[0], step)
+            if pixel is not None:
+                self.model.set_ray_pixel(tuple(pixel))
+                self.model.set_buffer_pixel(tuple(pixel))
+
+        exercises.show_me.connect(show_me)
+        self.presentation.presenting_changed.connect(exercises.set_room)
+
+        def progressed(lesson_id: str) -> None:
+            for k, lesson in enumerate(panel.lessons()):
+                if lesson.id == lesson_id:
+                    panel.set_note(k, exercises.progress.summary(lesson))
+
+        exercises.progressed.connect(progressed)
+        for lesson in panel.lessons():
+            progressed(lesson.id)
+
+    def _presenting_changed(self, presenting: bool) -> None:
+        # Esc leaves full screen while presenting; one key, one meaning.
+        self.cancel_button.setShortcut(QKeySequence() if presenting else QKeySequence("Esc"))
+        self._refit()
+
+    def _scale_changed(self, scale: float) -> None:
+        # The formulas follow the window's font, which the scale enlarged already; the 3D pane does not.
+        self.scene_view.set_line_scale(scale)
+        self._refit()
+
+    def _refit(self) -> None:
+        """Share the room again once the new text size or screen reached every widget."""
+        QTimer.singleShot(0, self._fit)
+
+    def _fit(self) -> None:
+        self._fit_controls()
+        fit_window(self, self.presentation.scale())
+
+    def resizeEvent(self, event):
+        super().resizeEvent(event)
+        fit_window(self, self.presentation.scale())
+
+    @property
+    def current(self):
+        """The visible tab."""
+        return self.tabs[self.tab_widget.currentIndex()]
+
+    def showing_full(self, name: str) -> bool:
+        """Whether tab ``name`` shows the full render of the current scene and settings."""
+        return self.renders.showing_full(self.tab(name))
+
+    # ----------------------------------------------------------------- menus
+    def _action(self, menu, text, slot, shortcut=None, tip=""):
+        action = QAction(text, self)
+        if shortcut:
+            action.setShortcut(QKeySequence(shortcut))
+            self._keyed_actions.append(action)
+        action.setStatusTip(tip)
+        action.setToolTip(tip)
+        action.triggered.connect(slot)
+        menu.addAction(action)
+        return action
+
+    def _build_menus(self):
+        file_menu = self.menuBar().addMenu("&File")
+        self._action(file_menu, "&Open scene…", self.open_scene_dialog, QKeySequence.StandardKey.Open,
+                     "Open a scene JSON file")
+        self._action(file_menu, "&Save scene as…", self.save_scene_dialog,
+                     QKeySequence.StandardKey.SaveAs, "Save the scene and observer as JSON")
+        self._action(file_menu, "&Lecture scene", self.reset_scene, "Ctrl+L",
+                     "Back to the lecture's cube and cone on a plane")
+        self._action(file_menu, "Open &lesson…", lambda: self.lesson_panel.open_lesson_file(),
+                     tip="Open a lesson JSON file and start it")
+        examples = file_menu.addMenu("&Examples")
+        for group in (presets.PRESETS, PRESETS_TRACE):
+            for key, (title, build) in group.items():
+                self._action(examples, title, lambda _=False, b=build, k=key: self.load_preset(k, b))
+            examples.addSeparator()
+        self.exports = ExportMenu(self, file_menu)
+        file_menu.addSeparator()
+        self._action(file_menu, "&Quit", self.close, QKeySequence.StandardKey.Quit)
+        observer = self.menuBar().addMenu("&Observer")
+        for key, text, move in OBSERVER_KEYS:
+            self._action(observer, text,
+                         lambda _=False, m=move: self.model.set_camera(m(self.model.camera)), key)
+        view = self.menuBar().addMenu("&View")
+        self._action(view, "Larger text (lecture hall)", lambda: self.scale_text(1.25),
+                     QKeySequence.StandardKey.ZoomIn)
+        self._action(view, "Smaller text", lambda: self.scale_text(0.8),
+                     QKeySequence.StandardKey.ZoomOut)
+        self._action(view, "Re-render", self.rerender, "F5")
+        for i, tab in enumerate(self.tabs):
+            self._action(view, tab.title, lambda _=False, t=tab.title: self.show_tab(t), f"Ctrl+{i + 1}")
+        self._action(view, "Show all panes", self.show_all_panes,
+                     tip="Every tab and the 3D pane again, after a lesson showed only some")
+        view.addSeparator()
+        lessons = self.lesson_dock.toggleViewAction()
+        lessons.setText("Lessons")
+        lessons.setShortcut(QKeySequence("Ctrl+Shift+L"))
+        view.addAction(lessons)
+        self._keyed_actions.append(lessons)
+        acts = self.presentation.actions
+        for key in ("present", "leave", "blank", "contrast", "presenter"):
+            view.addAction(acts[key])
+            if not acts[key].shortcut().isEmpty():
+                self._keyed_actions.append(acts[key])
+        sizes = view.addMenu("Text size")
+        for key in ("scale 1", "scale 1.5", "scale 2"):
+            sizes.addAction(acts[key])
+        lessons_menu = self.menuBar().addMenu("&Lessons")
+        self.recorder = LessonRecorder(self)
+        self._action(lessons_menu, "&Add this view as a step…", self.recorder.ask,
+                     tip="Record the scene, observer, panes, settings, step and pixel into a lesson file")
+        help_menu = self.menuBar().addMenu("&Help")
+        self._action(help_menu, "&Keys and mouse", self.show_keys, tip="Every key and mouse gesture")
+
+    def keys_text(self) -> str:
+        """Every keyboard shortcut and mouse gesture, one a line."""
+        lines = ["Keys (a focused number box keeps the arrow keys for itself):"]
+        lines += [f"  {a.shortcut().toString(QKeySequence.SequenceFormat.NativeText):<14} "
+                  f"{a.text().replace('&', '')}" for a in self._keyed_actions]
+        lines += [f"  {'PageDown':<14} Next lesson step (from anywhere)",
+                  f"  {'PageUp':<14} Previous lesson step (from anywhere)",
+                  f"  {'Esc':<14} Cancel the render in progress (while presenting: leave full screen)",
+                  "", "Mouse in the 3D pane:"]
+        lines += [f"  {gesture}: {what}" for gesture, what in MOUSE_GESTURES]
+        return "\n".join(lines)
+
+    def show_keys(self) -> QDialog:
+        """Show every key and mouse gesture (scrolled on a small screen); returns the dialog."""
+        dialog = text_dialog(self, "Keys and mouse", self.keys_text())
+        dialog.setAttribute(Qt.WidgetAttribute.WA_DeleteOnClose)
+        dialog.show()
+        return dialog
+
+    def scale_text(self, factor: float) -> None:
+        app = QApplication.instance()
+        font = QFont(app.font())
+        font.setPointSizeF(max(7.0, min(40.0, font.pointSizeF() * factor)))
+        app.setFont(font)
+        QTimer.singleShot(0, self._fit_controls)  # after the new font reached every widget
+
+    def _fit_controls(self) -> None:
+        """Keep the whole control panel visible at any text size (scrolling sideways on a small screen)."""
+        self.camera_panel.adjustSize()
+        scrollbar = self._controls.verticalScrollBar().sizeHint().width()
+        most = round(self.screen().availableGeometry().width() * LEFT_SHARE[max(LEFT_SHARE)])
+        self._controls.setMinimumWidth(min(most, self.camera_panel.minimumSizeHint().width() + scrollbar + 4))
+
+    # ------------------------------------------------------------- files
+    def open_scene_dialog(self) -> None:
+        path = ask_open(self, "Open scene", "Scene files (*.json)")
+        if path:
+            self.open_scene(path)
+
+    def open_scene(self, path) -> bool:
+        """Load a scene file; on any problem show them all and keep the current scene."""
+        try:
+            scene = scene_file.load(path, read_mesh=read_mesh)
+        except scene_file.SceneFileError as exc:
+            QMessageBox.critical(self, "Cannot open scene", f"{Path(path).name}:\n\n{exc}")
+            return False
+        if not self.editor.may_replace_scene():
+            return False
+        self.scene_path = Path(path)
+        self.setWindowTitle(f"Render Explorer — {self.scene_path.name}")
+        self.model.set_scene(scene)
+        self.lesson_panel.leave_step(f"The window shows {self.scene_path.name} now.")
+        self.explain_if_too_large(self.scene_path.name)
+        return True
+
+    def explain_if_too_large(self, name: str) -> None:
+        """Say in a dialog why tabs will not render the scene just opened (from file ``name``), if so."""
+        refused = render_budget.refusals(self.tabs, self.model.scene, self.model.memory_limit)
+        if not refused:
+            return
+        first = refused.get(self.current.title, next(iter(refused.values())))
+        box = QMessageBox(QMessageBox.Icon.Warning, "Scene too large to render", f"{name}:\n\n{first}",
+                          parent=self)
+        others = [title for title, why in refused.items() if why is not first]
+        box.setInformativeText((f"Too large for {', '.join(others)} as well. " if others else "")
+                               + "The scene is open: the tabs render it once it is small enough.")
+        box.setAttribute(Qt.WidgetAttribute.WA_DeleteOnClose)
+        box.open()  # the window stays responsive behind it
+
+    def save_scene_dialog(self) -> None:
+        path, _ = ask_save(self, "Save scene", "scene.json", "Scene files (*.json)") or ("", "")
+        if path:
+            try:
+                scene_file.save(self.model.scene, path)
+            except OSError as exc:
+                QMessageBox.critical(self, "Cannot save scene", f"{path}:\n\n{exc}")
+            else:
+                self.editor.saved(path)
+
+    def reset_scene(self) -> None:
+        self.load_preset("lecture", presets.lecture_scene)
+
+    def load_preset(self, key: str, build) -> None:
+        if not self.editor.may_replace_scene():
+            return
+        self.scene_path = None
+        self.setWindowTitle(f"Render Explorer — example: {key}")
+        self.model.set_scene(build())
+        self.lesson_panel.leave_step(f"The window shows the example {key!r} now.")
+
+    # ------------------------------------------------------------ render
+    @property
+    def last_result(self):
+        """The result a tab showed last (preview or full)."""
+        return self.renders.last_result
+
+    def rerender(self) -> None:
+        """Render the visible tab again in full (F5)."""
+        self.renders.rerender()
+
+    def cancel_render(self) -> None:
+        """Stop the visible tab's render; what was drawn so far stays on screen."""
+        self.renders.cancel()
+
+    def _tab_shown(self, *_) -> None:
+        tab = self.current
+        self.scene_view.show_overlays_only((*tab.overlays, *SCENE_OVERLAYS, LESSON_OVERLAY))
+        self.renders.show_tab(tab)
+        self._show_status(tab)
+
+    def _first_frame_shown(self) -> None:
+        self.renders.release()
+        self.background_compile.start()
+        self._compile_watch.start()
+
+    def _say_background_compile(self) -> None:
+        """While the kernels compile in the background, the status bar says so."""
+        if self.background_compile.running:
+            self.statusBar().showMessage(BACKGROUND_COMPILE, 2000)
+        elif self.background_compile.checked.is_set():
+            self._compile_watch.stop()
+            if self.statusBar().currentMessage() == BACKGROUND_COMPILE:
+                self.statusBar().showMessage("The renderers' kernels are compiled: they load at once "
+                                             "from now on", 4000)
+
+    def _show_status(self, tab) -> None:
+        if tab is not self.current:
+            return
+        percent, text, caption = self.renders.status(tab)
+        if percent != self.progress.value():
+            # QProgressBar.setValue repaints at once, which composes the whole window
+            # (the 3D pane is an OpenGL widget); paint it with the next frame instead.
+            self.progress.setUpdatesEnabled(False)
+            self.progress.setValue(percent)
+            self.progress.setUpdatesEnabled(True)
+        self.progress.setFormat(text)
+        self.status_caption.setText(caption)
+        self.cancel_button.setEnabled(self.renders.busy(tab))
+
+    # ------------------------------------------------------- image order
+    def pick_ray_tree(self, x: int, y: int) -> None:
+        """Pick pixel (x, y) of the traced image: its ray tree is traced with every ray kept."""
+        self.model.set_ray_pixel((x, y))
+
+    def _observer_rested(self) -> None:
+        if self.model.ray_pixel is not None:  # the picked pixel now sees something else
+            self._trace_picked(self.model.ray_pixel)
+
+    def _ray_pixel_changed(self, pixel) -> None:
+        if pixel is None:
+            self.ray_tree = None
+            self._tree_renderer.cancel()
+            self.overlays.show_ray_tree(None)
+        else:
+            self._trace_picked(pixel)
+
+    def _trace_picked(self, pixel) -> None:
+        """Trace the picked pixel again with every ray kept (in the background)."""
+        x, y = pixel
+        scene, settings = self.model.scene, self.model.trace_settings
+        self._tree_renderer.submit(
+            lambda cancelled, progress: (x, y, trace_pixel(scene, x, y, settings), scene))
+
+    def _show_ray_tree(self, picked) -> None:
+        x, y, root, scene = picked
+        if (x, y) != self.model.ray_pixel:
+            return
+        self.ray_tree = (x, y, root)
+        self.tab("image order").widget.show_tree(x, y, root, scene)  # the tree and its worked math
+        self.overlays.show_ray_tree(root)
+
+    def closeEvent(self, event):
+        if not self.editor.may_replace_scene():
+            event.ignore()
+            return
+        QApplication.instance().removeEventFilter(self._editor_keys)
+        QApplication.instance().removeEventFilter(self._on_screen)
+        self.presentation.clicker.remove()
+        self.renders.stop()
+        self.background_compile.stop()
+        for tab in self.tabs:
+            getattr(tab, "shutdown", lambda: None)()
+        self._tree_renderer.cancel()
+        self.scene_view.close()
+        super().closeEvent(event)
+
+
+EXIT_WAIT_MS = 3000
+"""How long a closing window waits for its render threads before it ends the process regardless."""
+BACKGROUND_COMPILE = ("Compiling the renderers' kernels in the background (once per machine and version of "
+                      "the code)…")
+
+
+def run(scene_path: str | None = None, memory_limit: int | None = None) -> int:
+    """Open the window on ``scene_path`` (or the lecture scene); returns the exit status.
+
+    ``memory_limit``: renders estimated to need more bytes are refused (default: half of
+    the memory available).
+    """
+    scene = presets.lecture_scene()
+    if scene_path is not None:
+        try:
+            scene = scene_file.load(scene_path, read_mesh=read_mesh)
+        except scene_file.SceneFileError as exc:
+            print(f"python -m app: error: {exc}", file=sys.stderr)
+            return 2
+    app = QApplication.instance() or QApplication(sys.argv[:1])
+    app.setApplicationName("Render Explorer")
+    window = MainWindow(scene, memory_limit)
+    if scene_path is None:
+        session.restore(window)
+    else:
+        window.scene_path = Path(scene_path)
+        window.setWindowTitle(f"Render Explorer — {window.scene_path.name}")
+    window.show()
+    if scene_path is not None:
+        window.explain_if_too_large(Path(scene_path).name)
+    status = app.exec()
+    session.remember(window)
+    if not QThreadPool.globalInstance().waitForDone(EXIT_WAIT_MS):
+        # A render thread still inside a kernel compile (minutes on a fresh machine; it cannot be
+        # interrupted): end the process now rather than hang after the window closed. Every file is
+        # written whole or not at all, and numba writes each compiled kernel by renaming it into place.
+        sys.stdout.flush()
+        sys.stderr.flush()
+        os._exit(status)
+    return status

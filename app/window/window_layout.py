@@ -1,0 +1,87 @@
+"""How the window's panes share its screen: the tabs' images get the most room.
+
+The tabs (the images and their tables) fill the window's middle; on the left,
+the 3D scene sits above the controls and the lessons.  :func:`fit_window`
+keeps that order at every size and text scale: the left column takes
+:data:`LEFT_SHARE` of the width (a little more at larger text, so the
+lesson's words keep a readable line length) and the 3D pane
+:data:`SCENE_SHARE` of the left column's height, less when the lesson
+step's words need the room (large text on a small screen), but never less
+than :data:`MIN_SCENE_SHARE` (then the column widens, up to
+:data:`MAX_LEFT_SHARE`); the window never grows beyond its screen's
+available area.  The window calls it when it is shown, resized, its text
+scale changes or a lesson step is shown.
+"""
+
+from __future__ import annotations
+
+from PySide6.QtCore import Qt
+from PySide6.QtWidgets import QDockWidget
+
+LEFT_SHARE = {1.0: 0.28, 1.5: 0.31, 2.0: 0.34}
+"""Share of the window's width for the left column (3D pane, controls, lessons), by text scale."""
+SCENE_SHARE = 0.42
+"""Share of the left column's height for the 3D pane (the rest: controls and lessons)."""
+MIN_SCENE_SHARE = 0.3
+"""The least share of the left column's height the 3D pane keeps when a lesson's words need room."""
+MAX_LEFT_SHARE = 0.42
+"""The widest share the left column takes when a lesson's words need room (large text, small screen)."""
+
+
+def tabbed_dock(window, title: str, name: str, widget, beside):
+    """A closable dock of ``widget`` titled ``title`` (saved as ``name``), as one more tab of the
+    left column beside the dock ``beside``; the dock shown stays the one that was."""
+    dock = QDockWidget(title, window)
+    dock.setObjectName(name)
+    dock.setFeatures(QDockWidget.DockWidgetFeature.DockWidgetMovable
+                     | QDockWidget.DockWidgetFeature.DockWidgetClosable)
+    dock.setWidget(widget)
+    window.addDockWidget(Qt.DockWidgetArea.LeftDockWidgetArea, dock)
+    window.tabifyDockWidget(beside, dock)
+    return dock
+
+
+def in_front(dock: QDockWidget) -> bool:
+    """Whether ``dock`` is seen: shown and, if tabbed with others, the tab in front (a dock behind
+    another tab stays "visible" to Qt, only covered)."""
+    return dock.isVisible() and not dock.visibleRegion().isEmpty()
+
+
+def left_share(scale: float) -> float:
+    """:data:`LEFT_SHARE` at ``scale`` (the nearest scale offered below it)."""
+    return LEFT_SHARE[max((s for s in LEFT_SHARE if s <= scale), default=1.0)]
+
+
+def fit_window(window, scale: float = 1.0) -> None:
+    """Share ``window``'s room (a :class:`app.window.main_window.MainWindow`) for text scale ``scale``."""
+    available = window.screen().availableGeometry()
+    if window.width() > available.width() or window.height() > available.height():
+        window.resize(min(window.width(), available.width()), min(window.height(), available.height()))
+    column = window.centralWidget().height()
+    least_scene = round(column * MIN_SCENE_SHARE)
+    share, short = left_share(scale), 0
+    # The lesson step's words shown whole, if the 3D pane can spare the room, else if the left
+    # column may widen that much (the docks take their new sizes after this call).
+    words = window.lesson_panel.isVisible() and window.scene_pane.isVisible()
+    while words:
+        wider = round(window.width() * share) - window.lesson_dock.width()
+        short = _words_short_by(window.lesson_panel, wider)
+        if window.scene_pane.height() - short >= least_scene or share >= MAX_LEFT_SHARE:
+            break
+        share = min(share + 0.02, MAX_LEFT_SHARE)
+    window.resizeDocks([window.lesson_dock], [round(window.width() * share)], Qt.Orientation.Horizontal)
+    if window.scene_pane.isVisible():
+        scene = round(column * SCENE_SHARE)
+        if words:
+            scene = max(least_scene, min(scene, window.scene_pane.height() - short))
+        window.resizeDocks([window.scene_pane, window.lesson_dock], [scene, column - scene],
+                           Qt.Orientation.Vertical)
+
+
+def _words_short_by(panel, wider: int) -> int:
+    """How many pixels taller the lesson panel's words area must be to show the step whole
+    (negative: how many it has to spare) once the panel is ``wider`` pixels wider."""
+    viewport = panel.scroll.viewport()
+    words = panel.scroll.widget()  # as tall as its lines at that width, and never below its minimum
+    tall = max(words.layout().totalHeightForWidth(viewport.width() + wider), words.minimumSizeHint().height())
+    return tall - viewport.height()

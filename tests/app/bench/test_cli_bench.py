@@ -1,0 +1,62 @@
+"""Bad options to the benchmarks: one line naming the option, exit status 2, no traceback.
+
+Each runs in a subprocess, as a user would type it; all are refused before
+anything is imported or timed.
+"""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+
+import pytest
+from checkout import ROOT
+
+
+def _run(*argv, env=None):
+    return subprocess.run([sys.executable, "-m", "app", *argv], cwd=ROOT, capture_output=True, text=True,
+                          env=env, timeout=120)
+
+
+@pytest.mark.parametrize(("argv", "named"), [
+    (["bench", "raster", "--triangles", "10k"], "--triangles: '10k' is not a whole number"),
+    (["bench", "raster", "--triangles", "10000,5"], "--triangles: 5 is outside"),
+    (["bench", "raster", "--runs", "0"], "--runs must be at least 1"),
+    (["bench", "raster", "--width", "-3"], "--width must be at least 16"),
+    (["bench", "startup", "--runs", "0"], "--runs must be at least 1"),
+    (["bench", "gui", "--actions", "picks,dance"], "--actions: expected some of picks, cost, lessons"),
+    (["bench", "gui", "--actions", ""], "--actions: expected some of picks, cost, lessons"),
+])
+def test_bad_benchmark_options_are_one_line_and_exit_2(argv, named):
+    out = _run(*argv)
+    assert out.returncode == 2
+    lines = out.stderr.strip().splitlines()
+    assert len(lines) == 1 and named in lines[0], out.stderr
+    assert "Traceback" not in out.stderr and out.stdout == ""
+
+
+def test_bench_startup_without_a_display_says_how_to_run_it():
+    env = {k: v for k, v in os.environ.items() if k not in ("DISPLAY", "WAYLAND_DISPLAY")}
+    out = _run("bench", "startup", env=env)
+    assert out.returncode == 2
+    expected = "python -m app: error: bench startup needs a display; run it under xvfb-run -a"
+    assert out.stderr.strip() == expected
+
+
+@pytest.mark.gui
+def test_bench_gui_prints_a_row_per_tab_that_follows_the_observer_and_the_opening_apart():
+    out = _run("bench", "gui", "--seconds", "0.2", "--size", "800x600", "--actions", "picks")
+    assert out.returncode == 0, out.stderr
+    lines = out.stdout.splitlines()
+    blank = lines.index("")
+    rows = {line.split("  ")[0]: line.split() for line in lines[2:blank] if not line.startswith("Opening")}
+    assert set(rows) == {"Image order", "Object order", "Four views", "Compare"}
+    for words in rows.values():  # longest and p99 stall, draws/s, images/s, full image after stop
+        numbers = [float(w) for w in words if w.replace(".", "").isdigit()]
+        assert len(numbers) == 5 and numbers[0] >= numbers[1] >= 0 and numbers[4] > 0
+    opening = next(line for line in lines if line.startswith("Opening"))
+    assert "the 3D pane's first frame after" in opening and "longest stall meanwhile" in opening
+    assert lines[blank + 1].split() == ["action", "count", "longest", "stall", "p99", "stall"]
+    picks = lines[blank + 2].split()
+    assert picks[:3] == ["picked", "pixels", "12"] and picks[4] == "ms" and len(lines) == blank + 3

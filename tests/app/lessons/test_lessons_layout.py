@@ -1,0 +1,176 @@
+"""Lessons as the room sees them: what a step talks about fits the 3D pane, its text fits the panel."""
+
+import numpy as np
+import pytest
+import pyvista as pv
+from PySide6.QtCore import QRect
+from PySide6.QtGui import QScreen
+from vtkmodules.vtkRenderingCore import vtkTextRenderer
+from window_helpers import open_window
+
+from core.lessons import shipped_lessons
+from views.panels.image_order_panel import IMAGE_SHARE, TREE_ROWS
+
+LESSONS = {lesson.id: i for i, lesson in enumerate(shipped_lessons())}
+FRUSTUM_LESSONS = ("observer", "frustum", "perspective", "orthographic")
+WHOLE_FRUSTUM = ("observer", "frustum")
+"""The lessons about the frustum itself show all of it; the projection lessons frame their cube."""
+CUBE_SHARE = 0.15
+"""In the projection lessons the cube is at least this share of the 3D pane's height (once 6-9 %)."""
+
+
+def _settled(view) -> bool:
+    """The pane's picture has the pane's size and the camera its framing chose."""
+    plotter = view.plotter
+    ratio = plotter.devicePixelRatioF()
+    size = (round(plotter.width() * ratio), round(plotter.height() * ratio))
+    return tuple(plotter.ren_win.GetSize()) == size and plotter.camera_position == view._framed_at
+
+
+def _label_boxes(view) -> list[tuple[str, tuple[float, float, float, float]]]:
+    """Each frustum label as drawn: its text and its box in widget pixels (x0, y0, x1, y1), y down."""
+    view.plotter.render()
+    (_, _, _, labels), ratio = view.overlay_parts("frustum"), view.plotter.devicePixelRatioF()
+    actor = next(actor for poly, actor, _ in view._overlays["frustum"] if poly is labels)
+    mapper, measure, box = actor.GetMapper(), vtkTextRenderer(), [0, 0, 0, 0]
+    drawn = pv.wrap(mapper.GetInput())  # what the labels say and where, as VTK's mapper is given it
+    assert [s.replace("\n", " ") for s in drawn.point_data["labels"]] == list(labels.point_data["labels"])
+    boxes = []
+    for k, label in enumerate(drawn.point_data["labels"]):
+        measure.GetBoundingBox(mapper.GetLabelTextProperty(), str(label), box, view.plotter.ren_win.GetDPI())
+        p = view.widget_pos(drawn.points[k])  # VTK's measure of what it draws, around that point
+        boxes.append((str(label), (p.x() + box[0] / ratio, p.y() - box[3] / ratio,
+                                   p.x() + box[1] / ratio, p.y() - box[2] / ratio)))
+    return boxes
+
+
+def _outside(view, whole_frustum: bool) -> list[str]:
+    """What of the frustum overlay leaves the pane: corners (if it should all show), or labels."""
+    edges, pane = view.overlay_parts("frustum")[2], (view.plotter.width(), view.plotter.height())
+    problems = []
+    for point in edges.points if whole_frustum else ():
+        p = view.widget_pos(point)
+        if not (0 <= p.x() <= pane[0] and 0 <= p.y() <= pane[1]):
+            problems.append(f"corner {np.round(point, 2)} at ({p.x():.0f}, {p.y():.0f})")
+    for label, (x0, y0, x1, y1) in _label_boxes(view)[:None if whole_frustum else 1]:  # near plane first
+        if not (x0 >= -1 and x1 <= pane[0] + 1 and y0 >= -1 and y1 <= pane[1] + 1):
+            problems.append(f"label {label!r} at ({x0:.0f}, {y0:.0f})-({x1:.0f}, {y1:.0f}) in a pane {pane}")
+    return problems
+
+
+def _on_lines(view) -> list[str]:
+    """Labels that cover a frustum edge: sampled every pixel along the edges, each as thick as drawn."""
+    plotter = view.plotter
+    camera = plotter.camera
+    eye, ahead = np.array(camera.position), np.array(camera.direction)
+    edges = view.overlay_parts("frustum")[2]
+    half = next(a for p, a, _ in view._overlays["frustum"] if p is edges).prop.line_width / 2
+    half /= plotter.devicePixelRatioF()
+    lines = edges.lines.reshape(-1, 3)[:, 1:]
+    problems = []
+    for label, (x0, y0, x1, y1) in _label_boxes(view):
+        for a, b in lines:
+            ends = edges.points[[a, b]]
+            if np.any((ends - eye) @ ahead <= 0):  # behind the overview camera: not drawn there
+                continue
+            pa, pb = (view.widget_pos(e) for e in ends)
+            t = np.linspace(0, 1, 2 + int(np.hypot(pa.x() - pb.x(), pa.y() - pb.y())))[:, None]
+            xy = np.array([pa.x(), pa.y()]) * (1 - t) + np.array([pb.x(), pb.y()]) * t
+            xy = xy[(xy[:, 0] >= 0) & (xy[:, 0] <= plotter.width()) & (xy[:, 1] >= 0)
+                    & (xy[:, 1] <= plotter.height())]  # what the pane shows of the edge
+            dx = np.maximum(0, np.maximum(x0 - xy[:, 0], xy[:, 0] - x1))
+            dy = np.maximum(0, np.maximum(y0 - xy[:, 1], xy[:, 1] - y1))
+            if np.any(np.hypot(dx, dy) < half):
+                problems.append(f"label {label!r} at {np.round((x0, y0, x1, y1))} covers the edge {a}-{b}")
+    return problems
+
+
+def _cube_share(view, scene) -> float:
+    """The highlighted cube's height on the pane, as a share of the pane's height."""
+    cube = next(obj for obj in scene.objects if obj.name == "cube")
+    ys = [view.widget_pos(v).y() for v in cube.vertices]
+    assert all(0 <= view.widget_pos(v).x() <= view.plotter.width() for v in cube.vertices)
+    assert min(ys) >= 0 and max(ys) <= view.plotter.height()
+    return (max(ys) - min(ys)) / view.plotter.height()
+
+
+def _check_frustum_lessons(qtbot, window):
+    view = window.scene_view.view
+    for lesson_id in FRUSTUM_LESSONS:
+        lesson = shipped_lessons()[LESSONS[lesson_id]]
+        for k, step in enumerate(lesson.steps):
+            assert "frustum" in step.overlays
+            window.lesson_panel.select(LESSONS[lesson_id], k)
+            qtbot.waitUntil(lambda: _settled(view))  # noqa: B023 (waited for at once)
+            assert view.plotter.width() > 200 and view.plotter.height() > 150
+            assert _outside(view, lesson_id in WHOLE_FRUSTUM) == [], (lesson_id, k)
+            assert _on_lines(view) == [], (lesson_id, k)
+            if lesson_id not in WHOLE_FRUSTUM:
+                assert _cube_share(view, step.scene) >= CUBE_SHARE, (lesson_id, k)
+
+
+@pytest.mark.parametrize("size", [(1280, 720), (1920, 1080)])
+def test_frustum_lessons_show_their_subject_and_labels_clear_of_the_lines_in_the_3d_pane(qtbot, window, size):
+    window.resize(*size)
+    qtbot.waitUntil(lambda: window.size().width() == size[0])
+    _check_frustum_lessons(qtbot, window)
+
+
+@pytest.mark.parametrize("scale", [1.5, 2.0])
+def test_frustum_lessons_keep_their_labels_inside_the_3d_pane_and_off_its_lines_while_presenting(
+        qtbot, window, scale):
+    window.presentation.set_presenting(True)
+    window.presentation.set_scale(scale)
+    qtbot.waitUntil(lambda: window.scene_view.view.line_scale == scale)
+    _check_frustum_lessons(qtbot, window)
+    window.presentation.set_presenting(False)
+
+
+LINES = 10
+"""At 1280x720 and text x2 a lesson step shows at least this many lines of its words (or all of them)."""
+
+
+def _lecture_hall_window(qtbot, monkeypatch):
+    """The window on a 1280x720 screen, presenting, with text twice its size."""
+    screen = QRect(0, 0, 1280, 720)
+    monkeypatch.setattr(QScreen, "availableGeometry", lambda self: screen)
+    monkeypatch.setattr(QScreen, "geometry", lambda self: screen)
+    window = open_window(qtbot)
+    window.presentation.set_presenting(True)
+    window.presentation.set_scale(2.0)
+    return window
+
+
+def _words_shown(panel) -> int:
+    return panel.scroll.viewport().height()
+
+
+def test_at_1280x720_and_text_x2_every_lesson_step_shows_its_words_whole_or_ten_lines(qtbot, monkeypatch):
+    window = _lecture_hall_window(qtbot, monkeypatch)
+    panel = window.lesson_panel
+    line = panel.text.fontMetrics().lineSpacing()
+    for row, lesson in enumerate(shipped_lessons()):
+        for k, step in enumerate(lesson.steps):
+            panel.select(row, k)
+            qtbot.waitUntil(lambda: _words_shown(panel) >= LINES * line
+                            or panel.scroll.verticalScrollBar().maximum() == 0, timeout=5000)
+            if "scene 3D" in step.panes:  # the 3D pane keeps its share all the same
+                assert window.scene_pane.height() >= 0.25 * window.centralWidget().height(), (lesson.id, k)
+    window.presentation.set_presenting(False)
+
+
+def test_at_1280x720_and_text_x2_a_step_pointing_at_a_ray_shows_four_rows_of_the_ray_tree(qtbot, monkeypatch):
+    """The image gives the tree room (it kept about a row and a half), but keeps its share."""
+    window = _lecture_hall_window(qtbot, monkeypatch)
+    panel = window.tab("image order").widget
+    steps = [(row, k) for row, lesson in enumerate(shipped_lessons())
+             for k, step in enumerate(lesson.steps) if "ray" in step.highlight]
+    assert steps  # the ray-casting and ray-tracing lessons point at rays
+    for row, k in steps:
+        window.lesson_panel.select(row, k)
+        qtbot.waitUntil(lambda: panel.tree.topLevelItemCount() > 0)
+        qtbot.waitUntil(lambda: panel.tree.viewport().height() >= TREE_ROWS * panel.tree.sizeHintForRow(0))
+        assert panel.details.currentIndex() == 0, (row, k)
+        image, details = panel.split.sizes()
+        assert image >= IMAGE_SHARE * (image + details) - 1, (row, k)  # the image keeps its share
+    window.presentation.set_presenting(False)

@@ -1,0 +1,537 @@
+"""The scene editor as a user works with it: the Scene dock, the Edit menu, undo and redo, saving.
+
+Dialogs (the colour dialog, the unsaved-changes question) are the real ones,
+answered by a timer that clicks in them once they are open.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+import numpy as np
+import pytest
+from PySide6.QtCore import QPointF, Qt, QTimer
+from PySide6.QtGui import QColor
+from PySide6.QtWidgets import QApplication, QColorDialog, QLineEdit, QMessageBox
+from window_helpers import RENDER_TIMEOUT_MS
+
+from app.window import session
+from app.window.main_window import MainWindow, run
+from app.window.window_layout import in_front
+from core import checked_edits, presets
+from core.files import scene_file
+from core.scene import Sphere
+from views.panels.scene_tree_panel import show_value
+from views.user_settings import user_settings
+
+
+@pytest.fixture
+def window(qtbot):
+    """The window on the lecture scene; at the end its edits count as saved, so closing asks nothing.
+
+    (Not closed by qtbot, which would close it before this fixture could mark the edits saved.)
+    """
+    win = MainWindow(presets.lecture_scene())
+    win.show()
+    qtbot.waitUntil(lambda: win.showing_full("image order"), timeout=RENDER_TIMEOUT_MS)
+    qtbot.waitUntil(lambda: win.scene_view.view is not None, timeout=RENDER_TIMEOUT_MS)  # the 3D pane
+    yield win
+    win.editor.stack.setClean()
+    win.close()
+    win.deleteLater()
+
+
+def _object_actors(win):
+    """The 3D pane's actors of the scene's objects, by their colour."""
+    actors = win.scene_view.plotter.renderer.actors
+    return [a for name, a in actors.items() if name.startswith("object:")]
+
+
+def _drawn_in(win, colour) -> bool:
+    """Whether an object of the 3D pane is drawn in ``colour`` (VTK keeps 8 bits of each component)."""
+    return any(np.allclose(a.prop.color.float_rgb, colour, atol=0.5 / 255) for a in _object_actors(win))
+
+
+def _answer_modal(qtbot, answer):
+    """Once a modal dialog is open, ``answer(dialog)``; returns a list that holds the dialog then."""
+    seen = []
+
+    def poll():
+        dialog = QApplication.activeModalWidget()
+        if dialog is None:
+            QTimer.singleShot(20, poll)
+            return
+        seen.append(dialog)
+        answer(dialog)
+
+    QTimer.singleShot(0, poll)
+    return seen
+
+
+def _click(button):
+    def answer(box):
+        assert isinstance(box, QMessageBox)
+        box.button(button).click()
+    return answer
+
+
+def _editor_action(win, text):
+    """The Edit menu's action whose text starts with ``text`` (submenus included)."""
+    edit = next(a.menu() for a in win.menuBar().actions() if a.text() == "&Edit")
+    actions = [a for top in edit.actions() for a in (top.menu().actions() if top.menu() else [top])]
+    return next(a for a in actions if a.text().replace("&", "").startswith(text))
+
+
+def _type_into(qtbot, box: QLineEdit, text: str):
+    box.setFocus()
+    box.selectAll()
+    qtbot.keyClick(box, Qt.Key.Key_Backspace)
+    qtbot.keyClicks(box, text)
+    qtbot.keyClick(box, Qt.Key.Key_Return)
+
+
+def test_add_a_sphere_colour_it_undo_twice_redo_once(qtbot, window):
+    editor, model = window.editor, window.model
+    start = model.scene
+    _editor_action(window, "sphere").trigger()
+    assert [o.name for o in model.scene.objects] == ["cube", "cone", "ground", "sphere"]
+    sphere = model.scene.objects[-1]
+    assert isinstance(sphere, Sphere) and np.linalg.norm(np.subtract(sphere.center, model.camera.target)) < 3
+    assert model.selection == ("object", 3)
+    assert len(_object_actors(window)) == 4
+
+    # The swatch opens the colour dialog (in sRGB); sRGB (255, 128, 0) is linear (1, 0.2159, 0).
+    def pick(dialog):
+        assert isinstance(dialog, QColorDialog)
+        dialog.setCurrentColor(QColor(255, 128, 0))
+        dialog.accept()
+
+    seen = _answer_modal(qtbot, pick)
+    editor.panel.fields["material.color"].swatch.click()
+    assert seen
+    green = ((128 / 255 + 0.055) / 1.055) ** 2.4  # the sRGB curve, worked by hand
+    assert model.scene.objects[-1].material.color == (1.0, pytest.approx(green, abs=5e-5), 0.0)
+    assert editor.undo_action.text() == "Undo Change colour of sphere"
+    assert _drawn_in(window, model.scene.objects[-1].material.color)
+
+    editor.undo_action.trigger()
+    assert model.scene.objects[-1].material.color == (0.8, 0.8, 0.8)
+    assert editor.undo_action.text() == "Undo Add sphere"
+    assert editor.redo_action.text() == "Redo Change colour of sphere"
+    editor.undo_action.trigger()
+    assert model.scene.objects == start.objects
+    assert len(_object_actors(window)) == 3
+    assert not window.isWindowModified()
+
+    editor.redo_action.trigger()
+    assert [o.name for o in model.scene.objects][-1] == "sphere"
+    assert model.scene.objects[-1].material.color == (0.8, 0.8, 0.8)
+    assert len(_object_actors(window)) == 4 and not _drawn_in(window, (1.0, green, 0.0))
+    assert window.isWindowModified() and "[*]" in window.windowTitle()
+    assert editor.panel.fields["name"].boxes[0].text() == "sphere"  # the redone item is selected
+    qtbot.waitUntil(lambda: window.showing_full("image order"), timeout=60_000)  # and it was rendered
+
+
+def test_an_edit_redraws_only_what_it_changed_in_the_3d_pane(qtbot, window):
+    editor, model = window.editor, window.model
+    before = dict(window.scene_view.plotter.renderer.actors)
+    kept = [before[n] for n in before if n.startswith(("object:", "light:"))]
+    assert len(kept) == len(model.scene.objects) + len(model.scene.lights)
+    assert editor.change_field(("object", 1), "material.color", [0.1, 0.9, 0.2])
+    assert _drawn_in(window, (0.1, 0.9, 0.2))
+    after = window.scene_view.plotter.renderer.actors.values()
+    # The cube, the ground and the light keep their actors; the cone's is new, in its new colour.
+    assert sum(any(a is k for a in after) for k in kept) == len(kept) - 1
+    assert len(_object_actors(window)) == 3
+    editor.undo_action.trigger()
+    assert not _drawn_in(window, (0.1, 0.9, 0.2)) and len(_object_actors(window)) == 3
+
+
+def test_a_bad_value_is_refused_with_the_loaders_message_and_the_scene_kept(qtbot, window):
+    model, panel = window.model, window.editor.panel
+    model.set_selection(("object", 0))
+    before = model.scene
+    _type_into(qtbot, panel.fields["material.opacity"].boxes[0], "1.5")
+    assert model.scene is before
+    assert window.editor.stack.count() == 0
+    # The same value in a scene file, loaded by the loader:
+    d = scene_file.to_dict(before)
+    d["objects"][0].setdefault("material", {})["opacity"] = 1.5
+    with pytest.raises(scene_file.SceneFileError) as info:
+        scene_file.from_dict(d)
+    assert panel.problem("material.opacity") == "\n".join(info.value.problems)
+    assert panel.problem("material.opacity") == "objects[0].material.opacity: must be in [0, 1], got 1.5"
+    assert panel.fields["material.opacity"].boxes[0].text() == "1.5"  # left for correcting
+
+    _type_into(qtbot, panel.fields["material.opacity"].boxes[0], "0.5")
+    assert model.scene.objects[0].material.opacity == 0.5
+    assert panel.problem("material.opacity") == ""
+    assert window.editor.undo_action.text() == "Undo Change opacity of cube"
+
+
+def test_a_typed_centre_moves_the_object_and_text_is_refused(qtbot, window):
+    model, panel = window.model, window.editor.panel
+    model.set_selection(("object", 0))
+    x, y, z = model.scene.objects[0].source["center"]
+    _type_into(qtbot, panel.fields["center"].boxes[1], "abc")
+    assert panel.problem("center") == f'objects[0].center: expected 3 numbers, got [{x}, "abc", {z}]'
+    _type_into(qtbot, panel.fields["center"].boxes[1], "2")
+    cube = model.scene.objects[0]
+    assert np.allclose((cube.vertices.min(axis=0) + cube.vertices.max(axis=0)) / 2, (x, 2.0, z))
+    assert window.editor.undo_action.text() == "Undo Change centre of cube"
+
+
+def test_the_old_value_typed_again_clears_the_red_problem(qtbot, window):
+    model, panel = window.model, window.editor.panel
+    model.set_selection(("object", 0))
+    before = model.scene
+    _type_into(qtbot, panel.fields["material.opacity"].boxes[0], "1.5")
+    assert panel.problem("material.opacity")
+    old = show_value(before.objects[0].material.opacity)
+    _type_into(qtbot, panel.fields["material.opacity"].boxes[0], old)
+    assert panel.problem("material.opacity") == ""  # the scene is as it was, and nothing is wrong
+    assert model.scene is before and window.editor.stack.count() == 0
+
+
+def test_a_problem_on_two_lines_is_shown_whole(qtbot, window):
+    model, panel = window.model, window.editor.panel
+    window.editor.dock.raise_()
+    model.set_selection(("object", 0))
+    _type_into(qtbot, panel.fields["center"].boxes[1], "abc")
+    problem = panel.fields["center"].problem
+    line = problem.fontMetrics().lineSpacing()
+
+    def whole():
+        assert problem.isVisible()
+        lines = problem.fontMetrics().boundingRect(problem.contentsRect(), Qt.TextFlag.TextWordWrap,
+                                                   problem.text()).height() / line
+        assert lines >= 2, lines  # the message takes two lines in the narrow dock...
+        assert problem.height() >= problem.heightForWidth(problem.width())  # ...and has room for them
+
+    qtbot.waitUntil(whole, timeout=5000)
+
+
+@pytest.mark.parametrize(("linear", "levels"), [
+    ((1.0, 0.0, 0.0), (255, 0, 0)),
+    # sRGB's curve: 1.055 * 0.5 ** (1 / 2.4) - 0.055 = 0.7354, 0.7354 * 255 = 187.5 -> 188;
+    # 12.92 * 0.002 = 0.0258 -> 6.6 -> 7.
+    ((0.5, 0.002, 0.0), (188, 7, 0)),
+])
+def test_the_colour_swatch_shows_the_colour_itself(qtbot, window, linear, levels):
+    # Linear red (1, 0, 0) was drawn pink (252, 115, 115): the button's own shading was mixed in.
+    model, panel, editor = window.model, window.editor.panel, window.editor
+    window.editor.dock.raise_()
+    model.set_selection(("object", 0))
+    assert editor.change_field(("object", 0), "material.color", list(linear))
+    swatch = panel.fields["material.color"].swatch
+    qtbot.waitUntil(swatch.isVisible, timeout=5000)
+    picture = swatch.grab().toImage()
+    middle = QColor(picture.pixel(picture.width() // 2, picture.height() // 2))
+    assert abs(middle.red() - levels[0]) <= 1 and abs(middle.green() - levels[1]) <= 1
+    assert abs(middle.blue() - levels[2]) <= 1
+
+
+def test_observer_moves_are_not_edits(qtbot, window):
+    editor, model = window.editor, window.model
+    model.set_selection(("light", 0))
+    _type_into(qtbot, editor.panel.fields["intensity"].boxes[0], "0.5")
+    cam = model.camera
+    moved = cam.orbit(cam.yaw_deg + 30, cam.pitch_deg)
+    model.set_camera(moved)
+    assert editor.stack.count() == 1
+    editor.undo_action.trigger()
+    assert model.scene.lights[0].intensity == 1.0
+    assert model.camera == moved  # undoing the light did not move the observer back
+
+
+def test_rename_duplicate_delete_from_the_edit_menu(qtbot, window):
+    editor, model, tree = window.editor, window.model, window.editor.panel.tree
+    window.editor.dock.raise_()
+    model.set_selection(("object", 1))
+    _editor_action(window, "Duplicate").trigger()
+    assert [o.name for o in model.scene.objects] == ["cube", "cone", "cone 2", "ground"]
+    assert model.selection == ("object", 2)
+    assert tree.currentItem().text(0) == "cone 2"
+
+    _editor_action(window, "Rename").trigger()  # F2: the name becomes editable in the tree
+    line = tree.findChild(QLineEdit)
+    assert line is not None
+    line.selectAll()
+    qtbot.keyClicks(line, "spire")
+    qtbot.keyClick(line, Qt.Key.Key_Return)  # the tree takes the name in the next turn of the loop
+    qtbot.waitUntil(lambda: [o.name for o in model.scene.objects] == ["cube", "cone", "spire", "ground"])
+    assert editor.undo_action.text() == "Undo Rename cone 2 to spire"
+    _type_into(qtbot, editor.panel.fields["name"].boxes[0], "")
+    assert editor.panel.problem("name") == "name: must not be empty"
+    assert model.scene.objects[2].name == "spire" and editor.stack.count() == 2
+
+    model.set_selection(("light", 0))
+    _editor_action(window, "Duplicate").trigger()
+    assert [light.name for light in model.scene.lights] == ["light", "light 2"]
+    _editor_action(window, "Delete").trigger()
+    assert [light.name for light in model.scene.lights] == ["light"]
+    model.set_selection(("object", 0))
+    _editor_action(window, "Delete").trigger()
+    assert [o.name for o in model.scene.objects] == ["cone", "spire", "ground"]
+    assert tree.topLevelItem(0).text(0) == "Objects (3)"
+    for _ in range(4):
+        editor.undo_action.trigger()
+    assert [o.name for o in model.scene.objects] == ["cube", "cone", "cone 2", "ground"]
+    model.set_selection(("background", 0))  # the background cannot be deleted or duplicated
+    assert not _editor_action(window, "Delete").isEnabled()
+    assert not _editor_action(window, "Duplicate").isEnabled()
+
+
+def test_delete_in_a_field_edits_the_text_not_the_scene(qtbot, window):
+    model, panel = window.model, window.editor.panel
+    model.set_selection(("object", 0))
+    box = panel.fields["name"].boxes[0]
+    box.setFocus()
+    box.setCursorPosition(0)
+    qtbot.keyClick(box, Qt.Key.Key_Delete)
+    assert box.text() == "ube"
+    assert len(model.scene.objects) == 3
+
+
+def test_every_primitive_and_a_light_can_be_added(qtbot, window):
+    for name in ("sphere", "box", "cone", "pyramid", "quad", "uv sphere", "notched prism", "Light"):
+        _editor_action(window, name).trigger()
+    types = [getattr(o, "source", None) and o.source["type"] for o in window.model.scene.objects[3:]]
+    assert types == [None, "box", "cone", "pyramid", "quad", "uv_sphere", "notched_prism"]
+    assert [light.name for light in window.model.scene.lights] == ["light", "light 2"]
+    assert len(_object_actors(window)) == 10
+
+
+def _covered(scene) -> np.ndarray:
+    """The pixels where the z-buffer keeps a surface, with their distances."""
+    from core.object_order.pipeline import RasterSettings, render_raster
+
+    return render_raster(scene, RasterSettings()).depth
+
+
+@pytest.mark.parametrize("type_name", ["sphere", "box", "cone"])
+def test_an_added_object_is_seen_by_the_observer(qtbot, window, type_name):
+    # Edit > Add put the new object at the observer's target, which in the lecture scene lies
+    # behind the cone: the new object was hidden.
+    model = window.model
+    before = model.scene
+    assert window.editor.add_object(type_name)
+    after = model.scene
+    new = after.objects[-1]
+    low, high = checked_edits.object_bounds(new)
+    for other in before.objects:  # it takes a place of its own
+        other_low, other_high = checked_edits.object_bounds(other)
+        assert np.any(low >= other_high) or np.any(high <= other_low), other.name
+    alone = np.isfinite(_covered(replace(after, objects=(new,))))  # where it would be seen alone
+    seen = _covered(after) < _covered(before)  # where it is the nearest surface
+    assert alone.sum() > 100
+    assert (seen & alone).sum() >= 0.9 * alone.sum()  # seen whole (nothing in front of it)
+
+
+def test_a_mesh_file_is_added_through_the_safe_reader(qtbot, window, tmp_path):
+    good = tmp_path / "tetra.obj"
+    good.write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n")
+    window.editor.add_mesh_file(good)
+    qtbot.waitUntil(lambda: len(window.model.scene.objects) == 4)
+    mesh = window.model.scene.objects[-1]
+    assert mesh.name == "tetra" and len(mesh.triangles) == 4
+    assert window.editor.undo_action.text() == "Undo Add tetra"
+    assert window.model.selection == ("object", 3)
+    _type_into(qtbot, window.editor.panel.fields["position"].boxes[0], "2.5")  # its bounding box's centre
+    moved = window.model.scene.objects[-1]
+    assert np.allclose(_centre(moved), (2.5, 0.5, 0.5)) and moved.source is None  # now saved inline
+    assert window.editor.undo_action.text() == "Undo Move tetra"
+
+    bad = tmp_path / "broken.obj"
+    bad.write_text("v 0 0 0\nf 1 2 3\n")
+    said = []
+
+    def read_and_close(box):
+        said.append(box.text())
+        box.button(QMessageBox.StandardButton.Ok).click()
+
+    _answer_modal(qtbot, read_and_close)
+    window.editor.add_mesh_file(bad)
+    qtbot.waitUntil(lambda: bool(said))
+    assert "broken.obj" in said[0] and "objects[0].path" in said[0]
+    assert len(window.model.scene.objects) == 4
+
+
+def test_closing_with_unsaved_edits_asks_and_cancel_keeps_the_window(qtbot, window):
+    _editor_action(window, "box").trigger()
+    asked = _answer_modal(qtbot, _click(QMessageBox.StandardButton.Cancel))
+    window.close()
+    assert asked and "not saved" in asked[0].text()
+    assert window.isVisible()
+    assert window.model.scene.objects[-1].name == "box"
+
+    asked = _answer_modal(qtbot, _click(QMessageBox.StandardButton.Cancel))
+    window.load_preset("lecture", presets.lecture_scene)  # another scene: asks too
+    assert asked and window.model.scene.objects[-1].name == "box"
+
+    asked = _answer_modal(qtbot, _click(QMessageBox.StandardButton.Discard))
+    window.close()
+    assert asked and not window.isVisible()
+
+
+def test_save_from_the_question_writes_the_file_and_clears_the_star(qtbot, window, tmp_path):
+    path = tmp_path / "edited.json"
+    assert window.open_scene(str(_saved_lecture(path)))
+    _editor_action(window, "sphere").trigger()
+    assert window.isWindowModified()
+    asked = _answer_modal(qtbot, _click(QMessageBox.StandardButton.Save))
+    window.load_preset("lecture", presets.lecture_scene)
+    assert asked
+    assert [o.name for o in scene_file.load(path).objects][-1] == "sphere"
+    assert [o.name for o in window.model.scene.objects] == ["cube", "cone", "ground"]
+    assert not window.isWindowModified()
+    assert window.editor.stack.count() == 0  # a new scene starts a fresh history
+
+
+def _saved_lecture(path):
+    scene_file.save(presets.lecture_scene(), path)
+    return path
+
+
+def _fresh_window(qtbot):
+    win = MainWindow(presets.lecture_scene())
+    qtbot.addWidget(win)
+    return win
+
+
+def test_saved_scene_and_observer_come_back_in_a_fresh_window(qtbot, window, tmp_path):
+    path = _saved_lecture(tmp_path / "kept.json")
+    assert window.open_scene(str(path))
+    _editor_action(window, "pyramid").trigger()
+    window.editor.save_action.trigger()  # Ctrl+S: into the scene's file
+    assert not window.isWindowModified()
+    assert [o.name for o in scene_file.load(path).objects][-1] == "pyramid"
+    moved = window.model.camera.orbit(window.model.camera.yaw_deg + 40, 10.0)
+    window.model.set_camera(moved)
+    session.remember(window)
+
+    fresh = _fresh_window(qtbot)
+    assert session.restore(fresh)
+    assert [o.name for o in fresh.model.scene.objects] == ["cube", "cone", "ground", "pyramid"]
+    assert fresh.model.camera == moved
+    assert fresh.scene_path == path and "kept.json" in fresh.windowTitle()
+    assert not fresh.isWindowModified()
+
+
+def test_discarded_edits_are_not_kept_but_the_observer_is(qtbot, window):
+    _editor_action(window, "pyramid").trigger()
+    moved = window.model.camera.orbit(window.model.camera.yaw_deg - 40, 15.0)
+    window.model.set_camera(moved)
+    session.remember(window)  # as after "Discard" at closing
+
+    fresh = _fresh_window(qtbot)
+    assert session.restore(fresh)
+    assert [o.name for o in fresh.model.scene.objects] == ["cube", "cone", "ground"]
+    assert fresh.model.camera == moved
+
+
+def test_settings_that_no_longer_load_are_reported_and_the_lecture_scene_kept(qtbot):
+    store = user_settings()
+    store.setValue(session.SCENE, '{"objects": [{"type": "sphere", "center": [0, 0, 0], "radius": -1}]}')
+    store.sync()
+    fresh = _fresh_window(qtbot)
+    assert not session.restore(fresh)
+    assert fresh.model.scene == presets.lecture_scene()
+    assert "objects[0].radius: must be > 0, got -1" in fresh.statusBar().currentMessage()
+
+
+def test_a_scene_file_on_the_command_line_wins_over_the_last_session(qtbot, tmp_path):
+    store = user_settings()
+    store.setValue(session.SCENE, '{"objects": [{"type": "box", "center": [0, 0, 0], "size": 1}]}')
+    store.sync()
+    given = tmp_path / "given.json"
+    scene_file.save(presets.lecture_scene(), given)
+    shown = []
+
+    def close_once_shown():
+        win = next((w for w in QApplication.topLevelWidgets()
+                    if isinstance(w, MainWindow) and w.isVisible() and w.scene_path == given), None)
+        if win is None:
+            QTimer.singleShot(50, close_once_shown)
+            return
+        shown.append([o.name for o in win.model.scene.objects])
+        win.close()
+
+    QTimer.singleShot(0, close_once_shown)
+    assert run(str(given)) == 0
+    assert shown == [["cube", "cone", "ground"]]
+    fresh = _fresh_window(qtbot)  # and at the next start without a file, that file comes back
+    assert session.restore(fresh)
+    assert fresh.scene_path == given
+
+
+def _centre(obj):
+    return (obj.vertices.min(axis=0) + obj.vertices.max(axis=0)) / 2
+
+
+def test_clicking_an_object_in_the_3d_pane_selects_it(qtbot, window):
+    view, model = window.scene_view, window.model
+    at = view.widget_pos(_centre(model.scene.objects[0]))
+    assert view.grabbable_at(at) is None  # the cube's centre is not where the eye or the target is
+    qtbot.mouseClick(view.plotter, Qt.MouseButton.LeftButton, pos=at.toPoint())
+    assert model.selection == ("object", 0)
+    assert window.editor.panel.tree.currentItem().text(0) == "cube"
+    assert window.editor.dock.isVisible()
+    assert window.editor.picker.handle_center is not None
+    # Nothing under the mouse (high above the scene): nothing selected.
+    empty = view.widget_pos(np.add(model.camera.target, (0.0, 40.0, 0.0)))
+    qtbot.mouseClick(view.plotter, Qt.MouseButton.LeftButton, pos=empty.toPoint())
+    assert model.selection is None and window.editor.picker.handle_center is None
+
+
+def test_clicking_an_object_during_a_lesson_keeps_the_lesson_in_front(qtbot, window):
+    view, model = window.scene_view, window.model
+    window.lesson_panel.select(0, 0)  # a lesson step is shown: its words are in the left dock
+    assert in_front(window.lesson_dock)
+    at = view.widget_pos(_centre(model.scene.objects[0]))
+    assert view.grabbable_at(at) is None
+    qtbot.mouseClick(view.plotter, Qt.MouseButton.LeftButton, pos=at.toPoint())
+    assert model.selection == ("object", 0)
+    assert in_front(window.lesson_dock) and not in_front(window.editor.dock)
+    assert "Edit scene" in window.statusBar().currentMessage()
+
+
+def test_dragging_the_handle_moves_the_object_in_one_undo_step(qtbot, window):
+    view, model, editor = window.scene_view, window.model, window.editor
+    model.set_selection(("object", 0))
+    before = _centre(model.scene.objects[0])
+    start = view.widget_pos(editor.picker.handle_center)
+    qtbot.mousePress(view.plotter, Qt.MouseButton.LeftButton, pos=start.toPoint())
+    for k in range(1, 9):
+        qtbot.mouseMove(view.plotter, pos=(start + QPointF(5 * k, -2 * k)).toPoint())
+    # While dragging, the cube itself is drawn moved with its handle (the scene is not edited yet).
+    moved = np.asarray(view.view.actor_of(("object", 0)).user_matrix)[:3, 3]
+    assert np.linalg.norm(moved) > 0.1 and editor.stack.count() == 0
+    end = start + QPointF(40, -16)
+    qtbot.mouseRelease(view.plotter, Qt.MouseButton.LeftButton, pos=end.toPoint())
+    after = _centre(model.scene.objects[0])
+    assert not np.allclose(after, before)
+    assert editor.stack.count() == 1 and editor.undo_action.text() == "Undo Move cube"
+    # It moved in the plane facing the overview camera, and landed under the mouse.
+    direction = np.asarray(view.plotter.camera.direction)
+    assert np.dot(after - before, direction) == pytest.approx(0.0, abs=0.01)
+    landed = view.widget_pos(editor.picker.handle_center)
+    assert abs(landed.x() - end.x()) <= 1.5 and abs(landed.y() - end.y()) <= 1.5
+    assert model.selection == ("object", 0)
+    editor.undo_action.trigger()
+    assert np.allclose(_centre(model.scene.objects[0]), before)
+
+
+def test_clicking_a_light_in_the_3d_pane_selects_it(qtbot, window):
+    view, model = window.scene_view, window.model
+    light = np.asarray(model.scene.lights[0].position, float)
+    # Turn the overview towards the light (it may sit above the default framing), as a user would.
+    view.plotter.camera_position = [tuple(light + (4.0, 1.0, 4.0)), tuple(light), (0.0, 1.0, 0.0)]
+    view.plotter.reset_camera_clipping_range()
+    at = view.widget_pos(light)
+    assert view.plotter.rect().contains(at.toPoint())
+    qtbot.mouseClick(view.plotter, Qt.MouseButton.LeftButton, pos=at.toPoint())
+    assert model.selection == ("light", 0)
+    assert window.editor.picker.handle_center is not None
+    # The handle floats above the light's marker, which is what was clicked.
+    assert window.editor.picker.handle_center[1] > light[1]

@@ -1,0 +1,85 @@
+"""File → Open in the window with files that used to crash or hang VTK's readers.
+
+Each case runs the real window in a subprocess, so a crash or a hang fails the test
+instead of ending the test run: the window must show one dialog naming the file, keep
+its current scene, and stay usable (it renders the old scene again afterwards).
+"""
+
+import json
+import os
+import struct
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+from checkout import ROOT
+
+DRIVER = """
+import json, sys
+from PySide6.QtWidgets import QApplication, QMessageBox
+from app.window.main_window import MainWindow
+from core import presets
+
+app = QApplication([])
+messages = []
+QMessageBox.critical = staticmethod(lambda parent, title, text, *rest: messages.append(text))
+window = MainWindow(presets.lecture_scene())
+window.show()
+before = window.model.scene
+for k, path in enumerate(sys.argv[1:]):
+    messages.clear()
+    opened = window.open_scene(path)
+    fov = 41.0 + k
+    window.model.set_camera(window.model.camera.replace(fov_y_deg=fov))  # still usable
+    print(json.dumps({"opened": opened, "kept": window.model.scene.objects == before.objects,
+                      "fov_set": window.model.camera.fov_y_deg == fov, "messages": list(messages)}))
+window.close()
+"""
+
+
+def _binary_ply_shorter_than_its_header(path: Path) -> None:
+    header = (b"ply\nformat binary_little_endian 1.0\nelement vertex 1000\n"
+              b"property float x\nproperty float y\nproperty float z\n"
+              b"element face 1\nproperty list uchar int vertex_indices\nend_header\n")
+    path.write_bytes(header + struct.pack("<9f", 0, 0, 0, 1, 0, 0, 0, 1, 0))
+
+
+def _obj_with_missing_texture_coordinates_and_a_face_past_the_vertices(path: Path) -> None:
+    path.write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1/7 2/8 3/9\nf 1 2 98\n")
+
+
+def _ascii_ply_declaring_two_billion_vertices(path: Path) -> None:
+    path.write_text("ply\nformat ascii 1.0\nelement vertex 2000000000\nproperty float x\n"
+                    "property float y\nproperty float z\nend_header\n0 0 0\n")
+
+
+def _fifo(path: Path) -> None:
+    os.mkfifo(path)
+
+
+CASES = {
+    "short.ply": _binary_ply_shorter_than_its_header,
+    "bad.obj": _obj_with_missing_texture_coordinates_and_a_face_past_the_vertices,
+    "huge.ply": _ascii_ply_declaring_two_billion_vertices,
+    "pipe.obj": _fifo,
+}
+
+
+@pytest.mark.gui
+def test_opening_scenes_with_damaged_meshes_shows_a_dialog_and_keeps_the_scene(tmp_path):
+    scenes = []
+    for name, make in sorted(CASES.items()):
+        make(tmp_path / name)
+        scene = tmp_path / f"scene-{name}.json"
+        scene.write_text(json.dumps({"objects": [{"type": "mesh_file", "path": name}]}))
+        scenes.append(str(scene))
+    out = subprocess.run([sys.executable, "-c", DRIVER, *scenes], cwd=ROOT, capture_output=True,
+                         text=True, timeout=300)
+    assert out.returncode == 0, out.stderr[-3000:]
+    results = [json.loads(line) for line in out.stdout.strip().splitlines()[-len(CASES):]]
+    for name, result in zip(sorted(CASES), results, strict=True):
+        assert result["opened"] is False and result["kept"] is True, name
+        assert result["fov_set"] is True, name
+        assert len(result["messages"]) == 1 and name in result["messages"][0], (name, result)
+    assert "Traceback" not in out.stderr

@@ -1,0 +1,151 @@
+"""The window shares its screen so that the images are the largest thing on it, at every text scale."""
+
+import pytest
+from PySide6.QtCore import QRect
+from PySide6.QtGui import QFont, QFontDatabase, QFontMetrics, QScreen
+from PySide6.QtWidgets import QApplication
+from window_helpers import RENDER_TIMEOUT_MS, open_window
+
+from views.panels.raytree_view import COLUMNS as RAY_TREE_COLUMNS
+from views.presentation import SCALES
+from views.text.math_view import MathView
+
+SCREENS = [(1280, 720), (1920, 1080)]
+ROWS = 3
+"""A table shows at least this many rows."""
+
+
+@pytest.fixture
+def normal_text():
+    """The platform's normal text size for the application (another test may have enlarged it)."""
+    app = QApplication.instance()
+    before = app.font()
+    app.setFont(QFontDatabase.systemFont(QFontDatabase.SystemFont.GeneralFont))
+    yield
+    app.setFont(before)
+
+
+def _rows_shown(view) -> float:
+    return view.viewport().height() / view.fontMetrics().height()
+
+
+@pytest.mark.parametrize("screen", SCREENS, ids=lambda s: f"{s[0]}x{s[1]}")
+def test_the_traced_image_outsizes_the_3d_pane_and_the_window_fits_its_screen(qtbot, monkeypatch, screen,
+                                                                             normal_text):
+    # A laptop's screen on this display: the window takes what the screen makes available.
+    monkeypatch.setattr(QScreen, "availableGeometry", lambda self: QRect(0, 0, *screen))
+    window = open_window(qtbot)
+    image_order = window.tab("image order").widget
+    cam = window.model.camera
+    with qtbot.waitSignal(window._tree_renderer.finished, timeout=RENDER_TIMEOUT_MS):
+        window.pick_ray_tree(cam.width // 2, cam.height // 2)  # its tree and caption are shown too
+    for scale in SCALES:
+        window.presentation.set_scale(scale)
+        window.setGeometry(window.screen().availableGeometry())
+
+        def laid_out(scale=scale):
+            hint = window.minimumSizeHint()
+            assert hint.width() <= screen[0] and hint.height() <= screen[1], (scale, hint)
+            assert window.width() <= screen[0] and window.height() <= screen[1], (scale, window.size())
+            shown = image_order.image.image_rect()
+            pane = window.scene_view.size()
+            assert shown.width() * shown.height() > pane.width() * pane.height(), (scale, shown, pane)
+            assert _rows_shown(image_order.tree) >= ROWS, scale
+
+        qtbot.waitUntil(laid_out, timeout=5000)
+    window.show_tab("object order")
+    history = window.tab("object order").widget.history
+    qtbot.waitUntil(lambda: _rows_shown(history) >= ROWS, timeout=5000)
+
+
+def test_table_headers_and_rows_grow_with_the_text_scale(qtbot, window):
+    window.show_tab("object order")
+    qtbot.waitUntil(lambda: window.showing_full("object order"), timeout=RENDER_TIMEOUT_MS)
+    panel = window.tab("object order").widget
+    cam = window.model.camera
+    panel.pick_pixel(cam.width // 2, cam.height // 2)  # listed at the normal size, then enlarged
+    window.presentation.set_scale(2.0)
+    tables = [(panel.history.horizontalHeader(), [panel.history.horizontalHeaderItem(c).text()
+                                                  for c in range(panel.history.columnCount())]),
+              (window.tab("image order").widget.tree.header(), RAY_TREE_COLUMNS)]
+    for header, labels in tables:
+        metrics = header.fontMetrics()
+        assert metrics.height() >= 2 * 0.9 * QFontMetrics(QFont()).height()  # the header's text is scaled
+        assert header.height() >= metrics.height()
+        for column, label in enumerate(labels):
+            assert header.sectionSize(column) >= metrics.horizontalAdvance(label), label
+    assert panel.history.rowCount() > 0
+    assert panel.history.rowHeight(0) >= panel.history.fontMetrics().height()
+
+
+def test_worked_math_and_lesson_formulas_share_one_size_at_every_scale(qtbot, window):
+    lessons = [lesson.id for lesson in window.lesson_panel.lessons()]
+    window.lesson_panel.select(lessons.index("perspective"), 0)  # a lesson that follows a vertex
+    worked = window.tab("object order").widget.vertex_math.findChildren(MathView)
+    assert worked
+    for scale in SCALES:
+        window.presentation.set_scale(scale)
+        lesson = window.lesson_panel.formula_views()[0].size_pt()
+        assert lesson == pytest.approx(scale * MathView().size_pt(), rel=0.01)
+        assert {round(view.size_pt(), 3) for view in worked} == {round(lesson, 3)}
+
+
+def _settle():
+    """Let the layout requests a change posts (one layout level at a time) all run."""
+    for _ in range(10):
+        QApplication.processEvents()
+
+
+def test_every_tab_and_lesson_step_fits_a_small_screen_at_every_text_scale(qtbot, monkeypatch, normal_text):
+    # The widest things at large text were the scene editor's button row and the lesson that shows
+    # the Object order tab beside its words: the window's least width must stay within the screen.
+    monkeypatch.setattr(QScreen, "availableGeometry", lambda self: QRect(0, 0, 1280, 720))
+    window = open_window(qtbot)
+    for scale in SCALES:
+        window.presentation.set_scale(scale)
+        for tab in window.tabs:
+            window.show_tab(tab.title)
+            _settle()
+            hint = window.minimumSizeHint()
+            assert hint.width() <= 1280 and hint.height() <= 720, (scale, tab.title, hint)
+    panel = window.lesson_panel
+    for li, lesson in enumerate(panel.lessons()):
+        for si in range(len(lesson.steps)):
+            panel.select(li, si)
+            _settle()  # the step's words and panes are laid out
+            hint = window.minimumSizeHint()
+            assert hint.width() <= 1280 and hint.height() <= 720, (lesson.id, si, hint)
+            assert window.width() <= 1280 and window.height() <= 720, (lesson.id, si, window.size())
+
+
+def test_compare_reads_the_picked_pixel_in_two_columns_that_fit_a_small_screen_at_x2(qtbot, monkeypatch,
+                                                                                      normal_text):
+    monkeypatch.setattr(QScreen, "availableGeometry", lambda self: QRect(0, 0, 1280, 720))
+    window = open_window(qtbot)
+    window.presentation.set_scale(2.0)
+    window.setGeometry(window.screen().availableGeometry())
+    window.show_tab("compare")
+    qtbot.waitUntil(lambda: window.showing_full("compare"), timeout=RENDER_TIMEOUT_MS)
+    panel = window.tab("compare").widget
+    cam = window.model.camera
+    panel.pick(cam.width // 2, cam.height // 2)  # the cone, in both outputs
+    qtbot.waitUntil(lambda: panel.readout[0].rgb is not None, timeout=RENDER_TIMEOUT_MS)
+    a, b, why = panel.readout
+    assert "cone" in a.found.text() and "cone" in b.found.text() and why.found.text()
+
+    def laid_out():
+        hint = window.minimumSizeHint()
+        assert hint.width() <= 1280 and hint.height() <= 720, hint
+        assert window.width() <= 1280 and window.height() <= 720, window.size()
+        ga, gb, gw = a.geometry(), b.geometry(), why.geometry()
+        assert ga.top() == gb.top() and ga.right() < gb.left(), (ga, gb)  # A and B side by side
+        assert gw.top() > max(ga.bottom(), gb.bottom()), (gw, ga, gb)  # why they differ under both
+        assert gw.left() <= ga.left() and gw.right() >= gb.right(), (gw, ga, gb)
+        shown = a.parentWidget().parentWidget().width()  # the scroll area's viewport: nothing beyond it
+        assert max(gb.right(), gw.right()) < shown, (gb, gw, shown)
+        for row in panel.readout:
+            for label in (row.title, row.numbers, row.found):  # every word on screen, whole
+                assert label.width() >= label.minimumSizeHint().width(), label.text()
+                assert label.height() >= label.heightForWidth(label.width()), label.text()
+
+    qtbot.waitUntil(laid_out, timeout=5000)

@@ -1,0 +1,165 @@
+"""Lesson facts: a step's claims are decided by the pipelines, and a false one is caught."""
+
+import copy
+import json
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+from checkout import ROOT
+
+from core.lessons import FILES, LessonFileError, from_dict, load_lesson, shipped_lessons
+from core.lessons.facts import check_lesson
+
+LESSONS = shipped_lessons()
+BY_ID = {lesson.id: lesson for lesson in LESSONS}
+SEGMENT = {"origin": [2, 1, 2], "end": [10, 6, 6], "center": [6, 4, 6], "radius": 10}
+
+
+def _lesson(facts, scene="frustum_cases", **step):
+    return {"format": "render-explorer-lesson", "version": 1, "id": "mine", "title": "Mine",
+            "steps": [{"title": "one", "text": "words", "scene": scene, "panes": ["object order"],
+                       "facts": facts, **step}]}
+
+
+def test_every_shipped_lesson_states_facts_and_they_all_hold():
+    stated = [(lesson.id, k) for lesson in LESSONS for k, step in enumerate(lesson.steps) if step.facts]
+    steps = sum(len(lesson.steps) for lesson in LESSONS)
+    assert len(stated) >= steps - 2  # all but the two whose text claims nothing a fact can state
+    for lesson in LESSONS:
+        assert check_lesson(lesson) == [], lesson.id
+
+
+def test_a_false_fact_is_reported_with_lesson_step_fact_and_what_was_computed():
+    # The box stands at (7.5, 0.6, 12), behind the default eye (6, 4, 9) that looks toward (0, 0.8, 0):
+    # (box - eye) . (target - eye) = 1.5 * -6 + -3.4 * -3.2 + 3 * -9 = -25.12 < 0, so it is outside.
+    eye, target, box = np.array([6, 4, 9.0]), np.array([0, 0.8, 0]), np.array([7.5, 0.6, 12])
+    assert np.dot(box - eye, target - eye) < 0
+    lesson = from_dict(_lesson([{"fact": "frustum", "object": "box behind the observer", "is": "inside"},
+                                {"fact": "frustum", "object": "box behind the observer", "is": "outside"}]))
+    lines = check_lesson(lesson)
+    assert lines == ["lesson mine, step 1 'one', steps[0].facts[0] ('box behind the observer' is inside the "
+                     "frustum): computed 'box behind the observer' is outside the frustum"]
+
+
+def test_the_lectures_numbers_are_facts_of_the_worked_intersection():
+    # i, j, k = 8, 5, 4: a = 64 + 25 + 16 = 105; b = 2 (8 (2-6) + 5 (1-4) + 4 (2-6)) = -126;
+    # c = 16 + 9 + 16 - 100 = -59; Δ = 126² + 4·105·59 = 40656.
+    right = [{"fact": "ray_sphere", **SEGMENT, "value": v, "equals": x}
+             for v, x in (("a", 105), ("b", -126), ("c", -59), ("hit", False))]
+    right.append({"fact": "ray_sphere", **SEGMENT, "value": "discriminant", "equals": 40656,
+                  "tolerance": 1e-8})
+    assert check_lesson(from_dict(_lesson(right))) == []
+    wrong = [{"fact": "ray_sphere", **SEGMENT, "value": "a", "equals": 1}]
+    (line,) = check_lesson(from_dict(_lesson(wrong)))
+    assert line.endswith("computed a = 105")
+
+
+def test_z_buffer_facts_follow_the_drawing_order():
+    # Pixel (80, 60) is the image centre, the ray along the axis x = y = 0.  There green's plane
+    # (through (-2,-1.4,-1.5), (1.2,-1.4,-0.5), (-0.6,1.6,-1)) has z = -0.97, blue's z = 0.84 and
+    # yellow's z = 0.01 (solved by hand from their corners): blue is nearest, then yellow, then green.
+    facts = [{"fact": "zbuffer_keeps", "pixel": [80, 60], "object": "green", "after": 1},
+             {"fact": "zbuffer_keeps", "pixel": [80, 60], "object": "blue", "after": 2},
+             {"fact": "zbuffer_keeps", "pixel": [80, 60], "object": "blue", "after": 3},
+             {"fact": "ztest_fails", "pixel": [80, 60], "object": "yellow", "after": 3},
+             {"fact": "ztest_fails", "pixel": [80, 60], "object": "blue", "is": False},
+             {"fact": "zbuffer_keeps", "pixel": [0, 0], "object": None}]
+    assert check_lesson(from_dict(_lesson(facts, scene="zbuffer_three_polygons"))) == []
+    (line,) = check_lesson(from_dict(_lesson(
+        [{"fact": "zbuffer_keeps", "pixel": [80, 60], "object": "yellow"}], scene="zbuffer_three_polygons")))
+    assert "computed after 3 polygons it keeps triangle 0 of 'blue'" in line
+
+
+def test_bad_facts_are_refused_with_their_field_path():
+    facts = [{"fact": "frustum", "object": "nobody", "is": "outside"},
+             {"fact": "frustum", "object": "cube", "is": "half"},
+             {"fact": "zbuffer_keeps", "pixel": [9999, 0], "object": "cube"},
+             {"fact": "clipped", "object": "ground", "plane": "front"},
+             {"fact": "telepathy"},
+             {"fact": "ray_sphere", "origin": [0, 0, 0], "center": [0, 0, 0], "radius": 1,
+              "value": "a", "equals": 1}]
+    with pytest.raises(LessonFileError) as info:
+        from_dict(_lesson(facts))
+    problems = info.value.problems
+    assert problems[0].startswith("steps[0].facts[0].object: no object 'nobody' in the scene")
+    assert problems[1].startswith("steps[0].facts[1].is: unknown frustum state 'half'")
+    assert problems[2].startswith("steps[0].facts[2].pixel: pixel (9999, 0) lies outside")
+    assert problems[3].startswith("steps[0].facts[3].plane: unknown plane 'front'")
+    assert problems[4].startswith('steps[0].facts[4].fact: unknown fact "telepathy"')
+    assert problems[5].startswith('steps[0].facts[5]: give either "end"')
+    assert len(problems) == 6
+
+
+def _run_check(*files) -> subprocess.CompletedProcess:
+    return subprocess.run([sys.executable, "-m", "app", "lesson", "check", *map(str, files)],
+                          cwd=ROOT, capture_output=True, text=True, encoding="utf-8", timeout=600)
+
+
+def test_lesson_check_passes_on_the_shipped_lessons_fails_on_a_false_fact_and_refuses_a_bad_file(tmp_path):
+    out = _run_check(*sorted(FILES.glob("*.json")))
+    assert out.returncode == 0, out.stdout + out.stderr
+    assert "all" in out.stdout and "facts hold" in out.stdout
+
+    # The observer lesson with its first fact turned false: object 5 "inside" the frustum.
+    data = json.loads((FILES / "02_observer.json").read_text(encoding="utf-8"))
+    false = copy.deepcopy(data)
+    first = false["steps"][0]["facts"][0]
+    assert first["fact"] == "frustum" and first["object"] == "object 5" and first["is"] == "outside"
+    first["is"] = "inside"
+    lying = tmp_path / "lying.json"
+    lying.write_text(json.dumps(false), encoding="utf-8")
+    out = _run_check(lying)
+    assert out.returncode == 1
+    (line,) = out.stdout.splitlines()
+    assert line.startswith(f"{lying}: lesson observer, step 1 'Observer A', steps[0].facts[0]")
+    assert line.endswith("computed 'object 5' is outside the frustum")
+
+    broken = tmp_path / "broken.json"
+    broken.write_text("{not json", encoding="utf-8")
+    out = _run_check(broken, FILES / "05_zbuffer.json")
+    assert out.returncode == 2
+    assert "broken.json" in out.stderr and "invalid JSON" in out.stderr and "Traceback" not in out.stderr
+    assert load_lesson(FILES / "05_zbuffer.json").steps  # the other file was still checked: no line for it
+    assert out.stdout == ""
+
+
+def test_no_bounding_sphere_shown_by_a_lesson_swamps_the_scene():
+    """A step that shows bounding spheres keeps each well inside the scene's extent (a ground
+    plane's sphere, as wide as the ground, once filled the 3D pane)."""
+    from core.object_order.pipeline import _bounding_sphere, object_mesh
+
+    for lesson in LESSONS:
+        for step in lesson.steps:
+            if "bounding spheres" not in step.overlays:
+                continue
+            points = np.vstack([np.asarray(object_mesh(o).vertices) for o in step.scene.objects])
+            diagonal = float(np.linalg.norm(points.max(axis=0) - points.min(axis=0)))
+            radii = [_bounding_sphere(o, object_mesh(o))[1] for o in step.scene.objects]
+            assert max(radii) < diagonal / 3, (lesson.id, step.title, max(radii), diagonal)
+
+
+def test_drawn_in_the_other_order_draws_blue_first_and_ends_with_the_same_picture():
+    from dataclasses import replace
+
+    from core.object_order.pipeline import render_raster
+
+    first, other, final = BY_ID["zbuffer_piercing"].steps
+    assert "other order" in other.title
+    pictures = []
+    for step in (first, final):
+        result = render_raster(step.scene, replace(step.object_order, record_steps=True))
+        names = [step.scene.objects[k].name for k in result.draw.object_index]
+        pictures.append((names, result.color))
+    assert pictures[0][0] == ["green", "blue"] and pictures[1][0] == ["blue", "green"]
+    assert np.array_equal(pictures[0][1], pictures[1][1])  # pixel for pixel, as the text says
+    assert other.highlight["polygon_step"] == 0 and other.zbuffer_step == 1  # blue alone first
+
+
+def test_only_steps_showing_an_image_order_pane_speak_of_shadows():
+    """Object order draws no shadows (they come with the next lecture's shading)."""
+    for lesson in LESSONS:
+        for step in lesson.steps:
+            if "shadow" in step.text.lower():
+                assert "image order" in step.panes, (lesson.id, step.title)

@@ -1,0 +1,49 @@
+"""Fixtures of every test of the window and the views: GUI tests need a real X server and say so
+instead of skipping; settings and text size never leak from one test into the next.
+
+``tests/app/conftest.py`` and ``tests/views/conftest.py`` use them; the core tests do not, so they
+run where Qt and pyvista are not installed.
+"""
+
+import os
+
+import pytest
+import pyvista as pv
+
+pv.OFF_SCREEN = True
+
+
+@pytest.fixture(autouse=True)
+def require_display(request):
+    needs_gui = "qtbot" in request.fixturenames or request.node.get_closest_marker("gui")
+    if needs_gui and not os.environ.get("DISPLAY"):
+        pytest.fail(
+            "This GUI test needs an X server (VTK gets no OpenGL context offscreen). "
+            "Run the suite with `bash .ci/test.sh`, which starts Xvfb, "
+            "or wrap pytest in `xvfb-run -a`."
+        )
+
+
+@pytest.fixture(autouse=True)
+def private_settings(tmp_path_factory, monkeypatch):
+    """QSettings read and write a fresh folder in every test, never the user's configuration;
+    so does every ``python -m app`` a test starts (it finds the folder in ``XDG_CONFIG_HOME``)."""
+    from PySide6.QtCore import QSettings
+
+    folder = str(tmp_path_factory.mktemp("settings"))
+    monkeypatch.setenv("XDG_CONFIG_HOME", folder)
+    for settings_format in (QSettings.Format.NativeFormat, QSettings.Format.IniFormat):
+        for scope in (QSettings.Scope.UserScope, QSettings.Scope.SystemScope):
+            QSettings.setPath(settings_format, scope, folder)
+
+
+@pytest.fixture(autouse=True)
+def application_font_restored():
+    """A test that enlarges the application's text (presentation mode, Ctrl++) leaves it as it was."""
+    from PySide6.QtWidgets import QApplication
+
+    app = QApplication.instance()
+    font = None if app is None else QApplication.font()
+    yield
+    if font is not None and QApplication.instance() is not None:
+        QApplication.setFont(font)

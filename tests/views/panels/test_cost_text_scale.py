@@ -1,0 +1,76 @@
+"""Presentation mode's text scale reaches the Cost tab's plot: its text grows on the screen with the rest."""
+
+import pytest
+
+from views.panels.cost_panel import CostPanel
+
+
+def _texts_px(panel) -> dict[str, tuple[float, object]]:
+    """Every shown text of the plot: its height on the canvas (logical pixels) and its box."""
+    renderer = panel.plot_figure.canvas.get_renderer()
+    ratio = panel.canvas.devicePixelRatioF()
+    ax = panel.plot_figure.axes[0]
+    ticks = [label for axis in (ax.xaxis, ax.yaxis) for at, label in zip(
+        axis.get_majorticklocs(), axis.get_majorticklabels(), strict=True)
+        if min(axis.get_view_interval()) <= at <= max(axis.get_view_interval())]  # drawn ones only
+    texts = [ax.title, ax.xaxis.label, *ticks, *ax.texts]
+    shown = {}
+    for t in texts:
+        if t.get_visible() and t.get_text().strip():
+            box = t.get_window_extent(renderer)
+            shown[t.get_text().replace("\n", " ")] = (min(box.width, box.height) / ratio, box)
+    return shown
+
+
+@pytest.mark.parametrize("scale", [1.5, 2.0])
+def test_the_cost_plot_text_grows_with_the_presentation_scale_and_stays_on_the_canvas(qtbot, present, scale):
+    panel = CostPanel()
+    window, presentation = present(panel)
+    qtbot.waitUntil(lambda: panel.plot_figure is not None and not panel.canvas.pending)
+    before = _texts_px(panel)
+    presentation.set_scale(scale)
+    qtbot.waitUntil(lambda: panel.plot_figure.dpi > 100 * (scale - 0.1) and not panel.canvas.pending)
+    after = _texts_px(panel)
+    common = before.keys() & after.keys()
+    assert len(common) >= 5  # the title, axis label, the tick labels, the empty plot's note
+    for text in common:
+        assert after[text][0] == pytest.approx(scale * before[text][0], rel=0.1), text
+    figure = panel.plot_figure.bbox
+    for text, (_, box) in after.items():  # nothing cut off by the canvas's edge
+        assert box.x0 >= -1 and box.y0 >= -1 and box.x1 <= figure.x1 + 1 and box.y1 <= figure.y1 + 1, text
+    # The window's text and the plot's are of one size: the axis label about as tall as the panel's lines.
+    label = after[panel.plot_figure.axes[0].get_xlabel()][0]
+    assert label == pytest.approx(panel.fontMetrics().height(), rel=0.35)
+
+
+def _overlap(a, b) -> bool:
+    return a.x0 < b.x1 and b.x0 < a.x1 and a.y0 < b.y1 and b.y0 < a.y1
+
+
+def test_a_small_pane_at_double_text_keeps_the_plot_apart_and_the_words_readable(qtbot, present):
+    # About the room the Cost tab gets in a 1280 x 720 window presenting at x2.
+    panel = CostPanel()
+    window, presentation = present(panel)
+    window.resize(700, 470)
+    presentation.set_scale(2.0)
+    qtbot.waitUntil(lambda: panel.plot_figure is not None and panel.plot_figure.dpi > 190)
+    qtbot.waitUntil(lambda: panel.plot_figure.bbox.height < 420 and not panel.canvas.pending)
+    shown = _texts_px(panel)
+    ax = panel.plot_figure.axes[0]
+    renderer = panel.plot_figure.canvas.get_renderer()
+    title, ylabel = ax.title.get_window_extent(renderer), ax.yaxis.label.get_window_extent(renderer)
+    xlabel = ax.xaxis.label.get_window_extent(renderer)
+    assert not _overlap(title, ylabel) and not _overlap(xlabel, ylabel)
+    figure = panel.plot_figure.bbox
+    for text, (_, box) in shown.items():  # nothing cut off by the canvas's edge
+        assert box.x0 >= -1 and box.y0 >= -1 and box.x1 <= figure.x1 + 1 and box.y1 <= figure.y1 + 1, text
+    (note,) = ax.texts  # the empty plot's note stays inside the axes
+    inside, axes = note.get_window_extent(renderer), ax.get_window_extent(renderer)
+    assert axes.x0 <= inside.x0 and inside.x1 <= axes.x1
+    # The text shrinks with the pane, but stays larger than at x1.
+    assert shown[ax.get_xlabel()][0] > 1.2 * panel.fontMetrics().height() / 2
+    # The words beside the images: shown whole, or the rest a scroll away.
+    words = panel._words
+    hidden = panel.explanation.height() - words.viewport().height()
+    assert words.isVisible() and words.verticalScrollBar().maximum() >= hidden
+    assert panel.explanation.width() <= words.viewport().width()

@@ -1,0 +1,102 @@
+"""The Hard cases panel: selecting each case shows its numbers, verdict, pictures and explanation."""
+
+import html
+
+import pytest
+
+from core import hard_cases
+from views.panels.hard_cases_panel import (
+    HardCasesPanel,
+    highlight_digits,
+    slider_position,
+    slider_steps,
+    slider_value,
+)
+
+TIMEOUT = 120_000  # ms; the first case may compile the raster kernels
+
+
+@pytest.fixture
+def panel(qtbot):
+    widget = HardCasesPanel()
+    qtbot.addWidget(widget)
+    widget.resize(1280, 720)
+    widget.show()
+    yield widget
+    widget.shutdown()
+
+
+def _show(qtbot, panel, name):
+    if panel.result is not None and panel.result.name == name and panel.case_name == name:
+        return
+    with qtbot.waitSignal(panel.result_shown, timeout=TIMEOUT,
+                          check_params_cb=lambda shown: shown == name):
+        panel.select(name)
+
+
+def test_every_case_shows_its_title_numbers_verdict_and_explanation(qtbot, panel):
+    for name in hard_cases.CASES:
+        _show(qtbot, panel, name)
+        r = panel.result
+        assert r.name == name
+        assert panel.title.text() == r.title
+        assert len(panel.table_cells) == len(r.rows)
+        assert panel.table_cells[0][0].text() == html.escape(r.rows[0].label)
+        assert "passes" in panel.verdict.text() and r.error_unit in panel.verdict.text()
+        assert panel.explanation.text() == r.explanation
+        assert panel.image_box.isVisibleTo(panel) == bool(r.images)
+        if r.images:
+            assert panel.naive_image.rgb.shape == r.images[0].naive.shape
+        assert panel.slider.isVisibleTo(panel) == (r.parameter is not None)
+        assert panel.option.isVisibleTo(panel) == (name == "shadow_acne")
+
+
+def test_list_marks_each_case_once_its_robust_method_passed(qtbot, panel):
+    def all_marked():
+        return all(panel.cases.item(i).text().startswith("✓") for i in range(panel.cases.count()))
+
+    qtbot.waitUntil(all_marked, timeout=TIMEOUT)
+    assert panel.cases.item(0).text() == "✓ " + hard_cases.run_case("tangent").title
+
+
+def test_moving_the_slider_recomputes_at_the_new_value(qtbot, panel):
+    _show(qtbot, panel, "far_sphere")
+    assert panel.result.parameter.value == pytest.approx(1e8)
+    with qtbot.waitSignal(panel.result_shown, timeout=TIMEOUT):
+        panel.slider.setValue(panel.slider.maximum())
+    assert panel.result.parameter.value == pytest.approx(1e9)
+    # At 10^9 the textbook discriminant has lost every digit (b² ≈ 4e18 is rounded to multiples of 512).
+    assert panel.result.naive_error >= 0.1 and panel.result.passed
+
+
+def test_the_epsilon_choice_reaches_the_shadow_acne_case(qtbot, panel):
+    _show(qtbot, panel, "shadow_acne")
+    assert panel.result.naive_method == "fixed ε = 1e-06"
+    with qtbot.waitSignal(panel.result_shown, timeout=TIMEOUT):
+        panel.option.setCurrentIndex(panel.option.findText("0.01"))
+    # At 10^11 a coordinate's rounding is about 1e-5, far below ε = 0.01: no acne left.
+    assert panel.result.naive_method == "fixed ε = 0.01" and panel.result.naive_error == 0
+
+
+def test_digits_after_the_first_difference_are_red():
+    assert highlight_digits(3.0000001, 3.0000002) == '3.000000<span style="color:#ff5c5c">1</span>'
+    assert highlight_digits(0.5, 0.5) == "0.5"
+    assert "#6fd08c" in highlight_digits("misses", "misses") and "#ff5c5c" in highlight_digits("hit", "miss")
+
+
+def test_slider_positions_map_onto_the_parameter_range_in_decades():
+    parameter = hard_cases.run_case("far_sphere").parameter  # 1 .. 1e9, log
+    assert slider_steps(parameter) == 9 * 20
+    assert slider_value(parameter, 0) == 1.0 and slider_value(parameter, 180) == 1e9
+    assert slider_value(parameter, slider_position(parameter)) == pytest.approx(1e8)
+
+
+def test_a_panel_not_yet_shown_computes_nothing_then_shows_its_first_case(qtbot):
+    widget = HardCasesPanel()  # as in the window: a tab behind the visible one
+    qtbot.addWidget(widget)
+    assert widget.result is None and widget.status.text() != "computing…"
+    first = next(iter(hard_cases.CASES))
+    with qtbot.waitSignal(widget.result_shown, timeout=TIMEOUT, check_params_cb=lambda shown: shown == first):
+        widget.show()
+    assert widget.result.name == first
+    widget.shutdown()

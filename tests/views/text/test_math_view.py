@@ -1,0 +1,89 @@
+"""Long formulas stay readable: broken into lines at their wide spaces, never shrunk past a limit."""
+
+import pytest
+from PySide6.QtGui import QFont
+from PySide6.QtWidgets import QApplication
+
+from core.lessons import shipped_lessons
+from views.panels.lesson_panel import LessonPanel
+from views.text.math_view import MIN_SHRINK, MathView, join_parts, split_formula
+
+SPHERE = r"$c = (x_1-l)^2 + (y_1-m)^2 + (z_1-n)^2 - r^2,\quad \Delta = b^2 - 4ac$"
+
+
+def test_a_formula_splits_only_at_spaces_between_its_parts_and_joins_back():
+    parts = split_formula(SPHERE)
+    assert parts == [(r"c = (x_1-l)^2 + (y_1-m)^2 + (z_1-n)^2 - r^2,", r"\quad "),
+                     (r"\Delta = b^2 - 4ac", "")]
+    assert join_parts(parts) == SPHERE and join_parts(parts[1:]) == r"$\Delta = b^2 - 4ac$"
+    assert [p for p, _ in split_formula(r"$a,\ \ b\qquad c\ d$")] == ["a,", "b", "c", "d"]
+    for whole in (r"$\mathrm{no\ \ hit}$",  # inside braces
+                  r"$\left( a,\ b \right)$",  # inside \left ... \right
+                  r"text\quad $x$ more",  # not one stretch of math
+                  r"$x\quadrature$"):  # another command
+        assert split_formula(whole) == [(whole, "")], whole
+
+
+def _shown(qtbot, formula, width, scale):
+    view = MathView(formula)
+    qtbot.addWidget(view)
+    font = QFont(view.font())
+    font.setPointSizeF(15.0)
+    view.setFont(font)
+    view.set_scale(scale)
+    view.resize(width, view.heightForWidth(width))
+    view.show()
+    qtbot.waitExposed(view)
+    return view
+
+
+@pytest.mark.parametrize("scale", [1.0, 1.5, 2.0])
+def test_a_long_formula_in_a_narrow_pane_breaks_into_lines_at_a_readable_size(qtbot, scale):
+    full = _shown(qtbot, SPHERE, 5000, scale)
+    one_line = full.pixmap().deviceIndependentSize()
+    view = _shown(qtbot, SPHERE, int(one_line.width() * 0.7), scale)
+    lines, size = view.shown_lines()
+    assert len(lines) == 2
+    assert size >= MIN_SHRINK * view.size_pt()
+    shown = view.pixmap().deviceIndependentSize()
+    assert shown.height() > 1.5 * one_line.height() * size / view.size_pt()  # two lines, stacked
+    assert view.height() >= shown.height() - 1  # the label is as tall as both lines
+
+
+def test_words_joined_by_spaces_fill_lines_like_text(qtbot):
+    formula = (r"$\mathrm{object\ order:}\ \mathbf{for}\ \mathrm{object}\ "
+               r"\mathbf{for}\ \mathrm{pixel\ it\ covers}$")
+    one_line = _shown(qtbot, formula, 5000, 2.0).pixmap().deviceIndependentSize().width()
+    view = _shown(qtbot, formula, int(one_line * 0.45), 2.0)
+    lines, size = view.shown_lines()
+    assert 2 <= len(lines) <= 4 and size >= MIN_SHRINK * view.size_pt()
+    assert lines[0].startswith(r"$\mathrm{object\ order:}")  # the words stay in their order
+    assert view.pixmap().deviceIndependentSize().width() <= view.width() + 1  # nothing cut off
+
+
+def test_a_formula_without_breaks_stops_shrinking_and_asks_for_its_width(qtbot):
+    formula = r"$\mathbf{o} + t\,\mathbf{d} = \alpha A + \beta B + (1-\alpha-\beta)\,C$"
+    view = _shown(qtbot, formula, 60, 1.5)
+    assert view.shown_lines()[1] == pytest.approx(MIN_SHRINK * view.size_pt())
+    assert view.minimumSizeHint().width() >= view.pixmap().deviceIndependentSize().width() - 1
+
+
+def test_in_a_narrow_lesson_panel_at_twice_the_text_every_formula_stays_readable(qtbot):
+    panel = LessonPanel(shipped_lessons())
+    qtbot.addWidget(panel)
+    font = QFont(panel.font())
+    font.setPointSizeF(2 * (font.pointSizeF() or 10.0))
+    panel.setFont(font)
+    panel.resize(320, 900)
+    panel.show()
+    qtbot.waitExposed(panel)
+    for row, lesson in enumerate(panel.lessons()):
+        for k in range(len(lesson.steps)):
+            panel.select(row, k)
+            for _ in range(3):  # the posted layout requests (a wrapped formula asks for more height)
+                QApplication.processEvents()
+            for view in panel.formula_views():
+                assert view.width() > 0
+                assert view.shown_lines()[1] >= MIN_SHRINK * view.size_pt() - 1e-9, (lesson.id, k)
+                # As tall as its lines at its width: no line is clipped.
+                assert view.height() >= view.heightForWidth(view.width()) - 1, (lesson.id, k)

@@ -1,0 +1,60 @@
+"""A colour scale: which value each colour of a colour-mapped image stands for.
+
+A difference image shows numbers as colours; without its scale the colours
+say nothing.  The bar is drawn from the colour map itself (left: the lowest
+value, right: the highest), with the values at its ends and their units.
+"""
+
+from __future__ import annotations
+
+from PySide6.QtCore import QRectF
+from PySide6.QtGui import QPainter
+from PySide6.QtWidgets import QHBoxLayout, QLabel, QVBoxLayout, QWidget
+
+from views.images.image_view import DisplayImage
+
+
+class _Bar(QWidget):
+    """The colour map's strip, stretched to the widget."""
+
+    def __init__(self):
+        super().__init__()
+        self.strip: DisplayImage | None = None
+        self.setFixedHeight(12)
+
+    def paintEvent(self, event):
+        if self.strip is None:
+            return
+        painter = QPainter(self)
+        painter.drawImage(QRectF(self.rect()), self.strip.qimage)
+        painter.end()
+
+
+class ColorScale(QWidget):
+    """A colour bar with the values at its two ends and a line naming the units."""
+
+    def __init__(self, tip: str, parent: QWidget | None = None):
+        super().__init__(parent)
+        self.bar = _Bar()
+        self.low, self.high, self.units = QLabel(), QLabel(), QLabel()
+        self.units.setWordWrap(True)
+        for widget in (self.bar, self.low, self.high, self.units):
+            widget.setToolTip(tip)
+        row = QHBoxLayout()
+        row.setContentsMargins(0, 0, 0, 0)
+        row.addWidget(self.low)
+        row.addWidget(self.bar, 1)
+        row.addWidget(self.high)
+        layout = QVBoxLayout(self)
+        layout.setContentsMargins(0, 0, 0, 0)
+        layout.setSpacing(2)
+        layout.addLayout(row)
+        layout.addWidget(self.units)
+
+    def set_scale(self, strip: DisplayImage, low: str, high: str, units: str) -> None:
+        """Show ``strip`` (the colour map, lowest value left) from ``low`` to ``high``, in ``units``."""
+        self.bar.strip = strip
+        self.low.setText(low)
+        self.high.setText(high)
+        self.units.setText(units)
+        self.bar.update()

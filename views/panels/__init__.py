@@ -1,0 +1,1 @@
+"""The panels of the window's tabs and docks: settings, steps, tables and their layout."""

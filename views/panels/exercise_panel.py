@@ -1,0 +1,422 @@
+"""The exercise panel: a lesson's exercises asked one by one, answered, and judged at once.
+
+The student predicts, then checks: :class:`ExercisePanel` shows the question
+and an answer widget for its kind (choices, a number, a pixel, a list to put in
+order), or pictures to pick from, and judges the answer with :func:`core.lessons.exercises.judge`, which
+asks the pipelines.  Feedback comes at once: right or wrong and one sentence
+why; a wrong first answer gets a second try; "Show me" asks the window to show
+the step (and for a pixel exercise, a right pixel); "Reveal" gives the answer.
+
+While presenting, :meth:`ExercisePanel.set_room` puts the question to the room:
+large, with the answers hidden until Space (or "Show answers") reveals them.
+
+:class:`ExerciseProgress` keeps, per lesson, which exercises were answered and
+which right at the first try, in ``QSettings`` (so across restarts), and can
+forget them, and the student's seed, which draws their variant of each exercise.
+"""
+
+from __future__ import annotations
+
+import random
+
+from PySide6.QtCore import QSettings, Qt, Signal
+from PySide6.QtWidgets import (
+    QButtonGroup,
+    QFrame,
+    QGridLayout,
+    QHBoxLayout,
+    QLabel,
+    QLineEdit,
+    QListWidget,
+    QPushButton,
+    QRadioButton,
+    QScrollArea,
+    QVBoxLayout,
+    QWidget,
+)
+
+from core.lessons.exercises import (
+    Exercise,
+    a_right_pixel,
+    choice_label,
+    judge,
+    number,
+    pictures,
+    right_choices,
+    right_order,
+    variant,
+)
+from core.lessons.facts import StepPipelines
+from views.images.image_view import ImageView
+
+FIRST_TRY, LATER, REVEALED = "first try", "later", "revealed"
+RIGHT_COLOR, WRONG_COLOR = "#1b8a3a", "#c62828"
+ROOM_SCALE = 1.8
+"""The question's size, put to the room, relative to the panel's font."""
+
+
+class Missing(str):
+    """What an answer lacks, in a sentence (an answer may itself be a string: a view's name)."""
+
+
+class ExerciseProgress:
+    """Which exercises of each lesson were answered, and how, kept in ``settings``.
+
+    Keys are ``exercises/<lesson id>/<index>``, values :data:`FIRST_TRY`,
+    :data:`LATER` or :data:`REVEALED`.
+    """
+
+    def __init__(self, settings: QSettings):
+        self.settings = settings
+
+    def record(self, lesson_id: str, index: int, outcome: str) -> None:
+        """Note an exercise's outcome (the first one stays: a later answer does not undo it)."""
+        key = f"exercises/{lesson_id}/{index}"
+        if self.settings.value(key) is None:
+            self.settings.setValue(key, outcome)
+            self.settings.sync()
+
+    def outcome(self, lesson_id: str, index: int) -> str | None:
+        return self.settings.value(f"exercises/{lesson_id}/{index}")
+
+    def summary(self, lesson) -> str:
+        """``"2/3 done, 1 right at first try"``, or "" before any answer."""
+        outcomes = [self.outcome(lesson.id, k) for k in range(len(lesson.exercises))]
+        done = sum(o is not None for o in outcomes)
+        if not done:
+            return ""
+        return f"{done}/{len(outcomes)} done, {outcomes.count(FIRST_TRY)} right at first try"
+
+    def seed(self) -> int:
+        """This student's seed for exercise variants, drawn once and kept."""
+        value = self.settings.value("exercise_seed")
+        if value is None:
+            value = random.randrange(1 << 30)
+            self.settings.setValue("exercise_seed", value)
+            self.settings.sync()
+        return int(value)
+
+    def reset(self, lesson_id: str | None = None) -> None:
+        """Forget one lesson's progress, or every lesson's."""
+        self.settings.remove(f"exercises/{lesson_id}" if lesson_id else "exercises")
+        self.settings.sync()
+
+
+class ExercisePanel(QWidget):
+    """The current lesson's exercises, one at a time.
+
+    Signals
+    -------
+    show_me(int step, object pixel) : show the lesson step (0-based) the exercise is about and,
+        when not None, pick the pixel ``(x, y)``.
+    progressed(str lesson_id) : an exercise of that lesson was answered or revealed.
+    """
+
+    show_me = Signal(int, object)
+    progressed = Signal(str)
+
+    def __init__(self, progress: ExerciseProgress, run=None, parent: QWidget | None = None):
+        """``run(work, done)`` runs ``work()`` (which asks the pipelines: up to a second on a large
+        scene) and calls ``done(result)`` on the GUI thread; by default at once, on this thread."""
+        super().__init__(parent)
+        self.progress = progress
+        self._run = run or (lambda work, done: done(work()))
+        self.lesson = None
+        self.index = 0
+        self.tries = 0
+        self.room = False
+        self._pipelines: dict[int, StepPipelines] = {}
+
+        self.position = QLabel()
+        self.question = QLabel()
+        self.question.setWordWrap(True)
+        self.answer_area = QWidget()
+        self.answer_layout = QVBoxLayout(self.answer_area)
+        self.answer_layout.setContentsMargins(0, 0, 0, 0)
+        self.choices = QButtonGroup(self)
+        self.number_edit = QLineEdit()
+        self.number_edit.setPlaceholderText("a number, e.g. 1.56")
+        self.pixel_edit = QLineEdit()
+        self.pixel_edit.setPlaceholderText("x, y — or click the pixel in the image")
+        self.order_list = QListWidget()
+        self.order_list.setDragDropMode(QListWidget.DragDropMode.InternalMove)
+        self.picture_grid = QWidget()  # pick_picture: the pictures, each with its radio button
+        self.picture_layout = QGridLayout(self.picture_grid)
+        self.picture_views: list[ImageView] = []
+        self.picture_keys: list[str] = []
+        self.feedback = QLabel()
+        self.feedback.setWordWrap(True)
+        self.check_button = QPushButton("Check")
+        self.check_button.clicked.connect(self.check)
+        self.show_button = QPushButton("Show me")
+        self.show_button.clicked.connect(self._show_me)
+        self.reveal_button = QPushButton("Reveal")
+        self.reveal_button.clicked.connect(self.reveal)
+        self.room_button = QPushButton("Show answers (Space)")
+        self.room_button.clicked.connect(lambda: self.set_answers_hidden(False))
+        self.previous_button = QPushButton("◀")
+        self.previous_button.clicked.connect(lambda: self.go(self.index - 1))
+        self.next_button = QPushButton("▶")
+        self.next_button.clicked.connect(lambda: self.go(self.index + 1))
+        self.reset_button = QPushButton("Reset progress")
+        self.reset_button.clicked.connect(self._reset)
+
+        top = QHBoxLayout()
+        top.addWidget(self.previous_button)
+        top.addWidget(self.position, 1)
+        top.addWidget(self.next_button)
+        buttons = QHBoxLayout()
+        for b in (self.check_button, self.show_button, self.reveal_button):
+            buttons.addWidget(b)
+        content = QWidget()  # scrolls at a large text scale: the panel never makes the window taller
+        layout = QVBoxLayout(content)
+        layout.addLayout(top)
+        layout.addWidget(self.question)
+        layout.addWidget(self.answer_area)
+        layout.addWidget(self.room_button)
+        layout.addLayout(buttons)
+        layout.addWidget(self.feedback)
+        layout.addStretch(1)
+        layout.addWidget(self.reset_button)
+        scroll = QScrollArea()
+        scroll.setWidgetResizable(True)
+        scroll.setFrameShape(QFrame.Shape.NoFrame)
+        scroll.setWidget(content)
+        outer = QVBoxLayout(self)
+        outer.setContentsMargins(0, 0, 0, 0)
+        outer.addWidget(scroll)
+        self.set_lesson(None)
+
+    # --- which exercise -----------------------------------------------------
+
+    def set_lesson(self, lesson) -> None:
+        """Ask ``lesson``'s exercises from the first (None: nothing to ask)."""
+        if lesson is self.lesson and lesson is not None:
+            return
+        self.lesson, self._pipelines = lesson, {}
+        self.go(0)
+
+    def exercise(self) -> Exercise | None:
+        """The exercise shown: this student's variant of it (:func:`core.lessons.exercises.variant`)."""
+        if self.lesson is None or not self.lesson.exercises:
+            return None
+        return variant(self.lesson.exercises[self.index], self.progress.seed(), self.index)
+
+    def go(self, index: int) -> None:
+        """Show exercise ``index`` (clamped) with a fresh answer."""
+        count = len(self.lesson.exercises) if self.lesson is not None else 0
+        self.index = max(0, min(index, count - 1)) if count else 0
+        self.tries = 0
+        self.feedback.clear()
+        self._fill()
+
+    def _fill(self) -> None:
+        ex = self.exercise()
+        for w in (self.number_edit, self.pixel_edit, self.order_list, self.picture_grid):
+            w.setParent(None)
+        while self.picture_layout.count():
+            widget = self.picture_layout.takeAt(0).widget()
+            widget.deleteLater()
+        self.picture_views, self.picture_keys = [], []
+        for button in self.choices.buttons():
+            self.choices.removeButton(button)
+            button.deleteLater()
+        for b in (self.check_button, self.show_button, self.reveal_button, self.previous_button,
+                  self.next_button):
+            b.setEnabled(ex is not None)
+        if ex is None:
+            self.position.setText("No exercises in this lesson" if self.lesson else "No lesson open")
+            self.question.clear()
+            return
+        n = len(self.lesson.exercises)
+        done = self.progress.outcome(self.lesson.id, self.index)
+        self.position.setText(f"Exercise {self.index + 1} of {n}" + (f" ({done})" if done else ""))
+        self.previous_button.setEnabled(self.index > 0)
+        self.next_button.setEnabled(self.index < n - 1)
+        self.question.setText(ex.question)
+        if ex.kind == "choose_one":
+            for i, choice in enumerate(ex.args["choices"]):
+                button = QRadioButton(choice_label(choice))
+                self.choices.addButton(button, i)
+                self.answer_layout.addWidget(button)
+        elif ex.kind == "number":
+            self.number_edit.clear()
+            self.answer_layout.addWidget(self.number_edit)
+        elif ex.kind == "click_pixel":
+            self.pixel_edit.clear()
+            self.answer_layout.addWidget(self.pixel_edit)
+        elif ex.kind == "pick_picture":
+            self.answer_layout.addWidget(self.picture_grid)
+            p = self._p(ex)
+            self._run(lambda: pictures(ex, p), lambda drawn: self._show_pictures(ex, drawn))
+        else:
+            self.order_list.clear()
+            self.order_list.addItems(list(ex.args["items"]))
+            self.answer_layout.addWidget(self.order_list)
+        self.set_answers_hidden(self.room)
+
+    def _show_pictures(self, ex: Exercise, drawn: dict) -> None:
+        """The pictures in this student's order (their seed shuffles them), each with a button."""
+        if ex is not self.exercise():
+            return
+        keys = list(drawn)
+        random.Random(self.progress.seed() + self.index).shuffle(keys)
+        for i, key in enumerate(keys):
+            view = ImageView()
+            view.set_image(drawn[key])
+            view.setMinimumSize(120, 90)
+            button = QRadioButton(f"picture {i + 1}")
+            view.pixel_clicked.connect(lambda _x, _y, b=button: b.setChecked(True))
+            self.choices.addButton(button, i)
+            self.picture_layout.addWidget(view, 2 * (i // 2), i % 2)
+            self.picture_layout.addWidget(button, 2 * (i // 2) + 1, i % 2)
+            self.picture_views.append(view)
+        self.picture_keys = keys
+
+    def _p(self, ex: Exercise) -> StepPipelines:
+        if ex.step not in self._pipelines:
+            self._pipelines[ex.step] = StepPipelines(self.lesson.steps[ex.step])
+        return self._pipelines[ex.step]
+
+    # --- answering ----------------------------------------------------------
+
+    def given(self):
+        """The answer as entered, in the form :func:`core.lessons.exercises.judge` takes, or a
+        :class:`Missing` sentence saying what is lacking."""
+        ex = self.exercise()
+        if ex.kind == "choose_one":
+            i = self.choices.checkedId()
+            return i if i >= 0 else Missing("Choose one of the answers first.")
+        if ex.kind == "pick_picture":
+            i = self.choices.checkedId()
+            return self.picture_keys[i] if i >= 0 else Missing("Pick one of the pictures first.")
+        if ex.kind == "number":
+            try:
+                return float(self.number_edit.text().replace(",", "."))
+            except ValueError:
+                return Missing("Type a number (for example 1.56).")
+        if ex.kind == "click_pixel":
+            parts = self.pixel_edit.text().replace("(", "").replace(")", "").split(",")
+            try:
+                x, y = (int(v) for v in parts)
+            except ValueError:
+                return Missing("Click a pixel in the image, or type its column and row: x, y.")
+            cam = self.lesson.steps[ex.step].scene.camera
+            if not (0 <= x < cam.width and 0 <= y < cam.height):
+                return Missing(f"Pixel ({x}, {y}) is outside the {cam.width} x {cam.height} image.")
+            return x, y
+        return [self.order_list.item(i).text() for i in range(self.order_list.count())]
+
+    def click(self, x: int, y: int) -> None:
+        """A pixel clicked in the image answers a pixel exercise."""
+        ex = self.exercise()
+        if ex is not None and ex.kind == "click_pixel":
+            self.pixel_edit.setText(f"{x}, {y}")
+            self.check()
+
+    def check(self) -> None:
+        """Judge the answer: right or wrong and why; a wrong first answer may be tried again."""
+        ex = self.exercise()
+        given = self.given()
+        if isinstance(given, Missing):
+            self._say(given, None)
+            return
+        p = self._p(ex)
+        self.check_button.setEnabled(False)
+        self._run(lambda: judge(ex, p, given), lambda verdict: self._judged(ex, verdict))
+
+    def _judged(self, ex: Exercise, verdict) -> None:
+        self.check_button.setEnabled(True)
+        if ex is not self.exercise():
+            return  # the student moved on meanwhile
+        self.tries += 1
+        if verdict.right:
+            self._record(FIRST_TRY if self.tries == 1 else LATER)
+            self._say(verdict.sentence, True)
+        elif self.tries == 1:
+            self._say(f"{verdict.sentence} Try once more.", False)
+        else:
+            self._say(f"{verdict.sentence} Press Reveal for the answer.", False)
+
+    def reveal(self) -> None:
+        """Give the answer the pipelines compute."""
+        ex = self.exercise()
+        p = self._p(ex)
+        work = {"choose_one": lambda: right_choices(ex, p), "number": lambda: number(ex, p),
+                "click_pixel": lambda: a_right_pixel(ex, p), "order": lambda: right_order(ex, p),
+                "pick_picture": lambda: ex.args["view"]}[ex.kind]
+        self._run(work, lambda answer: self._revealed(ex, answer))
+
+    def _revealed(self, ex: Exercise, computed) -> None:
+        if ex is not self.exercise():
+            return
+        if ex.kind == "choose_one":
+            right = computed
+            self.choices.button(right[0]).setChecked(True)
+            answer = choice_label(ex.args["choices"][right[0]])
+        elif ex.kind == "number":
+            answer = f"{computed:.6g}"
+            self.number_edit.setText(answer)
+        elif ex.kind == "pick_picture":
+            if computed in self.picture_keys:
+                k = self.picture_keys.index(computed)
+                self.choices.button(k).setChecked(True)
+                answer = f"picture {k + 1}"
+            else:
+                answer = f"the {computed} view"
+        elif ex.kind == "click_pixel":
+            answer = f"pixel {computed}, for example"
+            self.pixel_edit.setText(f"{computed[0]}, {computed[1]}")
+        else:
+            order = computed
+            self.order_list.clear()
+            self.order_list.addItems(order)
+            answer = " → ".join(order)
+        self._record(REVEALED)
+        self._say(f"The answer: {answer}. {ex.why}".strip(), True)
+        self.set_answers_hidden(False)
+
+    def _show_me(self) -> None:
+        ex = self.exercise()
+        if ex.kind != "click_pixel":
+            self.show_me.emit(ex.step, None)
+            return
+        p = self._p(ex)
+        self._run(lambda: a_right_pixel(ex, p), lambda pixel: self.show_me.emit(ex.step, pixel))
+
+    def _record(self, outcome: str) -> None:
+        self.progress.record(self.lesson.id, self.index, outcome)
+        self.progressed.emit(self.lesson.id)
+
+    def _reset(self) -> None:
+        if self.lesson is not None:
+            self.progress.reset(self.lesson.id)
+            self.progressed.emit(self.lesson.id)
+            self.go(self.index)
+
+    def _say(self, text: str, right: bool | None) -> None:
+        color = {True: RIGHT_COLOR, False: WRONG_COLOR, None: ""}[right]
+        self.feedback.setStyleSheet(f"color: {color};" if color else "")
+        self.feedback.setText(text)
+
+    # --- put to the room ----------------------------------------------------
+
+    def set_room(self, room: bool) -> None:
+        """Put the question to the room: large, with its answers hidden until Space shows them."""
+        self.room = room
+        self.ensurePolished()  # the panel's font as the window's style sheet (presentation scale) sets it
+        size = self.font().pointSizeF() * ROOM_SCALE
+        # A style sheet, not setFont: the window's style sheet would override a font set in code.
+        self.question.setStyleSheet(f"font-size: {size:.1f}pt; font-weight: bold;" if room else "")
+        self.question.ensurePolished()
+        self.set_answers_hidden(room)
+
+    def set_answers_hidden(self, hidden: bool) -> None:
+        self.answer_area.setVisible(not hidden)
+        self.room_button.setVisible(hidden)
+
+    def keyPressEvent(self, event) -> None:
+        if event.key() == Qt.Key.Key_Space and not self.answer_area.isVisible():
+            self.set_answers_hidden(False)
+        else:
+            super().keyPressEvent(event)

@@ -1,0 +1,198 @@
+"""A pixel's ray tree, drawn in 3D and listed as an expandable tree.
+
+Segments are coloured by the kind of ray in the Okabe–Ito palette, which
+viewers with the common colour-vision deficiencies can tell apart; blocked
+shadow rays are drawn thin and grey.  The list shows every node's numbers and
+the second stage of ray tracing: each ray's colour computed from its hit's
+local colour and its children's colours, from the last hits back to the first.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+import numpy as np
+from PySide6.QtCore import QEvent, Qt, QTimer
+from PySide6.QtGui import QColor
+from PySide6.QtWidgets import (
+    QGridLayout,
+    QHeaderView,
+    QLabel,
+    QSplitter,
+    QTreeWidget,
+    QTreeWidgetItem,
+    QWidget,
+)
+
+from core.image_order.ray_tree import RayNode
+
+if TYPE_CHECKING:
+    import pyvista as pv
+
+# Okabe & Ito (2008), "Color Universal Design": distinguishable with colour-vision deficiencies.
+KIND_COLORS = {
+    "primary": "#56B4E9",  # sky blue
+    "shadow": "#F0E442",  # yellow
+    "reflection": "#E69F00",  # orange
+    "refraction": "#CC79A7",  # reddish purple
+}
+BLOCKED_COLOR = "#8a8a8a"
+COLUMNS = ["ray", "hit", "t", "weight", "returns colour"]
+MOST_OF_SPLITTER = 0.75
+"""The most of a splitter's width the tree takes to show every column whole; the rest stays beside it."""
+
+
+def _segment_end(node: RayNode, miss_length: float) -> np.ndarray:
+    if node.t is not None:
+        length = node.t
+    elif np.isfinite(node.t_max):
+        length = node.t_max
+    else:
+        length = miss_length
+    return node.origin + node.direction * length
+
+
+def ray_tree_parts(root: RayNode, miss_length: float) -> list[tuple[pv.PolyData, dict]]:
+    """Line segments of every traced ray, one part per style, for ``SceneView.set_overlay``."""
+    import pyvista as pv  # loaded with the 3D pane, not with the window (views.scene3d.deferred_scene_view)
+
+    segments: dict[str, list] = {}
+    for node in root.walk():
+        if not node.traced:
+            continue
+        style = node.kind
+        if node.kind == "shadow" and node.hit is not None:
+            style = "blocked"
+        segments.setdefault(style, []).append((node.origin, _segment_end(node, miss_length)))
+    parts = []
+    for style, pairs in segments.items():
+        points = np.array([p for pair in pairs for p in pair])
+        lines = np.hstack([[2, 2 * i, 2 * i + 1] for i in range(len(pairs))])
+        color = BLOCKED_COLOR if style == "blocked" else KIND_COLORS[style]
+        width = 2 if style in ("blocked", "shadow") else 5
+        parts.append((pv.PolyData(points, lines=lines), {"color": color, "line_width": width}))
+    hits = [n.point for n in root.walk() if n.traced and n.point is not None and n.kind != "shadow"]
+    if hits:
+        parts.append((pv.PolyData(np.array(hits)),
+                      {"color": "white", "point_size": 10, "render_points_as_spheres": True}))
+    return parts
+
+
+class RayKindLegend(QWidget):
+    """One coloured swatch per kind of ray, ``per_line`` to a line (so a narrow pane keeps them all)."""
+
+    def __init__(self, per_line: int = 3, parent: QWidget | None = None):
+        super().__init__(parent)
+        layout = QGridLayout(self)
+        layout.setContentsMargins(0, 0, 0, 0)
+        for i, (kind, color) in enumerate([*KIND_COLORS.items(), ("blocked shadow", BLOCKED_COLOR)]):
+            swatch = QLabel()
+            swatch.setFixedSize(22, 8)
+            swatch.setStyleSheet(f"background: {color}; border: 1px solid #333;")
+            row, column = divmod(i, per_line)
+            layout.addWidget(swatch, row, 2 * column)
+            layout.addWidget(QLabel(kind), row, 2 * column + 1)
+        layout.setColumnStretch(2 * per_line, 1)
+
+
+def _rgb(c) -> str:
+    return "(" + ", ".join(f"{v:.3f}" for v in c) + ")"
+
+
+class RayTreeWidget(QTreeWidget):
+    """The ray tree as an expandable list, one row per ray with its numbers."""
+
+    def __init__(self, parent: QWidget | None = None):
+        super().__init__(parent)
+        self.setColumnCount(len(COLUMNS))
+        self.setHeaderLabels(COLUMNS)
+        self.setAlternatingRowColors(True)
+        # Columns as wide as their header or their widest entry, at every text scale.
+        self.header().setSectionResizeMode(QHeaderView.ResizeMode.ResizeToContents)
+
+    def set_tree(self, root: RayNode) -> None:
+        self.clear()
+        self.addTopLevelItem(self._item(root))
+        self.expandAll()
+        QTimer.singleShot(0, self, self.widen_to_columns)  # once the columns took their widths
+
+    def changeEvent(self, event) -> None:  # noqa: N802 (Qt's name)
+        super().changeEvent(event)
+        if event.type() == QEvent.Type.FontChange:  # the columns grow with the text
+            QTimer.singleShot(0, self, self.widen_to_columns)
+
+    def widen_to_columns(self) -> None:
+        """In a splitter, take the width every column needs (the last one, the returned colours,
+        was cut off at large text), if that leaves the others a quarter of it (else the columns
+        scroll sideways, as on a small screen)."""
+        splitter = self.parentWidget()
+        if not isinstance(splitter, QSplitter) or splitter.orientation() != Qt.Orientation.Horizontal:
+            return
+        need = self.header().length() + 2 * self.frameWidth() + self.verticalScrollBar().sizeHint().width()
+        sizes = splitter.sizes()
+        index, total = splitter.indexOf(self), sum(sizes)
+        if total <= 0 or sizes[index] >= need or need > total * MOST_OF_SPLITTER:
+            return
+        others = [s for i, s in enumerate(sizes) if i != index]
+        share = [(total - need) * s / max(sum(others), 1) for s in others]
+        splitter.setSizes([need if i == index else round(share.pop(0)) for i in range(len(sizes))])
+
+    def select_kind(self, kind: str | None) -> bool:
+        """Select and show the first ray of ``kind`` (``None``: no selection); whether there was one."""
+        self.clearSelection()
+        if kind is None:
+            return False
+        for item in self._items():
+            if item.data(0, Qt.ItemDataRole.UserRole) == kind:
+                self.setCurrentItem(item)
+                self.scrollToItem(item)
+                return True
+        return False
+
+    def selected_kind(self) -> str | None:
+        """The kind of the selected ray, or ``None``."""
+        items = self.selectedItems()
+        return items[0].data(0, Qt.ItemDataRole.UserRole) if items else None
+
+    def _items(self):
+        stack = [self.topLevelItem(i) for i in range(self.topLevelItemCount())]
+        while stack:
+            item = stack.pop(0)
+            yield item
+            stack[:0] = [item.child(i) for i in range(item.childCount())]
+
+    def _item(self, node: RayNode) -> QTreeWidgetItem:
+        label = node.kind if node.kind != "shadow" else f"shadow → light {node.light}"
+        if node.hit_name:
+            hit = node.hit_name
+        elif not node.traced and node.kind == "shadow":
+            # No shadow ray was sent, yet the light's share is known: the whole of it when nothing
+            # can block the light, none when it is behind the surface.
+            hit = "lit: no ray needed" if np.any(node.color > 0) else "unlit: light behind"
+        elif not node.traced:
+            hit = "not traced"
+        else:
+            hit = "reaches the light" if node.kind == "shadow" else "nothing (background)"
+        t = f"{node.t:.4g}" if node.t is not None else ""
+        item = QTreeWidgetItem([label, hit, t, f"{node.weight:.3g}",
+                                _rgb(node.color) if node.color is not None else ""])
+        item.setForeground(0, QColor(KIND_COLORS[node.kind]).darker(130))
+        item.setData(0, Qt.ItemDataRole.UserRole, node.kind)
+        tips = [node.status, f"origin {_rgb(node.origin)}", f"direction {_rgb(node.direction)}"]
+        if node.normal is not None:
+            tips.append(f"normal {_rgb(node.normal)}")
+        if node.local_color is not None:
+            tips.append(f"local colour {_rgb(node.local_color)}")
+        if node.fresnel is not None:
+            tips.append(f"Fresnel R = {node.fresnel[0]:.3f}, T = {node.fresnel[1]:.3f}"
+                        + (" (total internal reflection)" if node.total_internal_reflection else ""))
+        tips.append(f"{node.tests} intersection tests, {node.bounds_tests} bounding-volume tests")
+        for col in range(len(COLUMNS)):
+            item.setToolTip(col, "\n".join(tips))
+        if node.color is not None:
+            swatch = QColor.fromRgbF(*np.clip(node.color, 0, 1))
+            item.setBackground(4, swatch)
+            item.setForeground(4, QColor("black" if swatch.lightnessF() > 0.5 else "white"))
+        for child in node.children:
+            item.addChild(self._item(child))
+        return item

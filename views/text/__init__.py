@@ -1,0 +1,1 @@
+"""Text widgets: typeset formulas, worked math, one-line labels and the window's text scale."""
