@@ -8,4 +8,6 @@ ruff check .
 # The kernels compile here, once per machine and version of the code, on both cores: no test waits
 # for a compile inside its own time limit.
 python -m app compile
-exec xvfb-run -a -s "-screen 0 1920x1080x24" python -m pytest "$@"
+# Two worker processes, as many as this machine's cores; each starts an X server of its own
+# (tests/qt_fixtures.py).
+exec xvfb-run -a -s "-screen 0 1920x1080x24" python -m pytest -n 2 "$@"

@@ -3,14 +3,38 @@ instead of skipping; settings and text size never leak from one test into the ne
 
 ``tests/app/conftest.py`` and ``tests/views/conftest.py`` use them; the core tests do not, so they
 run where Qt and pyvista are not installed.
+
+When the suite runs in several worker processes (``pytest -n 2``, as ``.ci/test.sh`` runs it), each
+worker starts an X server of its own: two workers' windows never take each other's focus or screen.
 """
 
+import atexit
 import os
+import subprocess
 
 import pytest
 import pyvista as pv
 
 pv.OFF_SCREEN = True
+
+
+def _own_x_server() -> None:
+    """Start an Xvfb for this worker process and point ``DISPLAY`` at it (the suite's own screen size)."""
+    read_end, write_end = os.pipe()
+    server = subprocess.Popen(["Xvfb", "-displayfd", str(write_end), "-screen", "0", "1920x1080x24",
+                               "-nolisten", "tcp"], pass_fds=(write_end,), stdout=subprocess.DEVNULL,
+                              stderr=subprocess.DEVNULL)
+    os.close(write_end)
+    with os.fdopen(read_end) as reply:
+        number = reply.readline().strip()
+    if not number:
+        raise RuntimeError("Xvfb did not start: the tests' X server is in the Debian package xvfb")
+    atexit.register(server.terminate)
+    os.environ["DISPLAY"] = f":{number}"
+
+
+if os.environ.get("PYTEST_XDIST_WORKER") and os.environ.get("DISPLAY"):
+    _own_x_server()
 
 
 @pytest.fixture(autouse=True)

@@ -1,0 +1,29 @@
+"""Each worker process of ``pytest -n 2`` (README command 2) draws on an X server of its own, so two
+workers' windows never take each other's focus or screen (tests/qt_fixtures.py)."""
+
+import os
+import subprocess
+import sys
+
+from checkout import ROOT
+
+WORKER = """
+import os
+before = os.environ["DISPLAY"]
+import qt_fixtures  # starts the worker's own X server
+from PySide6.QtGui import QGuiApplication
+app = QGuiApplication(["worker", "-platform", "xcb"])
+size = app.primaryScreen().size()
+print(before, os.environ["DISPLAY"], size.width(), size.height())
+"""
+
+
+def test_a_worker_process_starts_its_own_x_server_of_the_suites_size():
+    env = {**os.environ, "PYTEST_XDIST_WORKER": "gw7", "DISPLAY": os.environ.get("DISPLAY", ":0"),
+           "PYTHONPATH": os.pathsep.join([str(ROOT / "tests"), str(ROOT)])}
+    done = subprocess.run([sys.executable, "-c", WORKER], cwd=ROOT, env=env, capture_output=True,
+                          text=True, timeout=120)
+    assert done.returncode == 0, done.stderr[-2000:]
+    before, after, width, height = done.stdout.split()
+    assert after != before and after.startswith(":")
+    assert (int(width), int(height)) == (1920, 1080)
