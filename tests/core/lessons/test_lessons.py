@@ -9,10 +9,7 @@ import numpy as np
 import pytest
 
 from core import presets
-from core.image_order.flat_scene import TraceSettings
-from core.image_order.ray_tracing import render_trace
-from core.image_order.ray_tree import trace_pixel
-from core.lessons import (
+from core.files.lesson_file import (
     OVERLAYS,
     PANES,
     Lesson,
@@ -22,6 +19,9 @@ from core.lessons import (
     load_lesson,
     shipped_lessons,
 )
+from core.image_order.flat_scene import TraceSettings
+from core.image_order.ray_tracing import render_trace
+from core.image_order.ray_tree import trace_pixel
 from core.object_order.pipeline import render_raster
 from core.presets_trace import PRESETS_TRACE
 from core.scene import Material, Scene
