@@ -208,6 +208,19 @@ def test_a_first_step_must_name_its_scene_and_panes_and_objects_must_exist():
     assert problems == ['steps[0].camera.fov_y_deg: expected a number, got "wide"']
 
 
+def test_a_highlight_and_a_fact_naming_a_part_of_an_analytic_sphere_get_the_same_message():
+    ball = {"objects": [{"type": "sphere", "name": "ball", "center": [0, 0, -5], "radius": 1}]}
+    step = {**GOOD_STEP, "scene": ball,
+            "highlight": {"face": {"object": "ball", "triangle": 0},
+                          "vertex": {"object": "ball", "index": 2}},
+            "facts": [{"fact": "projects_to", "object": "ball", "vertex": 2, "pixel": [0, 0]}]}
+    assert _problems(_lesson(steps=[step])) == [
+        "steps[0].highlight.face.triangle: 'ball' is an analytic sphere: it has no triangles",
+        "steps[0].highlight.vertex.index: 'ball' is an analytic sphere: it has no vertices",
+        "steps[0].facts[0].vertex: 'ball' is an analytic sphere: it has no vertices",
+    ]
+
+
 def test_broken_files_name_the_file_and_the_place(tmp_path):
     path = tmp_path / "lesson.json"
     path.write_text('{"format": "render-explorer-lesson",\n "version": 1,,}', encoding="utf-8")
