@@ -39,7 +39,7 @@ from core.files.scene_file import SceneFileError
 from core.image_order.flat_scene import TraceSettings
 from core.image_order.ray_tree import KINDS
 from core.lessons import exercises, facts
-from core.lessons.facts import read_object_name, read_part_index, read_pixel
+from core.lessons.facts import object_named, read_object_name, read_part_index, read_pixel
 from core.object_order.pipeline import RasterSettings
 from core.presets import PRESETS
 from core.presets_trace import PRESETS_TRACE
@@ -228,7 +228,7 @@ def _object_part(r: Reader, value, path: str, scene: Scene | None, part: str, in
     if d is None or "object" not in d or index_key not in d:
         return None
     name = read_object_name(r, d["object"], f"{path}.object", scene)
-    obj = next((o for o in scene.objects if o.name == name), None) if scene is not None else None
+    obj = object_named(scene, name)
     index = read_part_index(r, d[index_key], f"{path}.{index_key}", obj, part)
     if obj is None or index is None:
         return None

@@ -241,7 +241,7 @@ def _read_arg(r, kind: str, key: str, v, path: str, scene: Scene | None, d: dict
             r.add(path, f"expected true or false, got {show(v)}")
         return v
     if key in ("triangle", "vertex"):
-        return read_part_index(r, v, path, _object(scene, d.get("object")), key)
+        return read_part_index(r, v, path, object_named(scene, d.get("object")), key)
     if key in ("after", "light", "hit", "count"):
         got = r.integer(v, path)
         low = 1 if key == "hit" else 0
@@ -324,7 +324,8 @@ def read_part_index(r, value, path: str, obj, part: str) -> int | None:
     return index
 
 
-def _object(scene: Scene | None, name):
+def object_named(scene: Scene | None, name):
+    """The object of ``scene`` called ``name``, or None (also when the scene is not known)."""
     if scene is None:
         return None
     return next((o for o in scene.objects if o.name == name), None)
@@ -528,7 +529,7 @@ def _projects_to(a, p):
     from core.projection import project_point
 
     scene = p.step.scene
-    obj = _object(scene, a["object"])
+    obj = object_named(scene, a["object"])
     cam = scene.camera
     point = project_point(obj.vertices[a["vertex"]] if isinstance(obj, Mesh) else obj.center,
                           cam.view_from_world, cam.clip_from_view, cam.width, cam.height)
