@@ -5,8 +5,9 @@ more on a small machine; :mod:`core.compiling.kernel_cache` keeps them afterward
 that the window shows the scene at once, it first casts one ray per block of
 pixels with numpy: the lecture's ray "from the eye through the pixel"
 (:meth:`core.camera.Camera.primary_rays`), its first crossing with a triangle
-(spheres as their triangles), and the lights' cosine at that point, with no
-shadows, reflection or refraction.  The window marks the picture as such.
+(spheres as their triangles; :func:`core.barycentric_crossings.first_crossings`),
+and the lights' cosine at that point, with no shadows, reflection or
+refraction.  The window marks the picture as such.
 """
 
 from __future__ import annotations
@@ -15,66 +16,12 @@ from dataclasses import replace
 
 import numpy as np
 
+from core.barycentric_crossings import first_crossings
 from core.scene import Mesh, Scene, Sphere
 from core.shapes import uv_sphere
 
-#: Rays per chunk of the crossing test (each chunk holds rays x triangles numbers).
-CHUNK_TESTS = 2_000_000
 #: Sphere tessellation of the first look: coarse, it is a first look.
 SPHERE_RINGS, SPHERE_SEGMENTS = 12, 24
-
-
-def first_crossings(origins: np.ndarray, directions: np.ndarray, triangles: np.ndarray,
-                    t_min: float = 0.0, t_max: float = np.inf) -> tuple[np.ndarray, np.ndarray]:
-    """The first triangle each ray crosses with ``t_min <= t <= t_max``, and its ``t``.
-
-    The crossing solves ``o + t d = A + u (B - A) + v (C - A)`` (the lecture's
-    barycentric test, by Cramer's rule in the Möller–Trumbore arrangement) for
-    every ray and triangle at once; a ray crosses a triangle where ``u, v >= 0``
-    and ``u + v <= 1``.  A ray through an edge counts for either triangle.
-
-    Parameters
-    ----------
-    origins, directions : (R, 3) float64, world space.
-    triangles : (T, 3, 3) float64, world space.
-    t_min, t_max : the part of the ray searched (the frustum's depth range, say).
-
-    Returns
-    -------
-    index : (R,) int64, the nearest triangle, -1 where the ray crosses none.
-    t : (R,) float64, its ``t`` (``inf`` where none).
-
-    Examples
-    --------
-    >>> tri = np.array([[[-1.0, -1.0, -5.0], [1.0, -1.0, -5.0], [0.0, 1.0, -5.0]]])
-    >>> first_crossings(np.zeros((2, 3)), np.array([[0.0, 0.0, -1.0], [0.0, 0.0, 1.0]]), tri)
-    (array([ 0, -1]), array([ 5., inf]))
-    """
-    n = len(origins)
-    index = np.full(n, -1, dtype=np.int64)
-    nearest = np.full(n, np.inf)
-    if len(triangles) == 0:
-        return index, nearest
-    A, e1, e2 = triangles[:, 0], triangles[:, 1] - triangles[:, 0], triangles[:, 2] - triangles[:, 0]
-    step = max(1, CHUNK_TESTS // len(triangles))
-    for first in range(0, n, step):
-        o, d = origins[first:first + step], directions[first:first + step]
-        h = np.cross(d[:, None, :], e2[None])
-        det = np.einsum("rtk,tk->rt", h, e1)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            s = o[:, None, :] - A[None]
-            u = np.einsum("rtk,rtk->rt", s, h) / det
-            q = np.cross(s, e1[None])
-            v = np.einsum("rk,rtk->rt", d, q) / det
-            t = np.einsum("tk,rtk->rt", e2, q) / det
-        crossed = (det != 0) & (u >= 0) & (v >= 0) & (u + v <= 1) & (t >= t_min) & (t <= t_max)
-        t = np.where(crossed, t, np.inf)
-        best = np.argmin(t, axis=1)
-        t_best = t[np.arange(len(t)), best]
-        found = np.isfinite(t_best)
-        index[first:first + step] = np.where(found, best, -1)
-        nearest[first:first + step] = t_best
-    return index, nearest
 
 
 def scene_triangles(scene: Scene) -> tuple[np.ndarray, np.ndarray]:

@@ -281,7 +281,7 @@ def _cost_sweep(window):
 
 
 def _lesson_steps(window):
-    from core.lessons import shipped_lessons
+    from core.files.lesson_file import shipped_lessons
 
     for i, lesson in enumerate(shipped_lessons()):
         for k in range(len(lesson.steps)):

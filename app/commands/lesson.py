@@ -21,7 +21,7 @@ from __future__ import annotations
 import argparse
 import sys
 
-from core.lessons import LessonFileError, load_lesson
+from core.files.lesson_file import LessonFileError, load_lesson
 from core.lessons.exercises import check_exercises
 from core.lessons.facts import check_lesson
 

@@ -22,8 +22,8 @@ from PySide6.QtWidgets import (
     QPlainTextEdit,
 )
 
+from core.files.lesson_file import LessonFileError
 from core.files.safe_files import OutputError
-from core.lessons import LessonFileError
 from core.lessons.authoring import add_step, step_record
 
 

@@ -1,6 +1,6 @@
 """Applying a lesson step to the window: its scene, panes, settings, view and highlight.
 
-A :class:`core.lessons.LessonStep` says what the room should see; the
+A :class:`core.files.lesson_file.LessonStep` says what the room should see; the
 :class:`LessonRunner` makes the window show it.  Everything it changes goes
 through the window's one model (scene, settings, step, picks, overlays) or
 through the panes' own setters, so afterwards the window behaves as if the
@@ -14,7 +14,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from core.lessons import LessonStep
+from core.files.lesson_file import LessonStep
 from core.scene import Mesh, Scene
 from views.scene3d.projector_lines import ProjectorLines
 from views.scene3d.scene_overlays import polygon_parts

@@ -8,7 +8,8 @@ A scene file is a JSON object::
 Every field has a default except the few that must be given (a sphere's
 centre and radius, a mesh's vertices, ...).  Loading checks everything and
 reports *every* problem at once, each with the path of its field
-(``objects[2].radius: must be > 0, got -1``), as one :class:`SceneFileError`.
+(``objects[2].radius: must be > 0, got -1``), as one :class:`SceneFileError`;
+the file is read and its values checked with :mod:`core.files.checked_json`.
 The README's "Scene files" section documents the schema.
 
 Limits keep a small file from making a huge scene: at most
@@ -26,10 +27,7 @@ passes a ``read_mesh(path) -> (vertices, triangles)`` callable, e.g.
 
 from __future__ import annotations
 
-import difflib
 import json
-import math
-import numbers
 import os
 from collections.abc import Callable
 from dataclasses import fields
@@ -40,21 +38,31 @@ import numpy as np
 from core import shapes
 from core.camera import PROJECTIONS, Camera, camera_problems
 from core.files import safe_files
+from core.files.checked_json import (
+    MAX_LISTED,
+    MAX_MAGNITUDE,
+    CheckedFileError,
+    Reader,
+    finite,
+    is_integer,
+    is_number,
+    join,
+    nesting_depth,
+    read_json,
+    show,
+    too_big,
+)
 from core.scene import Material, Mesh, PointLight, Scene, Sphere
 
 FORMAT = "render-explorer-scene"
 VERSION = 1
 OBJECT_TYPES = ("sphere", *shapes.PRIMITIVES, "mesh", "mesh_file")
 MAX_IMAGE_SIZE = 16384
-MAX_MAGNITUDE = 1e6  # of any number, so that squares and products stay finite
-MAX_LISTED = 5  # problems listed per array of a mesh; the rest are counted
 MAX_OBJECTS = 1000
 MAX_LIGHTS = 100
 MAX_TRIANGLES = 2_000_000  # of the whole scene: primitives, inline meshes and mesh files
 MAX_NESTING = 32  # levels of JSON arrays and objects; a scene needs 5
 MAX_FILE_BYTES = 100_000_000
-MAX_DIGITS = 100  # of a whole number in the JSON text; any longer one is out of range anyway
-MAX_PROBLEMS_SHOWN = 50  # in a message; the rest are counted
 DEGENERATE_BLOCK = 100_000  # triangles checked for zero area at a time
 
 MeshReader = Callable[[str], tuple[np.ndarray, np.ndarray]]
@@ -69,97 +77,17 @@ _TYPE_FIELDS = {
 }
 
 
-class SceneFileError(ValueError):
-    """A scene file (or dict) that cannot be loaded.
+class SceneFileError(CheckedFileError):
+    """A scene file (or dict) that cannot be loaded; see :class:`core.files.checked_json.CheckedFileError`."""
 
-    Attributes
-    ----------
-    problems : every problem found, each ``"<field path>: <what is wrong>"``.
-    where : the file, if the scene came from one.
-    """
-
-    def __init__(self, problems: list[str], where: str | None = None):
-        self.problems = list(problems)
-        self.where = where
-        n = len(self.problems)
-        head = f"scene file {where}" if where else "scene"
-        if n == 1:
-            super().__init__(f"{head}: {self.problems[0]}")
-        else:
-            super().__init__(f"{head}: {n} problems:\n{problem_lines(self.problems)}")
+    thing = "scene"
 
 
-def problem_lines(problems: list[str]) -> str:
-    """The problems one per line, indented; past :data:`MAX_PROBLEMS_SHOWN`, only their number."""
-    lines = [f"  {p}" for p in problems[:MAX_PROBLEMS_SHOWN]]
-    if len(problems) > MAX_PROBLEMS_SHOWN:
-        lines.append(f"  ... and {len(problems) - MAX_PROBLEMS_SHOWN:,} more problems")
-    return "\n".join(lines)
-
-
-# --- reading values, collecting problems ------------------------------------
-
-
-class _JsonObject(dict):
-    """A parsed JSON object that remembers the keys its text gave more than once."""
-
-    duplicates: tuple[str, ...] = ()
-
-
-def _json_object(pairs: list[tuple[str, object]]) -> _JsonObject:
-    d = _JsonObject(pairs)
-    if len(d) < len(pairs):  # found in one pass: a file may have 200,000 keys
-        seen, repeated = set(), {}
-        for key, _ in pairs:
-            if key in seen:
-                repeated[key] = None
-            seen.add(key)
-        d.duplicates = tuple(repeated)
-    return d
-
-
-def _show(value) -> str:
-    """A value as the file wrote it, shortened."""
-    try:
-        text = json.dumps(value)
-    except (TypeError, ValueError, RecursionError):
-        try:
-            text = repr(value)
-        except (ValueError, RecursionError):  # an int too long to print, or nested too deeply
-            text = f"a {type(value).__name__} too large to show"
-    return text if len(text) <= 60 else text[:56] + " ..."
-
-
-def _join(path: str, key: str) -> str:
-    if not key.isprintable() or not key:  # control characters are not echoed to a terminal
-        key = json.dumps(key)
-    return f"{path}.{key}" if path else key
-
-
-def _is_number(v) -> bool:
-    return isinstance(v, numbers.Real) and not isinstance(v, (bool, np.bool_))
-
-
-def _is_integer(v) -> bool:
-    return isinstance(v, numbers.Integral) and not isinstance(v, (bool, np.bool_))
-
-
-def _finite(v) -> bool:
-    try:
-        return math.isfinite(v)
-    except OverflowError:  # an int too large for a float
-        return False
-
-
-def _too_big(values) -> bool:
-    return any(abs(v) > MAX_MAGNITUDE for v in values)
-
-
-class _Reader:
-    """Reads JSON values into Python values; every problem goes to ``problems``."""
+class _Reader(Reader):
+    """A :class:`core.files.checked_json.Reader` that also counts the scene's triangles."""
 
     def __init__(self):
-        self.problems: list[str] = []
+        super().__init__()
         self.triangles = 0  # so far, of the objects read
 
     def count_triangles(self, path: str, n: int, what: str) -> bool:
@@ -173,113 +101,17 @@ class _Reader:
         self.triangles += n
         return True
 
-    def add(self, path: str, message: str) -> None:
-        self.problems.append(f"{path}: {message}")
-
-    def fields(self, value, path: str, known, required=()) -> dict | None:
-        """``value`` as a dict, after reporting unknown and missing fields."""
-        if not isinstance(value, dict):
-            self.add(path or "top level", f"expected an object {{...}}, got {_show(value)}")
-            return None
-        duplicates = getattr(value, "duplicates", ())
-        self.capped_fields(path, [(key, "given more than once") for key in duplicates[:MAX_LISTED + 1]],
-                           len(duplicates), "keys given more than once")
-        suggested, unknown = set(), [key for key in value if key not in known]
-        reported = []
-        for key in unknown[:MAX_LISTED + 1]:  # a file may have 200,000 of them: a few say enough
-            close = difflib.get_close_matches(str(key), known, n=1)
-            hint = f"did you mean {close[0]!r}?" if close else f"known: {', '.join(known)}"
-            reported.append((str(key), f"unknown field {key!r} ({hint})"))
-            suggested.update(close)
-        self.capped_fields(path, reported, len(unknown), "unknown fields")
-        for key in required:
-            if key not in value and key not in suggested:  # a typo is reported once
-                self.add(_join(path, key), "required field is missing")
-        return value
-
-    def number(self, v, path, *, gt=None, ge=None, le=None) -> float | None:
-        if not _is_number(v):
-            self.add(path, f"expected a number, got {_show(v)}")
-        elif not _finite(v):
-            self.add(path, f"must be a finite number, got {_show(v)}")
-        elif _too_big([v]):
-            self.add(path, f"must be within ±{MAX_MAGNITUDE:,.0f}, got {_show(v)}")
-        elif gt is not None and not v > gt:
-            self.add(path, f"must be > {gt}, got {_show(v)}")
-        elif ge is not None and le is not None and not ge <= v <= le:
-            self.add(path, f"must be in [{ge}, {le}], got {_show(v)}")
-        elif ge is not None and not v >= ge:
-            self.add(path, f"must be >= {ge}, got {_show(v)}")
-        else:
-            return float(v)
-        return None
-
-    def integer(self, v, path) -> int | None:
-        if not _is_integer(v):
-            self.add(path, f"expected a whole number, got {_show(v)}")
-        elif _too_big([v]):
-            self.add(path, f"must be within ±{MAX_MAGNITUDE:,.0f}, got {_show(v)}")
-        else:
-            return int(v)
-        return None
-
-    def string(self, v, path) -> str | None:
-        if isinstance(v, str):
-            return v
-        self.add(path, f"expected a string, got {_show(v)}")
-        return None
-
-    def vector(self, v, path, n=3, scalar_ok=False) -> tuple[float, ...] | None:
-        what = f"a number or {n} numbers" if scalar_ok else f"{n} numbers"
-        if scalar_ok and _is_number(v):
-            v = [v] * n
-        if not (isinstance(v, list) and len(v) == n and all(_is_number(c) for c in v)):
-            self.add(path, f"expected {what}, got {_show(v)}")
-        elif not all(_finite(c) for c in v):
-            self.add(path, f"expected {n} finite numbers, got {_show(v)}")
-        elif _too_big(v):
-            self.add(path, f"numbers must be within ±{MAX_MAGNITUDE:,.0f}, got {_show(v)}")
-        else:
-            return tuple(float(c) for c in v)
-        return None
-
-    def color(self, v, path) -> tuple[float, ...] | None:
-        rgb = self.vector(v, path)
-        if rgb is not None and not all(0.0 <= c <= 1.0 for c in rgb):
-            self.add(path, f"colour components must be in [0, 1], got {_show(v)}")
-            return None
-        return rgb
-
-    def listing(self, v, path) -> list:
-        if isinstance(v, list):
-            return v
-        self.add(path, f"expected a list [...], got {_show(v)}")
-        return []
-
-    def capped_fields(self, path: str, items: list[tuple[str, str]], total: int, what: str) -> None:
-        """Report problems of fields ``path.key``, at most MAX_LISTED of the ``total``."""
-        for key, message in items[:MAX_LISTED]:
-            self.add(_join(path, key), message)
-        if total > MAX_LISTED:
-            self.add(path or "top level", f"... and {total - MAX_LISTED:,} more {what}")
-
-    def capped(self, path: str, items: list[tuple[int, str]]) -> None:
-        """Report per-element problems ``path[k]``, at most MAX_LISTED of them."""
-        for k, message in items[:MAX_LISTED]:
-            self.add(f"{path}[{k}]", message)
-        if len(items) > MAX_LISTED:
-            self.add(path, f"... and {len(items) - MAX_LISTED} more like these")
-
 
 # --- the parts of a scene ----------------------------------------------------
 
 
-def _read_camera(r: _Reader, value, path="camera") -> Camera:
+def read_camera(r: Reader, value, path="camera") -> Camera:
+    """The ``camera`` object at ``path``: every field checked, problems in ``r``; defaults for the rest."""
     known = [f.name for f in fields(Camera)]
     d = r.fields(value, path, known) or {}
     values, bad = {}, set()
     for key, v in d.items():
-        p = _join(path, key)
+        p = join(path, key)
         if key in ("eye", "target", "up"):
             got = r.vector(v, p)
         elif key in ("fov_y_deg", "near", "far", "ortho_height"):
@@ -287,12 +119,12 @@ def _read_camera(r: _Reader, value, path="camera") -> Camera:
         elif key == "projection":
             got = r.string(v, p)
             if got is not None and got not in PROJECTIONS:
-                r.add(p, f"must be one of {', '.join(PROJECTIONS)}, got {_show(v)}")
+                r.add(p, f"must be one of {', '.join(PROJECTIONS)}, got {show(v)}")
                 got = None
         elif key in ("width", "height"):
             got = r.integer(v, p)
             if got is not None and got > MAX_IMAGE_SIZE:
-                r.add(p, f"must be <= {MAX_IMAGE_SIZE} pixels, got {_show(got)}")
+                r.add(p, f"must be <= {MAX_IMAGE_SIZE} pixels, got {show(got)}")
                 got = None
         else:
             continue  # unknown, already reported
@@ -304,7 +136,7 @@ def _read_camera(r: _Reader, value, path="camera") -> Camera:
     involves = {"target": {"eye", "target"}, "up": {"eye", "target", "up"}, "far": {"near", "far"}}
     for key, message in camera_problems(camera):
         if not involves.get(key, {key}) & bad:
-            r.add(_join(path, key), message)
+            r.add(join(path, key), message)
     return camera
 
 
@@ -330,7 +162,7 @@ def _read_material(r: _Reader, value, path) -> Material:
     d = r.fields(value, path, known) or {}
     values = {}
     for key, v in d.items():
-        p = _join(path, key)
+        p = join(path, key)
         if key == "color":
             got = r.color(v, p)
         elif key in _MATERIAL_UNIT:
@@ -385,23 +217,23 @@ def _read_inline_mesh(r: _Reader, d: dict, path: str):
     ts = r.listing(d["triangles"], f"{path}.triangles") if "triangles" in d else []
     bad_v = []
     for k, v in enumerate(vs):
-        if not (isinstance(v, list) and len(v) == 3 and all(_is_number(c) for c in v)):
-            bad_v.append((k, f"expected 3 numbers, got {_show(v)}"))
-        elif not all(_finite(c) for c in v):
-            bad_v.append((k, f"expected 3 finite numbers, got {_show(v)}"))
-        elif _too_big(v):
-            bad_v.append((k, f"numbers must be within ±{MAX_MAGNITUDE:,.0f}, got {_show(v)}"))
+        if not (isinstance(v, list) and len(v) == 3 and all(is_number(c) for c in v)):
+            bad_v.append((k, f"expected 3 numbers, got {show(v)}"))
+        elif not all(finite(c) for c in v):
+            bad_v.append((k, f"expected 3 finite numbers, got {show(v)}"))
+        elif too_big(v):
+            bad_v.append((k, f"numbers must be within ±{MAX_MAGNITUDE:,.0f}, got {show(v)}"))
     r.capped(f"{path}.vertices", bad_v)
     if isinstance(d.get("vertices"), list) and len(vs) < 3:
         r.add(f"{path}.vertices", f"a mesh needs at least 3 vertices, got {len(vs)}")
     bad_t, good_t = [], []
     for k, t in enumerate(ts):
-        if not (isinstance(t, list) and len(t) == 3 and all(_is_integer(i) for i in t)):
-            bad_t.append((k, f"expected 3 whole-number vertex indices, got {_show(t)}"))
+        if not (isinstance(t, list) and len(t) == 3 and all(is_integer(i) for i in t)):
+            bad_t.append((k, f"expected 3 whole-number vertex indices, got {show(t)}"))
         elif len(vs) < 3:
             continue  # the vertices are the problem
         elif not all(0 <= i < len(vs) for i in t):
-            bad_t.append((k, f"vertex index out of range in {_show(t)}: there are "
+            bad_t.append((k, f"vertex index out of range in {show(t)}: there are "
                              f"{len(vs)} vertices, indices 0 to {len(vs) - 1}"))
         else:
             good_t.append(k)
@@ -411,7 +243,7 @@ def _read_inline_mesh(r: _Reader, d: dict, path: str):
         vertices = np.array(vs, dtype=float)
         triangles = np.array([ts[k] for k in good_t], dtype=np.int64)
         for k in np.flatnonzero(degenerate(vertices, triangles)):
-            bad_t.append((good_t[k], f"degenerate triangle (zero area): {_show(ts[good_t[k]])}"))
+            bad_t.append((good_t[k], f"degenerate triangle (zero area): {show(ts[good_t[k]])}"))
     r.capped(f"{path}.triangles", sorted(bad_t))
     if bad_v or bad_t or len(vs) < 3 or not ts:
         return None
@@ -463,7 +295,7 @@ def _read_mesh_file(r: _Reader, d: dict, path: str, base_dir, read_mesh):
 def _read_primitive(r: _Reader, type_name: str, d: dict, path: str) -> dict:
     values = {}
     for param in shapes.PRIMITIVES[type_name].params:
-        p = _join(path, param.name)
+        p = join(path, param.name)
         if param.name not in d:
             if param.default is shapes.REQUIRED:
                 continue  # reported as missing
@@ -479,7 +311,7 @@ def _read_primitive(r: _Reader, type_name: str, d: dict, path: str) -> dict:
         if got is not None:
             values[param.name] = got
     for key, message in shapes.param_problems(type_name, values):
-        r.add(_join(path, key), message)
+        r.add(join(path, key), message)
     return values
 
 
@@ -494,7 +326,7 @@ def _primitive_triangles(type_name: str, values: dict) -> int:
 
 def _read_object(r: _Reader, value, path, base_dir, read_mesh):
     if not isinstance(value, dict):
-        r.add(path, f"expected an object {{...}}, got {_show(value)}")
+        r.add(path, f"expected an object {{...}}, got {show(value)}")
         return None
     if "type" not in value:
         r.add(f"{path}.type", f"required field is missing (one of: {', '.join(OBJECT_TYPES)})")
@@ -502,7 +334,7 @@ def _read_object(r: _Reader, value, path, base_dir, read_mesh):
     type_name = value["type"]
     if type_name not in OBJECT_TYPES:
         r.add(f"{path}.type",
-              f"unknown object type {_show(type_name)}; known types: {', '.join(OBJECT_TYPES)}")
+              f"unknown object type {show(type_name)}; known types: {', '.join(OBJECT_TYPES)}")
         return None
     own = _TYPE_FIELDS[type_name]
     required = own if type_name in ("sphere", "mesh", "mesh_file") else [
@@ -593,26 +425,6 @@ def read_object(value, index: int, count: int, triangles_elsewhere: int = 0, bas
     return obj
 
 
-def _nesting_depth(value) -> int:
-    """How deeply JSON arrays and objects nest in ``value`` (without recursion)."""
-    deepest, stack = 0, [(value, 0)]
-    while stack:
-        v, depth = stack.pop()
-        if isinstance(v, (dict, list)):
-            depth += 1
-            deepest = max(deepest, depth)
-            if depth <= MAX_NESTING:
-                stack.extend((c, depth) for c in (v.values() if isinstance(v, dict) else v))
-    return deepest
-
-
-def _parse_int(text: str) -> int:
-    if len(text.lstrip("-")) > MAX_DIGITS:
-        raise ValueError(f"a whole number with {len(text.lstrip('-')):,} digits "
-                         f"(numbers must be within ±{MAX_MAGNITUDE:,.0f})")
-    return int(text)
-
-
 def from_dict(d, base_dir=None, read_mesh: MeshReader | None = None) -> Scene:
     """Build a scene from the parsed JSON of a scene file.
 
@@ -631,19 +443,15 @@ def from_dict(d, base_dir=None, read_mesh: MeshReader | None = None) -> Scene:
         Listing every problem found.
     """
     r = _Reader()
-    if _nesting_depth(d) > MAX_NESTING:
+    if nesting_depth(d, MAX_NESTING) > MAX_NESTING:
         raise SceneFileError([f"top level: arrays and objects nested more than {MAX_NESTING} "
                               "levels deep (a scene needs 5)"])
     known = ["format", "version", "camera", "background", "lights", "objects"]
     data = r.fields(d, "", known)
     if data is None:
         raise SceneFileError(r.problems)
-    if "format" in data and data["format"] != FORMAT:
-        r.add("format", f"expected {json.dumps(FORMAT)}, got {_show(data['format'])}")
-    if "version" in data and (not _is_integer(data["version"]) or data["version"] != VERSION):
-        r.add("version", f"unsupported version {_show(data['version'])}; "
-                         f"this program reads version {VERSION}")
-    camera = _read_camera(r, data.get("camera", {}))
+    r.header(data, FORMAT, VERSION)
+    camera = read_camera(r, data.get("camera", {}))
     background = Scene().background
     if "background" in data:
         background = r.color(data["background"], "background") or background
@@ -671,46 +479,11 @@ def load(path_or_dict, read_mesh: MeshReader | None = None) -> Scene:
     if isinstance(path_or_dict, dict):
         return from_dict(path_or_dict, read_mesh=read_mesh)
     path = Path(path_or_dict)
-    data = read_json(path, MAX_FILE_BYTES)
+    data = read_json(path, MAX_FILE_BYTES, SceneFileError)
     try:
         return from_dict(data, base_dir=path.parent, read_mesh=read_mesh)
     except SceneFileError as exc:
         raise SceneFileError(exc.problems, str(path)) from None
-
-
-def read_json(path, limit_bytes: int):
-    """The parsed JSON of the file ``path``, read as guardedly as a scene file.
-
-    Only a regular file of at most ``limit_bytes`` is read (checked before it
-    is opened, see :mod:`core.files.safe_files`), as UTF-8 (a BOM is skipped);
-    whole numbers longer than :data:`MAX_DIGITS` digits are refused while
-    parsing, and objects remember their repeated keys (``duplicates``) for
-    :meth:`_Reader.fields` to report.  Lesson files are read the same way.
-
-    Raises
-    ------
-    SceneFileError
-        With the one problem (the file's place in the text, where JSON is
-        invalid) and ``where`` = the path.
-    """
-    problem = safe_files.input_file_problem(path, limit_bytes)
-    if problem is not None:
-        raise SceneFileError([problem], str(path))
-    try:
-        text = safe_files.read_bytes_limited(path, limit_bytes).decode("utf-8-sig")
-    except UnicodeDecodeError:
-        raise SceneFileError(["not a text file (UTF-8 JSON expected)"], str(path)) from None
-    except OSError as exc:
-        raise SceneFileError([f"cannot read the file: {exc.strerror or exc}"], str(path)) from None
-    try:
-        return json.loads(text, object_pairs_hook=_json_object, parse_int=_parse_int)
-    except json.JSONDecodeError as exc:
-        problem = f"line {exc.lineno}, column {exc.colno}: invalid JSON: {exc.msg}"
-        raise SceneFileError([problem], str(path)) from None
-    except RecursionError:
-        raise SceneFileError(["invalid JSON: nested too deeply"], str(path)) from None
-    except ValueError as exc:  # from _parse_int
-        raise SceneFileError([f"invalid JSON: {exc}"], str(path)) from None
 
 
 # --- writing -----------------------------------------------------------------

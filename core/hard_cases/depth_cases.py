@@ -24,6 +24,7 @@ from core.camera import Camera
 from core.hard_cases.result import CaseImage, CaseResult, Parameter, Row
 from core.object_order import rasterization
 from core.object_order.depth_formats import DEPTH_FORMATS, depth_keys
+from core.object_order.zbuffer import depth_test
 
 #: Far plane distance, gap between the floors and the eye's height above them (scene units).
 FAR, GAP, EYE_HEIGHT = 100.0, 0.01, 2.0
@@ -72,11 +73,12 @@ def _camera(ratio: float) -> Camera:
 
 
 def _second_hidden(first: np.ndarray, second: np.ndarray, fmt: str) -> np.ndarray:
-    """Pixels both cover where the polygon drawn second fails the strict test ``z < stored``."""
+    """Pixels both cover where the polygon drawn second fails the z-test (strictly nearer passes,
+    :func:`core.object_order.zbuffer.depth_test`)."""
     both = ~np.isnan(first) & ~np.isnan(second)
     k1 = depth_keys(np.where(both, first, 1.0), fmt)
     k2 = depth_keys(np.where(both, second, 1.0), fmt)
-    return both & ~(k2 < k1)
+    return both & ~depth_test(k2, k1)
 
 
 def _picture(far_depth, near_depth, fmt) -> np.ndarray:

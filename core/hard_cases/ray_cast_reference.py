@@ -16,23 +16,24 @@ from __future__ import annotations
 
 import numpy as np
 
-from core.camera import Camera
-from core.first_look import first_crossings
+from core.barycentric_crossings import first_crossings
+from core.camera import Camera, pixel_ray
 
 #: Distance (pixels) of the four extra samples from the pixel centre.
 JITTER = 1.0 / 64.0
 
 
 def _rays(camera: Camera, dx: float, dy: float) -> tuple[np.ndarray, np.ndarray]:
-    """Perspective rays through pixel positions ``(i + 0.5 + dx, j + 0.5 + dy)``, (H*W, 3) each."""
-    w, h = camera.width, camera.height
-    hw, hh = camera.half_extent(1.0)
-    xs = ((np.arange(w) + 0.5 + dx) / w * 2.0 - 1.0) * hw
-    ys = (1.0 - (np.arange(h) + 0.5 + dy) / h * 2.0) * hh
-    px, py = np.meshgrid(xs, ys)
-    view = np.stack([px, py, -np.ones_like(px)], axis=-1).reshape(-1, 3)
-    directions = view @ camera.world_from_view[:3, :3].T
-    return np.broadcast_to(np.asarray(camera.eye, float), directions.shape), directions
+    """The rays of :func:`core.camera.pixel_ray` through pixel positions ``(i + 0.5 + dx, j + 0.5 + dy)``,
+    (H*W, 3) each, each direction scaled to length 1 along the viewing axis (so ``t`` is depth)."""
+    x, y = np.meshgrid(np.arange(camera.width) + dx, np.arange(camera.height) + dy)
+    eye, forward = tuple(map(float, camera.eye)), tuple(camera.forward.tolist())
+    _, direction, _, _ = pixel_ray(
+        x, y, float(camera.width), float(camera.height), *camera.half_extent(1.0), eye,
+        tuple(camera.world_from_view[:3, :3].ravel().tolist()), forward, camera.near, camera.far, False)
+    d = np.stack(direction, axis=-1).reshape(-1, 3)
+    d /= (d @ camera.forward)[:, None]
+    return np.broadcast_to(np.asarray(eye), d.shape), d
 
 
 def nearest_triangle(camera: Camera, triangles: np.ndarray, dx: float = 0.0, dy: float = 0.0) -> np.ndarray:
@@ -50,10 +51,11 @@ def nearest_triangle(camera: Camera, triangles: np.ndarray, dx: float = 0.0, dy:
 
     Notes
     -----
-    The ray direction's view-space z is -1, so the crossing's ``t`` is its
-    depth along the viewing axis and the near/far test is ``near <= t <= far``.
-    The crossing is solved in float64 with barycentric weights (a sample on an
-    edge is decided either way; :func:`reference` discards such pixels).
+    The ray direction is scaled to length 1 along the viewing axis, so the
+    crossing's ``t`` is its depth and the near/far test is ``near <= t <= far``.
+    The crossing is solved in float64 with barycentric weights
+    (:func:`core.barycentric_crossings.first_crossings`; a sample on an edge is
+    decided either way, :func:`reference` discards such pixels).
     """
     o, d = _rays(camera, dx, dy)
     first, _ = first_crossings(np.ascontiguousarray(o), d, triangles, camera.near, camera.far)

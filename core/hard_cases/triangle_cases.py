@@ -20,6 +20,7 @@ from fractions import Fraction
 import numpy as np
 
 from core import shapes
+from core.barycentric_crossings import crossings, nearest
 from core.camera import Camera
 from core.hard_cases.result import CaseImage, CaseResult, Parameter, Row
 from core.image_order.intersect_triangle import intersect_triangle
@@ -30,6 +31,9 @@ MT_EPSILON = 1e-8
 
 def textbook_moller_trumbore(origins, directions, A, B, C, eps: float = MT_EPSILON):
     """Möller–Trumbore as the textbook writes it, for R rays against T triangles at once.
+
+    The solve is :func:`core.barycentric_crossings.crossings`; the textbook's
+    tests on its result are these.
 
     Parameters
     ----------
@@ -42,16 +46,7 @@ def textbook_moller_trumbore(origins, directions, A, B, C, eps: float = MT_EPSIL
     hit : (R, T) bool
     t : (R, T) float64 (NaN or inf where ``det`` is 0)
     """
-    e1, e2 = B - A, C - A
-    h = np.cross(directions[:, None, :], e2[None])
-    det = np.einsum("rtk,tk->rt", h, e1)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        inv = 1.0 / det
-        s = origins[:, None, :] - A[None]
-        u = inv * np.einsum("rtk,rtk->rt", s, h)
-        q = np.cross(s, e1[None])
-        v = inv * np.einsum("rk,rtk->rt", directions, q)
-        t = inv * np.einsum("tk,rtk->rt", e2, q)
+    det, u, v, t = crossings(origins, directions, A, B, C)
     hit = (np.abs(det) >= eps) & (u >= 0) & (u <= 1) & (v >= 0) & (u + v <= 1) & (t > eps)
     return hit, t
 
@@ -107,10 +102,8 @@ def _shade(vertices, triangles, normals, camera, light):
     origins, directions = camera.primary_rays()
     o, d = origins.reshape(-1, 3), directions.reshape(-1, 3)
     A, B, C = (vertices[triangles[:, k]] for k in range(3))
-    hit, t = textbook_moller_trumbore(o, d, A, B, C)
-    t = np.where(hit, t, np.inf)
-    first = np.argmin(t, axis=1)
-    seen = np.isfinite(t[np.arange(len(t)), first])
+    first, _ = nearest(*textbook_moller_trumbore(o, d, A, B, C))
+    seen = first >= 0
     lambert = np.clip(normals[first] @ light, 0.0, 1.0)
     grey = np.where(seen, 0.15 + 0.6 * lambert, 0.03)
     return np.repeat(grey.reshape(camera.height, camera.width, 1), 3, axis=2)

@@ -5,7 +5,7 @@ turns what the window shows (scene and observer, panes, settings, z-buffer step,
 picked pixel) and the words typed into a form into one step of the lesson-file
 format, and :func:`add_step` appends it to a lesson file (a new lesson when the
 file does not exist yet), checks that the file still loads (a
-:class:`core.lessons.LessonFileError` names the field path of anything wrong, and
+:class:`core.files.lesson_file.LessonFileError` names the field path of anything wrong, and
 nothing is written), and writes it atomically.  Loading the file and applying
 the step shows the same window state again.
 """
@@ -18,8 +18,8 @@ from dataclasses import asdict
 from pathlib import Path
 
 from core.files import scene_file
+from core.files.lesson_file import FORMAT, VERSION, Lesson, LessonFileError, from_dict
 from core.files.safe_files import write_atomic
-from core.lessons import FORMAT, VERSION, Lesson, LessonFileError, from_dict
 
 
 def step_record(*, title: str, text: str, scene, panes, image_order, object_order,

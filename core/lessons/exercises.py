@@ -55,9 +55,9 @@ from types import MappingProxyType
 
 import numpy as np
 
-from core.files.scene_file import _join, _show
+from core.files.checked_json import join, show
 from core.lessons import facts as facts_mod
-from core.lessons.facts import StepPipelines, check_fact, read_fact, read_list, read_tagged
+from core.lessons.facts import StepPipelines, check_fact, read_fact, read_list, read_pixel, read_tagged
 
 KINDS = ("choose_one", "click_pixel", "number", "order", "pick_picture")
 VIEWS = ("front", "side", "top", "observer")
@@ -150,9 +150,9 @@ def read_exercises(r, value, path: str, steps) -> tuple[Exercise, ...]:
 
 def _read(r, value, path: str, steps) -> Exercise | None:
     if isinstance(value, dict) and "variants" in value:
-        listed = r.listing(value["variants"], _join(path, "variants"))
+        listed = r.listing(value["variants"], join(path, "variants"))
         if not listed:
-            r.add(_join(path, "variants"), "give at least one variant")
+            r.add(join(path, "variants"), "give at least one variant")
             return None
         base = {k: v for k, v in value.items() if k != "variants"}
         drawn = []
@@ -171,48 +171,48 @@ def _read(r, value, path: str, steps) -> Exercise | None:
     kind, d = tagged
     required = _FIELDS[kind][0]
     before = len(r.problems)
-    question = r.string(d.get("question", ""), _join(path, "question")) or ""
-    why = r.string(d.get("why", ""), _join(path, "why")) or ""
+    question = r.string(d.get("question", ""), join(path, "question")) or ""
+    why = r.string(d.get("why", ""), join(path, "why")) or ""
     step = len(steps) - 1
     if "step" in d:
-        step = r.integer(d["step"], _join(path, "step"))
+        step = r.integer(d["step"], join(path, "step"))
         if step is not None and not 0 <= step < len(steps):
-            r.add(_join(path, "step"), f"the lesson has steps 0 to {len(steps) - 1}, got {step}")
+            r.add(join(path, "step"), f"the lesson has steps 0 to {len(steps) - 1}, got {step}")
             return None
     if step is None or any(key not in d for key in required):
         return None
     scene = steps[step].scene
     args = {}
     if kind == "choose_one":
-        listed = r.listing(d["choices"], _join(path, "choices"))
+        listed = r.listing(d["choices"], join(path, "choices"))
         choices = []
         for i, c in enumerate(listed):
             if c is not None and not isinstance(c, (str, bool)):
-                r.add(f"{path}.choices[{i}]", f"expected a name, true, false or null, got {_show(c)}")
+                r.add(f"{path}.choices[{i}]", f"expected a name, true, false or null, got {show(c)}")
             choices.append(c)
         if len(choices) < 2:
-            r.add(_join(path, "choices"), "give at least two choices")
+            r.add(join(path, "choices"), "give at least two choices")
         for i, choice in enumerate(choices):  # each choice must make a readable fact
             read_fact(r, _substituted(d["fact"], "$choice", choice), f"{path}.fact (choice {i})", scene)
         args.update(choices=tuple(choices), fact=MappingProxyType(dict(d["fact"])))
     elif kind == "click_pixel":
         if not isinstance(d["fact"], dict) or "$pixel" not in d["fact"].values():
-            r.add(_join(path, "fact"), 'the fact must say "pixel": "$pixel" (the clicked pixel)')
+            r.add(join(path, "fact"), 'the fact must say "pixel": "$pixel" (the clicked pixel)')
         else:
-            read_fact(r, _substituted(d["fact"], "$pixel", [0, 0]), _join(path, "fact"), scene)
+            read_fact(r, _substituted(d["fact"], "$pixel", [0, 0]), join(path, "fact"), scene)
         args.update(fact=MappingProxyType(dict(d["fact"])) if isinstance(d["fact"], dict) else None)
     elif kind == "number":
-        args.update(value=_read_number(r, d["value"], _join(path, "value"), scene),
-                    tolerance=r.number(d["tolerance"], _join(path, "tolerance"), ge=0))
+        args.update(value=_read_number(r, d["value"], join(path, "value"), scene),
+                    tolerance=r.number(d["tolerance"], join(path, "tolerance"), ge=0))
     elif kind == "pick_picture":
         if d["view"] not in VIEWS:
-            r.add(_join(path, "view"), f"unknown view {_show(d['view'])} (known: {', '.join(VIEWS)})")
+            r.add(join(path, "view"), f"unknown view {show(d['view'])} (known: {', '.join(VIEWS)})")
         args.update(view=d["view"])
     else:
-        listed = r.listing(d["items"], _join(path, "items"))
+        listed = r.listing(d["items"], join(path, "items"))
         items = [r.string(c, f"{path}.items[{i}]") for i, c in enumerate(listed)]
         if d["by"] not in ORDERS:
-            r.add(_join(path, "by"), f"unknown order {_show(d['by'])} (known: {', '.join(ORDERS)})")
+            r.add(join(path, "by"), f"unknown order {show(d['by'])} (known: {', '.join(ORDERS)})")
         elif d["by"] == "ray_tree_colours":
             _read_ray_paths(r, items, d.get("pixel"), path, scene)
             args["pixel"] = tuple(d["pixel"]) if isinstance(d.get("pixel"), list) else None
@@ -230,12 +230,10 @@ def _read(r, value, path: str, steps) -> Exercise | None:
 
 def _read_ray_paths(r, items, pixel, path: str, scene) -> None:
     """Check a ``ray_tree_colours`` order's ``pixel`` and its items, rays named by their paths."""
-    from core.lessons import _pixel  # the loader's own check (it imports this module first)
-
     if pixel is None:
-        r.add(_join(path, "pixel"), "required field is missing (the pixel whose ray tree is ordered)")
+        r.add(join(path, "pixel"), "required field is missing (the pixel whose ray tree is ordered)")
     else:
-        _pixel(r, pixel, _join(path, "pixel"), scene)
+        read_pixel(r, pixel, join(path, "pixel"), scene)
     for i, item in enumerate(items):
         kinds = item.split("/") if item is not None else None
         if kinds is not None and (kinds[0] != "primary" or any(k not in RAY_STEPS for k in kinds[1:])):
@@ -257,29 +255,29 @@ def _read_number(r, value, path: str, scene):
                                "value", "component", "pixel", "after", "object", "channel"), ("of",))
     if d is None or d.get("of") not in NUMBERS:
         if d is not None:
-            r.add(_join(path, "of"), f"unknown quantity {_show(d.get('of'))} (known: {', '.join(NUMBERS)})")
+            r.add(join(path, "of"), f"unknown quantity {show(d.get('of'))} (known: {', '.join(NUMBERS)})")
         return None
     of = d["of"]
     if of in ("ray_sphere", "ray_triangle"):  # read as the fact of that name, with a dummy answer
         given = {k: v for k, v in d.items() if k not in ("of", "component")}
         fact = read_fact(r, {**given, "fact": of, "equals": 0}, path, scene)
-        component = r.integer(d["component"], _join(path, "component")) if "component" in d else None
+        component = r.integer(d["component"], join(path, "component")) if "component" in d else None
         if component is not None and component not in (0, 1, 2):
-            r.add(_join(path, "component"), f"0 (x), 1 (y) or 2 (z), got {component}")
+            r.add(join(path, "component"), f"0 (x), 1 (y) or 2 (z), got {component}")
         return None if fact is None else MappingProxyType({"of": of, "component": component, **fact.args})
     needs = {"depth": ("pixel",), "hit_t": ("pixel",), "blend": ("pixel", "object", "channel")}[of]
     for key in needs:
         if key not in d:
-            r.add(_join(path, key), "required field is missing")
+            r.add(join(path, key), "required field is missing")
     fact = read_fact(r, {"fact": "zbuffer_keeps", "pixel": d.get("pixel"), "object": d.get("object"),
                          **({"after": d["after"]} if "after" in d else {})}, path, scene)
     if fact is None:
         return None
     out = {"of": of, "pixel": fact.args["pixel"], "after": fact.args.get("after"), "object": d.get("object")}
     if of == "blend":
-        channel = r.integer(d["channel"], _join(path, "channel"))
+        channel = r.integer(d["channel"], join(path, "channel"))
         if channel is not None and channel not in (0, 1, 2):
-            r.add(_join(path, "channel"), f"0 (red), 1 (green) or 2 (blue), got {channel}")
+            r.add(join(path, "channel"), f"0 (red), 1 (green) or 2 (blue), got {channel}")
         out["channel"] = channel
     return MappingProxyType(out)
 

@@ -67,7 +67,7 @@ from types import MappingProxyType
 
 import numpy as np
 
-from core.files.scene_file import _join, _show
+from core.files.checked_json import is_integer, join, show
 from core.image_order.kernels.layout import ACCEL_CODES, HEAT_BOUNDS_TESTS, HEAT_PRIM_TESTS
 from core.image_order.ray_tree import KINDS as RAY_KINDS
 from core.object_order.clipping import PLANES
@@ -157,7 +157,7 @@ class Fact:
             return f"{a['accel']} {'costs' if yes else 'does not cost'} fewer {a.get('tests', _TESTS)} " \
                    f"a pixel than {a['fewer_than']}"
         tolerance = a.get("tolerance", DEFAULT_TOLERANCE)
-        return f"{self.kind} {a['value']} = {_show(a['equals'])} (within {tolerance:g})"
+        return f"{self.kind} {a['value']} = {show(a['equals'])} (within {tolerance:g})"
 
 
 _TESTS = "primitive tests"
@@ -179,7 +179,7 @@ def _part(a) -> str:
 
 def read_list(r, value, path: str, read_one, *context) -> tuple:
     """Each item of the list at ``path``, read by ``read_one(r, item, item_path, *context)``; the bad ones
-    are left out, their problems in ``r`` (a :class:`core.files.scene_file._Reader`)."""
+    are left out, their problems in ``r`` (a :class:`core.files.checked_json.Reader`)."""
     items = (read_one(r, item, f"{path}[{k}]", *context) for k, item in enumerate(r.listing(value, path)))
     return tuple(item for item in items if item is not None)
 
@@ -198,11 +198,11 @@ def read_tagged(r, value, path: str, key: str, fields, thing: str, kind_word: st
     names, ``key`` among them): its kind and its fields, checked; None (and problems in ``r``) if bad.
     ``thing`` ("a fact") and ``kind_word`` ("fact") name it in the messages."""
     if not isinstance(value, dict):
-        r.add(path, f"expected {thing} object {{\"{key}\": ...}}, got {_show(value)}")
+        r.add(path, f"expected {thing} object {{\"{key}\": ...}}, got {show(value)}")
         return None
     kind = value.get(key)
     if kind not in fields:
-        r.add(_join(path, key), f"unknown {kind_word} {_show(kind)} (known: {', '.join(fields)})")
+        r.add(join(path, key), f"unknown {kind_word} {show(kind)} (known: {', '.join(fields)})")
         return None
     required, optional = fields[kind]
     return kind, r.fields(value, path, (*required, *optional), required)
@@ -219,7 +219,7 @@ def read_fact(r, value, path: str, scene: Scene | None) -> Fact | None:
     args = {}
     for key, v in d.items():
         if key != "fact" and key in required + optional:
-            args[key] = _read_arg(r, kind, key, v, _join(path, key), scene, d)
+            args[key] = _read_arg(r, kind, key, v, join(path, key), scene, d)
     if kind == "ray_sphere" and ("end" in d) == ("direction" in d):
         r.add(path, 'give either "end" (the lecture\'s segment) or "direction" (a ray), not both or neither')
     if len(r.problems) > before or any(key not in d for key in required):
@@ -231,32 +231,17 @@ def _read_arg(r, kind: str, key: str, v, path: str, scene: Scene | None, d: dict
     if key == "object":
         if v is None and kind in ("first_hit", "zbuffer_keeps"):
             return None
-        name = r.string(v, path)
-        names = [o.name for o in scene.objects] if scene is not None else None
-        if name is not None and names is not None and name not in names:
-            r.add(path, f"no object {name!r} in the scene (objects: {', '.join(names)})")
-        return name
+        return read_object_name(r, v, path, scene)
     if key == "pixel":
-        from core.lessons import _pixel  # the loader's own check (it imports this module first)
-
-        return _pixel(r, v, path, scene)
+        return read_pixel(r, v, path, scene)
     if key == "is":
         if kind == "frustum":
-            return _one_of(r, v, path, FRUSTUM_STATES, "frustum state")
+            return r.choice(v, path, FRUSTUM_STATES, "frustum state")
         if not isinstance(v, bool):
-            r.add(path, f"expected true or false, got {_show(v)}")
+            r.add(path, f"expected true or false, got {show(v)}")
         return v
     if key in ("triangle", "vertex"):
-        index = r.integer(v, path)
-        obj = _object(scene, d.get("object"))
-        if index is not None and obj is not None:
-            if isinstance(obj, Sphere):
-                r.add(path, f"{obj.name!r} is an analytic sphere: it has no {key}s")
-                return None
-            count = len(obj.triangles if key == "triangle" else obj.vertices)
-            if not 0 <= index < count:
-                r.add(path, f"must be in [0, {count - 1}] ({obj.name!r} has {count}), got {index}")
-        return index
+        return read_part_index(r, v, path, object_named(scene, d.get("object")), key)
     if key in ("after", "light", "hit", "count"):
         got = r.integer(v, path)
         low = 1 if key == "hit" else 0
@@ -266,25 +251,25 @@ def _read_arg(r, kind: str, key: str, v, path: str, scene: Scene | None, d: dict
             r.add(path, f"the scene has {len(scene.lights)} light(s), numbered from 0; got {got}")
         return got
     if key == "plane":
-        return _one_of(r, v, path, PLANES, "plane")
+        return r.choice(v, path, PLANES, "plane")
     if key == "event":
-        return _one_of(r, v, path, EVENTS, "event")
+        return r.choice(v, path, EVENTS, "event")
     if key == "kind":
-        return _one_of(r, v, path, RAY_KINDS, "ray kind")
+        return r.choice(v, path, RAY_KINDS, "ray kind")
     if key in ("accel", "fewer_than"):
-        return _one_of(r, v, path, tuple(ACCEL_CODES), "acceleration method")
+        return r.choice(v, path, tuple(ACCEL_CODES), "acceleration method")
     if key == "tests":
-        return _one_of(r, v, path, tuple(HEAT_TESTS), "count")
+        return r.choice(v, path, tuple(HEAT_TESTS), "count")
     if key == "front_face":
         if not isinstance(v, bool):
-            r.add(path, f"expected true or false, got {_show(v)}")
+            r.add(path, f"expected true or false, got {show(v)}")
         return v
     if key == "t":
         return r.number(v, path)
     if key in ("tolerance", "radius"):
         return r.number(v, path, ge=0) if key == "tolerance" else r.number(v, path, gt=0)
     if key == "value":
-        return _one_of(r, v, path, SPHERE_VALUES if kind == "ray_sphere" else TRIANGLE_VALUES, "value")
+        return r.choice(v, path, SPHERE_VALUES if kind == "ray_sphere" else TRIANGLE_VALUES, "value")
     if key == "equals":
         if isinstance(v, (bool, str)):
             return v
@@ -294,13 +279,53 @@ def _read_arg(r, kind: str, key: str, v, path: str, scene: Scene | None, d: dict
     return r.vector(v, path)  # origin, end, direction, center, point, a, b, c
 
 
-def _one_of(r, v, path: str, names, what: str):
-    from core.lessons import _choice  # the loader's own check (it imports this module first)
+def read_pixel(r, value, path: str, scene: Scene | None) -> tuple[int, int] | None:
+    """A pixel ``[x, y]`` (column and row from the top left) of ``scene``'s image; None (and a
+    problem in ``r``) if it is not two whole numbers or lies outside the image."""
+    if not (isinstance(value, list) and len(value) == 2 and all(is_integer(v) for v in value)):
+        r.add(path, f"expected two whole numbers [x, y], got {show(value)}")
+        return None
+    x, y = value
+    if scene is not None:
+        w, h = scene.camera.width, scene.camera.height
+        if not (0 <= x < w and 0 <= y < h):
+            r.add(path, f"pixel ({x}, {y}) lies outside the {w} x {h} image")
+            return None
+    return int(x), int(y)
 
-    return _choice(r, v, path, names, what)
+
+def read_object_name(r, value, path: str, scene: Scene | None) -> str | None:
+    """The name of one of ``scene``'s objects (any string when the scene is not known); None (and a
+    problem in ``r``) if there is no such object."""
+    name = r.string(value, path)
+    names = [o.name for o in scene.objects] if scene is not None else None
+    if name is not None and names is not None and name not in names:
+        r.add(path, f"no object {name!r} in the scene (objects: {', '.join(names)})")
+        return None
+    return name
 
 
-def _object(scene: Scene | None, name):
+_PARTS = {"triangle": "triangles", "vertex": "vertices"}
+
+
+def read_part_index(r, value, path: str, obj, part: str) -> int | None:
+    """The number of a ``part`` (``"triangle"`` or ``"vertex"``) of the mesh ``obj`` (any whole number
+    when ``obj`` is not known); None (and a problem in ``r``) if ``obj`` has no such part."""
+    index = r.integer(value, path)
+    if index is None or obj is None:
+        return index
+    if isinstance(obj, Sphere):
+        r.add(path, f"{obj.name!r} is an analytic sphere: it has no {_PARTS[part]}")
+        return None
+    count = len(obj.triangles if part == "triangle" else obj.vertices)
+    if not 0 <= index < count:
+        r.add(path, f"must be in [0, {count - 1}] ({obj.name!r} has {count}), got {index}")
+        return None
+    return index
+
+
+def object_named(scene: Scene | None, name):
+    """The object of ``scene`` called ``name``, or None (also when the scene is not known)."""
     if scene is None:
         return None
     return next((o for o in scene.objects if o.name == name), None)
@@ -314,7 +339,7 @@ class StepPipelines:
 
     Attributes
     ----------
-    step : the :class:`core.lessons.LessonStep`.
+    step : the :class:`core.files.lesson_file.LessonStep`.
     """
 
     def __init__(self, step):
@@ -504,7 +529,7 @@ def _projects_to(a, p):
     from core.projection import project_point
 
     scene = p.step.scene
-    obj = _object(scene, a["object"])
+    obj = object_named(scene, a["object"])
     cam = scene.camera
     point = project_point(obj.vertices[a["vertex"]] if isinstance(obj, Mesh) else obj.center,
                           cam.view_from_world, cam.clip_from_view, cam.width, cam.height)
@@ -575,7 +600,7 @@ def _value(a, result):
     got = getattr(result, a["value"])
     want = a["equals"]
     if isinstance(want, (bool, str)) or got is None or isinstance(got, (bool, np.bool_, str)):
-        return got == want, f"{a['value']} = {_show(got if not isinstance(got, np.bool_) else bool(got))}"
+        return got == want, f"{a['value']} = {show(got if not isinstance(got, np.bool_) else bool(got))}"
     tol = a.get("tolerance", DEFAULT_TOLERANCE)
     got_arr = np.atleast_1d(np.asarray(got, dtype=float))
     want_arr = np.atleast_1d(np.asarray(want, dtype=float))

@@ -125,7 +125,8 @@ def test_saving_a_scene_cut_short_keeps_the_old_scene_file(tmp_path, scene_path)
     old = scene_path.read_bytes()
     code = (
         "import resource, signal, sys\n"
-        "from core import presets, scene_file\n"
+        "from core import presets\n"
+        "from core.files import scene_file\n"
         "signal.signal(signal.SIGXFSZ, signal.SIG_IGN)\n"
         f"resource.setrlimit(resource.RLIMIT_FSIZE, ({len(old) // 2}, {len(old) // 2}))\n"
         "try:\n"

@@ -6,7 +6,7 @@ import json
 from PySide6.QtWidgets import QMessageBox
 from window_helpers import RENDER_TIMEOUT_MS
 
-from core.lessons import FILES, shipped_lessons
+from core.files.lesson_file import FILES, shipped_lessons
 
 LESSONS = {lesson.id: i for i, lesson in enumerate(shipped_lessons())}
 

@@ -8,7 +8,7 @@ from PySide6.QtGui import QScreen
 from vtkmodules.vtkRenderingCore import vtkTextRenderer
 from window_helpers import open_window
 
-from core.lessons import shipped_lessons
+from core.files.lesson_file import shipped_lessons
 from views.panels.image_order_panel import IMAGE_SHARE, TREE_ROWS
 
 LESSONS = {lesson.id: i for i, lesson in enumerate(shipped_lessons())}

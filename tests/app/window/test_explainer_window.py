@@ -10,7 +10,7 @@ from PySide6.QtCore import Qt
 from window_helpers import RENDER_TIMEOUT_MS
 
 from core import presets
-from core.lessons import shipped_lessons
+from core.files.lesson_file import shipped_lessons
 from core.object_order.depth_formats import DEPTH_FORMATS
 from core.scene import Mesh, Sphere
 from views.panels.cost_panel import CostPanel

@@ -6,7 +6,7 @@ from PySide6.QtGui import QImage, QSurface
 from window_helpers import RENDER_TIMEOUT_MS
 
 from core import presets
-from core.lessons import shipped_lessons
+from core.files.lesson_file import shipped_lessons
 
 
 def _drawn(view):

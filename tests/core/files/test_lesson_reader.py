@@ -11,7 +11,7 @@ import os
 import pytest
 
 from core.files import scene_file
-from core.lessons import FILES, MAX_CHARS, LessonFileError, load_lesson
+from core.files.lesson_file import FILES, MAX_CHARS, MAX_NESTING, LessonFileError, load_lesson
 
 SHIPPED = json.loads((FILES / "02_observer.json").read_text())
 
@@ -57,6 +57,21 @@ def test_a_step_text_longer_than_a_page_is_refused(tmp_path):
     limit = MAX_CHARS["text"]
     assert "steps[0].text: too long: 20,001 characters (at most 20,000)" in _refusal(
         tmp_path, _with_step(text="x" * (limit + 1)))
+
+
+def test_a_lesson_nested_past_its_own_limit_is_refused_at_the_top_level(tmp_path):
+    def notes_nested(levels: int) -> str:
+        notes = "words"
+        for _ in range(levels):
+            notes = [notes]
+        return _with_step(notes=notes)
+
+    # The lesson object, its steps list and the step object are 3 levels; the notes add the rest.
+    refused = _refusal(tmp_path, notes_nested(MAX_NESTING - 3 + 1))
+    assert refused == f"lesson file {tmp_path / 'lesson.json'}: top level: arrays and objects nested " \
+                      f"more than {MAX_NESTING} levels deep"
+    read = _refusal(tmp_path, notes_nested(MAX_NESTING - 3))  # at the limit: read, and notes is no string
+    assert "steps[0].notes: expected a string, got [[[" in read and "levels deep" not in read
 
 
 def test_200000_keys_one_repeated_are_answered_with_a_short_message(tmp_path):

@@ -7,7 +7,7 @@ from fractions import Fraction
 import numpy as np
 import pytest
 
-from core.lessons import LessonFileError, from_dict, shipped_lessons
+from core.files.lesson_file import LessonFileError, from_dict, shipped_lessons
 from core.lessons.exercises import a_right_pixel, check_exercises, judge, number, right_choices
 from core.lessons.facts import StepPipelines
 

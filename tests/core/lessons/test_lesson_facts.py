@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 from checkout import ROOT
 
-from core.lessons import FILES, LessonFileError, from_dict, load_lesson, shipped_lessons
+from core.files.lesson_file import FILES, LessonFileError, from_dict, load_lesson, shipped_lessons
 from core.lessons.facts import check_lesson
 
 LESSONS = shipped_lessons()

@@ -4,7 +4,7 @@ import pytest
 from verdict_scenes import _down
 
 from core.files import scene_file
-from core.lessons import LessonFileError, from_dict, shipped_lessons
+from core.files.lesson_file import LessonFileError, from_dict, shipped_lessons
 from core.lessons.facts import check_lesson
 from core.scene import Scene
 from core.shapes import box

@@ -9,10 +9,7 @@ import numpy as np
 import pytest
 
 from core import presets
-from core.image_order.flat_scene import TraceSettings
-from core.image_order.ray_tracing import render_trace
-from core.image_order.ray_tree import trace_pixel
-from core.lessons import (
+from core.files.lesson_file import (
     OVERLAYS,
     PANES,
     Lesson,
@@ -22,6 +19,9 @@ from core.lessons import (
     load_lesson,
     shipped_lessons,
 )
+from core.image_order.flat_scene import TraceSettings
+from core.image_order.ray_tracing import render_trace
+from core.image_order.ray_tree import trace_pixel
 from core.object_order.pipeline import render_raster
 from core.presets_trace import PRESETS_TRACE
 from core.scene import Material, Scene
@@ -206,6 +206,19 @@ def test_a_first_step_must_name_its_scene_and_panes_and_objects_must_exist():
                         "no object 'teapot' in the scene (objects: cube, cone, ground)"]
     problems = _problems(_lesson(steps=[{**GOOD_STEP, "camera": {"fov_y_deg": "wide"}}]))
     assert problems == ['steps[0].camera.fov_y_deg: expected a number, got "wide"']
+
+
+def test_a_highlight_and_a_fact_naming_a_part_of_an_analytic_sphere_get_the_same_message():
+    ball = {"objects": [{"type": "sphere", "name": "ball", "center": [0, 0, -5], "radius": 1}]}
+    step = {**GOOD_STEP, "scene": ball,
+            "highlight": {"face": {"object": "ball", "triangle": 0},
+                          "vertex": {"object": "ball", "index": 2}},
+            "facts": [{"fact": "projects_to", "object": "ball", "vertex": 2, "pixel": [0, 0]}]}
+    assert _problems(_lesson(steps=[step])) == [
+        "steps[0].highlight.face.triangle: 'ball' is an analytic sphere: it has no triangles",
+        "steps[0].highlight.vertex.index: 'ball' is an analytic sphere: it has no vertices",
+        "steps[0].facts[0].vertex: 'ball' is an analytic sphere: it has no vertices",
+    ]
 
 
 def test_broken_files_name_the_file_and_the_place(tmp_path):

@@ -6,7 +6,7 @@ import math
 import pytest
 from PySide6.QtCore import QSettings, Qt
 
-from core.lessons import shipped_lessons
+from core.files.lesson_file import shipped_lessons
 from views.panels.exercise_panel import FIRST_TRY, LATER, REVEALED, ExercisePanel, ExerciseProgress
 
 BY_ID = {lesson.id: lesson for lesson in shipped_lessons()}

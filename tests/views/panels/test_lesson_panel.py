@@ -6,7 +6,7 @@ import pytest
 from PySide6.QtCore import Qt
 from PySide6.QtWidgets import QMessageBox, QSpinBox, QVBoxLayout, QWidget
 
-from core.lessons import LessonStep, shipped_lessons
+from core.files.lesson_file import LessonStep, shipped_lessons
 from views.panels.lesson_panel import ClickerKeys, LessonPanel, lesson_label
 from views.text.math_view import MathView
 

@@ -13,10 +13,10 @@ import numpy as np
 import pytest
 
 from core import presets
+from core.files.lesson_file import shipped_lessons
 from core.image_order.intersect_sphere import intersect_sphere_segment
 from core.image_order.intersect_triangle import intersect_triangle
 from core.image_order.ray_tree import trace_pixel
-from core.lessons import shipped_lessons
 from views.text.math_view import MathView, MatrixView
 from views.text.worked_math import WorkedMath
 
