@@ -124,8 +124,7 @@ def test_zbuffer_keeps_the_nearest_polygon_at_each_variants_pixel(variant):
     ex, p = exercise("zbuffer", 0, variant)
     scene = _scene(p)
     assert _all_face_the_eye(scene)  # none is culled: the nearest crossing is kept
-    pixel = tuple(map(int, ex.question.split("pixel (")[1].split(")")[0].split(", ")))
-    assert_only(ex, p, hits(scene, *pixel_ray(scene.camera, *pixel))[0][1])
+    assert_only(ex, p, hits(scene, *pixel_ray(scene.camera, *ex.args["fact"]["pixel"]))[0][1])
 
 
 def test_zbuffer_a_click_where_yellow_is_nearest_is_right():
