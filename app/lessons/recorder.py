@@ -2,8 +2,9 @@
 
 A small form asks for the step's title, text and (optionally) its facts as JSON;
 the window's scene and observer, the panes shown (the one in front first), the
-image- and object-order settings, the z-buffer step and the picked pixel are
-recorded (:func:`core.lessons.authoring.step_record`) and appended to the lesson
+image- and object-order settings, the z-buffer step, the picked pixel, the 3D
+pane's viewpoint, the highlight of the lesson step shown and the image-order heat
+map are recorded (:func:`core.lessons.authoring.step_record`) and appended to the lesson
 file chosen (:func:`core.lessons.authoring.add_step`).  Any problem (bad facts,
 an unreadable file) is shown in one dialog, field path first; nothing is written.
 """
@@ -62,7 +63,25 @@ class LessonRecorder:
         panes = [front] + [p for p in shown if p != front]
         return step_record(title=title, text=text, scene=model.scene, panes=panes,
                            image_order=model.trace_settings, object_order=model.raster_settings,
-                           zbuffer_step=model.step, pixel=model.ray_pixel or model.buffer_pixel, facts=facts)
+                           zbuffer_step=model.step, pixel=model.ray_pixel or model.buffer_pixel, facts=facts,
+                           view=self.viewpoint(), highlight=self.highlight(),
+                           heat_map=w.tab("image order").widget.heat.currentText().lower())
+
+    def viewpoint(self) -> dict:
+        """The 3D pane's camera as the user left it: ``position``, ``focal_point``, ``up`` (world
+        space).  Asking for it builds the pane if it was not built yet (it then frames the scene as
+        it would when shown)."""
+        position, focal_point, up = self.window.scene_view.plotter.camera_position
+        return {"position": position, "focal_point": focal_point, "up": up}
+
+    def highlight(self) -> dict:
+        """What the lesson step shown last highlights, less the parts naming an object the window's
+        scene no longer has (they could not be shown, nor loaded)."""
+        step = self.window.lessons.step
+        if step is None:
+            return {}
+        names = {o.name for o in self.window.model.scene.objects}
+        return {key: part for key, part in step.highlight.items() if _named(key, part) in names | {None}}
 
     def record(self, path, title: str, text: str, facts_json: str = "") -> bool:
         """Append the window's state to the lesson file ``path``; False (and a dialog) on a problem."""
@@ -97,3 +116,10 @@ class LessonRecorder:
         box.setObjectName("lesson_record_error")
         box.open()
         return False
+
+
+def _named(key: str, part):
+    """The object a highlight's part names (``face``, ``vertex``, ``object``), or None."""
+    if key in ("face", "vertex"):
+        return part["object"]
+    return part if key == "object" else None

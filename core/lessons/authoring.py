@@ -2,9 +2,10 @@
 
 A lecturer builds a lesson without writing JSON by hand: :func:`step_record`
 turns what the window shows (scene and observer, panes, settings, z-buffer step,
-picked pixel) and the words typed into a form into one step of the lesson-file
-format, and :func:`add_step` appends it to a lesson file (a new lesson when the
-file does not exist yet), checks that the file still loads (a
+picked pixel, the 3D pane's viewpoint, the highlight and the heat map) and the
+words typed into a form into one step of the lesson-file format, and
+:func:`add_step` appends it to a lesson file (a new lesson when the file does
+not exist yet), checks that the file still loads (a
 :class:`core.files.lesson_file.LessonFileError` names the field path of anything wrong, and
 nothing is written), and writes it atomically.  Loading the file and applying
 the step shows the same window state again.
@@ -13,9 +14,13 @@ the step shows the same window state again.
 from __future__ import annotations
 
 import json
+import numbers
 import re
+from collections.abc import Mapping
 from dataclasses import asdict
 from pathlib import Path
+
+import numpy as np
 
 from core.files import scene_file
 from core.files.lesson_file import FORMAT, VERSION, Lesson, LessonFileError, from_dict
@@ -23,11 +28,15 @@ from core.files.safe_files import write_atomic
 
 
 def step_record(*, title: str, text: str, scene, panes, image_order, object_order,
-                zbuffer_step: int | None = None, pixel=None, facts=()) -> dict:
+                zbuffer_step: int | None = None, pixel=None, facts=(), view=None, highlight=None,
+                heat_map: str = "off") -> dict:
     """One lesson step, as its JSON object, for the window state given.
 
     ``scene`` is written inline (scene-file format, observer included); ``panes`` are lesson
-    pane names with the one in front first; ``facts`` are fact objects (:mod:`core.lessons.facts`).
+    pane names with the one in front first; ``facts`` are fact objects (:mod:`core.lessons.facts`);
+    ``view`` the 3D pane's camera (``position``, ``focal_point``, ``up``: world space, scene units);
+    ``highlight`` what the window highlights (:class:`core.lessons.LessonStep`'s mapping, tuples and
+    nested mappings allowed); ``heat_map`` one of :data:`core.lessons.HEAT_MAPS`.
     """
     step = {"title": title, "text": text, "scene": scene_file.to_dict(scene), "panes": list(panes),
             "image_order": asdict(image_order),
@@ -38,7 +47,27 @@ def step_record(*, title: str, text: str, scene, panes, image_order, object_orde
         step["pixel"] = [int(pixel[0]), int(pixel[1])]
     if facts:
         step["facts"] = list(facts)
+    if view:
+        step["view"] = _plain(view)
+    if highlight:
+        step["highlight"] = _plain(highlight)
+    if heat_map != "off":
+        step["heat_map"] = heat_map
     return step
+
+
+def _plain(value):
+    """``value`` as JSON values: mappings as objects, tuples and arrays as lists, numbers as floats
+    or ints."""
+    if isinstance(value, Mapping):
+        return {str(k): _plain(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple, np.ndarray)):
+        return [_plain(v) for v in value]
+    if isinstance(value, (bool, str)) or value is None:
+        return value
+    if isinstance(value, numbers.Integral):
+        return int(value)
+    return float(value)
 
 
 def add_step(path, step: dict) -> Lesson:

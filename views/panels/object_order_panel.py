@@ -289,7 +289,8 @@ class ObjectOrderPanel(QWidget):
         self.polygon_shown.emit(picture.polygon if chosen else None)
         for view in (self.image, self.depth.image):
             view.set_highlight(picture.mask if chosen else None, outline=picture.outline)
-        self.image.set_edges(self._window_corners(picture.polygon))  # drawn only where pixels are large
+        # Its edges are drawn only where pixels are large, and only for a chosen step, as the outline.
+        self.image.set_edges(self._window_corners(picture.polygon) if chosen else None)
         self._show_pixel(self.picked)
 
     def _window_corners(self, polygon) -> np.ndarray | None:

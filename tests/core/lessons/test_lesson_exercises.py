@@ -214,3 +214,14 @@ def test_a_ray_tree_order_off_one_branch_or_not_traced_is_reported_and_bad_paths
         "exercises[0].pixel: required field is missing (the pixel whose ray tree is ordered)",
         'exercises[0].items[1]: expected a ray\'s path such as "primary/refraction/reflection" '
         "(primary, then reflection or refraction), got 'refraction/primary'"]
+
+
+def test_every_shipped_exercise_has_an_independent_solution():
+    # How many exercises of each lesson the tests solve without the pipelines (this file,
+    # test_object_order_answers, test_image_order_answers, test_view_answers).  A lesson that gains
+    # an exercise fails here until a test works its answer out independently.
+    solved = {"two_orders": 2, "observer": 3, "frustum": 2, "back_faces": 2, "zbuffer": 3,
+              "zbuffer_piercing": 3, "transparency": 3, "perspective": 1, "orthographic": 1,
+              "three_views": 5, "rasterization": 2, "ray_casting": 2, "ray_tracing": 3, "acceleration": 2,
+              "ray_sphere": 9, "ray_triangle": 4}
+    assert {lesson.id: len(lesson.exercises) for lesson in LESSONS} == solved

@@ -1,0 +1,32 @@
+"""The back-face step highlights what its words name: the 3D pane outlines the pyramid's back face
+with its normal labelled "N: back face"; the object-order image, which never draws that face, singles
+out no other polygon (no outline, no edges of the last polygon drawn, nothing in the 3D pane for it)."""
+
+import numpy as np
+from window_helpers import RENDER_TIMEOUT_MS
+
+from core.files.lesson_file import shipped_lessons
+
+LESSONS = shipped_lessons()
+
+
+def test_the_back_face_step_outlines_the_back_face_and_no_front_face(window, qtbot):
+    k = next(i for i, lesson in enumerate(LESSONS) if lesson.id == "back_faces")
+    step = LESSONS[k].steps[0]
+    assert step.highlight["face"] == {"object": "pyramid", "triangle": 2}
+    window.lesson_panel.select(k, 0)
+    panel = window.tab("object order").widget
+    qtbot.waitUntil(lambda: window.showing_full("object order") and panel.scene == step.scene,
+                    timeout=RENDER_TIMEOUT_MS)
+    assert window.model.step is None  # the whole picture
+    for image in (panel.image, panel.depth.image):
+        assert image._highlight is None
+    assert panel.image.edges is None
+    assert window.scene_view.overlay_parts("polygon") == []
+    # The lesson's overlay: the back face's outline (its three corners among the points drawn) and
+    # its normal's label.
+    pyramid = step.scene.objects[0]
+    corners = pyramid.vertices[pyramid.triangles[2]]
+    points = np.vstack([np.asarray(poly.points) for poly in window.scene_view.overlay_parts("lesson")])
+    assert all(np.isclose(points, c).all(axis=1).any() for c in corners)
+    assert window.lessons.highlighted == "triangle 2 of 'pyramid'"
