@@ -11,6 +11,7 @@ worker starts an X server of its own: two workers' windows never take each other
 import atexit
 import os
 import subprocess
+import sys
 
 import pytest
 import pyvista as pv
@@ -21,16 +22,25 @@ pv.OFF_SCREEN = True
 def _own_x_server() -> None:
     """Start an Xvfb for this worker process and point ``DISPLAY`` at it (the suite's own screen size)."""
     read_end, write_end = os.pipe()
+    # -terminate: the server ends when its last client leaves, the worker's Qt at the process's end.
     server = subprocess.Popen(["Xvfb", "-displayfd", str(write_end), "-screen", "0", "1920x1080x24",
-                               "-nolisten", "tcp"], pass_fds=(write_end,), stdout=subprocess.DEVNULL,
-                              stderr=subprocess.DEVNULL)
+                               "-nolisten", "tcp", "-terminate"], pass_fds=(write_end,),
+                              stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     os.close(write_end)
     with os.fdopen(read_end) as reply:
         number = reply.readline().strip()
     if not number:
         raise RuntimeError("Xvfb did not start: the tests' X server is in the Debian package xvfb")
-    atexit.register(server.terminate)
+    atexit.register(_end_unless_connected, server)
     os.environ["DISPLAY"] = f":{number}"
+
+
+def _end_unless_connected(server: subprocess.Popen) -> None:
+    """End a server no window ever used; one Qt is connected to ends itself when Qt lets go (ending
+    it under Qt would have Qt report a broken X connection)."""
+    widgets = sys.modules.get("PySide6.QtWidgets")
+    if widgets is None or widgets.QApplication.instance() is None:
+        server.terminate()
 
 
 if os.environ.get("PYTEST_XDIST_WORKER") and os.environ.get("DISPLAY"):
