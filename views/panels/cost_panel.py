@@ -134,8 +134,9 @@ class _VerticalScrollArea(QScrollArea):
 
 
 def _sweep_job(sweep: Sweep, lock: threading.Lock) -> Job:
-    """A job (:mod:`views.jobs`) that runs ``sweep``'s events, each its partial result, and returns
-    whether every setting is done; cancelled, it stops inside the running render."""
+    """A job (:mod:`views.jobs`) that runs ``sweep``'s events, each its partial result (the percent
+    is unused: the :class:`Progress` events say how far), and returns whether every setting is done;
+    cancelled, it stops inside the running render."""
 
     def job(cancelled, progress):
         with lock:  # a stopped run ends before the resumed one starts
