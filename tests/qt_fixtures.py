@@ -81,3 +81,13 @@ def application_font_restored():
     yield
     if font is not None and QApplication.instance() is not None:
         QApplication.setFont(font)
+
+
+def shown_widget(qtbot, widget, width: int, height: int):
+    """``widget`` at ``width`` x ``height`` pixels, shown and exposed on screen, and closed after the
+    test; returns it."""
+    qtbot.addWidget(widget)
+    widget.resize(width, height)
+    widget.show()
+    qtbot.waitExposed(widget)
+    return widget

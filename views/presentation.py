@@ -266,6 +266,15 @@ class Presentation(QObject):
                                inner.height())
 
 
+def _enlarged(label: QLabel, times: float, bold: bool = False) -> QLabel:
+    """``label``, its text ``times`` the size of its font (bold if ``bold``)."""
+    font = QFont(label.font())
+    font.setPointSizeF((font.pointSizeF() or 10.0) * times)
+    font.setBold(bold)
+    label.setFont(font)
+    return label
+
+
 class PresenterWindow(QWidget):
     """The lecturer's view: this step's notes, the next step, and the time."""
 
@@ -273,22 +282,11 @@ class PresenterWindow(QWidget):
         super().__init__(parent, Qt.WindowType.Window)
         self.setWindowTitle("Render Explorer — presenter")
         self.panel = panel
-        self.clock = QLabel()
-        big = QFont(self.clock.font())
-        big.setPointSizeF((big.pointSizeF() or 10.0) * 2.5)
-        big.setBold(True)
-        self.clock.setFont(big)
-        self.current = QLabel()
+        self.clock = _enlarged(QLabel(), 2.5, bold=True)
+        self.current = _enlarged(QLabel(), 1.5, bold=True)
         self.current.setWordWrap(True)
-        bold = QFont(self.current.font())
-        bold.setPointSizeF((bold.pointSizeF() or 10.0) * 1.5)
-        bold.setBold(True)
-        self.current.setFont(bold)
-        self.notes = QLabel()
+        self.notes = _enlarged(QLabel(), 1.4)
         self.notes.setWordWrap(True)
-        notes_font = QFont(self.notes.font())
-        notes_font.setPointSizeF((notes_font.pointSizeF() or 10.0) * 1.4)
-        self.notes.setFont(notes_font)
         self.upcoming = QLabel()
         self.upcoming.setWordWrap(True)
         layout = QVBoxLayout(self)

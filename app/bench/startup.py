@@ -24,10 +24,12 @@ import subprocess
 import sys
 import tempfile
 import time
+from dataclasses import dataclass
 
 from app.usage import UsageError
 
-#: The watched process.  It prints ``shown <t>`` and ``image <t>`` (``time.time()``).
+#: The watched process.  It prints ``shown <t> <numba>`` and ``image <t> <numba>``: the moment
+#: (``time.time()``) and whether numba was imported by then (``True``/``False``).
 DRIVER = """
 import sys, time
 from app import cli  # first, as in python -m app: modules imported after PySide6 cost more
@@ -42,11 +44,11 @@ class Watch(QObject):
         if (self.shown is None and kind == QEvent.Type.Paint and isinstance(obj, QWidget)
                 and isinstance(obj.window(), QMainWindow)):
             self.shown = time.time()
-            print("shown", self.shown, flush=True)
+            print("shown", self.shown, "numba" in sys.modules, flush=True)
         if (self.image is None and kind == QEvent.Type.Paint and type(obj).__name__ == "ImageView"
                 and getattr(obj, "rgb", None) is not None and obj.isVisible()):
             self.image = time.time()
-            print("image", self.image, flush=True)
+            print("image", self.image, "numba" in sys.modules, flush=True)
         if self.shown is not None and self.image is not None:
             QTimer.singleShot(0, QApplication.instance().quit)
         return False
@@ -72,25 +74,46 @@ def add_arguments(parser) -> None:
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
 
+@dataclass(frozen=True)
+class Moment:
+    """When a start-up reached a step, watched from outside the window's code."""
+
+    seconds: float  # since just before the process was started
+    numba_loaded: bool  # numba was imported by then
+
+
+def watched_start(timeout_s: float, root: str = ROOT, env: dict | None = None) -> dict[str, Moment]:
+    """Start the window as ``python -m app`` does, in a fresh process, and watch it (:data:`DRIVER`):
+    the :class:`Moment` it was ``"shown"`` and the one its first ``"image"`` was.
+
+    ``root``: the checkout that runs; ``env``: added to this process's environment (by default the
+    configuration folder is a fresh one: no last session, every start shows the lecture scene).
+    Raises :class:`UsageError` when the window shows no image within ``timeout_s`` seconds.
+    """
+    code = DRIVER.replace("TIMEOUT_MS", str(int(timeout_s * 1000)))
+    with tempfile.TemporaryDirectory() as config:
+        start = time.time()
+        env = {**os.environ, "XDG_CONFIG_HOME": config, "PYTHONPATH": root, **(env or {})}
+        out = subprocess.run([sys.executable, "-c", code], cwd=root, capture_output=True, text=True,
+                             timeout=timeout_s + 30, env=env)
+    stamps = {name: (t, numba) for name, t, numba in
+              (line.split() for line in out.stdout.splitlines() if line.startswith(("shown", "image")))}
+    if "shown" not in stamps or "image" not in stamps:
+        tail = (out.stderr.strip().splitlines() or ["no output"])[-1]
+        raise UsageError(f"bench startup: the window did not show an image within {timeout_s:g} s "
+                         f"(exit status {out.returncode}: {tail})")
+    return {name: Moment(float(t) - start, numba == "True") for name, (t, numba) in stamps.items()}
+
+
 def _start_once(timeout_s: float, bytecode: str, root: str = ROOT, caches: dict | None = None
                 ) -> tuple[float, float]:
     """Seconds from process start to the window shown and to the first image; ``bytecode``: the
     folder of the compiled modules (written by the warm-up run, even where the environment says
     PYTHONDONTWRITEBYTECODE: an installed program has its bytecode); ``root``: the checkout that
     runs; ``caches``: environment variables that point the caches elsewhere."""
-    code = DRIVER.replace("TIMEOUT_MS", str(int(timeout_s * 1000)))
-    with tempfile.TemporaryDirectory() as config:  # no last session: every start shows the lecture scene
-        start = time.time()
-        env = {**os.environ, "XDG_CONFIG_HOME": config, "PYTHONPYCACHEPREFIX": bytecode,
-               "PYTHONDONTWRITEBYTECODE": "", "PYTHONPATH": root, **(caches or {})}
-        out = subprocess.run([sys.executable, "-c", code], cwd=root, capture_output=True, text=True,
-                             timeout=timeout_s + 30, env=env)
-    stamps = dict(line.split() for line in out.stdout.splitlines() if line.startswith(("shown", "image")))
-    if "shown" not in stamps or "image" not in stamps:
-        tail = (out.stderr.strip().splitlines() or ["no output"])[-1]
-        raise UsageError(f"bench startup: the window did not show an image within {timeout_s:g} s "
-                         f"(exit status {out.returncode}: {tail})")
-    return float(stamps["shown"]) - start, float(stamps["image"]) - start
+    moments = watched_start(timeout_s, root, {"PYTHONPYCACHEPREFIX": bytecode, "PYTHONDONTWRITEBYTECODE": "",
+                                              **(caches or {})})
+    return moments["shown"].seconds, moments["image"].seconds
 
 
 def _start_fresh(timeout_s: float, kernels_too: bool) -> tuple[float, float]:

@@ -396,33 +396,40 @@ class CompareTab:
         self._reader.cancel()
 
 
-class HardCasesTab:
-    """Where the formulas meet finite precision: each case computes in its own panel, on first show."""
+class _SelfComputingTab:
+    """A tab whose panel computes on its own (its own controls start it): the window renders nothing
+    for it, and it shows no overlays."""
+
+    overlays = ()
+
+    def job(self, scene: Scene, preview: bool):
+        return None
+
+    def show(self, result) -> str:
+        return ""
+
+
+class HardCasesTab(_SelfComputingTab):
+    """Where the formulas meet finite precision: each case computes in its own panel, on first show
+    (the cases do not depend on the scene)."""
 
     title = "Hard cases"
-    overlays = ()
     idle = "Hard cases: pick a case and move its slider; the panel works it out at once"
 
     def __init__(self, model):
         self.model = model
         self.widget = HardCasesPanel()
 
-    def job(self, scene: Scene, preview: bool):
-        return None  # the cases do not depend on the scene
-
-    def show(self, result) -> str:
-        return ""
-
     def shutdown(self) -> None:
         """Stop the panel's background computations (the window is closing)."""
         self.widget.shutdown()
 
 
-class CostTab:
-    """What a knob (resolution, objects, lights, depth) costs each order; it sweeps the model's scene."""
+class CostTab(_SelfComputingTab):
+    """What a knob (resolution, objects, lights, depth) costs each order; it sweeps the model's scene
+    (a sweep starts from the panel's Run button)."""
 
     title = "Cost"
-    overlays = ()
     idle = "Cost: choose a knob and press Run; the sweep shows its progress in the panel"
 
     def __init__(self, model):
@@ -431,12 +438,6 @@ class CostTab:
         self.widget.memory_limit = model.memory_limit
         self.widget.set_scene(model.scene)
         model.scene_changed.connect(self.widget.set_scene)
-
-    def job(self, scene: Scene, preview: bool):
-        return None  # a sweep starts from the panel's Run button
-
-    def show(self, result) -> str:
-        return ""
 
     def shutdown(self) -> None:
         """Cancel a running sweep (the window is closing)."""

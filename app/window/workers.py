@@ -1,32 +1,23 @@
-"""Long work runs off the GUI thread, with progress and cancel.
+"""The window's renders run off the GUI thread, with progress and cancel.
 
-A *job* is a plain function ``job(cancelled, progress) -> result``: it checks
-``cancelled`` (a :class:`threading.Event`) between pieces of work and returns
-``None`` once it is set, and calls ``progress(percent, partial)`` after each
-piece.  :class:`Renderer` runs jobs on the thread pool; a new job supersedes the
-running one (it stops at its next piece, and a compiled kernel it is running
-stops within a pixel or a triangle, :mod:`core.stopping`), and results of
-superseded jobs are never delivered.  Partial results reach the GUI thread at most
-:data:`PROGRESS_PER_SECOND` times a second; the ones in between are dropped
-(the next one shows more anyway).  Signals are queued onto the GUI thread, so
-receivers may touch widgets and VTK.
+A render is a job of :mod:`views.jobs` (``job(cancelled, progress) -> result``).
+:class:`Renderer` runs the jobs of one tab, the newest winning; its job's thread
+gives way to the window (:mod:`app.process.render_priority`), and partial results
+reach the GUI thread at most :data:`PROGRESS_PER_SECOND` times a second.
+:class:`RenderSchedule` decides when each tab renders.
 """
 
 from __future__ import annotations
 
-import threading
-import time
-from collections.abc import Callable
 from dataclasses import dataclass
 
-from PySide6.QtCore import QObject, QRunnable, QThreadPool, QTimer, Signal
+from PySide6.QtCore import QObject, QThreadPool, QTimer, Signal
 
 from app.process import render_priority
 from app.window import render_budget
-from core import stopping
+from views.jobs import JobRunner
 from views.panels.stale_cover import cover, uncover
 
-Job = Callable[[threading.Event, Callable[[int, object], None]], object]
 PROGRESS_PER_SECOND = 30
 
 
@@ -39,104 +30,16 @@ class Waiting:
     partial: object = None
 
 
-class _Signals(QObject):
-    progress = Signal(int, int, object)  # job id, percent done, partial result
-    finished = Signal(int, object)  # job id, result
-    failed = Signal(int, str)  # job id, message
+class Renderer(JobRunner):
+    """Runs one render at a time for its owner; the newest wins (:class:`views.jobs.JobRunner`).
 
-
-class _Runnable(QRunnable):
-    def __init__(self, job_id: int, job: Job, signals: _Signals, cancelled: stopping.StopRequest):
-        super().__init__()
-        self.job_id, self.job, self.signals, self.cancelled = job_id, job, signals, cancelled
-        self._last_progress = -float("inf")
-
-    def run(self):
-        if self.cancelled.is_set():  # superseded while it waited for a thread: nothing to do
-            return
-        render_priority.give_way_to_the_window()
-        try:
-            with stopping.stopped_by(self.cancelled):
-                result = self.job(self.cancelled, self._progress)
-        except stopping.StoppedError:  # cancelled in a kernel: nothing to deliver
-            return
-        except Exception as exc:  # shown to the user by whoever listens to `failed`
-            self._emit("failed", self.job_id, f"{type(exc).__name__}: {exc}")
-            return
-        if result is not None:
-            self._emit("finished", self.job_id, result)
-
-    def _progress(self, percent: int, partial: object) -> None:
-        now = time.perf_counter()
-        if now - self._last_progress >= 1.0 / PROGRESS_PER_SECOND:
-            self._last_progress = now
-            self._emit("progress", self.job_id, percent, partial)
-
-    def _emit(self, name: str, *args) -> None:
-        """Report to the GUI thread, unless the job was cancelled or its window is gone."""
-        if self.cancelled.is_set():
-            return
-        try:
-            getattr(self.signals, name).emit(*args)
-        except RuntimeError:  # the Renderer was deleted while this job ran: nobody to tell
-            self.cancelled.set()
-
-
-class Renderer(QObject):
-    """Runs one job at a time for its owner; the newest job wins.
-
-    Signals
-    -------
-    progress(int percent, object partial)
-    finished(object result)
-    failed(str message)
+    Its jobs' threads give way to the window, and their partial results are thinned to
+    :data:`PROGRESS_PER_SECOND` a second, what a screen can show.
     """
 
-    progress = Signal(int, object)
-    finished = Signal(object)
-    failed = Signal(str)
-
     def __init__(self, parent: QObject | None = None, pool: QThreadPool | None = None):
-        super().__init__(parent)
-        self._pool = pool or QThreadPool.globalInstance()
-        self._latest = 0
-        self._cancel: threading.Event | None = None
-        self._signals = _Signals()
-        self._signals.progress.connect(self._on_progress)
-        self._signals.finished.connect(self._on_finished)
-        self._signals.failed.connect(self._on_failed)
-
-    @property
-    def busy(self) -> bool:
-        return self._cancel is not None
-
-    def submit(self, job: Job) -> int:
-        """Run ``job`` in the background, cancelling the running one; returns its id."""
-        self.cancel()
-        self._latest += 1
-        self._cancel = stopping.StopRequest()
-        self._pool.start(_Runnable(self._latest, job, self._signals, self._cancel))
-        return self._latest
-
-    def cancel(self) -> None:
-        """Stop the running job, if any; its result will not be delivered."""
-        if self._cancel is not None:
-            self._cancel.set()
-            self._cancel = None
-
-    def _on_progress(self, job_id, percent, partial):
-        if job_id == self._latest and self._cancel is not None:
-            self.progress.emit(percent, partial)
-
-    def _on_finished(self, job_id, result):
-        if job_id == self._latest and self._cancel is not None:
-            self._cancel = None
-            self.finished.emit(result)
-
-    def _on_failed(self, job_id, message):
-        if job_id == self._latest and self._cancel is not None:
-            self._cancel = None
-            self.failed.emit(message)
+        super().__init__(parent, pool, progress_per_second=PROGRESS_PER_SECOND,
+                         prepare=render_priority.give_way_to_the_window)
 
 
 class RenderSchedule(QObject):

@@ -49,6 +49,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from core.compiling.jitable import jitable
+from core.shown_numbers import shown_number as _g
+from core.shown_numbers import shown_vector as _vec
 
 #: Coordinates may be at most this big, and the radius and ``|d|`` at least its
 #: inverse, so that no square or product in the solution over- or underflows.
@@ -365,16 +367,6 @@ def _choose(classification, t_near, t_far, t_max):
     if t_far < 0:
         return None, None, "both roots are negative: the sphere lies behind the start point"
     return None, None, f"both roots lie beyond {end_word}: the segment stops before the sphere"
-
-
-def _g(x: float) -> str:
-    """A number to 6 significant digits, without a ``-0``."""
-    text = f"{x:.6g}"
-    return "0" if text == "-0" else text
-
-
-def _vec(v) -> str:
-    return "(" + ", ".join(_g(x) for x in v) + ")"
 
 
 def _plus(x: float) -> str:

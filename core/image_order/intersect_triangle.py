@@ -69,6 +69,8 @@ import numpy as np
 
 from core.compiling.jitable import jitable
 from core.image_order.kernels.layout import ROW_A, ROW_B, ROW_C
+from core.shown_numbers import shown_number as _g
+from core.shown_numbers import shown_vector as _vec
 
 _UNIT_ROUNDOFF = 2.0**-53
 #: A rounded ``p*q - r*s`` is trusted when bigger than this times ``|pq| + |rs|``
@@ -476,16 +478,6 @@ def intersect_triangle(origin, direction, a, b, c) -> TriangleIntersection:
     if solved[0] < 0:
         return result(False, "behind the origin: t < 0", e, solved)
     return result(True, "inside: alpha, beta, gamma >= 0 and t >= 0", e, solved)
-
-
-def _g(x: float) -> str:
-    """A number to 6 significant digits, without a ``-0``."""
-    text = f"{x:.6g}"
-    return "0" if text == "-0" else text
-
-
-def _vec(v) -> str:
-    return "(" + ", ".join(_g(x) for x in v) + ")"
 
 
 def explain(h: TriangleIntersection) -> list[str]:

@@ -4,7 +4,7 @@ from dataclasses import replace
 
 import pytest
 from PySide6.QtWidgets import QMainWindow
-from qt_fixtures import application_font_restored, private_settings, require_display  # noqa: F401
+from qt_fixtures import application_font_restored, private_settings, require_display, shown_widget  # noqa: F401
 
 from core.presets_trace import mirror_and_glass
 from views.panels.cost_panel import CostPanel
@@ -17,10 +17,7 @@ COST_TIMEOUT_MS = 240_000
 def cost_panel(qtbot):
     """A Cost panel at 1280 x 720 on a small mirror-and-glass scene, set for quick sweeps (32 pixels
     wide, 2 samples in the reference); cancelled and its sweep finished after the test."""
-    widget = CostPanel()
-    qtbot.addWidget(widget)
-    widget.resize(1280, 720)
-    widget.show()
+    widget = shown_widget(qtbot, CostPanel(), 1280, 720)
     scene = mirror_and_glass()
     widget.set_scene(replace(scene, camera=scene.camera.replace(width=320, height=240)))
     widget.width_px.setValue(32)
@@ -39,9 +36,7 @@ def present(qtbot):
     def show(panel):
         window = QMainWindow()
         window.setCentralWidget(panel)
-        qtbot.addWidget(window)
-        window.resize(1280, 720)
-        window.show()
+        shown_widget(qtbot, window, 1280, 720)
         return window, Presentation(window)
 
     return show

@@ -26,7 +26,7 @@ import threading
 from dataclasses import replace
 
 import numpy as np
-from PySide6.QtCore import QEvent, QObject, QRunnable, QSize, Qt, QThreadPool, QTimer, Signal
+from PySide6.QtCore import QEvent, QSize, Qt, QThreadPool, QTimer, Signal
 from PySide6.QtWidgets import (
     QComboBox,
     QDoubleSpinBox,
@@ -44,7 +44,7 @@ from PySide6.QtWidgets import (
     QWidget,
 )
 
-from core import budget, stopping
+from core import budget
 from core.accuracy import sweep_cost
 from core.accuracy.explanations import EXPLANATIONS
 from core.accuracy.reference import REFERENCE_SPP
@@ -65,6 +65,7 @@ from views.file_dialogs import ask_save
 from views.images import cost_files, plot_theme
 from views.images.cost_plot import draw_cost_plot, point_position, tidy_cost_plot
 from views.images.figure_image import MATPLOTLIB, Drawn, FigureImage, agg_figure, pixels
+from views.jobs import Job, JobRunner
 
 MODES = [("raytrace", "Ray tracing"), ("raycast", "Ray casting"), ("raster", "Rasterization")]
 #: The sweep's image is at most this wide (the scene's aspect kept), so a sweep takes minutes, not hours.
@@ -95,8 +96,9 @@ class _CanvasBox(QWidget):
         return QSize(640, 480)  # matplotlib's default figure, 6.4 x 4.8 inches at 100 dpi
 
 
-class _Words(QScrollArea):
-    """The explanation beside the images: all of it when there is room, scrolling when there is not."""
+class _VerticalScrollArea(QScrollArea):
+    """Scrolls its word-wrapped label up and down only, at the area's width: all the words show when
+    there is room, and they scroll when there is not (the explanation beside the images)."""
 
     def __init__(self, label: QLabel):
         super().__init__()
@@ -131,53 +133,30 @@ class _Words(QScrollArea):
             self.updateGeometry()  # the words' height follows the width
 
 
-class _Signals(QObject):
-    event = Signal(int, object)  # run id, Progress | Point | Knee
-    done = Signal(int, bool)  # run id, finished (False: cancelled)
-    failed = Signal(int, str)
+def _sweep_job(sweep: Sweep, lock: threading.Lock) -> Job:
+    """A job (:mod:`views.jobs`) that runs ``sweep``'s events, each its partial result (the percent
+    is unused: the :class:`Progress` events say how far), and returns whether every setting is done;
+    cancelled, it stops inside the running render."""
 
+    def job(cancelled, progress):
+        with lock:  # a stopped run ends before the resumed one starts
+            if cancelled.is_set():
+                return None
+            # Settings a stopped run finished after it was cancelled were never shown: report them first.
+            earlier = [*sweep.points.values(), *(Knee(k, i) for k, i in sweep.knee_indices().items())]
+            for event in earlier:
+                progress(0, event)
+            events = sweep.events()
+            try:
+                for event in events:
+                    if cancelled.is_set():
+                        return None
+                    progress(0, event)
+            finally:
+                events.close()
+            return sweep.finished
 
-class _SweepRun(QRunnable):
-    """Runs a sweep's events off the GUI thread; cancelled, it stops inside the running render."""
-
-    def __init__(self, run_id: int, sweep: Sweep, signals: _Signals, cancelled: stopping.StopRequest,
-                 lock: threading.Lock):
-        super().__init__()
-        self.run_id, self.sweep, self.signals, self.cancelled = run_id, sweep, signals, cancelled
-        self.lock = lock
-
-    def run(self):
-        with self.lock:  # a stopped run ends before the resumed one starts
-            if not self.cancelled.is_set():
-                with stopping.stopped_by(self.cancelled):
-                    self._run()
-
-    def _run(self):
-        # Settings a stopped run finished after it was cancelled were never shown: report them first.
-        for point in list(self.sweep.points.values()):
-            self._emit("event", self.run_id, point)
-        for knob, index in self.sweep.knee_indices().items():
-            self._emit("event", self.run_id, Knee(knob, index))
-        events = self.sweep.events()
-        try:
-            for event in events:
-                if self.cancelled.is_set():
-                    break
-                self._emit("event", self.run_id, event)
-        except stopping.StoppedError:  # cancelled inside a render: what was measured so far stays shown
-            return
-        except Exception as exc:  # shown in the panel's status line
-            self._emit("failed", self.run_id, f"{type(exc).__name__}: {exc}")
-            return
-        finally:
-            events.close()
-        self._emit("done", self.run_id, self.sweep.finished)
-
-    def _emit(self, name, *args):
-        try:
-            getattr(self.signals, name).emit(*args)
-        except RuntimeError:  # the panel was deleted while the sweep ran
-            self.cancelled.set()
+    return job
 
 
 class CostPanel(QWidget):
@@ -201,7 +180,6 @@ class CostPanel(QWidget):
 
     def __init__(self, parent: QWidget | None = None, pool: QThreadPool | None = None):
         super().__init__(parent)
-        self._pool = pool or QThreadPool.globalInstance()
         self.memory_limit: int | None = None
         self._slow_note = ""  # the estimated time of a long sweep, added to its status line
         self._scene: Scene | None = None
@@ -214,15 +192,13 @@ class CostPanel(QWidget):
         self._replot.setSingleShot(True)
         self._replot.setInterval(REPLOT_MS)
         self._replot.timeout.connect(lambda: self._draw_plot(quick=True))
-        self._run_id = 0
-        self._cancel: stopping.StopRequest | None = None
         self.selected: int | None = None
         self._swept_with: tuple | None = None
         self._sweep_lock = threading.Lock()  # one run at a time, even just after a cancel
-        self._signals = _Signals()
-        self._signals.event.connect(self._on_event)
-        self._signals.done.connect(self._on_done)
-        self._signals.failed.connect(self._on_failed)
+        self._runner = JobRunner(self, pool)  # every event delivered: each point is one on the plot
+        self._runner.progress.connect(lambda _, event: self._on_event(event))
+        self._runner.finished.connect(self._on_done)
+        self._runner.failed.connect(self._on_failed)
 
         self.knob = QComboBox()
         self.knob.addItem("all knobs", "all")
@@ -288,7 +264,7 @@ class CostPanel(QWidget):
         right_layout = QVBoxLayout(right)
         right_layout.setContentsMargins(0, 0, 0, 0)
         right_layout.addWidget(self._image_box, 1)
-        self._words = _Words(self.explanation)
+        self._words = _VerticalScrollArea(self.explanation)
         right_layout.addWidget(self._words)
         split = QSplitter(Qt.Orientation.Horizontal)
         split.addWidget(self._plot_box)
@@ -411,7 +387,7 @@ class CostPanel(QWidget):
 
     @property
     def running(self) -> bool:
-        return self._cancel is not None
+        return self._runner.busy
 
     @property
     def finished(self) -> bool:
@@ -433,9 +409,7 @@ class CostPanel(QWidget):
             return
         if not self._within_budget():
             return
-        self._run_id += 1
-        self._cancel = stopping.StopRequest()
-        self._pool.start(_SweepRun(self._run_id, self.sweep, self._signals, self._cancel, self._sweep_lock))
+        self._runner.submit(_sweep_job(self.sweep, self._sweep_lock))
         self.status.setText("Starting…")
         self._update_buttons()
 
@@ -454,10 +428,8 @@ class CostPanel(QWidget):
 
     def cancel(self) -> None:
         """Stop the running sweep inside its current render, within a pixel or a triangle (Run resumes it)."""
-        if self._cancel is not None:
-            self._cancel.set()
-            self._cancel = None
-            self._run_id += 1  # whatever the stopped run still reports is dropped
+        if self.running:
+            self._runner.cancel()  # whatever the stopped run still reports is dropped
             self._draw_now()
             self.status.setText(f"Stopped after {len(self._points)} of {len(self.sweep.settings)} "
                                 "settings; Run resumes.")
@@ -475,9 +447,7 @@ class CostPanel(QWidget):
             self.image_figure.clear()
             self.image_canvas.draw_idle()
 
-    def _on_event(self, run_id: int, event) -> None:
-        if run_id != self._run_id:
-            return
+    def _on_event(self, event) -> None:
         if isinstance(event, Progress):
             self.progress.setValue(round(1000 * event.done / max(event.total, 1)))
             self.status.setText(event.what + self._slow_note)
@@ -497,10 +467,7 @@ class CostPanel(QWidget):
         self._replot.stop()
         self._draw_plot()
 
-    def _on_done(self, run_id: int, finished: bool) -> None:
-        if run_id != self._run_id:
-            return
-        self._cancel = None
+    def _on_done(self, finished: bool) -> None:
         self._draw_now()
         if finished:
             self.progress.setValue(1000)
@@ -510,10 +477,7 @@ class CostPanel(QWidget):
         self._update_buttons()
         self.sweep_finished.emit(finished)
 
-    def _on_failed(self, run_id: int, message: str) -> None:
-        if run_id != self._run_id:
-            return
-        self._cancel = None
+    def _on_failed(self, message: str) -> None:
         self._draw_now()
         self.status.setText(f"The sweep failed: {message}")
         self._update_buttons()

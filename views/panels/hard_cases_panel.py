@@ -9,22 +9,22 @@ why.  A slider sweeps the case's natural parameter (distance from the
 origin, far/near ratio, angle) to show where the textbook method starts to
 fail.
 
-Cases are computed on a :class:`~PySide6.QtCore.QThreadPool` thread, one
-request at a time; a result that arrives after a newer request was made is
-dropped, so the window never waits and never shows a stale case.  When the
-panel is first shown every case is also computed once at its defaults, at a
-lower priority, so the list can mark which robust methods pass.
+Cases are computed on a :class:`~PySide6.QtCore.QThreadPool` thread
+(:class:`views.jobs.JobRun`), one request at a time; a result that arrives
+after a newer request was made is dropped, so the window never waits and
+never shows a stale case.  When the panel is first shown every case is also
+computed once at its defaults, at a lower priority, so the list can mark
+which robust methods pass.
 """
 
 from __future__ import annotations
 
-import contextlib
 import html
 import inspect
 import math
 
 import numpy as np
-from PySide6.QtCore import QEvent, QObject, QRunnable, QSize, Qt, QThreadPool, QTimer, Signal
+from PySide6.QtCore import QEvent, QSize, Qt, QThreadPool, QTimer, Signal
 from PySide6.QtWidgets import (
     QComboBox,
     QGridLayout,
@@ -43,6 +43,7 @@ from core import hard_cases
 from core.hard_cases.result import CaseResult, Parameter
 from core.srgb import linear_to_srgb
 from views.images.image_view import ImageView
+from views.jobs import JobRun, JobSignals
 from views.text.text_scale import scaled_style
 
 #: Positions of the slider for a linear parameter, and per decade for a log one.
@@ -123,36 +124,14 @@ def slider_position(parameter: Parameter) -> int:
     return int(round(min(max(f, 0.0), 1.0) * slider_steps(parameter)))
 
 
-class _Relay(QObject):
-    """Carries a finished computation from the pool's thread to the GUI thread."""
-
-    finished = Signal(int, object)
-    failed = Signal(int, str)
-
-
-class _CaseJob(QRunnable):
-    """Run one case off the GUI thread and report through ``relay``."""
-
-    def __init__(self, request_id: int, name: str, value, options: dict, relay: _Relay):
-        super().__init__()
-        self.request_id, self.name, self.value, self.options, self.relay = (
-            request_id, name, value, options, relay)
-
-    def run(self):
-        try:
-            result = hard_cases.run_case(self.name, self.value, **self.options)
-        except Exception as exc:  # shown in the panel's status line
-            self._emit("failed", f"{type(exc).__name__}: {exc}")
-            return
-        self._emit("finished", result)
-
-    def _emit(self, signal: str, payload) -> None:
-        # RuntimeError: the panel was deleted while this case ran, so there is nobody to tell.
-        with contextlib.suppress(RuntimeError):
-            getattr(self.relay, signal).emit(self.request_id, payload)
+def _case_run(request_id: int, name: str, value, options: dict, signals: JobSignals) -> JobRun:
+    """Case ``name`` at parameter ``value`` (``None``: its default) with ``options``, computed off the
+    GUI thread and reported to ``signals`` as request ``request_id``."""
+    return JobRun(request_id, lambda _cancelled, _progress: hard_cases.run_case(name, value, **options),
+                  signals)
 
 
-class _Sideways(QScrollArea):
+class _HorizontalScrollArea(QScrollArea):
     """Scrolls its widget sideways only, as tall as the widget: a table wider than the pane (large
     text) scrolls by itself, and the words above and below it keep the pane's width."""
 
@@ -198,9 +177,9 @@ class HardCasesPanel(QWidget):
         self._pool = pool or QThreadPool(self)
         if pool is None:
             self._pool.setMaxThreadCount(1)
-        self._relay = _Relay(self)
-        self._relay.finished.connect(self._on_finished)
-        self._relay.failed.connect(self._on_failed)
+        self._signals = JobSignals(self)
+        self._signals.finished.connect(self._on_finished)
+        self._signals.failed.connect(self._on_failed)
         self._request = 0
         self._results: dict[str, CaseResult] = {}
         self._parameter: Parameter | None = None
@@ -273,7 +252,7 @@ class HardCasesPanel(QWidget):
         column.addWidget(self.slider_label)
         column.addLayout(sweep)
         column.addWidget(self.verdict)
-        self._table_area = _Sideways(table_box)
+        self._table_area = _HorizontalScrollArea(table_box)
         column.addWidget(self._table_area)
         column.addWidget(self.image_box, 1)
         column.addWidget(self.explanation)
@@ -300,7 +279,7 @@ class HardCasesPanel(QWidget):
         if not self._prefetched:
             self._prefetched = True
             for i, name in enumerate(hard_cases.CASES):
-                self._pool.start(_CaseJob(-1 - i, name, None, {}, self._relay), PREFETCH_PRIORITY)
+                self._pool.start(_case_run(-1 - i, name, None, {}, self._signals), PREFETCH_PRIORITY)
 
     # -- requests ---------------------------------------------------------------------------
 
@@ -348,7 +327,7 @@ class HardCasesPanel(QWidget):
         self._request += 1
         options = dict([self.option.currentData()]) if self.option.isVisible() and self.option.count() else {}
         self.status.setText("computing…")
-        self._pool.start(_CaseJob(self._request, name, value, options, self._relay), REQUEST_PRIORITY)
+        self._pool.start(_case_run(self._request, name, value, options, self._signals), REQUEST_PRIORITY)
 
     def _on_finished(self, request_id: int, result: CaseResult) -> None:
         if request_id < 0:  # the first computation of every case, at its defaults

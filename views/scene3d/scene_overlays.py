@@ -116,8 +116,7 @@ def frustum_parts(camera) -> list[tuple[pv.PolyData, dict]]:
 
     corners = camera.frustum_corners()
     near, far = corners[:4], corners[4:]
-    edges = pv.PolyData(corners, lines=np.hstack([[2, a, b] for a, b in (
-        (0, 1), (1, 2), (2, 3), (3, 0), (4, 5), (5, 6), (6, 7), (7, 4), (0, 4), (1, 5), (2, 6), (3, 7))]))
+    edges = vtk_convert.frustum_edges_polydata(corners)
     labels = vtk_convert.set_labels(
         pv.PolyData(np.array([(near[2] + near[3]) / 2, (far[2] + far[3]) / 2], float)),  # top edges
         [f"near plane (the screen), n = {camera.near:g}", f"far plane, f = {camera.far:g}"])

@@ -68,15 +68,6 @@ ENCLOSING_OPACITY = 0.25
 """A sphere the observer stands inside (as in the lecture's exercise) is drawn this translucent,
 so that the observer and its rays inside stay visible."""
 
-_FRUSTUM_EDGES = [(0, 1), (1, 2), (2, 3), (3, 0), (4, 5), (5, 6), (6, 7), (7, 4),
-                  (0, 4), (1, 5), (2, 6), (3, 7)]
-_QUADS = [[0, 1, 2, 3], [4, 7, 6, 5], [0, 4, 5, 1], [1, 5, 6, 2], [2, 6, 7, 3], [3, 7, 4, 0]]
-
-
-def _lines(pairs) -> np.ndarray:
-    return np.hstack([[2, a, b] for a, b in pairs])
-
-
 def _unit_glyph() -> pv.PolyData:
     """The camera glyph in the observer's own frame, size 1: a box with a lens cone along -z."""
     body = pv.Cube(center=(0.0, 0.0, 0.0), x_length=1.0, y_length=1.0, z_length=1.0)
@@ -146,10 +137,11 @@ class SceneView(QWidget):
     def _build_observer(self) -> None:
         """Create the observer's actors once; :meth:`set_camera` only moves them."""
         eight, four = np.zeros((8, 3)), np.zeros((4, 3))
-        self.frustum = pv.PolyData(eight.copy(), np.hstack([[4, *q] for q in _QUADS]))
-        self._frustum_edges = pv.PolyData(eight.copy(), lines=_lines(_FRUSTUM_EDGES))
+        self.frustum = vtk_convert.frustum_polydata(eight.copy())
+        self._frustum_edges = vtk_convert.frustum_edges_polydata(eight.copy())
         self.screen = pv.PolyData(four.copy(), np.array([4, 0, 1, 2, 3]))
-        self._screen_edges = pv.PolyData(four.copy(), lines=_lines([(0, 1), (1, 2), (2, 3), (3, 0)]))
+        self._screen_edges = pv.PolyData(four.copy(),
+                                         lines=vtk_convert.line_cells([(0, 1), (1, 2), (2, 3), (3, 0)]))
         self._sight = pv.PolyData(np.zeros((2, 3)), lines=np.array([2, 0, 1]))
         add = self.plotter.add_mesh
         self._frustum_faces = add(self.frustum, color=FRUSTUM_COLOR, opacity=0.07, name="frustum",

@@ -80,11 +80,27 @@ def boxes_polydata(boxes) -> pv.PolyData:
     return pv.PolyData(points, lines=lines.ravel())
 
 
-def frustum_polydata(camera: Camera) -> pv.PolyData:
-    """The viewing pyramid truncated by the near and far planes: 8 points, 6 quads."""
-    quads = [[0, 1, 2, 3], [4, 7, 6, 5], [0, 4, 5, 1], [1, 5, 6, 2], [2, 6, 7, 3], [3, 7, 4, 0]]
-    faces = np.hstack([[4, *q] for q in quads])
-    return pv.PolyData(camera.frustum_corners(), faces)
+FRUSTUM_QUADS = [[0, 1, 2, 3], [4, 7, 6, 5], [0, 4, 5, 1], [1, 5, 6, 2], [2, 6, 7, 3], [3, 7, 4, 0]]
+"""The frustum's six sides (near, far, bottom, right, top, left) as indices into its eight corners,
+ordered as :meth:`core.camera.Camera.frustum_corners` gives them (near plane, then far plane)."""
+FRUSTUM_EDGES = [(0, 1), (1, 2), (2, 3), (3, 0), (4, 5), (5, 6), (6, 7), (7, 4),
+                 (0, 4), (1, 5), (2, 6), (3, 7)]
+"""The frustum's twelve edges: around the near plane, around the far plane, then near to far."""
+
+
+def line_cells(pairs) -> np.ndarray:
+    """The padded line array (``[2, a, b, 2, c, d, ...]``) of the point index pairs ``pairs``."""
+    return np.hstack([[2, a, b] for a, b in pairs])
+
+
+def frustum_polydata(corners: np.ndarray) -> pv.PolyData:
+    """The viewing pyramid truncated by the near and far planes: the 8 ``corners``, 6 quads."""
+    return pv.PolyData(corners, np.hstack([[4, *q] for q in FRUSTUM_QUADS]))
+
+
+def frustum_edges_polydata(corners: np.ndarray) -> pv.PolyData:
+    """The frustum's 12 edges, as lines between its 8 ``corners``."""
+    return pv.PolyData(corners, lines=line_cells(FRUSTUM_EDGES))
 
 
 def screen_polydata(camera: Camera) -> pv.PolyData:

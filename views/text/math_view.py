@@ -20,6 +20,7 @@ from PySide6.QtCore import QRectF, QSize, Qt
 from PySide6.QtGui import QColor, QFont, QFontMetricsF, QImage, QPainter, QPen, QPixmap
 from PySide6.QtWidgets import QLabel, QSizePolicy, QWidget
 
+from core.shown_numbers import shown_number
 from views.text import formula_cache
 
 
@@ -350,11 +351,6 @@ class MathView(QLabel):
             self.updateGeometry()  # taller now: ask the layout for the room
 
 
-def _number(x: float) -> str:
-    text = f"{x:.6g}"
-    return "0" if text == "-0" else text
-
-
 class MatrixView(QWidget):
     """A matrix of numbers between square brackets, drawn at the widget's font size times a scale."""
 
@@ -374,7 +370,7 @@ class MatrixView(QWidget):
         """
         m = np.atleast_2d(np.asarray(matrix, dtype=float))
         m = np.where(np.abs(m) < 1e-12 * np.abs(m).max(initial=0.0), 0.0, m)  # rounding noise reads 0
-        self._cells = [[_number(v) for v in row] for row in m]
+        self._cells = [[shown_number(v) for v in row] for row in m]
         self.updateGeometry()
         self.update()
 

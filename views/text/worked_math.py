@@ -33,15 +33,10 @@ from core.image_order.mesh_hit import first_triangle_hit
 from core.image_order.ray_tree import RayNode
 from core.projection import ProjectedPoint, project_point
 from core.scene import Scene, Sphere
+from core.shown_numbers import shown_number as _g
 from views.text.math_view import MathView, MatrixView
 
 PROMPT = "Pick a pixel in the image-order pane to see how its first hit is found."
-
-
-def _g(x: float) -> str:
-    """A number to 6 significant digits, without ``-0`` (as the ``intersect`` command prints)."""
-    text = f"{x:.6g}"
-    return "0" if text == "-0" else text
 
 
 def _v(v) -> str:

@@ -11,6 +11,7 @@ from PySide6.QtCore import Qt
 from PySide6.QtWidgets import QLabel
 from window_helpers import RENDER_TIMEOUT_MS
 
+from app.bench.startup import watched_start
 from app.window.main_window import MainWindow
 from core import presets
 from core.files.lesson_file import shipped_lessons
@@ -76,42 +77,13 @@ def test_the_second_start_paints_its_lesson_formulas_without_loading_matplotlib(
     assert loaded == ["True", "False"]  # typeset once, then read from the cache
 
 
-NUMBA_AT = """
-import sys
-from app import cli  # as python -m app starts
-from PySide6.QtCore import QEvent, QObject, QTimer
-from PySide6.QtWidgets import QApplication, QMainWindow, QWidget
-
-loaded = {}
-
-class Watch(QObject):
-    def eventFilter(self, obj, event):
-        if event.type() == QEvent.Type.Paint and isinstance(obj, QWidget):
-            if isinstance(obj.window(), QMainWindow):
-                loaded.setdefault("window", "numba" in sys.modules)
-            if type(obj).__name__ == "ImageView" and obj.rgb is not None and obj.isVisible():
-                loaded.setdefault("image", "numba" in sys.modules)
-                QTimer.singleShot(0, app.quit)
-        return False
-
-app = QApplication(sys.argv[:1])
-watch = Watch()
-app.installEventFilter(watch)
-QTimer.singleShot(TIMEOUT_MS, app.quit)
-cli.main([])
-print(loaded.get("window"), loaded.get("image"))
-"""
-
-
 @pytest.mark.gui
-def test_the_window_is_painted_before_numba_loads_and_its_first_image_follows(tmp_path):
-    """numba takes about half a second to import: the window must not wait for it, the render does."""
-    code = NUMBA_AT.replace("TIMEOUT_MS", str(RENDER_TIMEOUT_MS))
-    env = {**os.environ, "XDG_CONFIG_HOME": str(tmp_path)}  # no last session: the lecture scene
-    out = subprocess.run([sys.executable, "-c", code], cwd=ROOT, capture_output=True, text=True, env=env,
-                         timeout=RENDER_TIMEOUT_MS / 1000 + 60)
-    assert out.returncode == 0, out.stderr
-    assert out.stdout.split()[-2:] == ["False", "True"]  # painted without numba; the image needed it
+def test_the_window_is_painted_before_numba_loads_and_its_first_image_follows():
+    """numba takes about half a second to import: the window must not wait for it, the render does.
+    Watched as ``python -m app bench startup`` watches a start (no last session: the lecture scene)."""
+    start = watched_start(RENDER_TIMEOUT_MS / 1000, ROOT)
+    assert not start["shown"].numba_loaded  # painted without numba
+    assert start["image"].numba_loaded  # the image needed it
 
 
 @pytest.fixture

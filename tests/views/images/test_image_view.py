@@ -1,6 +1,7 @@
 """The image pane marks a polygon's fragments with an outline that keeps their colours true."""
 
 import numpy as np
+from qt_fixtures import shown_widget
 
 from core.srgb import to_srgb8
 from views.images.image_view import ImageView, mask_outline
@@ -52,11 +53,7 @@ def test_a_straight_side_is_one_segment():
 
 
 def test_pixels_inside_an_outlined_polygon_keep_their_true_colour(qtbot):
-    view = ImageView()
-    qtbot.addWidget(view)
-    view.resize(400, 300)
-    view.show()
-    qtbot.waitExposed(view)
+    view = shown_widget(qtbot, ImageView(), 400, 300)
     blue = (0.1, 0.2, 0.9)
     image = np.zeros((30, 40, 3))
     image[5:25, 5:35] = blue

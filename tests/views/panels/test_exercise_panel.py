@@ -5,6 +5,7 @@ import math
 
 import pytest
 from PySide6.QtCore import QSettings, Qt
+from qt_fixtures import shown_widget
 
 from core.files.lesson_file import shipped_lessons
 from views.panels.exercise_panel import FIRST_TRY, LATER, REVEALED, ExercisePanel, ExerciseProgress
@@ -20,11 +21,7 @@ def settings(tmp_path):
 @pytest.fixture
 def panel(qtbot, settings):
     p = ExercisePanel(ExerciseProgress(settings))
-    qtbot.addWidget(p)
-    p.resize(500, 600)
-    p.show()
-    qtbot.waitExposed(p)
-    return p
+    return shown_widget(qtbot, p, 500, 600)
 
 
 def test_a_right_choice_is_praised_and_recorded_as_right_at_first_try(panel, settings):

@@ -3,6 +3,7 @@
 import html
 
 import pytest
+from qt_fixtures import shown_widget
 
 from core import hard_cases
 from views.panels.hard_cases_panel import (
@@ -18,10 +19,7 @@ TIMEOUT = 120_000  # ms; the first case may compile the raster kernels
 
 @pytest.fixture
 def panel(qtbot):
-    widget = HardCasesPanel()
-    qtbot.addWidget(widget)
-    widget.resize(1280, 720)
-    widget.show()
+    widget = shown_widget(qtbot, HardCasesPanel(), 1280, 720)
     yield widget
     widget.shutdown()
 

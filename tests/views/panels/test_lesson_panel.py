@@ -5,6 +5,7 @@ import json
 import pytest
 from PySide6.QtCore import Qt
 from PySide6.QtWidgets import QMessageBox, QSpinBox, QVBoxLayout, QWidget
+from qt_fixtures import shown_widget
 
 from core.files.lesson_file import LessonStep, shipped_lessons
 from views.panels.lesson_panel import ClickerKeys, LessonPanel, lesson_label
@@ -15,12 +16,7 @@ LESSONS = shipped_lessons()
 
 @pytest.fixture
 def panel(qtbot):
-    p = LessonPanel()
-    qtbot.addWidget(p)
-    p.resize(600, 800)
-    p.show()
-    qtbot.waitExposed(p)
-    return p
+    return shown_widget(qtbot, LessonPanel(), 600, 800)
 
 
 def _index(lesson_id: str) -> int:

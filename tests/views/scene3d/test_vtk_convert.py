@@ -33,6 +33,26 @@ def test_frustum_matches_vtk_view_frustum(cam):
     assert np.allclose(_sorted_rows(cam.frustum_corners()), _sorted_rows(theirs), atol=1e-6)
 
 
+def _corner_pairs(poly: pv.PolyData, corners: np.ndarray) -> set[frozenset[int]]:
+    """``poly``'s edges as pairs of indices of the nearest of ``corners``."""
+    edges = poly.extract_all_edges()
+    nearest = [int(np.argmin(np.linalg.norm(corners - p, axis=1))) for p in np.asarray(edges.points)]
+    lines = edges.lines.reshape(-1, 3)[:, 1:]
+    return {frozenset((nearest[a], nearest[b])) for a, b in lines}
+
+
+@pytest.mark.parametrize("cam", CAMERAS)
+def test_the_drawn_frustum_edges_and_sides_are_vtks(cam):
+    """The 3D pane's and the frustum overlay's edges join the corners VTK's own frustum joins."""
+    vtk_cam = pv.Camera()
+    vtk_convert.apply_camera(vtk_cam, cam)
+    corners = cam.frustum_corners()
+    theirs = _corner_pairs(vtk_cam.view_frustum(cam.aspect), corners)
+    assert len(theirs) == 12
+    assert _corner_pairs(vtk_convert.frustum_edges_polydata(corners), corners) == theirs
+    assert _corner_pairs(vtk_convert.frustum_polydata(corners), corners) == theirs
+
+
 def _scene(cam):
     box = Mesh(
         vertices=[[x, y, z] for x in (-1, 1) for y in (0, 2) for z in (-1, 1)],

@@ -11,6 +11,7 @@ from fractions import Fraction
 import mpmath
 import numpy as np
 import pytest
+from qt_fixtures import shown_widget
 
 from core import presets
 from core.files.lesson_file import shipped_lessons
@@ -35,11 +36,7 @@ def _close(shown: float, exact, digits: int = 6) -> bool:
 
 @pytest.fixture
 def math_pane(qtbot):
-    pane = WorkedMath()
-    qtbot.addWidget(pane)
-    pane.resize(700, 900)
-    pane.show()
-    return pane
+    return shown_widget(qtbot, WorkedMath(), 700, 900)
 
 
 def test_a_picked_ray_on_a_sphere_shows_a_b_c_delta_and_both_roots(math_pane):

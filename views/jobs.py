@@ -1,0 +1,155 @@
+"""Long work off the GUI thread: run a job on a thread pool, with progress, cancel, result or failure.
+
+A *job* is a plain function ``job(cancelled, progress) -> result``: it checks
+``cancelled`` (a :class:`core.stopping.StopRequest`) between pieces of work and
+returns ``None`` once it is set, and calls ``progress(percent, partial)`` after
+each piece.  A compiled kernel it runs stops within a pixel or a triangle once
+``cancelled`` is set (:mod:`core.stopping`); the job then ends with
+:class:`~core.stopping.StoppedError` and delivers nothing.
+
+- :class:`JobRun` runs one job once on a pool's thread and reports to a
+  :class:`JobSignals`, each report tagged with the job's id; a panel that keeps
+  several jobs in flight (say, at two priorities) sorts them by id.
+- :class:`JobRunner` runs one job at a time for its owner: a new job supersedes
+  the running one, and what a superseded or cancelled job reports is never
+  delivered.
+
+Signals are queued onto the GUI thread, so receivers may touch widgets and VTK.
+"""
+
+from __future__ import annotations
+
+import threading
+import time
+from collections.abc import Callable
+
+from PySide6.QtCore import QObject, QRunnable, QThreadPool, Signal
+
+from core import stopping
+
+Job = Callable[[threading.Event, Callable[[int, object], None]], object]
+
+
+class JobSignals(QObject):
+    """What jobs report, each with the id of the job it is from."""
+
+    progress = Signal(int, int, object)  # job id, percent done, partial result
+    finished = Signal(int, object)  # job id, result
+    failed = Signal(int, str)  # job id, message
+
+
+class JobRun(QRunnable):
+    """One run of ``job`` on a pool's thread, reported to ``signals`` as job ``job_id``.
+
+    Parameters
+    ----------
+    cancelled : set it to stop the job; nothing is reported after that (``None``: never cancelled).
+    progress_per_second : partial results reach ``signals`` at most this often, the first one always;
+        the ones in between are dropped (the next one shows more anyway).  ``None``: every one.
+    prepare : called on the job's thread before the job starts (say, to lower the thread's priority).
+    """
+
+    def __init__(self, job_id: int, job: Job, signals: JobSignals,
+                 cancelled: stopping.StopRequest | None = None, progress_per_second: float | None = None,
+                 prepare: Callable[[], None] | None = None):
+        super().__init__()
+        self.job_id, self.job, self.signals = job_id, job, signals
+        self.cancelled = cancelled if cancelled is not None else stopping.StopRequest()
+        self._interval = 1.0 / progress_per_second if progress_per_second else 0.0
+        self._prepare = prepare
+        self._last_progress = -float("inf")
+
+    def run(self):
+        if self.cancelled.is_set():  # superseded while it waited for a thread: nothing to do
+            return
+        if self._prepare is not None:
+            self._prepare()
+        try:
+            with stopping.stopped_by(self.cancelled):
+                result = self.job(self.cancelled, self._progress)
+        except stopping.StoppedError:  # cancelled in a kernel: nothing to deliver
+            return
+        except Exception as exc:  # shown to the user by whoever listens to `failed`
+            self._emit("failed", self.job_id, f"{type(exc).__name__}: {exc}")
+            return
+        if result is not None:
+            self._emit("finished", self.job_id, result)
+
+    def _progress(self, percent: int, partial: object) -> None:
+        now = time.perf_counter()
+        if now - self._last_progress >= self._interval:
+            self._last_progress = now
+            self._emit("progress", self.job_id, percent, partial)
+
+    def _emit(self, name: str, *args) -> None:
+        """Report to the GUI thread, unless the job was cancelled or whoever listened is gone."""
+        if self.cancelled.is_set():
+            return
+        try:
+            getattr(self.signals, name).emit(*args)
+        except RuntimeError:  # the signals' owner was deleted while this job ran: nobody to tell
+            self.cancelled.set()
+
+
+class JobRunner(QObject):
+    """Runs one job at a time for its owner; the newest job wins.
+
+    A new job cancels the running one (it stops at its next piece), and only the
+    newest job's reports are delivered, none after :meth:`cancel`.
+    ``progress_per_second`` and ``prepare`` are those of :class:`JobRun`.
+
+    Signals
+    -------
+    progress(int percent, object partial)
+    finished(object result)
+    failed(str message)
+    """
+
+    progress = Signal(int, object)
+    finished = Signal(object)
+    failed = Signal(str)
+
+    def __init__(self, parent: QObject | None = None, pool: QThreadPool | None = None,
+                 progress_per_second: float | None = None, prepare: Callable[[], None] | None = None):
+        super().__init__(parent)
+        self._pool = pool or QThreadPool.globalInstance()
+        self._progress_per_second, self._prepare = progress_per_second, prepare
+        self._latest = 0
+        self._cancel: stopping.StopRequest | None = None
+        self._signals = JobSignals()
+        self._signals.progress.connect(self._on_progress)
+        self._signals.finished.connect(self._on_finished)
+        self._signals.failed.connect(self._on_failed)
+
+    @property
+    def busy(self) -> bool:
+        return self._cancel is not None
+
+    def submit(self, job: Job) -> int:
+        """Run ``job`` in the background, cancelling the running one; returns its id."""
+        self.cancel()
+        self._latest += 1
+        self._cancel = stopping.StopRequest()
+        self._pool.start(JobRun(self._latest, job, self._signals, self._cancel, self._progress_per_second,
+                                self._prepare))
+        return self._latest
+
+    def cancel(self) -> None:
+        """Stop the running job, if any; its result will not be delivered."""
+        if self._cancel is not None:
+            self._cancel.set()
+            self._cancel = None
+
+    def _on_progress(self, job_id, percent, partial):
+        if job_id == self._latest and self._cancel is not None:
+            self.progress.emit(percent, partial)
+
+    def _on_finished(self, job_id, result):
+        if job_id == self._latest and self._cancel is not None:
+            self._cancel = None
+            self.finished.emit(result)
+
+    def _on_failed(self, job_id, message):
+        if job_id == self._latest and self._cancel is not None:
+            self._cancel = None
+            self.failed.emit(message)
