@@ -2,10 +2,13 @@
 
 from dataclasses import replace
 
+import heat_scenes as hs
 import numpy as np
 import pytest
 import verdict_scenes as vs
 
+from core.accuracy.supersampling import trace_adaptive
+from core.heat_map import heat_map
 from core.image_order.kernels.layout import HEAT_BOUNDS_TESTS, HEAT_PRIM_TESTS
 from core.image_order.ray_tracing import TraceSettings, render_trace
 from core.object_order.pipeline import RasterSettings, render_raster
@@ -65,3 +68,15 @@ def test_overdraw_counts_every_fragment_at_its_pixel():
     x, y = vs.PIXEL
     assert overdraw[y, x] == 2  # both quads cover it (see verdict_scenes.two_quads)
     assert overdraw[0, 0] == 0  # the corner's ray passes beside both quads
+
+
+def test_adaptive_supersampling_takes_the_fewest_samples_away_from_an_edge_and_more_on_it():
+    scene = hs.flat_edge()  # worked by hand in its docstring
+    adaptive = trace_adaptive(scene, TraceSettings(mode="raycast"), 0.05, hs.N, np.random.default_rng(0))
+    assert np.array_equal(adaptive.samples, hs.flat_edge_samples())
+    assert adaptive.traced == hs.FLAT_EDGE_TRACED == 1751
+    heat = heat_map(adaptive.samples, "samples per pixel")
+    assert (heat.top, heat.total) == (17, 17 * 30 + 1 * (40 * 30 - 30))
+    # Away from the edge the corners' mean is the flat colour itself; on it, a mix of both.
+    assert np.all(adaptive.color[:, :24] == 1.0) and np.all(adaptive.color[:, 25:] == 0.0)
+    assert np.all((adaptive.color[:, 24] > 0.0) & (adaptive.color[:, 24] < 1.0))
