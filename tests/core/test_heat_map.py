@@ -31,12 +31,26 @@ def test_traced_heat_adds_up_to_the_counters_and_changes_no_pixel(accel):
     assert counted.heat.shape == (36, 48, 2) and counted.heat.dtype == np.int64
     accel_stats = counted.stats["accel"]
     assert counted.heat[..., HEAT_PRIM_TESTS].sum() == accel_stats["prim_tests"] > 0
-    assert counted.heat[..., HEAT_BOUNDS_TESTS].sum() == accel_stats["bounds_tests"]
+    # Box and sphere tests: bounding spheres, BVH boxes and the grid's cells walked.
+    boxes_and_spheres = accel_stats["bounds_tests"] + accel_stats["cells_visited"]
+    assert counted.heat[..., HEAT_BOUNDS_TESTS].sum() == boxes_and_spheres
+    assert (accel_stats["cells_visited"] > 0) == ("grid" in accel)
     assert (counted.heat >= 0).all()
     assert counted.stats["rays"]["reflection"] > 0 and counted.stats["rays"]["refraction"] > 0
     for a, b in ((plain.color, counted.color), (plain.depth, counted.depth),
                  (plain.object_index, counted.object_index)):
         assert np.array_equal(a, b)  # bit for bit
+
+
+def test_the_grids_cell_walks_are_its_box_tests_in_the_heat_map():
+    # The grid alone tests no bounding sphere: every box test it makes is a cell walked, so its
+    # heat map's box and sphere tests are exactly the cells each pixel's rays walk.
+    scene = _small(mirror_and_glass())
+    counted = render_trace(scene, TraceSettings(accel="grid"), heat=True)
+    accel_stats = counted.stats["accel"]
+    assert accel_stats["bounds_tests"] == 0
+    assert counted.heat[..., HEAT_BOUNDS_TESTS].sum() == accel_stats["cells_visited"] > 0
+    assert (counted.heat[..., HEAT_BOUNDS_TESTS] > 0).mean() > 0.5  # most primary rays enter the grid
 
 
 def test_without_acceleration_every_primary_ray_tests_every_primitive():

@@ -108,7 +108,8 @@ class ImageOrderPanel(QWidget):
         self.epsilon.setToolTip("The fixed offset ε (used with 'Fixed ε')")
         self.heat = _combo(HEATS, "Colour each pixel by the intersection tests its rays cost (all of them: "
                                   "primary, shadow, reflected, refracted), over the traced image; change "
-                                  "the acceleration to see where each method spends its tests")
+                                  "the acceleration to see where each method spends its tests.  Box tests "
+                                  "are the BVH's boxes and the grid's cells walked")
         self.heat.currentIndexChanged.connect(self._show_heat)
         self.adaptive = QCheckBox("Adaptive supersampling")
         self.adaptive.setToolTip("Whitted's adaptive supersampling: trace the corners of every pixel; only "
