@@ -339,9 +339,8 @@ class ImageOrderPanel(QWidget):
         self.image.set_image(display_image(heat.over(self._traced.rgb), f"heat map: {what}"))
         if kind == SAMPLES_HEAT[0]:
             a = self._adaptive
-            units = (f"samples a pixel: 1 where its four corners agree (each corner shared by four "
-                     f"pixels), {heat.top} where refined; {int(a.refined.sum()):,} pixels refined, "
-                     f"{a.traced:,} rays traced, {a.samples_per_pixel:.2f} a pixel")
+            units = (f"samples a pixel, 1 where its corners agree; {int(a.refined.sum()):,} pixels refined, "
+                     f"{a.traced:,} rays traced")
         else:
             units = (f"{what} a pixel; {heat.total:,} in all, {heat.mean:.1f} a pixel "
                      f"({self.accel.currentText()})")
