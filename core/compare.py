@@ -34,7 +34,7 @@ from core.image_order.ray_tracing import TraceResult, render_trace
 from core.image_order.ray_tree import RayNode, trace_pixel
 from core.object_order.pipeline import RasterResult, RasterSettings, render_raster
 from core.object_order.step_history import PixelEvent
-from core.pixel_verdict import PixelVerdict, raster_verdict, trace_verdict
+from core.pixel_verdict import DROPPED_BY, PixelVerdict, raster_verdict, trace_verdict
 from core.scene import Scene, Sphere
 from core.srgb import colormapped
 
@@ -234,8 +234,9 @@ def why_here(a: Output, b: Output, ra: PixelReport, rb: PixelReport) -> str:
         elif raster and traced and spheres:
             why = (f"the z-buffer draws {_names(spheres)} as flat triangles, so the outline is a polygon "
                    "inside the true sphere the tracer meets")
-        elif raster and raster[0].verdict in ("culled", "clipped"):
-            why = f"the z-buffer {raster[0].verdict} what reaches this pixel; a ray has no such stage"
+        elif raster and raster[0].verdict in DROPPED_BY:
+            why = (f"before the z-buffer, {DROPPED_BY[raster[0].verdict]} dropped what reaches this pixel; "
+                   "a ray has no such stage")
         else:
             why = "the pixel lies on an edge, which each pipeline's rule decides on its own"
         return f"{said}: {why}."

@@ -13,10 +13,13 @@ Object order (:func:`raster_verdict`):
 - ``blended``: a transparent polygon (alpha_s) over what lies behind it, in the
   order drawn;
 - ``culled``: only back faces cover the pixel, and back-face culling dropped them;
+- ``frustum-culled``: an object reaches the pixel only from wholly outside the
+  frustum: its bounding sphere lies outside one of the frustum's planes (named),
+  so frustum culling dropped the whole object before clipping;
 - ``clipped``: an object reaches the pixel only outside the frustum (beyond the
-  near or the far plane; the plane is named).
+  near or the far plane; the plane is named), and clipping cut that part away.
 
-Fragments that never were (dropped by culling or clipping before rasterization)
+Fragments that never were (dropped by culling, frustum culling or clipping before rasterization)
 are found by asking every face whether it covers the pixel centre before
 culling and clipping: in homogeneous clip space the pixel's projecting ray is
 the line ``x = x_ndc w, y = y_ndc w`` (``w > 0``), which crosses a face's plane
@@ -49,15 +52,19 @@ from core.object_order.culling import OUTSIDE
 from core.object_order.pipeline import RasterResult
 from core.scene import Scene
 
-RASTER_VERDICTS = ("background", "visible", "blended", "culled", "clipped")
+RASTER_VERDICTS = ("background", "visible", "blended", "culled", "frustum-culled", "clipped")
 TRACE_VERDICTS = ("miss", "hit")
-FATES = ("kept", "overwritten", "failed z-test", "blended", "culled", "clipped")
+FATES = ("kept", "overwritten", "failed z-test", "blended", "culled", "frustum-culled", "clipped")
 """What became of a fragment: ``kept`` (its colour is the pixel's, or what a
 transparent polygon is blended over), ``overwritten`` (it passed the z-test but a
 later fragment replaced it), ``failed z-test``, ``blended`` (a transparent
 polygon's fragment mixed in), ``culled`` (its face is a back face, dropped
-before rasterization), ``clipped`` (its point at this pixel lies outside the
+before rasterization), ``frustum-culled`` (its object's bounding sphere lies
+wholly outside a plane of the frustum, so frustum culling dropped the whole
+object before clipping), ``clipped`` (its point at this pixel lies outside the
 frustum, so the clipped polygon does not reach the pixel)."""
+DROPPED_BY = {"culled": "back-face culling", "frustum-culled": "frustum culling", "clipped": "clipping"}
+"""The stage of the pipeline that drops, before drawing, what a raster verdict of that kind names."""
 
 
 @dataclass(frozen=True)
@@ -74,8 +81,9 @@ class Fragment:
     depth : distance along the viewing axis at the pixel (scene units; negative
         behind the eye).
     fate : one of :data:`FATES`.
-    plane : for a clipped fragment, the frustum plane it lies outside of
-        (:data:`core.object_order.clipping.PLANES`), else ``None``.
+    plane : for a clipped fragment, the frustum plane it lies outside of; for a
+        frustum-culled one, the plane its object's bounding sphere lies wholly
+        outside of (:data:`core.object_order.clipping.PLANES`); else ``None``.
     alpha : the polygon's opacity alpha_s.
     """
 
@@ -241,13 +249,18 @@ def _object_of(result: RasterResult, face: int) -> tuple[int, int]:
 
 
 def dropped_fragments(result: RasterResult, x: int, y: int) -> tuple[Fragment, ...]:
-    """The fragments culling and clipping dropped at pixel ``(x, y)``, nearest first.
+    """The fragments culling, frustum culling and clipping dropped at pixel ``(x, y)``, nearest first.
+
+    In the pipeline's order: a back face is ``culled`` (with back-face culling
+    on) even when its object is outside the frustum too; a face of an object that
+    frustum culling dropped whole is ``frustum-culled``; a face whose point at the
+    pixel lies outside the frustum is ``clipped``.
 
     They do not depend on the drawing step, and finding them tests every face of
     the scene (a tenth of a second for a million), so a view scrubbing through the
     steps finds them once per pixel and passes them to :func:`raster_verdict`.
     """
-    settings = result.settings
+    settings, objects = result.settings, result.objects
     drawn = {result.face_index(e.object_index, e.triangle_index) for e in result.history.pixel_history(x, y)}
     out = []
     face, point, depth = covering_faces(result, x, y)
@@ -260,6 +273,11 @@ def dropped_fragments(result: RasterResult, x: int, y: int) -> tuple[Fragment, .
         alpha = float(mesh.material.opacity)
         if settings.back_face_culling and not result.faces.visible[f]:
             out.append(Fragment(mesh.name, o, t, None, d, "culled", alpha=alpha))
+        elif objects is not None and objects.state[o] == OUTSIDE:
+            # Outside a plane by more than its radius: the plane the centre lies farthest outside of
+            # (culling.ObjectCulling.distance has clipping.PLANES' order).
+            out.append(Fragment(mesh.name, o, t, None, d, "frustum-culled",
+                                clipping.PLANES[int(np.argmin(objects.distance[o]))], alpha))
         elif dist.min() < 0.0:
             out.append(Fragment(mesh.name, o, t, None, d, "clipped", clipping.PLANES[int(np.argmin(dist))],
                                 alpha))
@@ -323,20 +341,19 @@ def _raster_sentence(result: RasterResult, fragments, events, kept, step):
                     upto + "No polygon covers this pixel, so it keeps the background colour.")
         first = dropped[0]
         culled = [f for f in dropped if f.fate == "culled"]
-        clipped = [f for f in dropped if f.fate == "clipped"]
         parts = []
         if culled:
             parts.append(f"only back faces cover this pixel ({_names([_label(f) for f in culled])}), "
                          "turned away from the observer and dropped before drawing")
-        for f in clipped:
-            where = (f"nearer than the near plane ({f.depth:.3g} < {result.history.near:g})"
-                     if f.plane == "near" else
-                     f"beyond the far plane ({f.depth:.3g} > {result.history.far:g})" if f.plane == "far"
-                     else f"outside the {f.plane} plane")
-            culled_whole = (result.objects is not None and result.objects.state[f.object_index] == OUTSIDE)
-            how = "dropped whole by frustum culling" if culled_whole else "clipped away"
-            parts.append(f"{f.object} reaches this pixel only {where}, {how}")
-        what = "Culled" if first.fate == "culled" else f"Clipped at the {first.plane} plane"
+        for f in dropped:
+            if f.fate == "frustum-culled":
+                parts.append(f"{f.object} reaches this pixel only {_outside(result, f)}, and its bounding "
+                             f"sphere lies wholly outside the {f.plane} plane: frustum culling dropped "
+                             "the whole object before clipping")
+            elif f.fate == "clipped":
+                parts.append(f"{f.object} reaches this pixel only {_outside(result, f)}, clipped away")
+        what = {"culled": "Culled", "frustum-culled": f"Culled by the frustum at the {first.plane} plane",
+                "clipped": f"Clipped at the {first.plane} plane"}[first.fate]
         return (first.fate, None, upto + f"{what}: " + "; ".join(dict.fromkeys(parts))
                 + ", so the pixel keeps the background colour.")
     failed = [f for f in drawn if f.fate == "failed z-test"]
@@ -365,6 +382,15 @@ def _raster_sentence(result: RasterResult, fragments, events, kept, step):
     return ("visible", winner.object,
             upto + f"{_capital(_label(winner))} is kept by the z-buffer at distance {winner.depth:.3g}: "
             f"{arrived}{lost}.")
+
+
+def _outside(result: RasterResult, f: Fragment) -> str:
+    """Where a clipped or frustum-culled fragment lies against its plane, in words."""
+    if f.plane == "near":
+        return f"nearer than the near plane ({f.depth:.3g} < {result.history.near:g})"
+    if f.plane == "far":
+        return f"beyond the far plane ({f.depth:.3g} > {result.history.far:g})"
+    return f"outside the {f.plane} plane"
 
 
 # --- image order ------------------------------------------------------------

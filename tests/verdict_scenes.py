@@ -55,6 +55,21 @@ def before_near_plane() -> Scene:
     return Scene(camera=_down(near=1.0), objects=(quad((0, 9.5, 0), 4.0, name="pane"),))
 
 
+def beyond_far_plane() -> Scene:
+    """A quad ``distant`` of side 6 at y = -30, 40 below the eye, beyond the far plane (30).
+
+    Its bounding sphere has radius at least the half-diagonal 3 sqrt(2) = 4.24 (and
+    any bounding sphere of it fits inside a radius 6, twice that), and its centre lies
+    40 - 30 = 10 beyond the far plane: the whole sphere is outside, so frustum
+    culling drops the object before clipping.  The verdict is ``frustum-culled`` at
+    the ``far`` plane, at distance 40.  (A pixel spans 2 x 40 tan 20° / 30 = 0.97 units at
+    distance 40: the pixel's ray meets the quad's plane 2.5 x 0.97 = 2.43 units to the
+    side and 0.49 along, inside its half-side 3.)  With frustum culling off, clipping
+    cuts it away at the same plane instead: ``clipped``, ``far``.
+    """
+    return Scene(camera=_down(far=30.0), objects=(quad((0, -30, 0), 6.0, name="distant"),))
+
+
 def pane_over_box() -> Scene:
     """A transparent quad ``pane`` (opacity 0.4) at y = 2 over an opaque ``box`` of side 2 at the origin.
 

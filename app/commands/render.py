@@ -42,8 +42,9 @@ def add_parser(sub) -> None:
     p.add_argument("--stats-out", help="write counts and times per stage as JSON")
     p.add_argument("--heat-out", metavar="TESTS.npy",
                    help="write what each pixel cost as .npy: image order, (H, W, 2) int64, the primitive "
-                        "tests and the bounding-volume tests of all its rays; raster, (H, W) int64, the "
-                        "fragments that reached it; they add up to --stats-out's totals")
+                        "tests and the box and sphere tests (bounding spheres, BVH boxes, grid cells "
+                        "walked) of all its rays; raster, (H, W) int64, the fragments that reached it; "
+                        "they add up to --stats-out's totals")
     p.add_argument("--dry-run", action="store_true",
                    help="check the scene and the output paths, print the estimated cost, "
                         "and stop before rendering")

@@ -42,6 +42,8 @@ import numpy as np
 from app.export.compare_pictures import comparison_pictures
 from app.window.workers import Renderer, Waiting
 from core import budget
+from core.accuracy.supersampling import trace_adaptive
+from core.accuracy.sweep import ADAPTIVE_N
 from core.camera import Camera
 from core.compare import compare
 from core.first_look import first_look
@@ -68,6 +70,8 @@ FIRST_LOOK = "first look: numpy, no shadows or mirrors, while the renderer compi
 COMPILING = "compiling the {}'s kernels (once per machine and version of the code; a minute or two)"
 SLOW_TESTS = 2e9
 """Ray–object tests above which a full render without acceleration gets a warning (minutes here)."""
+ADAPTIVE_SEED = 0
+"""The seed of adaptive supersampling's jitter: the same scene and settings give the same image."""
 BAND_TESTS = 5e7
 """Without acceleration, a band holds at most about this many ray–object tests (a fraction of a
 second), so that a newer camera or Cancel stops the render soon."""
@@ -146,7 +150,13 @@ def preview_trace_settings(settings: TraceSettings) -> TraceSettings:
 
 
 class ImageOrderTab:
-    """What the observer sees, traced in image order: a coarse image at once, then band by band."""
+    """What the observer sees, traced in image order: a coarse image at once, then band by band;
+    with adaptive supersampling on, then the supersampled image.
+
+    A full render's result is ``(image, stats, heat, adaptive)``: the image shown, the counts of
+    the rays through the pixel centres, their tests per pixel (H, W, 2), and the
+    :class:`core.accuracy.supersampling.AdaptiveImage` (``None`` while adaptive supersampling is off).
+    """
 
     title = "Image order"
     overlays = IMAGE_ORDER_OVERLAYS
@@ -154,6 +164,7 @@ class ImageOrderTab:
     def __init__(self, model):
         self.model = model
         self.widget = ImageOrderPanel(model)
+        self.changes = (self.widget.adaptive_changed,)
         self._preview: Preview | None = None  # the last preview shown, a start for the full render
 
     def warning(self, scene: Scene) -> str | None:
@@ -184,6 +195,7 @@ class ImageOrderTab:
 
             return run
         shown = self._preview if self._preview is not None and self._preview.camera == cam else None
+        threshold = self.widget.adaptive_threshold
         rows = BAND_ROWS
         if settings.accel == "none":
             rows = max(1, min(BAND_ROWS, int(BAND_TESTS // _tests_per_row(scene))))
@@ -206,8 +218,14 @@ class ImageOrderTab:
                 done = first + len(band.color)
                 progress(round(100 * done / cam.height),
                          display_image(color.copy(), "" if done == cam.height else "rendering…"))
+            adaptive = None
+            if threshold is not None:
+                progress(100, display_image(color.copy(), "adaptive supersampling…"))
+                adaptive = trace_adaptive(scene, settings, threshold, ADAPTIVE_N,
+                                          np.random.default_rng(ADAPTIVE_SEED))
+                color = adaptive.color
             return (display_image(color), merge_band_stats([b.stats for b in bands]),
-                    np.concatenate([b.heat for b in bands]))  # each pixel's tests, for the heat map
+                    np.concatenate([b.heat for b in bands]), adaptive)  # each pixel's tests, for the heat map
 
         return run
 
@@ -219,10 +237,13 @@ class ImageOrderTab:
             self._preview = result
             self.widget.show_traced(result.image)
             return f"preview: a quarter of the rays ({result.rays:,}) in {_ms(result.seconds)}"
-        image, stats, heat = result
-        self.widget.show_traced(image, heat)
+        image, stats, heat, adaptive = result
+        self.widget.show_traced(image, heat, adaptive)
         self.widget.show_stats(stats)
-        return _trace_caption(stats)
+        if adaptive is None:
+            return _trace_caption(stats)
+        return (_trace_caption(stats) + f" · adaptive supersampling: {int(adaptive.refined.sum()):,} pixels "
+                f"refined, {adaptive.traced:,} rays more")
 
 
 class ObjectOrderTab:

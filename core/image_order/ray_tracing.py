@@ -74,9 +74,11 @@ class TraceResult:
     step : int, one ray per ``step x step`` block of pixels.
     plan : EffectsPlan.
     heat : (H, W, 2) int64 or None, what each pixel cost (with ``heat=True``):
-        the primitive tests (``[..., HEAT_PRIM_TESTS]``) and the bounding-volume tests
-        (``[..., HEAT_BOUNDS_TESTS]``, :mod:`core.image_order.kernels.layout`) of all
-        its rays; they add up to ``stats["accel"]["prim_tests"]`` and ``["bounds_tests"]``.
+        the primitive tests (``[..., HEAT_PRIM_TESTS]``) and the box and sphere tests
+        (``[..., HEAT_BOUNDS_TESTS]``, :mod:`core.image_order.kernels.layout`: bounding
+        spheres, BVH boxes, and the grid's cells walked, each a cuboid the ray enters) of all
+        its rays; they add up to ``stats["accel"]["prim_tests"]`` and ``["bounds_tests"]
+        + ["cells_visited"]``.
     """
 
     color: np.ndarray

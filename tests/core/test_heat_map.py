@@ -2,10 +2,13 @@
 
 from dataclasses import replace
 
+import heat_scenes as hs
 import numpy as np
 import pytest
 import verdict_scenes as vs
 
+from core.accuracy.supersampling import trace_adaptive
+from core.heat_map import heat_map
 from core.image_order.kernels.layout import HEAT_BOUNDS_TESTS, HEAT_PRIM_TESTS
 from core.image_order.ray_tracing import TraceSettings, render_trace
 from core.object_order.pipeline import RasterSettings, render_raster
@@ -28,12 +31,26 @@ def test_traced_heat_adds_up_to_the_counters_and_changes_no_pixel(accel):
     assert counted.heat.shape == (36, 48, 2) and counted.heat.dtype == np.int64
     accel_stats = counted.stats["accel"]
     assert counted.heat[..., HEAT_PRIM_TESTS].sum() == accel_stats["prim_tests"] > 0
-    assert counted.heat[..., HEAT_BOUNDS_TESTS].sum() == accel_stats["bounds_tests"]
+    # Box and sphere tests: bounding spheres, BVH boxes and the grid's cells walked.
+    boxes_and_spheres = accel_stats["bounds_tests"] + accel_stats["cells_visited"]
+    assert counted.heat[..., HEAT_BOUNDS_TESTS].sum() == boxes_and_spheres
+    assert (accel_stats["cells_visited"] > 0) == ("grid" in accel)
     assert (counted.heat >= 0).all()
     assert counted.stats["rays"]["reflection"] > 0 and counted.stats["rays"]["refraction"] > 0
     for a, b in ((plain.color, counted.color), (plain.depth, counted.depth),
                  (plain.object_index, counted.object_index)):
         assert np.array_equal(a, b)  # bit for bit
+
+
+def test_the_grids_cell_walks_are_its_box_tests_in_the_heat_map():
+    # The grid alone tests no bounding sphere: every box test it makes is a cell walked, so its
+    # heat map's box and sphere tests are exactly the cells each pixel's rays walk.
+    scene = _small(mirror_and_glass())
+    counted = render_trace(scene, TraceSettings(accel="grid"), heat=True)
+    accel_stats = counted.stats["accel"]
+    assert accel_stats["bounds_tests"] == 0
+    assert counted.heat[..., HEAT_BOUNDS_TESTS].sum() == accel_stats["cells_visited"] > 0
+    assert (counted.heat[..., HEAT_BOUNDS_TESTS] > 0).mean() > 0.5  # most primary rays enter the grid
 
 
 def test_without_acceleration_every_primary_ray_tests_every_primitive():
@@ -65,3 +82,15 @@ def test_overdraw_counts_every_fragment_at_its_pixel():
     x, y = vs.PIXEL
     assert overdraw[y, x] == 2  # both quads cover it (see verdict_scenes.two_quads)
     assert overdraw[0, 0] == 0  # the corner's ray passes beside both quads
+
+
+def test_adaptive_supersampling_takes_the_fewest_samples_away_from_an_edge_and_more_on_it():
+    scene = hs.flat_edge()  # worked by hand in its docstring
+    adaptive = trace_adaptive(scene, TraceSettings(mode="raycast"), 0.05, hs.N, np.random.default_rng(0))
+    assert np.array_equal(adaptive.samples, hs.flat_edge_samples())
+    assert adaptive.traced == hs.FLAT_EDGE_TRACED == 1751
+    heat = heat_map(adaptive.samples, "samples per pixel")
+    assert (heat.top, heat.total) == (17, 17 * 30 + 1 * (40 * 30 - 30))
+    # Away from the edge the corners' mean is the flat colour itself; on it, a mix of both.
+    assert np.all(adaptive.color[:, :24] == 1.0) and np.all(adaptive.color[:, 25:] == 0.0)
+    assert np.all((adaptive.color[:, 24] > 0.0) & (adaptive.color[:, 24] < 1.0))

@@ -85,6 +85,41 @@ def test_a_quad_beyond_the_far_plane_is_clipped_at_the_far_plane():
     assert [(f.fate, f.plane) for f in v.fragments] == [("clipped", "far")]
 
 
+def test_a_quad_wholly_beyond_the_far_plane_is_culled_by_the_frustum_not_clipped():
+    scene = vs.beyond_far_plane()
+    result, v = _raster(scene)
+    assert result.objects.state == ("outside",)  # worked in the scene's docstring
+    assert (v.verdict, v.object) == ("frustum-culled", None)
+    [f] = v.fragments
+    assert (f.object, f.fate, f.plane) == ("distant", "frustum-culled", "far")
+    assert f.depth == pytest.approx(40.0)  # the quad at y = -30, the eye at y = 10
+    assert v.sentence.startswith("Culled by the frustum at the far plane: distant reaches this pixel only "
+                                 "beyond the far plane (40 > 30)")
+    assert "frustum culling dropped the whole object before clipping" in v.sentence
+    assert "clipped" not in v.sentence.lower()
+    x, y = vs.PIXEL
+    assert np.allclose(result.color[y, x], scene.background)
+
+
+def test_without_frustum_culling_the_same_quad_is_clipped_at_the_far_plane():
+    _, v = _raster(vs.beyond_far_plane(), RasterSettings(record_steps=True, frustum_culling=False))
+    assert v.verdict == "clipped"
+    assert [(f.fate, f.plane) for f in v.fragments] == [("clipped", "far")]
+    assert "frustum culling" not in v.sentence and "clipped away" in v.sentence
+
+
+def test_compare_names_frustum_culling_as_what_dropped_the_object():
+    # Perspective against ray casting: the tracer's primary rays end at the far plane too, so both
+    # show the background; against a far plane moved past the quad only the tracer sees it.
+    scene = vs.beyond_far_plane()
+    a = render_output(scene, "perspective")
+    tracer_scene = type(scene)(camera=scene.camera.replace(far=50.0), objects=scene.objects)
+    b = render_output(tracer_scene, "raycast")
+    ra, rb = probe(a, *vs.PIXEL), probe(b, *vs.PIXEL)
+    assert (ra.verdict.verdict, rb.verdict.object) == ("frustum-culled", "distant")
+    assert "before the z-buffer, frustum culling dropped what reaches this pixel" in why_here(a, b, ra, rb)
+
+
 def test_a_transparent_pane_over_a_box_is_blended_over_the_box_top():
     _, v = _raster(vs.pane_over_box())
     assert (v.verdict, v.object) == ("blended", "pane")

@@ -11,7 +11,7 @@ decided the pixel (:mod:`core.pixel_verdict`).
 from __future__ import annotations
 
 import numpy as np
-from PySide6.QtCore import QEvent, Qt
+from PySide6.QtCore import QEvent, Qt, Signal
 from PySide6.QtGui import QFont
 from PySide6.QtWidgets import (
     QCheckBox,
@@ -28,6 +28,7 @@ from PySide6.QtWidgets import (
     QWidget,
 )
 
+from core.accuracy.supersampling import AdaptiveImage
 from core.heat_map import heat_map
 from core.image_order.kernels.layout import HEAT_BOUNDS_TESTS, HEAT_PRIM_TESTS
 from core.image_order.ray_tracing import TraceSettings
@@ -49,6 +50,8 @@ IMAGE_SHARE = 0.4
 MODES = [("raytrace", "Ray tracing"), ("raycast", "Ray casting")]
 HEATS = [("off", "Off"), ("prim", "Primitive tests"), ("bounds", "Box and sphere tests")]
 HEAT_INDEX = {"prim": HEAT_PRIM_TESTS, "bounds": HEAT_BOUNDS_TESTS}
+#: The heat map offered while adaptive supersampling is on.
+SAMPLES_HEAT = ("samples", "Samples per pixel")
 ACCELS = [("bvh", "BVH"), ("grid+spheres", "Grid + spheres"), ("grid", "Grid of cuboids"),
           ("spheres", "Bounding spheres"), ("none", "None")]
 
@@ -66,7 +69,15 @@ class ImageOrderPanel(QWidget):
 
     The controls write to the model (``model.set_trace_settings``,
     ``model.set_overlay``, ``model.set_ray_pixel``) and show what the model holds.
+    Adaptive supersampling is this pane's own setting (:attr:`adaptive_threshold`);
+    while it is on, the heat map may show its samples per pixel.
+
+    Signals
+    -------
+    adaptive_changed() : adaptive supersampling was switched on or off, or its threshold changed.
     """
+
+    adaptive_changed = Signal()
 
     def __init__(self, model, parent: QWidget | None = None):
         super().__init__(parent)
@@ -97,8 +108,24 @@ class ImageOrderPanel(QWidget):
         self.epsilon.setToolTip("The fixed offset ε (used with 'Fixed ε')")
         self.heat = _combo(HEATS, "Colour each pixel by the intersection tests its rays cost (all of them: "
                                   "primary, shadow, reflected, refracted), over the traced image; change "
-                                  "the acceleration to see where each method spends its tests")
+                                  "the acceleration to see where each method spends its tests.  Box tests "
+                                  "are the BVH's boxes and the grid's cells walked")
         self.heat.currentIndexChanged.connect(self._show_heat)
+        self.adaptive = QCheckBox("Adaptive supersampling")
+        self.adaptive.setToolTip("Whitted's adaptive supersampling: trace the corners of every pixel; only "
+                                 "the pixels whose corners differ by more than the threshold get 4 × 4 "
+                                 "samples.  The heat map can then show the samples each pixel took")
+        self.threshold = QDoubleSpinBox()
+        self.threshold.setRange(0.0, 1.0)
+        self.threshold.setDecimals(3)
+        self.threshold.setSingleStep(0.01)
+        self.threshold.setValue(0.05)
+        self.threshold.setEnabled(False)
+        self.threshold.setToolTip("Largest difference (any channel, linear RGB from 0 to 1) a pixel's four "
+                                  "corners may show before the pixel gets 4 × 4 samples")
+        self.adaptive.toggled.connect(self._adaptive_toggled)
+        self.threshold.valueChanged.connect(lambda _: self.adaptive_changed.emit())
+        self._adaptive: AdaptiveImage | None = None  # the adaptive render shown, or None
         self.heat_scale = ColorScale("Heat map colour scale: the map's darkest colour means no test, its "
                                      "brightest the most any pixel of this image took")
         self.heat_scale.hide()
@@ -121,7 +148,8 @@ class ImageOrderPanel(QWidget):
         form.setRowWrapPolicy(QFormLayout.RowWrapPolicy.WrapLongRows)  # narrow: labels above the fields
         for label, widget in [("Method", self.mode), ("Acceleration", self.accel), ("Max depth", self.depth),
                               ("Min weight", self.min_weight), ("Ray offset", self.offset),
-                              ("ε", self.epsilon), ("Heat map", self.heat)]:
+                              ("ε", self.epsilon), ("", self.adaptive), ("Threshold", self.threshold),
+                              ("Heat map", self.heat)]:
             form.addRow(label, widget)
         form.addRow(QLabel("Show in 3D:"))
         for box in (self.show_spheres, self.show_grid, self.show_walk):
@@ -238,6 +266,23 @@ class ImageOrderPanel(QWidget):
         self.epsilon.setEnabled(settings.offset == "fixed")
         self.depth.setEnabled(settings.mode == "raytrace")
 
+    @property
+    def adaptive_threshold(self) -> float | None:
+        """Adaptive supersampling's threshold (linear RGB), ``None`` while it is off."""
+        return self.threshold.value() if self.adaptive.isChecked() else None
+
+    def _adaptive_toggled(self, on: bool) -> None:
+        """Offer the samples-per-pixel heat map only while adaptive supersampling is on."""
+        self.threshold.setEnabled(on)
+        index = self.heat.findData(SAMPLES_HEAT[0])
+        if on and index < 0:
+            self.heat.addItem(SAMPLES_HEAT[1], SAMPLES_HEAT[0])
+        elif not on and index >= 0:
+            if self.heat.currentIndex() == index:
+                self.heat.setCurrentIndex(self.heat.findData("off"))
+            self.heat.removeItem(index)
+        self.adaptive_changed.emit()
+
     def _show_overlays(self, shown) -> None:
         for name, box in self._overlay_boxes.items():
             box.blockSignals(True)
@@ -267,27 +312,41 @@ class ImageOrderPanel(QWidget):
         self.plan.setText(f"<b>What this scene calls for</b> — only these effects are simulated:"
                           f"<br>{reasons}")
 
-    def show_traced(self, image: DisplayImage, heat: np.ndarray | None = None) -> None:
+    def show_traced(self, image: DisplayImage, heat: np.ndarray | None = None,
+                    adaptive: AdaptiveImage | None = None) -> None:
         """Show the traced ``image`` (or a part of it), with its pixels' tests ``heat`` (H, W, 2)
-        when the whole image came with them: the heat map is laid over it if one is chosen."""
-        self._traced, self._heat = image, heat
+        when the whole image came with them, and ``adaptive``, the adaptive supersampling that
+        made ``image`` when it is on: the heat map is laid over it if one is chosen."""
+        self._traced, self._heat, self._adaptive = image, heat, adaptive
         self._show_heat()
+
+    def _heat_counts(self, kind: str) -> np.ndarray | None:
+        if kind == SAMPLES_HEAT[0]:
+            return None if self._adaptive is None else self._adaptive.samples
+        return None if kind == "off" or self._heat is None else self._heat[..., HEAT_INDEX[kind]]
 
     def _show_heat(self) -> None:
         kind = self.heat.currentData()
-        on = kind != "off" and self._heat is not None
-        self.heat_scale.setVisible(on)
+        counts = self._heat_counts(kind)
+        self.heat_scale.setVisible(counts is not None)
         if self._traced is None:
             return
-        if not on:
+        if counts is None:
             self.image.set_image(self._traced)
             return
-        what = dict(HEATS)[kind].lower()
-        heat = heat_map(self._heat[..., HEAT_INDEX[kind]], what)
+        what = self.heat.currentText().lower()
+        heat = heat_map(counts, what)
         self.image.set_image(display_image(heat.over(self._traced.rgb), f"heat map: {what}"))
-        self.heat_scale.set_scale(display_image(heat.colorbar()), "0", f"{heat.top:,}",
-                                  f"{what} a pixel; {heat.total:,} in all, {heat.mean:.1f} a pixel "
-                                  f"({self.accel.currentText()})")
+        if kind == SAMPLES_HEAT[0]:
+            a = self._adaptive
+            units = (f"samples a pixel, 1 where its corners agree; {int(a.refined.sum()):,} pixels refined, "
+                     f"{a.traced:,} rays traced")
+        else:
+            units = (f"{what} a pixel; {heat.total:,} in all, {heat.mean:.1f} a pixel "
+                     f"({self.accel.currentText()})")
+            if self._adaptive is not None:
+                units += "; of the rays through the pixel centres, before adaptive supersampling"
+        self.heat_scale.set_scale(display_image(heat.colorbar()), "0", f"{heat.top:,}", units)
 
     def show_tree(self, x: int, y: int, root: RayNode, scene: Scene) -> None:
         """Pixel ``(x, y)``'s ray tree ``root``, traced in ``scene``, and the worked math of its first hit."""

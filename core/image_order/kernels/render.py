@@ -85,11 +85,19 @@ def no_heat() -> np.ndarray:
 
 
 @jit_inline
+def _bounds_work(count):
+    """The box and sphere tests counted so far: bounding spheres, BVH boxes, and the grid's cells
+    walked (each a cuboid the ray enters), as the heat map's ``HEAT_BOUNDS_TESTS`` counts them."""
+    return count[lay.BOUNDS_TESTS] + count[lay.CELLS]
+
+
+@jit_inline
 def _add_heat(heat, j, i, count, prim_before, bounds_before):
-    """Add the tests counted since ``prim_before, bounds_before`` to pixel ``(j, i)``'s heat, if kept."""
+    """Add the tests counted since ``prim_before, bounds_before`` (:func:`_bounds_work`) to pixel
+    ``(j, i)``'s heat, if kept."""
     if heat.shape[0] > 0:
         heat[j, i, lay.HEAT_PRIM_TESTS] += count[lay.PRIM_TESTS] - prim_before
-        heat[j, i, lay.HEAT_BOUNDS_TESTS] += count[lay.BOUNDS_TESTS] - bounds_before
+        heat[j, i, lay.HEAT_BOUNDS_TESTS] += _bounds_work(count) - bounds_before
 
 
 @jit
@@ -112,7 +120,7 @@ def _primary_rows(first, last, cam, xs, ys, opts, geo, grid, bvh, scratch, packe
                 return
             o, d, t_min, t_max = primary_ray(cam, xs[i], ys[j])
             count[lay.PRIMARY] += 1
-            prim_before, bounds_before = count[lay.PRIM_TESTS], count[lay.BOUNDS_TESTS]
+            prim_before, bounds_before = count[lay.PRIM_TESTS], _bounds_work(count)
             # BVH rays go straight to the traversal.  Through closest_hit, every array of every
             # structure would be bound anew for each ray, and numba updates the reference count of
             # each array it binds: a quarter of a primary ray's time.
@@ -143,11 +151,11 @@ def _primary_packet(j0, j1, i0, i1, cam, xs, ys, geo, bvh, scratch, packet, hits
     count[lay.PRIMARY] += n
     shared = bvh[0].shape[0] > 0 and can_share_walk(rays, n)
     if shared:
-        prim_before, bounds_before = count[lay.PRIM_TESTS], count[lay.BOUNDS_TESTS]
+        prim_before, bounds_before = count[lay.PRIM_TESTS], _bounds_work(count)
         packet_closest(n, rays, axes, bvh, n_spheres, stack, stack_t, count)
         if heat.shape[0] > 0:
             _share_walk(heat, j0, j1, i0, i1, n, count[lay.PRIM_TESTS] - prim_before,
-                        count[lay.BOUNDS_TESTS] - bounds_before)
+                        _bounds_work(count) - bounds_before)
     r = 0
     for j in range(j0, j1):
         for i in range(i0, i1):
@@ -155,7 +163,7 @@ def _primary_packet(j0, j1, i0, i1, cam, xs, ys, geo, bvh, scratch, packet, hits
             if shared:
                 h = packet_hit(rays, axes, r, bvh, n_spheres)
             else:
-                prim_before, bounds_before = count[lay.PRIM_TESTS], count[lay.BOUNDS_TESTS]
+                prim_before, bounds_before = count[lay.PRIM_TESTS], _bounds_work(count)
                 h = bvh_closest(o, d, shear, t_min, t_max, False, bvh, n_spheres, stack, stack_t, count)
                 _add_heat(heat, j, i, count, prim_before, bounds_before)
             _write_primary(cam, geo, hits, depth, objects, j, i, o, d, h)
@@ -218,7 +226,7 @@ def _shade_rows(first, last, cam, xs, ys, hits, color, children, spawned, materi
                 _clip(color, j, i)
                 continue
             o, d, _, _ = primary_ray(cam, xs[i], ys[j])
-            prim_before, bounds_before = count[lay.PRIM_TESTS], count[lay.BOUNDS_TESTS]
+            prim_before, bounds_before = count[lay.PRIM_TESTS], _bounds_work(count)
             shade_hit(o, d, _as_hit(hits[j, i]), 1.0, 0, materials, lights, opts, geo, grid, bvh, scratch,
                       count, rec, False)
             _add_heat(heat, j, i, count, prim_before, bounds_before)
@@ -250,7 +258,7 @@ def _secondary_rows(first, last, color, children, spawned, materials, lights, op
         for i in range(color.shape[1]):
             if spawned[j, i] == 0:
                 continue
-            prim_before, bounds_before = count[lay.PRIM_TESTS], count[lay.BOUNDS_TESTS]
+            prim_before, bounds_before = count[lay.PRIM_TESTS], _bounds_work(count)
             top = 0
             for kind in range(lay.N_SPAWNED):
                 if spawned[j, i] & (1 << kind):
@@ -345,8 +353,9 @@ def render_pass(stage, cam, xs, ys, hits, depth, objects, color, children, spawn
     bvh_depth : int, depth of the BVH (size of the traversal stack).
     n_workers : int, threads to share the bands (``numba.get_num_threads()``; asked
         by the caller, as a compiled call to it would keep this kernel out of the cache).
-    heat : (ny, nx, HEAT_SIZE) int64, each pixel's primitive and bounding-volume tests
-        (all its rays, this stage's) are added to it; :func:`no_heat` to keep none.
+    heat : (ny, nx, HEAT_SIZE) int64, each pixel's primitive tests and its box and sphere
+        tests (:func:`_bounds_work`; all its rays, this stage's) are added to it;
+        :func:`no_heat` to keep none.
 
     Returns
     -------

@@ -19,7 +19,7 @@ def _render(tmp_path, scene, *args):
                           capture_output=True, text=True, timeout=300)
 
 
-@pytest.mark.parametrize("accel", ["none", "bvh"])
+@pytest.mark.parametrize("accel", ["none", "grid", "bvh"])
 def test_traced_heat_adds_up_to_the_stats_and_leaves_the_image_alone(tmp_path, accel):
     heat, stats, out, plain = (tmp_path / n for n in ("heat.npy", "stats.json", "out.png", "plain.png"))
     result = _render(tmp_path, vs.glass_ball(), "--accel", accel, "--out", str(out), "--heat-out", str(heat),
@@ -29,7 +29,7 @@ def test_traced_heat_adds_up_to_the_stats_and_leaves_the_image_alone(tmp_path, a
     assert tests.shape == (31, 41, 2) and tests.dtype == np.int64
     numbers = json.loads(stats.read_text())["accel"]
     assert tests[..., 0].sum() == numbers["prim_tests"] > 0
-    assert tests[..., 1].sum() == numbers["bounds_tests"]
+    assert tests[..., 1].sum() == numbers["bounds_tests"] + numbers["cells_visited"]  # cells: grid's boxes
     assert _render(tmp_path, vs.glass_ball(), "--accel", accel, "--out", str(plain)).returncode == 0
     assert plain.read_bytes() == out.read_bytes()
 

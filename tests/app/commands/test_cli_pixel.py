@@ -36,6 +36,7 @@ RASTER_CASES = {
     "back_face_only": ("culled", None, [("ground", "culled", None)]),
     "two_quads": ("visible", "near", [("far", "failed z-test", None), ("near", "kept", None)]),
     "before_near_plane": ("clipped", None, [("pane", "clipped", "near")]),
+    "beyond_far_plane": ("frustum-culled", None, [("distant", "frustum-culled", "far")]),
     "pane_over_box": ("blended", "pane", [("box", "culled", None), ("box", "kept", None),
                                           ("pane", "blended", None)]),
 }
@@ -49,6 +50,14 @@ def test_raster_verdict_and_every_fragments_fate(tmp_path, name):
     assert sorted((f["object"], f["fate"], f["plane"]) for f in data["fragments"]) == fragments
     assert all(f["polygon"].startswith("triangle ") for f in data["fragments"])
     assert data["sentence"]
+
+
+def test_an_object_outside_the_frustum_is_said_to_be_culled_by_it(tmp_path):
+    data = _json(tmp_path, vs.beyond_far_plane(), vs.PIXEL, "raster")  # worked in its docstring
+    assert data["sentence"].startswith("Culled by the frustum at the far plane")
+    assert "frustum culling dropped the whole object" in data["sentence"]
+    assert "clipped" not in data["sentence"].lower()
+    assert data["fragments"][0]["depth"] == pytest.approx(40.0)
 
 
 def test_traced_shadow_names_the_blocker_and_the_lights(tmp_path):

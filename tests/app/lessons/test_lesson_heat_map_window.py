@@ -22,7 +22,7 @@ def test_the_acceleration_lessons_heat_map_step_shows_primitive_tests_over_the_g
                 and result[1]["accel"]["method"] == "grid")
 
     qtbot.waitUntil(shown, timeout=RENDER_TIMEOUT_MS)
-    image, stats, heat = window.last_result
+    image, stats, heat, _ = window.last_result
     assert panel.heat_scale.isVisible() and not np.array_equal(panel.image.rgb, image.rgb)
     assert f"{stats['accel']['prim_tests']:,} in all" in panel.heat_scale.units.text()
 

@@ -1,5 +1,6 @@
 """The heat maps in the window: tests a pixel over the traced image, fragments a pixel over image memory."""
 
+import heat_scenes as hs
 import numpy as np
 import verdict_scenes as vs
 from window_helpers import RENDER_TIMEOUT_MS
@@ -18,7 +19,8 @@ def _heat_shown(qtbot, window, panel, accel):
                 and result[1]["accel"]["method"] == accel)
 
     qtbot.waitUntil(shown, timeout=RENDER_TIMEOUT_MS)
-    image, stats, heat = window.last_result
+    image, stats, heat, adaptive = window.last_result
+    assert adaptive is None  # adaptive supersampling is off
     return image, stats, heat
 
 
@@ -46,6 +48,46 @@ def test_heat_map_over_the_traced_image_adds_up_to_the_counters(qtbot, window):
     _choose(panel.heat, "off")
     assert np.array_equal(panel.image.rgb, window.last_result[0].rgb)
     assert not panel.heat_scale.isVisible()
+
+
+def _heats(panel):
+    return [panel.heat.itemText(i) for i in range(panel.heat.count())]
+
+
+def test_adaptive_supersamplings_samples_per_pixel_in_the_heat_map(qtbot, window):
+    panel = window.tab("image order").widget
+    window.model.set_scene(hs.flat_edge())
+    qtbot.waitUntil(lambda: window.showing_full("image order"), timeout=RENDER_TIMEOUT_MS)
+    assert "Samples per pixel" not in _heats(panel)  # adaptive supersampling is off
+    plain = panel.image.rgb.copy()
+    assert np.all(plain[:, :24] == 1.0) and np.all(plain[:, 25:] == 0.0)  # one ray through each centre
+
+    panel.adaptive.setChecked(True)  # the image is out of date: it renders again
+    assert _heats(panel)[-1] == "Samples per pixel"
+    qtbot.waitUntil(lambda: window.showing_full("image order") and window.last_result[3] is not None,
+                    timeout=RENDER_TIMEOUT_MS)
+    adaptive = window.last_result[3]
+    assert np.array_equal(adaptive.samples, hs.flat_edge_samples())  # worked in the scene's docstring
+    assert np.all((panel.image.rgb[:, 24] > 0) & (panel.image.rgb[:, 24] < 1))  # the edge's pixels mixed
+    assert np.array_equal(panel.image.rgb[:, :24], plain[:, :24])  # flat: the corners' own colour
+    assert "adaptive supersampling: 30 pixels refined, 1,751 rays more" in window.status_caption.text()
+
+    _choose(panel.heat, "samples")
+    assert panel.heat_scale.isVisible()
+    assert (panel.heat_scale.low.text(), panel.heat_scale.high.text()) == ("0", "17")
+    assert "30 pixels refined, 1,751 rays traced" in panel.heat_scale.units.text()
+    shown = panel.image.rgb
+    # Over the edge the heat's brightest colour, elsewhere the colour for 1 sample: two colours a row.
+    assert all(len({tuple(c) for c in row[:24]}) == 1 and len({tuple(c) for c in row[25:]}) == 1
+               for row in shown)
+    assert not np.array_equal(shown[:, 24], adaptive.color[:, 24])
+
+    panel.adaptive.setChecked(False)  # the choice goes with it: the heat map is off
+    assert "Samples per pixel" not in _heats(panel)
+    assert panel.heat.currentData() == "off" and not panel.heat_scale.isVisible()
+    qtbot.waitUntil(lambda: window.showing_full("image order") and window.last_result[3] is None,
+                    timeout=RENDER_TIMEOUT_MS)
+    assert np.array_equal(panel.image.rgb, plain)
 
 
 def test_overdraw_heat_map_in_the_object_order_pane_follows_the_steps(qtbot, window):

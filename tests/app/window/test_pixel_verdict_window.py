@@ -37,6 +37,11 @@ def test_object_order_pane_says_what_decided_the_picked_pixel(qtbot, window):
     assert (panel.verdict.shown.verdict, panel.verdict.shown.fragments[0].plane) == ("clipped", "near")
     assert "near plane" in panel.verdict.text()
 
+    panel = _raster_pick(qtbot, window, vs.beyond_far_plane())
+    assert (panel.verdict.shown.verdict, panel.verdict.shown.fragments[0].plane) == ("frustum-culled", "far")
+    assert "Why pixel (22, 14): Culled by the frustum at the far plane" in panel.verdict.text()
+    assert "clipped" not in panel.verdict.text().lower()
+
     panel = _raster_pick(qtbot, window, vs.pane_over_box())
     verdict = panel.verdict.shown
     assert (verdict.verdict, verdict.object) == ("blended", "pane")

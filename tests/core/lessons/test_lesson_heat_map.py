@@ -39,11 +39,15 @@ def test_tests_per_pixel_holds_when_fewer_and_reports_the_means_when_not():
               "tests": "primitive tests"}]
     (line,) = check_lesson(from_dict(_box_lesson(wrong)))
     assert "(none costs fewer primitive tests a pixel than spheres): computed none 12, spheres " in line
-    # No acceleration tests no box or sphere at all: 0 a pixel is not fewer than 0.
-    zero = [{"fact": "tests_per_pixel", "accel": "none", "fewer_than": "grid",
-             "tests": "box and sphere tests"}]
-    (line,) = check_lesson(from_dict(_box_lesson(zero)))
-    assert line.endswith("computed none 0, grid 0 box and sphere tests a pixel")
+    # No acceleration tests no box or sphere at all, while the grid's cells walked are its box
+    # tests (every ray that meets the box enters one): none's 0 a pixel is the fewer.
+    cells = [{"fact": "tests_per_pixel", "accel": "none", "fewer_than": "grid",
+              "tests": "box and sphere tests"}]
+    assert check_lesson(from_dict(_box_lesson(cells))) == []
+    wrong = [{"fact": "tests_per_pixel", "accel": "grid", "fewer_than": "none",
+              "tests": "box and sphere tests"}]
+    (line,) = check_lesson(from_dict(_box_lesson(wrong)))
+    assert "computed grid " in line and line.endswith(", none 0 box and sphere tests a pixel")
 
 
 def test_a_steps_heat_map_carries_to_the_next_step_and_is_off_unless_given():
