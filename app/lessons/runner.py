@@ -109,6 +109,16 @@ class LessonRunner:
         self.highlighted = ""
         self.projector = ProjectorLines(window.model, window.scene_view)  # A, A′ of a highlighted vertex
 
+    def leave(self) -> None:
+        """The window no longer shows the step: its marks leave the 3D pane (a new scene may not have
+        the object they named, and a mark left over would point at something the words no longer say)."""
+        self.step = None
+        self.highlighted = ""
+        self.window.scene_view.set_overlay(LESSON_OVERLAY, [])
+        self.projector.show_point(None)
+        if self.window.statusBar().currentMessage().startswith("Look at "):
+            self.window.statusBar().clearMessage()
+
     def apply(self, step: LessonStep) -> None:
         """Load ``step``'s scene and settings, show its panes, set its view, picks and highlight."""
         w, model = self.window, self.window.model

@@ -415,7 +415,7 @@ class MainWindow(QMainWindow):
         self.scene_path = Path(path)
         self.setWindowTitle(f"Render Explorer — {self.scene_path.name}")
         self.model.set_scene(scene)
-        self.lesson_panel.leave_step(f"The window shows {self.scene_path.name} now.")
+        self.leave_lesson_step(f"The window shows {self.scene_path.name} now.")
         self.explain_if_too_large(self.scene_path.name)
         return True
 
@@ -452,7 +452,12 @@ class MainWindow(QMainWindow):
         self.scene_path = None
         self.setWindowTitle(f"Render Explorer — example: {key}")
         self.model.set_scene(build())
-        self.lesson_panel.leave_step(f"The window shows the example {key!r} now.")
+        self.leave_lesson_step(f"The window shows the example {key!r} now.")
+
+    def leave_lesson_step(self, why: str) -> None:
+        """Another scene replaced the step's: its words give way to ``why`` and its marks go."""
+        self.lesson_panel.leave_step(why)
+        self.lessons.leave()
 
     # ------------------------------------------------------------ render
     @property

@@ -3,6 +3,7 @@ with its normal labelled "N: back face"; the object-order image, which never dra
 out no other polygon (no outline, no edges of the last polygon drawn, nothing in the 3D pane for it)."""
 
 import numpy as np
+from PySide6.QtCore import Qt
 from window_helpers import RENDER_TIMEOUT_MS
 
 from core.files.lesson_file import shipped_lessons
@@ -30,3 +31,17 @@ def test_the_back_face_step_outlines_the_back_face_and_no_front_face(window, qtb
     points = np.vstack([np.asarray(poly.points) for poly in window.scene_view.overlay_parts("lesson")])
     assert all(np.isclose(points, c).all(axis=1).any() for c in corners)
     assert window.lessons.highlighted == "triangle 2 of 'pyramid'"
+
+
+def test_leaving_the_step_for_another_scene_takes_its_marks_away(window, qtbot):
+    """Ctrl+L (the lecture scene) after the back-face step: the pyramid is gone, and so are the outline
+    of its back face, the normal's label and the status line's "Look at ..."."""
+    k = next(i for i, lesson in enumerate(LESSONS) if lesson.id == "back_faces")
+    window.lesson_panel.select(k, 0)
+    qtbot.waitUntil(lambda: window.scene_view.overlay_parts("lesson") != [])
+    qtbot.keyClick(window, "l", modifier=Qt.KeyboardModifier.ControlModifier)
+    qtbot.waitUntil(lambda: "pyramid" not in [obj.name for obj in window.model.scene.objects])
+    assert window.scene_view.overlay_parts("lesson") == []
+    assert window.lessons.highlighted == ""
+    assert "Look at" not in window.statusBar().currentMessage()
+    assert "Press Next (PageDown) to show this step again" in window.lesson_panel.text.text()
