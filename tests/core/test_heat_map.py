@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 import verdict_scenes as vs
 
-from core.image_order.kernels.layout import HEAT_BOUNDS_TESTS, HEAT_PRIM_TESTS
+from core.image_order.flat_layout import HEAT_BOUNDS_TESTS, HEAT_PRIM_TESTS
 from core.image_order.ray_tracing import TraceSettings, render_trace
 from core.object_order.pipeline import RasterSettings, render_raster
 from core.presets_trace import big_mesh, mirror_and_glass
