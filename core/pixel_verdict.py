@@ -44,7 +44,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from core.image_order.kernels import layout as lay
+from core.image_order import flat_layout
 from core.image_order.optics import critical_angle_deg
 from core.image_order.ray_tree import LIGHT_STATUS, RayNode
 from core.object_order import clipping
@@ -401,8 +401,9 @@ def _lights(root: RayNode, scene: Scene) -> tuple[LightVerdict, ...]:
     for node in root.children:
         if node.kind != "shadow":
             continue
-        blocked = node.status == LIGHT_STATUS[lay.LIGHT_BLOCKED]
-        lit = node.status in (LIGHT_STATUS[lay.LIGHT_REACHED], LIGHT_STATUS[lay.LIGHT_UNBLOCKABLE])
+        blocked = node.status == LIGHT_STATUS[flat_layout.LIGHT_BLOCKED]
+        lit = node.status in (LIGHT_STATUS[flat_layout.LIGHT_REACHED],
+                              LIGHT_STATUS[flat_layout.LIGHT_UNBLOCKABLE])
         out.append(LightVerdict(scene.lights[node.light].name, lit, node.hit_name if blocked else None,
                                 node.status))
     return tuple(out)

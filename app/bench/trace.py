@@ -126,9 +126,16 @@ def _primary_rays(triangles: int, args) -> tuple:
 
     from core import presets_trace
     from core.image_order.effects_plan import effects_plan
+    from core.image_order.flat_layout import (
+        BOUNDS_TESTS,
+        CHILD_SIZE,
+        HIT_PRIM,
+        HIT_SIZE,
+        OPT_PACKETS,
+        PRIM_TESTS,
+    )
     from core.image_order.flat_scene import TraceSettings, kernel_inputs, trace_scene
-    from core.image_order.kernels import layout, render
-    from core.image_order.kernels.layout import BOUNDS_TESTS, HIT_PRIM, HIT_SIZE, PRIM_TESTS
+    from core.image_order.kernels import render
     from core.scene import PointLight, Scene
 
     n_rays = args.width * args.height
@@ -142,7 +149,7 @@ def _primary_rays(triangles: int, args) -> tuple:
     ys = np.arange(float(args.height))
     shape = (args.height, args.width)
     hits, depth, objects = np.zeros((*shape, HIT_SIZE)), np.zeros(shape), np.zeros(shape, np.int64)
-    color, children = np.zeros((*shape, 3)), np.zeros((*shape, 2, layout.CHILD_SIZE))
+    color, children = np.zeros((*shape, 3)), np.zeros((*shape, 2, CHILD_SIZE))
     spawned = np.zeros(shape, np.uint8)
     counters = []
 
@@ -174,7 +181,7 @@ def _primary_rays(triangles: int, args) -> tuple:
     seconds = {name: statistics.median(times) for name, times in runs.items()}
     per_ray = counters[0] / n_rays
     prims = hits[..., HIT_PRIM].reshape(-1)
-    walk = "packets of 4 x 4 rays" if k.opts[layout.OPT_PACKETS] else "one ray at a time"
+    walk = "packets of 4 x 4 rays" if k.opts[OPT_PACKETS] else "one ray at a time"
     print(f"  ours   (numba 4-wide BVH, float64, {walk}): {_spread(runs['ours'])}  "
           f"{n_rays / seconds['ours'] / 1e6:6.2f} Mrays/s  ({(prims >= 0).mean():.0%} of rays hit; per ray "
           f"{per_ray[BOUNDS_TESTS]:.1f} box and {per_ray[PRIM_TESTS]:.1f} triangle tests)")

@@ -45,8 +45,8 @@ import numpy as np
 
 from core.accuracy import error_metrics, reference, resolution, supersampling, tessellation
 from core.accuracy.visible_surface import VisibleSurface, rasterized_surface, traced_surface
+from core.image_order.flat_layout import ACCEL_CODES
 from core.image_order.flat_scene import TraceSettings
-from core.image_order.kernels.layout import ACCEL_CODES
 from core.image_order.ray_tracing import ensure_compiled as compile_tracer
 from core.image_order.ray_tracing import render_trace, sample_tracer
 from core.object_order.depth_formats import BYTES_PER_PIXEL, DEPTH_FORMATS

@@ -21,8 +21,8 @@ from core.camera import Camera
 from core.hard_cases.ray_cast_reference import reference
 from core.hard_cases.result import CaseImage, CaseResult, Parameter, Row
 from core.object_order import rasterization
-from core.object_order.culling import back_face_culling
 from core.object_order.pipeline import render_raster
+from core.object_order.stages import back_face_culling
 from core.scene import Material, Mesh, Scene
 
 BACKGROUND = np.array([0.05, 0.06, 0.1])

@@ -45,10 +45,11 @@ class BoundingSphere:
 
 
 def bounding_sphere(obj) -> tuple[np.ndarray, float]:
-    """Centre (3,) and radius of the padded sphere around one scene object."""
-    if isinstance(obj, Sphere):
-        return np.asarray(obj.center, dtype=float), float(obj.radius)
+    """Centre (3,) and radius of the sphere around one scene object: exact for an analytic
+    sphere, padded for a mesh."""
     center, radius = obj.bounding_sphere()
+    if isinstance(obj, Sphere):
+        return center, radius
     return center, radius * (1.0 + PAD) + PAD * float(np.abs(center).max())
 
 

@@ -25,13 +25,13 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from core.image_order import flat_layout
 from core.image_order.bounding_spheres import PAD, bounding_sphere
 from core.image_order.bvh import Bvh, build_bvh
 from core.image_order.bvh import empty_kernel_tuple as no_bvh
 from core.image_order.effects_plan import MODES, EffectsPlan
 from core.image_order.grid_of_cuboids import UniformGrid, build_grid
 from core.image_order.grid_of_cuboids import empty_kernel_tuple as no_grid
-from core.image_order.kernels import layout as lay
 from core.image_order.ray_casting import camera_array
 from core.scene import Scene, Sphere
 
@@ -80,7 +80,7 @@ class Geometry:
         return self.rows.shape[0]
 
     def kernel_tuple(self) -> tuple:
-        """The arrays the kernels read, at the positions ``GEO_*`` of :mod:`.kernels.layout`."""
+        """The arrays the kernels read, at the positions ``GEO_*`` of :mod:`.flat_layout`."""
         return (self.rows, self.n_spheres, self.prim_object, self.object_prims,
                 self.bounding, self.normals, self.magnitude)
 
@@ -95,8 +95,9 @@ class Geometry:
             ``cached`` tells whether it already existed.
         """
         kind = {"grid": "grid", "grid+spheres": "grid", "bvh": "bvh"}.get(method)
-        if method not in lay.ACCEL_CODES:
-            raise ValueError(f"unknown acceleration method {method!r}, expected one of {lay.ACCEL_CODES}")
+        if method not in flat_layout.ACCEL_CODES:
+            raise ValueError(f"unknown acceleration method {method!r}, "
+                             f"expected one of {flat_layout.ACCEL_CODES}")
         if kind is None:
             return None, 0.0, True
         with self._lock:
@@ -117,7 +118,7 @@ class TraceScene:
     Attributes
     ----------
     geometry : Geometry, shared by every scene with the same objects' shapes.
-    materials : (O, MAT_SIZE) float64, see :mod:`core.image_order.kernels.layout`.
+    materials : (O, MAT_SIZE) float64, see :mod:`core.image_order.flat_layout`.
     names : tuple of str, the objects' names.
     """
 
@@ -163,17 +164,17 @@ def geometry_key(objects) -> bytes:
 
 
 def _materials(objects) -> np.ndarray:
-    table = np.zeros((len(objects), lay.MAT_SIZE))
+    table = np.zeros((len(objects), flat_layout.MAT_SIZE))
     for i, obj in enumerate(objects):
         m = obj.material
-        table[i, lay.MAT_COLOR:lay.MAT_COLOR + 3] = m.color
-        table[i, lay.MAT_REFLECTIVITY] = m.reflectivity
-        table[i, lay.MAT_TRANSPARENCY] = m.transparency
-        table[i, lay.MAT_IOR] = m.ior
-        table[i, lay.MAT_AMBIENT] = m.ambient
-        table[i, lay.MAT_DIFFUSE] = m.diffuse
-        table[i, lay.MAT_SPECULAR] = m.specular
-        table[i, lay.MAT_SHININESS] = m.shininess
+        table[i, flat_layout.MAT_COLOR:flat_layout.MAT_COLOR + 3] = m.color
+        table[i, flat_layout.MAT_REFLECTIVITY] = m.reflectivity
+        table[i, flat_layout.MAT_TRANSPARENCY] = m.transparency
+        table[i, flat_layout.MAT_IOR] = m.ior
+        table[i, flat_layout.MAT_AMBIENT] = m.ambient
+        table[i, flat_layout.MAT_DIFFUSE] = m.diffuse
+        table[i, flat_layout.MAT_SPECULAR] = m.specular
+        table[i, flat_layout.MAT_SHININESS] = m.shininess
     return table
 
 
@@ -181,11 +182,11 @@ def _flatten(objects, key: bytes) -> Geometry:
     spheres = [(i, o) for i, o in enumerate(objects) if isinstance(o, Sphere)]
     meshes = [(i, o) for i, o in enumerate(objects) if not isinstance(o, Sphere)]
     n_spheres = len(spheres)
-    sphere_rows = np.zeros((n_spheres, lay.ROW_SIZE))
+    sphere_rows = np.zeros((n_spheres, flat_layout.ROW_SIZE))
     for k, (_, s) in enumerate(spheres):
-        sphere_rows[k, lay.ROW_CENTER:lay.ROW_CENTER + 3] = s.center
-        sphere_rows[k, lay.ROW_RADIUS] = s.radius
-    tri_rows = [m.corners.reshape(-1, lay.ROW_SIZE) for _, m in meshes]  # corners A, B, C
+        sphere_rows[k, flat_layout.ROW_CENTER:flat_layout.ROW_CENTER + 3] = s.center
+        sphere_rows[k, flat_layout.ROW_RADIUS] = s.radius
+    tri_rows = [m.corners.reshape(-1, flat_layout.ROW_SIZE) for _, m in meshes]  # corners A, B, C
     rows = np.ascontiguousarray(np.vstack([sphere_rows, *tri_rows]))
     counts = [len(t) for t in tri_rows]
     prim_object = np.concatenate(
@@ -205,8 +206,8 @@ def _flatten(objects, key: bytes) -> Geometry:
         bounding[i, :3], bounding[i, 3] = center, radius
 
     corners = rows[n_spheres:].reshape(-1, 3, 3)
-    centers = sphere_rows[:, lay.ROW_CENTER:lay.ROW_CENTER + 3]
-    radii = sphere_rows[:, lay.ROW_RADIUS:lay.ROW_RADIUS + 1]
+    centers = sphere_rows[:, flat_layout.ROW_CENTER:flat_layout.ROW_CENTER + 3]
+    radii = sphere_rows[:, flat_layout.ROW_RADIUS:flat_layout.ROW_RADIUS + 1]
     magnitude = np.concatenate([np.abs(centers).max(axis=1, initial=0.0) + radii[:, 0],
                                 np.abs(corners).max(axis=(1, 2), initial=0.0)])
     lo = np.vstack([centers - radii, corners.min(axis=1)])
@@ -257,8 +258,8 @@ class TraceSettings:
         problems = []
         if self.mode not in MODES:
             problems.append(f"mode must be one of {list(MODES)}, got {self.mode!r}")
-        if self.accel not in lay.ACCEL_CODES:
-            problems.append(f"accel must be one of {list(lay.ACCEL_CODES)}, got {self.accel!r}")
+        if self.accel not in flat_layout.ACCEL_CODES:
+            problems.append(f"accel must be one of {list(flat_layout.ACCEL_CODES)}, got {self.accel!r}")
         if self.offset not in OFFSETS:
             problems.append(f"offset must be one of {list(OFFSETS)}, got {self.offset!r}")
         if not (isinstance(self.max_depth, int) and 0 <= self.max_depth <= 64):
@@ -273,7 +274,7 @@ class TraceSettings:
 
 @dataclass(frozen=True, eq=False)
 class KernelInputs:
-    """Everything the compiled passes read, as arrays (see :mod:`.kernels.layout`)."""
+    """Everything the compiled passes read, as arrays (see :mod:`.flat_layout`)."""
 
     cam: np.ndarray
     opts: np.ndarray
@@ -288,24 +289,24 @@ class KernelInputs:
 
 def kernel_inputs(scene: Scene, settings: TraceSettings, plan: EffectsPlan, flat, structure) -> KernelInputs:
     """Lay out camera, settings, lights and structures for the kernels."""
-    opts = np.zeros(lay.OPT_SIZE)
-    opts[lay.OPT_ACCEL] = lay.ACCEL_CODES.index(settings.accel)
-    opts[lay.OPT_MAX_DEPTH] = settings.max_depth
-    opts[lay.OPT_MIN_WEIGHT] = settings.min_weight
-    opts[lay.OPT_SCALED_OFFSET] = settings.offset == "scaled"
-    opts[lay.OPT_EPSILON] = settings.epsilon
-    opts[lay.OPT_REFLECTION] = plan.reflection_rays
-    opts[lay.OPT_REFRACTION] = plan.refraction_rays
-    opts[lay.OPT_BACKGROUND:lay.OPT_BACKGROUND + 3] = scene.background
-    opts[lay.OPT_PACKETS] = isinstance(structure, Bvh) and structure.packets_pay(scene.camera)
-    lights = np.zeros((len(scene.lights), lay.LIGHT_SIZE))
+    opts = np.zeros(flat_layout.OPT_SIZE)
+    opts[flat_layout.OPT_ACCEL] = flat_layout.ACCEL_CODES.index(settings.accel)
+    opts[flat_layout.OPT_MAX_DEPTH] = settings.max_depth
+    opts[flat_layout.OPT_MIN_WEIGHT] = settings.min_weight
+    opts[flat_layout.OPT_SCALED_OFFSET] = settings.offset == "scaled"
+    opts[flat_layout.OPT_EPSILON] = settings.epsilon
+    opts[flat_layout.OPT_REFLECTION] = plan.reflection_rays
+    opts[flat_layout.OPT_REFRACTION] = plan.refraction_rays
+    opts[flat_layout.OPT_BACKGROUND:flat_layout.OPT_BACKGROUND + 3] = scene.background
+    opts[flat_layout.OPT_PACKETS] = isinstance(structure, Bvh) and structure.packets_pay(scene.camera)
+    lights = np.zeros((len(scene.lights), flat_layout.LIGHT_SIZE))
     for i, (light, lp) in enumerate(zip(scene.lights, plan.lights, strict=True)):
-        lights[i, lay.LIGHT_POSITION:lay.LIGHT_POSITION + 3] = light.position
-        lights[i, lay.LIGHT_RGB:lay.LIGHT_RGB + 3] = np.multiply(light.color, light.intensity)
-        lights[i, lay.LIGHT_BLOCKABLE] = lp.blockable
+        lights[i, flat_layout.LIGHT_POSITION:flat_layout.LIGHT_POSITION + 3] = light.position
+        lights[i, flat_layout.LIGHT_RGB:flat_layout.LIGHT_RGB + 3] = np.multiply(light.color, light.intensity)
+        lights[i, flat_layout.LIGHT_BLOCKABLE] = lp.blockable
     grid = structure.kernel_tuple() if isinstance(structure, UniformGrid) else no_grid()
     bvh = structure.kernel_tuple() if isinstance(structure, Bvh) else no_bvh()
     depth = structure.depth if isinstance(structure, Bvh) else 0
     return KernelInputs(camera_array(scene.camera), opts, lights, flat.materials,
-                        flat.geometry.kernel_tuple(), grid, bvh, depth, int(opts[lay.OPT_ACCEL]))
+                        flat.geometry.kernel_tuple(), grid, bvh, depth, int(opts[flat_layout.OPT_ACCEL]))
 

@@ -68,7 +68,7 @@ from fractions import Fraction
 import numpy as np
 
 from core.compiling.jitable import jitable
-from core.image_order.kernels.layout import ROW_A, ROW_B, ROW_C
+from core.image_order.flat_layout import ROW_A, ROW_B, ROW_C
 from core.shown_numbers import shown_number as _g
 from core.shown_numbers import shown_vector as _vec
 

@@ -9,7 +9,7 @@ near plane in front of its pixel.
 The formula of that *primary ray* is :func:`core.camera.pixel_ray`, shared
 with :meth:`core.camera.Camera.primary_rays`.  The tracer's kernels read the
 camera from one flat array (:func:`camera_array`, columns named in
-:mod:`core.image_order.kernels.layout`); :func:`primary_ray` unpacks it and
+:mod:`core.image_order.flat_layout`); :func:`primary_ray` unpacks it and
 compiles the formula in, so the kernels, the ray tree of one pixel
 (:mod:`core.image_order.ray_tree`) and the camera trace the very same rays.
 
@@ -24,19 +24,19 @@ import numpy as np
 
 from core.camera import Camera, pixel_ray
 from core.compiling.jitable import jitable
-from core.image_order.kernels import layout as lay
+from core.image_order import flat_layout
 
 
 def camera_array(cam: Camera) -> np.ndarray:
-    """The observer as the kernels read it, (CAM_SIZE,) float64 (see :mod:`.kernels.layout`)."""
-    c = np.zeros(lay.CAM_SIZE)
-    c[lay.CAM_EYE:lay.CAM_EYE + 3] = cam.eye
-    c[lay.CAM_ROTATION:lay.CAM_ROTATION + 9] = cam.world_from_view[:3, :3].ravel()
-    c[lay.CAM_FORWARD:lay.CAM_FORWARD + 3] = cam.forward
-    c[lay.CAM_HALF_WIDTH], c[lay.CAM_HALF_HEIGHT] = cam.half_extent(1.0)
-    c[lay.CAM_WIDTH], c[lay.CAM_HEIGHT] = cam.width, cam.height
-    c[lay.CAM_ORTHOGRAPHIC] = cam.projection == "orthographic"
-    c[lay.CAM_NEAR], c[lay.CAM_FAR] = cam.near, cam.far
+    """The observer as the kernels read it, (CAM_SIZE,) float64 (see :mod:`.flat_layout`)."""
+    c = np.zeros(flat_layout.CAM_SIZE)
+    c[flat_layout.CAM_EYE:flat_layout.CAM_EYE + 3] = cam.eye
+    c[flat_layout.CAM_ROTATION:flat_layout.CAM_ROTATION + 9] = cam.world_from_view[:3, :3].ravel()
+    c[flat_layout.CAM_FORWARD:flat_layout.CAM_FORWARD + 3] = cam.forward
+    c[flat_layout.CAM_HALF_WIDTH], c[flat_layout.CAM_HALF_HEIGHT] = cam.half_extent(1.0)
+    c[flat_layout.CAM_WIDTH], c[flat_layout.CAM_HEIGHT] = cam.width, cam.height
+    c[flat_layout.CAM_ORTHOGRAPHIC] = cam.projection == "orthographic"
+    c[flat_layout.CAM_NEAR], c[flat_layout.CAM_FAR] = cam.near, cam.far
     return c
 
 
@@ -47,19 +47,20 @@ def primary_ray(cam, x, y):
     ``cam`` is :func:`camera_array`; the rest is :func:`core.camera.pixel_ray`
     (``t_min, t_max``: from the near to the far plane).
     """
-    e, r, f = lay.CAM_EYE, lay.CAM_ROTATION, lay.CAM_FORWARD
-    return pixel_ray(x, y, cam[lay.CAM_WIDTH], cam[lay.CAM_HEIGHT], cam[lay.CAM_HALF_WIDTH],
-                     cam[lay.CAM_HALF_HEIGHT], (cam[e], cam[e + 1], cam[e + 2]),
+    e, r, f = flat_layout.CAM_EYE, flat_layout.CAM_ROTATION, flat_layout.CAM_FORWARD
+    return pixel_ray(x, y, cam[flat_layout.CAM_WIDTH], cam[flat_layout.CAM_HEIGHT],
+                     cam[flat_layout.CAM_HALF_WIDTH], cam[flat_layout.CAM_HALF_HEIGHT],
+                     (cam[e], cam[e + 1], cam[e + 2]),
                      (cam[r], cam[r + 1], cam[r + 2], cam[r + 3], cam[r + 4], cam[r + 5], cam[r + 6],
                       cam[r + 7], cam[r + 8]),
-                     (cam[f], cam[f + 1], cam[f + 2]), cam[lay.CAM_NEAR], cam[lay.CAM_FAR],
-                     cam[lay.CAM_ORTHOGRAPHIC] > 0.0)
+                     (cam[f], cam[f + 1], cam[f + 2]), cam[flat_layout.CAM_NEAR], cam[flat_layout.CAM_FAR],
+                     cam[flat_layout.CAM_ORTHOGRAPHIC] > 0.0)
 
 
 @jitable(inline="always")
 def view_depth(cam, o, d, t):
     """Distance along the viewing axis of the point ``o + t d`` (camera space, positive ahead)."""
-    f = lay.CAM_FORWARD
-    e = lay.CAM_EYE
+    f = flat_layout.CAM_FORWARD
+    e = flat_layout.CAM_EYE
     return ((o[0] - cam[e]) * cam[f] + (o[1] - cam[e + 1]) * cam[f + 1] + (o[2] - cam[e + 2]) * cam[f + 2]
             + t * (d[0] * cam[f] + d[1] * cam[f + 1] + d[2] * cam[f + 2]))

@@ -43,11 +43,11 @@ import numpy as np
 
 from core import stopping
 from core.compiling.warm_up import WarmUp
+from core.image_order import flat_layout
 from core.image_order.bvh import Bvh
 from core.image_order.effects_plan import EffectsPlan, effects_plan
 from core.image_order.flat_scene import KernelInputs, TraceSettings, kernel_inputs, trace_scene
 from core.image_order.grid_of_cuboids import UniformGrid
-from core.image_order.kernels import layout as lay
 from core.image_order.ray_tree import trace_pixel
 from core.presets_trace import warm_up_scene
 from core.scene import Scene
@@ -75,7 +75,7 @@ class TraceResult:
     plan : EffectsPlan.
     heat : (H, W, 2) int64 or None, what each pixel cost (with ``heat=True``):
         the primitive tests (``[..., HEAT_PRIM_TESTS]``) and the box and sphere tests
-        (``[..., HEAT_BOUNDS_TESTS]``, :mod:`core.image_order.kernels.layout`: bounding
+        (``[..., HEAT_BOUNDS_TESTS]``, :mod:`core.image_order.flat_layout`: bounding
         spheres, BVH boxes, and the grid's cells walked, each a cuboid the ray enters) of all
         its rays; they add up to ``stats["accel"]["prim_tests"]`` and ``["bounds_tests"]
         + ["cells_visited"]``.
@@ -134,7 +134,7 @@ def render_trace(scene: Scene, settings: TraceSettings = TraceSettings(),
     xs = np.arange(0, cam.width, step, dtype=np.float64)
     ys = np.arange(first, stop, step, dtype=np.float64)
     inputs = kernel_inputs(scene, settings, plan, flat, structure)
-    tests = np.zeros((len(ys), len(xs), lay.HEAT_SIZE), np.int64) if heat else None
+    tests = np.zeros((len(ys), len(xs), flat_layout.HEAT_SIZE), np.int64) if heat else None
     color, depth, object_index, counters = _run_passes(xs, ys, inputs, times, tests)
     if step > 1:
         h, w = stop - first, cam.width
@@ -159,19 +159,20 @@ def _run_passes(xs, ys, k: KernelInputs, times: dict, heat: np.ndarray | None = 
     # Left unset where a stage writes every pixel (hits, depth, objects: primary; colour, spawned:
     # shading), and children, written and read only where a ray goes on: no time spent clearing
     # megabytes.
-    hits = np.empty((ny, nx, lay.HIT_SIZE))
+    hits = np.empty((ny, nx, flat_layout.HIT_SIZE))
     depth = np.empty((ny, nx))
     objects = np.empty((ny, nx), np.int64)
     color = np.empty((ny, nx, 3))
-    children = np.empty((ny, nx, lay.N_SPAWNED, lay.CHILD_SIZE))
+    children = np.empty((ny, nx, flat_layout.N_SPAWNED, flat_layout.CHILD_SIZE))
     spawned = np.empty((ny, nx), np.uint8)
-    counters = np.zeros(lay.N_COUNTERS, np.int64)
+    counters = np.zeros(flat_layout.N_COUNTERS, np.int64)
     heat = trace_render.no_heat() if heat is None else heat
     for stage, name in ((trace_render.PRIMARY_STAGE, "primary"), (trace_render.SHADE_STAGE, "shading"),
                         (trace_render.SECONDARY_STAGE, "secondary")):
         start = time.perf_counter()
         if stage != trace_render.SECONDARY_STAGE or spawned.any():
-            with stopping.watching(k.opts, lay.OPT_STOP):  # Ctrl+C or Cancel: StoppedError within a pixel
+            # Ctrl+C or Cancel: StoppedError within a pixel
+            with stopping.watching(k.opts, flat_layout.OPT_STOP):
                 counters += trace_render.render_pass(stage, k.cam, xs, ys, hits, depth, objects, color,
                                                      children, spawned, k.materials, k.lights, k.opts,
                                                      k.geo, k.grid, k.bvh, k.bvh_depth,
@@ -182,8 +183,9 @@ def _run_passes(xs, ys, k: KernelInputs, times: dict, heat: np.ndarray | None = 
 
 def _stats(settings, plan, structure, build_s, cached, counters, times, compile_s, rows, step,
            pixels, n_prims, cam) -> dict:
-    rays = {"primary": int(counters[lay.PRIMARY]), "shadow": int(counters[lay.SHADOW]),
-            "reflection": int(counters[lay.REFLECTION]), "refraction": int(counters[lay.REFRACTION])}
+    rays = {"primary": int(counters[flat_layout.PRIMARY]), "shadow": int(counters[flat_layout.SHADOW]),
+            "reflection": int(counters[flat_layout.REFLECTION]),
+            "refraction": int(counters[flat_layout.REFRACTION])}
     total = sum(rays.values())
     per_ray = 1.0 / max(total, 1)
     accel = {
@@ -191,12 +193,12 @@ def _stats(settings, plan, structure, build_s, cached, counters, times, compile_
         "primitives": int(n_prims),
         "build_s": float(build_s),
         "cached": bool(cached),
-        "prim_tests": int(counters[lay.PRIM_TESTS]),
-        "bounds_tests": int(counters[lay.BOUNDS_TESTS]),
-        "cells_visited": int(counters[lay.CELLS]),
-        "tests_per_ray": counters[lay.PRIM_TESTS] * per_ray,
-        "bounds_tests_per_ray": counters[lay.BOUNDS_TESTS] * per_ray,
-        "cells_per_ray": counters[lay.CELLS] * per_ray,
+        "prim_tests": int(counters[flat_layout.PRIM_TESTS]),
+        "bounds_tests": int(counters[flat_layout.BOUNDS_TESTS]),
+        "cells_visited": int(counters[flat_layout.CELLS]),
+        "tests_per_ray": counters[flat_layout.PRIM_TESTS] * per_ray,
+        "bounds_tests_per_ray": counters[flat_layout.BOUNDS_TESTS] * per_ray,
+        "cells_per_ray": counters[flat_layout.CELLS] * per_ray,
     }
     accel.update(describe_structure(structure))
     return {
@@ -240,7 +242,7 @@ def _warm_up(accel: str) -> None:
 
 
 _compiled_for = {accel: WarmUp(functools.partial(_warm_up, accel), _KERNELS, "trace", accel)
-                 for accel in lay.ACCEL_CODES}
+                 for accel in flat_layout.ACCEL_CODES}
 """A render compiles only what its acceleration method needs: the window's first image waits for less."""
 
 

@@ -22,10 +22,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from core.image_order import flat_layout
 from core.image_order.effects_plan import effects_plan
 from core.image_order.flat_scene import TraceSettings, kernel_inputs, trace_scene
 from core.image_order.grid_of_cuboids import cells_on_ray
-from core.image_order.kernels import layout as lay
 from core.image_order.ray_casting import primary_ray
 from core.scene import Scene
 
@@ -35,14 +35,14 @@ from core.scene import Scene
 KINDS = ("primary", "shadow", "reflection", "refraction")
 
 LIGHT_STATUS = {  # what a shadow ray did (RayNode.status), by the kernels' status code
-    lay.LIGHT_BEHIND: "light behind the surface: no shadow ray",
-    lay.LIGHT_UNBLOCKABLE: "nothing can block this light: no shadow ray needed",
-    lay.LIGHT_REACHED: "reached the light",
-    lay.LIGHT_BLOCKED: "blocked: in shadow",
+    flat_layout.LIGHT_BEHIND: "light behind the surface: no shadow ray",
+    flat_layout.LIGHT_UNBLOCKABLE: "nothing can block this light: no shadow ray needed",
+    flat_layout.LIGHT_REACHED: "reached the light",
+    flat_layout.LIGHT_BLOCKED: "blocked: in shadow",
 }
 _CHILD_STATUS = {
-    lay.CHILD_DEPTH_LIMIT: "not traced: depth limit reached",
-    lay.CHILD_TOO_WEAK: "not traced: weight below min_weight",
+    flat_layout.CHILD_DEPTH_LIMIT: "not traced: depth limit reached",
+    flat_layout.CHILD_TOO_WEAK: "not traced: weight below min_weight",
 }
 
 
@@ -202,14 +202,15 @@ class _Tracer:
 
         self.prim_object = flat.geometry.prim_object
         self.scratch = make_scratch(k.method, flat.geometry.n_prims, k.materials.shape[0], k.bvh_depth)
-        self.counters = np.zeros(lay.N_COUNTERS, np.int64)
-        self.rec = np.empty(lay.record_size(k.lights.shape[0]))
+        self.counters = np.zeros(flat_layout.N_COUNTERS, np.int64)
+        self.rec = np.empty(flat_layout.record_size(k.lights.shape[0]))
         self.t_start = 0.0 if settings.offset == "scaled" else settings.epsilon
         self.background = np.asarray(scene.background, dtype=float)
 
     def _work(self, before) -> dict:
         delta = self.counters - before
-        return {"tests": int(delta[lay.PRIM_TESTS]), "bounds_tests": int(delta[lay.BOUNDS_TESTS])}
+        return {"tests": int(delta[flat_layout.PRIM_TESTS]),
+                "bounds_tests": int(delta[flat_layout.BOUNDS_TESTS])}
 
     def _cells(self, o, d, t_min, t_end):
         from core.image_order.kernels.closest_hit import GRID, GRID_SPHERES
@@ -230,61 +231,63 @@ class _Tracer:
         work = self._work(before)
         base = dict(kind=kind, generation=generation, traced=True, origin=np.array(o), direction=np.array(d),
                     t_min=t_min, t_max=t_max, coefficient=coefficient, weight=weight, **work)
-        if h[lay.HIT_PRIM] < 0:
+        if h[flat_layout.HIT_PRIM] < 0:
             return RayNode(status="hits nothing: background", color=self.background.copy(),
                            cells=self._cells(o, d, t_min, t_max), **base)
-        cells = self._cells(o, d, t_min, h[lay.HIT_T])
+        cells = self._cells(o, d, t_min, h[flat_layout.HIT_T])
         rec = self.rec
         shade_hit(o, d, h, weight, generation, k.materials, k.lights, k.opts, k.geo, k.grid, k.bvh,
                   self.scratch, self.counters, rec, True)
         rec = rec.copy()
         children = [self._shadow(rec, i, generation, weight) for i in range(k.lights.shape[0])]
-        local = rec[lay.REC_LOCAL:lay.REC_LOCAL + 3].copy()
+        local = rec[flat_layout.REC_LOCAL:flat_layout.REC_LOCAL + 3].copy()
         color = local.copy()
-        for child_kind, at, coef in (("reflection", lay.REC_REFLECT, rec[lay.REC_K_REFLECT]),
-                                     ("refraction", lay.REC_REFRACT, rec[lay.REC_K_REFRACT])):
+        for child_kind, at, coef in (("reflection", flat_layout.REC_REFLECT, rec[flat_layout.REC_K_REFLECT]),
+                                     ("refraction", flat_layout.REC_REFRACT, rec[flat_layout.REC_K_REFRACT])):
             child = self._child(child_kind, rec, at, coef, generation, weight)
             if child is not None:
                 children.append(child)
                 if child.traced:
                     color = color + coef * child.color
-        obj = int(rec[lay.REC_OBJECT])
+        obj = int(rec[flat_layout.REC_OBJECT])
         fresnel = None
-        if not np.isnan(rec[lay.REC_FRESNEL_R]):
-            fresnel = (float(rec[lay.REC_FRESNEL_R]), float(rec[lay.REC_FRESNEL_T]))
+        if not np.isnan(rec[flat_layout.REC_FRESNEL_R]):
+            fresnel = (float(rec[flat_layout.REC_FRESNEL_R]), float(rec[flat_layout.REC_FRESNEL_T]))
         return RayNode(
-            status=f"hits {self.names[obj]}", hit=obj, hit_name=self.names[obj], t=float(h[lay.HIT_T]),
-            point=rec[lay.REC_POINT:lay.REC_POINT + 3].copy(),
-            normal=rec[lay.REC_NORMAL:lay.REC_NORMAL + 3].copy(),
-            front_face=bool(rec[lay.REC_FRONT] > 0), local_color=local,
-            ambient=rec[lay.REC_AMBIENT:lay.REC_AMBIENT + 3].copy(), fresnel=fresnel,
-            total_internal_reflection=bool(rec[lay.REC_TIR] > 0),
-            k_reflect=float(rec[lay.REC_K_REFLECT]), k_refract=float(rec[lay.REC_K_REFRACT]),
+            status=f"hits {self.names[obj]}", hit=obj, hit_name=self.names[obj],
+            t=float(h[flat_layout.HIT_T]),
+            point=rec[flat_layout.REC_POINT:flat_layout.REC_POINT + 3].copy(),
+            normal=rec[flat_layout.REC_NORMAL:flat_layout.REC_NORMAL + 3].copy(),
+            front_face=bool(rec[flat_layout.REC_FRONT] > 0), local_color=local,
+            ambient=rec[flat_layout.REC_AMBIENT:flat_layout.REC_AMBIENT + 3].copy(), fresnel=fresnel,
+            total_internal_reflection=bool(rec[flat_layout.REC_TIR] > 0),
+            k_reflect=float(rec[flat_layout.REC_K_REFLECT]), k_refract=float(rec[flat_layout.REC_K_REFRACT]),
             color=color, cells=cells, children=tuple(children), **base)
 
     def _child(self, kind, rec, at, coef, generation, weight):
-        status = rec[at + lay.CHILD_STATUS]
-        if status == lay.CHILD_NONE:
+        status = rec[at + flat_layout.CHILD_STATUS]
+        if status == flat_layout.CHILD_NONE:
             return None
-        o = tuple(float(v) for v in rec[at + lay.CHILD_ORIGIN:at + lay.CHILD_ORIGIN + 3])
-        d = tuple(float(v) for v in rec[at + lay.CHILD_DIRECTION:at + lay.CHILD_DIRECTION + 3])
-        child_weight = float(rec[at + lay.CHILD_WEIGHT])
-        if status == lay.CHILD_TRACED:
+        o = tuple(float(v) for v in rec[at + flat_layout.CHILD_ORIGIN:at + flat_layout.CHILD_ORIGIN + 3])
+        direction = at + flat_layout.CHILD_DIRECTION
+        d = tuple(float(v) for v in rec[direction:direction + 3])
+        child_weight = float(rec[at + flat_layout.CHILD_WEIGHT])
+        if status == flat_layout.CHILD_TRACED:
             return self.trace(kind, o, d, self.t_start, np.inf, generation + 1, float(coef), child_weight)
         return RayNode(kind=kind, generation=generation + 1, traced=False, status=_CHILD_STATUS[int(status)],
                        origin=np.array(o), direction=np.array(d), t_min=self.t_start, t_max=np.inf,
                        coefficient=float(coef), weight=child_weight, color=np.zeros(3))
 
     def _shadow(self, rec, i, generation, weight) -> RayNode:
-        at = lay.REC_LIGHTS + i * lay.LIGHT_REC_SIZE
-        status = int(rec[at + lay.LR_STATUS])
-        traced = status in (lay.LIGHT_REACHED, lay.LIGHT_BLOCKED)
-        blocker = int(rec[at + lay.LR_BLOCKER])
+        at = flat_layout.REC_LIGHTS + i * flat_layout.LIGHT_REC_SIZE
+        status = int(rec[at + flat_layout.LR_STATUS])
+        traced = status in (flat_layout.LIGHT_REACHED, flat_layout.LIGHT_BLOCKED)
+        blocker = int(rec[at + flat_layout.LR_BLOCKER])
         hit = int(self.prim_object[blocker]) if blocker >= 0 else None
-        origin = rec[at + lay.LR_ORIGIN:at + lay.LR_ORIGIN + 3].copy()
-        direction = rec[at + lay.LR_DIRECTION:at + lay.LR_DIRECTION + 3].copy()
-        distance = float(rec[at + lay.LR_DISTANCE])
-        t = float(rec[at + lay.LR_BLOCKER_T]) if hit is not None else None
+        origin = rec[at + flat_layout.LR_ORIGIN:at + flat_layout.LR_ORIGIN + 3].copy()
+        direction = rec[at + flat_layout.LR_DIRECTION:at + flat_layout.LR_DIRECTION + 3].copy()
+        distance = float(rec[at + flat_layout.LR_DISTANCE])
+        t = float(rec[at + flat_layout.LR_BLOCKER_T]) if hit is not None else None
         work, cells = {"tests": 0, "bounds_tests": 0}, None
         if traced:  # the same query again, to count its work and list its cells
             from core.image_order.kernels.closest_hit import closest_hit
@@ -300,5 +303,6 @@ class _Tracer:
             origin=origin, direction=direction, t_min=self.t_start, t_max=distance, hit=hit,
             hit_name=self.names[hit] if hit is not None else None, t=t,
             point=origin + t * direction if t is not None else None,
-            weight=weight, color=rec[at + lay.LR_CONTRIBUTION:at + lay.LR_CONTRIBUTION + 3].copy(),
+            weight=weight,
+            color=rec[at + flat_layout.LR_CONTRIBUTION:at + flat_layout.LR_CONTRIBUTION + 3].copy(),
             light=i, cells=cells, **work)

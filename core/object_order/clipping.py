@@ -12,7 +12,9 @@ and a point behind the eye (``w < 0``) simply fails the near one.  Dividing by
 image; clipping first guarantees ``w >= near > 0`` for everything that is
 projected.  Clip coordinates are linear in world space, so every new vertex
 gets its world-space position by the same interpolation; the clipped polygons
-can be drawn in the 3D view.
+can be drawn in the 3D view.  A frame's triangles are clipped all at once,
+compiled (:func:`core.object_order.stages.clip_triangles`), each with
+:func:`sutherland_hodgman`, the formula written once here.
 
 Each crossing point is computed from the edge's inside end toward its outside
 end, so two triangles sharing an edge get bit-identical new vertices and stay
@@ -218,45 +220,3 @@ class ClipResult:
     def clipped_polygons(self) -> list[np.ndarray]:
         """The cut polygons in world space, one (n, 3) array each, for the 3D view."""
         return [self.polygons.world_vertices(p) for p in np.flatnonzero(self.polygons.clipped)]
-
-
-def clip_triangles(face: np.ndarray, triangles: np.ndarray, clip: np.ndarray, world: np.ndarray,
-                   test: np.ndarray | None = None) -> ClipResult:
-    """Clip triangles against the frustum, deciding the easy cases all at once.
-
-    A triangle whose corners are all inside every plane is accepted whole; one
-    whose corners are all outside the same plane is rejected; only the rest go
-    through :func:`sutherland_hodgman`.  Compiled
-    (:func:`core.object_order.kernels.clip.clip_triangles`).
-
-    Parameters
-    ----------
-    face : (K,) int64, the global face number of each triangle.
-    triangles : (K, 3) int64, vertex indices of its corners.
-    clip : (N, 4) float64, vertex positions in clip space.
-    world : (N, 3) float64, the same vertices in world space.
-    test : (K,) bool, which triangles may cross the frustum; the others (their
-        object lies inside it) are accepted untested.  Default: test all.
-    """
-    from core.object_order.kernels import clip as kernels  # the kernel compiles in this module
-
-    k = len(face)
-    test = np.ones(k, dtype=bool) if test is None else np.asarray(test, dtype=bool)
-    triangles = np.ascontiguousarray(triangles, dtype=np.int64)
-    if not test.any():  # every triangle accepted whole: each is a polygon of its three corners
-        polygons = Polygons(np.arange(0, 3 * k + 1, 3, dtype=np.int64), triangles.reshape(-1), clip, world,
-                            np.asarray(face, dtype=np.int64), np.zeros(k, dtype=bool))
-        return ClipResult(polygons, k, 0, 0)
-    outcome, counts = np.empty(k, dtype=np.int8), np.empty(k, dtype=np.int64)
-    new = kernels.clip_triangles(triangles, np.ascontiguousarray(clip, dtype=float),
-                                 np.ascontiguousarray(world, dtype=float), test, outcome, counts)
-    keep = np.flatnonzero(counts)
-    offsets = np.zeros(len(keep) + 1, dtype=np.int64)
-    np.cumsum(counts[keep], out=offsets[1:])
-    vertex = np.empty(offsets[-1], dtype=np.int64)
-    kernels.number_vertices(triangles, outcome, keep, offsets, len(clip), vertex)
-    if len(new):
-        clip, world = np.vstack([clip, new[:, :4]]), np.vstack([world, new[:, 4:]])
-    polygons = Polygons(offsets, vertex, clip, world, face[keep], outcome[keep] != kernels.ACCEPTED)
-    accepted = int(np.count_nonzero(outcome == kernels.ACCEPTED))
-    return ClipResult(polygons, accepted, k - len(keep), int(np.count_nonzero(outcome == kernels.CUT)))

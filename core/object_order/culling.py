@@ -20,111 +20,21 @@ Two tests from the lecture, both cheap and both conservative:
 Conventions are those of :mod:`core.projection`: in view (camera) space the
 eye is at the origin looking down -z, so the direction toward the observer is
 +z and ``Nz`` is the normal's z component there.
+
+The back-face test of every face of a frame runs compiled
+(:func:`core.object_order.stages.back_face_culling`), face by face with
+:func:`face_facing`, the formula written once here.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
-from functools import cached_property
 
 import numpy as np
 
 from core.compiling.jitable import jitable
 
 OUTSIDE, INSIDE, CROSSING = "outside", "inside", "crossing"
-
-
-@dataclass(frozen=True, eq=False)
-class FaceCulling:
-    """The back-face test of every face, whether or not culling is switched on.
-
-    Only ``visible`` is found at once (a frame needs no more); the normals,
-    centroids and tested values of all faces are computed when first asked
-    for (a million faces' would cost a frame's worth of memory traffic); flat
-    shading finds those of the faces it draws on the spot
-    (:func:`core.object_order.flat_shading.face_colors`).
-
-    Attributes
-    ----------
-    view : (N, 3) float64, vertex positions in view space.
-    triangles : (F, 3) int64, vertex indices of each face.
-    orthographic : the parallel projection was tested (else perspective).
-    visible : (F,) bool, ``facing > 0``: a front face.
-    normal : (F, 3) float64, unit outward normal in view space (from the
-        counter-clockwise winding).
-    nz : (F,) float64, its z component, the lecture's ``Nz`` (> 0: toward the
-        observer along the viewing axis).
-    centroid : (F, 3) float64, the face's centroid in view space.
-    facing : (F,) float64, the value tested: the cosine between the normal and
-        the direction from the centroid to the eye (perspective), or ``Nz``
-        (orthographic).
-    """
-
-    view: np.ndarray
-    triangles: np.ndarray
-    orthographic: bool
-    visible: np.ndarray
-
-    @cached_property
-    def _all(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        return self._test(np.arange(len(self.triangles)))
-
-    def _test(self, face: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        from core.object_order.kernels import culling as kernels  # the kernel compiles in this module
-
-        normal, centroid, facing = np.empty((len(face), 3)), np.empty((len(face), 3)), np.empty(len(face))
-        kernels.back_face_test(self.view, self.triangles, face, self.orthographic, normal, centroid, facing)
-        return normal, centroid, facing
-
-    @property
-    def normal(self) -> np.ndarray:
-        return self._all[0]
-
-    @property
-    def nz(self) -> np.ndarray:
-        return self._all[0][:, 2]
-
-    @property
-    def centroid(self) -> np.ndarray:
-        return self._all[1]
-
-    @property
-    def facing(self) -> np.ndarray:
-        return self._all[2]
-
-    @property
-    def culled(self) -> np.ndarray:
-        """(F,) bool, back faces."""
-        return ~self.visible
-
-
-def back_face_culling(view: np.ndarray, triangles: np.ndarray, orthographic: bool) -> FaceCulling:
-    """Test every face against the observer.
-
-    Parameters
-    ----------
-    view : (N, 3) float64, vertex positions in view space.
-    triangles : (F, 3) int64, vertex indices of each face, counter-clockwise
-        seen from outside.
-    orthographic : True for the parallel projection (all projecting rays along
-        -z), False for perspective (rays from the eye at the origin).
-
-    Returns
-    -------
-    FaceCulling
-
-    Notes
-    -----
-    Compiled (:func:`core.object_order.kernels.culling.front_faces`), face
-    by face with :func:`face_facing`.
-    """
-    from core.object_order.kernels import culling as kernels  # the kernel compiles in this module
-
-    view = np.ascontiguousarray(view, dtype=float)
-    triangles = np.ascontiguousarray(triangles, dtype=np.int64)
-    visible = np.empty(len(triangles), dtype=bool)
-    kernels.front_faces(view, triangles, bool(orthographic), visible)
-    return FaceCulling(view, triangles, bool(orthographic), visible)
 
 
 @jitable
@@ -157,7 +67,7 @@ def face_facing(a, b, c, orthographic):
 
 
 def is_back_facing(triangle, orthographic: bool = False) -> bool:
-    """One triangle in view space: does it turn its back to the observer?
+    """One triangle in view space: does it turn its back to the observer? (:func:`face_facing`)
 
     Examples
     --------
@@ -165,8 +75,8 @@ def is_back_facing(triangle, orthographic: bool = False) -> bool:
     >>> is_back_facing(tri), is_back_facing(tri[::-1])
     (False, True)
     """
-    corners = np.asarray(triangle, dtype=float)
-    return not bool(back_face_culling(corners, np.array([[0, 1, 2]]), orthographic).visible[0])
+    a, b, c = np.asarray(triangle, dtype=float)
+    return not face_facing(a, b, c, bool(orthographic))[6] > 0
 
 
 @dataclass(frozen=True)

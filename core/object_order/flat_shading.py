@@ -13,8 +13,8 @@ in its flat material colours.  No shadows.
 
 Positions and directions are in view space: the observer at the origin
 looking down -z (:mod:`core.projection`).  The formula is :func:`lambert`,
-written once; :func:`face_colors` runs it over all polygons, compiled
-(:mod:`core.object_order.kernels.flat_shading`).
+written once; :func:`core.object_order.stages.face_colors` runs it over all polygons,
+compiled (:mod:`core.object_order.kernels.flat_shading`).
 """
 
 from __future__ import annotations
@@ -57,46 +57,3 @@ def lambert(n, c, toward_viewer, base, ambient, diffuse, light_position, light_r
     return (min(max(base[0] * (ambient + diffuse * r), 0.0), 1.0),
             min(max(base[1] * (ambient + diffuse * g), 0.0), 1.0),
             min(max(base[2] * (ambient + diffuse * b), 0.0), 1.0))
-
-
-def face_colors(view: np.ndarray, triangles: np.ndarray, face: np.ndarray, material: np.ndarray,
-                orthographic: bool, base: np.ndarray, ambient: np.ndarray, diffuse: np.ndarray,
-                light_position: np.ndarray, light_rgb: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """The flat Lambert colour of each polygon, and its face's depth.
-
-    Parameters
-    ----------
-    view : (N, 3) float64, vertex positions in view space.
-    triangles : (F, 3) int64, vertex indices of each face, counter-clockwise seen from outside.
-    face : (P,) int64, the face each polygon comes from (row of ``triangles``).
-    material : (P,) int64, its material (row of ``base``, ``ambient``, ``diffuse``).
-    orthographic : the observer looks along -z from afar (toward him is +z);
-        else from the origin (toward him is ``-centroid``).
-    base : (M, 3) float64, material colours, RGB in [0, 1].
-    ambient, diffuse : (M,) float64, the materials' k_a and k_d.
-    light_position : (L, 3) float64, point light positions, view space.
-    light_rgb : (L, 3) float64, each light's colour times its intensity.
-
-    Returns
-    -------
-    colors : (P, 3) float64, RGB in [0, 1].
-    depth : (P,) float64, the distance of the face's centroid along the viewing
-        axis (``-z`` in view space), the key transparent polygons are sorted by.
-
-    Notes
-    -----
-    The face's unit normal and centroid are those of the back-face test
-    (:func:`core.object_order.culling.face_facing`).
-    """
-    from core.object_order.kernels import flat_shading as kernels  # the kernel compiles in this module
-
-    def f64(x, cols=None):
-        x = np.asarray(x, dtype=float)
-        return np.ascontiguousarray(x if cols is None else x.reshape(-1, cols))
-
-    out, depth = np.empty((len(face), 3)), np.empty(len(face))
-    kernels.face_colors(f64(view, 3), np.ascontiguousarray(triangles, dtype=np.int64),
-                        np.ascontiguousarray(face, dtype=np.int64),
-                        np.ascontiguousarray(material, dtype=np.int64), bool(orthographic), f64(base, 3),
-                        f64(ambient), f64(diffuse), f64(light_position, 3), f64(light_rgb, 3), out, depth)
-    return out, depth

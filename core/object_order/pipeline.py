@@ -18,6 +18,7 @@ own module, and keeps what every stage did in a :class:`RasterResult`:
    :mod:`core.object_order.fragments`, compiled in :mod:`core.object_order.kernels.raster`),
    optionally recording every fragment (:mod:`core.object_order.step_history`).
 
+Stages 2, 4 and 6 run compiled over all faces at once (:mod:`core.object_order.stages`).
 Culling, clipping, sorting and the z-test itself can be switched off
 (:class:`RasterSettings`) to see what each one is for, and the z-buffer's
 number format chosen (:mod:`core.object_order.depth_formats`).  Analytic
@@ -36,15 +37,15 @@ from core import shapes
 from core.compiling.warm_up import WarmUp
 from core.object_order import (
     blending,
-    clipping,
     culling,
     depth_formats,
-    flat_shading,
     fragments,
     rasterization,
+    stages,
 )
 from core.object_order.clipping import ClipResult, Polygons
-from core.object_order.culling import FaceCulling, ObjectCulling
+from core.object_order.culling import ObjectCulling
+from core.object_order.stages import FaceCulling
 from core.object_order.step_history import StepHistory
 from core.presets import zbuffer_piercing
 from core.scene import Mesh, Scene, SceneObject, Sphere
@@ -285,14 +286,14 @@ def _render(scene: Scene, settings: RasterSettings) -> RasterResult:
     watch.lap("transform")
 
     # 2. Back-face culling.
-    faces = culling.back_face_culling(view, triangles, ortho)
+    faces = stages.back_face_culling(view, triangles, ortho)
     candidate = faces.visible if settings.back_face_culling else np.ones(len(triangles), bool)
     watch.lap("back_face_culling")
 
     # 3. Frustum culling of whole objects; objects inside skip the clipper's tests.
     objects, crossing, outside_faces = None, np.ones(len(meshes), dtype=bool), 0
     if settings.frustum_culling and meshes:
-        spheres = [_bounding_sphere(obj, mesh) for obj, mesh in zip(scene.objects, meshes, strict=True)]
+        spheres = [obj.bounding_sphere() for obj in scene.objects]
         objects = culling.frustum_culling(np.array([c for c, _ in spheres]),
                                           np.array([r for _, r in spheres]), cam.frustum_planes())
         state = np.array(objects.state)
@@ -306,7 +307,7 @@ def _render(scene: Scene, settings: RasterSettings) -> RasterResult:
     face_ids = np.flatnonzero(candidate)
     test = (_per_face(crossing, face_offsets, face_ids) if settings.clipping
             else np.zeros(len(face_ids), dtype=bool))
-    clipped = clipping.clip_triangles(face_ids, triangles[face_ids], clip, world, test)
+    clipped = stages.clip_triangles(face_ids, triangles[face_ids], clip, world, test)
     polygons = clipped.polygons
     watch.lap("clipping")
 
@@ -320,7 +321,7 @@ def _render(scene: Scene, settings: RasterSettings) -> RasterResult:
     materials = [m.material for m in meshes]
     alpha = _per_face(np.array([m.opacity for m in materials], dtype=float), face_offsets, polygons.face)
     lights = np.array([(*light.position, 1.0) for light in scene.lights]).reshape(-1, 4)
-    colors, sort_depth = flat_shading.face_colors(
+    colors, sort_depth = stages.face_colors(
         faces.view, faces.triangles, polygons.face, poly_object, ortho,
         np.array([m.color for m in materials], dtype=float), np.array([m.ambient for m in materials]),
         np.array([m.diffuse for m in materials]), (lights @ view_from_world.T)[:, :3],
@@ -375,15 +376,6 @@ def _per_face(values: np.ndarray, face_offsets: np.ndarray, face: np.ndarray) ->
     if len(values) and (values == values[0]).all():  # one object, or all alike: no look-up
         return np.full(len(face), values[0])
     return values[np.searchsorted(face_offsets[1:], face, side="right")]
-
-
-def _bounding_sphere(obj: SceneObject, mesh: Mesh) -> tuple[np.ndarray, float]:
-    if isinstance(obj, Sphere):
-        return np.asarray(obj.center, dtype=float), float(obj.radius)
-    from core.object_order.kernels.culling import bounding_sphere
-
-    center, radius = bounding_sphere(np.ascontiguousarray(mesh.vertices, dtype=float))
-    return center, float(radius)
 
 
 def _stats(settings, projection_name, faces, outside_faces, objects, clipped, n_triangles, out_of_range,

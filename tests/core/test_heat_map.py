@@ -9,7 +9,7 @@ import verdict_scenes as vs
 
 from core.accuracy.supersampling import trace_adaptive
 from core.heat_map import heat_map
-from core.image_order.kernels.layout import HEAT_BOUNDS_TESTS, HEAT_PRIM_TESTS
+from core.image_order.flat_layout import HEAT_BOUNDS_TESTS, HEAT_PRIM_TESTS
 from core.image_order.ray_tracing import TraceSettings, render_trace
 from core.object_order.pipeline import RasterSettings, render_raster
 from core.presets_trace import big_mesh, mirror_and_glass

@@ -30,7 +30,7 @@ from PySide6.QtWidgets import (
 
 from core.accuracy.supersampling import AdaptiveImage
 from core.heat_map import heat_map
-from core.image_order.kernels.layout import HEAT_BOUNDS_TESTS, HEAT_PRIM_TESTS
+from core.image_order.flat_layout import HEAT_BOUNDS_TESTS, HEAT_PRIM_TESTS
 from core.image_order.ray_tracing import TraceSettings
 from core.image_order.ray_tree import RayNode
 from core.pixel_verdict import trace_verdict

@@ -47,13 +47,6 @@ def sphere_polydata(sphere: Sphere) -> pv.PolyData:
     )
 
 
-def bounding_sphere(obj: Mesh | Sphere) -> tuple[np.ndarray, float]:
-    """Centre and radius of a sphere enclosing the object."""
-    if isinstance(obj, Sphere):
-        return np.asarray(obj.center, dtype=float), obj.radius
-    return obj.bounding_sphere()
-
-
 def object_polydata(obj: Mesh | Sphere) -> pv.PolyData:
     return sphere_polydata(obj) if isinstance(obj, Sphere) else mesh_polydata(obj)
 

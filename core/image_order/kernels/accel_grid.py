@@ -16,9 +16,9 @@ from __future__ import annotations
 
 import math
 
-from core.image_order.kernels.intersect import sphere_roots
+from core.image_order.flat_layout import BOUNDS_TESTS, CELLS, PRIM_TESTS
+from core.image_order.kernels.accel_spheres import bounding_roots
 from core.image_order.kernels.jit import jit, jit_allocating
-from core.image_order.kernels.layout import BOUNDS_TESTS, CELLS, PRIM_TESTS
 from core.image_order.kernels.primitives import no_hit, prim_hit
 
 
@@ -145,9 +145,7 @@ def grid_closest(o, d, shear, t_min, t_max, any_hit, use_spheres, geo, grid, scr
                 if object_stamp[ob] != stamp:
                     object_stamp[ob] = stamp
                     spheres += 1
-                    object_span[ob, 0], object_span[ob, 1] = sphere_roots(
-                        o[0], o[1], o[2], d[0], d[1], d[2], bounding[ob, 0], bounding[ob, 1], bounding[ob, 2],
-                        bounding[ob, 3])
+                    object_span[ob, 0], object_span[ob, 1] = bounding_roots(o, d, bounding, ob)
                 if object_span[ob, 0] >= best_t or object_span[ob, 1] < t_min:
                     continue
             tests += 1

@@ -11,10 +11,18 @@ the closest hit found so far.
 
 from __future__ import annotations
 
+from core.image_order.flat_layout import BOUNDS_TESTS, GEO_N_SPHERES, GEO_ROWS, PRIM_TESTS
 from core.image_order.kernels.intersect import sphere_roots
-from core.image_order.kernels.jit import jit
-from core.image_order.kernels.layout import BOUNDS_TESTS, GEO_N_SPHERES, GEO_ROWS, PRIM_TESTS
+from core.image_order.kernels.jit import jit, jit_inline
 from core.image_order.kernels.primitives import no_hit, prim_hit
+
+
+@jit_inline
+def bounding_roots(o, d, bounding, ob):
+    """Both crossings ``t_near <= t_far`` of the ray's line with object ``ob``'s bounding sphere
+    (row ``(cx, cy, cz, r)`` of ``bounding``), ``(inf, inf)`` when it misses."""
+    return sphere_roots(o[0], o[1], o[2], d[0], d[1], d[2], bounding[ob, 0], bounding[ob, 1], bounding[ob, 2],
+                        bounding[ob, 3])
 
 
 @jit
@@ -51,8 +59,7 @@ def spheres_closest(o, d, shear, t_min, t_max, any_hit, geo, counters):
         first, count = object_prims[ob, 0], object_prims[ob, 1]
         if first >= n_spheres:
             spheres += 1
-            enter, leave = sphere_roots(o[0], o[1], o[2], d[0], d[1], d[2], bounding[ob, 0], bounding[ob, 1],
-                                        bounding[ob, 2], bounding[ob, 3])
+            enter, leave = bounding_roots(o, d, bounding, ob)
             if enter >= best_t or leave < t_min:
                 continue
         for p in range(first, first + count):

@@ -46,6 +46,7 @@ from __future__ import annotations
 
 import math
 
+from core.image_order.flat_layout import BOUNDS_TESTS, PRIM_TESTS
 from core.image_order.intersect_triangle import ray_shear
 from core.image_order.kernels.bvh_build import LEAF_SIZE, WIDE_REFS, WIDE_SIZE, WIDTH
 from core.image_order.kernels.bvh_traverse import (
@@ -58,7 +59,6 @@ from core.image_order.kernels.bvh_traverse import (
 from core.image_order.kernels.intrinsics.slabs4 import slab_interval4, slab_rays4
 from core.image_order.kernels.intrinsics.unchecked import load_at, store_at
 from core.image_order.kernels.jit import jit, jit_inline
-from core.image_order.kernels.layout import BOUNDS_TESTS, PRIM_TESTS
 
 #: Pixels of a packet: rows and columns.
 PACKET_ROWS = PACKET_COLS = 4

@@ -24,13 +24,13 @@ from __future__ import annotations
 
 import math
 
+from core.image_order.flat_layout import BOUNDS_TESTS, PRIM_TESTS, ROW_CENTER, ROW_RADIUS
 from core.image_order.kernels.bvh_build import LEAF_SIZE, WIDE_HI, WIDE_LO, WIDE_REFS, WIDE_SIZE, WIDTH
 from core.image_order.kernels.intersect import sphere_hit, triangle_hit
 from core.image_order.kernels.intrinsics.slabs4 import slab_test4
 from core.image_order.kernels.intrinsics.triangle4 import GROUP_SIZE, LANES, UNSURE, triangle_test4
 from core.image_order.kernels.intrinsics.unchecked import load_at, store_at
 from core.image_order.kernels.jit import jit, jit_inline
-from core.image_order.kernels.layout import BOUNDS_TESTS, PRIM_TESTS, ROW_CENTER, ROW_RADIUS
 from core.image_order.kernels.primitives import no_hit, prim_hit
 
 _OTHER_SIDE = WIDE_LO + WIDE_HI

@@ -1,7 +1,7 @@
 """The one question every ray asks: what does it hit first?  Answered by the chosen method.
 
 :func:`closest_hit` dispatches on the acceleration code of
-:data:`core.image_order.kernels.layout.ACCEL_CODES`; all methods call the same
+:data:`core.image_order.flat_layout.ACCEL_CODES`; all methods call the same
 primitive tests, so they return bit-identical hits and differ only in the
 work counted in ``counters``.
 
@@ -13,8 +13,8 @@ the shadow rays of shading inline the BVH traversal instead, see
 
 from __future__ import annotations
 
+from core.image_order import flat_layout
 from core.image_order.intersect_triangle import ray_shear
-from core.image_order.kernels import layout as lay
 from core.image_order.kernels.accel_grid import grid_closest
 from core.image_order.kernels.accel_spheres import brute_closest, spheres_closest
 from core.image_order.kernels.bvh_traverse import bvh_closest
@@ -32,7 +32,7 @@ def _bvh_closest(o, d, shear, t_min, t_max, any_hit, bvh, n_spheres, stack, stac
 def _closest_other(method, o, d, shear, t_min, t_max, any_hit, geo, grid, scratch, counters):
     if method in (GRID, GRID_SPHERES):
         return grid_closest(o, d, shear, t_min, t_max, any_hit, method == GRID_SPHERES, geo, grid,
-                            scratch[:lay.SCRATCH_GRID], counters)
+                            scratch[:flat_layout.SCRATCH_GRID], counters)
     if method == SPHERES:
         return spheres_closest(o, d, shear, t_min, t_max, any_hit, geo, counters)
     return brute_closest(o, d, shear, t_min, t_max, any_hit, geo, counters)
@@ -60,7 +60,7 @@ def closest_hit(method, o, d, t_min, t_max, any_hit, geo, grid, bvh, scratch, co
     """
     shear = ray_shear(d[0], d[1], d[2])
     if method == BVH:
-        return _bvh_closest(o, d, shear, t_min, t_max, any_hit, bvh, geo[lay.GEO_N_SPHERES],
-                            scratch[lay.SCRATCH_STACK], scratch[lay.SCRATCH_STACK_T],
+        return _bvh_closest(o, d, shear, t_min, t_max, any_hit, bvh, geo[flat_layout.GEO_N_SPHERES],
+                            scratch[flat_layout.SCRATCH_STACK], scratch[flat_layout.SCRATCH_STACK_T],
                             counters)
     return _closest_other(method, o, d, shear, t_min, t_max, any_hit, geo, grid, scratch, counters)

@@ -49,13 +49,13 @@ _KERNELS = Path(__file__).resolve().parent
 _IMAGE_ORDER = _KERNELS.parent
 _CORE = _IMAGE_ORDER.parent
 #: Every file whose code ends up inside the tracer's compiled kernels: the kernels
-#: themselves (this folder and its sub-folders), the lecture modules whose
-#: ``register_jitable`` formulas they compile in, and the shared modules those import
+#: themselves (this folder and its sub-folders), the flat arrays' layout, the lecture
+#: modules whose ``register_jitable`` formulas they compile in, and the shared modules those import
 #: (the primary ray's formula lives with the camera).  ``tests/core/image_order/test_trace_kernels.py``
 #: checks that every ``core`` module a listed file imports is listed too.
 SOURCES = sorted(_KERNELS.rglob("*.py")) + [
-    _IMAGE_ORDER / name for name in ("optics.py", "shading.py", "ray_offset.py", "intersect_sphere.py",
-                                     "intersect_triangle.py", "ray_casting.py")] + [
+    _IMAGE_ORDER / name for name in ("flat_layout.py", "optics.py", "shading.py", "ray_offset.py",
+                                     "intersect_sphere.py", "intersect_triangle.py", "ray_casting.py")] + [
     _CORE / name for name in ("camera.py", "projection.py", "compiling/jitable.py")]
 
 

@@ -4,7 +4,7 @@ The flattened scene (:mod:`core.image_order.flat_scene`) numbers its primitives 
 analytic spheres first and the triangles after them, and stores each as one
 row of nine numbers: ``(cx, cy, cz, r, 0, 0, 0, 0, 0)`` for a sphere, the
 corners ``A, B, C`` for a triangle (columns ``ROW_*`` of
-:mod:`core.image_order.kernels.layout`).  Every acceleration method ends in
+:mod:`core.image_order.flat_layout`).  Every acceleration method ends in
 :func:`prim_hit` on such a row, so all of them compute bit-identical crossings
 and differ only in how many rows they test.
 """
@@ -13,9 +13,9 @@ from __future__ import annotations
 
 import math
 
+from core.image_order.flat_layout import ROW_CENTER, ROW_RADIUS
 from core.image_order.kernels.intersect import sphere_hit, triangle_hit
 from core.image_order.kernels.jit import jit, jit_inline
-from core.image_order.kernels.layout import ROW_CENTER, ROW_RADIUS
 
 
 @jit_inline
@@ -35,5 +35,5 @@ def prim_hit(rows, k, is_sphere, o, d, shear, t_min, t_max):
 
 @jit
 def no_hit():
-    """The result of a query that found nothing: ``(prim, t, b0, b1, b2)`` (see ``layout.HIT_*``)."""
+    """The result of a query that found nothing: ``(prim, t, b0, b1, b2)`` (see ``flat_layout.HIT_*``)."""
     return -1, math.inf, 0.0, 0.0, 0.0

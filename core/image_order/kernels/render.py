@@ -32,8 +32,8 @@ import math
 import numpy as np
 from numba import prange
 
+from core.image_order import flat_layout
 from core.image_order.intersect_triangle import ray_shear
-from core.image_order.kernels import layout as lay
 from core.image_order.kernels.bvh_packet import (
     AXIS_FIELDS,
     PACKET_COLS,
@@ -67,7 +67,7 @@ def make_scratch(method, n_prims, n_objects, bvh_depth):
     """Per-thread work arrays for :func:`core.image_order.kernels.closest_hit.closest_hit`.
 
     ``(mailbox, object_stamp, object_span, stamp, stack, stack_t)``, at the positions
-    ``SCRATCH_*`` of :mod:`core.image_order.kernels.layout`.
+    ``SCRATCH_*`` of :mod:`core.image_order.flat_layout`.
     """
     grid = method in (GRID, GRID_SPHERES)
     stack_size = 3 * bvh_depth + 2 if method == BVH else 1
@@ -81,14 +81,14 @@ def make_scratch(method, n_prims, n_objects, bvh_depth):
 
 def no_heat() -> np.ndarray:
     """The ``heat`` argument of :func:`render_pass` that counts nothing (an empty array of its type)."""
-    return np.zeros((0, 0, lay.HEAT_SIZE), np.int64)
+    return np.zeros((0, 0, flat_layout.HEAT_SIZE), np.int64)
 
 
 @jit_inline
 def _bounds_work(count):
     """The box and sphere tests counted so far: bounding spheres, BVH boxes, and the grid's cells
     walked (each a cuboid the ray enters), as the heat map's ``HEAT_BOUNDS_TESTS`` counts them."""
-    return count[lay.BOUNDS_TESTS] + count[lay.CELLS]
+    return count[flat_layout.BOUNDS_TESTS] + count[flat_layout.CELLS]
 
 
 @jit_inline
@@ -96,31 +96,31 @@ def _add_heat(heat, j, i, count, prim_before, bounds_before):
     """Add the tests counted since ``prim_before, bounds_before`` (:func:`_bounds_work`) to pixel
     ``(j, i)``'s heat, if kept."""
     if heat.shape[0] > 0:
-        heat[j, i, lay.HEAT_PRIM_TESTS] += count[lay.PRIM_TESTS] - prim_before
-        heat[j, i, lay.HEAT_BOUNDS_TESTS] += _bounds_work(count) - bounds_before
+        heat[j, i, flat_layout.HEAT_PRIM_TESTS] += count[flat_layout.PRIM_TESTS] - prim_before
+        heat[j, i, flat_layout.HEAT_BOUNDS_TESTS] += _bounds_work(count) - bounds_before
 
 
 @jit
 def _primary_rows(first, last, cam, xs, ys, opts, geo, grid, bvh, scratch, packet, hits, depth, objects,
                   count, heat):
-    method = int(opts[lay.OPT_ACCEL])
-    if method == BVH and opts[lay.OPT_PACKETS] > 0.0:  # see core.image_order.kernels.bvh_packet
+    method = int(opts[flat_layout.OPT_ACCEL])
+    if method == BVH and opts[flat_layout.OPT_PACKETS] > 0.0:  # see core.image_order.kernels.bvh_packet
         for j0 in range(first, last, PACKET_ROWS):
             for i0 in range(0, xs.shape[0], PACKET_COLS):
-                if flag_raised(opts, lay.OPT_STOP):
+                if flag_raised(opts, flat_layout.OPT_STOP):
                     return
                 _primary_packet(j0, min(j0 + PACKET_ROWS, last), i0, min(i0 + PACKET_COLS, xs.shape[0]), cam,
                                 xs, ys, geo, bvh, scratch, packet, hits, depth, objects, count, heat)
         return
-    n_spheres = geo[lay.GEO_N_SPHERES]
-    stack, stack_t = scratch[lay.SCRATCH_STACK], scratch[lay.SCRATCH_STACK_T]
+    n_spheres = geo[flat_layout.GEO_N_SPHERES]
+    stack, stack_t = scratch[flat_layout.SCRATCH_STACK], scratch[flat_layout.SCRATCH_STACK_T]
     for j in range(first, last):
         for i in range(xs.shape[0]):
-            if flag_raised(opts, lay.OPT_STOP):
+            if flag_raised(opts, flat_layout.OPT_STOP):
                 return
             o, d, t_min, t_max = primary_ray(cam, xs[i], ys[j])
-            count[lay.PRIMARY] += 1
-            prim_before, bounds_before = count[lay.PRIM_TESTS], _bounds_work(count)
+            count[flat_layout.PRIMARY] += 1
+            prim_before, bounds_before = count[flat_layout.PRIM_TESTS], _bounds_work(count)
             # BVH rays go straight to the traversal.  Through closest_hit, every array of every
             # structure would be bound anew for each ray, and numba updates the reference count of
             # each array it binds: a quarter of a primary ray's time.
@@ -140,21 +140,21 @@ def _primary_packet(j0, j1, i0, i1, cam, xs, ys, geo, bvh, scratch, packet, hits
     can share the walk, else one by one.  The tests of a shared walk go to the heat map in equal
     parts (:func:`_share_walk`)."""
     rays, axes = packet
-    n_spheres = geo[lay.GEO_N_SPHERES]
-    stack, stack_t = scratch[lay.SCRATCH_STACK], scratch[lay.SCRATCH_STACK_T]
+    n_spheres = geo[flat_layout.GEO_N_SPHERES]
+    stack, stack_t = scratch[flat_layout.SCRATCH_STACK], scratch[flat_layout.SCRATCH_STACK_T]
     n = 0
     for j in range(j0, j1):
         for i in range(i0, i1):
             o, d, t_min, t_max = primary_ray(cam, xs[i], ys[j])
             set_ray(rays, axes, n, o, d, t_min, t_max)
             n += 1
-    count[lay.PRIMARY] += n
+    count[flat_layout.PRIMARY] += n
     shared = bvh[0].shape[0] > 0 and can_share_walk(rays, n)
     if shared:
-        prim_before, bounds_before = count[lay.PRIM_TESTS], _bounds_work(count)
+        prim_before, bounds_before = count[flat_layout.PRIM_TESTS], _bounds_work(count)
         packet_closest(n, rays, axes, bvh, n_spheres, stack, stack_t, count)
         if heat.shape[0] > 0:
-            _share_walk(heat, j0, j1, i0, i1, n, count[lay.PRIM_TESTS] - prim_before,
+            _share_walk(heat, j0, j1, i0, i1, n, count[flat_layout.PRIM_TESTS] - prim_before,
                         _bounds_work(count) - bounds_before)
     r = 0
     for j in range(j0, j1):
@@ -163,7 +163,7 @@ def _primary_packet(j0, j1, i0, i1, cam, xs, ys, geo, bvh, scratch, packet, hits
             if shared:
                 h = packet_hit(rays, axes, r, bvh, n_spheres)
             else:
-                prim_before, bounds_before = count[lay.PRIM_TESTS], _bounds_work(count)
+                prim_before, bounds_before = count[flat_layout.PRIM_TESTS], _bounds_work(count)
                 h = bvh_closest(o, d, shear, t_min, t_max, False, bvh, n_spheres, stack, stack_t, count)
                 _add_heat(heat, j, i, count, prim_before, bounds_before)
             _write_primary(cam, geo, hits, depth, objects, j, i, o, d, h)
@@ -177,8 +177,8 @@ def _share_walk(heat, j0, j1, i0, i1, n, prims, bounds):
     r = 0
     for j in range(j0, j1):
         for i in range(i0, i1):
-            heat[j, i, lay.HEAT_PRIM_TESTS] += prims // n + (r < prims % n)
-            heat[j, i, lay.HEAT_BOUNDS_TESTS] += bounds // n + (r < bounds % n)
+            heat[j, i, flat_layout.HEAT_PRIM_TESTS] += prims // n + (r < prims % n)
+            heat[j, i, flat_layout.HEAT_BOUNDS_TESTS] += bounds // n + (r < bounds % n)
             r += 1
 
 
@@ -186,11 +186,12 @@ def _share_walk(heat, j0, j1, i0, i1, n, prims, bounds):
 def _write_primary(cam, geo, hits, depth, objects, j, i, o, d, h):
     """Pixel ``(j, i)``'s closest hit ``h`` into the hits, its depth and the object it shows."""
     prim, t, b0, b1, b2 = h
-    hits[j, i, lay.HIT_PRIM], hits[j, i, lay.HIT_T] = prim, t
-    hits[j, i, lay.HIT_B0], hits[j, i, lay.HIT_B1], hits[j, i, lay.HIT_B2] = b0, b1, b2
+    hits[j, i, flat_layout.HIT_PRIM], hits[j, i, flat_layout.HIT_T] = prim, t
+    hits[j, i, flat_layout.HIT_B0], hits[j, i, flat_layout.HIT_B1] = b0, b1
+    hits[j, i, flat_layout.HIT_B2] = b2
     if prim >= 0:
         depth[j, i] = view_depth(cam, o, d, t)
-        objects[j, i] = geo[lay.GEO_PRIM_OBJECT][prim]
+        objects[j, i] = geo[flat_layout.GEO_PRIM_OBJECT][prim]
     else:
         depth[j, i] = math.inf
         objects[j, i] = -1
@@ -209,7 +210,8 @@ def _clip(color, j, i):
 @jit
 def _as_hit(row):
     """A row of the hits array as the closest-hit tuple ``(prim, t, b0, b1, b2)``."""
-    return int(row[lay.HIT_PRIM]), row[lay.HIT_T], row[lay.HIT_B0], row[lay.HIT_B1], row[lay.HIT_B2]
+    return (int(row[flat_layout.HIT_PRIM]), row[flat_layout.HIT_T], row[flat_layout.HIT_B0],
+            row[flat_layout.HIT_B1], row[flat_layout.HIT_B2])
 
 
 @jit
@@ -217,86 +219,90 @@ def _shade_rows(first, last, cam, xs, ys, hits, color, children, spawned, materi
                 bvh, scratch, rec, count, heat):
     for j in range(first, last):
         for i in range(xs.shape[0]):
-            if flag_raised(opts, lay.OPT_STOP):
+            if flag_raised(opts, flat_layout.OPT_STOP):
                 return
-            if hits[j, i, lay.HIT_PRIM] < 0:
+            if hits[j, i, flat_layout.HIT_PRIM] < 0:
                 spawned[j, i] = 0
                 for a in range(3):
-                    color[j, i, a] = opts[lay.OPT_BACKGROUND + a]
+                    color[j, i, a] = opts[flat_layout.OPT_BACKGROUND + a]
                 _clip(color, j, i)
                 continue
             o, d, _, _ = primary_ray(cam, xs[i], ys[j])
-            prim_before, bounds_before = count[lay.PRIM_TESTS], _bounds_work(count)
+            prim_before, bounds_before = count[flat_layout.PRIM_TESTS], _bounds_work(count)
             shade_hit(o, d, _as_hit(hits[j, i]), 1.0, 0, materials, lights, opts, geo, grid, bvh, scratch,
                       count, rec, False)
             _add_heat(heat, j, i, count, prim_before, bounds_before)
             for a in range(3):
-                color[j, i, a] = rec[lay.REC_LOCAL + a]
+                color[j, i, a] = rec[flat_layout.REC_LOCAL + a]
             # Only the rays that go on are written: most pixels spawn none, and their rows of
             # ``children`` are then never touched (nor paged in).
-            reflected = rec[lay.REC_REFLECT + lay.CHILD_STATUS] == lay.CHILD_TRACED
-            refracted = rec[lay.REC_REFRACT + lay.CHILD_STATUS] == lay.CHILD_TRACED
-            spawned[j, i] = reflected * (1 << lay.SPAWN_REFLECT) + refracted * (1 << lay.SPAWN_REFRACT)
+            reflected = rec[flat_layout.REC_REFLECT + flat_layout.CHILD_STATUS] == flat_layout.CHILD_TRACED
+            refracted = rec[flat_layout.REC_REFRACT + flat_layout.CHILD_STATUS] == flat_layout.CHILD_TRACED
+            spawned[j, i] = (reflected * (1 << flat_layout.SPAWN_REFLECT)
+                             + refracted * (1 << flat_layout.SPAWN_REFRACT))
             if spawned[j, i] == 0:  # the colour is final; the secondary stage finishes the others
                 _clip(color, j, i)
             if reflected:
-                for a in range(lay.CHILD_SIZE):
-                    children[j, i, lay.SPAWN_REFLECT, a] = rec[lay.REC_REFLECT + a]
+                for a in range(flat_layout.CHILD_SIZE):
+                    children[j, i, flat_layout.SPAWN_REFLECT, a] = rec[flat_layout.REC_REFLECT + a]
             if refracted:
-                for a in range(lay.CHILD_SIZE):
-                    children[j, i, lay.SPAWN_REFRACT, a] = rec[lay.REC_REFRACT + a]
+                for a in range(flat_layout.CHILD_SIZE):
+                    children[j, i, flat_layout.SPAWN_REFRACT, a] = rec[flat_layout.REC_REFRACT + a]
 
 
 @jit
 def _secondary_rows(first, last, color, children, spawned, materials, lights, opts, geo, grid, bvh, scratch,
                     rec, stack, count, heat):
-    method = int(opts[lay.OPT_ACCEL])
-    n_spheres = geo[lay.GEO_N_SPHERES]
-    t_start = 0.0 if opts[lay.OPT_SCALED_OFFSET] > 0.0 else opts[lay.OPT_EPSILON]
-    o_at, d_at = lay.CHILD_ORIGIN, lay.CHILD_DIRECTION
+    method = int(opts[flat_layout.OPT_ACCEL])
+    n_spheres = geo[flat_layout.GEO_N_SPHERES]
+    t_start = 0.0 if opts[flat_layout.OPT_SCALED_OFFSET] > 0.0 else opts[flat_layout.OPT_EPSILON]
+    o_at, d_at = flat_layout.CHILD_ORIGIN, flat_layout.CHILD_DIRECTION
     for j in range(first, last):
         for i in range(color.shape[1]):
             if spawned[j, i] == 0:
                 continue
-            prim_before, bounds_before = count[lay.PRIM_TESTS], _bounds_work(count)
+            prim_before, bounds_before = count[flat_layout.PRIM_TESTS], _bounds_work(count)
             top = 0
-            for kind in range(lay.N_SPAWNED):
+            for kind in range(flat_layout.N_SPAWNED):
                 if spawned[j, i] & (1 << kind):
-                    for a in range(lay.CHILD_SIZE):
+                    for a in range(flat_layout.CHILD_SIZE):
                         stack[top, a] = children[j, i, kind, a]
-                    stack[top, lay.STACK_GENERATION] = 1.0
-                    stack[top, lay.STACK_KIND] = kind
+                    stack[top, flat_layout.STACK_GENERATION] = 1.0
+                    stack[top, flat_layout.STACK_KIND] = kind
                     top += 1
             while top > 0:
-                if flag_raised(opts, lay.OPT_STOP):
+                if flag_raised(opts, flat_layout.OPT_STOP):
                     return
                 top -= 1
                 o = (stack[top, o_at], stack[top, o_at + 1], stack[top, o_at + 2])
                 d = (stack[top, d_at], stack[top, d_at + 1], stack[top, d_at + 2])
-                weight = stack[top, lay.CHILD_WEIGHT]
-                depth, kind = int(stack[top, lay.STACK_GENERATION]), stack[top, lay.STACK_KIND]
-                count[lay.REFLECTION if kind == lay.SPAWN_REFLECT else lay.REFRACTION] += 1
+                weight = stack[top, flat_layout.CHILD_WEIGHT]
+                depth = int(stack[top, flat_layout.STACK_GENERATION])
+                kind = stack[top, flat_layout.STACK_KIND]
+                count[flat_layout.REFLECTION if kind == flat_layout.SPAWN_REFLECT
+                      else flat_layout.REFRACTION] += 1
                 if method == BVH:  # inlined, as for the primary rays
                     h = bvh_closest(o, d, ray_shear(d[0], d[1], d[2]), t_start, math.inf, False, bvh,
-                                    n_spheres, scratch[lay.SCRATCH_STACK], scratch[lay.SCRATCH_STACK_T],
-                                    count)
+                                    n_spheres, scratch[flat_layout.SCRATCH_STACK],
+                                    scratch[flat_layout.SCRATCH_STACK_T], count)
                 else:
                     h = closest_hit(method, o, d, t_start, math.inf, False, geo, grid, bvh, scratch, count)
-                if h[lay.HIT_PRIM] < 0:
+                if h[flat_layout.HIT_PRIM] < 0:
                     for a in range(3):
-                        color[j, i, a] += weight * opts[lay.OPT_BACKGROUND + a]
+                        color[j, i, a] += weight * opts[flat_layout.OPT_BACKGROUND + a]
                     continue
                 shade_hit(o, d, h, weight, depth, materials, lights, opts, geo, grid, bvh, scratch, count,
                           rec, False)
                 for a in range(3):
-                    color[j, i, a] += weight * rec[lay.REC_LOCAL + a]
-                for kind2 in range(lay.N_SPAWNED):
-                    at = lay.REC_REFLECT if kind2 == lay.SPAWN_REFLECT else lay.REC_REFRACT
-                    if rec[at + lay.CHILD_STATUS] == lay.CHILD_TRACED:
-                        for a in range(lay.CHILD_SIZE):
+                    color[j, i, a] += weight * rec[flat_layout.REC_LOCAL + a]
+                for kind2 in range(flat_layout.N_SPAWNED):
+                    at = (flat_layout.REC_REFLECT if kind2 == flat_layout.SPAWN_REFLECT
+                          else flat_layout.REC_REFRACT)
+                    if rec[at + flat_layout.CHILD_STATUS] == flat_layout.CHILD_TRACED:
+                        for a in range(flat_layout.CHILD_SIZE):
                             stack[top, a] = rec[at + a]
-                        stack[top, lay.STACK_GENERATION] = depth + 1
-                        stack[top, lay.STACK_KIND] = kind2
+                        stack[top, flat_layout.STACK_GENERATION] = depth + 1
+                        stack[top, flat_layout.STACK_KIND] = kind2
                         top += 1
             _add_heat(heat, j, i, count, prim_before, bounds_before)
             _clip(color, j, i)
@@ -305,14 +311,15 @@ def _secondary_rows(first, last, color, children, spawned, materials, lights, op
 @jit_allocating
 def _worker(stage, queue, cam, xs, ys, hits, depth, objects, color, children, spawned, materials, lights,
             opts, geo, grid, bvh, bvh_depth, count, heat):
-    scratch = make_scratch(int(opts[lay.OPT_ACCEL]), geo[lay.GEO_ROWS].shape[0], materials.shape[0],
-                           bvh_depth)
-    rec = np.empty(lay.record_size(lights.shape[0]))
-    stack = np.empty((2 * int(opts[lay.OPT_MAX_DEPTH]) + 4, lay.STACK_SIZE))  # of the secondary rays
+    scratch = make_scratch(int(opts[flat_layout.OPT_ACCEL]), geo[flat_layout.GEO_ROWS].shape[0],
+                           materials.shape[0], bvh_depth)
+    rec = np.empty(flat_layout.record_size(lights.shape[0]))
+    # of the secondary rays
+    stack = np.empty((2 * int(opts[flat_layout.OPT_MAX_DEPTH]) + 4, flat_layout.STACK_SIZE))
     packet = (np.empty(PACKET_SIZE * RAY_FIELDS), np.empty(PACKET_SIZE * AXIS_FIELDS, np.int64))
     while True:
         first = take_band(queue) * BAND_ROWS
-        if first >= ys.shape[0] or flag_raised(opts, lay.OPT_STOP):
+        if first >= ys.shape[0] or flag_raised(opts, flat_layout.OPT_STOP):
             break
         last = min(first + BAND_ROWS, ys.shape[0])
         if stage == PRIMARY_STAGE:
@@ -347,7 +354,7 @@ def render_pass(stage, cam, xs, ys, hits, depth, objects, color, children, spawn
         ``SECONDARY_STAGE``: trace those rays and all their descendants, adding
         ``weight * colour`` of every hit (or of the background) to ``color``, then clamp
         each of those pixels to [0, 1].  After the three stages ``color`` is the image.
-    cam, opts, materials, lights : arrays laid out as in :mod:`core.image_order.kernels.layout`.
+    cam, opts, materials, lights : arrays laid out as in :mod:`core.image_order.flat_layout`.
     xs, ys : (nx,) and (ny,) float64, pixel columns and rows.
     geo, grid, bvh : kernel tuples of the geometry and its structures.
     bvh_depth : int, depth of the BVH (size of the traversal stack).
@@ -366,4 +373,4 @@ def render_pass(stage, cam, xs, ys, hits, depth, objects, color, children, spawn
     for w in prange(n_workers):
         _worker(stage, queue, cam, xs, ys, hits, depth, objects, color, children, spawned, materials, lights,
                 opts, geo, grid, bvh, bvh_depth, counters[w], heat)
-    return counters.sum(axis=0)[:lay.N_COUNTERS]
+    return counters.sum(axis=0)[:flat_layout.N_COUNTERS]

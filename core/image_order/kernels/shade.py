@@ -15,7 +15,7 @@ it
    one, with their coefficients (Fresnel's split, :mod:`core.image_order.optics`) and
    whether they will be traced (depth limit, minimum weight).
 
-Everything is written into a flat record (:mod:`core.image_order.kernels.layout`), or, for
+Everything is written into a flat record (:mod:`core.image_order.flat_layout`), or, for
 the full render (``full`` False, a constant, so the compiler drops the other writes), only
 the local colour and the spawned rays the render reads.
 :func:`shade_hit` is inlined into the render's loops: as a call it would bind
@@ -26,9 +26,9 @@ from __future__ import annotations
 
 import math
 
+from core.image_order import flat_layout
 from core.image_order.intersect_sphere import outward_normal
 from core.image_order.intersect_triangle import barycentric_point, ray_shear
-from core.image_order.kernels import layout as lay
 from core.image_order.kernels.bvh_traverse import bvh_closest
 from core.image_order.kernels.closest_hit import BVH, closest_hit
 from core.image_order.kernels.jit import jit, jit_inline
@@ -56,8 +56,9 @@ def surface_point(o, d, hit, scaled, geo):
     rows, n_spheres, _, _, _, normals, magnitude = geo
     p = (o[0] + t * d[0], o[1] + t * d[1], o[2] + t * d[2])
     if prim < n_spheres:
-        c = lay.ROW_CENTER
-        cx, cy, cz, r = rows[prim, c], rows[prim, c + 1], rows[prim, c + 2], rows[prim, lay.ROW_RADIUS]
+        c = flat_layout.ROW_CENTER
+        cx, cy, cz = rows[prim, c], rows[prim, c + 1], rows[prim, c + 2]
+        r = rows[prim, flat_layout.ROW_RADIUS]
         n = outward_normal(p[0], p[1], p[2], cx, cy, cz, d[0], d[1], d[2])
         if scaled:
             p = (cx + r * n[0], cy + r * n[1], cz + r * n[2])
@@ -78,18 +79,18 @@ def _write3(rec, at, v):
 @jit
 def _child(rec, at, origin, direction, weight, k, depth, opts):
     """Record a spawned ray and whether it will be traced."""
-    _write3(rec, at + lay.CHILD_ORIGIN, origin)
-    _write3(rec, at + lay.CHILD_DIRECTION, direction)
-    rec[at + lay.CHILD_WEIGHT] = weight * k
+    _write3(rec, at + flat_layout.CHILD_ORIGIN, origin)
+    _write3(rec, at + flat_layout.CHILD_DIRECTION, direction)
+    rec[at + flat_layout.CHILD_WEIGHT] = weight * k
     if k <= 0.0:
-        status = lay.CHILD_NONE
-    elif depth >= opts[lay.OPT_MAX_DEPTH]:
-        status = lay.CHILD_DEPTH_LIMIT
-    elif weight * k < opts[lay.OPT_MIN_WEIGHT]:
-        status = lay.CHILD_TOO_WEAK
+        status = flat_layout.CHILD_NONE
+    elif depth >= opts[flat_layout.OPT_MAX_DEPTH]:
+        status = flat_layout.CHILD_DEPTH_LIMIT
+    elif weight * k < opts[flat_layout.OPT_MIN_WEIGHT]:
+        status = flat_layout.CHILD_TOO_WEAK
     else:
-        status = lay.CHILD_TRACED
-    rec[at + lay.CHILD_STATUS] = status
+        status = flat_layout.CHILD_TRACED
+    rec[at + flat_layout.CHILD_STATUS] = status
 
 
 @jit_inline
@@ -103,103 +104,105 @@ def shade_hit(o, d, hit, weight, depth, materials, lights, opts, geo, grid, bvh,
     hit : ``(prim, t, b0, b1, b2)`` from :func:`core.image_order.kernels.closest_hit.closest_hit`.
     weight : float, the ray's weight in the pixel (1 for a primary ray).
     depth : int, generation of the ray (0 for a primary ray).
-    materials, lights, opts : arrays laid out as in :mod:`core.image_order.kernels.layout`.
+    materials, lights, opts : arrays laid out as in :mod:`core.image_order.flat_layout`.
     geo, grid, bvh, scratch, counters : as for ``closest_hit`` (shadow rays).
     rec : (record_size(L),) float64, written.
     full : bool, a constant at each call: True fills the whole record (the ray tree of one pixel
         shows every number); False writes only what the render reads (``REC_LOCAL`` and the two
         spawned rays ``REC_REFLECT``, ``REC_REFRACT``), the same numbers by the same formulas.
     """
-    prim = hit[lay.HIT_PRIM]
-    ob = geo[lay.GEO_PRIM_OBJECT][prim]
-    scaled = opts[lay.OPT_SCALED_OFFSET] > 0.0
-    t_start = 0.0 if scaled else opts[lay.OPT_EPSILON]
-    method = int(opts[lay.OPT_ACCEL])
+    prim = hit[flat_layout.HIT_PRIM]
+    ob = geo[flat_layout.GEO_PRIM_OBJECT][prim]
+    scaled = opts[flat_layout.OPT_SCALED_OFFSET] > 0.0
+    t_start = 0.0 if scaled else opts[flat_layout.OPT_EPSILON]
+    method = int(opts[flat_layout.OPT_ACCEL])
     p, n_out, error = surface_point(o, d, hit, scaled, geo)
     front = dot(d, n_out) < 0.0
     n = n_out if front else (-n_out[0], -n_out[1], -n_out[2])
     to_eye = (-d[0], -d[1], -d[2])
-    kr = materials[ob, lay.MAT_REFLECTIVITY] if opts[lay.OPT_REFLECTION] > 0.0 else 0.0
-    kt = materials[ob, lay.MAT_TRANSPARENCY] if opts[lay.OPT_REFRACTION] > 0.0 else 0.0
+    kr = materials[ob, flat_layout.MAT_REFLECTIVITY] if opts[flat_layout.OPT_REFLECTION] > 0.0 else 0.0
+    kt = materials[ob, flat_layout.MAT_TRANSPARENCY] if opts[flat_layout.OPT_REFRACTION] > 0.0 else 0.0
     w_local, kr, kt = surface_split(kr, kt)
-    color = (materials[ob, lay.MAT_COLOR], materials[ob, lay.MAT_COLOR + 1], materials[ob, lay.MAT_COLOR + 2])
-    ambient = w_local * materials[ob, lay.MAT_AMBIENT]
+    color = (materials[ob, flat_layout.MAT_COLOR], materials[ob, flat_layout.MAT_COLOR + 1],
+             materials[ob, flat_layout.MAT_COLOR + 2])
+    ambient = w_local * materials[ob, flat_layout.MAT_AMBIENT]
     lr, lg, lb = ambient * color[0], ambient * color[1], ambient * color[2]
     if full:
-        rec[lay.REC_PRIM] = prim
-        rec[lay.REC_OBJECT] = ob
-        rec[lay.REC_T] = hit[lay.HIT_T]
-        _write3(rec, lay.REC_POINT, p)
-        _write3(rec, lay.REC_NORMAL, n)
-        rec[lay.REC_FRONT] = 1.0 if front else 0.0
-        rec[lay.REC_W_LOCAL] = w_local
-        _write3(rec, lay.REC_AMBIENT, (lr, lg, lb))
+        rec[flat_layout.REC_PRIM] = prim
+        rec[flat_layout.REC_OBJECT] = ob
+        rec[flat_layout.REC_T] = hit[flat_layout.HIT_T]
+        _write3(rec, flat_layout.REC_POINT, p)
+        _write3(rec, flat_layout.REC_NORMAL, n)
+        rec[flat_layout.REC_FRONT] = 1.0 if front else 0.0
+        rec[flat_layout.REC_W_LOCAL] = w_local
+        _write3(rec, flat_layout.REC_AMBIENT, (lr, lg, lb))
 
     # Shadow rays and local shading, light by light.
     for i in range(lights.shape[0]):
-        at = lay.REC_LIGHTS + i * lay.LIGHT_REC_SIZE
-        lp = lay.LIGHT_POSITION
+        at = flat_layout.REC_LIGHTS + i * flat_layout.LIGHT_REC_SIZE
+        lp = flat_layout.LIGHT_POSITION
         lx, ly, lz = lights[i, lp], lights[i, lp + 1], lights[i, lp + 2]
         to_light = (lx - p[0], ly - p[1], lz - p[2])
         distance = math.sqrt(dot(to_light, to_light))
         to_light = (to_light[0] / distance, to_light[1] / distance, to_light[2] / distance)
         if full:
-            rec[at + lay.LR_DISTANCE] = distance
-            rec[at + lay.LR_BLOCKER] = -1.0
-            rec[at + lay.LR_BLOCKER_T] = math.inf
-            _write3(rec, at + lay.LR_ORIGIN, p)
-            _write3(rec, at + lay.LR_DIRECTION, to_light)
-            _write3(rec, at + lay.LR_CONTRIBUTION, (0.0, 0.0, 0.0))
+            rec[at + flat_layout.LR_DISTANCE] = distance
+            rec[at + flat_layout.LR_BLOCKER] = -1.0
+            rec[at + flat_layout.LR_BLOCKER_T] = math.inf
+            _write3(rec, at + flat_layout.LR_ORIGIN, p)
+            _write3(rec, at + flat_layout.LR_DIRECTION, to_light)
+            _write3(rec, at + flat_layout.LR_CONTRIBUTION, (0.0, 0.0, 0.0))
         if dot(n, to_light) <= 0.0:
             if full:
-                rec[at + lay.LR_STATUS] = lay.LIGHT_BEHIND
+                rec[at + flat_layout.LR_STATUS] = flat_layout.LIGHT_BEHIND
             continue
-        status = lay.LIGHT_UNBLOCKABLE
-        if lights[i, lay.LIGHT_BLOCKABLE] > 0.0:
+        status = flat_layout.LIGHT_UNBLOCKABLE
+        if lights[i, flat_layout.LIGHT_BLOCKABLE] > 0.0:
             so = offset_ray_origin(p, n_out, error, to_light) if scaled else p
             sd = (lx - so[0], ly - so[1], lz - so[2])
             s_dist = math.sqrt(dot(sd, sd))
             sd = (sd[0] / s_dist, sd[1] / s_dist, sd[2] / s_dist)
-            counters[lay.SHADOW] += 1
+            counters[flat_layout.SHADOW] += 1
             if method == BVH:
                 # The any-hit traversal inlined here, as for the render's primary rays: called
                 # through closest_hit, every array of the tree is bound anew for each shadow ray.
                 blocker = bvh_closest(so, sd, ray_shear(sd[0], sd[1], sd[2]), t_start, s_dist, True, bvh,
-                                      geo[lay.GEO_N_SPHERES], scratch[lay.SCRATCH_STACK],
-                                      scratch[lay.SCRATCH_STACK_T], counters)
+                                      geo[flat_layout.GEO_N_SPHERES], scratch[flat_layout.SCRATCH_STACK],
+                                      scratch[flat_layout.SCRATCH_STACK_T], counters)
             else:
                 blocker = closest_hit(method, so, sd, t_start, s_dist, True, geo, grid, bvh, scratch,
                                       counters)
             if full:
-                _write3(rec, at + lay.LR_ORIGIN, so)
-                _write3(rec, at + lay.LR_DIRECTION, sd)
-                rec[at + lay.LR_DISTANCE] = s_dist
-                rec[at + lay.LR_BLOCKER] = blocker[lay.HIT_PRIM]
-                rec[at + lay.LR_BLOCKER_T] = blocker[lay.HIT_T]
-            status = lay.LIGHT_BLOCKED if blocker[lay.HIT_PRIM] >= 0 else lay.LIGHT_REACHED
+                _write3(rec, at + flat_layout.LR_ORIGIN, so)
+                _write3(rec, at + flat_layout.LR_DIRECTION, sd)
+                rec[at + flat_layout.LR_DISTANCE] = s_dist
+                rec[at + flat_layout.LR_BLOCKER] = blocker[flat_layout.HIT_PRIM]
+                rec[at + flat_layout.LR_BLOCKER_T] = blocker[flat_layout.HIT_T]
+            status = (flat_layout.LIGHT_BLOCKED if blocker[flat_layout.HIT_PRIM] >= 0
+                      else flat_layout.LIGHT_REACHED)
         if full:
-            rec[at + lay.LR_STATUS] = status
-        if status == lay.LIGHT_BLOCKED:
+            rec[at + flat_layout.LR_STATUS] = status
+        if status == flat_layout.LIGHT_BLOCKED:
             continue
-        diffuse = w_local * materials[ob, lay.MAT_DIFFUSE] * lambert(n, to_light)
-        shininess = materials[ob, lay.MAT_SHININESS]
-        highlight = materials[ob, lay.MAT_SPECULAR] * phong(n, to_light, to_eye, shininess)
-        cr = lights[i, lay.LIGHT_RGB] * (diffuse * color[0] + highlight)
-        cg = lights[i, lay.LIGHT_RGB + 1] * (diffuse * color[1] + highlight)
-        cb = lights[i, lay.LIGHT_RGB + 2] * (diffuse * color[2] + highlight)
+        diffuse = w_local * materials[ob, flat_layout.MAT_DIFFUSE] * lambert(n, to_light)
+        shininess = materials[ob, flat_layout.MAT_SHININESS]
+        highlight = materials[ob, flat_layout.MAT_SPECULAR] * phong(n, to_light, to_eye, shininess)
+        cr = lights[i, flat_layout.LIGHT_RGB] * (diffuse * color[0] + highlight)
+        cg = lights[i, flat_layout.LIGHT_RGB + 1] * (diffuse * color[1] + highlight)
+        cb = lights[i, flat_layout.LIGHT_RGB + 2] * (diffuse * color[2] + highlight)
         if full:
-            _write3(rec, at + lay.LR_CONTRIBUTION, (cr, cg, cb))
+            _write3(rec, at + flat_layout.LR_CONTRIBUTION, (cr, cg, cb))
         lr += cr
         lg += cg
         lb += cb
-    _write3(rec, lay.REC_LOCAL, (lr, lg, lb))
+    _write3(rec, flat_layout.REC_LOCAL, (lr, lg, lb))
 
     # Reflected and refracted rays: directions, Fresnel split, whether they go on.
     k_reflect, k_refract = kr, 0.0
     fr, ft, tir = math.nan, math.nan, 0.0
     refracted = (0.0, 0.0, 0.0)
     if kt > 0.0:
-        ior = materials[ob, lay.MAT_IOR]
+        ior = materials[ob, flat_layout.MAT_IOR]
         n1, n2 = (1.0, ior) if front else (ior, 1.0)
         ok, bent = refract(d, n, n1 / n2)
         if not ok:
@@ -209,13 +212,13 @@ def shade_hit(o, d, hit, weight, depth, materials, lights, opts, geo, grid, bvh,
             refracted = _unit(bent)
         k_reflect, k_refract = kr + kt * fr, kt * ft
     if full:
-        rec[lay.REC_FRESNEL_R] = fr
-        rec[lay.REC_FRESNEL_T] = ft
-        rec[lay.REC_TIR] = tir
-        rec[lay.REC_K_REFLECT] = k_reflect
-        rec[lay.REC_K_REFRACT] = k_refract
+        rec[flat_layout.REC_FRESNEL_R] = fr
+        rec[flat_layout.REC_FRESNEL_T] = ft
+        rec[flat_layout.REC_TIR] = tir
+        rec[flat_layout.REC_K_REFLECT] = k_reflect
+        rec[flat_layout.REC_K_REFRACT] = k_refract
     mirrored = _unit(reflect(d, n)) if k_reflect > 0.0 else (0.0, 0.0, 0.0)
     origin = offset_ray_origin(p, n_out, error, mirrored) if scaled and k_reflect > 0.0 else p
-    _child(rec, lay.REC_REFLECT, origin, mirrored, weight, k_reflect, depth, opts)
+    _child(rec, flat_layout.REC_REFLECT, origin, mirrored, weight, k_reflect, depth, opts)
     origin = offset_ray_origin(p, n_out, error, refracted) if scaled and k_refract > 0.0 else p
-    _child(rec, lay.REC_REFRACT, origin, refracted, weight, k_refract, depth, opts)
+    _child(rec, flat_layout.REC_REFRACT, origin, refracted, weight, k_refract, depth, opts)

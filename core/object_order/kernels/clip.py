@@ -5,7 +5,8 @@ planes, reject it when all three are outside the same plane, and otherwise
 cut it with :func:`core.object_order.clipping.sutherland_hodgman`, the same
 function the readable clipper calls, so both give bit-identical polygons.
 The new vertices (clip and world positions) are returned for the 3D view's
-display of the clipped polygons.  Conventions: :mod:`core.object_order.clipping`.
+display of the clipped polygons; :func:`core.object_order.stages.clip_triangles`
+runs it and gathers the polygons.  Conventions: :mod:`core.object_order.clipping`.
 """
 
 from __future__ import annotations

@@ -19,7 +19,7 @@ from core.object_order.flat_shading import lambert
 def face_colors(view, triangles, face, material, orthographic, base, ambient, diffuse,
                 light_position, light_rgb, out, depth):
     """Flat colours, RGB in [0, 1], written into ``out`` (P, 3), and each face's centroid
-    depth into ``depth`` (P,); parameters as :func:`core.object_order.flat_shading.face_colors`
+    depth into ``depth`` (P,); parameters as :func:`core.object_order.stages.face_colors`
     (float64 / int64, C-contiguous)."""
     for p in prange(face.shape[0]):
         f, m = face[p], material[p]

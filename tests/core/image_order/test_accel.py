@@ -9,12 +9,7 @@ import pytest
 from core import shapes
 from core.image_order.bounding_spheres import bounding_spheres
 from core.image_order.effects_plan import effects_plan
-from core.image_order.flat_scene import TraceSettings, kernel_inputs, trace_scene
-from core.image_order.grid_of_cuboids import cells_on_ray
-from core.image_order.intersect_sphere import intersect_sphere
-from core.image_order.intersect_triangle import intersect_triangle
-from core.image_order.kernels.closest_hit import closest_hit
-from core.image_order.kernels.layout import (
+from core.image_order.flat_layout import (
     ACCEL_CODES,
     BOUNDS_TESTS,
     CELLS,
@@ -25,6 +20,11 @@ from core.image_order.kernels.layout import (
     ROW_CENTER,
     ROW_RADIUS,
 )
+from core.image_order.flat_scene import TraceSettings, kernel_inputs, trace_scene
+from core.image_order.grid_of_cuboids import cells_on_ray
+from core.image_order.intersect_sphere import intersect_sphere
+from core.image_order.intersect_triangle import intersect_triangle
+from core.image_order.kernels.closest_hit import closest_hit
 from core.image_order.kernels.render import make_scratch
 from core.presets_trace import bumpy_ball
 from core.scene import Material, Scene, Sphere

@@ -18,13 +18,9 @@ from numba import njit
 
 from core import presets_trace
 from core.camera import Camera
+from core.image_order import flat_layout
 from core.image_order.effects_plan import effects_plan
-from core.image_order.flat_scene import TraceSettings, kernel_inputs, trace_scene
-from core.image_order.intersect_triangle import intersect_triangle
-from core.image_order.kernels import layout, render
-from core.image_order.kernels.closest_hit import closest_hit
-from core.image_order.kernels.intrinsics.slabs4 import slab_interval4, slab_rays4, slab_test4
-from core.image_order.kernels.layout import (
+from core.image_order.flat_layout import (
     BOUNDS_TESTS,
     HIT_PRIM,
     HIT_SIZE,
@@ -33,6 +29,11 @@ from core.image_order.kernels.layout import (
     OPT_PACKETS,
     PRIM_TESTS,
 )
+from core.image_order.flat_scene import TraceSettings, kernel_inputs, trace_scene
+from core.image_order.intersect_triangle import intersect_triangle
+from core.image_order.kernels import render
+from core.image_order.kernels.closest_hit import closest_hit
+from core.image_order.kernels.intrinsics.slabs4 import slab_interval4, slab_rays4, slab_test4
 from core.image_order.kernels.render import make_scratch
 from core.scene import Material, Mesh, PointLight, Scene, Sphere
 
@@ -48,7 +49,7 @@ def primary_hits(scene: Scene, accel: str, packets: bool | None = True):
         k.opts[OPT_PACKETS] = packets
     w, h = scene.camera.width, scene.camera.height
     hits, depth, objects = np.zeros((h, w, HIT_SIZE)), np.zeros((h, w)), np.zeros((h, w), np.int64)
-    color, children = np.zeros((h, w, 3)), np.zeros((h, w, 2, layout.CHILD_SIZE))
+    color, children = np.zeros((h, w, 3)), np.zeros((h, w, 2, flat_layout.CHILD_SIZE))
     counters = render.render_pass(render.PRIMARY_STAGE, k.cam, np.arange(float(w)), np.arange(float(h)), hits,
                                   depth, objects, color, children, np.zeros((h, w), np.uint8), k.materials,
                                   k.lights, k.opts, k.geo, k.grid, k.bvh, k.bvh_depth, 2, render.no_heat())

@@ -255,9 +255,11 @@ def test_the_stale_cache_guard_hashes_every_core_module_a_kernel_compiles_in():
                         assert module.resolve() in listed, f"{path.name} compiles in {module}"
                 if target is not None:
                     assert target.resolve() in listed, f"{path.name} compiles in {target}, not in SOURCES"
-    # The formulas the kernels share with the worked solutions and the camera are among them.
+    # The flat arrays' layout and the formulas the kernels share with the worked solutions and the
+    # camera are among them.
     names = {p.name for p in listed}
-    assert {"intersect_sphere.py", "intersect_triangle.py", "ray_casting.py", "camera.py"} <= names
+    assert {"flat_layout.py", "intersect_sphere.py", "intersect_triangle.py", "ray_casting.py",
+            "camera.py"} <= names
 
 
 _BORROWED_RETURNS = """

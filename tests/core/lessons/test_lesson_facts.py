@@ -128,7 +128,7 @@ def test_lesson_check_passes_on_the_shipped_lessons_fails_on_a_false_fact_and_re
 def test_no_bounding_sphere_shown_by_a_lesson_swamps_the_scene():
     """A step that shows bounding spheres keeps each well inside the scene's extent (a ground
     plane's sphere, as wide as the ground, once filled the 3D pane)."""
-    from core.object_order.pipeline import _bounding_sphere, object_mesh
+    from core.object_order.pipeline import object_mesh
 
     for lesson in LESSONS:
         for step in lesson.steps:
@@ -136,7 +136,7 @@ def test_no_bounding_sphere_shown_by_a_lesson_swamps_the_scene():
                 continue
             points = np.vstack([np.asarray(object_mesh(o).vertices) for o in step.scene.objects])
             diagonal = float(np.linalg.norm(points.max(axis=0) - points.min(axis=0)))
-            radii = [_bounding_sphere(o, object_mesh(o))[1] for o in step.scene.objects]
+            radii = [o.bounding_sphere()[1] for o in step.scene.objects]
             assert max(radii) < diagonal / 3, (lesson.id, step.title, max(radii), diagonal)
 
 

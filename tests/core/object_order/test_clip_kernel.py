@@ -2,7 +2,7 @@
 
 Random triangles around the observer cross every plane of the frustum, and
 many reach behind the eye (``w < 0``).  The compiled
-:func:`core.object_order.clipping.clip_triangles` must return, triangle by
+:func:`core.object_order.stages.clip_triangles` must return, triangle by
 triangle, bit-identical polygons to :func:`core.object_order.clipping.clip_polygon`,
 and both must match Sutherland-Hodgman done here independently in exact
 rational arithmetic (:class:`fractions.Fraction`).
@@ -15,7 +15,7 @@ from fractions import Fraction
 import numpy as np
 
 from core.camera import Camera
-from core.object_order import clipping
+from core.object_order import clipping, stages
 
 CAM = Camera(eye=(0.0, 0.0, 0.0), target=(0.0, 0.0, -1.0), fov_y_deg=60, near=0.5, far=8.0,
              width=64, height=48)
@@ -50,7 +50,7 @@ def _exact_clip(vertices):
 
 
 def _kernel_polygons(world, clip, triangles):
-    result = clipping.clip_triangles(np.arange(len(triangles)), triangles, clip, world)
+    result = stages.clip_triangles(np.arange(len(triangles)), triangles, clip, world)
     poly = result.polygons
     return result, {int(poly.face[p]): (poly.clip[poly.vertex[poly.offsets[p]:poly.offsets[p + 1]]],
                                         poly.world[poly.vertex[poly.offsets[p]:poly.offsets[p + 1]]])
@@ -102,6 +102,6 @@ def test_kernel_polygons_are_the_exact_rational_clip():
 
 def test_triangles_not_tested_are_kept_whole_even_outside():
     world, clip, triangles = _random_triangles(4, 50)
-    result = clipping.clip_triangles(np.arange(50), triangles, clip, world, np.zeros(50, dtype=bool))
+    result = stages.clip_triangles(np.arange(50), triangles, clip, world, np.zeros(50, dtype=bool))
     assert result.accepted == 50 and result.rejected == 0 and result.clipped == 0
     assert np.array_equal(result.polygons.vertex, triangles.ravel())

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from core.camera import Camera
-from core.object_order import clipping
+from core.object_order import clipping, stages
 from core.object_order.pipeline import RasterSettings, render_raster
 from core.scene import Mesh, Scene
 
@@ -122,7 +122,7 @@ def test_clip_triangles_sorts_out_accepted_rejected_and_cut():
         [[2, 2, 0, w], [-2, 2, 0, w], [0, 2.5, 0, w]],  # above y = w: rejected
     ], dtype=float)
     clip = tris.reshape(-1, 4)
-    result = clipping.clip_triangles(np.arange(4) + 10, np.arange(12).reshape(4, 3), clip, clip[:, :3])
+    result = stages.clip_triangles(np.arange(4) + 10, np.arange(12).reshape(4, 3), clip, clip[:, :3])
     assert (result.accepted, result.rejected, result.clipped) == (1, 2, 1)
     polys = result.polygons
     assert polys.face.tolist() == [10, 12]
@@ -134,7 +134,7 @@ def test_clip_triangles_sorts_out_accepted_rejected_and_cut():
 
 def test_untested_triangles_are_accepted_whole():
     clip = np.array([[5.0, 0.0, 0.0, 1.0], [6.0, 0.0, 0.0, 1.0], [5.0, 1.0, 0.0, 1.0]])
-    result = clipping.clip_triangles(np.array([0]), np.array([[0, 1, 2]]), clip, clip[:, :3],
+    result = stages.clip_triangles(np.array([0]), np.array([[0, 1, 2]]), clip, clip[:, :3],
                                      test=np.array([False]))
     assert (result.accepted, result.rejected) == (1, 0)
 

@@ -16,11 +16,10 @@ from test_raster import brute_force_coverage  # tests/core is on sys.path
 
 from core import projection, shapes
 from core.camera import Camera
-from core.object_order import clipping, fragments, rasterization, zbuffer
-from core.object_order.kernels.culling import bounding_sphere
+from core.object_order import fragments, rasterization, stages, zbuffer
 from core.object_order.kernels.raster import depth_image
 from core.object_order.pipeline import PARALLEL_WORK, RasterSettings, render_raster
-from core.scene import Material, Mesh, PointLight, Scene, bounding_sphere_of
+from core.scene import Material, Mesh, PointLight, Scene
 
 
 def _bumpy_scene(crossing: bool) -> Scene:
@@ -99,15 +98,6 @@ def test_compiled_window_coordinates_are_the_projection_formulas_bit_for_bit():
     assert np.array_equal(z_win, (ndc[:, 2] + 1.0) * 0.5)
 
 
-def test_compiled_bounding_sphere_is_bounding_sphere_of_bit_for_bit():
-    rng = np.random.default_rng(4)
-    for n in (1, 2, 1000):
-        points = rng.normal(3, 5, (n, 3))
-        center, radius = bounding_sphere(points)
-        expected_center, expected_radius = bounding_sphere_of(points)
-        assert np.array_equal(center, expected_center) and radius == expected_radius
-
-
 @pytest.mark.parametrize("orthographic", [False, True])
 def test_depth_image_is_the_distance_of_each_covered_pixel_and_infinite_elsewhere(orthographic):
     rng = np.random.default_rng(5)
@@ -128,8 +118,8 @@ def test_triangles_accepted_untested_are_the_polygons_the_clipper_makes_of_them(
     world = rng.normal(size=(300, 3))
     triangles = rng.integers(0, 300, (200, 3))
     face = np.arange(200) + 17
-    untested = clipping.clip_triangles(face, triangles, clip, world, np.zeros(200, dtype=bool))
-    tested = clipping.clip_triangles(face, triangles, clip, world, np.ones(200, dtype=bool))
+    untested = stages.clip_triangles(face, triangles, clip, world, np.zeros(200, dtype=bool))
+    tested = stages.clip_triangles(face, triangles, clip, world, np.ones(200, dtype=bool))
     assert (untested.accepted, untested.rejected, untested.clipped) == (200, 0, 0)
     assert (tested.accepted, tested.rejected, tested.clipped) == (200, 0, 0)
     for name in ("offsets", "vertex", "clip", "world", "face", "clipped"):

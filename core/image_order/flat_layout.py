@@ -92,7 +92,7 @@ N_COUNTERS = 7
 
 # --- heat map: (ny, nx, HEAT_SIZE) int64, the work of each pixel's rays (optional) ---------------
 HEAT_PRIM_TESTS = 0  # ray-primitive tests of all the pixel's rays
-HEAT_BOUNDS_TESTS = 1  # their bounding-sphere or box tests
+HEAT_BOUNDS_TESTS = 1  # their bounding-sphere, BVH-box and grid-cell tests (each cuboid a ray enters)
 HEAT_SIZE = 2
 
 # --- the rays a hit spawns: the render's children array (ny, nx, N_SPAWNED, CHILD_SIZE) --------
