@@ -47,9 +47,10 @@ def test_a_cancelled_job_delivers_nothing_and_frees_the_runner(qtbot):
 
 def test_a_job_stopped_inside_its_work_is_neither_a_result_nor_a_failure(qtbot):
     runner = JobRunner()
-    ended = threading.Event()
+    started, ended = threading.Event(), threading.Event()
 
     def job(cancelled, progress):
+        started.set()
         try:
             cancelled.wait(10)
             raise stopping.StoppedError("stopped in the kernel")
@@ -58,6 +59,7 @@ def test_a_job_stopped_inside_its_work_is_neither_a_result_nor_a_failure(qtbot):
 
     with qtbot.assertNotEmitted(runner.failed, wait=200), qtbot.assertNotEmitted(runner.finished):
         runner.submit(job)
+        qtbot.waitUntil(started.is_set, timeout=10_000)  # inside its work, not still waiting for a thread
         runner.cancel()
         qtbot.waitUntil(ended.is_set, timeout=10_000)
 

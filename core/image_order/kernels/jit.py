@@ -56,7 +56,7 @@ _CORE = _IMAGE_ORDER.parent
 SOURCES = sorted(_KERNELS.rglob("*.py")) + [
     _IMAGE_ORDER / name for name in ("flat_layout.py", "optics.py", "shading.py", "ray_offset.py",
                                      "intersect_sphere.py", "intersect_triangle.py", "ray_casting.py")] + [
-    _CORE / name for name in ("camera.py", "projection.py", "compiling/jitable.py")]
+    _CORE / name for name in ("camera.py", "projection.py", "compiling/jitable.py", "shown_numbers.py")]
 
 
 share_cache(_KERNELS, SOURCES, "trace")

@@ -3,7 +3,7 @@ with its normal labelled "N: back face"; the object-order image, which never dra
 out no other polygon (no outline, no edges of the last polygon drawn, nothing in the 3D pane for it)."""
 
 import numpy as np
-from PySide6.QtCore import Qt
+from PySide6.QtGui import QAction, QKeySequence
 from window_helpers import RENDER_TIMEOUT_MS
 
 from core.files.lesson_file import shipped_lessons
@@ -38,8 +38,10 @@ def test_leaving_the_step_for_another_scene_takes_its_marks_away(window, qtbot):
     of its back face, the normal's label and the status line's "Look at ..."."""
     k = next(i for i, lesson in enumerate(LESSONS) if lesson.id == "back_faces")
     window.lesson_panel.select(k, 0)
-    qtbot.waitUntil(lambda: window.scene_view.overlay_parts("lesson") != [])
-    qtbot.keyClick(window, "l", modifier=Qt.KeyboardModifier.ControlModifier)
+    qtbot.waitUntil(lambda: window.showing_full("object order")
+                    and window.scene_view.overlay_parts("lesson") != [], timeout=RENDER_TIMEOUT_MS)
+    ctrl_l = next(a for a in window.findChildren(QAction) if a.shortcut() == QKeySequence("Ctrl+L"))
+    ctrl_l.trigger()  # File → Lecture scene
     qtbot.waitUntil(lambda: "pyramid" not in [obj.name for obj in window.model.scene.objects])
     assert window.scene_view.overlay_parts("lesson") == []
     assert window.lessons.highlighted == ""

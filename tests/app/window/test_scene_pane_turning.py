@@ -11,6 +11,7 @@ def _pixels(view) -> np.ndarray:
 
 def test_dragging_away_from_the_camera_and_target_turns_the_view_live(qtbot, window):
     view = window.scene_view
+    qtbot.waitUntil(lambda: view.plotter is not None and view.plotter.picture is not None)  # drawn once
     plotter = view.plotter
     start = QPointF(plotter.width() * 0.8, plotter.height() * 0.8)
     assert view.grabbable_at(start) is None  # away from the camera glyph and the target
