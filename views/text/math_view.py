@@ -8,15 +8,23 @@ mathtext has no matrices, so :class:`MatrixView` draws a bracketed grid of
 numbers itself.  matplotlib loads with the first formula that is not in
 :mod:`views.text.formula_cache` (formulas at their natural size are kept there), or
 earlier on a thread of its own when the window asks (:func:`load_typesetting_soon`).
+
+Reading a formula from that cache, or typesetting it, holds the thread that does
+it: a lesson step's formulas held the GUI thread up to a second while other
+threads were busy (each file read gives up Python's lock, and getting it back
+waits for them).  A ``MathView(..., later=True)`` therefore typesets on a thread
+of its own (:func:`_typesetter`) and shows its formula once that is done; until
+then it shows nothing, never another formula.
 """
 
 from __future__ import annotations
 
+import contextlib
 import threading
 from functools import lru_cache
 
 import numpy as np
-from PySide6.QtCore import QRectF, QSize, Qt
+from PySide6.QtCore import QObject, QRectF, QRunnable, QSize, Qt, QThreadPool, Signal
 from PySide6.QtGui import QColor, QFont, QFontMetricsF, QImage, QPainter, QPen, QPixmap
 from PySide6.QtWidgets import QLabel, QSizePolicy, QWidget
 
@@ -163,6 +171,36 @@ def _warm_up() -> None:
         _parser().parse("$x^2$", dpi=72.0, prop=FontProperties(size=10.0))
 
 
+@lru_cache(maxsize=1)
+def _typesetter() -> QThreadPool:
+    """The one thread that typesets (or reads from the cache) the formulas of ``later`` views, in the
+    order they were asked for."""
+    pool = QThreadPool()
+    pool.setMaxThreadCount(1)
+    return pool
+
+
+class _Typeset(QObject):
+    done = Signal(int)  # the request's number
+
+
+class _TypesetJob(QRunnable):
+    """Typesets ``(text, size_pt)`` pairs in ``color`` at ``dpi`` into :func:`_typeset`'s memory (and the
+    disk cache), then says so; a text that is not mathtext is left to the view to report."""
+
+    def __init__(self, request: int, texts: list[tuple[str, float]], color: str, dpi: float,
+                 signals: _Typeset):
+        super().__init__()
+        self.request, self.texts, self.color, self.dpi, self.signals = request, texts, color, dpi, signals
+
+    def run(self):
+        for text, size_pt in self.texts:
+            with contextlib.suppress(ValueError):
+                _typeset(text, size_pt, self.color, self.dpi, True)
+        with contextlib.suppress(RuntimeError):  # the view was deleted meanwhile
+            self.signals.done.emit(self.request)
+
+
 class MathView(QLabel):
     """A label showing one mathtext formula, typeset.
 
@@ -174,11 +212,20 @@ class MathView(QLabel):
     a part still too wide makes a scroll area around it scroll sideways.
     An invalid formula is shown as its plain text, with the parser's
     complaint in the tooltip.
+
+    With ``later``, it is typeset off the GUI thread (:func:`_typesetter`) whenever
+    its formula, size or colour changes: :attr:`pending` meanwhile, showing nothing
+    (a new formula) or the formula at its previous size or colour.
     """
 
     def __init__(self, formula: str = "", parent: QWidget | None = None, *, size_pt: float | None = None,
-                 scale: float = 1.0):
+                 scale: float = 1.0, later: bool = False):
         super().__init__(parent)
+        self._later = later
+        self._request = 0  # the newest typesetting asked of the typesetter's thread
+        self._typeset_signals: _Typeset | None = None
+        self.pending = False
+        """Typesetting on the typesetter's thread (``later`` views only)."""
         self._formula = formula
         self._size_pt = size_pt
         self._scale = float(scale)
@@ -200,6 +247,9 @@ class MathView(QLabel):
 
     def set_formula(self, formula: str) -> None:
         self._formula = formula
+        if self._later:  # the former formula is not shown while this one is typeset
+            self._natural = None
+            self.clear()
         self._render()
 
     def set_scale(self, scale: float) -> None:
@@ -218,7 +268,10 @@ class MathView(QLabel):
         return base * 1.15 * self._scale
 
     def shown_lines(self) -> tuple[list[str], float]:
-        """The lines the formula is drawn in at the label's width, and their size in points."""
+        """The lines the formula is drawn in at the label's width, and their size in points (no lines
+        before it is typeset)."""
+        if self._natural is None:
+            return [], self.size_pt()
         return self._layout(self.width())
 
     def changeEvent(self, event) -> None:  # a new font or palette (theme, scale) re-renders
@@ -252,6 +305,30 @@ class MathView(QLabel):
         self._show()
 
     def _render(self) -> None:
+        if not self._later or not self._formula:
+            self._render_now()
+            return
+        # What _render_now needs first, and the sizes the formula and its parts may be shrunk to.
+        size = self.size_pt()
+        texts = [(self._formula, size)]
+        with contextlib.suppress(ValueError):
+            parts = [join_parts([part]) for part in split_formula(self._formula)]
+            texts += [(part, size) for part in parts if part != self._formula]
+            texts += [(text, size * s) for s in SHRINKS[1:] for text in [self._formula, *parts]]
+        if self._typeset_signals is None:
+            self._typeset_signals = _Typeset(self)
+            self._typeset_signals.done.connect(self._typeset_done)
+        self._request += 1
+        self.pending = True
+        _typesetter().start(_TypesetJob(self._request, texts, self._color_name(), self._dpi(),
+                                        self._typeset_signals))
+
+    def _typeset_done(self, request: int) -> None:
+        if request == self._request:  # else a newer typesetting is on its way
+            self.pending = False
+            self._render_now()
+
+    def _render_now(self) -> None:
         self.error = None
         self._natural = None
         if not self._formula:
@@ -279,12 +356,17 @@ class MathView(QLabel):
     def _ratio(self) -> float:
         return max(1.0, self.devicePixelRatioF())
 
+    def _color_name(self) -> str:
+        return (self._color or self.palette().color(self.foregroundRole())).name()
+
+    def _dpi(self) -> float:
+        return 96.0 * self._ratio()
+
     def _image_of(self, text: str, size_pt: float) -> QImage:
         """``text`` typeset at ``size_pt``; kept on disk too at the few sizes that do not depend on the
         label's width (those of :data:`SHRINKS`), which are all a window needs to open."""
-        color = self._color or self.palette().color(self.foregroundRole())
         natural = self.size_pt()
-        return render_mathtext(text, size_pt, color.name(), 96.0 * self._ratio(),
+        return render_mathtext(text, size_pt, self._color_name(), self._dpi(),
                                keep=any(size_pt == natural * s for s in SHRINKS))
 
     def _width(self, text: str, size_pt: float) -> float:

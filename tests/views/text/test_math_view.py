@@ -80,6 +80,7 @@ def test_in_a_narrow_lesson_panel_at_twice_the_text_every_formula_stays_readable
     for row, lesson in enumerate(panel.lessons()):
         for k in range(len(lesson.steps)):
             panel.select(row, k)
+            qtbot.waitUntil(lambda: not panel.typesetting())
             for _ in range(3):  # the posted layout requests (a wrapped formula asks for more height)
                 QApplication.processEvents()
             for view in panel.formula_views():
