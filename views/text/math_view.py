@@ -24,7 +24,7 @@ import threading
 from functools import lru_cache
 
 import numpy as np
-from PySide6.QtCore import QObject, QRectF, QRunnable, QSize, Qt, QThreadPool, Signal
+from PySide6.QtCore import QObject, QRectF, QRunnable, QSize, Qt, QThreadPool, QTimer, Signal
 from PySide6.QtGui import QColor, QFont, QFontMetricsF, QImage, QPainter, QPen, QPixmap
 from PySide6.QtWidgets import QLabel, QSizePolicy, QWidget
 
@@ -223,6 +223,9 @@ class MathView(QLabel):
         super().__init__(parent)
         self._later = later
         self._request = 0  # the newest typesetting asked of the typesetter's thread
+        self._done = 0  # the newest typesetting it finished
+        self._asked: tuple | None = None  # what it was asked for: formula, size, colour, resolution
+        self._asking = False  # asking it soon, once this turn's changes are in
         self._typeset_signals: _Typeset | None = None
         self.pending = False
         """Typesetting on the typesetter's thread (``later`` views only)."""
@@ -248,7 +251,7 @@ class MathView(QLabel):
     def set_formula(self, formula: str) -> None:
         self._formula = formula
         if self._later:  # the former formula is not shown while this one is typeset
-            self._natural = None
+            self._natural, self._asked = None, None
             self.clear()
         self._render()
 
@@ -308,8 +311,20 @@ class MathView(QLabel):
         if not self._later or not self._formula:
             self._render_now()
             return
+        self.pending = True
+        if not self._asking:  # a restyle sends a font, a palette and a style change: typeset once
+            self._asking = True
+            QTimer.singleShot(0, self, self._ask)
+
+    def _ask(self) -> None:
+        """Ask the typesetter's thread for what the formula now needs, unless that was asked already."""
+        self._asking = False
+        size, color, dpi = self.size_pt(), self._color_name(), self._dpi()
+        if self._asked == (self._formula, size, color, dpi):
+            self.pending = self._done != self._request  # what it shows, or will show, is up to date
+            return
+        self._asked = (self._formula, size, color, dpi)
         # What _render_now needs first, and the sizes the formula and its parts may be shrunk to.
-        size = self.size_pt()
         texts = [(self._formula, size)]
         with contextlib.suppress(ValueError):
             parts = [join_parts([part]) for part in split_formula(self._formula)]
@@ -320,10 +335,10 @@ class MathView(QLabel):
             self._typeset_signals.done.connect(self._typeset_done)
         self._request += 1
         self.pending = True
-        _typesetter().start(_TypesetJob(self._request, texts, self._color_name(), self._dpi(),
-                                        self._typeset_signals))
+        _typesetter().start(_TypesetJob(self._request, texts, color, dpi, self._typeset_signals))
 
     def _typeset_done(self, request: int) -> None:
+        self._done = request
         if request == self._request:  # else a newer typesetting is on its way
             self.pending = False
             self._render_now()
