@@ -289,6 +289,8 @@ class MathView(QLabel):
     def minimumSizeHint(self) -> QSize:
         if self._natural is None:
             return super().minimumSizeHint()
+        if self.pending:  # measured at the new size once typeset, not on the GUI thread now
+            return QSize(0, self.height())
         least = self.size_pt() * MIN_SHRINK
         indent = self._indent(least) if len(self._parts) > 1 else 0.0
         widest = max(self._width(join_parts([part]), least) for part in self._parts) + indent
@@ -300,6 +302,8 @@ class MathView(QLabel):
     def heightForWidth(self, width: int) -> int:
         if self._natural is None:
             return super().heightForWidth(width)
+        if self.pending:  # the height shown until the new size is typeset
+            return self.height()
         lines, size = self._layout(width)
         return int(sum(self._image_of(line, size).height() for line in lines) / self._ratio() + 0.999)
 
@@ -421,8 +425,9 @@ class MathView(QLabel):
         return lines + [join_parts(line)]
 
     def _show(self) -> None:
-        """Draw the formula in the lines :meth:`_layout` chose for the label's width."""
-        if self._natural is None:
+        """Draw the formula in the lines :meth:`_layout` chose for the label's width (the former
+        picture stays while the new size is typeset)."""
+        if self._natural is None or self.pending:
             return
         # Until a layout gives the label its width, one line (not wrapped to fit Qt's default size).
         lines, size = self._layout(self.width() if self.testAttribute(Qt.WidgetAttribute.WA_Resized) else 0)
