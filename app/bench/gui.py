@@ -391,7 +391,8 @@ def run(args) -> int:
     import os
     import tempfile
 
-    cold = tempfile.TemporaryDirectory(prefix="bench-gui-cache-") if args.cold else None
+    cold = (tempfile.TemporaryDirectory(prefix="bench-gui-cache-", ignore_cleanup_errors=True)
+            if args.cold else None)
     if cold is not None:  # an empty cache folder (formulas, matplotlib's fonts), as on a first run ...
         from core.compiling.kernel_cache import cache_root
 
@@ -443,5 +444,8 @@ def run(args) -> int:
     window.close()
     QThreadPool.globalInstance().waitForDone()
     if cold is not None:
+        from views.text import math_view
+
+        math_view._typesetter().waitForDone()  # it may still be keeping a formula in the cache
         cold.cleanup()
     return 0

@@ -69,7 +69,7 @@ def test_cold_prints_the_actions_with_an_empty_formula_cache_then_warm():
     argv = ["bench", "gui", "--seconds", "0.2", "--size", "800x600", "--actions", "present,text", "--cold"]
     out = subprocess.run([sys.executable, "-m", "app", *argv], cwd=ROOT, capture_output=True, text=True,
                          timeout=600)
-    assert out.returncode == 0, out.stderr
+    assert out.returncode == 0 and "Traceback" not in out.stderr, out.stderr
     lines = out.stdout.splitlines()
     first = lines.index("first run (an empty formula cache):")
     warm = lines.index("warm (the formulas on disk):")
