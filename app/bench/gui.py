@@ -15,8 +15,17 @@ then lets it rest.  Per tab it prints:
 
 Then the window's other work that a user waits on (``--actions``), each with the
 GUI thread's longest and 99th-percentile stall: picking pixels of the traced
-image (the ray tree and its worked math), a Cost sweep of every knob, and
-stepping through every step of every lesson.
+image (the ray tree and its worked math), a Cost sweep of every knob,
+stepping through every step of every lesson (until its formulas are shown),
+scene edits (move, colour, add, delete, then undo each), exports (a pane's
+picture, the 3D pane, the z-buffer steps as a GIF written in the background),
+entering and leaving presentation mode, and the text size ×1.5, ×2 and back.
+
+With ``--cold`` the user's cache folder (``XDG_CACHE_HOME``: the formula cache,
+matplotlib's font list) is an empty one, as on a first run, the compiled kernels
+excepted: the actions run once so, then again with the formulas kept on disk
+meanwhile (those in memory forgotten, as in a new process), and both tables are
+printed.  The tabs' rows and the opening are of the first run.
 
 With ``--why`` it also prints, per tab and action, what the GUI thread was doing
 in its longest stall (:mod:`app.bench.stall_why`).
@@ -35,7 +44,7 @@ import time
 
 MOVES_PER_SECOND = 25
 TICK_MS = 5
-ACTIONS = ("picks", "cost", "lessons")
+ACTIONS = ("picks", "cost", "lessons", "edits", "export", "present", "text")
 PICKS = 12
 """Pixels picked in the traced image, at places drawn from a seeded generator."""
 AFTER_S = 0.3
@@ -52,6 +61,9 @@ def add_arguments(parser) -> None:
     parser.add_argument("--actions", default=",".join(ACTIONS),
                         help=f"other work to time, comma-separated from {', '.join(ACTIONS)}, or none "
                              "(default: all)")
+    parser.add_argument("--cold", action="store_true",
+                        help="start with an empty formula cache (a first run), and time the actions "
+                             "again once it is filled")
 
 
 def _size(text: str) -> tuple[int, int]:
@@ -286,16 +298,106 @@ def _lesson_steps(window):
     for i, lesson in enumerate(shipped_lessons()):
         for k in range(len(lesson.steps)):
             yield (lambda i=i, k=k: window.lesson_panel.select(i, k),
-                   lambda: window.showing_full(window.current.title))
+                   lambda: window.showing_full(window.current.title)
+                   and not window.lesson_panel.typesetting())
+
+
+def _scene_edits(window):
+    """Move the first object, colour it, add a sphere, delete it, then undo the four edits; each waits
+    for the full image of the edited scene."""
+    import numpy as np
+
+    from core import checked_edits
+
+    window.show_tab("image order")
+    editor, model, first = window.editor, window.model, ("object", 0)
+    shown = lambda: window.showing_full("image order")  # noqa: E731
+
+    def move():
+        editor.move(first, checked_edits.position_of(model.scene, first) + np.array([0.25, 0.0, 0.0]))
+
+    def delete_last():
+        model.set_selection(("object", len(model.scene.objects) - 1))
+        editor.delete()
+
+    yield move, shown
+    yield lambda: editor.change_field(first, "material.color", [0.1, 0.9, 0.2]), shown
+    yield lambda: editor.add_object("sphere"), shown
+    yield delete_last, shown
+    for _ in range(4):
+        yield editor.stack.undo, shown
+
+
+def _exports(window):
+    """Export the traced image's pane as PNG and the 3D pane as PNG, then start writing the z-buffer
+    steps as a GIF (in the background) and wait until it is written; into a folder removed after."""
+    import os
+    import tempfile
+
+    from app.export.pane_pictures import tab_pictures
+
+    window.show_tab("image order")
+    folder = tempfile.TemporaryDirectory(prefix="bench-gui-")
+    written = []
+    window.exports.exported.connect(written.append)
+    pane, shot, steps = (os.path.join(folder.name, name) for name in ("pane.png", "3d.png", "steps.gif"))
+    picture = tab_pictures(window.tab("image order"))[0]
+    yield lambda: window.exports.export_picture(picture, pane), lambda: pane in written
+    yield lambda: window.exports.export_3d(shot), lambda: shot in written
+    yield lambda: window.exports.export_steps(steps), lambda: steps in written
+    window.exports.exported.disconnect(written.append)
+    folder.cleanup()
+
+
+def _presentation(window):
+    """Enter presentation mode and leave it, twice."""
+    presentation = window.presentation
+    for on in (True, False, True, False):
+        yield (lambda on=on: presentation.set_presenting(on),
+               lambda on=on: presentation.presenting() == on and not window.lesson_panel.typesetting())
+
+
+def _text_sizes(window):
+    """The text size ×1.5, ×2 and back to ×1 (View → Text size), each until the formulas are typeset."""
+    for scale in (1.5, 2.0, 1.0):
+        yield (lambda scale=scale: window.presentation.set_scale(scale),
+               lambda: not window.lesson_panel.typesetting())
 
 
 _ACTION_STEPS = {"picks": ("picked pixels", _picks), "cost": ("Cost sweep, all knobs", _cost_sweep),
-                 "lessons": ("lesson steps", _lesson_steps)}
+                 "lessons": ("lesson steps", _lesson_steps), "edits": ("scene edits", _scene_edits),
+                 "export": ("exports", _exports), "present": ("presentation on/off", _presentation),
+                 "text": ("text size", _text_sizes)}
+
+
+def _print_actions(done: list[dict], title: str = "") -> None:
+    if title:
+        print(f"\n{title}")
+    print(f"{'' if title else chr(10)}{'action':<24}{'count':>6}{'longest stall':>15}{'p99 stall':>11}")
+    for r in done:
+        print(f"{r['tab']:<24}{r['count']:>6}{r['longest']:>12.0f} ms{r['p99']:>8.0f} ms")
+
+
+def _forget_formulas() -> None:
+    """Forget the formulas typeset in this process, as a new process would (those on disk stay)."""
+    from views.text import math_view
+
+    math_view._typeset.cache_clear()
 
 
 def run(args) -> int:
     width, height = _size(args.size)
     actions = _actions(args.actions)
+    import os
+    import tempfile
+
+    cold = (tempfile.TemporaryDirectory(prefix="bench-gui-cache-", ignore_cleanup_errors=True)
+            if args.cold else None)
+    if cold is not None:  # an empty cache folder (formulas, matplotlib's fonts), as on a first run ...
+        from core.compiling.kernel_cache import cache_root
+
+        os.environ.setdefault("NUMBA_CACHE_DIR", str(cache_root()))  # ... but the kernels compiled
+        os.environ["XDG_CACHE_HOME"] = cold.name
     from PySide6.QtCore import QThreadPool
     from PySide6.QtWidgets import QApplication
 
@@ -317,6 +419,11 @@ def run(args) -> int:
     cam = window.model.camera
     done = [_bench_action(app, window, _ACTION_STEPS[a][0], _ACTION_STEPS[a][1](window), args.why)
             for a in actions]
+    warm = []
+    if cold is not None and actions:
+        _forget_formulas()
+        warm = [_bench_action(app, window, _ACTION_STEPS[a][0], _ACTION_STEPS[a][1](window), args.why)
+                for a in actions]
     print(f"window {width} x {height}, lecture scene {cam.width} x {cam.height}, "
           f"observer moved {MOVES_PER_SECOND}x/s for {args.seconds:g} s per tab")
     print(f"{'tab':<14}{'longest stall':>15}{'p99 stall':>11}{'3D draws/s':>12}"
@@ -327,12 +434,18 @@ def run(args) -> int:
     print(f"Opening (once, before the observer moves): the first image and the 3D pane's first frame "
           f"after {opening['seconds']:.2f} s; the GUI thread's longest stall meanwhile "
           f"{opening['longest']:.0f} ms (VTK's first frame is drawn on it)")
-    if done:
-        print(f"\n{'action':<24}{'count':>6}{'longest stall':>15}{'p99 stall':>11}")
-    for r in done:
-        print(f"{r['tab']:<24}{r['count']:>6}{r['longest']:>12.0f} ms{r['p99']:>8.0f} ms")
-    for r in [opening, *rows, *done] if args.why else ():
+    if done and cold is None:
+        _print_actions(done)
+    elif done:
+        _print_actions(done, "first run (an empty formula cache):")
+        _print_actions(warm, "warm (the formulas on disk):")
+    for r in [opening, *rows, *done, *warm] if args.why else ():
         print(f"\n{r['tab']}, the longest stall: " + "\n".join(r["why"]))
     window.close()
     QThreadPool.globalInstance().waitForDone()
+    if cold is not None:
+        from views.text import math_view
+
+        math_view._typesetter().waitForDone()  # it may still be keeping a formula in the cache
+        cold.cleanup()
     return 0

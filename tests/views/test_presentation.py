@@ -47,6 +47,7 @@ def test_presentation_mode_goes_full_screen_and_scales_the_text(hall, qtbot):
     window, panel, presentation = hall
     panel.select(4, 1)  # the z-buffer lesson has a formula
     base_pt = panel.text.font().pointSizeF()
+    qtbot.waitUntil(lambda: not panel.typesetting())  # the formulas are typeset off the GUI thread
     base_formula = _formula_height(panel)
     qtbot.keyClick(window, Qt.Key.Key_F11)
     qtbot.waitUntil(window.isFullScreen)
@@ -56,7 +57,7 @@ def test_presentation_mode_goes_full_screen_and_scales_the_text(hall, qtbot):
         MathView().size_pt() * PRESENTING_SCALE, rel=0.01)
     presentation.set_scale(2.0)
     assert panel.text.font().pointSizeF() == pytest.approx(base_pt * 2)
-    assert _formula_height(panel) == pytest.approx(2 * base_formula, rel=0.15)
+    qtbot.waitUntil(lambda: _formula_height(panel) == pytest.approx(2 * base_formula, rel=0.15))
     assert presentation.high_contrast() and "#000000" in window.styleSheet()
     qtbot.keyClick(window, Qt.Key.Key_Escape)
     qtbot.waitUntil(lambda: not window.isFullScreen())

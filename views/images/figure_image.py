@@ -119,6 +119,13 @@ class FigureImage(QWidget):
         self._waiting = draw
         self._start()
 
+    def clear(self) -> None:
+        """Show no picture (the window's background shows through), superseding every request."""
+        self._request += 1
+        self._waiting = None
+        self.shown, self._image = None, None
+        self.update()
+
     def _start(self) -> None:
         if self._busy or self._waiting is None:
             return

@@ -13,11 +13,11 @@ Before a sweep starts its cost is estimated (:mod:`core.accuracy.sweep_cost`):
 one over the memory budget does not start and says what to reduce; a long one
 says how long, in its status line, while it runs.
 
-Images are encoded to sRGB in :mod:`core.srgb` before they are shown.
 matplotlib loads, and the figures are made, when the panel is first shown
 (or first asked for a point), so the main window opens without it.  The plot
-is laid out and drawn off the GUI thread (:mod:`views.images.figure_image`), never
-while the pane is hidden; the window only paints its picture.
+and the point's images (:mod:`views.images.point_images`) are laid out and
+drawn off the GUI thread (:mod:`views.images.figure_image`), never while the
+pane is hidden; the window only paints their pictures.
 """
 
 from __future__ import annotations
@@ -60,11 +60,11 @@ from core.accuracy.sweep import (
     unavailable,
 )
 from core.scene import Scene
-from core.srgb import to_srgb8
 from views.file_dialogs import ask_save
 from views.images import cost_files, plot_theme
 from views.images.cost_plot import draw_cost_plot, point_position, tidy_cost_plot
 from views.images.figure_image import MATPLOTLIB, Drawn, FigureImage, agg_figure, pixels
+from views.images.point_images import point_images_drawing
 from views.jobs import Job, JobRunner
 
 MODES = [("raytrace", "Ray tracing"), ("raycast", "Ray casting"), ("raster", "Rasterization")]
@@ -246,8 +246,9 @@ class CostPanel(QWidget):
         self.explanation.setAlignment(Qt.AlignmentFlag.AlignTop | Qt.AlignmentFlag.AlignLeft)
         self.explanation.setSizePolicy(QSizePolicy.Policy.Preferred, QSizePolicy.Policy.Minimum)
 
-        self.canvas = self.image_figure = self.image_canvas = None  # see _make_canvases
+        self.canvas = self.image_canvas = None  # see _make_canvases
         self._plot_stale = False  # the plot waits to be drawn until the pane is shown
+        self._images_stale = False  # so do the point's images
         self._dark = False  # the figures were drawn in the dark theme
         self._dpi = plot_theme.DPI  # the figures' resolution, after the text size they were made for
         self._plot_box, self._image_box = _CanvasBox(), _CanvasBox()
@@ -291,8 +292,11 @@ class CostPanel(QWidget):
     def showEvent(self, event) -> None:
         if self.canvas is None:
             self._make_canvases()
-        elif self._plot_stale:
-            self._draw_plot()
+        else:
+            if self._plot_stale:
+                self._draw_plot()
+            if self._images_stale:
+                self._draw_images()
         super().showEvent(event)
 
     def changeEvent(self, event) -> None:  # noqa: N802 (Qt's name)
@@ -301,14 +305,13 @@ class CostPanel(QWidget):
         if event.type() == QEvent.Type.FontChange:
             self._keep_two_status_lines()
             if self.canvas is not None and plot_theme.figure_dpi(self) != self._dpi:
-                self._remake_image_canvas()
+                self._draw_images()
                 self._draw_plot()
         if event.type() == QEvent.Type.PaletteChange and self.canvas is not None:
             dark = plot_theme.is_dark(self)
             if dark != self._dark:
                 self._draw_plot()
-                if self.selected is not None and self.selected in self._points:
-                    self.show_point(self.selected)
+                self._draw_images()
 
     def _keep_two_status_lines(self) -> None:
         """The status line keeps room for two lines, so that the finished sweep's two lines (its knees)
@@ -325,30 +328,24 @@ class CostPanel(QWidget):
         self.canvas.drawn.connect(self._plot_drawn)
         self.canvas.failed.connect(lambda message: self.status.setText(f"The plot failed: {message}"))
         self._plot_box.layout().addWidget(self.canvas)
-        self._make_image_canvas()
-        self._draw_plot()
-
-    def _make_image_canvas(self) -> None:
-        from matplotlib.backends.backend_qtagg import FigureCanvasQTAgg
-        from matplotlib.figure import Figure
-
-        self._dpi = plot_theme.figure_dpi(self)
-        self.image_figure = Figure(layout="constrained", dpi=self._dpi)
-        self.image_canvas = FigureCanvasQTAgg(self.image_figure)
+        self.image_canvas = FigureImage()
+        self.image_canvas.resized.connect(self._draw_images)
+        self.image_canvas.failed.connect(lambda message: self.status.setText(f"The images failed: {message}"))
         self._image_box.layout().addWidget(self.image_canvas)
-
-    def _remake_image_canvas(self) -> None:
-        """A new images' figure at the new text size (a figure's resolution is set when it is made)."""
-        self._image_box.layout().removeWidget(self.image_canvas)
-        self.image_canvas.deleteLater()
-        self._make_image_canvas()
-        if self.selected is not None and self.selected in self._points:
-            self.show_point(self.selected)
+        self._draw_images()
+        self._draw_plot()
 
     @property
     def plot_figure(self):
         """The figure of the plot shown now (drawn off the GUI thread; read it only), or ``None``."""
         shown = self.canvas.shown if self.canvas is not None else None
+        return shown.figure if shown is not None else None
+
+    @property
+    def image_figure(self):
+        """The figure of the images shown beside the plot now (drawn off the GUI thread; read it only),
+        or ``None``."""
+        shown = self.image_canvas.shown if self.image_canvas is not None else None
         return shown.figure if shown is not None else None
 
     # -- inputs ---------------------------------------------------------------
@@ -443,9 +440,7 @@ class CostPanel(QWidget):
         self.progress.setValue(0)
         if drawn:
             self._draw_plot()
-        if self.image_figure is not None:
-            self.image_figure.clear()
-            self.image_canvas.draw_idle()
+            self._draw_images()
 
     def _on_event(self, event) -> None:
         if isinstance(event, Progress):
@@ -509,13 +504,7 @@ class CostPanel(QWidget):
         self._plot_stale = not (self.isVisible() or hidden)
         if self._plot_stale:
             return  # drawn when the pane is shown (a lesson step resets the plot of a hidden tab)
-        from matplotlib.colors import same_color
-
         self._dark = plot_theme.is_dark(self)
-        background = plot_theme.background(self._dark)
-        if not same_color(self.image_figure.get_facecolor(), background):  # before any image is shown
-            self.image_figure.set_facecolor(background)
-            self.image_canvas.draw_idle()
         ratio = self.canvas.devicePixelRatioF()
         self.canvas.request(self._plot_drawing(self.canvas.width() * ratio, self.canvas.height() * ratio,
                                                plot_theme.figure_dpi(self) * ratio,
@@ -607,47 +596,41 @@ class CostPanel(QWidget):
         return self.canvas.to_widget(*ax.transData.transform((x, y)))
 
     def show_point(self, index: int) -> None:
-        """Show setting ``index``'s image, the reference and the error map side by side."""
-        import matplotlib
-
+        """Show setting ``index``'s image, the reference and the error map side by side (drawn off the
+        GUI thread: :attr:`image_figure` is that figure once drawn)."""
         self._make_canvases()
         point = self._points[index]
         self.selected = index
-        reference = self.sweep.references[point.row.mode]
-        panels = [(to_srgb8(point.color), f"{point.row.knob} = {point.row.value}\n"
-                   f"{point.row.seconds * 1000:.1f} ms", None),
-                  (to_srgb8(reference.color), f"reference\n{reference.spp}x{reference.spp} per pixel", None),
-                  (point.error_map, f"FLIP against {point.row.compared_with}\nmean {point.row.flip:.4f}",
-                   "magma")]
-        if point.samples is not None:
-            panels.append((point.samples, f"samples per pixel\n{point.row.samples_per_pixel:.2f} on average",
-                           "viridis"))
-        self.image_figure.clear()
-        dark = plot_theme.is_dark(self)
-        self.image_figure.set_facecolor(plot_theme.background(dark))
-        with MATPLOTLIB, matplotlib.rc_context(plot_theme.plot_style(dark)):
-            for k, (image, title, cmap) in enumerate(panels):
-                ax = self.image_figure.add_subplot(2, 2, k + 1)
-                if cmap == "magma":
-                    shown = ax.imshow(image, cmap=cmap, vmin=0.0, vmax=1.0, interpolation="nearest")
-                elif cmap:
-                    shown = ax.imshow(image, cmap=cmap, interpolation="nearest")
-                else:
-                    shown = ax.imshow(image, interpolation="nearest")
-                if cmap:
-                    self.image_figure.colorbar(shown, ax=ax, shrink=0.8)
-                ax.set_title(title, fontsize=9)
-                ax.set_xticks([])
-                ax.set_yticks([])
-        self.image_canvas.draw_idle()
+        self._draw_images()
         self._draw_plot()
         self._show_explanation(point.row.knob)
         self.point_selected.emit(index)
 
+    def _draw_images(self) -> None:
+        """Ask for the selected point's images to be drawn off the GUI thread (a hidden pane's when it
+        is shown); with none selected the pane shows none."""
+        if self.image_canvas is None:
+            return  # drawn when the canvases are made
+        point = self._points.get(self.selected)
+        if point is None:
+            self._images_stale = False
+            self.image_canvas.clear()
+            return
+        self._images_stale = not self.isVisible()
+        if self._images_stale:
+            return
+        reference = self.sweep.references[point.row.mode]
+        self._dpi = plot_theme.figure_dpi(self)
+        ratio = self.image_canvas.devicePixelRatioF()
+        self.image_canvas.request(point_images_drawing(
+            point, reference, self.image_canvas.width() * ratio, self.image_canvas.height() * ratio,
+            self._dpi * ratio, plot_theme.is_dark(self)))
+
     def shown_images(self) -> list[np.ndarray]:
-        """The arrays currently shown beside the plot (setting, reference, error map, samples)."""
-        self._make_canvases()
-        return [ax.images[0].get_array() for ax in self.image_figure.axes if ax.images]
+        """The arrays shown beside the plot now (setting, reference, error map, samples); none before
+        the images are drawn."""
+        figure = self.image_figure
+        return [] if figure is None else [ax.images[0].get_array() for ax in figure.axes if ax.images]
 
     def _show_explanation(self, knob: str | None = None) -> None:
         name = knob if isinstance(knob, str) else self.knob.currentData()

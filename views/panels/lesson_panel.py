@@ -319,6 +319,11 @@ class LessonPanel(QWidget):
         """The typeset formulas of the current step, top to bottom."""
         return [self.formulas.itemAt(i).widget() for i in range(self.formulas.count())]
 
+    def typesetting(self) -> bool:
+        """Whether a formula of the current step is still being typeset (off the GUI thread: it shows
+        once typeset, and meanwhile no formula of another step shows)."""
+        return any(view.pending for view in self.formula_views())
+
     def _clear_formulas(self) -> None:
         while self.formulas.count():
             widget = self.formulas.takeAt(0).widget()
@@ -338,7 +343,7 @@ class LessonPanel(QWidget):
         self.step_title.setText(step.title)
         self.text.setText(step.text)
         for formula in step.formulas:
-            self.formulas.addWidget(MathView(formula, self.formulas.parentWidget()))
+            self.formulas.addWidget(MathView(formula, self.formulas.parentWidget(), later=True))
         self.position.setText(f"step {self._step + 1} of {len(lesson.steps)}")
         self.previous_button.setEnabled(self._moved(-1) is not None)
         self.next_button.setEnabled(self._pending or self._moved(+1) is not None)

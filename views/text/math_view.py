@@ -8,15 +8,23 @@ mathtext has no matrices, so :class:`MatrixView` draws a bracketed grid of
 numbers itself.  matplotlib loads with the first formula that is not in
 :mod:`views.text.formula_cache` (formulas at their natural size are kept there), or
 earlier on a thread of its own when the window asks (:func:`load_typesetting_soon`).
+
+Reading a formula from that cache, or typesetting it, holds the thread that does
+it: a lesson step's formulas held the GUI thread up to a second while other
+threads were busy (each file read gives up Python's lock, and getting it back
+waits for them).  A ``MathView(..., later=True)`` therefore typesets on a thread
+of its own (:func:`_typesetter`) and shows its formula once that is done; until
+then it shows nothing, never another formula.
 """
 
 from __future__ import annotations
 
+import contextlib
 import threading
 from functools import lru_cache
 
 import numpy as np
-from PySide6.QtCore import QRectF, QSize, Qt
+from PySide6.QtCore import QObject, QRectF, QRunnable, QSize, Qt, QThreadPool, QTimer, Signal
 from PySide6.QtGui import QColor, QFont, QFontMetricsF, QImage, QPainter, QPen, QPixmap
 from PySide6.QtWidgets import QLabel, QSizePolicy, QWidget
 
@@ -164,6 +172,36 @@ def _warm_up() -> None:
         _parser().parse("$x^2$", dpi=72.0, prop=FontProperties(size=10.0))
 
 
+@lru_cache(maxsize=1)
+def _typesetter() -> QThreadPool:
+    """The one thread that typesets (or reads from the cache) the formulas of ``later`` views, in the
+    order they were asked for."""
+    pool = QThreadPool()
+    pool.setMaxThreadCount(1)
+    return pool
+
+
+class _Typeset(QObject):
+    done = Signal(int)  # the request's number
+
+
+class _TypesetJob(QRunnable):
+    """Typesets ``(text, size_pt)`` pairs in ``color`` at ``dpi`` into :func:`_typeset`'s memory (and the
+    disk cache), then says so; a text that is not mathtext is left to the view to report."""
+
+    def __init__(self, request: int, texts: list[tuple[str, float]], color: str, dpi: float,
+                 signals: _Typeset):
+        super().__init__()
+        self.request, self.texts, self.color, self.dpi, self.signals = request, texts, color, dpi, signals
+
+    def run(self):
+        for text, size_pt in self.texts:
+            with contextlib.suppress(ValueError):
+                _typeset(text, size_pt, self.color, self.dpi, True)
+        with contextlib.suppress(RuntimeError):  # the view was deleted meanwhile
+            self.signals.done.emit(self.request)
+
+
 class MathView(QLabel):
     """A label showing one mathtext formula, typeset.
 
@@ -175,11 +213,23 @@ class MathView(QLabel):
     a part still too wide makes a scroll area around it scroll sideways.
     An invalid formula is shown as its plain text, with the parser's
     complaint in the tooltip.
+
+    With ``later``, it is typeset off the GUI thread (:func:`_typesetter`) whenever
+    its formula, size or colour changes: :attr:`pending` meanwhile, showing nothing
+    (a new formula) or the formula at its previous size or colour.
     """
 
     def __init__(self, formula: str = "", parent: QWidget | None = None, *, size_pt: float | None = None,
-                 scale: float = 1.0):
+                 scale: float = 1.0, later: bool = False):
         super().__init__(parent)
+        self._later = later
+        self._request = 0  # the newest typesetting asked of the typesetter's thread
+        self._done = 0  # the newest typesetting it finished
+        self._asked: tuple | None = None  # what it was asked for: formula, size, colour, resolution
+        self._asking = False  # asking it soon, once this turn's changes are in
+        self._typeset_signals: _Typeset | None = None
+        self.pending = False
+        """Typesetting on the typesetter's thread (``later`` views only)."""
         self._formula = formula
         self._size_pt = size_pt
         self._scale = float(scale)
@@ -201,6 +251,9 @@ class MathView(QLabel):
 
     def set_formula(self, formula: str) -> None:
         self._formula = formula
+        if self._later:  # the former formula is not shown while this one is typeset
+            self._natural, self._asked = None, None
+            self.clear()
         self._render()
 
     def set_scale(self, scale: float) -> None:
@@ -219,7 +272,10 @@ class MathView(QLabel):
         return base * 1.15 * self._scale
 
     def shown_lines(self) -> tuple[list[str], float]:
-        """The lines the formula is drawn in at the label's width, and their size in points."""
+        """The lines the formula is drawn in at the label's width, and their size in points (no lines
+        before it is typeset)."""
+        if self._natural is None:
+            return [], self.size_pt()
         return self._layout(self.width())
 
     def changeEvent(self, event) -> None:  # a new font or palette (theme, scale) re-renders
@@ -234,6 +290,8 @@ class MathView(QLabel):
     def minimumSizeHint(self) -> QSize:
         if self._natural is None:
             return super().minimumSizeHint()
+        if self.pending:  # measured at the new size once typeset, not on the GUI thread now
+            return QSize(0, self.height())
         least = self.size_pt() * MIN_SHRINK
         indent = self._indent(least) if len(self._parts) > 1 else 0.0
         widest = max(self._width(join_parts([part]), least) for part in self._parts) + indent
@@ -245,6 +303,8 @@ class MathView(QLabel):
     def heightForWidth(self, width: int) -> int:
         if self._natural is None:
             return super().heightForWidth(width)
+        if self.pending:  # the height shown until the new size is typeset
+            return self.height()
         lines, size = self._layout(width)
         return int(sum(self._image_of(line, size).height() for line in lines) / self._ratio() + 0.999)
 
@@ -253,6 +313,42 @@ class MathView(QLabel):
         self._show()
 
     def _render(self) -> None:
+        if not self._later or not self._formula:
+            self._render_now()
+            return
+        self.pending = True
+        if not self._asking:  # a restyle sends a font, a palette and a style change: typeset once
+            self._asking = True
+            QTimer.singleShot(0, self, self._ask)
+
+    def _ask(self) -> None:
+        """Ask the typesetter's thread for what the formula now needs, unless that was asked already."""
+        self._asking = False
+        size, color, dpi = self.size_pt(), self._color_name(), self._dpi()
+        if self._asked == (self._formula, size, color, dpi):
+            self.pending = self._done != self._request  # what it shows, or will show, is up to date
+            return
+        self._asked = (self._formula, size, color, dpi)
+        # What _render_now needs first, and the sizes the formula and its parts may be shrunk to.
+        texts = [(self._formula, size)]
+        with contextlib.suppress(ValueError):
+            parts = [join_parts([part]) for part in split_formula(self._formula)]
+            texts += [(part, size) for part in parts if part != self._formula]
+            texts += [(text, size * s) for s in SHRINKS[1:] for text in [self._formula, *parts]]
+        if self._typeset_signals is None:
+            self._typeset_signals = _Typeset(self)
+            self._typeset_signals.done.connect(self._typeset_done)
+        self._request += 1
+        self.pending = True
+        _typesetter().start(_TypesetJob(self._request, texts, color, dpi, self._typeset_signals))
+
+    def _typeset_done(self, request: int) -> None:
+        self._done = request
+        if request == self._request:  # else a newer typesetting is on its way
+            self.pending = False
+            self._render_now()
+
+    def _render_now(self) -> None:
         self.error = None
         self._natural = None
         if not self._formula:
@@ -280,12 +376,17 @@ class MathView(QLabel):
     def _ratio(self) -> float:
         return max(1.0, self.devicePixelRatioF())
 
+    def _color_name(self) -> str:
+        return (self._color or self.palette().color(self.foregroundRole())).name()
+
+    def _dpi(self) -> float:
+        return 96.0 * self._ratio()
+
     def _image_of(self, text: str, size_pt: float) -> QImage:
         """``text`` typeset at ``size_pt``; kept on disk too at the few sizes that do not depend on the
         label's width (those of :data:`SHRINKS`), which are all a window needs to open."""
-        color = self._color or self.palette().color(self.foregroundRole())
         natural = self.size_pt()
-        return render_mathtext(text, size_pt, color.name(), 96.0 * self._ratio(),
+        return render_mathtext(text, size_pt, self._color_name(), self._dpi(),
                                keep=any(size_pt == natural * s for s in SHRINKS))
 
     def _width(self, text: str, size_pt: float) -> float:
@@ -325,8 +426,9 @@ class MathView(QLabel):
         return lines + [join_parts(line)]
 
     def _show(self) -> None:
-        """Draw the formula in the lines :meth:`_layout` chose for the label's width."""
-        if self._natural is None:
+        """Draw the formula in the lines :meth:`_layout` chose for the label's width (the former
+        picture stays while the new size is typeset)."""
+        if self._natural is None or self.pending:
             return
         # Until a layout gives the label its width, one line (not wrapped to fit Qt's default size).
         lines, size = self._layout(self.width() if self.testAttribute(Qt.WidgetAttribute.WA_Resized) else 0)

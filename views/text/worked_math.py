@@ -13,7 +13,9 @@ and for a picked vertex its path through the object-order stages, world,
 camera, clip, NDC and pixel, with the matrix of each map
 (:func:`core.projection.project_point`).  Every number comes from those core
 functions, the ones ``python -m app intersect`` prints, at the same 6
-significant digits.
+significant digits.  The formulas are typeset off the GUI thread (``MathView``'s
+``later``) and show once typeset; :meth:`WorkedMath.typesetting` says whether
+any is still on its way.
 """
 
 from __future__ import annotations
@@ -84,6 +86,10 @@ class WorkedMath(QScrollArea):
                 return text
         raise KeyError(label)
 
+    def typesetting(self) -> bool:
+        """Whether a formula shown is still being typeset (off the GUI thread)."""
+        return any(view.pending for view in self._body.findChildren(MathView))
+
     def set_scale(self, scale: float) -> None:
         """Enlarge every formula and label by ``scale`` (presentation mode)."""
         self._scale = float(scale)
@@ -129,7 +135,7 @@ class WorkedMath(QScrollArea):
         name.setAlignment(Qt.AlignmentFlag.AlignRight | Qt.AlignmentFlag.AlignVCenter)
         self._grid.addWidget(name, r, 0)
         if formula:
-            view = MathView(formula, self._grid.parentWidget(), scale=self._scale)
+            view = MathView(formula, self._grid.parentWidget(), scale=self._scale, later=True)
             self._grid.addWidget(view, r, 1)
         elif matrix is not None:
             view = MatrixView(matrix)

@@ -43,7 +43,8 @@ def test_the_finished_all_knobs_plot_reads_at_1280x720(qtbot, present, scale):
     panel = CostPanel()
     window, presentation = present(panel)  # a 1280 x 720 window
     presentation.set_scale(scale)
-    qtbot.waitUntil(lambda: panel.plot_figure is not None and panel.plot_figure.dpi >= 100 * scale - 1)
+    qtbot.waitUntil(lambda: panel.plot_figure is not None and panel.plot_figure.dpi >= 100 * scale - 1,
+                    timeout=60_000)  # the first picture: matplotlib loads meanwhile, off the GUI thread
     # The figure the pane would show of a finished sweep of every knob, drawn as the panel draws it.
     figure = agg_figure(panel.canvas.width(), panel.canvas.height(), plot_theme.figure_dpi(panel))
     rows = _all_knob_rows()
@@ -76,8 +77,10 @@ def test_the_finished_all_knobs_plot_reads_at_1280x720(qtbot, present, scale):
     assert not any(_overlap(a, legend) for a in shown)
 
 
-def test_a_sweep_never_draws_the_plot_on_the_gui_thread(qtbot, monkeypatch, cost_panel):
-    # A Cost sweep of every knob held the GUI thread up to 850 ms drawing the plot with matplotlib.
+def test_a_sweep_never_draws_the_plot_or_a_points_images_on_the_gui_thread(qtbot, monkeypatch, cost_panel):
+    # A Cost sweep of every knob held the GUI thread up to 850 ms drawing the plot with matplotlib, and up
+    # to a second drawing the images beside it (the setting, the reference, the FLIP map with its colour
+    # bar) as the sweep's first point came in.
     from matplotlib.backends.backend_agg import FigureCanvasAgg
 
     panel = cost_panel
@@ -93,7 +96,14 @@ def test_a_sweep_never_draws_the_plot_on_the_gui_thread(qtbot, monkeypatch, cost
     with qtbot.waitSignal(panel.sweep_finished, timeout=TIMEOUT_MS):
         panel.run()
     qtbot.waitUntil(lambda: not panel.canvas.pending and len(panel._lines) > 0, timeout=TIMEOUT_MS)
-    plots = [thread for thread, figure in draws if figure is not panel.image_figure]
-    assert plots  # the plot was drawn ...
-    assert all(thread is not threading.main_thread() for thread in plots)  # ... never on the GUI thread
     assert sum(len(i) for i in panel._lines.values()) == len(KNOBS["depth"].values)
+    last = len(KNOBS["depth"].values) - 1
+    panel.show_point(last)  # a click on the last point
+    qtbot.waitUntil(lambda: not panel.image_canvas.pending and not panel.canvas.pending, timeout=TIMEOUT_MS)
+    shown = panel.image_figure
+    assert any(figure is shown for _, figure in draws)  # the images shown were drawn here, ...
+    assert any(figure is panel.plot_figure for _, figure in draws)  # ... so was the plot, ...
+    assert all(thread is not threading.main_thread() for thread, _ in draws)  # ... never on the GUI thread
+    titles = [ax.get_title() for ax in shown.axes if ax.images]
+    assert titles[0].startswith(f"depth = {panel._points[last].row.value}")
+    assert titles[1].startswith("reference")

@@ -33,6 +33,12 @@ def _drawn(qtbot, panel):
     qtbot.waitUntil(lambda: panel.plot_figure is not None and not panel.canvas.pending, timeout=TIMEOUT_MS)
 
 
+def _images_drawn(qtbot, panel):
+    """Wait for the newest picture of the point's images (drawn off the GUI thread) to be shown."""
+    qtbot.waitUntil(lambda: panel.image_figure is not None and not panel.image_canvas.pending,
+                    timeout=TIMEOUT_MS)
+
+
 def test_sweep_fills_the_plot_and_a_click_shows_the_point(qtbot, panel):
     _pick(panel, "depth")
     qtbot.mouseClick(panel.run_button, Qt.MouseButton.LeftButton)
@@ -51,6 +57,7 @@ def test_sweep_fills_the_plot_and_a_click_shows_the_point(qtbot, panel):
     with qtbot.waitSignal(panel.point_selected, timeout=5000) as picked:
         qtbot.mouseClick(panel.canvas, Qt.MouseButton.LeftButton, pos=QPoint(round(x), round(y)))
     assert picked.args == [0]
+    _images_drawn(qtbot, panel)
     setting, reference, error_map = panel.shown_images()
     point = panel._points[0]
     assert np.array_equal(setting, to_srgb8(point.color))  # shown in sRGB
@@ -135,6 +142,7 @@ def test_adaptive_point_shows_its_samples_heat_map_and_exports(qtbot, panel, tmp
     with qtbot.waitSignal(panel.sweep_finished, timeout=TIMEOUT_MS):
         pass
     panel.show_point(len(KNOBS["adaptive"].values) - 1)
+    _images_drawn(qtbot, panel)
     images = panel.shown_images()
     assert len(images) == 4
     heat = images[3]

@@ -26,7 +26,8 @@ def _texts_px(panel) -> dict[str, tuple[float, object]]:
 def test_the_cost_plot_text_grows_with_the_presentation_scale_and_stays_on_the_canvas(qtbot, present, scale):
     panel = CostPanel()
     window, presentation = present(panel)
-    qtbot.waitUntil(lambda: panel.plot_figure is not None and not panel.canvas.pending)
+    # The first picture: matplotlib loads meanwhile, off the GUI thread.
+    qtbot.waitUntil(lambda: panel.plot_figure is not None and not panel.canvas.pending, timeout=60_000)
     before = _texts_px(panel)
     presentation.set_scale(scale)
     qtbot.waitUntil(lambda: panel.plot_figure.dpi > 100 * (scale - 0.1) and not panel.canvas.pending)
@@ -53,7 +54,7 @@ def test_a_small_pane_at_double_text_keeps_the_plot_apart_and_the_words_readable
     window, presentation = present(panel)
     window.resize(700, 470)
     presentation.set_scale(2.0)
-    qtbot.waitUntil(lambda: panel.plot_figure is not None and panel.plot_figure.dpi > 190)
+    qtbot.waitUntil(lambda: panel.plot_figure is not None and panel.plot_figure.dpi > 190, timeout=60_000)
     qtbot.waitUntil(lambda: panel.plot_figure.bbox.height < 420 and not panel.canvas.pending)
     shown = _texts_px(panel)
     ax = panel.plot_figure.axes[0]

@@ -28,7 +28,8 @@ def _canvas_mean(panel) -> float:
 
 def test_the_cost_plot_turns_dark_in_high_contrast_and_light_again(qtbot, themed):
     _, panel, presentation = themed
-    qtbot.waitUntil(lambda: panel.plot_figure is not None)
+    # The first picture: matplotlib loads meanwhile, off the GUI thread.
+    qtbot.waitUntil(lambda: panel.plot_figure is not None, timeout=60_000)
     assert to_rgb(panel.plot_figure.get_facecolor()) == (1.0, 1.0, 1.0)
     assert _canvas_mean(panel) > 200
     presentation.set_high_contrast(True)
@@ -39,7 +40,10 @@ def test_the_cost_plot_turns_dark_in_high_contrast_and_light_again(qtbot, themed
     assert to_rgb(ax.title.get_color()) == (1.0, 1.0, 1.0)
     assert all(to_rgb(t.get_color()) == (1.0, 1.0, 1.0) for t in ax.get_yticklabels())
     assert _canvas_mean(panel) < 40  # a black picture with light text, not a white one
-    assert to_rgb(panel.image_figure.get_facecolor()) == (0.0, 0.0, 0.0)  # no point shown yet, black too
+    # no point shown yet: no images drawn, the pane shows the window's background, black too
+    assert panel.image_figure is None
+    shown = panel.image_canvas.grab().toImage()
+    assert shown.pixelColor(shown.width() // 2, shown.height() // 2).getRgb()[:3] == (0, 0, 0)
     presentation.set_high_contrast(False)
     qtbot.waitUntil(lambda: to_rgb(panel.plot_figure.get_facecolor()) == (1.0, 1.0, 1.0))
     assert to_rgb(panel.plot_figure.axes[0].xaxis.label.get_color()) == (0.0, 0.0, 0.0)

@@ -1,6 +1,7 @@
 """The lesson panel: lessons in order, the step's text and formulas, stepping, opening a file."""
 
 import json
+import threading
 
 import pytest
 from PySide6.QtCore import Qt
@@ -9,7 +10,8 @@ from qt_fixtures import shown_widget
 
 from core.files.lesson_file import LessonStep, shipped_lessons
 from views.panels.lesson_panel import ClickerKeys, LessonPanel, lesson_label
-from views.text.math_view import MathView
+from views.text import formula_cache
+from views.text.math_view import MathView, _typeset
 
 LESSONS = shipped_lessons()
 
@@ -41,6 +43,7 @@ def test_every_step_of_every_lesson_shows_its_text_and_typesets_its_formulas(pan
             assert panel.position.text() == f"step {s + 1} of {len(lesson.steps)}"
             views = panel.formula_views()
             assert [v.formula() for v in views] == list(step.formulas)
+            qtbot.waitUntil(lambda: not panel.typesetting())
             for view in views:
                 assert isinstance(view, MathView)
                 assert view.error is None, (lesson.id, view.formula(), view.error)
@@ -157,3 +160,30 @@ def test_leaving_a_step_replaces_its_words_and_next_shows_it_again(panel, qtbot)
     with qtbot.waitSignal(panel.step_selected) as signal:
         panel.next()
     assert signal.args[0] is step and panel.text.text() == step.text and panel.step_index() == (k, 1)
+
+
+def test_a_steps_formulas_are_read_and_typeset_off_the_gui_thread_and_never_stale(panel, qtbot, monkeypatch,
+                                                                                tmp_path):
+    # Reading a step's formulas from the formula cache held the GUI thread up to a second (bench gui
+    # --why: lesson_panel._show -> MathView -> formula_cache.load) while other threads were busy.
+    monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path))  # an empty cache: typeset, then read back
+    readers = []
+    load = formula_cache.load
+    monkeypatch.setattr(formula_cache, "load",
+                        lambda *a: (readers.append(threading.current_thread()), load(*a))[1])
+    steps = [(k, s) for k, lesson in enumerate(panel.lessons()) for s, step in enumerate(lesson.steps)
+             if step.formulas][:3]
+    qtbot.waitUntil(lambda: not panel.typesetting(), timeout=60_000)  # the step the panel opened on
+    for first_run in (True, False):
+        _typeset.cache_clear()  # as in a new process: from the disk cache the second time
+        readers.clear()
+        for k, s in steps:
+            panel.select(k, s)
+            views = panel.formula_views()
+            # The new step's formulas at once, none of the former step's pictures meanwhile.
+            assert [v.formula() for v in views] == list(panel.lessons()[k].steps[s].formulas)
+            assert all(v.pending and v.pixmap().isNull() for v in views)
+            qtbot.waitUntil(lambda: not panel.typesetting(), timeout=60_000)
+            assert all(not v.pixmap().isNull() and v.error is None for v in views)
+        assert readers, first_run  # the cache was read ...
+        assert threading.main_thread() not in readers  # ... never on the GUI thread

@@ -80,6 +80,7 @@ def test_in_a_narrow_lesson_panel_at_twice_the_text_every_formula_stays_readable
     for row, lesson in enumerate(panel.lessons()):
         for k in range(len(lesson.steps)):
             panel.select(row, k)
+            qtbot.waitUntil(lambda: not panel.typesetting())
             for _ in range(3):  # the posted layout requests (a wrapped formula asks for more height)
                 QApplication.processEvents()
             for view in panel.formula_views():
@@ -87,3 +88,28 @@ def test_in_a_narrow_lesson_panel_at_twice_the_text_every_formula_stays_readable
                 assert view.shown_lines()[1] >= MIN_SHRINK * view.size_pt() - 1e-9, (lesson.id, k)
                 # As tall as its lines at its width: no line is clipped.
                 assert view.height() >= view.heightForWidth(view.width()) - 1, (lesson.id, k)
+
+
+def test_a_later_view_typesets_once_per_restyle_and_shows_a_formula_set_again(qtbot, monkeypatch):
+    # A restyle (presentation mode, text size) sends each view a font, a palette and a style change;
+    # each started a typesetting of the same formula, and the GUI thread waited on them for the GIL.
+    from PySide6.QtWidgets import QWidget
+
+    from views.text import math_view
+
+    parent = QWidget()
+    qtbot.addWidget(parent)
+    view = MathView(SPHERE, parent, later=True)
+    parent.show()
+    qtbot.waitUntil(lambda: not view.pending)
+    jobs = []
+    job = math_view._TypesetJob
+    monkeypatch.setattr(math_view, "_TypesetJob", lambda *args: (jobs.append(args[1][0]), job(*args))[1])
+    parent.setStyleSheet("QWidget { font-size: 20pt; color: #123456; }")
+    qtbot.waitUntil(lambda: not view.pending)
+    assert jobs == [(SPHERE, view.size_pt())]  # one typesetting, at the new size
+    assert view.sizeHint().height() > 0 and not view.pixmap().isNull()
+    view.set_formula(r"$x$")
+    view.set_formula(SPHERE)  # the formula it showed before, set again: shown again
+    qtbot.waitUntil(lambda: not view.pending)
+    assert not view.pixmap().isNull() and view.shown_lines()[0]

@@ -39,7 +39,7 @@ def math_pane(qtbot):
     return shown_widget(qtbot, WorkedMath(), 700, 900)
 
 
-def test_a_picked_ray_on_a_sphere_shows_a_b_c_delta_and_both_roots(math_pane):
+def test_a_picked_ray_on_a_sphere_shows_a_b_c_delta_and_both_roots(math_pane, qtbot):
     step = LESSONS["ray_sphere"].steps[1]
     root = trace_pixel(step.scene, *step.pixel, step.image_order)
     math_pane.show_ray(step.scene, root)
@@ -60,6 +60,7 @@ def test_a_picked_ray_on_a_sphere_shows_a_b_c_delta_and_both_roots(math_pane):
     assert "inside" in math_pane.value("choice")
     assert _close(_last_number(math_pane.value("t")), t2)
     views = math_pane.findChildren(MathView)
+    qtbot.waitUntil(lambda: not math_pane.typesetting())  # typeset off the GUI thread
     assert views and all(v.error is None and not v.pixmap().isNull() for v in views if v.formula())
 
 
@@ -137,8 +138,10 @@ def test_a_picked_vertex_shows_its_path_to_the_pixel(math_pane):
 def test_formulas_grow_with_the_scale(math_pane, qtbot):
     math_pane.show_sphere(intersect_sphere_segment((2, 1, 2), (10, 6, 6), (6, 4, 6), 10))
     view = math_pane.findChildren(MathView)[0]
+    qtbot.waitUntil(lambda: not math_pane.typesetting())  # typeset off the GUI thread
     before = view.pixmap().deviceIndependentSize().height()
     math_pane.set_scale(2.0)
+    qtbot.waitUntil(lambda: not math_pane.typesetting())
     after = view.pixmap().deviceIndependentSize().height()
     assert after == pytest.approx(2 * before, rel=0.15)
 
@@ -185,6 +188,7 @@ def test_a_presented_pane_typesets_its_formulas_only_at_the_size_shown(qtbot, pr
     window, presentation = present(pane)
     presentation.set_scale(2.0)
     pane.set_scale(2.0)  # as the window does for its panes
+    math_view._typesetter().waitForDone()  # what earlier tests' panes asked of the typesetter's thread
     sizes = []
     typeset = math_view._typeset
     monkeypatch.setattr(math_view, "_typeset", lambda *args: (sizes.append(args[1]), typeset(*args))[1])

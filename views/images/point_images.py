@@ -1,0 +1,67 @@
+"""A swept setting's picture beside the reference and the FLIP error map, drawn off the GUI thread.
+
+Clicking a point of the Cost plot shows what that setting renders, the
+reference it is compared with and the per-pixel FLIP error between them
+(and, for adaptive supersampling, the samples each pixel took), side by
+side on one matplotlib figure.  Drawing that figure (four images, two colour
+bars, constrained layout) held the GUI thread for up to a second, so
+:func:`point_images_drawing` returns a function that draws it on the
+drawer's thread of a :class:`views.images.figure_image.FigureImage`; the
+window only paints the picture.  Images are encoded to sRGB
+(:mod:`core.srgb`) before they are shown; error and samples are shown in
+false colour with their scale.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+from core.srgb import to_srgb8
+from views.images import plot_theme
+from views.images.figure_image import MATPLOTLIB, Drawn, agg_figure, pixels
+
+
+def _panels(point, reference) -> list:
+    """``(image, title, colour map or None)`` for each image shown for ``point`` against ``reference``."""
+    row = point.row
+    panels = [(to_srgb8(point.color), f"{row.knob} = {row.value}\n{row.seconds * 1000:.1f} ms", None),
+              (to_srgb8(reference.color), f"reference\n{reference.spp}x{reference.spp} per pixel", None),
+              (point.error_map, f"FLIP against {row.compared_with}\nmean {row.flip:.4f}", "magma")]
+    if point.samples is not None:
+        panels.append((point.samples, f"samples per pixel\n{row.samples_per_pixel:.2f} on average",
+                       "viridis"))
+    return panels
+
+
+def draw_point_images(figure, point, reference) -> None:
+    """Draw ``point``'s image, ``reference``'s and the FLIP error map (and the samples per pixel) on
+    ``figure``, two to a row, inside the caller's ``matplotlib.rc_context``.  The error map's scale is
+    FLIP's own, 0 to 1."""
+    for k, (image, title, cmap) in enumerate(_panels(point, reference)):
+        ax = figure.add_subplot(2, 2, k + 1)
+        limits = {"vmin": 0.0, "vmax": 1.0} if cmap == "magma" else {}
+        shown = ax.imshow(image, cmap=cmap, interpolation="nearest", **limits)
+        if cmap:
+            figure.colorbar(shown, ax=ax, shrink=0.8)
+        ax.set_title(title, fontsize=9)
+        ax.set_xticks([])
+        ax.set_yticks([])
+
+
+def point_images_drawing(point, reference, width: float, height: float, dpi: float,
+                         dark: bool) -> Callable[[], Drawn]:
+    """A function, for any thread, that draws :func:`draw_point_images` on a new ``width`` x ``height``
+    pixel figure at ``dpi``, in the dark or light theme."""
+
+    def draw() -> Drawn:
+        import matplotlib
+
+        with MATPLOTLIB:
+            figure = agg_figure(width, height, dpi)
+            figure.set_facecolor(plot_theme.background(dark))
+            with matplotlib.rc_context(plot_theme.plot_style(dark)):
+                draw_point_images(figure, point, reference)
+                figure.canvas.draw()
+            return Drawn(figure, pixels(figure))
+
+    return draw
