@@ -28,6 +28,8 @@ ERROR_FLOOR = 1e-5
 #: formats' panel beside the cost curves; a narrower one has it below them (side by side in a pane half a
 #: window wide, the two panels' titles and legends ran into each other and the curves were squeezed flat).
 SIDE_BY_SIDE_PT = 576
+#: The formats' legend title when no format shows a wrong pixel (every curve on 0).
+NO_FIGHTS_NOTE = "no format fights here: no two surfaces\nare close enough in depth"
 #: One fixed colour per knob, so a knob keeps its colour from plot to plot.
 KNOB_COLORS = {name: f"C{i}" for i, name in enumerate(KNOB_NAMES)}
 
@@ -155,8 +157,10 @@ def _in_columns(ax, renderer, room: float, **where) -> None:
     """Lay ``ax``'s legend out again at ``where``, in the most columns (at most 3) that fit ``room``
     pixels wide."""
     handles, labels = ax.get_legend_handles_labels()
+    title = ax.get_legend().get_title().get_text() or None  # laid out again, it says the same
     for ncols in (3, 2, 1):
-        legend = ax.legend(handles, labels, fontsize="small", ncols=ncols, **where)
+        legend = ax.legend(handles, labels, fontsize="small", ncols=ncols, title=title,
+                           title_fontsize="small", **where)
         if legend.get_window_extent(renderer).width <= room:
             return
 
@@ -189,10 +193,6 @@ def _draw_depth_formats(ax, formats: list[tuple[int, Row]], wide: bool) -> dict:
                         markeredgewidth=2)
     highest = max(100 * r.wrong_pixel_fraction for _, r in formats)
     ax.set_ylim(-0.02 * max(highest, 1.0), 1.1 * max(highest, 1.0))
-    if highest == 0:
-        ax.text(0.7 if wide else 0.5, 0.4,  # wide: clear of the legend
-                "no format fights here:\nno two surfaces are\nclose enough in depth",
-                transform=ax.transAxes, ha="center", va="center", color="gray")
     ax.set_xscale("log")
     ax.set_xlabel("far / near ratio (near plane moved)")
     ax.set_ylabel("pixels showing\nthe wrong object (%)" if wide else "pixels showing the wrong object (%)")
@@ -200,5 +200,9 @@ def _draw_depth_formats(ax, formats: list[tuple[int, Row]], wide: bool) -> dict:
     ax.set_title(title if wide else "z-buffer formats:\nz-fighting against float64\n(ringed: fewest bytes\n"
                  "within the tolerance)", fontsize="medium")
     ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize="small", loc="upper left")
+    # With no fights every curve lies on 0; the legend says so in its title, so the note can never
+    # sit on the legend's entries (drawn apart, it covered them in a short panel).
+    note = NO_FIGHTS_NOTE if wide else NO_FIGHTS_NOTE.replace(" no two surfaces", "\nno two surfaces")
+    ax.legend(fontsize="small", loc="upper left", title=note if highest == 0 else None,
+              title_fontsize="small")
     return lines

@@ -16,7 +16,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from PySide6.QtCore import Qt, Signal
+from PySide6.QtCore import QEvent, Qt, QTimer, Signal
 from PySide6.QtGui import QColor
 from PySide6.QtWidgets import (
     QComboBox,
@@ -39,6 +39,9 @@ from views.images.image_view import DisplayImage, ImageView
 PANES = ("a", "b", "difference")
 DEFAULT_PAIR = ("perspective", "raytrace")
 PICK_HINT = "Click a pixel in any image to read it in both outputs."
+IMAGE_SHARE = 0.35
+"""The share of the panel's height the images keep when the sentences under them ask for room (0.45 left
+the sentences 50 px short at x2 on 1920x1080)."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -216,11 +219,11 @@ class ComparePanel(QWidget):
         self.explanation.setWordWrap(True)
         self.explanation.setTextFormat(Qt.TextFormat.RichText)
         self.explanation.setAlignment(Qt.AlignmentFlag.AlignTop | Qt.AlignmentFlag.AlignLeft)
-        scroll = QScrollArea()
+        scroll = self.explanation_scroll = QScrollArea()
         scroll.setWidgetResizable(True)
         scroll.setWidget(self.explanation)
         scroll.setToolTip("What differs between A and B for this scene, and why")
-        splitter = QSplitter(Qt.Orientation.Vertical)
+        splitter = self.split = QSplitter(Qt.Orientation.Vertical)
         splitter.addWidget(images)
         splitter.addWidget(self.pixel_box)  # under the images, the whole width: A and B in two columns
         splitter.addWidget(scroll)
@@ -228,11 +231,42 @@ class ComparePanel(QWidget):
         splitter.setStretchFactor(1, 1)
         splitter.setSizes([260, 200, 90])  # the images keep the larger share; drag to read more
         splitter.setChildrenCollapsible(False)
+        self._room_as_dragged = False  # the user dragged a divider: their sizes stand
+        splitter.splitterMoved.connect(self._leave_room_as_dragged)
         layout = QVBoxLayout(self)
         layout.setContentsMargins(6, 6, 6, 6)
         layout.addLayout(top)
         layout.addWidget(splitter, 1)
         self._clear_readout(PICK_HINT)
+
+    def _leave_room_as_dragged(self) -> None:
+        self._room_as_dragged = True
+
+    def _make_room_for_explanation(self) -> None:
+        """Give the sentences under the images the height they need to read whole, taken from the
+        images down to :data:`IMAGE_SHARE` of the height, then from the picked pixel down to what its
+        rows need (at text x2 they scrolled, three lines shown of eight); not after a drag."""
+        scroll = self.explanation_scroll
+        width = scroll.width() - 2 * scroll.frameWidth()
+        if self._room_as_dragged or width <= 0 or not self.explanation.text():
+            return
+        need = self.explanation.heightForWidth(width) + 2 * scroll.frameWidth()
+        images, pixel, words = sizes = self.split.sizes()
+        total, least = sum(sizes), self.pixel_box.minimumSizeHint().height()
+        kept = round(IMAGE_SHARE * total)  # for the images
+        words = max(words, min(need, total - kept - least))
+        pixel = max(least, min(pixel, total - words - kept))  # a resize shares out to images and pixel
+        if [total - words - pixel, pixel, words] != sizes:
+            self.split.setSizes([total - words - pixel, pixel, words])
+
+    def resizeEvent(self, event) -> None:  # noqa: N802 (Qt's name)
+        super().resizeEvent(event)
+        self._make_room_for_explanation()
+
+    def changeEvent(self, event) -> None:  # noqa: N802 (Qt's name)
+        super().changeEvent(event)
+        if event.type() == QEvent.Type.FontChange:  # the sentences grow with the text
+            QTimer.singleShot(0, self, self._make_room_for_explanation)
 
     def pair(self) -> tuple[str, str]:
         """The keys (of :data:`core.compare.OUTPUTS`) of outputs A and B."""
@@ -259,6 +293,7 @@ class ComparePanel(QWidget):
         self.scale.set_scale(shown.bar, "0", f"{diff.scale:.3g}", DIFFERENCE_UNITS)
         self.explanation.setText("<b>Why they differ</b><br>"
                                  + "<br>".join(f"• {s}" for s in comparison.explanation))
+        self._make_room_for_explanation()
         h, w = shown.images["a"].rgb.shape[:2]
         if self.picked is not None and not (self.picked[0] < w and self.picked[1] < h):
             self.picked = None

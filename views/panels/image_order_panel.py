@@ -246,9 +246,18 @@ class ImageOrderPanel(QWidget):
     def _leave_room_as_dragged(self) -> None:
         self._room_for_tree = False
 
+    def _fit_verdict(self) -> None:
+        """Give the verdict over the tree the lines the tree can spare above ``TREE_ROWS`` rows:
+        whole where there is room (at x2 on 1920x1080), on fewer lines ending in "…" where not."""
+        row = max(self.tree.sizeHintForRow(0), self.tree.fontMetrics().lineSpacing() + 6)
+        shared = self.tree.viewport().height() + (self.verdict.height() if self.verdict.isVisible() else 0)
+        self.verdict.set_max_lines((shared - TREE_ROWS * row) // self.verdict.fontMetrics().lineSpacing())
+
     def eventFilter(self, watched, event) -> bool:
-        if self._room_for_tree and event.type() == QEvent.Type.Resize and watched is self.tree.viewport():
-            self._make_room_for_tree()
+        if event.type() == QEvent.Type.Resize and watched is self.tree.viewport():
+            if self._room_for_tree:
+                self._make_room_for_tree()
+            self._fit_verdict()
         return super().eventFilter(watched, event)
 
     def show_settings(self, settings: TraceSettings) -> None:

@@ -38,7 +38,7 @@ KIND_COLORS = {
 }
 BLOCKED_COLOR = "#8a8a8a"
 COLUMNS = ["ray", "hit", "t", "weight", "returns colour"]
-MOST_OF_SPLITTER = 0.75
+MOST_OF_SPLITTER = 0.8
 """The most of a splitter's width the tree takes to show every column whole; the rest stays beside it."""
 
 
@@ -99,6 +99,12 @@ def _rgb(c) -> str:
     return "(" + ", ".join(f"{v:.3f}" for v in c) + ")"
 
 
+def _returned(c) -> str:
+    """A returned colour as the list shows it: linear r g b to 2 decimals, so that at text x2 on
+    1920x1080 every column fits beside the second stage (its tooltip and the second stage give 3)."""
+    return " ".join(f"{v:.2f}" for v in c)
+
+
 class RayTreeWidget(QTreeWidget):
     """The ray tree as an expandable list, one row per ray with its numbers."""
 
@@ -107,7 +113,10 @@ class RayTreeWidget(QTreeWidget):
         self.setColumnCount(len(COLUMNS))
         self.setHeaderLabels(COLUMNS)
         self.setAlternatingRowColors(True)
-        # Columns as wide as their header or their widest entry, at every text scale.
+        # Columns as wide as their header or their widest entry, at every text scale; the last one
+        # too (stretched to the view's edge, it was cut at large text and the header's length hid it).
+        self.header().setStretchLastSection(False)
+        self.setIndentation(14)  # a glass ball's tree is 5 deep: Qt's 20 px a level cost the colours
         self.header().setSectionResizeMode(QHeaderView.ResizeMode.ResizeToContents)
 
     def set_tree(self, root: RayNode) -> None:
@@ -175,10 +184,12 @@ class RayTreeWidget(QTreeWidget):
             hit = "reaches the light" if node.kind == "shadow" else "nothing (background)"
         t = f"{node.t:.4g}" if node.t is not None else ""
         item = QTreeWidgetItem([label, hit, t, f"{node.weight:.3g}",
-                                _rgb(node.color) if node.color is not None else ""])
+                                _returned(node.color) if node.color is not None else ""])
         item.setForeground(0, QColor(KIND_COLORS[node.kind]).darker(130))
         item.setData(0, Qt.ItemDataRole.UserRole, node.kind)
         tips = [node.status, f"origin {_rgb(node.origin)}", f"direction {_rgb(node.direction)}"]
+        if node.color is not None:
+            tips.append(f"returns colour {_rgb(node.color)}")
         if node.normal is not None:
             tips.append(f"normal {_rgb(node.normal)}")
         if node.local_color is not None:

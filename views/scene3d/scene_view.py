@@ -351,13 +351,15 @@ class SceneView(QWidget):
                 prop = actor.GetProperty()
                 actor._unscaled = ("lines", prop.GetLineWidth(), prop.GetPointSize())
         if actor._unscaled[0] == "label":
-            actor.GetMapper().GetLabelTextProperty().SetFontSize(round(actor._unscaled[1] * self.line_scale))
+            size = actor._unscaled[1] * label_scale(self.line_scale)
+            actor.GetMapper().GetLabelTextProperty().SetFontSize(round(size))
         else:
             actor.GetProperty().SetLineWidth(actor._unscaled[1] * self.line_scale)
             actor.GetProperty().SetPointSize(actor._unscaled[2] * self.line_scale)
 
     def set_line_scale(self, scale: float) -> None:
-        """Draw every line, point, label and the axes ``scale`` times as large (presentation mode)."""
+        """Draw every line, point and the axes ``scale`` times as large, the labels :func:`label_scale`
+        times (presentation mode)."""
         self.line_scale = float(scale)
         for actor in self.plotter.renderer.actors.values():
             self._scale_actor(actor)
@@ -589,6 +591,14 @@ class SceneView(QWidget):
         self._smooth_timer.stop()
         self.plotter.close()
         return super().close()
+
+
+def label_scale(line_scale: float) -> float:
+    """How much larger the 3D pane's labels are drawn while everything else is ``line_scale`` times
+    as large: its square root (x1.41 at x2).  The pane does not grow with the text, so labels at the
+    body's x2 (26 pt, "near plane (the screen), n = 0.5" 470 px wide) crowded it and covered the
+    frustum's edges; at the square root they stay larger than at x1 and find room beside the lines."""
+    return float(np.sqrt(max(line_scale, 1.0)))
 
 
 def _axes_side(line_scale: float) -> float:

@@ -2,8 +2,9 @@
 
 Both pipelines' panels show it above the evidence (the z-buffer's pixel history,
 the ray tree); the sentence comes from :mod:`core.pixel_verdict`.  It keeps to
-one line, so the tables below keep their rows at every text scale; a sentence
-longer than the pane ends in "…" and is whole in the tooltip.
+the lines its panel can spare (one unless told, :meth:`ElidedLabel.set_max_lines`),
+so the tables below keep their rows at every text scale; a sentence longer than
+that ends in "…" and is whole in the tooltip.
 """
 
 from __future__ import annotations

@@ -5,6 +5,7 @@ from PySide6.QtCore import Qt
 from window_helpers import RENDER_TIMEOUT_MS
 
 from core.compare import OUTPUTS
+from views.panels.compare_panel import IMAGE_SHARE
 
 
 def _compare(qtbot, window):
@@ -151,3 +152,21 @@ def test_moving_the_observer_shows_a_preview_then_reads_the_picked_pixel_again(q
     qtbot.waitUntil(lambda: window.showing_full("compare") and panel.readout[0].rgb is not None,
                     timeout=RENDER_TIMEOUT_MS)
     np.testing.assert_allclose(panel.readout[0].rgb, panel.views["a"].rgb[y, x])
+
+
+def test_presenting_at_x2_on_1920x1080_the_sentences_read_whole_and_the_images_keep_their_share(
+        qtbot, window):
+    # At x2 the "Why they differ" sentences showed three lines of eight and needed scrolling.
+    window.setGeometry(window.screen().availableGeometry())
+    window.presentation.set_presenting(True)
+    window.presentation.set_scale(2.0)
+    panel = _compare(qtbot, window)
+    scroll = panel.explanation_scroll
+    assert panel.explanation.text().startswith("<b>Why they differ</b>")
+    assert panel.explanation.text().count("•") >= 2  # the lecture scene: several differences to read
+    qtbot.waitUntil(lambda: scroll.verticalScrollBar().maximum() == 0
+                    and panel.explanation.height() <= scroll.viewport().height(), timeout=5000)
+    images, pixel, words = panel.split.sizes()
+    assert images >= IMAGE_SHARE * (images + pixel + words) - 1  # the images keep their share
+    assert pixel >= panel.pixel_box.minimumSizeHint().height()  # and the picked pixel its rows
+    window.presentation.set_presenting(False)

@@ -43,7 +43,8 @@ def test_presentation_scale_widens_the_3d_lines_points_labels_and_axes(qtbot, wi
     axes = window.scene_view.plotter.renderer.axes_widget.GetViewport()
     window.presentation.set_scale(2.0)
     assert edges.prop.line_width == 2 * width
-    assert label.GetMapper().GetLabelTextProperty().GetFontSize() == 2 * size
+    # The labels grow less than the rest (the pane does not grow): 13 pt x sqrt(2) = 18.4, drawn at 18 pt.
+    assert (size, label.GetMapper().GetLabelTextProperty().GetFontSize()) == (13, 18)
     wider = window.scene_view.plotter.renderer.axes_widget.GetViewport()
     assert wider[2] - wider[0] == 2 * (axes[2] - axes[0])  # the axes' letters grow with their marker
     cam = window.model.camera

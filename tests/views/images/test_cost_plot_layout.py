@@ -60,3 +60,28 @@ def test_the_formats_panel_sits_where_there_is_room_and_no_text_runs_into_anothe
     for ax in figure.axes:  # each legend within its own panel
         legend, panel = ax.get_legend().get_window_extent(renderer), ax.get_window_extent()
         assert panel.x0 - 1 <= legend.x0 and legend.x1 <= panel.x1 + 1
+
+
+@pytest.mark.parametrize("size", [(5.4, 4.8), (6.4, 3.6), (9.0, 6.0)])
+@pytest.mark.parametrize("dpi", [100, 200])  # 200: text twice as large against the panel, as at x2
+def test_the_no_fights_note_reads_whole_clear_of_the_formats_legend(size, dpi):
+    """Every format shows 0 % wrong pixels here: the note says why, and covers no legend entry (it sat on
+    them in the short panel below the curves, half a 1280x720 window)."""
+    figure = Figure(figsize=size, dpi=dpi, layout="constrained")
+    canvas = FigureCanvasAgg(figure)
+    draw_cost_plot(figure, _rows())
+    canvas.draw()
+    tidy_cost_plot(figure)
+    canvas.draw()
+    renderer, formats = canvas.get_renderer(), figure.axes[-1]
+    legend = formats.get_legend()
+    notes = [t for t in [*formats.texts, legend.get_title()] if "fights" in t.get_text()]
+    assert len(notes) == 1 and "close enough in depth" in notes[0].get_text().replace("\n", " ")
+    note = notes[0].get_window_extent(renderer)
+    entries = [t.get_window_extent(renderer) for t in legend.get_texts()]
+    entries += [h.get_window_extent(renderer) for h in legend.legend_handles]
+    assert len(entries) == 2 * len(DEPTH_FORMATS)
+    for entry in entries:
+        assert not (note.x0 < entry.x1 and entry.x0 < note.x1 and note.y0 < entry.y1 and entry.y0 < note.y1)
+    edge = figure.bbox
+    assert note.x0 >= -1 and note.y0 >= -1 and note.x1 <= edge.x1 + 1 and note.y1 <= edge.y1 + 1
