@@ -8,10 +8,10 @@ When the suite runs in several worker processes (``pytest -n 2``, as ``.ci/test.
 worker starts an X server of its own: two workers' windows never take each other's focus or screen.
 """
 
-import atexit
+import ctypes
 import os
+import signal
 import subprocess
-import sys
 
 import pytest
 import pyvista as pv
@@ -19,28 +19,30 @@ import pyvista as pv
 pv.OFF_SCREEN = True
 
 
+def _end_with_this_process() -> None:
+    """In the X server's process, before it starts: the kernel ends it when the worker ends."""
+    ctypes.CDLL(None, use_errno=True).prctl(PR_SET_PDEATHSIG, signal.SIGTERM)
+
+
+PR_SET_PDEATHSIG = 1
+
+
 def _own_x_server() -> None:
-    """Start an Xvfb for this worker process and point ``DISPLAY`` at it (the suite's own screen size)."""
+    """Start an Xvfb for this worker process and point ``DISPLAY`` at it (the suite's own screen size).
+
+    It lives as long as the worker: not a moment less, or the worker's Qt would lose its connection
+    (ended at exit, or by ``-terminate`` once a test's subprocess, its only client yet, left it).
+    """
     read_end, write_end = os.pipe()
-    # -terminate: the server ends when its last client leaves, the worker's Qt at the process's end.
-    server = subprocess.Popen(["Xvfb", "-displayfd", str(write_end), "-screen", "0", "1920x1080x24",
-                               "-nolisten", "tcp", "-terminate"], pass_fds=(write_end,),
-                              stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    subprocess.Popen(["Xvfb", "-displayfd", str(write_end), "-screen", "0", "1920x1080x24", "-nolisten",
+                      "tcp"], pass_fds=(write_end,), stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+                     preexec_fn=_end_with_this_process)
     os.close(write_end)
     with os.fdopen(read_end) as reply:
         number = reply.readline().strip()
     if not number:
         raise RuntimeError("Xvfb did not start: the tests' X server is in the Debian package xvfb")
-    atexit.register(_end_unless_connected, server)
     os.environ["DISPLAY"] = f":{number}"
-
-
-def _end_unless_connected(server: subprocess.Popen) -> None:
-    """End a server no window ever used; one Qt is connected to ends itself when Qt lets go (ending
-    it under Qt would have Qt report a broken X connection)."""
-    widgets = sys.modules.get("PySide6.QtWidgets")
-    if widgets is None or widgets.QApplication.instance() is None:
-        server.terminate()
 
 
 if os.environ.get("PYTEST_XDIST_WORKER") and os.environ.get("DISPLAY"):

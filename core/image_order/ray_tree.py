@@ -84,7 +84,8 @@ class RayNode:
         background on a miss, else ``local + k_reflect C_reflect + k_refract C_refract``;
         for a shadow ray the light's contribution to the local colour (0 when blocked).
     light : int or None, the light a shadow ray goes to.
-    tests, bounds_tests : int, primitive and bounding-volume tests this ray took.
+    tests, bounds_tests : int, primitive tests this ray took, and its box and sphere tests
+        (bounding spheres, BVH boxes and the grid's cells walked, as the heat map counts them).
     cells : (K, 3) int64 or None, grid cells the ray walked (grid methods).
     children : tuple of RayNode, shadow rays first, then reflection, then refraction.
     """
@@ -210,7 +211,7 @@ class _Tracer:
     def _work(self, before) -> dict:
         delta = self.counters - before
         return {"tests": int(delta[flat_layout.PRIM_TESTS]),
-                "bounds_tests": int(delta[flat_layout.BOUNDS_TESTS])}
+                "bounds_tests": int(delta[flat_layout.BOUNDS_TESTS] + delta[flat_layout.CELLS])}
 
     def _cells(self, o, d, t_min, t_end):
         from core.image_order.kernels.closest_hit import GRID, GRID_SPHERES

@@ -11,6 +11,7 @@ from core.accuracy.supersampling import trace_adaptive
 from core.heat_map import heat_map
 from core.image_order.flat_layout import HEAT_BOUNDS_TESTS, HEAT_PRIM_TESTS
 from core.image_order.ray_tracing import TraceSettings, render_trace
+from core.image_order.ray_tree import trace_pixel
 from core.object_order.pipeline import RasterSettings, render_raster
 from core.presets_trace import big_mesh, mirror_and_glass
 
@@ -51,6 +52,24 @@ def test_the_grids_cell_walks_are_its_box_tests_in_the_heat_map():
     assert accel_stats["bounds_tests"] == 0
     assert counted.heat[..., HEAT_BOUNDS_TESTS].sum() == accel_stats["cells_visited"] > 0
     assert (counted.heat[..., HEAT_BOUNDS_TESTS] > 0).mean() > 0.5  # most primary rays enter the grid
+
+
+@pytest.mark.parametrize("accel", [a for a in ACCELS if a != "bvh"])
+def test_a_pixels_ray_tree_costs_what_its_heat_map_pixel_says(accel):
+    # The heat map counts every ray of a pixel; its ray tree lists the same rays one by one, so
+    # their tests add up to the pixel's heat, box and sphere tests (grid cells included) apart.
+    # (Not the BVH: the image walks it with packets of primary rays and shares each packet's walk
+    # among its pixels, where the ray tree walks one ray alone.)
+    scene = _small(mirror_and_glass())
+    settings = TraceSettings(accel=accel)
+    heat = render_trace(scene, settings, heat=True).heat
+    for x, y in ((24, 18), (10, 25), (40, 8)):
+        nodes, stack = [], [trace_pixel(scene, x, y, settings)]
+        while stack:
+            nodes.append(stack.pop())
+            stack.extend(nodes[-1].children)
+        assert sum(n.tests for n in nodes) == heat[y, x, HEAT_PRIM_TESTS], (x, y)
+        assert sum(n.bounds_tests for n in nodes) == heat[y, x, HEAT_BOUNDS_TESTS], (x, y)
 
 
 def test_without_acceleration_every_primary_ray_tests_every_primitive():

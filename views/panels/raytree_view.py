@@ -197,7 +197,7 @@ class RayTreeWidget(QTreeWidget):
         if node.fresnel is not None:
             tips.append(f"Fresnel R = {node.fresnel[0]:.3f}, T = {node.fresnel[1]:.3f}"
                         + (" (total internal reflection)" if node.total_internal_reflection else ""))
-        tips.append(f"{node.tests} intersection tests, {node.bounds_tests} bounding-volume tests")
+        tips.append(f"{node.tests} intersection tests, {node.bounds_tests} box and sphere tests")
         for col in range(len(COLUMNS)):
             item.setToolTip(col, "\n".join(tips))
         if node.color is not None:
