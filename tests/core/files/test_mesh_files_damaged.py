@@ -1,13 +1,13 @@
 """Damaged and hostile mesh files: refused with a message that says what disagrees, never a crash.
 
 Each file here once crashed, hung or misled the VTK-based reader (issue 11).
-Valid binary files are checked against VTK's own reading of them.
+Valid binary files are checked against VTK's own reading of them in
+``tests/views/scene3d/test_mesh_files_as_vtk_reads_them.py`` (VTK is tested there).
 """
 
 from __future__ import annotations
 
 import os
-import struct
 import subprocess
 import sys
 from pathlib import Path
@@ -15,62 +15,15 @@ from pathlib import Path
 import numpy as np
 import pytest
 from checkout import ROOT
+from mesh_bytes import TETRA_F, TETRA_V, binary_ply, binary_stl
 
 from core.files.mesh_files import MAX_FILE_BYTES, read_mesh
-
-TETRA_V = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], dtype=np.float32)
-TETRA_F = np.array([[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]], dtype=np.int32)
-
-
-def binary_ply(vertices, faces, declared_vertices=None, declared_faces=None, cut=0) -> bytes:
-    """A little-endian binary PLY written by hand (struct), optionally lying in its header."""
-    header = (
-        "ply\nformat binary_little_endian 1.0\n"
-        f"element vertex {len(vertices) if declared_vertices is None else declared_vertices}\n"
-        "property float x\nproperty float y\nproperty float z\n"
-        f"element face {len(faces) if declared_faces is None else declared_faces}\n"
-        "property list uchar int vertex_indices\nend_header\n"
-    ).encode()
-    body = b"".join(struct.pack("<3f", *v) for v in vertices)
-    body += b"".join(struct.pack("<B3i", 3, *f) for f in faces)
-    data = header + body
-    return data[: len(data) - cut]
-
-
-def binary_stl(triangles, declared=None) -> bytes:
-    head = b"binary stl".ljust(80, b" ") + struct.pack("<I", len(triangles) if declared is None
-                                                       else declared)
-    return head + b"".join(struct.pack("<12fH", 0, 0, 0, *np.ravel(t), 0) for t in triangles)
 
 
 def put(tmp_path, name, data) -> Path:
     path = tmp_path / name
     path.write_bytes(data if isinstance(data, bytes) else data.encode())
     return path
-
-
-def test_valid_binary_ply_reads_as_vtk_reads_it(tmp_path):
-    import pyvista as pv
-
-    path = put(tmp_path, "tetra.ply", binary_ply(TETRA_V, TETRA_F))
-    vertices, triangles = read_mesh(path)
-    reference = pv.read(str(path))
-    assert np.array_equal(vertices, np.asarray(reference.points, dtype=np.float64))
-    assert np.array_equal(triangles, reference.faces.reshape(-1, 4)[:, 1:])
-
-
-def test_valid_binary_stl_reads_as_vtk_reads_it(tmp_path):
-    import pyvista as pv
-
-    path = put(tmp_path, "tetra.stl", binary_stl(TETRA_V[TETRA_F]))
-    vertices, triangles = read_mesh(path)
-    reference = pv.read(str(path))
-    assert len(triangles) == reference.n_cells == 4
-    # VTK merges the repeated corners; compare the triangles' corner positions instead.
-    ours = np.sort(vertices[triangles].reshape(-1, 9), axis=0)
-    theirs = np.sort(np.asarray(reference.points)[reference.faces.reshape(-1, 4)[:, 1:]]
-                     .reshape(-1, 9), axis=0)
-    assert np.array_equal(ours, theirs)
 
 
 @pytest.mark.parametrize(
