@@ -114,7 +114,8 @@ def test_the_core_tests_run_where_qt_and_pyvista_are_not_installed(tmp_path):
     check = subprocess.run([sys.executable, "-c", "import PySide6"], env=env, capture_output=True,
                            text=True)
     assert "No module named 'PySide6'" in check.stderr
-    command = [sys.executable, "-m", "pytest", "-q", "-p", "no:pytest-qt", "-p", "no:cacheprovider", "-n", "2",
+    command = [sys.executable, "-m", "pytest", "-q", "-p", "no:pytest-qt", "-p", "no:cacheprovider",
+               "-n", "2",
                "tests/core"]
     ran = subprocess.run(command, cwd=ROOT, env=env, capture_output=True, text=True, timeout=1800)
     assert ran.returncode == 0, ran.stdout[-3000:] + ran.stderr[-3000:]
