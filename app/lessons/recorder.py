@@ -1,6 +1,7 @@
 """Lessons → Add this view as a step: the window's state recorded into a lesson file.
 
-A small form asks for the step's title, text and (optionally) its facts as JSON;
+A small form asks for the step's title, text and (optionally) its facts as JSON
+and one exercise about the step (a JSON object, e.g. a "choose one");
 the window's scene and observer, the panes shown (the one in front first), the
 image- and object-order settings, the z-buffer step, the picked pixel, the 3D
 pane's viewpoint, the highlight of the lesson step shown and the image-order heat
@@ -29,7 +30,8 @@ from core.lessons.authoring import add_step, step_record
 
 
 class StepForm(QDialog):
-    """Title, text and facts (a JSON list, may be empty) of the step to record."""
+    """Title, text, facts (a JSON list, may be empty) and exercise (a JSON object, may be empty) of the
+    step to record."""
 
     def __init__(self, parent=None):
         super().__init__(parent)
@@ -41,7 +43,12 @@ class StepForm(QDialog):
         form = QFormLayout(self)
         form.addRow("Title", self.title)
         form.addRow("Text", self.text)
+        self.exercise = QPlainTextEdit()
+        self.exercise.setPlaceholderText('{"kind": "choose_one", "question": "Which wins at (80, 60)?", '
+                                         '"choices": ["green", "blue"], "fact": {"fact": "zbuffer_keeps", '
+                                         '"pixel": [80, 60], "object": "$choice"}, "why": "..."}')
         form.addRow("Facts (JSON)", self.facts)
+        form.addRow("Exercise (JSON)", self.exercise)
         ok_cancel = QDialogButtonBox.StandardButton.Ok | QDialogButtonBox.StandardButton.Cancel
         buttons = QDialogButtonBox(ok_cancel)
         buttons.accepted.connect(self.accept)
@@ -83,14 +90,21 @@ class LessonRecorder:
         names = {o.name for o in self.window.model.scene.objects}
         return {key: part for key, part in step.highlight.items() if _named(key, part) in names | {None}}
 
-    def record(self, path, title: str, text: str, facts_json: str = "") -> bool:
-        """Append the window's state to the lesson file ``path``; False (and a dialog) on a problem."""
+    def record(self, path, title: str, text: str, facts_json: str = "", exercise_json: str = "") -> bool:
+        """Append the window's state to the lesson file ``path``, with the exercise typed (asked about
+        this step); False (and a dialog) on a problem."""
+        typed = {}
+        for field, words in (("facts", facts_json), ("exercise", exercise_json)):
+            try:
+                typed[field] = json.loads(words) if words.strip() else None
+            except json.JSONDecodeError as exc:
+                where = f"{field}: line {exc.lineno}, column {exc.colno}"
+                return self._refuse([f"{where}: invalid JSON: {exc.msg}"])
+        exercise = typed["exercise"]
+        if exercise is not None and not isinstance(exercise, dict):
+            return self._refuse(['exercise: expected one exercise, an object {"kind": ...}'])
         try:
-            facts = json.loads(facts_json) if facts_json.strip() else []
-        except json.JSONDecodeError as exc:
-            return self._refuse([f"facts: line {exc.lineno}, column {exc.colno}: invalid JSON: {exc.msg}"])
-        try:
-            add_step(path, self.state_step(title, text, facts))
+            add_step(path, self.state_step(title, text, typed["facts"] or []), exercise)
         except LessonFileError as exc:
             return self._refuse(exc.problems)
         except OutputError as exc:
@@ -107,7 +121,8 @@ class LessonRecorder:
                                               "Lesson files (*.json)",
                                               options=QFileDialog.Option.DontConfirmOverwrite)
         if path:
-            self.record(path, form.title.text(), form.text.toPlainText(), form.facts.toPlainText())
+            self.record(path, form.title.text(), form.text.toPlainText(), form.facts.toPlainText(),
+                        form.exercise.toPlainText())
 
     def _refuse(self, problems) -> bool:
         box = QMessageBox(QMessageBox.Icon.Warning, "Cannot add the step",

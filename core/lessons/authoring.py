@@ -5,7 +5,8 @@ turns what the window shows (scene and observer, panes, settings, z-buffer step,
 picked pixel, the 3D pane's viewpoint, the highlight and the heat map) and the
 words typed into a form into one step of the lesson-file format, and
 :func:`add_step` appends it to a lesson file (a new lesson when the file does
-not exist yet), checks that the file still loads (a
+not exist yet), with the exercise the author typed for it (asked about the new
+step's scene: its ``"step"`` is set to the new step), checks that the file still loads (a
 :class:`core.files.lesson_file.LessonFileError` names the field path of anything wrong, and
 nothing is written), and writes it atomically.  Loading the file and applying
 the step shows the same window state again.
@@ -70,8 +71,10 @@ def _plain(value):
     return float(value)
 
 
-def add_step(path, step: dict) -> Lesson:
-    """Append ``step`` to the lesson file ``path`` (created, named after the file, if missing).
+def add_step(path, step: dict, exercise: dict | None = None) -> Lesson:
+    """Append ``step`` to the lesson file ``path`` (created, named after the file, if missing), and
+    ``exercise`` (an exercise object of :mod:`core.lessons.exercises`, without ``"step"``) to its
+    exercises, asked about the new step.
 
     Raises
     ------
@@ -92,6 +95,8 @@ def add_step(path, step: dict) -> Lesson:
         data = {"format": FORMAT, "version": VERSION, "id": lesson_id, "title": path.stem or "My lesson",
                 "figures": [], "questions": [], "summary": "", "steps": []}
     data["steps"].append(step)
+    if exercise is not None:
+        data.setdefault("exercises", []).append({**exercise, "step": len(data["steps"]) - 1})
     try:
         lesson = from_dict(data, path)
     except LessonFileError as exc:

@@ -5,6 +5,7 @@ import json
 
 import numpy as np
 import pytest
+from PySide6.QtWidgets import QMessageBox
 
 from core.files.lesson_file import shipped_lessons
 
@@ -55,3 +56,24 @@ def test_a_highlight_naming_an_object_the_scene_no_longer_has_is_left_out(window
     step = json.loads(path.read_text(encoding="utf-8"))["steps"][0]
     assert "highlight" not in step and "heat_map" not in step and set(step["view"]) == {
         "position", "focal_point", "up"}
+
+
+def test_the_exercise_typed_in_the_form_is_written_for_the_step_and_a_bad_one_is_refused(window, qtbot,
+                                                                                        tmp_path):
+    window.lesson_panel.select(LESSONS["back_faces"], 0)  # the pyramid, its triangle 2 a back face
+    exercise = {"kind": "choose_one", "question": "Is the highlighted face culled?", "choices": [True, False],
+                "fact": {"fact": "back_face", "object": "pyramid", "triangle": 2, "is": "$choice"}}
+    path = tmp_path / "recorded.json"
+    assert window.recorder.record(path, "Culled?", "Look at the face.", "", json.dumps(exercise))
+    assert json.loads(path.read_text(encoding="utf-8"))["exercises"] == [{**exercise, "step": 0}]
+    window.lesson_panel.open_lesson_file(path)
+    assert [ex.question for ex in window.lesson_panel.current_lesson().exercises] == [exercise["question"]]
+
+    before = path.read_bytes()
+    bad = {**exercise, "fact": {**exercise["fact"], "fact": "culled"}}
+    assert not window.recorder.record(path, "Again", "Again.", "", json.dumps(bad))
+    box = window.findChild(QMessageBox, "lesson_record_error")
+    qtbot.waitUntil(box.isVisible)
+    assert "exercises[1].fact (choice 0).fact: " in box.informativeText()
+    assert path.read_bytes() == before
+    box.close()

@@ -3,10 +3,13 @@
 from types import MappingProxyType
 
 import numpy as np
+import pytest
 
-from core.files.lesson_file import load_lesson
+from core.files.lesson_file import LessonFileError, load_lesson
 from core.image_order.flat_scene import TraceSettings
 from core.lessons.authoring import add_step, step_record
+from core.lessons.exercises import right_choices
+from core.lessons.facts import StepPipelines
 from core.object_order.pipeline import RasterSettings
 from core.presets import culling_pyramid
 
@@ -30,3 +33,50 @@ def test_the_viewpoint_highlight_and_heat_map_are_written_and_read_back(tmp_path
     plain = step_record(title="t", text="w", scene=scene, panes=["object order"], image_order=TraceSettings(),
                         object_order=RasterSettings())
     assert not {"view", "highlight", "heat_map"} & set(plain)  # nothing to say: the defaults
+
+
+CULLED = {"kind": "choose_one", "question": "Is triangle {t} of the pyramid culled as a back face?",
+          "choices": [True, False], "why": "Its normal points away from the eye.",
+          "fact": {"fact": "back_face", "object": "pyramid", "triangle": 0, "is": "$choice"}}
+
+
+def _record(scene):
+    return step_record(title="t", text="w", scene=scene, panes=["object order"], image_order=TraceSettings(),
+                       object_order=RasterSettings())
+
+
+def test_an_exercise_typed_for_a_step_is_asked_about_that_step_and_answered_by_the_pipelines(tmp_path):
+    scene = culling_pyramid()
+    pyramid = scene.objects[0]
+    path = tmp_path / "l.json"
+    add_step(path, _record(scene))
+    for t in range(len(pyramid.triangles)):
+        exercise = {**CULLED, "question": CULLED["question"].format(t=t),
+                    "fact": {**CULLED["fact"], "triangle": t}}
+        add_step(path, _record(scene), exercise)
+    lesson = load_lesson(path)
+    assert [ex.step for ex in lesson.exercises] == list(range(1, len(pyramid.triangles) + 1))
+    eye = np.asarray(scene.camera.eye, dtype=float)
+    for t, ex in enumerate(lesson.exercises):
+        assert ex.question == f"Is triangle {t} of the pyramid culled as a back face?"
+        # Independent answer: a face is a back face when its outward normal (counter-clockwise
+        # corners) points away from the eye, N . (E - P) < 0 (the lecture's test).
+        a, b, c = pyramid.vertices[pyramid.triangles[t]]
+        back = np.cross(b - a, c - a) @ (eye - a) < 0
+        right = [ex.args["choices"][i] for i in right_choices(ex, StepPipelines(lesson.steps[ex.step]))]
+        assert right == [bool(back)], t
+    assert {True, False} <= {bool(np.cross(b - a, c - a) @ (eye - a) < 0)
+                             for a, b, c in pyramid.vertices[pyramid.triangles]}  # both answers occur
+
+
+def test_a_bad_exercise_is_refused_with_its_field_path_and_the_file_is_left_as_it_was(tmp_path):
+    path = tmp_path / "l.json"
+    add_step(path, _record(culling_pyramid()))
+    before = path.read_bytes()
+    bad = {**CULLED, "choices": [True], "fact": {**CULLED["fact"], "object": "teapot"}}
+    with pytest.raises(LessonFileError) as caught:
+        add_step(path, _record(culling_pyramid()), bad)
+    assert "exercises[0].choices: give at least two choices" in caught.value.problems
+    assert any(p.startswith("exercises[0].fact (choice 0).object: ") and "teapot" in p
+               for p in caught.value.problems), caught.value.problems
+    assert path.read_bytes() == before

@@ -7,6 +7,7 @@ from dataclasses import replace
 import mpmath
 import numpy as np
 import pytest
+from brute_force import hit_triangle
 
 from core import presets
 from core.files.lesson_file import (
@@ -268,6 +269,26 @@ def test_the_culling_lesson_highlights_a_culled_face_then_a_front_face_of_the_no
     corners = prism.vertices[prism.triangles[notched.highlight["face"]["triangle"]]]
     normal = np.cross(corners[1] - corners[0], corners[2] - corners[0])
     assert np.allclose(normal / np.linalg.norm(normal), (0, 0, 1))  # the notch's inner wall facing +z
+
+
+def test_the_notch_step_shows_its_highlighted_wall_and_normal_in_the_3d_pane():
+    # At 1920x1080 the pane's own framing looked at the prism from behind: the outlined wall and its
+    # normal N were hidden by the solid itself and only the label "N: front face" showed.  The step's
+    # viewpoint must see the wall's front side, and the line of sight to the wall's centre (where N
+    # starts) must cross no other triangle of the prism (brute-force ray-triangle tests).
+    notched = BY_ID["back_faces"].steps[1]
+    assert notched.view, "the step sets the 3D pane's viewpoint"
+    eye = np.asarray(notched.view["position"], dtype=float)
+    prism = notched.scene.objects[0]
+    wall = notched.highlight["face"]["triangle"]
+    corners = prism.vertices[prism.triangles[wall]]
+    centre = corners.mean(axis=0)
+    normal = np.cross(corners[1] - corners[0], corners[2] - corners[0])
+    assert normal @ (eye - centre) > 0, "the viewpoint is on the wall's front side"
+    sight = (centre - eye)[None, :]  # t = 1 at the wall's centre
+    for k, (a, b, c) in enumerate(prism.vertices[prism.triangles]):
+        if k != wall:
+            assert hit_triangle(eye[None, :], sight, a, b, c)[0] >= 1 - 1e-9, k
 
 
 def test_top_level_text_fields_are_checked_too():
