@@ -9,14 +9,33 @@ worker starts an X server of its own: two workers' windows never take each other
 """
 
 import ctypes
+import functools
 import os
 import signal
 import subprocess
 
 import pytest
 import pyvista as pv
+from pytestqt.qtbot import QtBot
 
 pv.OFF_SCREEN = True
+
+#: How long qtbot's waits wait when a test names no time (pytest-qt's own default is 5 s): what a
+#: test waits for comes in well under a second on a quiet machine, but a busy one (both cores taken,
+#: as the test command's two workers take them) has made a 5 s wait run out.
+PATIENCE_MS = 30_000
+
+
+def _patient(wait):
+    @functools.wraps(wait)
+    def patient(*args, timeout: int = PATIENCE_MS, **kwargs):
+        return wait(*args, timeout=timeout, **kwargs)
+
+    return patient
+
+
+for _wait in ("waitUntil", "waitSignal", "waitSignals", "waitExposed", "waitActive", "waitCallback"):
+    setattr(QtBot, _wait, _patient(getattr(QtBot, _wait)))
 
 
 def _end_with_this_process() -> None:
