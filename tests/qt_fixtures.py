@@ -8,10 +8,9 @@ When the suite runs in several worker processes (``pytest -n 2``, as ``.ci/test.
 worker starts an X server of its own: two workers' windows never take each other's focus or screen.
 """
 
-import ctypes
 import functools
 import os
-import signal
+import select
 import subprocess
 
 import pytest
@@ -38,30 +37,30 @@ for _wait in ("waitUntil", "waitSignal", "waitSignals", "waitExposed", "waitActi
     setattr(QtBot, _wait, _patient(getattr(QtBot, _wait)))
 
 
-def _end_with_this_process() -> None:
-    """In the X server's process, before it starts: the kernel ends it when the worker ends."""
-    ctypes.CDLL(None, use_errno=True).prctl(PR_SET_PDEATHSIG, signal.SIGTERM)
-
-
-PR_SET_PDEATHSIG = 1
-
-
 def _own_x_server() -> None:
     """Start an Xvfb for this worker process and point ``DISPLAY`` at it (the suite's own screen size).
 
     It lives as long as the worker: not a moment less, or the worker's Qt would lose its connection
-    (ended at exit, or by ``-terminate`` once a test's subprocess, its only client yet, left it).
+    (ended at exit, or by ``-terminate`` once a test's subprocess, its only client yet, left it), and
+    not a moment more: ``setpriv --pdeathsig`` (util-linux) has the kernel end it when the worker ends.
+    (No Python runs between fork and exec, where another thread's held lock could stop the child.)
     """
     read_end, write_end = os.pipe()
-    subprocess.Popen(["Xvfb", "-displayfd", str(write_end), "-screen", "0", "1920x1080x24", "-nolisten",
-                      "tcp"], pass_fds=(write_end,), stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
-                     preexec_fn=_end_with_this_process)
+    server = subprocess.Popen(["setpriv", "--pdeathsig", "TERM", "Xvfb", "-displayfd", str(write_end),
+                               "-screen", "0", "1920x1080x24", "-nolisten", "tcp"], pass_fds=(write_end,),
+                              stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     os.close(write_end)
     with os.fdopen(read_end) as reply:
-        number = reply.readline().strip()
+        ready, _, _ = select.select([reply], [], [], X_SERVER_START_S)
+        number = reply.readline().strip() if ready else ""
     if not number:
-        raise RuntimeError("Xvfb did not start: the tests' X server is in the Debian package xvfb")
+        server.kill()
+        raise RuntimeError(f"Xvfb did not give its display number within {X_SERVER_START_S} s: the tests'"
+                           " X server is in the Debian package xvfb, setpriv in util-linux")
     os.environ["DISPLAY"] = f":{number}"
+
+
+X_SERVER_START_S = 60
 
 
 if os.environ.get("PYTEST_XDIST_WORKER") and os.environ.get("DISPLAY"):

@@ -134,7 +134,7 @@ def test_cancel_stops_an_orbit_and_writes_nothing(qtbot, window, tmp_path):
     qtbot.waitUntil(lambda: dialog.value() > 0, timeout=EXPORT_TIMEOUT_MS)  # frames are being made
     qtbot.mouseClick(dialog.findChild(QPushButton), Qt.MouseButton.LeftButton)  # Cancel
     assert not dialog.isVisible()
-    QThreadPool.globalInstance().waitForDone()
+    assert QThreadPool.globalInstance().waitForDone(30_000)
     assert list(tmp_path.iterdir()) == []  # no file, no temporary file left
     assert "cancelled" in window.statusBar().currentMessage()
 

@@ -188,7 +188,7 @@ def test_a_presented_pane_typesets_its_formulas_only_at_the_size_shown(qtbot, pr
     window, presentation = present(pane)
     presentation.set_scale(2.0)
     pane.set_scale(2.0)  # as the window does for its panes
-    math_view._typesetter().waitForDone()  # what earlier tests' panes asked of the typesetter's thread
+    assert math_view._typesetter().waitForDone(30_000)  # what earlier tests' panes asked of it
     sizes = []
     typeset = math_view._typeset
     monkeypatch.setattr(math_view, "_typeset", lambda *args: (sizes.append(args[1]), typeset(*args))[1])
