@@ -9,5 +9,6 @@ ruff check .
 # for a compile inside its own time limit.
 python -m app compile
 # Two worker processes, as many as this machine's cores; each starts an X server of its own
-# (tests/qt_fixtures.py).
-exec xvfb-run -a -s "-screen 0 1920x1080x24" python -m pytest -n 2 "$@"
+# (tests/qt_fixtures.py). An idle worker takes tests queued for the other (worksteal): one long test
+# near the end does not leave a core idle.
+exec xvfb-run -a -s "-screen 0 1920x1080x24" python -m pytest -n 2 --dist worksteal "$@"
