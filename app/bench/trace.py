@@ -76,7 +76,14 @@ def _spread(times: list) -> str:
 
 
 def run(args) -> int:
-    """Run the benchmark and print the figures; returns the exit status."""
+    """Run the benchmark and print the figures; returns the exit status (1: Embree and ours found
+    different hits)."""
+    from app.usage import UsageError
+
+    for name, value, low in (("--repeats", args.repeats, 1), ("--threads", args.threads, 1),
+                             ("--width", args.width, 16), ("--height", args.height, 16)):
+        if value < low:
+            raise UsageError(f"{name} must be at least {low}, got {value}")
     from dataclasses import replace
 
     import numba
