@@ -19,12 +19,13 @@ instID``.  ``rtcOccluded16`` takes the ray part alone and sets ``tfar`` to
 ``-inf`` for every ray that is blocked.
 
 The kernel calls foreign functions at fixed addresses, so numba cannot cache
-it: it is compiled once per run (:meth:`EmbreePackets.compile_seconds`).
+it: it is compiled once per run, at the first call (:attr:`EmbreePackets.compile_seconds`).
 """
 
 from __future__ import annotations
 
 import ctypes
+import functools
 import importlib.util
 import math
 import time
@@ -55,8 +56,9 @@ def find_library() -> Path | None:
     return None
 
 
+@functools.cache
 def _c_api(path: Path) -> ctypes.CDLL:
-    """The library with the argument and result types of the functions used here.
+    """The library with the argument and result types of the functions used here (loaded once).
 
     Pointers and handles pass as ``size_t`` (the same register as a pointer on
     every 64-bit ABI), which numba passes from an array's ``.ctypes.data``.
@@ -83,8 +85,10 @@ def _c_api(path: Path) -> ctypes.CDLL:
     return lib
 
 
+@functools.cache
 def _kernels(lib):
-    """The parallel kernels tracing with ``lib``'s ``rtcIntersect16`` and ``rtcOccluded16``."""
+    """The parallel kernel tracing with ``lib``'s ``rtcIntersect16`` and ``rtcOccluded16`` (made,
+    and compiled at its first call, once per run)."""
     from numba import njit, prange
 
     intersect16, occluded16 = lib.rtcIntersect16, lib.rtcOccluded16
@@ -178,6 +182,7 @@ class EmbreePackets:
         if error:
             raise RuntimeError(f"Embree: building the scene failed with error code {error}")
         self._trace = _kernels(lib)
+        #: Seconds of the first trace of this scene, which compiles the kernel if no scene did before.
         self.compile_seconds = None
 
     def close(self) -> None:

@@ -223,9 +223,9 @@ def _mesh_rays(triangles: int, args, library) -> dict:
         packets = EmbreePackets(library, mesh.corners, numba.get_num_threads())
         order = _tile_order(args.height, args.width)
         runners["packets"], peer = packets.tracer(o[order], d[order], t_min[order], t_max[order], False)
-        print(f"  Embree's own BVH build (rtcCommitScene) {packets.build_seconds:.3f} s; compiling the "
-              f"kernel that calls rtcIntersect16 / rtcOccluded16 {packets.compile_seconds:.2f} s "
-              "(not counted below)")
+        print(f"  Embree's own BVH build (rtcCommitScene) {packets.build_seconds:.3f} s; first call of the "
+              f"kernel that calls rtcIntersect16 / rtcOccluded16 (compiles it, once per run) "
+              f"{packets.compile_seconds:.2f} s (not counted below)")
     runs = _interleaved_runs(runners, args.repeats)
     seconds = {name: statistics.median(times) for name, times in runs.items()}
     per_ray = counters[0] / n_rays
