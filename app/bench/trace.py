@@ -1,6 +1,6 @@
 """``python -m app bench trace``: how fast the compiled tracer is, next to Embree.
 
-Three figures, each the median of several runs after a warm-up run:
+Figures, each the median of several runs after a warm-up run:
 
 1. primary-ray throughput of our BVH on a bumpy ball of about 10,000,
    100,000 and 1,000,000 triangles (``--triangles``) filling most of a
@@ -10,13 +10,27 @@ Three figures, each the median of several runs after a warm-up run:
    where a packet covers less than a typical triangle, see
    :mod:`core.image_order.kernels.bvh_packet`), so that a reader sees how the
    cost grows with the mesh;
-2. the same rays with Intel Embree through the ``embreex`` package (an
-   optional extra: ``pip install -e '.[bench]'``), on its fastest path from
-   Python: ``run()`` traces a whole array of rays in one call, but on the
-   calling thread only, so the rays are split over one Python thread per
-   core, each thread making one call; Embree works in float32, we in float64;
-3. a full Whitted render (all rays counted) of the lecture scene and of the
+2. the same rays with Intel Embree, twice (an optional extra:
+   ``pip install -e '.[bench]'`` installs the ``embreex`` wheel, which holds
+   Embree's library): through Embree's own packet API, ``rtcIntersect16``
+   called from compiled code on the same numba threads as ours, 16 rays of
+   4 x 4 pixels per packet (:mod:`app.bench.embree_packets`), the peer the
+   goal is set against; and, for reference, through embreex's ``run()``, which
+   traces a whole array of rays in one call but on the calling thread only,
+   so the rays are split over one Python thread per core.  Embree works in
+   float32, we in float64;
+3. the shadow rays of those hits: from every hit on the lit side of its
+   triangle towards the light, any hit, ours one ray at a time as shading
+   traces them (:mod:`core.image_order.kernels.shadow_rays`), Embree's with
+   ``rtcOccluded16`` -- both the very same rays, rounded to float32;
+4. a full Whitted render (all rays counted) of the lecture scene and of the
    mirror-and-glass scene at 640 x 480 with depth 5.
+
+Every ray of 1. to 3. is checked: Embree's packets must find the same
+triangle as ours (or be blocked where ours is), but for ties that float32
+cannot tell apart (:func:`hit_agreement`); the bench prints the counts and
+exits with status 1 when any ray disagrees.  Without embreex it says so in one
+line and times ours alone.
 
 Compiling the kernels (or loading them from numba's cache) is timed
 separately and never counted in a figure.  Every figure is the median of
@@ -62,7 +76,14 @@ def _spread(times: list) -> str:
 
 
 def run(args) -> int:
-    """Run the benchmark and print the figures; returns the exit status."""
+    """Run the benchmark and print the figures; returns the exit status (1: Embree and ours found
+    different hits)."""
+    from app.usage import UsageError
+
+    for name, value, low in (("--repeats", args.repeats, 1), ("--threads", args.threads, 1),
+                             ("--width", args.width, 16), ("--height", args.height, 16)):
+        if value < low:
+            raise UsageError(f"{name} must be at least {low}, got {value}")
     from dataclasses import replace
 
     import numba
@@ -78,13 +99,23 @@ def run(args) -> int:
     compile_s = ensure_compiled()
     print(f"compile (or load from cache) the kernels: {compile_s:.2f} s (not counted below)")
 
-    # 1. and 2. Our BVH and Embree on meshes of growing size.
-    rows = [_primary_rays(triangles, args) for triangles in args.triangles]
-    if len(rows) > 1:
-        print("primary rays against mesh size (median ms; ratio ours / Embree as above):")
-        for n, ours_ms, embree_ms, ratio in rows:
-            other = "" if embree_ms is None else f"  Embree {embree_ms:7.1f}  ratio {ratio:.2f}"
-            print(f"  {n:>9,} triangles: ours {ours_ms:7.1f}{other}")
+    # 1. and 2. Our BVH and Embree's on meshes of growing size.
+    from app.bench.embree_packets import find_library
+
+    library = find_library()
+    if library is None:
+        print("Embree: not measured, the embreex package (whose wheel holds Embree's library) is missing; "
+              "install it with `.venv/bin/pip install -e '.[bench]'`")
+    rows = [_mesh_rays(triangles, args, library) for triangles in args.triangles]
+    print("against mesh size (median ms; ratio: the peer's time over ours, paired runs, as above):")
+    for row in rows:
+        for kind in ("primary", "shadow"):
+            figures = row[kind]
+            peers = "".join(f"  {_PEER_NAMES[peer]} {figures[peer]:7.1f} "
+                            f"(ratio {figures[f'ratio {peer}']:.2f})"
+                            for peer in ("embreex", "packets") if peer in figures)
+            print(f"  {row['triangles']:>9,} triangles, {kind:>7} rays: ours {figures['ours']:7.1f}{peers}")
+    disagree = sum(row["disagree"] for row in rows)
 
     # 3. Whitted frames, all rays counted, the two scenes in turns.
     frames, stats = {}, {}
@@ -100,7 +131,7 @@ def run(args) -> int:
 
         frames[title] = whitted_frame
     runs = _interleaved_runs(frames, args.repeats)
-    for title, goal in (("lecture scene", 50), ("mirror and glass", 80)):
+    for title, goal in (("lecture scene", 16), ("mirror and glass", 25)):  # issue 36's goals
         frame_s = statistics.median(runs[title])
         rays = stats[title][-1]["rays"]
         stages = ", ".join(f"{stage} {statistics.median(s['times'][stage] for s in stats[title]) * 1e3:.1f}"
@@ -109,17 +140,23 @@ def run(args) -> int:
               f"{rays['total']} rays = {rays['primary']} primary + {rays['shadow']} shadow + "
               f"{rays['reflection']} reflection + {rays['refraction']} refraction "
               f"({rays['total'] / frame_s / 1e6:.1f} Mrays/s); median ms per stage: {stages}")
+    if disagree:
+        print(f"bench trace: Embree and ours found different hits for {disagree:,} rays (see above)")
+        return 1
     return 0
 
 
 _STAGES = ("primary", "shading", "secondary")
 
 
-def _primary_rays(triangles: int, args) -> tuple:
-    """Time the primary rays on a mesh of about ``triangles`` triangles, ours and Embree's, in turns.
+def _mesh_rays(triangles: int, args, library) -> dict:
+    """Time the primary and the shadow rays on a mesh of about ``triangles`` triangles, ours and
+    the peers', in turns, and check that the peers find the same hits.
 
-    Prints the figures; returns ``(triangle count, our median ms, Embree's median ms, the median
-    ratio of side-by-side runs)``, the last two ``None`` without embreex.
+    ``library``: Embree's library (:func:`app.bench.embree_packets.find_library`), ``None`` to
+    time ours alone.  Prints the figures; returns a summary row: the triangle count, per ray kind
+    (``"primary"``, ``"shadow"``) the median ms of each tracer and the median ratios of
+    side-by-side runs, and ``"disagree"``, the rays where a peer found another hit.
     """
     import numba
     import numpy as np
@@ -129,13 +166,16 @@ def _primary_rays(triangles: int, args) -> tuple:
     from core.image_order.flat_layout import (
         BOUNDS_TESTS,
         CHILD_SIZE,
+        GEO_N_SPHERES,
         HIT_PRIM,
         HIT_SIZE,
+        HIT_T,
         OPT_PACKETS,
         PRIM_TESTS,
     )
     from core.image_order.flat_scene import TraceSettings, kernel_inputs, trace_scene
     from core.image_order.kernels import render
+    from core.image_order.kernels.shadow_rays import trace_shadow_rays
     from core.scene import PointLight, Scene
 
     n_rays = args.width * args.height
@@ -173,31 +213,229 @@ def _primary_rays(triangles: int, args) -> tuple:
 
     print(f"mesh: {len(mesh.triangles):,} triangles; BVH build {build_s:.3f} s, {len(bvh.nodes)} nodes, "
           f"depth {bvh.depth}")
-    embree = _embree(mesh, scene, args.threads)
+    o, d, t_min, t_max = _primary_rays(scene.camera)
     runners = {"ours": ours, "nothing to hit": nothing_to_hit}
-    if embree is not None:
-        runners["embree"] = embree[0]
+    packets = None
+    if library is not None:
+        from app.bench.embree_packets import EmbreePackets
+
+        runners["embreex"], embreex_prims = _embreex(mesh, scene, args.threads)
+        packets = EmbreePackets(library, mesh.corners, numba.get_num_threads())
+        order = _tile_order(args.height, args.width)
+        runners["packets"], peer = packets.tracer(o[order], d[order], t_min[order], t_max[order], False)
+        print(f"  Embree's own BVH build (rtcCommitScene) {packets.build_seconds:.3f} s; first call of the "
+              f"kernel that calls rtcIntersect16 / rtcOccluded16 (compiles it, once per run) "
+              f"{packets.compile_seconds:.2f} s (not counted below)")
     runs = _interleaved_runs(runners, args.repeats)
     seconds = {name: statistics.median(times) for name, times in runs.items()}
     per_ray = counters[0] / n_rays
-    prims = hits[..., HIT_PRIM].reshape(-1)
+    prims, ts = hits[..., HIT_PRIM].reshape(-1).astype(np.int64), hits[..., HIT_T].reshape(-1)
     walk = "packets of 4 x 4 rays" if k.opts[OPT_PACKETS] else "one ray at a time"
-    print(f"  ours   (numba 4-wide BVH, float64, {walk}): {_spread(runs['ours'])}  "
+    print(f"  primary rays, ours (numba 4-wide BVH, float64, {walk}): {_spread(runs['ours'])}  "
           f"{n_rays / seconds['ours'] / 1e6:6.2f} Mrays/s  ({(prims >= 0).mean():.0%} of rays hit; per ray "
           f"{per_ray[BOUNDS_TESTS]:.1f} box and {per_ray[PRIM_TESTS]:.1f} triangle tests)")
     print(f"         the same rays, nothing to hit: {_spread(runs['nothing to hit'])}  (making the rays and "
-          "writing their hits and depths; Embree's rays are made before its clock starts)")
-    if embree is None:
-        return len(mesh.triangles), seconds["ours"] * 1e3, None, None
-    agree = np.mean(embree[1]() == prims)
-    print(f"  Embree (embreex, float32, {args.threads} threads): {_spread(runs['embree'])}  "
-          f"{n_rays / seconds['embree'] / 1e6:6.2f} Mrays/s  (same triangle as ours for {agree:.2%} of rays)")
-    # Each of our runs against the Embree run right after it: a load change on this shared
-    # machine slows both alike, so the pairs' ratios scatter less than the times do.
-    pairs = sorted(e / o for o, e in zip(runs["ours"], runs["embree"], strict=True))
-    print(f"  ratio ours / Embree: {statistics.median(pairs):.2f} (goal: >= 1.0; median of {len(pairs)} "
-          f"runs side by side, lowest {pairs[0]:.2f}, highest {pairs[-1]:.2f})")
-    return len(mesh.triangles), seconds["ours"] * 1e3, seconds["embree"] * 1e3, statistics.median(pairs)
+          "writing their hits and depths; the peers' rays are made before their clocks start)")
+    row = {"triangles": len(mesh.triangles), "disagree": 0,
+           "primary": {"ours": seconds["ours"] * 1e3}, "shadow": {}}
+    if packets is not None:
+        same = np.mean(embreex_prims() == prims)
+        print(f"  primary rays, Embree (embreex, float32, {args.threads} Python threads): "
+              f"{_spread(runs['embreex'])}  {n_rays / seconds['embreex'] / 1e6:6.2f} Mrays/s  "
+              f"(same triangle as ours for {same:.2%} of rays)")
+        print(f"  primary rays, Embree (rtcIntersect16 packets, float32, {numba.get_num_threads()} numba "
+              f"threads): {_spread(runs['packets'])}  {n_rays / seconds['packets'] / 1e6:6.2f} Mrays/s")
+        peer_prims, peer_t = np.empty_like(peer[0]), np.empty_like(peer[1])
+        peer_prims[order], peer_t[order] = peer[0], peer[1]
+        row["disagree"] += _report_agreement("primary", mesh.corners, o, d, prims, ts, peer_prims, peer_t)
+        row["primary"].update(_ratios(runs, seconds, ("embreex", "packets")))
+
+    # Shadow rays: from every lit hit of ours towards the light, the same rays for both tracers.
+    so, sd, s_min, s_max = _shadow_rays(mesh, scene.lights[0].position, o, d, prims, ts)
+    n_shadow = len(so)
+    blockers, blocker_t = np.empty(n_shadow, np.int64), np.empty(n_shadow)
+    shadow_counters = []
+
+    def ours_shadow():
+        shadow_counters[:] = [trace_shadow_rays(so, sd, s_min, s_max, k.bvh, k.geo[GEO_N_SPHERES],
+                                                k.bvh_depth, numba.get_num_threads(), blockers, blocker_t)]
+
+    start = time.perf_counter()
+    ours_shadow()
+    print(f"  shadow rays, our kernel's first call (compiles it, or loads it from the cache, once): "
+          f"{time.perf_counter() - start:.2f} s (not counted below)")
+    runners = {"ours": ours_shadow}
+    if packets is not None:
+        runners["packets"], occluded = packets.tracer(so, sd, s_min, s_max, True)
+    runs = _interleaved_runs(runners, args.repeats)
+    seconds = {name: statistics.median(times) for name, times in runs.items()}
+    per_ray = shadow_counters[0] / max(n_shadow, 1)
+    print(f"  shadow rays ({n_shadow:,}: every lit hit towards the light), ours (any hit, one ray at a "
+          f"time): {_spread(runs['ours'])}  {n_shadow / seconds['ours'] / 1e6:6.2f} Mrays/s  "
+          f"({(blockers >= 0).mean():.0%} blocked; per ray {per_ray[BOUNDS_TESTS]:.1f} box and "
+          f"{per_ray[PRIM_TESTS]:.1f} triangle tests)")
+    row["shadow"]["ours"] = seconds["ours"] * 1e3
+    if packets is not None:
+        print(f"  shadow rays, Embree (rtcOccluded16 packets, float32): {_spread(runs['packets'])}  "
+              f"{n_shadow / seconds['packets'] / 1e6:6.2f} Mrays/s")
+        row["disagree"] += _report_shadow_agreement(packets, mesh.corners, so, sd, s_min, s_max, blockers,
+                                                    blocker_t, occluded[0])
+        row["shadow"].update(_ratios(runs, seconds, ("packets",)))
+        packets.close()
+    return row
+
+
+def _ratios(runs: dict, seconds: dict, peers: tuple) -> dict:
+    """Median ms of each peer and the ratio ours / peer (the peer's time over ours: above 1.0 we are
+    faster), printed.
+
+    Each of our runs is set against the peer's run in the same turn: a load change on this shared
+    machine slows both alike, so the pairs' ratios scatter less than the times do.
+    """
+    row = {}
+    for peer in peers:
+        pairs = sorted(p / o for o, p in zip(runs["ours"], runs[peer], strict=True))
+        row[peer] = seconds[peer] * 1e3
+        row[f"ratio {peer}"] = statistics.median(pairs)
+        print(f"    ratio ours / {_PEER_NAMES[peer]}: {statistics.median(pairs):.2f} (goal: >= 1.0; "
+              f"median of {len(pairs)} runs side by side, lowest {pairs[0]:.2f}, highest {pairs[-1]:.2f})")
+    return row
+
+
+_PEER_NAMES = {"embreex": "embreex", "packets": "Embree packets"}
+
+
+def _tile_order(height: int, width: int):
+    """Pixel indices (row-major) in tiles of 4 x 4 pixels, the tiles row by row: the order in
+    which the peer's packets of 16 take the primary rays, as our packets of 4 x 4 pixels do."""
+    import numpy as np
+
+    j, i = np.meshgrid(np.arange(height), np.arange(width), indexing="ij")
+    tile = (j // 4) * ((width + 3) // 4) + i // 4
+    return np.lexsort((((j % 4) * 4 + i % 4).ravel(), tile.ravel()))
+
+
+def _primary_rays(camera):
+    """The camera's primary rays, (N, 3) origins and directions and (N,) ``t_min, t_max`` (the near
+    and the far plane), pixels row by row: the rays our kernels trace (perspective camera)."""
+    import numpy as np
+
+    origins, directions = camera.primary_rays()
+    origins, directions = origins.reshape(-1, 3), directions.reshape(-1, 3)
+    along = directions @ np.asarray(camera.forward, float)
+    return origins, directions, camera.near / along, camera.far / along
+
+
+def _shadow_rays(mesh, light, origins, directions, prims, ts):
+    """Rays from every hit of ``prims, ts`` on the lit side of its triangle towards ``light``.
+
+    ``origins, directions``: the primary rays, ``(N, 3)``; only hits on a triangle's front (seen
+    from the camera) are kept.
+    Each shadow ray starts at its hit point moved off the triangle towards the light by
+    ``_FLOAT32_SLACK`` rounding steps of float32 (Embree works in float32, so our float64 offset
+    would let it find the triangle the ray starts on), and ends at the light (``t_max``, the unit
+    direction's length to it).  All numbers are rounded to float32, so that both tracers trace
+    exactly the same rays.  Returns ``(origins, directions, t_min, t_max)``, float64.
+    """
+    import numpy as np
+
+    light = np.asarray(light, float)
+    hit = prims >= 0
+    p = origins[hit] + ts[hit, None] * directions[hit]
+    normals = mesh.normals[prims[hit]]
+    to_light = light - p
+    lit = np.einsum("ij,ij->i", normals, to_light) > 0.0
+    facing_camera = np.einsum("ij,ij->i", normals, directions[hit]) < 0.0
+    keep = lit & facing_camera
+    magnitude = np.abs(mesh.corners).max()
+    start = p[keep] + _FLOAT32_SLACK * 2.0**-24 * magnitude * normals[keep]
+    to_light = light - start
+    distance = np.linalg.norm(to_light, axis=1)
+    rounded = [np.asarray(a, np.float32).astype(float)
+               for a in (start, to_light / distance[:, None], distance)]
+    return rounded[0], rounded[1], np.zeros(len(distance)), rounded[2]
+
+
+#: How many rounding steps of float32 (of the scene's largest coordinate) two tracers' hits may
+#: differ by and still be the same: rounding the rays and the corners to float32 moves each by up
+#: to one step, and Embree's float32 crossing test adds a few more; the rest is margin.
+_FLOAT32_SLACK = 64
+
+
+def hit_agreement(corners, origins, directions, prims_a, t_a, prims_b, t_b) -> tuple[int, int, int]:
+    """How two tracers' hits of the same rays compare: ``(same, ties, differ)`` ray counts.
+
+    ``same``: the same triangle (or both missed).  ``ties``: another triangle, or a hit against a
+    miss, where the two cannot be told apart in float32: both hit at the same ``t``, or one of the
+    hit points lies within ``_FLOAT32_SLACK`` float32 rounding steps (of the largest coordinate of
+    ``corners``) of an edge of its triangle, where the two tracers' roundings may take the ray to
+    either side.  ``differ``: the rest, a real disagreement.
+
+    Parameters
+    ----------
+    corners : (M, 3, 3) float, the triangles' corners.
+    origins, directions : (N, 3) float, the rays.
+    prims_a, prims_b : (N,) int, the triangle each tracer found (-1: none).
+    t_a, t_b : (N,) float, where along the ray (ignored where none was found).
+    """
+    import numpy as np
+
+    prims_a, prims_b = np.asarray(prims_a).astype(np.int64), np.asarray(prims_b).astype(np.int64)
+    same = prims_a == prims_b
+    slack = _FLOAT32_SLACK * 2.0**-24 * np.abs(corners).max()
+    other = ~same
+    o, d = origins[other], directions[other]
+    pa, pb, ta, tb = prims_a[other], prims_b[other], np.asarray(t_a)[other], np.asarray(t_b)[other]
+    both = (pa >= 0) & (pb >= 0)
+    tie = both & (np.abs(np.where(both, ta - tb, 0.0)) <= slack)
+    for prims, t in ((pa, ta), (pb, tb)):
+        found = prims >= 0
+        near_edge = np.zeros(len(prims), bool)
+        points = o[found] + t[found, None] * d[found]
+        near_edge[found] = _edge_distance(corners[prims[found]], points) <= slack
+        tie |= near_edge
+    return int(same.sum()), int(tie.sum()), int((~tie).sum())
+
+
+def _edge_distance(triangles, points):
+    """(N,) distance of each point to the nearest of the three lines through its triangle's edges."""
+    import numpy as np
+
+    distances = []
+    for a, b in ((0, 1), (1, 2), (2, 0)):
+        edge = triangles[:, b] - triangles[:, a]
+        arm = points - triangles[:, a]
+        distances.append(np.linalg.norm(np.cross(arm, edge), axis=1) / np.linalg.norm(edge, axis=1))
+    return np.min(distances, axis=0)
+
+
+def _report_agreement(kind, corners, origins, directions, prims, ts, peer_prims, peer_ts,
+                      same_means="the same triangle") -> int:
+    """Print how the peer's hits compare with ours (:func:`hit_agreement`); return the disagreements."""
+    same, ties, differ = hit_agreement(corners, origins, directions, prims, ts, peer_prims, peer_ts)
+    print(f"    {kind} rays, Embree packets against ours: {same:,} {same_means}, {ties:,} ties within "
+          f"float32 rounding, {differ:,} disagree" + (" -- DISAGREEMENT" if differ else ""))
+    return differ
+
+
+def _report_shadow_agreement(packets, corners, origins, directions, t_min, t_max, blockers, blocker_t,
+                             occluded) -> int:
+    """Compare blocked against blocked: any hit may name any blocker, so where only one tracer finds
+    one, Embree's closest hit on those rays (``rtcIntersect16``) is set against our blocker."""
+    import numpy as np
+
+    ours_blocked, peer_blocked = blockers >= 0, occluded >= 0
+    other = np.flatnonzero(ours_blocked != peer_blocked)
+    prims_a, prims_b = np.where(ours_blocked, 0, -1), np.where(peer_blocked, 0, -1)
+    ta, tb = blocker_t.copy(), np.full(len(blockers), np.inf)
+    if len(other):
+        trace, (peer_prims, peer_t, _, _) = packets.tracer(origins[other], directions[other], t_min[other],
+                                                           t_max[other], False)
+        trace()
+        prims_a[other], prims_b[other] = blockers[other], peer_prims
+        tb[other] = peer_t
+    return _report_agreement("shadow", corners, origins, directions, prims_a, ta, prims_b, tb,
+                             "the same answer (blocked or not)")
 
 
 def _interleaved_runs(runners: dict, repeats: int) -> dict:
@@ -218,18 +456,12 @@ def _interleaved_runs(runners: dict, repeats: int) -> dict:
     return times
 
 
-def _embree(mesh, scene, n_threads: int):
-    """``(trace, primitive_ids)``: a function tracing the primary rays with Embree on
-    ``n_threads`` threads, and one returning the triangle each ray hit (-1: none);
-    ``None`` when embreex is missing."""
+def _embreex(mesh, scene, n_threads: int):
+    """``(trace, primitive_ids)``: a function tracing the primary rays with embreex on
+    ``n_threads`` Python threads, and one returning the triangle each ray hit (-1: none)."""
     import numpy as np
+    from embreex import mesh_construction, rtcore_scene
 
-    try:
-        from embreex import mesh_construction, rtcore_scene
-    except ImportError:
-        print("Embree: not measured, the embreex package is missing; install it with "
-              "`.venv/bin/pip install embreex` (or `pip install -e '.[bench]'`)")
-        return None
     origins, directions = scene.camera.primary_rays()
     origins = origins.reshape(-1, 3).astype(np.float32)
     directions = directions.reshape(-1, 3).astype(np.float32)

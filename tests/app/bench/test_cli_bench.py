@@ -25,6 +25,8 @@ def _run(*argv, env=None):
     (["bench", "raster", "--runs", "0"], "--runs must be at least 1"),
     (["bench", "raster", "--width", "-3"], "--width must be at least 16"),
     (["bench", "startup", "--runs", "0"], "--runs must be at least 1"),
+    (["bench", "trace", "--repeats", "0"], "--repeats must be at least 1, got 0"),
+    (["bench", "trace", "--height", "2"], "--height must be at least 16, got 2"),
     (["bench", "gui", "--actions", "picks,dance"], "--actions: expected some of picks, cost, lessons"),
     (["bench", "gui", "--actions", ""], "--actions: expected some of picks, cost, lessons"),
 ])

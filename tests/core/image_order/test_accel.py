@@ -19,6 +19,7 @@ from core.image_order.flat_layout import (
     PRIM_TESTS,
     ROW_CENTER,
     ROW_RADIUS,
+    SHADOW,
 )
 from core.image_order.flat_scene import TraceSettings, kernel_inputs, trace_scene
 from core.image_order.grid_of_cuboids import cells_on_ray
@@ -26,6 +27,7 @@ from core.image_order.intersect_sphere import intersect_sphere
 from core.image_order.intersect_triangle import intersect_triangle
 from core.image_order.kernels.closest_hit import closest_hit
 from core.image_order.kernels.render import make_scratch
+from core.image_order.kernels.shadow_rays import trace_shadow_rays
 from core.presets_trace import bumpy_ball
 from core.scene import Material, Scene, Sphere
 
@@ -102,6 +104,24 @@ def test_every_method_agrees_on_shadow_rays(scene):
         for method in METHODS:
             assert (queries[method](o, d, length, any_hit=True)[0] >= 0) == reference, method
     assert 200 < blocked < 900
+
+
+def test_a_batch_of_shadow_rays_on_all_cores_is_blocked_where_brute_force_is_blocked(scene):
+    """The bench's shadow-ray kernel: each ray blocked exactly where brute force finds a crossing,
+    with the blocker and ``t`` of the BVH's any-hit walk for that ray alone."""
+    rng = np.random.default_rng(5)
+    origins, directions = random_rays(rng, 800)
+    lengths = rng.uniform(0.5, 12.0, size=len(origins))
+    bvh, brute = Query(scene, "bvh"), Query(scene, "none")
+    blockers, blocker_t = np.empty(len(origins), np.int64), np.empty(len(origins))
+    counters = trace_shadow_rays(origins, directions, np.zeros(len(origins)), lengths, bvh.k.bvh,
+                                 bvh.k.geo[GEO_N_SPHERES], bvh.k.bvh_depth, 2, blockers, blocker_t)
+    for r, (o, d, length) in enumerate(zip(origins, directions, lengths, strict=True)):
+        assert (blockers[r] >= 0) == (brute(o, d, length)[0] >= 0), r
+        alone = bvh(o, d, length, any_hit=True)
+        assert (blockers[r], blocker_t[r]) == alone[:2], r
+    assert counters[SHADOW] == len(origins)
+    assert 200 < (blockers >= 0).sum() < 700
 
 
 def test_a_shadow_rays_blocker_is_reported_where_the_ray_crosses_it(scene):

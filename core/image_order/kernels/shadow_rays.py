@@ -1,0 +1,76 @@
+"""Shadow rays in a batch: is anything between each point and its light?  Any hit, on all cores.
+
+A shadow ray only asks whether something blocks the way to the light, so the
+walk of the BVH stops at the first triangle it finds
+(:func:`~core.image_order.kernels.bvh_traverse.bvh_closest` with ``any_hit``),
+exactly as shading traces them one by one
+(:mod:`core.image_order.kernels.shade`).  This kernel traces a whole batch of
+given rays that way, so that ``python -m app bench trace`` can time the
+shadow rays alone, next to Embree's ``rtcOccluded16`` on the same rays.
+
+The rays are dealt out in chunks of neighbouring rays, taken by the threads
+one at a time from a shared counter
+(:func:`~core.image_order.kernels.intrinsics.bands.take_band`), as the
+render's bands of rows are.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import prange
+
+from core.image_order import flat_layout
+from core.image_order.intersect_triangle import ray_shear
+from core.image_order.kernels.bvh_traverse import bvh_closest
+from core.image_order.kernels.intrinsics.bands import take_band
+from core.image_order.kernels.jit import jit_allocating, jit_parallel
+
+#: Rays per chunk a thread takes: neighbouring rays share the nodes they visit in the core's cache.
+CHUNK_RAYS = 256
+_COUNTER_STRIDE = 32  # each thread's counters on cache lines of their own, as in kernels.render
+
+
+@jit_allocating
+def _worker(queue, origins, directions, t_min, t_max, bvh, n_spheres, bvh_depth, blockers, blocker_t, count):
+    stack = np.zeros(3 * bvh_depth + 2, np.int64)
+    stack_t = np.zeros(3 * bvh_depth + 2)
+    n = origins.shape[0]
+    while True:
+        first = take_band(queue) * CHUNK_RAYS
+        if first >= n:
+            break
+        for r in range(first, min(first + CHUNK_RAYS, n)):
+            o = (origins[r, 0], origins[r, 1], origins[r, 2])
+            d = (directions[r, 0], directions[r, 1], directions[r, 2])
+            count[flat_layout.SHADOW] += 1
+            h = bvh_closest(o, d, ray_shear(d[0], d[1], d[2]), t_min[r], t_max[r], True, bvh, n_spheres,
+                            stack, stack_t, count)
+            blockers[r], blocker_t[r] = h[flat_layout.HIT_PRIM], h[flat_layout.HIT_T]
+
+
+@jit_parallel
+def trace_shadow_rays(origins, directions, t_min, t_max, bvh, n_spheres, bvh_depth, n_workers, blockers,
+                      blocker_t):
+    """Whether each ray ``o + t d``, ``t_min <= t < t_max``, crosses anything; return the counters.
+
+    Parameters
+    ----------
+    origins, directions : (N, 3) float64, world space; a direction need not be unit length.
+    t_min, t_max : (N,) float64, each ray's admissible range of ``t`` (``t_max``: the light).
+    bvh : tuple of :meth:`core.image_order.bvh.Bvh.kernel_tuple`; ``bvh_depth`` its depth.
+    n_spheres : int, primitives below this index are spheres.
+    n_workers : int, threads (``numba.get_num_threads()``, asked by the caller).
+    blockers : (N,) int64, out: a primitive that blocks each ray, -1 where none does (any
+        blocker, not necessarily the nearest), and ``blocker_t`` (N,) float64, out: where the ray
+        crosses it (``inf`` where none does).
+
+    Returns
+    -------
+    (N_COUNTERS,) int64, shadow rays traced and the box and primitive tests.
+    """
+    queue = np.zeros(1, np.int64)
+    counters = np.zeros((n_workers, _COUNTER_STRIDE), np.int64)
+    for w in prange(n_workers):
+        _worker(queue, origins, directions, t_min, t_max, bvh, n_spheres, bvh_depth, blockers, blocker_t,
+                counters[w])
+    return counters.sum(axis=0)[:flat_layout.N_COUNTERS]

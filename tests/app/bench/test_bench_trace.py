@@ -1,0 +1,89 @@
+"""``bench trace``: how it compares two tracers' hits, how it orders the peer's packets, and a
+whole run without Embree (the agreement of the peer's hits with ours is checked by the bench
+itself, which exits 1 when they differ: the suite does not need embreex)."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+
+import numpy as np
+from checkout import ROOT
+
+from app.bench.trace import _tile_order, hit_agreement
+from core.presets_trace import bumpy_ball
+
+# Two triangles making the unit square in the plane z = 0, split along its diagonal x = y:
+# triangle 0 below the diagonal (x > y), triangle 1 above it.
+SQUARE = np.array([[[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0]],
+                   [[0.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]]])
+
+
+def _down_from(points):
+    """Rays straight down onto the square from height 2 above ``points`` (x, y): each meets z = 0
+    at t = 2."""
+    points = np.asarray(points, float)
+    origins = np.column_stack([points, np.full(len(points), 2.0)])
+    return origins, np.tile([0.0, 0.0, -1.0], (len(points), 1))
+
+
+def test_the_same_triangle_or_both_missed_is_the_same_hit():
+    origins, directions = _down_from([(0.7, 0.2), (0.2, 0.7), (3.0, 3.0)])
+    same, ties, differ = hit_agreement(SQUARE, origins, directions, [0, 1, -1], [2.0, 2.0, np.inf],
+                                       [0, 1, -1], [2.0, 2.0, np.inf])
+    assert (same, ties, differ) == (3, 0, 0)
+
+
+def test_a_ray_on_the_shared_edge_may_go_to_either_triangle():
+    # (0.5, 0.5) lies on the diagonal both triangles share: both hits are at t = 2.
+    origins, directions = _down_from([(0.5, 0.5)])
+    assert hit_agreement(SQUARE, origins, directions, [0], [2.0], [1], [2.0]) == (0, 1, 0)
+
+
+def test_a_ray_grazing_the_outline_may_hit_or_miss():
+    # 1e-9 inside the square's edge y = 0: float32 (steps of 6e-8 near 1) cannot tell the sides
+    # apart, so one tracer's hit against the other's miss is a tie, whichever hits.
+    origins, directions = _down_from([(0.5, 1e-9)])
+    assert hit_agreement(SQUARE, origins, directions, [0], [2.0], [-1], [np.inf]) == (0, 1, 0)
+    assert hit_agreement(SQUARE, origins, directions, [-1], [np.inf], [0], [2.0]) == (0, 1, 0)
+
+
+def test_a_hit_in_the_open_against_a_miss_or_another_triangle_is_a_disagreement():
+    # (0.7, 0.2) is 0.2 from the nearest edge (y = 0) and 0.35 from the diagonal: no rounding
+    # of float32 reaches that far.
+    origins, directions = _down_from([(0.7, 0.2), (0.7, 0.2), (0.7, 0.2)])
+    same, ties, differ = hit_agreement(SQUARE, origins, directions, [0, 0, 0], [2.0, 2.0, 2.0],
+                                       [-1, 1, 0], [np.inf, 2.5, 2.0])
+    assert (same, ties, differ) == (1, 0, 2)
+
+
+def test_the_peers_packets_take_the_pixels_in_tiles_of_four_by_four():
+    order = _tile_order(8, 8)  # pixel index = 8 * row + column
+    first_tile = [8 * j + i for j in range(4) for i in range(4)]
+    second_tile = [8 * j + i for j in range(4) for i in range(4, 8)]
+    assert order[:16].tolist() == first_tile
+    assert order[16:32].tolist() == second_tile
+    assert sorted(order.tolist()) == list(range(64))
+    # A ragged edge: 6 x 6 pixels, the last tile of the first band holds columns 4 and 5 only.
+    assert _tile_order(6, 6)[16:24].tolist() == [4, 5, 10, 11, 16, 17, 22, 23]
+
+
+def test_without_embree_the_bench_says_so_in_one_line_and_times_ours():
+    # embreex hidden as if it were not installed (a None in sys.modules makes its import fail).
+    code = ("import sys; sys.modules['embreex'] = None; sys.argv[1:] = ['bench', 'trace', '--width', '32', "
+            "'--height', '24', '--triangles', '200,800', '--repeats', '1']; import runpy; "
+            "runpy.run_module('app', run_name='__main__')")
+    done = subprocess.run([sys.executable, "-c", code], cwd=ROOT, capture_output=True, text=True, timeout=480)
+    assert done.returncode == 0, done.stderr
+    assert "Traceback" not in done.stderr
+    missing = [line for line in done.stdout.splitlines() if line.startswith("Embree: not measured")]
+    assert len(missing) == 1 and "embreex" in missing[0]
+    assert "rtcIntersect16 packets" not in done.stdout
+    for asked in (200, 800):
+        triangles = f"{len(bumpy_ball(asked).triangles):,}"
+        for kind in ("primary", "shadow"):
+            summary = [line for line in done.stdout.splitlines()
+                       if f"triangles, {kind:>7} rays: ours" in line and line.split()[0] == triangles]
+            assert len(summary) == 1, done.stdout
+            assert "ratio" not in summary[0]
+    assert "Whitted frame, lecture scene" in done.stdout
