@@ -369,9 +369,19 @@ class SceneView(QWidget):
         self.request_render()
 
     def _add_axes(self) -> None:
+        """The axes marker in the lower left corner, at :attr:`line_scale` (made once, then updated:
+        a new marker took a tenth of a second of the GUI thread at each text size)."""
         side = _axes_side(self.line_scale)
-        self.plotter.add_axes(line_width=round(3 * self.line_scale), labels_off=False,
-                              viewport=(0.0, 0.0, side, side))
+        renderer = self.plotter.renderer
+        if renderer.axes_widget is None:
+            self.plotter.add_axes(line_width=round(3 * self.line_scale), labels_off=False,
+                                  viewport=(0.0, 0.0, side, side))
+            return
+        axes = renderer.axes_actor
+        for shaft in (axes.GetXAxisShaftProperty(), axes.GetYAxisShaftProperty(),
+                      axes.GetZAxisShaftProperty()):
+            shaft.SetLineWidth(round(3 * self.line_scale))
+        renderer.axes_widget.SetViewport(0.0, 0.0, side, side)
 
     def show_overlays_only(self, names) -> None:
         """Show only the overlays in ``names`` (the others are kept, hidden); ``None`` shows all."""
