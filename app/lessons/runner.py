@@ -193,6 +193,8 @@ class LessonRunner:
             panel.show_vertex(point, scene, name)
             panel.details.setCurrentWidget(panel.vertex_math)
             words.append(name)
+        else:  # the vertex an earlier step followed is not one these words speak of
+            w.tab("object order").widget.clear_vertex()
         if "polygon_step" in highlight:
             words.append(f"the polygon drawn at step {highlight['polygon_step'] + 1}")
         if "pixel" in highlight:
