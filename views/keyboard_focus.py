@@ -44,10 +44,15 @@ class FollowFocus(QObject):
         self._on = target
         if target is not None:
             target.installEventFilter(self.key_filter)
+            target.destroyed.connect(self._gone)  # Qt drops its filters with it: nothing to remove then
+
+    def _gone(self, *_) -> None:
+        self._on = None
 
     def _remove(self) -> None:
         if self._on is not None:
-            with contextlib.suppress(RuntimeError):  # the widget was deleted meanwhile, its filters too
+            with contextlib.suppress(RuntimeError):  # its Python side knows it was deleted meanwhile
+                self._on.destroyed.disconnect(self._gone)
                 self._on.removeEventFilter(self.key_filter)
         self._on = None
 

@@ -228,7 +228,8 @@ def test_page_down_steps_from_a_dialog_too(hall, qtbot):
     with qtbot.waitSignal(panel.step_selected):
         qtbot.keyClick(spin, Qt.Key.Key_PageDown)
     assert panel.step_index() == (0, 0) and spin.value() == 50  # a step, and the box kept its value
-    dialog.close()
+    with qtbot.waitSignal(spin.destroyed):  # the focused box goes, and its window with it
+        dialog.deleteLater()
     window.activateWindow()
     qtbot.waitUntil(window.isActiveWindow)
     qtbot.keyClick(QApplication.focusWidget() or window, Qt.Key.Key_PageDown)  # where a typed key goes
