@@ -5,19 +5,26 @@ title bar, the borders); a window whose client area fits the screen can still
 hang its bottom edge, with the buttons there, off a small screen.
 :func:`keep_on_screen` shrinks a window (down to its minimum size) and moves
 it until its frame lies inside the screen's available area (the screen less
-its panels).  :class:`KeepWindowsOnScreen`, installed on the application,
-does so for every window as it is shown and whenever it grows; the window
-manager's frame is known only once the window is on screen, so it checks
-again when the window manager first places it.  A full-screen or maximized
-window is the window manager's to place.
+its panels).  :class:`KeepWindowsOnScreen` does so for the windows it
+watches as each is shown and whenever it grows; the window manager's frame
+is known only once the window is on screen, so it checks again when the
+window manager first places it.  A full-screen or maximized window is the
+window manager's to place.
+
+It watches the windows it is given, the dialogs they open (windows among
+their children) and every window that becomes active, each on its own: a
+filter on the application would see every event of every widget cross into
+Python, and a restyle of the window sends thousands.
 """
 
 from __future__ import annotations
 
 from PySide6.QtCore import QEvent, QObject, QRect, Qt, QTimer
-from PySide6.QtWidgets import QWidget
+from PySide6.QtWidgets import QApplication, QWidget
 
 _CHECKED = (QEvent.Type.Show, QEvent.Type.Resize, QEvent.Type.Move)
+_CHILDREN = (QEvent.Type.ChildAdded, QEvent.Type.ChildPolished)
+"""A watched window's new child, a dialog among them once it is polished (its flags are set then)."""
 
 
 def frame_fits(window: QWidget, screen: QRect | None = None) -> bool:
@@ -45,7 +52,7 @@ def keep_on_screen(window: QWidget) -> None:
 
 
 class KeepWindowsOnScreen(QObject):
-    """An application event filter that keeps every shown window (not menus or tool tips) on screen.
+    """Keeps the watched windows (not menus or tool tips) on screen: see :meth:`watch`.
 
     A window is checked after it is shown, resized or moved by the window
     manager, once the event is handled (so its new frame is known); a window
@@ -57,10 +64,31 @@ class KeepWindowsOnScreen(QObject):
         super().__init__(parent)
         self._pending: set[int] = set()
         self._placed: set[int] = set()
+        QApplication.instance().focusWindowChanged.connect(self._activated)
+
+    def watch(self, window: QWidget) -> None:
+        """Keep ``window`` on screen, and the windows it opens (dialogs) too."""
+        window.installEventFilter(self)  # once: Qt moves a filter installed again to the front
+        if window.isVisible():
+            self._check_soon(window)
+
+    def stop(self) -> None:
+        """Stop watching windows as they become active (those watched keep their filter)."""
+        QApplication.instance().focusWindowChanged.disconnect(self._activated)
+
+    def _activated(self, _window) -> None:
+        active = QApplication.activeWindow()  # the QWidget of the window given
+        if active is not None and not _pop_up(active):
+            self.watch(active)
 
     def eventFilter(self, watched, event) -> bool:
         kind = event.type()
-        if kind in _CHECKED and isinstance(watched, QWidget) and watched.isWindow() and not _pop_up(watched):
+        if kind in _CHILDREN:
+            child = event.child()
+            if isinstance(child, QWidget) and child.isWindow() and not _pop_up(child):
+                child.installEventFilter(self)  # a dialog of this window: shown later, checked then
+        elif (kind in _CHECKED and isinstance(watched, QWidget) and watched.isWindow()
+              and not _pop_up(watched)):
             key = id(watched)
             if kind == QEvent.Type.Show:
                 self._placed.discard(key)  # the window manager places it (again)

@@ -22,7 +22,7 @@ from __future__ import annotations
 
 from PySide6.QtCore import QEvent, QObject, Qt, QTime, QTimer, Signal
 from PySide6.QtGui import QAction, QActionGroup, QFont, QGuiApplication, QKeySequence
-from PySide6.QtWidgets import QLabel, QMainWindow, QVBoxLayout, QWidget
+from PySide6.QtWidgets import QApplication, QLabel, QMainWindow, QVBoxLayout, QWidget
 
 from views.panels.lesson_panel import ClickerKeys, LessonPanel
 
@@ -100,6 +100,9 @@ class Presentation(QObject):
         self._was_maximized = False
         self._normal_geometry = window.geometry()
         self._blank = _Blank(window)
+        # Style sheets (high contrast; a widget's own colours) would otherwise keep the widgets
+        # under them at the font they had when styled: a new text size would not reach them.
+        QApplication.setAttribute(Qt.ApplicationAttribute.AA_UseStyleSheetPropagationInWidgetStyles)
         window.installEventFilter(self)
         self.clicker = None
         if panel is not None:
@@ -155,16 +158,18 @@ class Presentation(QObject):
         """Scale the window's text (and all that follows its font) to ``scale`` times normal."""
         if scale not in SCALES:
             raise ValueError(f"scale must be one of {', '.join(f'{s:g}' for s in SCALES)}, got {scale!r}")
-        self._scale = float(scale)
-        self._apply_style()
+        if float(scale) != self._scale:
+            self._scale = float(scale)
+            self._apply_font()
         action = self.actions[f"scale {scale:g}"]
         if not action.isChecked():
             action.setChecked(True)
         self.scale_changed.emit(self._scale)
 
     def set_high_contrast(self, on: bool) -> None:
-        self._high_contrast = bool(on)
-        self._apply_style()
+        if bool(on) != self._high_contrast:
+            self._high_contrast = bool(on)
+            self._apply_colours()
         if self.actions["contrast"].isChecked() != self._high_contrast:
             self.actions["contrast"].setChecked(self._high_contrast)
 
@@ -172,14 +177,15 @@ class Presentation(QObject):
         """The window's text size now, in points."""
         return (self._base_font.pointSizeF() or 10.0) * self._scale
 
-    def _apply_style(self) -> None:
-        # A style sheet stops font changes from reaching the widgets below it, so
-        # the size goes into the sheet too (widgets keep their own weight).
+    def _apply_font(self) -> None:
+        # Only the font: every widget below takes the new size (and lays itself out again), but
+        # none is styled again, as a new style sheet would have each one be (a second, so).
         font = QFont(self._base_font)
         font.setPointSizeF(self.text_size_pt())
         self.window.setFont(font)
-        size = f"QWidget {{ font-size: {self.text_size_pt():g}pt; }}\n" if self._scale != 1.0 else ""
-        self.window.setStyleSheet(self._base_style + size + (HIGH_CONTRAST if self._high_contrast else ""))
+
+    def _apply_colours(self) -> None:
+        self.window.setStyleSheet(self._base_style + (HIGH_CONTRAST if self._high_contrast else ""))
 
     def set_presenting(self, on: bool) -> None:
         """Enter (full screen, ×1.5 text, high contrast, arrow keys step) or leave presentation mode."""

@@ -14,8 +14,11 @@
 The sheets and frames are those of ``python -m app export``
 (:mod:`app.export.picture_sheet`, :mod:`app.export.animation_frames`).  Animations render
 off the GUI thread (:class:`app.window.workers.Renderer`) behind a progress dialog
-with Cancel.  Every file is written atomically (:mod:`core.files.safe_files`); a
-failure shows a dialog naming the file and the cause.  The file dialogs start
+with Cancel.  A picture is taken on the GUI thread (the 3D pane's from VTK, which
+lives there) and encoded and written off it; :meth:`ExportMenu.writing` lists the
+files on their way, the status bar says when each is written.  Every file is
+written atomically (:mod:`core.files.safe_files`); a failure shows a dialog
+naming the file and the cause.  The file dialogs start
 in the folder used last, also after a restart (:mod:`views.file_dialogs`).  An
 entry with nothing to export is disabled and its tooltip says why.
 
@@ -29,7 +32,7 @@ import os
 import re
 from dataclasses import replace
 
-from PySide6.QtCore import QObject, Qt, QTimer, Signal
+from PySide6.QtCore import QObject, Qt, QThreadPool, QTimer, Signal
 from PySide6.QtGui import QAction
 from PySide6.QtWidgets import QApplication, QInputDialog, QMenu, QMessageBox, QProgressDialog
 
@@ -51,6 +54,7 @@ from core import budget
 from core.files.safe_files import write_atomic
 from core.srgb import srgb_to_linear
 from views.file_dialogs import ask_save
+from views.jobs import JobRun, JobSignals
 
 SCREENSHOT_SCALE = 2
 """The 3D pane is saved at this many times its size on screen."""
@@ -111,6 +115,11 @@ class ExportMenu(QObject):
         self._renderer.failed.connect(lambda message: self._animation_done(None, message))
         self._progress: QProgressDialog | None = None
         self._writing: str | None = None
+        self._files: dict[int, str] = {}  # job -> a picture's or JSON's file, on its way there
+        self._jobs = 0
+        self._file_signals = JobSignals(self)
+        self._file_signals.finished.connect(self._file_done)
+        self._file_signals.failed.connect(self._file_failed)
         QApplication.instance().aboutToQuit.connect(self.cancel)
         QTimer.singleShot(0, self.refresh)  # once the window is built: the entries ask it what it shows
 
@@ -216,13 +225,16 @@ class ExportMenu(QObject):
 
     # -------------------------------------------------------------- pictures
     def export_picture(self, picture: PanePicture, path: str) -> bool:
-        """Write ``picture`` to ``path`` (PNG or JPEG by its extension); False after showing why not."""
+        """Start writing ``picture`` to ``path`` (PNG or JPEG by its extension); False after showing why
+        not."""
         if not self._checked(path, tuple(IMAGE_EXTENSIONS)):
             return False
-        return self._write(path, lambda: write_image(path, picture.make()))
+        pixels = picture.make()
+        return self._write(path, lambda: write_image(path, pixels))
 
     def export_3d(self, path: str, only=None) -> bool:
-        """Write the 3D pane at :data:`SCREENSHOT_SCALE` × its size (only the overlays ``only``, if given)."""
+        """Start writing the 3D pane at :data:`SCREENSHOT_SCALE` × its size (only the overlays ``only``,
+        if given)."""
         if not self._checked(path, (".png",)):
             return False
         view = self.window.scene_view
@@ -256,13 +268,35 @@ class ExportMenu(QObject):
         return True
 
     def _write(self, path: str, write) -> bool:
-        try:
-            write()
-        except OutputError as exc:
-            self._fail(path, str(exc))
-            return False
-        self._written(path)
+        """Run ``write()`` (encoding, the file) off the GUI thread; then say it was written, or show
+        why not."""
+
+        def job(_cancelled, _progress):
+            try:
+                write()
+            except OutputError as exc:
+                return path, str(exc)
+            return path, None
+
+        self._jobs += 1
+        self._files[self._jobs] = path
+        QThreadPool.globalInstance().start(JobRun(self._jobs, job, self._file_signals))
         return True
+
+    def writing(self) -> list[str]:
+        """The files being encoded and written now (pictures, JSON; not the animations)."""
+        return list(self._files.values())
+
+    def _file_done(self, job: int, result) -> None:
+        path, problem = result
+        del self._files[job]
+        if problem is None:
+            self._written(path)
+        else:
+            self._fail(path, problem)
+
+    def _file_failed(self, job: int, message: str) -> None:  # a fault of ours, not of the file system
+        self._fail(self._files.pop(job), message)
 
     def _written(self, path: str) -> None:
         self.window.statusBar().showMessage(f"Exported {path}", 8000)

@@ -48,10 +48,15 @@ def named_objects(scene: Scene, text: str) -> list:
     return named
 
 
+def _bounds(obj) -> tuple[np.ndarray, np.ndarray]:
+    """The lowest and highest corner of the box around a mesh's vertices (a sphere: its centre twice)."""
+    points = np.asarray(obj.vertices if isinstance(obj, Mesh) else [obj.center], dtype=float)
+    return points.min(axis=0), points.max(axis=0)
+
+
 def _top(obj) -> np.ndarray:
     """A point just above the object, where its name is written."""
-    points = np.asarray(obj.vertices if isinstance(obj, Mesh) else [obj.center], dtype=float)
-    low, high = points.min(axis=0), points.max(axis=0)
+    low, high = _bounds(obj)
     lift = getattr(obj, "radius", 0.0) + 0.08 * float(np.linalg.norm(high - low) + 1.0)
     return np.array([(low[0] + high[0]) / 2, high[1] + lift, (low[2] + high[2]) / 2])
 
@@ -74,8 +79,31 @@ def _normal_parts(corners: np.ndarray, eye) -> list:
             (set_labels(tip, [words]), {"label_size": LABEL_PT, "color": NORMAL_COLOR})]
 
 
-def _name_parts(objects) -> list:
-    """The objects' names written above them."""
+FLAT = 0.1
+"""An object this many times as high as it is wide (a ground, a wall lying down) is *flat*."""
+FLAT_INSET = 0.2
+"""A flat object's name is written this share of its width in from its edges (see :func:`_label_point`)."""
+
+
+def _label_point(obj, others) -> np.ndarray:
+    """Where ``obj``'s name is written: just above it (:func:`_top`), or, for a flat object such as
+    the ground, on it where it is farthest from the ``others`` (above its middle, the ground's name
+    stood beside the cube and the cone that stand there)."""
+    low, high = _bounds(obj)
+    width = float(max(high[0] - low[0], high[2] - low[2]))
+    if not isinstance(obj, Mesh) or high[1] - low[1] > FLAT * width or not others:
+        return _top(obj)
+    inset = FLAT_INSET * (high - low)
+    xs, zs = (low[0] + inset[0], (low[0] + high[0]) / 2, high[0] - inset[0]), \
+        (low[2] + inset[2], (low[2] + high[2]) / 2, high[2] - inset[2])
+    centres = np.array([np.add(*_bounds(other))[[0, 2]] / 2 for other in others])
+    spots = [np.array([x, z]) for x in xs for z in zs]
+    best = max(spots, key=lambda spot: np.linalg.norm(centres - spot, axis=1).min())
+    return np.array([best[0], high[1] + 0.08 * (high[1] - low[1] + 1.0), best[1]])
+
+
+def _name_parts(objects, scene: Scene) -> list:
+    """The objects' names written above them (on them, when flat)."""
     if not objects:
         return []
     import pyvista as pv
@@ -83,7 +111,8 @@ def _name_parts(objects) -> list:
     from views.scene3d.scene_overlays import LABEL_PT
     from views.scene3d.vtk_convert import set_labels
 
-    points = pv.PolyData(np.array([_top(obj) for obj in objects]))
+    points = pv.PolyData(np.array([_label_point(obj, [o for o in scene.objects if o is not obj])
+                                   for obj in objects]))
     return [(set_labels(points, [obj.name for obj in objects]), {"label_size": LABEL_PT, "color": "white"})]
 
 
@@ -193,11 +222,13 @@ class LessonRunner:
             panel.show_vertex(point, scene, name)
             panel.details.setCurrentWidget(panel.vertex_math)
             words.append(name)
+        else:  # the vertex an earlier step followed is not one these words speak of
+            w.tab("object order").widget.clear_vertex()
         if "polygon_step" in highlight:
             words.append(f"the polygon drawn at step {highlight['polygon_step'] + 1}")
         if "pixel" in highlight:
             words.append(f"pixel {tuple(highlight['pixel'])}")
-        parts += _name_parts(named_objects(scene, self.step.text if self.step is not None else ""))
+        parts += _name_parts(named_objects(scene, self.step.text if self.step is not None else ""), scene)
         w.scene_view.set_overlay(LESSON_OVERLAY, parts)
         self.projector.show_point(vertex_point)
         self.highlighted = ", ".join(words)

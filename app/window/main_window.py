@@ -52,6 +52,7 @@ from core.image_order.ray_tree import trace_pixel
 from core.presets_trace import PRESETS_TRACE
 from core.scene import Scene
 from views.file_dialogs import ask_open, ask_save
+from views.keyboard_focus import follow_focus
 from views.on_screen import KeepWindowsOnScreen
 from views.panels.camera_panel import CameraPanel
 from views.panels.exercise_panel import ExercisePanel, ExerciseProgress
@@ -150,10 +151,9 @@ class MainWindow(QMainWindow):
         self.exercise_dock = tabbed_dock(self, "Exercises", "exercises", self.exercise_panel, dock)
         self.lesson_dock.raise_()
         self._keyed_actions: list[QAction] = []
-        self._editor_keys = EditorsKeepTheirKeys(self)
-        QApplication.instance().installEventFilter(self._editor_keys)
+        self._editor_keys = follow_focus(EditorsKeepTheirKeys(self))
         self._on_screen = KeepWindowsOnScreen(self)  # the window and its dialogs, frames and all
-        QApplication.instance().installEventFilter(self._on_screen)
+        self._on_screen.watch(self)
         # After the editors' filter, so that PageUp/PageDown reach the lessons first, from anywhere.
         self.presentation = Presentation(self, self.lesson_panel)
         self._build_menus()
@@ -544,8 +544,8 @@ class MainWindow(QMainWindow):
         if not self.editor.may_replace_scene():
             event.ignore()
             return
-        QApplication.instance().removeEventFilter(self._editor_keys)
-        QApplication.instance().removeEventFilter(self._on_screen)
+        self._editor_keys.stop()
+        self._on_screen.stop()
         self.presentation.clicker.remove()
         self.renders.stop()
         self.background_compile.stop()

@@ -4,7 +4,9 @@ import pytest
 from PySide6.QtCore import Qt
 from PySide6.QtGui import QPalette
 from PySide6.QtWidgets import (
+    QApplication,
     QCheckBox,
+    QDialog,
     QLabel,
     QMainWindow,
     QSpinBox,
@@ -12,11 +14,13 @@ from PySide6.QtWidgets import (
     QToolButton,
     QTreeWidget,
     QTreeWidgetItem,
+    QVBoxLayout,
 )
 
 from views.panels.lesson_panel import LessonPanel
 from views.presentation import PRESENTING_SCALE, Presentation
 from views.text.math_view import MathView
+from views.text.text_scale import scaled_style
 
 
 @pytest.fixture
@@ -32,7 +36,7 @@ def hall(qtbot):
     window.resize(1280, 720)
     window.show()
     window.activateWindow()
-    qtbot.waitActive(window)  # window shortcuts (F11, Esc, ".", "B") need the active window
+    qtbot.waitUntil(window.isActiveWindow)  # window shortcuts (F11, Esc, ".", "B") need the active window
     presentation = Presentation(window, panel)
     yield window, panel, presentation
     presentation.clicker.remove()
@@ -184,3 +188,49 @@ def test_high_contrast_tool_buttons_keep_their_words_readable(hall, qtbot):
     light = sum(c.lightnessF() > 0.8 for c in colours)
     dark = sum(c.lightnessF() < 0.3 for c in colours)
     assert light > 0 and dark > 0.03 * len(colours)  # dark letters on the white button
+
+
+def test_the_text_size_reaches_widgets_with_their_own_style_sheets_under_high_contrast(hall, qtbot):
+    # The size is the window's font now (a style sheet of sizes re-styled every widget, a second
+    # long); widgets with style sheets of their own must follow that font all the same.
+    window, panel, presentation = hall
+    host = window.centralWidget().widget(1)
+    coloured = QLabel("refused: the radius must be positive", host)
+    coloured.setStyleSheet("color: #d00000;")  # as the scene editor's error beside a field
+    heading = QLabel("Hard case", host)
+    scaled_style(heading, "font-weight: bold;", 15)  # 15 pt at ×1, as a hard case's title
+    heading.move(0, 40)
+    for label in (coloured, heading):
+        label.show()
+    base_pt = coloured.font().pointSizeF()
+    presentation.set_high_contrast(True)
+    for scale in (2.0, 1.5, 1.0):
+        presentation.set_scale(scale)
+        assert coloured.font().pointSizeF() == pytest.approx(base_pt * scale)
+        assert panel.text.font().pointSizeF() == pytest.approx(base_pt * scale)
+        assert heading.font().pointSizeF() == pytest.approx(15 * scale)  # 15 pt times the scale
+        assert heading.font().bold()
+
+
+def test_page_down_steps_from_a_dialog_too(hall, qtbot):
+    # The clicker's keys follow the keyboard focus from window to window.
+    window, panel, presentation = hall
+    dialog = QDialog(window)
+    spin = QSpinBox(dialog)
+    spin.setRange(0, 100)
+    spin.setValue(50)
+    QVBoxLayout(dialog).addWidget(spin)
+    dialog.show()
+    dialog.activateWindow()
+    qtbot.waitUntil(dialog.isActiveWindow)
+    spin.setFocus()
+    qtbot.waitUntil(spin.hasFocus)
+    with qtbot.waitSignal(panel.step_selected):
+        qtbot.keyClick(spin, Qt.Key.Key_PageDown)
+    assert panel.step_index() == (0, 0) and spin.value() == 50  # a step, and the box kept its value
+    with qtbot.waitSignal(spin.destroyed):  # the focused box goes, and its window with it
+        dialog.deleteLater()
+    window.activateWindow()
+    qtbot.waitUntil(window.isActiveWindow)
+    qtbot.keyClick(QApplication.focusWidget() or window, Qt.Key.Key_PageDown)  # where a typed key goes
+    assert panel.step_index() == (0, 1)  # back in the main window, the keys step there too

@@ -195,7 +195,7 @@ class ImageOrderPanel(QWidget):
         top_layout.setContentsMargins(0, 0, 0, 0)
         top_layout.addWidget(self.image, 1)
         top_layout.addWidget(SideColumn([form_box, self.heat_scale, self.rays, QLabel("<b>Ray colours</b>"),
-                                         RayKindLegend(per_line=1)]))
+                                         RayKindLegend(per_line=3)]))
         self.split = pictures_over_details(self, top, self.details)
         self._room_for_tree = False  # asked by a lesson, kept until the user drags the divider
         self.split.splitterMoved.connect(self._leave_room_as_dragged)

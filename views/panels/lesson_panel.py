@@ -31,7 +31,6 @@ from pathlib import Path
 from PySide6.QtCore import QEvent, QObject, Qt, Signal
 from PySide6.QtGui import QFont
 from PySide6.QtWidgets import (
-    QApplication,
     QFrame,
     QHBoxLayout,
     QLabel,
@@ -48,6 +47,7 @@ from PySide6.QtWidgets import (
 
 from core.files.lesson_file import Lesson, LessonFileError, LessonStep, load_lesson, shipped_lessons
 from views.file_dialogs import ask_open
+from views.keyboard_focus import follow_focus
 from views.text.math_view import MathView
 
 #: Keys that go forward and back.  PageDown/PageUp act everywhere (ClickerKeys);
@@ -358,23 +358,28 @@ class LessonPanel(QWidget):
 
 
 class ClickerKeys(QObject):
-    """An application-wide key filter: PageDown/PageUp step through ``panel``'s lessons.
+    """A key filter for the whole application: PageDown/PageUp step through ``panel``'s lessons.
 
-    Installed on the QApplication, it takes these two keys before any widget
-    sees them, so they mean "next" and "previous" everywhere and nothing else.
-    With ``arrows`` on (presentation mode) the arrow keys do the same.
+    Installed on whichever widget has the keyboard focus (:mod:`views.keyboard_focus`),
+    it takes these two keys before that widget or any shortcut sees them, so they
+    mean "next" and "previous" everywhere and nothing else.  With ``arrows`` on
+    (presentation mode) the arrow keys do the same.
     """
 
     def __init__(self, panel: LessonPanel, parent: QObject | None = None):
         super().__init__(parent or panel)
         self.panel = panel
         self.arrows = False
+        self._focus = None
 
-    def install(self, app: QApplication | None = None) -> None:
-        (app or QApplication.instance()).installEventFilter(self)
+    def install(self) -> None:
+        if self._focus is None:
+            self._focus = follow_focus(self)
 
-    def remove(self, app: QApplication | None = None) -> None:
-        (app or QApplication.instance()).removeEventFilter(self)
+    def remove(self) -> None:
+        if self._focus is not None:
+            self._focus.stop()
+            self._focus = None
 
     def _keys(self):
         if self.arrows:

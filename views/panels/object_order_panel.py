@@ -253,8 +253,7 @@ class ObjectOrderPanel(QWidget):
         self.result, self.scene = result, scene
         self.counts.setPlainText(self._counts_text())
         if self._vertex_objects is not None and self._vertex_objects != scene.objects:
-            self._vertex_objects = None  # another scene: its vertex is not in this one
-            self.vertex_math.clear(VERTEX_PROMPT)
+            self.clear_vertex()  # another scene: its vertex is not in this one
         self.vertex_math.follow_camera(scene.camera)
         self.clipped_shown.emit(result.clipping.clipped_polygons())
         self.scrubber.blockSignals(True)
@@ -366,6 +365,11 @@ class ObjectOrderPanel(QWidget):
         in the Vertex path tab; it is cleared when a scene with other objects is shown."""
         self._vertex_objects = scene.objects
         self.vertex_math.show_vertex(point, scene.camera, name)
+
+    def clear_vertex(self) -> None:
+        """Empty the Vertex path tab (it asks for a pixel to be clicked)."""
+        self._vertex_objects = None
+        self.vertex_math.clear(VERTEX_PROMPT)
 
     def _numbers_text(self, events) -> str:
         r = self.result

@@ -102,7 +102,8 @@ EDITORS = (QAbstractSpinBox, QLineEdit, QAbstractSlider, QComboBox, QTextEdit, Q
 
 
 class EditorsKeepTheirKeys(QObject):
-    """An application event filter: a focused editor takes the observer keys before the shortcuts do.
+    """A key filter for the focused widget (:func:`views.keyboard_focus.follow_focus`): a focused
+    editor takes the observer keys before the shortcuts do.
 
     Qt asks the focused widget first (a ShortcutOverride event) whether it
     wants a key that is also a shortcut; accepting it there keeps, say, the

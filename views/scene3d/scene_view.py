@@ -32,7 +32,7 @@ import pyvista as pv
 from PySide6.QtCore import QEvent, QObject, QPointF, Qt, QTimer
 from PySide6.QtWidgets import QVBoxLayout, QWidget
 from vtkmodules.vtkCommonCore import VTK_FONT_FILE
-from vtkmodules.vtkRenderingCore import vtkActor2D, vtkTextRenderer
+from vtkmodules.vtkRenderingCore import vtkActor2D, vtkPolyDataMapper, vtkTextRenderer
 from vtkmodules.vtkRenderingLabel import vtkLabeledDataMapper
 
 from core.camera import Camera
@@ -201,9 +201,8 @@ class SceneView(QWidget):
             if before.get(key):
                 actor = before[key].pop()[1]
             elif is_light:
-                actor = self.plotter.add_mesh(pv.Sphere(radius=LIGHT_MARKER, center=thing.position),
-                                              color="#fff6a0", lighting=False, name=f"light:{id(thing)}",
-                                              render=False)
+                actor = self._add_surface(pv.Sphere(radius=LIGHT_MARKER, center=thing.position),
+                                          f"light:{id(thing)}", color="#fff6a0", lighting=False)
             else:
                 actor = self._add_object(thing, eye_inside)
             self._kept.append((key, thing, actor))
@@ -221,9 +220,22 @@ class SceneView(QWidget):
         m = obj.material
         # The observer standing inside a sphere sees through it.
         opacity = min(m.opacity, ENCLOSING_OPACITY) if eye_inside else m.opacity
-        return self.plotter.add_mesh(vtk_convert.object_polydata(obj), color=m.color, opacity=opacity,
-                                     smooth_shading=False, show_edges=False, specular=m.specular,
-                                     name=f"object:{id(obj)}", render=False)
+        return self._add_surface(vtk_convert.object_polydata(obj), f"object:{id(obj)}", color=m.color,
+                                 opacity=opacity, specular=m.specular)
+
+    def _add_surface(self, poly: pv.PolyData, name: str, **look):
+        """Add ``poly`` as a surface with flat faces and the look ``look`` (pyvista Property fields).
+
+        What ``add_mesh(poly, smooth_shading=False, show_edges=False, **look)`` draws, pixel for pixel,
+        in a fifth of its time: a lesson step builds every object of its scene on the GUI thread.
+        """
+        mapper = vtkPolyDataMapper()
+        mapper.SetInputData(poly)
+        mapper.ScalarVisibilityOff()
+        prop = pv.Property(theme=self.plotter.theme, interpolation="flat", show_edges=False, **look)
+        actor = pv.Actor(mapper=mapper, prop=prop)
+        self.plotter.add_actor(actor, name=name, render=False, reset_camera=False)
+        return actor
 
     def actor_of(self, item):
         """The actor that draws ``item`` of the scene (``("object", i)`` or ``("light", i)``), or None."""
@@ -369,9 +381,19 @@ class SceneView(QWidget):
         self.request_render()
 
     def _add_axes(self) -> None:
+        """The axes marker in the lower left corner, at :attr:`line_scale` (made once, then updated:
+        a new marker took a tenth of a second of the GUI thread at each text size)."""
         side = _axes_side(self.line_scale)
-        self.plotter.add_axes(line_width=round(3 * self.line_scale), labels_off=False,
-                              viewport=(0.0, 0.0, side, side))
+        renderer = self.plotter.renderer
+        if renderer.axes_widget is None:
+            self.plotter.add_axes(line_width=round(3 * self.line_scale), labels_off=False,
+                                  viewport=(0.0, 0.0, side, side))
+            return
+        axes = renderer.axes_actor
+        for shaft in (axes.GetXAxisShaftProperty(), axes.GetYAxisShaftProperty(),
+                      axes.GetZAxisShaftProperty()):
+            shaft.SetLineWidth(round(3 * self.line_scale))
+        renderer.axes_widget.SetViewport(0.0, 0.0, side, side)
 
     def show_overlays_only(self, names) -> None:
         """Show only the overlays in ``names`` (the others are kept, hidden); ``None`` shows all."""

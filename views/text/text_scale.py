@@ -1,6 +1,6 @@
 """The window's text scale (presentation mode's ×1.5, ×2), for text whose size is set apart.
 
-Presentation mode scales the text by a style sheet on the window
+Presentation mode scales the text by the window's font
 (:mod:`views.presentation`), which every widget follows unless it sets a
 ``font-size`` of its own.  :func:`text_scale` tells a widget how many times
 the application's size its text is now; :func:`scaled_style` keeps a widget's
@@ -20,22 +20,35 @@ def text_scale(widget: QWidget) -> float:
 
 
 class _ScaledStyle(QObject):
+    """Watches the widget (a new style, parent, or its showing) and the widget around it (a new
+    font: the text scale reaches it as one, while the widget's own size stays as its sheet says)."""
+
     def __init__(self, widget: QWidget, style: str, size_pt: float):
         super().__init__(widget)
         self.widget, self.style, self.size_pt = widget, style, size_pt
         self.scale = None
+        self.around = None
         widget.installEventFilter(self)
         self.apply()
 
     def apply(self) -> None:
         around = self.widget.parentWidget()
+        if around is not self.around:
+            if self.around is not None:
+                self.around.removeEventFilter(self)
+            self.around = around
+            if around is not None:
+                around.installEventFilter(self)
         scale = text_scale(around) if around is not None else 1.0
         if scale != self.scale:
             self.scale = scale
             self.widget.setStyleSheet(f"{self.style} font-size: {self.size_pt * scale:g}pt;")
 
     def eventFilter(self, watched, event) -> bool:
-        if event.type() in (QEvent.Type.StyleChange, QEvent.Type.ParentChange, QEvent.Type.Show):
+        kind = event.type()
+        if (watched is self.widget and kind in (QEvent.Type.StyleChange, QEvent.Type.ParentChange,
+                                                QEvent.Type.Show)
+                or watched is self.around and kind == QEvent.Type.FontChange):
             self.apply()
         return False
 

@@ -28,11 +28,12 @@ def _save_as(monkeypatch, path):
                         lambda parent, title, start, filters: (str(path), filters.split(";;")[0]))
 
 
-def _export(window, entry):
+def _export(qtbot, window, entry):
     window.exports.refresh()  # what opening the menu does
     action = window.exports.actions[entry]
     assert action.isEnabled(), action.toolTip()
     action.trigger()
+    qtbot.waitUntil(lambda: not window.exports.writing(), timeout=RENDER_TIMEOUT_MS)  # encoded off the GUI
 
 
 def _compare(qtbot, window, a: str, b: str):
@@ -56,14 +57,14 @@ def test_the_difference_of_an_output_with_itself_is_saved_black_beside_its_scale
                        "Compare/The whole comparison as one picture"]
     for side in ("A", "B"):
         _save_as(monkeypatch, tmp_path / f"{side}.png")
-        _export(window, f"Compare/Output {side}: perspective z-buffer")
+        _export(qtbot, window, f"Compare/Output {side}: perspective z-buffer")
     a, b = iio.imread(tmp_path / "A.png"), iio.imread(tmp_path / "B.png")
     cam = window.model.camera
     assert a.shape == (cam.height, cam.width, 3) and (a == b).all()
     assert len(np.unique(a.reshape(-1, 3), axis=0)) > 20  # the scene, not a blank image
 
     _save_as(monkeypatch, tmp_path / "difference.png")
-    _export(window, "Compare/Difference with its colour scale")
+    _export(qtbot, window, "Compare/Difference with its colour scale")
     sheet = iio.imread(tmp_path / "difference.png").astype(int)
     top = MARGIN + TITLE_ROW
     region = sheet[top:top + cam.height, MARGIN:MARGIN + cam.width]
@@ -88,7 +89,7 @@ def test_the_whole_comparison_saved_in_the_window_is_the_command_line_sheet(qtbo
     window.show()
     _compare(qtbot, window, "orthographic", "raytrace")
     _save_as(monkeypatch, tmp_path / "window.png")
-    _export(window, "Compare/The whole comparison as one picture")
+    _export(qtbot, window, "Compare/The whole comparison as one picture")
 
     result = subprocess.run([sys.executable, "-m", "app", "export", str(path), "--what", "compare",
                              "--pair", "orthographic,raytrace", "--out", str(tmp_path / "cli.png")],

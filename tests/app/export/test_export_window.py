@@ -34,11 +34,12 @@ def _save_as(monkeypatch, path, asked=None):
     monkeypatch.setattr(QFileDialog, "getSaveFileName", dialog)
 
 
-def _export(window, entry):
+def _export(qtbot, window, entry):
     window.exports.refresh()  # what opening the menu does
     action = window.exports.actions[entry]
     assert action.isEnabled(), action.toolTip()
     action.trigger()
+    qtbot.waitUntil(lambda: not window.exports.writing(), timeout=EXPORT_TIMEOUT_MS)  # encoded off the GUI
 
 
 def _show_full(qtbot, window, tab):
@@ -50,11 +51,11 @@ def _background8(scene):
     return to_srgb8(np.asarray(scene.background)).astype(int)
 
 
-def test_the_traced_image_is_saved_pixel_for_pixel_and_the_folder_is_remembered(window, tmp_path,
+def test_the_traced_image_is_saved_pixel_for_pixel_and_the_folder_is_remembered(qtbot, window, tmp_path,
                                                                                  monkeypatch):
     asked = []
     _save_as(monkeypatch, tmp_path / "traced.png", asked)
-    _export(window, "Image order/Image")
+    _export(qtbot, window, "Image order/Image")
     pixels = iio.imread(tmp_path / "traced.png")
     cam = window.model.camera
     assert pixels.shape == (cam.height, cam.width, 3)  # the image's resolution, not the pane's size
@@ -64,7 +65,7 @@ def test_the_traced_image_is_saved_pixel_for_pixel_and_the_folder_is_remembered(
     assert len(np.unique(pixels.reshape(-1, 3), axis=0)) > 50
     assert "traced.png" in window.statusBar().currentMessage()
 
-    _export(window, "3D pane")  # the next dialog opens where the last file went
+    _export(qtbot, window, "3D pane")  # the next dialog opens where the last file went
     assert Path(asked[-1]).parent == tmp_path
 
 
@@ -72,7 +73,7 @@ def test_the_zbuffer_is_saved_with_its_scale_as_distances_between_near_and_far(q
                                                                                 monkeypatch):
     _show_full(qtbot, window, "object order")
     _save_as(monkeypatch, tmp_path / "z.png")
-    _export(window, "Object order/z-buffer with its scale")
+    _export(qtbot, window, "Object order/z-buffer with its scale")
     cam = window.model.camera
     sheet = iio.imread(tmp_path / "z.png")
     top = MARGIN + TITLE_ROW
@@ -87,7 +88,7 @@ def test_the_zbuffer_is_saved_with_its_scale_as_distances_between_near_and_far(q
 def test_the_four_views_are_saved_as_one_picture(qtbot, window, tmp_path, monkeypatch):
     _show_full(qtbot, window, "four views")
     _save_as(monkeypatch, tmp_path / "four.png")
-    _export(window, "Four views/All 4 panes as one picture")
+    _export(qtbot, window, "Four views/All 4 panes as one picture")
     cam = window.model.camera
     sheet = iio.imread(tmp_path / "four.png")
     assert sheet.shape[0] >= 2 * cam.height + 2 * TITLE_ROW and sheet.shape[1] >= 2 * cam.width + 3 * MARGIN
@@ -113,7 +114,7 @@ def test_zbuffer_steps_gif_has_one_frame_per_polygon_after_the_cleared_buffers(q
     window.load_preset("three polygons", presets.zbuffer_three_polygons)
     _save_as(monkeypatch, tmp_path / "steps.gif")
     with qtbot.waitSignal(window.exports.exported, timeout=EXPORT_TIMEOUT_MS) as written:
-        _export(window, "z-buffer steps")
+        _export(qtbot, window, "z-buffer steps")
         assert any(d.isVisible() for d in window.findChildren(QProgressDialog))  # rendered in the background
     assert written.args == [str(tmp_path / "steps.gif")]
     assert not any(d.isVisible() for d in window.findChildren(QProgressDialog))
@@ -146,7 +147,7 @@ def test_the_picked_pixels_ray_tree_is_saved_as_json_and_as_the_3d_pane(qtbot, w
     window.pick_ray_tree(x, y)
     qtbot.waitUntil(lambda: window.ray_tree is not None, timeout=RENDER_TIMEOUT_MS)
     _save_as(monkeypatch, tmp_path / "tree.json")
-    _export(window, "Ray tree/JSON")
+    _export(qtbot, window, "Ray tree/JSON")
     document = json.loads((tmp_path / "tree.json").read_text())
     root = document["tree"]
     assert document["pixel"] == [x, y]
@@ -168,19 +169,19 @@ def test_the_picked_pixels_ray_tree_is_saved_as_json_and_as_the_3d_pane(qtbot, w
     assert np.allclose(np.clip(np.sum(parts, axis=0), 0, 1), document["pixel_colour"])
 
     _save_as(monkeypatch, tmp_path / "tree.png")
-    _export(window, "Ray tree/3D pane")
+    _export(qtbot, window, "Ray tree/3D pane")
     picture = iio.imread(tmp_path / "tree.png")
     width, height = window.scene_view.plotter.ren_win.GetSize()
     assert picture.shape == (2 * height, 2 * width, 3)  # twice the pane's size
     assert len(np.unique(picture.reshape(-1, 3), axis=0)) > 50
 
 
-def test_a_file_that_cannot_be_written_shows_a_dialog_naming_it(window, tmp_path, monkeypatch):
+def test_a_file_that_cannot_be_written_shows_a_dialog_naming_it(qtbot, window, tmp_path, monkeypatch):
     shown = []
     monkeypatch.setattr(QMessageBox, "critical", lambda parent, title, text, *rest: shown.append(text))
     out = tmp_path / "no-such-folder" / "traced.png"
     _save_as(monkeypatch, out)
-    _export(window, "Image order/Image")
+    _export(qtbot, window, "Image order/Image")
     assert len(shown) == 1 and str(out) in shown[0] and "does not exist" in shown[0]
     assert not out.parent.exists()
 
@@ -200,7 +201,7 @@ def test_an_animation_that_cannot_be_written_shows_a_dialog_naming_it(qtbot, win
     assert not any(d.isVisible() for d in window.findChildren(QProgressDialog))
 
 
-def test_a_tab_can_offer_its_own_pictures(window, tmp_path, monkeypatch):
+def test_a_tab_can_offer_its_own_pictures(qtbot, window, tmp_path, monkeypatch):
     class Slides:
         title, overlays = "Slides", ()
 
@@ -222,7 +223,7 @@ def test_a_tab_can_offer_its_own_pictures(window, tmp_path, monkeypatch):
     assert not window.exports.actions["Slides/Later"].isEnabled()
     assert window.exports.actions["Slides/Later"].toolTip() == "Not yet"
     _save_as(monkeypatch, tmp_path / "card.png")
-    _export(window, "Slides/Grey card")
+    _export(qtbot, window, "Slides/Grey card")
     assert (iio.imread(tmp_path / "card.png") == to_srgb8(np.full(3, 0.5))).all()
 
 
@@ -230,7 +231,7 @@ def test_the_remembered_folder_survives_a_new_window(qtbot, window, tmp_path, mo
     slides = tmp_path / "slides"
     slides.mkdir()
     _save_as(monkeypatch, slides / "traced.png")
-    _export(window, "Image order/Image")
+    _export(qtbot, window, "Image order/Image")
     window.close()
 
     asked = []
@@ -238,7 +239,7 @@ def test_the_remembered_folder_survives_a_new_window(qtbot, window, tmp_path, mo
     again = MainWindow(presets.lecture_scene())  # as after a restart
     qtbot.addWidget(again)
     again.show()
-    _export(again, "3D pane")
+    _export(qtbot, again, "3D pane")
     assert Path(asked[-1]).parent == slides  # the dialog opens where the last file went
 
     for written in slides.iterdir():
@@ -246,7 +247,7 @@ def test_the_remembered_folder_survives_a_new_window(qtbot, window, tmp_path, mo
     slides.rmdir()  # a folder that is gone: the dialog starts in the user's Documents (or home) instead
     monkeypatch.setattr(QFileDialog, "getSaveFileName",
                         lambda parent, title, start, filters: (asked.append(start), ("", ""))[1])  # Cancel
-    _export(again, "3D pane")
+    _export(qtbot, again, "3D pane")
     documents = QStandardPaths.writableLocation(QStandardPaths.StandardLocation.DocumentsLocation)
     assert Path(asked[-1]).parent in {Path(documents), Path.home()}
 
@@ -261,7 +262,7 @@ def test_the_hard_cases_pictures_are_named_after_their_method(qtbot, window, tmp
     entries = [key for key in window.exports.actions if key.startswith("Hard cases/")]
     assert entries == ["Hard cases/Picture of the textbook method", "Hard cases/Picture of the robust method"]
     _save_as(monkeypatch, tmp_path / "textbook.png")
-    _export(window, "Hard cases/Picture of the textbook method")
+    _export(qtbot, window, "Hard cases/Picture of the textbook method")
     pixels = iio.imread(tmp_path / "textbook.png")
     assert pixels.shape[:2] == panel.result.images[0].naive.shape[:2]  # the case's image, pixel for pixel
     assert len(np.unique(pixels.reshape(-1, 3), axis=0)) > 1
@@ -271,3 +272,37 @@ def test_the_hard_cases_pictures_are_named_after_their_method(qtbot, window, tmp
     window.exports.refresh()
     textbook = window.exports.actions["Hard cases/Picture of the textbook method"]
     assert not textbook.isEnabled() and "Not part of what the tab shows" in textbook.toolTip()
+
+
+def test_the_3d_pane_is_saved_as_vtk_drew_it_and_the_status_bar_says_so(qtbot, window, tmp_path,
+                                                                        monkeypatch):
+    # The picture is read back on the GUI thread, then encoded and written off it.
+    _show_full(qtbot, window, "image order")  # the observer's screen in the 3D pane shows the full image
+    _save_as(monkeypatch, tmp_path / "pane.png")
+    # What VTK draws at twice the pane's size, read in the same turn of the event loop as the export's.
+    drawn = window.scene_view.plotter.screenshot(None, return_img=True, scale=2)[..., :3].astype(int)
+    _export(qtbot, window, "3D pane")
+    saved = iio.imread(tmp_path / "pane.png").astype(int)
+    assert saved.shape == drawn.shape
+    # Linear in between, 8-bit sRGB in the file: each level comes back within one.
+    assert np.abs(saved - drawn).max() <= 1
+    assert "pane.png" in window.statusBar().currentMessage()
+
+
+def test_a_picture_whose_writing_fails_off_the_gui_thread_shows_a_dialog_naming_it(qtbot, window, tmp_path,
+                                                                                  monkeypatch):
+    from app.export import export_menu
+    from core.files.safe_files import OutputError
+
+    shown = []
+    monkeypatch.setattr(QMessageBox, "critical", lambda parent, title, text, *rest: shown.append(text))
+
+    def full_disk(path, rgb):
+        raise OutputError(f"{path}: No space left on device")
+
+    monkeypatch.setattr(export_menu, "write_image", full_disk)
+    out = tmp_path / "pane.png"
+    _save_as(monkeypatch, out)
+    _export(qtbot, window, "3D pane")
+    assert len(shown) == 1 and str(out) in shown[0] and "No space left" in shown[0]
+    assert not out.exists() and "Exported" not in window.statusBar().currentMessage()

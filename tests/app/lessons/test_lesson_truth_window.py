@@ -47,6 +47,21 @@ def test_the_vertex_path_of_one_scene_is_not_shown_with_another(window, qtbot):
     assert "cube" not in shown and "Click a pixel" in shown
 
 
+def test_a_lesson_step_that_follows_no_vertex_does_not_show_the_last_ones_path(window, qtbot):
+    # The orthographic lesson follows vertex 6 of the cube; the next lesson's first step shows the
+    # same lecture scene and speaks of no vertex, yet its Vertex path tab kept the cube's vertex.
+    panel, oo = window.lesson_panel, window.tab("object order").widget
+    ortho = shipped_lessons()[LESSONS["orthographic"]]
+    k = next(i for i, step in enumerate(ortho.steps) if "vertex" in step.highlight)
+    panel.select(LESSONS["orthographic"], k)
+    assert "vertex 6 of 'cube'" in " ".join(text for _, text in oo.vertex_math.rows())
+    panel.select(LESSONS["three_views"], 0)
+    qtbot.waitUntil(lambda: window.showing_full("object order") and oo.scene is window.model.scene,
+                    timeout=RENDER_TIMEOUT_MS)
+    shown = " ".join(text for _, text in oo.vertex_math.rows())
+    assert "cube" not in shown and "Click a pixel" in shown
+
+
 def _open(window, qtbot, data, tmp_path):
     path = tmp_path / "mine.json"
     path.write_text(json.dumps(data), encoding="utf-8")

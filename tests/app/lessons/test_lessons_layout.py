@@ -6,10 +6,12 @@ import pyvista as pv
 from PySide6.QtCore import QRect
 from PySide6.QtGui import QScreen
 from vtkmodules.vtkRenderingCore import vtkTextRenderer
-from window_helpers import open_window
+from window_helpers import RENDER_TIMEOUT_MS, open_window
 
 from core.files.lesson_file import shipped_lessons
 from views.panels.image_order_panel import IMAGE_SHARE, TREE_ROWS
+from views.panels.raytree_view import RayKindLegend
+from views.panels.side_column import SideColumn
 
 LESSONS = {lesson.id: i for i, lesson in enumerate(shipped_lessons())}
 FRUSTUM_LESSONS = ("observer", "frustum", "perspective", "orthographic")
@@ -174,3 +176,26 @@ def test_at_1280x720_and_text_x2_a_step_pointing_at_a_ray_shows_four_rows_of_the
         image, details = panel.split.sizes()
         assert image >= IMAGE_SHARE * (image + details) - 1, (row, k)  # the image keeps its share
     window.presentation.set_presenting(False)
+
+
+def test_the_acceleration_lessons_settings_and_ray_colours_fit_beside_the_image_at_1920x1080(qtbot, window):
+    # With the heat map's scale shown, the settings column scrolled and cut the ray-colour legend
+    # (it needed 616 px of the 568 the image row had).
+    window.show()
+    window.setGeometry(window.screen().availableGeometry())  # the whole 1920 x 1080 screen
+    qtbot.waitUntil(lambda: window.width() == 1920)
+    panel = window.tab("image order").widget
+    column = panel.findChild(SideColumn)
+    legend = column.findChild(RayKindLegend)
+    lesson = LESSONS["acceleration"]
+    for k in (2, 3):  # both together in 3D; the heat map
+        window.lesson_panel.select(lesson, k)
+        qtbot.waitUntil(lambda: window.showing_full("image order"), timeout=RENDER_TIMEOUT_MS)
+
+        def fits(k=k):
+            bottom = legend.mapTo(column.viewport(), legend.rect().bottomLeft()).y()
+            assert panel.heat_scale.isVisible() == (k == 3)
+            assert column.verticalScrollBar().maximum() == 0  # nothing to scroll to
+            assert legend.isVisible() and bottom < column.viewport().height()  # the legend whole
+
+        qtbot.waitUntil(fits)

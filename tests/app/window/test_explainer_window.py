@@ -101,6 +101,7 @@ def test_every_shipped_lesson_step_shows_its_panes_scene_text_and_highlight(qtbo
 
 
 def test_pagedown_walks_the_zbuffer_lesson_from_anywhere_and_nothing_else_takes_it(qtbot, window):
+    _activate(qtbot, window)  # typed keys go to the active window's focused widget
     panel = window.lesson_panel
     lesson = shipped_lessons()[LESSONS["zbuffer"]]
     panel.select(LESSONS["zbuffer"], 0)
@@ -111,6 +112,7 @@ def test_pagedown_walks_the_zbuffer_lesson_from_anywhere_and_nothing_else_takes_
         if k:
             target = oo.scrubber.slider if k % 2 else spin  # widgets that would page or step on their own
             target.setFocus()
+            qtbot.waitUntil(target.hasFocus)
             qtbot.keyClick(target, Qt.Key.Key_PageDown)
         assert panel.step_index() == (LESSONS["zbuffer"], k)
         qtbot.waitUntil(lambda: window.showing_full("object order"), timeout=RENDER_TIMEOUT_MS)

@@ -25,6 +25,7 @@ def test_cli_four_views_equal_the_windows_sheet_outlines_and_all(qtbot, window, 
     monkeypatch.setattr(QFileDialog, "getSaveFileName", lambda *a: (str(shown), "PNG image (*.png)"))
     window.exports.refresh()
     window.exports.actions["Four views/All 4 panes as one picture"].trigger()
+    qtbot.waitUntil(lambda: not window.exports.writing(), timeout=RENDER_TIMEOUT_MS)  # written off the GUI
     scene_path, written = tmp_path / "scene.json", tmp_path / "cli.png"
     scene_file.save(scene, scene_path)
     result = subprocess.run([sys.executable, "-m", "app", "export", str(scene_path), "--what", "four-views",

@@ -41,7 +41,10 @@ def test_presentation_scale_widens_the_3d_lines_points_labels_and_axes(qtbot, wi
     edges, label = _actor(window, "frustum-edges"), _actor(window, "frustum:3")
     width, size = edges.prop.line_width, label.GetMapper().GetLabelTextProperty().GetFontSize()
     axes = window.scene_view.plotter.renderer.axes_widget.GetViewport()
+    shafts = window.scene_view.plotter.renderer.axes_actor.GetXAxisShaftProperty()
+    assert shafts.GetLineWidth() == 3  # the marker's axes are 3 px wide at x1
     window.presentation.set_scale(2.0)
+    assert window.scene_view.plotter.renderer.axes_actor.GetXAxisShaftProperty().GetLineWidth() == 6
     assert edges.prop.line_width == 2 * width
     # The labels grow less than the rest (the pane does not grow): 13 pt x sqrt(2) = 18.4, drawn at 18 pt.
     assert (size, label.GetMapper().GetLabelTextProperty().GetFontSize()) == (13, 18)

@@ -88,11 +88,13 @@ def test_page_keys_step_from_any_widget_and_do_nothing_else(panel, qtbot):
     spin.setValue(50)
     QVBoxLayout(host).addWidget(spin)
     host.show()
-    qtbot.waitExposed(host)
+    host.activateWindow()
+    qtbot.waitUntil(host.isActiveWindow)  # keys go to the active window's focused widget, as a user's do
     keys = ClickerKeys(panel)
     keys.install()
     try:
         spin.setFocus()
+        assert keys._focus.watched() is spin  # the filter sits on the focused widget, not on the application
         with qtbot.waitSignal(panel.step_selected) as first:
             qtbot.keyClick(spin, Qt.Key.Key_PageDown)
         assert panel.step_index() == (0, 0) and first.args[0] is panel.lessons()[0].steps[0]  # shown
