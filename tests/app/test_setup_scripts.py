@@ -86,7 +86,7 @@ def test_command_2_installs_xvfb_and_the_libraries_compiles_then_runs_the_tests_
     calls = log.read_text().splitlines()
     assert calls[-3] == "ruff check ."
     assert calls[-2] == "python -m app compile"  # the kernels compile before any test's time limit runs
-    assert calls[-1].startswith("xvfb-run -a") and calls[-1].endswith("python -m pytest -n 2 -q")
+    assert calls[-1].startswith("xvfb-run -a") and calls[-1].endswith("python -m pytest -n 2 --dist worksteal -q")
 
 
 def _fresh_venv(root: Path, log: Path, constrained_exit: int) -> None:
@@ -119,7 +119,7 @@ def test_where_the_tested_versions_do_not_install_it_says_so_and_installs_the_ne
     assert "constraints.txt do not install" in done.stderr
     constrained, plain = _pip_installs(log)
     assert " -c " in constrained and plain == "python -m pip install -q -e .[test]"
-    assert log.read_text().splitlines()[-1].endswith("python -m pytest -n 2 -q")
+    assert log.read_text().splitlines()[-1].endswith("python -m pytest -n 2 --dist worksteal -q")
 
 
 def _name(requirement: str) -> str:
