@@ -86,7 +86,8 @@ def test_command_2_installs_xvfb_and_the_libraries_compiles_then_runs_the_tests_
     calls = log.read_text().splitlines()
     assert calls[-3] == "ruff check ."
     assert calls[-2] == "python -m app compile"  # the kernels compile before any test's time limit runs
-    assert calls[-1].startswith("xvfb-run -a") and calls[-1].endswith("python -m pytest -n 2 --dist worksteal -q")
+    assert calls[-1].startswith("xvfb-run -a")
+    assert calls[-1].endswith("python -m pytest -n 2 --dist worksteal -q")
 
 
 def _fresh_venv(root: Path, log: Path, constrained_exit: int) -> None:
