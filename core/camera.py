@@ -179,7 +179,7 @@ class Camera:
         return origins, directions
 
 
-@jitable(inline="always")
+@jitable(forceinline=True)
 def pixel_ray(x, y, width, height, half_width, half_height, eye, rotation, forward, near, far, orthographic):
     """The primary ray through the centre of pixel ``(x, y)``: ``(origin, direction, t_min, t_max)``.
 

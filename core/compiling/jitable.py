@@ -36,7 +36,7 @@ def _register(func: Callable, options: dict) -> None:
 def jitable(func: Callable | None = None, **options):
     """Mark ``func`` as a formula numba may compile into a kernel; returns ``func`` itself.
 
-    Use as ``@jitable`` or ``@jitable(inline="always")``; the options are those of
+    Use as ``@jitable`` or ``@jitable(forceinline=True)``; the options are those of
     ``numba.extending.register_jitable``.
     """
 

@@ -65,7 +65,7 @@ MISSES, TANGENT, CROSSES = 0, 1, 2
 CLASSIFICATIONS = ("misses", "tangent", "crosses")
 
 
-@jitable(inline="always")
+@jitable(forceinline=True)
 def sphere_roots(ox, oy, oz, dx, dy, dz, cx, cy, cz, r):
     """The quadratic of the line ``o + t d`` and a sphere, and its two roots, without cancellation.
 
@@ -114,7 +114,7 @@ def sphere_roots(ox, oy, oz, dx, dy, dz, cx, cy, cz, r):
     return a, half_b, c, dist, discriminant, CROSSES, t0, t1
 
 
-@jitable(inline="always")
+@jitable(forceinline=True)
 def outward_normal(px, py, pz, cx, cy, cz, dx, dy, dz):
     """The unit normal ``(p - centre) / |p - centre|`` at a point ``p`` of a sphere, pointing out.
 

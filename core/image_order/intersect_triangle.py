@@ -123,7 +123,7 @@ def difference_of_products(a, b, c, d):
     return (l_hi - r_hi) + (l_lo - r_lo)
 
 
-@jitable(inline="always")
+@jitable(forceinline=True)
 def ray_shear(dx, dy, dz):
     """The per-ray constants of the watertight test: ``(kx, ky, kz, sx, sy, sz)``.
 
@@ -149,7 +149,7 @@ def ray_shear(dx, dy, dz):
     return kx, ky, kz, -d[kx] / d[kz], -d[ky] / d[kz], 1.0 / d[kz]
 
 
-@jitable(inline="always")
+@jitable(forceinline=True)
 def to_ray_space(rows, k, o, shear):
     """The corners of triangle ``rows[k]`` seen from along the ray: translate, permute, shear.
 
@@ -182,7 +182,7 @@ def to_ray_space(rows, k, o, shear):
     return x0, y0, z0, x1, y1, z1, x2, y2, z2
 
 
-@jitable(inline="always")
+@jitable(forceinline=True)
 def barycentric_point(rows, k, b0, b1, b2):
     """The point ``b0 A + b1 B + b2 C`` of triangle ``rows[k]`` (as :func:`to_ray_space`), world space."""
     return (b0 * rows[k, ROW_A] + b1 * rows[k, ROW_B] + b2 * rows[k, ROW_C],
@@ -190,7 +190,7 @@ def barycentric_point(rows, k, b0, b1, b2):
             b0 * rows[k, ROW_A + 2] + b1 * rows[k, ROW_B + 2] + b2 * rows[k, ROW_C + 2])
 
 
-@jitable(inline="always")
+@jitable(forceinline=True)
 def edge_functions(x0, y0, x1, y1, x2, y2):
     """``(e0, e1, e2)``: the edge functions of edges BC, CA, AB at the ray (the 2D origin).
 
@@ -204,7 +204,7 @@ def edge_functions(x0, y0, x1, y1, x2, y2):
     return e0, e1, e2
 
 
-@jitable(inline="always")
+@jitable(forceinline=True)
 def straddles(e0, e1, e2):
     """The edge functions have mixed signs: the ray passes outside the triangle."""
     negative = (e0 < 0.0) | (e1 < 0.0) | (e2 < 0.0)
@@ -212,7 +212,7 @@ def straddles(e0, e1, e2):
     return negative & positive
 
 
-@jitable(inline="always")
+@jitable(forceinline=True)
 def plane_crossing(e0, e1, e2, z0, z1, z2, sz):
     """``(det, t, b0, b1, b2)`` where the ray meets the triangle's plane, from the edge functions.
 
@@ -227,7 +227,7 @@ def plane_crossing(e0, e1, e2, z0, z1, z2, sz):
     return det, t, e0 / det, e1 / det, e2 / det
 
 
-@jitable(inline="always")
+@jitable(forceinline=True)
 def crossing(e0, e1, e2, x0, y0, z0, x1, y1, z1, x2, y2, z2, sz):
     """``(det, t, b0, b1, b2)`` of a ray that does not straddle the triangle.
 

@@ -40,7 +40,7 @@ def camera_array(cam: Camera) -> np.ndarray:
     return c
 
 
-@jitable(inline="always")
+@jitable(forceinline=True)
 def primary_ray(cam, x, y):
     """The ray through the centre of pixel ``(x, y)``: ``(origin, direction, t_min, t_max)``.
 
@@ -57,7 +57,7 @@ def primary_ray(cam, x, y):
                      cam[flat_layout.CAM_ORTHOGRAPHIC] > 0.0)
 
 
-@jitable(inline="always")
+@jitable(forceinline=True)
 def view_depth(cam, o, d, t):
     """Distance along the viewing axis of the point ``o + t d`` (camera space, positive ahead)."""
     f = flat_layout.CAM_FORWARD

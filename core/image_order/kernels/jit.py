@@ -38,12 +38,12 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from numba import njit
-
 from core.compiling.jitable import register_all
 from core.compiling.kernel_cache import share_cache
+from core.compiling.one_signature import njit
 
-_OPTIONS = {"cache": True, "nogil": True, "error_model": "numpy"}
+# ``forceinline`` is set on every kernel: a kernel compiled for an inlined caller would inherit it
+_OPTIONS = {"cache": True, "nogil": True, "error_model": "numpy", "forceinline": False}
 _BORROWING = {**_OPTIONS, "_nrt": False}
 _KERNELS = Path(__file__).resolve().parent
 _IMAGE_ORDER = _KERNELS.parent
@@ -56,7 +56,8 @@ _CORE = _IMAGE_ORDER.parent
 SOURCES = sorted(_KERNELS.rglob("*.py")) + [
     _IMAGE_ORDER / name for name in ("flat_layout.py", "optics.py", "shading.py", "ray_offset.py",
                                      "intersect_sphere.py", "intersect_triangle.py", "ray_casting.py")] + [
-    _CORE / name for name in ("camera.py", "projection.py", "compiling/jitable.py", "shown_numbers.py")]
+    _CORE / name for name in ("camera.py", "projection.py", "compiling/jitable.py",
+                              "compiling/one_signature.py", "shown_numbers.py")]
 
 
 share_cache(_KERNELS, SOURCES, "trace")
@@ -68,7 +69,7 @@ BORROWING: list = []
 
 
 def _borrowing(func, **options):
-    dispatcher = njit(**options, **_BORROWING)(func)
+    dispatcher = njit(**{**_BORROWING, **options})(func)
     BORROWING.append(dispatcher)
     return dispatcher
 
@@ -86,8 +87,13 @@ def jit_allocating(func):
 
 def jit_inline(func):
     """Compile ``func`` with the tracer's options, inlined into every caller (for the
-    innermost tests, where the cost of a call would exceed the work)."""
-    return _borrowing(func, inline="always")
+    innermost tests, where the cost of a call would exceed the work).
+
+    LLVM inlines it (``forceinline``), after numba compiled it once: numba's own inlining
+    (``inline="always"``) typed and compiled its body again at every call, and the kernels
+    inline each other several levels deep (on the tracer, about 2.8 times the compile time).
+    """
+    return _borrowing(func, forceinline=True)
 
 
 def jit_parallel(func):

@@ -26,7 +26,7 @@ _OBJECT_ORDER = _KERNELS.parent
 SOURCES = sorted(_KERNELS.glob("*.py")) + [
     _OBJECT_ORDER / name for name in ("rasterization.py", "zbuffer.py", "blending.py", "depth_formats.py",
                                       "clipping.py", "culling.py", "flat_shading.py")] + [
-    _OBJECT_ORDER.parent / "compiling" / "jitable.py"]
+    _OBJECT_ORDER.parent / "compiling" / name for name in ("jitable.py", "one_signature.py")]
 
 
 share_cache(_KERNELS, SOURCES, "raster")

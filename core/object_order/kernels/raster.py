@@ -31,8 +31,9 @@ nearer).
 from __future__ import annotations
 
 import numpy as np
-from numba import njit, prange
+from numba import prange
 
+from core.compiling.one_signature import njit
 from core.object_order.blending import blend_over
 from core.object_order.depth_formats import depth_key
 from core.object_order.rasterization import (
@@ -265,8 +266,8 @@ def _draw_bands_in_parallel(workers, xy, z, corners, tri_poly, poly_color, poly_
                             depth_code, z_test, box, piece_tri, band_start, band_pieces, record, slot,
                             scratch_pixel, scratch_key, scratch_passed, piece_generated, piece_passed, stop):
     """All workers at once, one thread each."""
-    for w in prange(workers):
-        _draw_bands(w, workers, xy, z, corners, tri_poly, poly_color, poly_alpha, color, zbuf,
+    for w in prange(workers):  # prange counts in uint64: as int64, w shares the serial call's copy
+        _draw_bands(np.int64(w), workers, xy, z, corners, tri_poly, poly_color, poly_alpha, color, zbuf,
                     depth_code, z_test, box, piece_tri, band_start, band_pieces, record, slot,
                     scratch_pixel, scratch_key, scratch_passed, piece_generated, piece_passed, stop)
 
