@@ -24,7 +24,7 @@ from pathlib import Path
 #: that ``python -m app compile`` starts it first.
 GROUPS = {
     "trace": "core.image_order.ray_tracing:compile_renders",
-    "ray-tree": "core.image_order.ray_tracing:compile_ray_tree",
+    "ray-tree": "core.image_order.ray_tracing:compile_ray_tree_and_shadow_rays",
     "raster": "core.object_order.pipeline:ensure_compiled",
 }
 

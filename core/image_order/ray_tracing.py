@@ -258,6 +258,34 @@ compile_ray_tree = WarmUp(lambda: trace_pixel(warm_up_scene(), 1, 1, TraceSettin
 """Compile the kernels that trace one pixel's ray tree (a picked pixel) once per process."""
 
 
+def _warm_up_shadow_rays() -> None:
+    """Trace two shadow rays in a batch, as ``python -m app bench trace`` times them."""
+    from core.image_order.kernels.shadow_rays import trace_shadow_rays
+
+    scene = warm_up_scene()
+    flat = trace_scene(scene)
+    structure, _, _ = flat.geometry.accel("bvh")
+    k = kernel_inputs(scene, TraceSettings(accel="bvh"), effects_plan(scene), flat, structure)
+    origins, directions = np.zeros((2, 3)), np.ones((2, 3))
+    trace_shadow_rays(origins, directions, np.zeros(2), np.ones(2), k.bvh, k.geo[flat_layout.GEO_N_SPHERES],
+                      k.bvh_depth, 1, np.empty(2, np.int64), np.empty(2))
+
+
+compile_shadow_rays = WarmUp(_warm_up_shadow_rays, _KERNELS, "trace", "shadow rays")
+"""Compile the kernel that traces a batch of shadow rays (``bench trace``'s) once per process."""
+
+
+def _warm_up_ray_tree_and_shadow_rays() -> None:
+    compile_ray_tree()
+    compile_shadow_rays()  # after the ray tree, in its process: its walks are compiled already
+
+
+compile_ray_tree_and_shadow_rays = WarmUp(_warm_up_ray_tree_and_shadow_rays, _KERNELS, "trace",
+                                          "ray tree and shadow rays")
+"""The ``ray-tree`` group of ``python -m app compile``: a picked pixel's kernels, then the shadow
+rays' batch kernel (4 s more in that process, 9 s in one of its own)."""
+
+
 def _warm_up_all() -> None:
     compile_renders()
     compile_ray_tree()
