@@ -15,6 +15,8 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from views.images.matplotlib_lock import MATPLOTLIB
+
 #: Sheet layout, in pixels: the gap around panels, a panel title's row, a line of text.
 MARGIN, TITLE_ROW, TEXT_ROW = 8, 20, 16
 SHEET = (1.0, 1.0, 1.0)  # the sheet's background, linear RGB
@@ -128,13 +130,14 @@ def compose(panels: list[Panel], columns: int, caption: list[str] = (),
             texts.append((x + panel.bar.shape[1], below, panel.bar_labels[1], 8.5, "right"))
     for i, line in enumerate(lines):
         texts.append((MARGIN, bottom + MARGIN + i * TEXT_ROW, line, 9, "left"))
-    fig = Figure(figsize=(width / 100, height / 100), dpi=100)
-    canvas = FigureCanvasAgg(fig)
-    fig.figimage(to_srgb8(sheet), 0, 0, origin="upper", resize=False)
-    for x, y, text, size, align in texts:
-        fig.text(x / width, 1 - y / height, text, fontsize=size, ha=align, va="top", color="#202020")
-    canvas.draw()
-    pixels = np.asarray(canvas.buffer_rgba())[:height, :width, :3]
+    with MATPLOTLIB:  # exports compose on worker threads, beside the window's plots and formulas
+        fig = Figure(figsize=(width / 100, height / 100), dpi=100)
+        canvas = FigureCanvasAgg(fig)
+        fig.figimage(to_srgb8(sheet), 0, 0, origin="upper", resize=False)
+        for x, y, text, size, align in texts:
+            fig.text(x / width, 1 - y / height, text, fontsize=size, ha=align, va="top", color="#202020")
+        canvas.draw()
+        pixels = np.asarray(canvas.buffer_rgba())[:height, :width, :3].copy()
     return srgb_to_linear(pixels / 255.0)
 
 

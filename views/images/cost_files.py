@@ -14,6 +14,7 @@ from typing import TYPE_CHECKING
 
 from core.accuracy.sweep import CSV_COLUMNS, Row
 from core.files.safe_files import write_atomic
+from views.images.matplotlib_lock import MATPLOTLIB
 
 if TYPE_CHECKING:  # matplotlib loads with the first figure, not with this module
     from matplotlib.figure import Figure
@@ -42,7 +43,8 @@ def write_csv(rows: list[Row], path) -> None:
 def figure_bytes(figure: Figure, suffix: str, dpi: int = 120) -> bytes:
     """``figure`` as a file's bytes; the format follows ``suffix`` (``".png"``, ``".svg"``)."""
     buffer = io.BytesIO()
-    figure.savefig(buffer, format=suffix.lstrip(".").lower(), dpi=dpi)
+    with MATPLOTLIB:  # saving draws the figure again
+        figure.savefig(buffer, format=suffix.lstrip(".").lower(), dpi=dpi)
     return buffer.getvalue()
 
 

@@ -9,15 +9,13 @@ The widget paints those pixels scaled to its size.  A newer request supersedes
 an older one: a request made while another is drawn waits, replacing any
 waiting before it, and the picture of a superseded request is not shown.
 
-matplotlib's settings (``rcParams``) are global: whoever draws inside
-``matplotlib.rc_context`` holds :data:`MATPLOTLIB` meanwhile, so that two
-threads never change them at once.
+A drawing function holds :data:`views.images.matplotlib_lock.MATPLOTLIB`
+while it uses matplotlib.
 """
 
 from __future__ import annotations
 
 import contextlib
-import threading
 from collections.abc import Callable
 from dataclasses import dataclass
 
@@ -25,9 +23,6 @@ import numpy as np
 from PySide6.QtCore import QObject, QPointF, QRectF, QRunnable, QThreadPool, Signal
 from PySide6.QtGui import QImage, QPainter
 from PySide6.QtWidgets import QWidget
-
-MATPLOTLIB = threading.Lock()
-"""Held while matplotlib's global settings are changed and used (``rc_context``), by any thread."""
 
 
 @dataclass

@@ -18,7 +18,8 @@ from collections.abc import Callable
 
 from core.srgb import to_srgb8
 from views.images import plot_theme
-from views.images.figure_image import MATPLOTLIB, Drawn, agg_figure, pixels
+from views.images.figure_image import Drawn, agg_figure, pixels
+from views.images.matplotlib_lock import MATPLOTLIB
 
 
 def _panels(point, reference) -> list:

@@ -63,7 +63,8 @@ from core.scene import Scene
 from views.file_dialogs import ask_save
 from views.images import cost_files, plot_theme
 from views.images.cost_plot import draw_cost_plot, point_position, tidy_cost_plot
-from views.images.figure_image import MATPLOTLIB, Drawn, FigureImage, agg_figure, pixels
+from views.images.figure_image import Drawn, FigureImage, agg_figure, pixels
+from views.images.matplotlib_lock import MATPLOTLIB
 from views.images.point_images import point_images_drawing
 from views.jobs import Job, JobRunner
 

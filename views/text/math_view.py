@@ -29,6 +29,7 @@ from PySide6.QtGui import QColor, QFont, QFontMetricsF, QImage, QPainter, QPen, 
 from PySide6.QtWidgets import QLabel, QSizePolicy, QWidget
 
 from core.shown_numbers import shown_number
+from views.images.matplotlib_lock import MATPLOTLIB
 from views.text import formula_cache
 
 
@@ -63,7 +64,7 @@ def _typeset(text: str, size_pt: float, color: str, dpi: float, keep: bool) -> n
     from matplotlib.colors import to_rgb
     from matplotlib.font_manager import FontProperties
 
-    with _ONE_AT_A_TIME:
+    with MATPLOTLIB:  # the parser and its fonts are shared with every plot's drawing
         ink = np.asarray(_parser().parse(text, dpi=dpi, prop=FontProperties(size=size_pt)).image)
     pad = max(2, int(round(0.15 * size_pt * dpi / 72.0)))  # room for glyphs at the box's edge
     alpha = np.pad(ink, pad)
@@ -146,8 +147,6 @@ def _parser():
     return MathTextParser("agg")  # typesets straight into an 8-bit coverage image
 
 
-_ONE_AT_A_TIME = threading.Lock()
-"""The parser is shared; it typesets one formula at a time (:func:`load_typesetting_soon`'s thread too)."""
 loader: threading.Thread | None = None
 """The thread :func:`load_typesetting_soon` started, once it has."""
 
@@ -168,7 +167,7 @@ def load_typesetting_soon() -> threading.Thread:
 def _warm_up() -> None:
     from matplotlib.font_manager import FontProperties
 
-    with _ONE_AT_A_TIME:
+    with MATPLOTLIB:  # the parser and its fonts are shared with every plot's drawing
         _parser().parse("$x^2$", dpi=72.0, prop=FontProperties(size=10.0))
 
 

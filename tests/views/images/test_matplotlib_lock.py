@@ -1,0 +1,36 @@
+"""matplotlib is used by one thread at a time: a formula typeset off the GUI thread waits while a
+plot or an exported picture is drawn on another (shared FreeType faces failed with "invalid outline"
+when a lesson's formula and the Cost plot were drawn at once)."""
+
+import threading
+
+import numpy as np
+
+from app.export.picture_sheet import Panel, compose
+from views.images.matplotlib_lock import MATPLOTLIB
+from views.text import math_view
+
+
+def _waits_for_matplotlib(work) -> bool:
+    """Whether ``work``, run on another thread, waits while this thread holds matplotlib, and
+    finishes once it lets go."""
+    done = threading.Event()
+    worker = threading.Thread(target=lambda: (work(), done.set()), daemon=True)
+    with MATPLOTLIB:
+        worker.start()
+        waited = not done.wait(0.5)  # half a second: typesetting this takes a few milliseconds
+    return waited and done.wait(60)
+
+
+def test_a_formula_waits_while_another_thread_draws_with_matplotlib():
+    # keep=False: typeset now, not read from the formula cache; a size no other test uses.
+    assert _waits_for_matplotlib(lambda: math_view._typeset(r"$\alpha + \beta_{lock}$", 13.7, "#000000",
+                                                            96.0, False))
+
+
+def test_an_exported_sheet_waits_too_and_the_same_thread_may_hold_it_again():
+    panel = Panel("a panel", np.full((8, 8, 3), 0.5))
+    assert _waits_for_matplotlib(lambda: compose([panel], 1, ["a caption"]))
+    with MATPLOTLIB:  # a drawing that saves its figure takes the lock again on its own thread
+        sheet = compose([panel], 1, ["a caption"])
+    assert sheet.ndim == 3 and sheet.shape[2] == 3
