@@ -169,9 +169,17 @@ def test_the_picked_pixels_ray_tree_is_saved_as_json_and_as_the_3d_pane(qtbot, w
     assert np.allclose(np.clip(np.sum(parts, axis=0), 0, 1), document["pixel_colour"])
 
     _save_as(monkeypatch, tmp_path / "tree.png")
+    plotter, taken = window.scene_view.plotter, []
+    screenshot = plotter.screenshot
+
+    def sized_screenshot(*args, **kwargs):  # the pane's size when the picture is taken
+        taken.append(tuple(plotter.ren_win.GetSize()))  # (the docks may settle a few pixels later)
+        return screenshot(*args, **kwargs)
+
+    monkeypatch.setattr(plotter, "screenshot", sized_screenshot)
     _export(qtbot, window, "Ray tree/3D pane")
     picture = iio.imread(tmp_path / "tree.png")
-    width, height = window.scene_view.plotter.ren_win.GetSize()
+    [(width, height)] = taken
     assert picture.shape == (2 * height, 2 * width, 3)  # twice the pane's size
     assert len(np.unique(picture.reshape(-1, 3), axis=0)) > 50
 
