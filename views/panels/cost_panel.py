@@ -23,6 +23,7 @@ pane is hidden; the window only paints their pictures.
 from __future__ import annotations
 
 import threading
+import warnings
 from dataclasses import replace
 
 import numpy as np
@@ -538,7 +539,9 @@ class CostPanel(QWidget):
 
         size = matplotlib.rcParams["font.size"]
         for share in TEXT_SHARES:  # the last is drawn however little room the curves get
-            with matplotlib.rc_context({"font.size": share * size}):
+            with matplotlib.rc_context({"font.size": share * size}), warnings.catch_warnings():
+                # Text too large for the pane is what this loop measures and makes smaller.
+                warnings.filterwarnings("ignore", "constrained_layout not applied", UserWarning)
                 lines = CostPanel._first_layout(figure, rows, indices, dark, selected, layout)
             curves = figure.axes[0].bbox
             if layout is not None or (curves.height >= ROOM[1] * figure.bbox.height
