@@ -10,21 +10,33 @@ installed (its location and the stamp of its ``__init__.py``, read without
 importing it).  A missing, unreadable or damaged file is simply typeset
 again; a cache that cannot be written (read-only home) only costs that time.
 The folder is ``$XDG_CACHE_HOME/render-explorer/formulas`` (``~/.cache/...``)
-and may be deleted at any time.
+and may be deleted at any time.  It never grows past :data:`MAX_BYTES`: worked
+math with the picked pixel's numbers makes new formulas all the time, so the
+files used longest ago (a formula shown again is marked used) are deleted
+first.
 """
 
 from __future__ import annotations
 
+import contextlib
 import hashlib
 import importlib.util
 import io
 import os
+import threading
 from functools import lru_cache
 from pathlib import Path
 
 import numpy as np
 
 from core.files.safe_files import OutputError, write_atomic
+
+MAX_BYTES = 64 * 2**20
+"""The folder is trimmed to three quarters of this when it grows past it (about 3000 formulas)."""
+CHECK_EVERY = 200
+"""The folder's size is read at a process's first store, then after every this many stores."""
+_stores = {"count": 0}
+_trimming = threading.Lock()
 
 
 def folder() -> Path:
@@ -55,6 +67,8 @@ def load(text: str, size_pt: float, color: str, dpi: float) -> np.ndarray | None
         return None
     if rgba.dtype != np.uint8 or rgba.ndim != 3 or rgba.shape[2] != 4:
         return None
+    with contextlib.suppress(OSError):
+        os.utime(_path(text, size_pt, color, dpi))  # used now: trimmed last
     return rgba
 
 
@@ -67,4 +81,30 @@ def store(text: str, size_pt: float, color: str, dpi: float, rgba: np.ndarray) -
         path.parent.mkdir(parents=True, exist_ok=True)
         write_atomic(path, buffer.getvalue())
     except (OSError, OutputError):
-        pass  # the formula is typeset again next time
+        return  # the formula is typeset again next time
+    with _trimming:
+        check = _stores["count"] % CHECK_EVERY == 0
+        _stores["count"] += 1
+        if check:
+            trim(path.parent)
+
+
+def trim(where: Path, most: int = MAX_BYTES) -> None:
+    """Delete the files of ``where`` used longest ago until they take at most ¾ of ``most`` bytes,
+    if they take more than ``most``."""
+    try:
+        files = [(entry.stat().st_mtime_ns, entry.stat().st_size, entry.path)
+                 for entry in os.scandir(where) if entry.name.endswith(".npy")]
+    except OSError:
+        return
+    total = sum(size for _, size, _ in files)
+    if total <= most:
+        return
+    for _, size, path in sorted(files):
+        if total <= most * 3 // 4:
+            break
+        try:
+            os.remove(path)
+        except OSError:
+            continue  # gone already (another process trims too)
+        total -= size

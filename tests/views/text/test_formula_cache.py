@@ -69,3 +69,26 @@ def test_a_cache_that_cannot_be_written_only_costs_the_typesetting(qtbot, monkey
     qtbot.addWidget(view)
     assert view.error is None and view.pixmap().width() > 0
     assert blocker.read_text() == ""
+
+
+def test_the_folder_never_grows_past_its_limit_and_keeps_what_was_shown_last(cache_home):
+    kib = np.zeros((16, 16, 4), np.uint8)  # 1 KiB of pixels, 1152 bytes as a file
+    formulas = [(f"$x_{{{i}}}$", 12.0, "#000000", 72.0) for i in range(40)]
+    for i, args in enumerate(formulas):
+        formula_cache.store(*args, kib)
+        os.utime(formula_cache._path(*args), ns=(i * 10**9, i * 10**9))  # stored one second apart
+    assert formula_cache.load(*formulas[0]) is not None  # the oldest, shown again: used now
+    folder = formula_cache.folder()
+    size = (folder / next(os.scandir(folder)).name).stat().st_size
+    formula_cache.trim(folder, most=20 * size)
+    kept = {p.name for p in folder.glob("*.npy")}
+    assert len(kept) == 15  # trimmed to three quarters of the limit
+    assert formula_cache._path(*formulas[0]).name in kept  # shown last
+    assert {formula_cache._path(*args).name for args in formulas[-14:]} <= kept  # the newest stores
+
+
+def test_a_folder_under_its_limit_is_left_alone(cache_home):
+    for i in range(5):
+        formula_cache.store(f"$y_{i}$", 12.0, "#000000", 72.0, np.zeros((4, 4, 4), np.uint8))
+    formula_cache.trim(formula_cache.folder())
+    assert len(list(formula_cache.folder().glob("*.npy"))) == 5
