@@ -27,9 +27,10 @@ rays), object pair by object pair:
   sphere: every segment ``qL`` lies within ``r_Y`` of the segment from ``Y``'s
   centre to ``L``, so a distance of at least ``r_X + r_Y`` between that segment
   and ``X``'s centre suffices;
-- or when ``X`` is flat (all its vertices in one plane) and ``L`` and all of
-  ``Y`` lie strictly on the same side of that plane: the segment never
-  reaches the plane.
+- or when ``X`` is flat (all its vertices in one plane), ``L`` lies strictly
+  on one side of that plane and all of ``Y`` on that side or in the plane
+  (an object resting on the ground): the segment leaves the plane at once,
+  if it starts in it at all.
 
 Typical results: one sphere (or one convex mesh) and any number of lights
 outside it: no shadow rays at all.  A ground quad under objects, lit from
@@ -213,7 +214,8 @@ def _plane(obj):
 
 
 def _beside(plane, receiver, light) -> bool:
-    """The light and all of the receiver lie strictly on one side of the flat blocker's plane."""
+    """The light lies strictly on one side of the flat blocker's plane, and all of the receiver on that
+    side or in the plane."""
     if plane is None:
         return False
     n, c = plane
@@ -224,7 +226,7 @@ def _beside(plane, receiver, light) -> bool:
     else:
         values = receiver.vertices @ n - c
     margin = _PLANE_TOLERANCE * (float(np.abs(light).max()) + 1.0)
-    return bool(side > margin and values.min() > margin) or bool(side < -margin and values.max() < -margin)
+    return bool(side > margin and values.min() >= -margin) or bool(side < -margin and values.max() <= margin)
 
 
 def _is_convex(obj) -> bool:

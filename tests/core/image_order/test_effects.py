@@ -67,6 +67,29 @@ def test_a_sphere_above_the_ground_shadows_the_ground_but_not_the_other_way_roun
     assert not effects_plan(apart).lights[0].blockable
 
 
+def test_objects_resting_on_the_ground_shadow_it_but_the_ground_shadows_none_of_them():
+    # The lecture scene: cube and cone stand on the ground (their lowest vertices at y = 0, in the
+    # ground's plane), the light above.  A segment from any of their points to the light rises from
+    # y >= 0, so it never meets the ground again; what the light's shadow rays are for is the cube's
+    # and the cone's shadows on the ground, and that is the reason given.
+    scene = presets.lecture_scene()
+    ground = next(o for o in scene.objects if o.name == "ground")
+    assert all(o.vertices[:, 1].min() == 0.0 for o in scene.objects)  # all resting in the plane y = 0
+    assert scene.lights[0].position[1] > 0 and set(ground.vertices[:, 1]) == {0.0}
+    reason = effects_plan(scene).lights[0].reason
+    assert reason in {"cube may shadow ground: shadow rays", "cone may shadow ground: shadow rays"}
+    # A box alone on the ground: the box shadows the ground, the ground nothing.
+    box = shapes.box((0.0, 0.5, 0.0), 1.0, name="box")
+    ground = shapes.quad((0.0, 0.0, 0.0), 10.0, name="ground")
+    assert box.vertices[:, 1].min() == 0.0
+    alone = Scene(objects=(box, ground), lights=(PointLight((0.0, 6.0, 0.0)),))
+    assert effects_plan(alone).lights[0].reason == "box may shadow ground: shadow rays"
+    # Only the ground and a decal lying in it: neither can shadow the other.
+    decal = shapes.quad((0.0, 0.0, 0.0), 1.0, name="decal")
+    flat = Scene(objects=(ground, decal), lights=(PointLight((0.0, 6.0, 0.0)),))
+    assert not effects_plan(flat).lights[0].blockable
+
+
 @pytest.mark.parametrize("opacity, expected", [(1.0, False), (0.5, True)])
 def test_transparency_pass_follows_opacity(opacity, expected):
     scene = Scene(objects=(Sphere((0.0, 0.0, 0.0), 1.0, Material(opacity=opacity)),))
