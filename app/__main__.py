@@ -3,8 +3,12 @@
 Ctrl+C while the modules load is held until they are loaded: numpy turns an
 interrupt inside its C extension's import into an ``ImportError``, which would
 end the program with a traceback and status 1 instead of the one line and 130.
+
+A reader that stops reading (``python -m app pixel ... | head -3``) ends the
+program quietly with status 141, as the shell's own tools end by SIGPIPE.
 """
 
+import os
 import signal
 import sys
 
@@ -25,4 +29,7 @@ try:
     status = main()
 except KeyboardInterrupt:  # while the command line is read, before the command's own handler
     interrupted()
+except BrokenPipeError:  # nobody reads the output any more: nothing left to say, nowhere to say it
+    os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())  # no second error at exit's flush
+    status = 128 + signal.SIGPIPE
 sys.exit(status)

@@ -246,3 +246,19 @@ def test_intersect_radius_below_the_bound_states_the_bound():
     result = _run("intersect", "sphere", "--origin", "0,0,0", "--direction", "1,0,0",
                   "--center", "0,0,0", "--radius", "1e-60")
     _clean_refusal(result, "--radius", "> 1e-60")
+
+
+def test_a_reader_that_stops_reading_ends_the_command_quietly():
+    # `python -m app intersect sphere ... | head -0`: the pipe's reading end is closed before the
+    # command writes its first line; it ends as the shell's tools do on SIGPIPE, without a traceback.
+    read, write = os.pipe()
+    os.close(read)
+    try:
+        result = subprocess.run([sys.executable, "-m", "app", "intersect", "sphere", "--origin", "2,1,2",
+                                 "--end", "10,6,6", "--center", "6,4,6", "--radius", "10"],
+                                cwd=ROOT, stdout=write, stderr=subprocess.PIPE, text=True, timeout=120,
+                                env=ENV)
+    finally:
+        os.close(write)
+    assert result.returncode == 128 + signal.SIGPIPE  # 141
+    assert result.stderr == ""
