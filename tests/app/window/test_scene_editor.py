@@ -132,6 +132,30 @@ def test_add_a_sphere_colour_it_undo_twice_redo_once(qtbot, window):
     qtbot.waitUntil(lambda: window.showing_full("image order"), timeout=60_000)  # and it was rendered
 
 
+def test_at_1280x720_the_lecture_scenes_every_row_shows_in_the_tree(qtbot, window):
+    window.setGeometry(0, 0, 1280, 720)
+    window.editor.dock.raise_()
+    tree = window.editor.panel.tree
+    rows = []
+
+    def walk(item):
+        rows.append(item)
+        for i in range(item.childCount()):
+            walk(item.child(i))
+
+    for i in range(tree.topLevelItemCount()):
+        tree.topLevelItem(i).setExpanded(True)
+        walk(tree.topLevelItem(i))
+    assert len(rows) >= 6  # objects (3): cube, cone, ground; lights (1): light; and more
+
+    def every_row_shown():
+        last = tree.visualItemRect(rows[-1])
+        assert tree.isVisible() and last.height() > 0
+        assert last.bottom() <= tree.viewport().height(), (last, tree.viewport().height())
+
+    qtbot.waitUntil(every_row_shown, timeout=5000)
+
+
 def test_an_edit_redraws_only_what_it_changed_in_the_3d_pane(qtbot, window):
     editor, model = window.editor, window.model
     before = dict(window.scene_view.plotter.renderer.actors)
