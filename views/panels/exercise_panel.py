@@ -55,6 +55,9 @@ ROOM_SCALE = 1.8
 """The question's size, put to the room, relative to the panel's font."""
 
 
+OPEN_A_LESSON = ("Pick a step in the Lessons tab (or press PageDown): the exercises of its lesson "
+                 "are asked here, on the lesson's scene.")
+
 class Missing(str):
     """What an answer lacks, in a sentence (an answer may itself be a string: a view's name)."""
 
@@ -226,7 +229,7 @@ class ExercisePanel(QWidget):
             b.setEnabled(ex is not None)
         if ex is None:
             self.position.setText("No exercises in this lesson" if self.lesson else "No lesson open")
-            self.question.clear()
+            self.question.setText("" if self.lesson else OPEN_A_LESSON)
             return
         n = len(self.lesson.exercises)
         done = self.progress.outcome(self.lesson.id, self.index)

@@ -24,6 +24,12 @@ def panel(qtbot, settings):
     return shown_widget(qtbot, p, 500, 600)
 
 
+def test_before_a_lesson_is_open_the_panel_says_how_to_open_one(panel):
+    assert panel.position.text() == "No lesson open"
+    assert "Lessons tab" in panel.question.text() and "PageDown" in panel.question.text()
+    assert not panel.check_button.isEnabled()
+
+
 def test_a_right_choice_is_praised_and_recorded_as_right_at_first_try(panel, settings):
     from core.lessons.exercises import variant
 
