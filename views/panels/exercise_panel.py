@@ -219,10 +219,12 @@ class ExercisePanel(QWidget):
             w.setParent(None)
         while self.picture_layout.count():
             widget = self.picture_layout.takeAt(0).widget()
+            widget.hide()  # gone at once, not when the event loop comes round to deleting it
             widget.deleteLater()
         self.picture_views, self.picture_keys = [], []
         for button in self.choices.buttons():
             self.choices.removeButton(button)
+            button.hide()
             button.deleteLater()
         for b in (self.check_button, self.show_button, self.reveal_button, self.previous_button,
                   self.next_button):

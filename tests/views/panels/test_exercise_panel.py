@@ -30,6 +30,22 @@ def test_before_a_lesson_is_open_the_panel_says_how_to_open_one(panel):
     assert not panel.check_button.isEnabled()
 
 
+def test_the_next_exercise_shows_only_its_own_answers(panel, qtbot):
+    # One lesson's choices, then another lesson's number: no earlier radio button stays on screen.
+    from PySide6.QtWidgets import QRadioButton
+
+    def shown_choices():
+        return sorted(b.text() for b in panel.findChildren(QRadioButton) if b.isVisible())
+
+    panel.set_lesson(BY_ID["two_orders"])
+    first = panel.exercise()
+    assert first.kind == "choose_one"
+    qtbot.waitUntil(lambda: len(shown_choices()) == len(first.args["choices"]))
+    panel.set_lesson(BY_ID["ray_sphere"])  # its first exercise asks for a number
+    assert panel.exercise().kind == "number"
+    qtbot.waitUntil(lambda: shown_choices() == [] and panel.number_edit.isVisible())
+
+
 def test_a_right_choice_is_praised_and_recorded_as_right_at_first_try(panel, settings):
     from core.lessons.exercises import variant
 
