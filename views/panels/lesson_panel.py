@@ -62,6 +62,16 @@ def lesson_label(lesson: Lesson) -> str:
     return lesson.title + (f"  ({', '.join(refs)})" if refs else "")
 
 
+class _LessonList(QListWidget):
+    """The list of lessons, the open one kept in view when the list is resized (the left column's
+    share changes with each step's words)."""
+
+    def resizeEvent(self, event) -> None:
+        super().resizeEvent(event)
+        if self.currentItem() is not None:
+            self.scrollToItem(self.currentItem())
+
+
 class LessonPanel(QWidget):
     """Lesson list, the current step (title, text, formulas) and step controls.
 
@@ -82,7 +92,7 @@ class LessonPanel(QWidget):
         self._pending = False  # the current step is not what the window shows (see leave_step)
         self.setFocusPolicy(Qt.FocusPolicy.StrongFocus)
 
-        self.list = QListWidget()
+        self.list = _LessonList()
         self.list.setWordWrap(True)
         self.list.setToolTip("The lecture's lessons in order; click one to start it")
         self.list.currentRowChanged.connect(self._on_row)

@@ -189,3 +189,19 @@ def test_a_steps_formulas_are_read_and_typeset_off_the_gui_thread_and_never_stal
             assert all(not v.pixmap().isNull() and v.error is None for v in views)
         assert readers, first_run  # the cache was read ...
         assert threading.main_thread() not in readers  # ... never on the GUI thread
+
+
+def test_the_open_lesson_stays_in_view_when_the_list_gets_shorter(panel, qtbot):
+    lessons = panel.lessons()
+    panel.select(len(lessons) - 1, 0)  # the last lesson, at the bottom of the list
+    row = panel.list.visualItemRect(panel.list.currentItem())
+    qtbot.waitUntil(lambda: panel.list.viewport().rect().contains(
+        panel.list.visualItemRect(panel.list.currentItem())))
+    panel.list.setFixedHeight(3 * row.height())  # the left column gave the step's words more room
+
+    def in_view():
+        shown = panel.list.viewport().rect()
+        item = panel.list.visualItemRect(panel.list.currentItem())
+        assert shown.top() <= item.top() and item.bottom() <= shown.bottom(), (shown, item)
+
+    qtbot.waitUntil(in_view, timeout=5000)
