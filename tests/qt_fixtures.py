@@ -96,11 +96,15 @@ def application_font_restored():
     """A test that enlarges the application's text (presentation mode, Ctrl++) leaves it as it was."""
     from PySide6.QtWidgets import QApplication
 
+    from views.text.text_scale import NORMAL_TEXT_PT
+
     app = QApplication.instance()
     font = None if app is None else QApplication.font()
+    normal = None if app is None else app.property(NORMAL_TEXT_PT)
     yield
     if font is not None and QApplication.instance() is not None:
         QApplication.setFont(font)
+        QApplication.instance().setProperty(NORMAL_TEXT_PT, normal)
 
 
 def shown_widget(qtbot, widget, width: int, height: int):

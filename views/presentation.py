@@ -5,9 +5,10 @@
 - F11 enters presentation mode (full screen, text scaled, high contrast) and
   leaves it again; Esc leaves it;
 - the scale is 1, 1.5 or 2 times the normal text size; every widget that
-  takes its size from the window's font (labels, check boxes, typeset
-  formulas, matrices) follows, and ``scale_changed`` tells the 3D panes to
-  widen their lines;
+  takes its size from the application's font (labels, check boxes, typeset
+  formulas, matrices, and those made later: a table's new rows, the next
+  exercise's answers, dialogs) follows, and ``scale_changed`` tells the 3D
+  panes to widen their lines;
 - ``.`` and ``B`` (what clickers send for "blank") black the window out and
   bring it back, while presenting;
 - with a :class:`views.panels.lesson_panel.LessonPanel`, the arrow keys join
@@ -25,6 +26,7 @@ from PySide6.QtGui import QAction, QActionGroup, QFont, QGuiApplication, QKeySeq
 from PySide6.QtWidgets import QApplication, QLabel, QMainWindow, QVBoxLayout, QWidget
 
 from views.panels.lesson_panel import ClickerKeys, LessonPanel
+from views.text.text_scale import NORMAL_TEXT_PT, normal_text_pt
 
 #: The text scales offered (1 is the normal size).
 SCALES = (1.0, 1.5, 2.0)
@@ -33,7 +35,7 @@ PRESENTING_SCALE = 1.5
 #: On one screen, the share of its width the presenter window takes (at its right edge).
 PRESENTER_SHARE = 0.25
 
-#: Black and white with a yellow accent; colours only, so the font scale stays the window's.
+#: Black and white with a yellow accent; colours only, so the font scale stays the application's.
 HIGH_CONTRAST = """
 QWidget { background-color: #000000; color: #ffffff; }
 QWidget:disabled { color: #9a9a9a; }
@@ -95,7 +97,7 @@ class Presentation(QObject):
         self._scale = 1.0
         self._presenting = False
         self._high_contrast = False
-        self._base_font = QFont(window.font())
+        self._normal_pt = normal_text_pt()
         self._base_style = window.styleSheet()
         self._was_maximized = False
         self._normal_geometry = window.geometry()
@@ -175,14 +177,24 @@ class Presentation(QObject):
 
     def text_size_pt(self) -> float:
         """The window's text size now, in points."""
-        return (self._base_font.pointSizeF() or 10.0) * self._scale
+        return self._normal_pt * self._scale
+
+    def scale_normal_text(self, factor: float) -> None:
+        """Make the normal text size ``factor`` times larger (7 to 40 points); the scale stays."""
+        self._normal_pt = max(7.0, min(40.0, self._normal_pt * factor))
+        self._apply_font()
 
     def _apply_font(self) -> None:
-        # Only the font: every widget below takes the new size (and lays itself out again), but
-        # none is styled again, as a new style sheet would have each one be (a second, so).
-        font = QFont(self._base_font)
+        # The application's font, not the window's: a widget made later (a table's new row, the
+        # next exercise's answers) is born at this size; under the style sheets' propagation
+        # (above) it would keep the application's size instead of inheriting the window's.  Only
+        # the font: no widget is styled again, as a new style sheet would have each one be.
+        QApplication.instance().setProperty(NORMAL_TEXT_PT, self._normal_pt)
+        font = QFont(QApplication.font())
         font.setPointSizeF(self.text_size_pt())
-        self.window.setFont(font)
+        QApplication.setFont(font)
+        # Every widget has it on return (Qt posts the change where no event loop runs yet).
+        QApplication.sendPostedEvents(None, QEvent.Type.ApplicationFontChange)
 
     def _apply_colours(self) -> None:
         self.window.setStyleSheet(self._base_style + (HIGH_CONTRAST if self._high_contrast else ""))
@@ -273,9 +285,10 @@ class Presentation(QObject):
 
 
 def _enlarged(label: QLabel, times: float, bold: bool = False) -> QLabel:
-    """``label``, its text ``times`` the size of its font (bold if ``bold``)."""
+    """``label``, its text ``times`` the normal text size (bold if ``bold``): the lecturer's screen
+    keeps its size while the hall's text is scaled."""
     font = QFont(label.font())
-    font.setPointSizeF((font.pointSizeF() or 10.0) * times)
+    font.setPointSizeF(normal_text_pt() * times)
     font.setBold(bold)
     label.setFont(font)
     return label
@@ -293,13 +306,13 @@ class PresenterWindow(QWidget):
         self.current.setWordWrap(True)
         self.notes = _enlarged(QLabel(), 1.4)
         self.notes.setWordWrap(True)
-        self.upcoming = QLabel()
+        self.upcoming = _enlarged(QLabel(), 1.0)
         self.upcoming.setWordWrap(True)
         layout = QVBoxLayout(self)
         for w in (self.clock, self.current, self.notes):
             layout.addWidget(w)
         layout.addStretch(1)
-        layout.addWidget(QLabel("Next:"))
+        layout.addWidget(_enlarged(QLabel("Next:"), 1.0))
         layout.addWidget(self.upcoming)
         self._timer = QTimer(self)
         self._timer.timeout.connect(self._tick)

@@ -16,7 +16,7 @@ import sys
 from pathlib import Path
 
 from PySide6.QtCore import Qt, QThreadPool, QTimer, Signal
-from PySide6.QtGui import QAction, QFont, QKeySequence
+from PySide6.QtGui import QAction, QKeySequence
 from PySide6.QtWidgets import (
     QApplication,
     QDialog,
@@ -51,6 +51,7 @@ from core.files.mesh_files import read_mesh
 from core.image_order.ray_tree import trace_pixel
 from core.presets_trace import PRESETS_TRACE
 from core.scene import Scene
+from views.dock_title import DockTitle
 from views.file_dialogs import ask_open, ask_save
 from views.keyboard_focus import follow_focus
 from views.on_screen import KeepWindowsOnScreen
@@ -126,6 +127,7 @@ class MainWindow(QMainWindow):
         self.scene_pane.setObjectName("scene")
         self.scene_pane.setFeatures(QDockWidget.DockWidgetFeature.DockWidgetMovable)
         self.scene_pane.setWidget(scene_pane)
+        DockTitle(self.scene_pane)
         self.addDockWidget(Qt.DockWidgetArea.LeftDockWidgetArea, self.scene_pane)
         self.setCentralWidget(right)
 
@@ -384,10 +386,8 @@ class MainWindow(QMainWindow):
         return dialog
 
     def scale_text(self, factor: float) -> None:
-        app = QApplication.instance()
-        font = QFont(app.font())
-        font.setPointSizeF(max(7.0, min(40.0, font.pointSizeF() * factor)))
-        app.setFont(font)
+        """Make the normal text size ``factor`` times larger (presentation's scale applies on top)."""
+        self.presentation.scale_normal_text(factor)
         QTimer.singleShot(0, self._fit_controls)  # after the new font reached every widget
 
     def _fit_controls(self) -> None:

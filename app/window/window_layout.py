@@ -18,6 +18,8 @@ from __future__ import annotations
 from PySide6.QtCore import Qt
 from PySide6.QtWidgets import QDockWidget
 
+from views.dock_title import DockTitle
+
 LEFT_SHARE = {1.0: 0.28, 1.5: 0.31, 2.0: 0.34}
 """Share of the window's width for the left column (3D pane, controls, lessons), by text scale."""
 SCENE_SHARE = 0.42
@@ -36,6 +38,7 @@ def tabbed_dock(window, title: str, name: str, widget, beside):
     dock.setFeatures(QDockWidget.DockWidgetFeature.DockWidgetMovable
                      | QDockWidget.DockWidgetFeature.DockWidgetClosable)
     dock.setWidget(widget)
+    DockTitle(dock)
     window.addDockWidget(Qt.DockWidgetArea.LeftDockWidgetArea, dock)
     window.tabifyDockWidget(beside, dock)
     return dock

@@ -53,12 +53,12 @@ def test_presentation_mode_goes_full_screen_and_scales_the_text(hall, qtbot):
     base_pt = panel.text.font().pointSizeF()
     qtbot.waitUntil(lambda: not panel.typesetting())  # the formulas are typeset off the GUI thread
     base_formula = _formula_height(panel)
+    normal_formula_pt = MathView().size_pt()  # a formula's size at the normal text size
     qtbot.keyClick(window, Qt.Key.Key_F11)
     qtbot.waitUntil(window.isFullScreen)
     assert presentation.presenting() and presentation.scale() == PRESENTING_SCALE
     assert panel.text.font().pointSizeF() == pytest.approx(base_pt * PRESENTING_SCALE)
-    assert panel.formula_views()[0].size_pt() == pytest.approx(
-        MathView().size_pt() * PRESENTING_SCALE, rel=0.01)
+    assert panel.formula_views()[0].size_pt() == pytest.approx(normal_formula_pt * PRESENTING_SCALE, rel=0.01)
     presentation.set_scale(2.0)
     assert panel.text.font().pointSizeF() == pytest.approx(base_pt * 2)
     qtbot.waitUntil(lambda: _formula_height(panel) == pytest.approx(2 * base_formula, rel=0.15))

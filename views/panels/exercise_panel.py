@@ -21,6 +21,7 @@ import random
 
 from PySide6.QtCore import QSettings, Qt, Signal
 from PySide6.QtWidgets import (
+    QApplication,
     QButtonGroup,
     QFrame,
     QGridLayout,
@@ -409,8 +410,7 @@ class ExercisePanel(QWidget):
     def set_room(self, room: bool) -> None:
         """Put the question to the room: large, with its answers hidden until Space shows them."""
         self.room = room
-        self.ensurePolished()  # the panel's font as the window's style sheet (presentation scale) sets it
-        size = self.font().pointSizeF() * ROOM_SCALE
+        size = QApplication.font().pointSizeF() * ROOM_SCALE  # the text size now (presentation's scale)
         # A style sheet, not setFont: the window's style sheet would override a font set in code.
         self.question.setStyleSheet(f"font-size: {size:.1f}pt; font-weight: bold;" if room else "")
         self.question.ensurePolished()

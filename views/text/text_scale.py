@@ -1,9 +1,11 @@
 """The window's text scale (presentation mode's ×1.5, ×2), for text whose size is set apart.
 
-Presentation mode scales the text by the window's font
-(:mod:`views.presentation`), which every widget follows unless it sets a
-``font-size`` of its own.  :func:`text_scale` tells a widget how many times
-the application's size its text is now; :func:`scaled_style` keeps a widget's
+Presentation mode scales the text by the application's font
+(:mod:`views.presentation`), which every widget follows, also one made
+later, unless it sets a ``font-size`` of its own; the normal size (scale 1,
+the size Ctrl++ and Ctrl+- change) is kept beside it, as the application's
+property :data:`NORMAL_TEXT_PT`.  :func:`text_scale` tells a widget how many
+times the normal size its text is now; :func:`scaled_style` keeps a widget's
 own style sheet, with its own size, that many times larger as the scale
 changes (a heading stays 1.5 times the text around it).
 """
@@ -13,10 +15,20 @@ from __future__ import annotations
 from PySide6.QtCore import QEvent, QObject
 from PySide6.QtWidgets import QApplication, QWidget
 
+NORMAL_TEXT_PT = "normal_text_pt"
+"""The application's property holding the normal text size in points; unset, the application's
+font is the normal size."""
+
+
+def normal_text_pt() -> float:
+    """The normal text size (at scale 1), in points."""
+    kept = QApplication.instance().property(NORMAL_TEXT_PT)
+    return float(kept) if kept else (QApplication.font().pointSizeF() or 10.0)
+
 
 def text_scale(widget: QWidget) -> float:
-    """How many times the application's text size ``widget``'s text is now."""
-    return widget.font().pointSizeF() / (QApplication.font().pointSizeF() or widget.font().pointSizeF())
+    """How many times the normal text size ``widget``'s text is now."""
+    return widget.font().pointSizeF() / normal_text_pt()
 
 
 class _ScaledStyle(QObject):

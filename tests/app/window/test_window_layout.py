@@ -1,14 +1,16 @@
 """The window shares its screen so that the images are the largest thing on it, at every text scale."""
 
 import pytest
-from PySide6.QtCore import QRect
+from PySide6.QtCore import QRect, Qt
 from PySide6.QtGui import QFont, QFontDatabase, QFontMetrics, QScreen
-from PySide6.QtWidgets import QApplication
+from PySide6.QtWidgets import QApplication, QDockWidget
 from window_helpers import RENDER_TIMEOUT_MS, open_window
 
+from views.panels.hard_cases_panel import HardCasesPanel
 from views.panels.raytree_view import COLUMNS as RAY_TREE_COLUMNS
 from views.presentation import SCALES
 from views.text.math_view import MathView
+from views.text.text_scale import normal_text_pt
 
 SCREENS = [(1280, 720), (1920, 1080)]
 ROWS = 3
@@ -64,13 +66,14 @@ def test_table_headers_and_rows_grow_with_the_text_scale(qtbot, window):
     panel = window.tab("object order").widget
     cam = window.model.camera
     panel.pick_pixel(cam.width // 2, cam.height // 2)  # listed at the normal size, then enlarged
+    normal = QFontMetrics(QFont()).height()
     window.presentation.set_scale(2.0)
     tables = [(panel.history.horizontalHeader(), [panel.history.horizontalHeaderItem(c).text()
                                                   for c in range(panel.history.columnCount())]),
               (window.tab("image order").widget.tree.header(), RAY_TREE_COLUMNS)]
     for header, labels in tables:
         metrics = header.fontMetrics()
-        assert metrics.height() >= 2 * 0.9 * QFontMetrics(QFont()).height()  # the header's text is scaled
+        assert metrics.height() >= 2 * 0.9 * normal  # the header's text is scaled
         assert header.height() >= metrics.height()
         for column, label in enumerate(labels):
             assert header.sectionSize(column) >= metrics.horizontalAdvance(label), label
@@ -83,10 +86,11 @@ def test_worked_math_and_lesson_formulas_share_one_size_at_every_scale(qtbot, wi
     window.lesson_panel.select(lessons.index("perspective"), 0)  # a lesson that follows a vertex
     worked = window.tab("object order").widget.vertex_math.findChildren(MathView)
     assert worked
+    normal = MathView().size_pt()  # a formula's size at the normal text size
     for scale in SCALES:
         window.presentation.set_scale(scale)
         lesson = window.lesson_panel.formula_views()[0].size_pt()
-        assert lesson == pytest.approx(scale * MathView().size_pt(), rel=0.01)
+        assert lesson == pytest.approx(scale * normal, rel=0.01)
         assert {round(view.size_pt(), 3) for view in worked} == {round(lesson, 3)}
 
 
@@ -149,3 +153,42 @@ def test_compare_reads_the_picked_pixel_in_two_columns_that_fit_a_small_screen_a
                 assert label.height() >= label.heightForWidth(label.width()), label.text()
 
     qtbot.waitUntil(laid_out, timeout=5000)
+
+
+def test_what_is_made_after_the_text_is_scaled_is_as_large_as_the_rest(qtbot, normal_text):
+    # Presenting at x2, then: a hard case's table, the next exercise's answers and the editor's fields
+    # for a picked object are made. Each is at twice the normal size, as every label made before is.
+    window = open_window(qtbot)
+    normal = normal_text_pt()
+    window.presentation.set_scale(2.0)
+    qtbot.waitUntil(lambda: window.camera_panel.font().pointSizeF() == pytest.approx(2 * normal))
+    window.show_tab("hard cases")
+    hard_cases = window.findChild(HardCasesPanel)
+    qtbot.waitUntil(lambda: bool(hard_cases.table_cells))
+    window.lesson_panel.select(0, 0)  # the first lesson's first exercise: choose one
+    exercises = window.exercise_panel
+    qtbot.waitUntil(lambda: bool(exercises.choices.buttons()))
+    tree = window.editor.panel.tree
+    tree.setCurrentItem(tree.topLevelItem(0).child(0))  # an object: its fields are made now
+    qtbot.waitUntil(lambda: bool(window.editor.panel.fields))
+    made = [cell for row in hard_cases.table_cells for cell in row]
+    made += exercises.choices.buttons()
+    made += [box for field in window.editor.panel.fields.values() for box in field.boxes]
+    sizes = {round(w.font().pointSizeF(), 2) for w in made}
+    assert sizes == {round(2 * normal, 2)}, sizes
+
+
+def test_the_dock_titles_follow_the_text_scale_and_close_their_docks(qtbot, normal_text):
+    window = open_window(qtbot)
+    normal = normal_text_pt()
+    titles = {dock.windowTitle(): dock.titleBarWidget() for dock in window.findChildren(QDockWidget)}
+    window.presentation.set_scale(2.0)
+    for name in ("The scene: observer, frustum, screen", "Lessons", "Exercises", "Edit scene"):
+        label = titles[name].label
+        assert label.text() == name
+        assert label.font().pointSizeF() == pytest.approx(2 * normal), name
+    assert window.lesson_dock.isVisible()
+    qtbot.mouseClick(titles["Lessons"].close_button, Qt.MouseButton.LeftButton)
+    assert not window.lesson_dock.isVisible()
+    window.lesson_dock.toggleViewAction().trigger()  # View → Lessons
+    assert window.lesson_dock.isVisible()
