@@ -11,8 +11,9 @@ nor its label takes the mouse, so the press reaches the dock.
 
 from __future__ import annotations
 
-from PySide6.QtCore import QEvent, QSize
 from PySide6.QtWidgets import QDockWidget, QHBoxLayout, QLabel, QStyle, QToolButton, QWidget
+
+from views.text.text_scale import icons_follow_text
 
 
 class DockTitle(QWidget):
@@ -33,15 +34,5 @@ class DockTitle(QWidget):
             self.close_button.setToolTip(f"Close {dock.windowTitle()} (the View menu shows it again)")
             self.close_button.clicked.connect(dock.close)
             layout.addWidget(self.close_button)
-        self._size_icon()
+            icons_follow_text(self, [self.close_button])
         dock.setTitleBarWidget(self)
-
-    def changeEvent(self, event) -> None:
-        super().changeEvent(event)
-        if event.type() == QEvent.Type.FontChange:
-            self._size_icon()
-
-    def _size_icon(self) -> None:
-        if self.close_button is not None:
-            side = self.fontMetrics().height()
-            self.close_button.setIconSize(QSize(side, side))

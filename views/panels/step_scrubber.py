@@ -8,6 +8,8 @@ from __future__ import annotations
 from PySide6.QtCore import Qt, QTimer, Signal
 from PySide6.QtWidgets import QHBoxLayout, QLabel, QSlider, QStyle, QToolButton, QWidget
 
+from views.text.text_scale import icons_follow_text
+
 PLAY_INTERVAL_MS = 120
 
 
@@ -43,14 +45,17 @@ class StepScrubber(QWidget):
              lambda: self.set_step(self.step + 1)),
             (QStyle.StandardPixmap.SP_MediaSkipForward, "Last step: the finished image", self.last),
         ]
+        tools = []
         for pixmap, tip, slot in buttons:
             button = QToolButton()
+            tools.append(button)
             button.setIcon(icon(pixmap))
             button.setToolTip(tip)
             button.clicked.connect(slot)
             layout.addWidget(button)
             if pixmap == QStyle.StandardPixmap.SP_MediaPlay:
                 self.play_button = button
+        icons_follow_text(self, tools)
         layout.addWidget(self.slider, 1)
         layout.addWidget(self.caption)
         self.slider.valueChanged.connect(self.step_changed)

@@ -12,7 +12,7 @@ changes (a heading stays 1.5 times the text around it).
 
 from __future__ import annotations
 
-from PySide6.QtCore import QEvent, QObject
+from PySide6.QtCore import QEvent, QObject, QSize
 from PySide6.QtWidgets import QApplication, QWidget
 
 NORMAL_TEXT_PT = "normal_text_pt"
@@ -69,3 +69,29 @@ def scaled_style(widget: QWidget, style: str, size_pt: float) -> None:
     """Give ``widget`` the style sheet ``style`` with text ``size_pt`` points at scale 1,
     times the text scale of the widget around it from then on."""
     _ScaledStyle(widget, style, size_pt)
+
+
+class _IconsFollowText(QObject):
+    """Watches the owner's font and sizes the buttons' icons to its line height."""
+
+    def __init__(self, owner: QWidget, buttons):
+        super().__init__(owner)
+        self.owner, self.buttons = owner, list(buttons)
+        owner.installEventFilter(self)
+        self.apply()
+
+    def apply(self) -> None:
+        side = self.owner.fontMetrics().height()
+        for button in self.buttons:
+            button.setIconSize(QSize(side, side))
+
+    def eventFilter(self, watched, event) -> bool:
+        if event.type() == QEvent.Type.FontChange:
+            self.apply()
+        return False
+
+
+def icons_follow_text(owner: QWidget, buttons) -> None:
+    """Keep the icons of ``buttons`` (tool buttons in ``owner``) as tall as a line of ``owner``'s
+    text, at every text scale: a ×2 hall sees play and close buttons it can hit."""
+    _IconsFollowText(owner, buttons)

@@ -3,7 +3,7 @@
 import pytest
 from PySide6.QtCore import QRect, Qt
 from PySide6.QtGui import QFont, QFontDatabase, QFontMetrics, QScreen
-from PySide6.QtWidgets import QApplication, QDockWidget
+from PySide6.QtWidgets import QApplication, QDockWidget, QToolButton
 from window_helpers import RENDER_TIMEOUT_MS, open_window
 
 from views.panels.hard_cases_panel import HardCasesPanel
@@ -178,11 +178,15 @@ def test_what_is_made_after_the_text_is_scaled_is_as_large_as_the_rest(qtbot, no
     assert sizes == {round(2 * normal, 2)}, sizes
 
 
-def test_the_dock_titles_follow_the_text_scale_and_close_their_docks(qtbot, normal_text):
+def test_the_dock_titles_and_tool_icons_follow_the_text_scale_and_close_their_docks(qtbot, normal_text):
     window = open_window(qtbot)
     normal = normal_text_pt()
     titles = {dock.windowTitle(): dock.titleBarWidget() for dock in window.findChildren(QDockWidget)}
+    line = QFontMetrics(QFont()).height()  # a line of text at the normal size
+    scrubber = window.tab("object order").widget.scrubber
     window.presentation.set_scale(2.0)
+    icons = [titles["Lessons"].close_button, *scrubber.findChildren(QToolButton)]
+    assert len(icons) == 6 and all(b.iconSize().height() >= 2 * 0.9 * line for b in icons)
     for name in ("The scene: observer, frustum, screen", "Lessons", "Exercises", "Edit scene"):
         label = titles[name].label
         assert label.text() == name
