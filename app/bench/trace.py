@@ -35,6 +35,16 @@ line and times ours alone.
 Compiling the kernels (or loading them from numba's cache) is timed
 separately and never counted in a figure.  Every figure is the median of
 interleaved runs after a warm-up run, printed with the lowest and highest.
+
+On a machine shared with other work the wall clock mostly measures the
+others' load (one run's figures scatter by 30-300%).  ``--cpu-time`` times
+the CPU time of the calling thread instead, with one numba thread (numba's
+OpenMP and TBB layers run a one-thread kernel on the calling thread; with its
+own work queue the process's CPU time is taken): the time spent waiting for
+a core is left out, so two versions of the code can be set side by side (on
+such a machine the medians of two runs then agree within 1-3%).  Embree
+through embreex, which runs on Python threads of its own, is left out then;
+its packet API runs on our one thread, as ours does.
 """
 
 from __future__ import annotations
@@ -56,6 +66,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--repeats", type=int, default=7, help="timed runs per figure (default 7)")
     parser.add_argument("--threads", type=int, default=os.cpu_count() or 1,
                         help="Python threads for Embree (default: one per core)")
+    parser.add_argument("--cpu-time", action="store_true",
+                        help="time the CPU time of one numba thread instead of the wall clock, so that "
+                             "waiting for a core on a shared machine is not counted (embreex is left out)")
 
 
 def _sizes(text: str) -> tuple[int, ...]:
@@ -93,10 +106,15 @@ def run(args) -> int:
     from core.image_order.ray_tracing import ensure_compiled, render_trace
 
     size = (args.width, args.height)
+    if args.cpu_time:
+        numba.set_num_threads(1)
+    compile_s = ensure_compiled()  # runs the kernels once, so numba's threading layer is known below
+    args.clock = _clock(args.cpu_time, numba.threading_layer())
+    clock = {time.perf_counter: "wall clock,", time.thread_time: "CPU time of the calling thread,",
+             time.process_time: "CPU time of the process,"}[args.clock]
     print(f"bench trace: {args.width} x {args.height} = {args.width * args.height} rays per frame, "
-          f"{numba.get_num_threads()} numba threads, median of {args.repeats} runs after a warm-up "
+          f"{clock} {numba.get_num_threads()} numba threads, median of {args.repeats} runs after a warm-up "
           "(lowest-highest in brackets)")
-    compile_s = ensure_compiled()
     print(f"compile (or load from cache) the kernels: {compile_s:.2f} s (not counted below)")
 
     # 1. and 2. Our BVH and Embree's on meshes of growing size.
@@ -130,7 +148,7 @@ def run(args) -> int:
             out.append(render_trace(frame, whitted).stats)
 
         frames[title] = whitted_frame
-    runs = _interleaved_runs(frames, args.repeats)
+    runs = _interleaved_runs(frames, args.repeats, args.clock)
     for title, goal in (("lecture scene", 16), ("mirror and glass", 25)):  # issue 36's goals
         frame_s = statistics.median(runs[title])
         rays = stats[title][-1]["rays"]
@@ -139,7 +157,7 @@ def run(args) -> int:
         print(f"Whitted frame, {title}, depth 5: {_spread(runs[title])} (goal <= {goal} ms); "
               f"{rays['total']} rays = {rays['primary']} primary + {rays['shadow']} shadow + "
               f"{rays['reflection']} reflection + {rays['refraction']} refraction "
-              f"({rays['total'] / frame_s / 1e6:.1f} Mrays/s); median ms per stage: {stages}")
+              f"({rays['total'] / frame_s / 1e6:.1f} Mrays/s); median ms per stage (wall clock): {stages}")
     if disagree:
         print(f"bench trace: Embree and ours found different hits for {disagree:,} rays (see above)")
         return 1
@@ -219,14 +237,15 @@ def _mesh_rays(triangles: int, args, library) -> dict:
     if library is not None:
         from app.bench.embree_packets import EmbreePackets
 
-        runners["embreex"], embreex_prims = _embreex(mesh, scene, args.threads)
+        if not args.cpu_time:  # its Python threads' time is not this thread's
+            runners["embreex"], embreex_prims = _embreex(mesh, scene, args.threads)
         packets = EmbreePackets(library, mesh.corners, numba.get_num_threads())
         order = _tile_order(args.height, args.width)
         runners["packets"], peer = packets.tracer(o[order], d[order], t_min[order], t_max[order], False)
         print(f"  Embree's own BVH build (rtcCommitScene) {packets.build_seconds:.3f} s; first call of the "
               f"kernel that calls rtcIntersect16 / rtcOccluded16 (compiles it, once per run) "
               f"{packets.compile_seconds:.2f} s (not counted below)")
-    runs = _interleaved_runs(runners, args.repeats)
+    runs = _interleaved_runs(runners, args.repeats, args.clock)
     seconds = {name: statistics.median(times) for name, times in runs.items()}
     per_ray = counters[0] / n_rays
     prims, ts = hits[..., HIT_PRIM].reshape(-1).astype(np.int64), hits[..., HIT_T].reshape(-1)
@@ -239,16 +258,17 @@ def _mesh_rays(triangles: int, args, library) -> dict:
     row = {"triangles": len(mesh.triangles), "disagree": 0,
            "primary": {"ours": seconds["ours"] * 1e3}, "shadow": {}}
     if packets is not None:
-        same = np.mean(embreex_prims() == prims)
-        print(f"  primary rays, Embree (embreex, float32, {args.threads} Python threads): "
-              f"{_spread(runs['embreex'])}  {n_rays / seconds['embreex'] / 1e6:6.2f} Mrays/s  "
-              f"(same triangle as ours for {same:.2%} of rays)")
+        if "embreex" in runs:
+            same = np.mean(embreex_prims() == prims)
+            print(f"  primary rays, Embree (embreex, float32, {args.threads} Python threads): "
+                  f"{_spread(runs['embreex'])}  {n_rays / seconds['embreex'] / 1e6:6.2f} Mrays/s  "
+                  f"(same triangle as ours for {same:.2%} of rays)")
         print(f"  primary rays, Embree (rtcIntersect16 packets, float32, {numba.get_num_threads()} numba "
               f"threads): {_spread(runs['packets'])}  {n_rays / seconds['packets'] / 1e6:6.2f} Mrays/s")
         peer_prims, peer_t = np.empty_like(peer[0]), np.empty_like(peer[1])
         peer_prims[order], peer_t[order] = peer[0], peer[1]
         row["disagree"] += _report_agreement("primary", mesh.corners, o, d, prims, ts, peer_prims, peer_t)
-        row["primary"].update(_ratios(runs, seconds, ("embreex", "packets")))
+        row["primary"].update(_ratios(runs, seconds, tuple(p for p in ("embreex", "packets") if p in runs)))
 
     # Shadow rays: from every lit hit of ours towards the light, the same rays for both tracers.
     so, sd, s_min, s_max = _shadow_rays(mesh, scene.lights[0].position, o, d, prims, ts)
@@ -267,7 +287,7 @@ def _mesh_rays(triangles: int, args, library) -> dict:
     runners = {"ours": ours_shadow}
     if packets is not None:
         runners["packets"], occluded = packets.tracer(so, sd, s_min, s_max, True)
-    runs = _interleaved_runs(runners, args.repeats)
+    runs = _interleaved_runs(runners, args.repeats, args.clock)
     seconds = {name: statistics.median(times) for name, times in runs.items()}
     per_ray = shadow_counters[0] / max(n_shadow, 1)
     print(f"  shadow rays ({n_shadow:,}: every lit hit towards the light), ours (any hit, one ray at a "
@@ -438,8 +458,17 @@ def _report_shadow_agreement(packets, corners, origins, directions, t_min, t_max
                              "the same answer (blocked or not)")
 
 
-def _interleaved_runs(runners: dict, repeats: int) -> dict:
-    """Seconds of each run of each runner, the runs taken in turns so that load changes hit all alike.
+def _clock(cpu_time: bool, threading_layer: str):
+    """The clock of the figures: the wall clock, or with ``cpu_time`` the calling thread's CPU time
+    where numba runs a one-thread kernel on the calling thread, else the process's."""
+    if not cpu_time:
+        return time.perf_counter
+    return time.thread_time if threading_layer in ("omp", "tbb") else time.process_time
+
+
+def _interleaved_runs(runners: dict, repeats: int, clock=time.perf_counter) -> dict:
+    """Seconds of each run of each runner by ``clock``, the runs taken in turns so that load changes
+    hit all alike.
 
     A pause before each run lets the other library's idle worker threads (which
     spin for a while before they sleep) get out of the way.
@@ -450,9 +479,9 @@ def _interleaved_runs(runners: dict, repeats: int) -> dict:
     for _ in range(repeats):
         for name, run_once in runners.items():
             time.sleep(0.2)
-            start = time.perf_counter()
+            start = clock()
             run_once()
-            times[name].append(time.perf_counter() - start)
+            times[name].append(clock() - start)
     return times
 
 

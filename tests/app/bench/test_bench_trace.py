@@ -10,7 +10,7 @@ import sys
 import numpy as np
 from checkout import ROOT
 
-from app.bench.trace import _tile_order, hit_agreement
+from app.bench.trace import _interleaved_runs, _tile_order, hit_agreement
 from core.presets_trace import bumpy_ball
 
 # Two triangles making the unit square in the plane z = 0, split along its diagonal x = y:
@@ -68,14 +68,21 @@ def test_the_peers_packets_take_the_pixels_in_tiles_of_four_by_four():
     assert _tile_order(6, 6)[16:24].tolist() == [4, 5, 10, 11, 16, 17, 22, 23]
 
 
-def test_without_embree_the_bench_says_so_in_one_line_and_times_ours():
-    # embreex hidden as if it were not installed (a None in sys.modules makes its import fail).
+def _bench_without_embree(*options):
+    """``bench trace`` on a 32 x 24 view, one run per figure, in a subprocess with embreex hidden as if
+    it were not installed (a None in sys.modules makes its import fail); it must exit 0, with no
+    traceback."""
     code = ("import sys; sys.modules['embreex'] = None; sys.argv[1:] = ['bench', 'trace', '--width', '32', "
-            "'--height', '24', '--triangles', '200,800', '--repeats', '1']; import runpy; "
+            f"'--height', '24', '--repeats', '1', *{list(options)!r}]; import runpy; "
             "runpy.run_module('app', run_name='__main__')")
     done = subprocess.run([sys.executable, "-c", code], cwd=ROOT, capture_output=True, text=True, timeout=480)
     assert done.returncode == 0, done.stderr
     assert "Traceback" not in done.stderr
+    return done
+
+
+def test_without_embree_the_bench_says_so_in_one_line_and_times_ours():
+    done = _bench_without_embree("--triangles", "200,800")
     missing = [line for line in done.stdout.splitlines() if line.startswith("Embree: not measured")]
     assert len(missing) == 1 and "embreex" in missing[0]
     assert "rtcIntersect16 packets" not in done.stdout
@@ -87,3 +94,26 @@ def test_without_embree_the_bench_says_so_in_one_line_and_times_ours():
             assert len(summary) == 1, done.stdout
             assert "ratio" not in summary[0]
     assert "Whitted frame, lecture scene" in done.stdout
+
+
+def test_cpu_time_leaves_out_the_time_spent_waiting():
+    # A run that sleeps 0.3 s waits the whole time and computes nothing: about 0.3 s by the wall
+    # clock, next to nothing of CPU time.
+    import time
+
+    def wait():
+        time.sleep(0.3)
+
+    wall = _interleaved_runs({"wait": wait}, 1)["wait"]
+    cpu = _interleaved_runs({"wait": wait}, 1, time.process_time)["wait"]
+    assert wall[0] >= 0.3
+    assert cpu[0] < 0.05
+
+
+def test_cpu_time_times_one_thread_and_says_so():
+    done = _bench_without_embree("--cpu-time", "--triangles", "200")
+    header = done.stdout.splitlines()[0]
+    assert "CPU time of the calling thread, 1 numba threads" in header
+    for kind in ("primary", "shadow"):
+        assert sum(f"triangles, {kind:>7} rays: ours" in line for line in done.stdout.splitlines()) == 1
+    assert "Whitted frame, mirror and glass" in done.stdout

@@ -156,7 +156,11 @@ def test_shadow_rays_grazing_edges_and_corners_are_blocked_exactly_when_a_closes
     The light sits before, just before, just after or beyond the aimed-at
     point, so the segment's end falls on both sides of a hit as well.  A
     blocker found by any-hit lies on the segment, and any-hit never does more
-    primitive tests than the closest-hit search it cuts short.
+    primitive tests than the closest-hit search it cuts short.  The BVH's
+    any-hit walk is the exception on blocked rays: it takes the children unsorted
+    (``bvh_traverse.any_child``), so it may test a farther leaf before the
+    blocker; on a ray that nothing blocks both walks test exactly the leaves whose
+    boxes the segment enters.
     """
     rng = np.random.default_rng(31)
     corners = np.concatenate([ob.corners for ob in scene.objects if hasattr(ob, "corners")])
@@ -182,7 +186,10 @@ def test_shadow_rays_grazing_edges_and_corners_are_blocked_exactly_when_a_closes
             any_tests = query.counters[PRIM_TESTS] - before
             assert (first[0] >= 0) == (closest[0] >= 0) == reference, method
             assert first[1] < length if reference else first[1] == math.inf, method
-            assert any_tests <= closest_tests, method
+            if method == "bvh":
+                assert any_tests == closest_tests or reference, method
+            else:
+                assert any_tests <= closest_tests, method
     assert 0.3 * rays < blocked < 0.9 * rays
 
 
