@@ -54,6 +54,10 @@ QListView::item:selected, QTreeView::item:selected, QTableView::item:selected {
     background-color: #ffd400; color: #000000; }
 QTabBar::tab:selected { background-color: #ffd400; color: #000000; }
 QToolTip { background-color: #ffffff; color: #000000; }
+QSlider::groove:horizontal { height: 0.3em; background: #9a9a9a; border-radius: 0.15em; }
+QSlider::sub-page:horizontal { background: #ffd400; border-radius: 0.15em; }
+QSlider::handle:horizontal {
+    width: 1.2em; margin: -0.45em 0; background: #ffffff; border: 2px solid #ffd400; border-radius: 0.6em; }
 """
 
 

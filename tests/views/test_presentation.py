@@ -9,6 +9,7 @@ from PySide6.QtWidgets import (
     QDialog,
     QLabel,
     QMainWindow,
+    QSlider,
     QSpinBox,
     QSplitter,
     QToolButton,
@@ -188,6 +189,24 @@ def test_high_contrast_tool_buttons_keep_their_words_readable(hall, qtbot):
     light = sum(c.lightnessF() > 0.8 for c in colours)
     dark = sum(c.lightnessF() < 0.3 for c in colours)
     assert light > 0 and dark > 0.03 * len(colours)  # dark letters on the white button
+
+
+def test_high_contrast_sliders_show_their_handle_and_how_far_they_are(hall, qtbot):
+    # The hard cases' and the step scrubber's sliders drew a black handle on black.
+    window, panel, presentation = hall
+    presentation.set_high_contrast(True)
+    slider = QSlider(Qt.Orientation.Horizontal, window)
+    slider.setRange(0, 100)
+    slider.setValue(40)
+    slider.resize(400, slider.sizeHint().height())
+    slider.show()
+    picture = slider.grab().toImage()
+    middle = picture.height() // 2
+    row = [picture.pixelColor(x, middle).name() for x in range(picture.width())]
+    white = [x for x, colour in enumerate(row) if colour == "#ffffff"]
+    assert white and 0.3 * 400 < sum(white) / len(white) < 0.5 * 400  # the handle, at 40 %
+    assert len(white) >= 0.5 * slider.fontMetrics().height()  # as wide as half a line of text
+    assert row[10] == "#ffd400" and row[390] != "#ffd400"  # the way done in the accent, the rest not
 
 
 def test_the_text_size_reaches_widgets_with_their_own_style_sheets_under_high_contrast(hall, qtbot):
