@@ -224,10 +224,12 @@ class SceneView(QWidget):
                                  opacity=opacity, specular=m.specular)
 
     def _add_surface(self, poly: pv.PolyData, name: str, **look):
-        """Add ``poly`` as a surface with flat faces and the look ``look`` (pyvista Property fields).
+        """Add ``poly`` (faces, lines or points) with flat faces and the look ``look`` (pyvista Property
+        fields: ``color``, ``opacity``, ``line_width``, ``style``, ...).
 
         What ``add_mesh(poly, smooth_shading=False, show_edges=False, **look)`` draws, pixel for pixel,
-        in a fifth of its time: a lesson step builds every object of its scene on the GUI thread.
+        in a fifth of its time: a lesson step builds every object of its scene, and its overlays, on the
+        GUI thread (add_mesh made a matplotlib colour map for each, 20-40 ms).
         """
         mapper = vtkPolyDataMapper()
         mapper.SetInputData(poly)
@@ -321,7 +323,7 @@ class SceneView(QWidget):
         """An overlay part's actor: ``poly`` drawn with ``style``, or its points labelled with the
         strings of its ``"labels"`` point array when ``style`` has ``"label_size"`` (points)."""
         if "label_size" not in style:
-            actor = self.plotter.add_mesh(poly, name=name, render=False, **style)
+            actor = self._add_surface(poly, name, **style)
         else:
             placed = vtk_convert.set_labels(pv.PolyData(poly.points.copy()),  # where they go: _place_labels
                                             poly.point_data["labels"])
