@@ -183,6 +183,19 @@ class SceneView(QWidget):
         self._frustum_faces.SetVisibility(True)
         self._draw()
 
+    def picture(self, scale: int) -> np.ndarray:
+        """The pane as it looks at rest (anti-aliased, the frustum's see-through faces drawn), at
+        ``scale`` × its size: (H, W, 3) uint8 sRGB levels.  Taken while the pane waits to be drawn
+        smooth (a change since), it has the faces all the same."""
+        fxaa, faces = self.plotter.renderer.GetUseFXAA(), self._frustum_faces.GetVisibility()
+        self.plotter.renderer.SetUseFXAA(True)
+        self._frustum_faces.SetVisibility(True)
+        try:
+            return self.plotter.picture_at(scale)
+        finally:
+            self.plotter.renderer.SetUseFXAA(fxaa)
+            self._frustum_faces.SetVisibility(faces)
+
     def set_scene(self, scene: Scene) -> None:
         """Draw every object and light, then the observer; frame the whole.
 
