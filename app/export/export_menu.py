@@ -241,11 +241,11 @@ class ExportMenu(QObject):
         if only is not None:
             view.show_overlays_only(only)
         try:
-            levels = view.plotter.screenshot(None, return_img=True, scale=SCREENSHOT_SCALE)
+            levels = view.picture(SCREENSHOT_SCALE)
         finally:
             if only is not None:  # back to what the visible tab shows
                 view.show_overlays_only((*self.window.current.overlays, LESSON_OVERLAY))
-        return self._write(path, lambda: write_image(path, srgb_to_linear(levels[..., :3] / 255.0)))
+        return self._write(path, lambda: write_image(path, srgb_to_linear(levels / 255.0)))
 
     def export_ray_tree_png(self, path: str) -> bool:
         """Write the 3D pane with only the picked pixel's ray tree drawn over the scene."""

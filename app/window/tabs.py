@@ -272,12 +272,16 @@ class ObjectOrderTab:
 
             return run
 
-        step = self.model.step
+        model = self.model
 
         def run(cancelled, progress):  # the step's picture too: the window only paints it
             say_if_compiling(progress, scene, "rasterizer", pipeline.ensure_compiled.ready())
             raster = render_raster(scene, settings)
             n = raster.history.n_steps
+            # The model's step once rendered, not when asked: a lesson step sets its scene (which
+            # starts this render) and then its step; a picture of another step is made again on
+            # the GUI thread.  (An int read from the model: a worker may read it.)
+            step = model.step
             return scene, raster, step_picture(raster, scene, n if step is None else min(step, n))
 
         return run

@@ -206,7 +206,7 @@ class ObjectOrderPanel(QWidget):
         self.image.pixel_clicked.connect(self.pick_pixel)
         self.depth.image.pixel_clicked.connect(self.pick_pixel)
         model.raster_settings_changed.connect(self.show_settings)
-        model.step_changed.connect(lambda _: self.show_step(self._model_step()))
+        model.step_changed.connect(self._step_changed)
         model.buffer_pixel_changed.connect(self._show_pixel)
         self.show_settings(model.raster_settings)
 
@@ -232,6 +232,12 @@ class ObjectOrderPanel(QWidget):
 
     def _step_edited(self, k: int) -> None:
         self.model.set_step(None if k >= self.scrubber.slider.maximum() else k)
+
+    def _step_changed(self, _step) -> None:
+        """Show the model's new step, unless the render shown is of another scene: the render of the
+        model's scene shows it when it comes (a lesson step sets its scene, then its step)."""
+        if self.scene is self.model.scene:
+            self.show_step(self._model_step())
 
     def _model_step(self) -> int:
         """The model's step, within the current render's steps (``None``: the last)."""

@@ -38,7 +38,7 @@ from pyvista.plotting.render_window_interactor import RenderWindowInteractor
 from vtkmodules.qt.QVTKRenderWindowInteractor import QVTKRenderWindowInteractor
 from vtkmodules.util.numpy_support import vtk_to_numpy
 from vtkmodules.vtkCommonCore import vtkUnsignedCharArray
-from vtkmodules.vtkRenderingCore import vtkRenderWindow
+from vtkmodules.vtkRenderingCore import vtkRenderWindow, vtkWindowToImageFilter
 
 # pyvista's interactor loads vtkInteractionWidgets, vtkViewsContext2D and vtkViewsCore on first use, in
 # the plotter's constructor on the GUI thread (about 90 ms); imported above, they load with this module,
@@ -124,6 +124,30 @@ class ImagePlotter(QVTKRenderWindowInteractor, BasePlotter):
         finally:
             self._grabbing = True
             self._vtk_draws_background(False)
+
+    def picture_at(self, scale: int) -> np.ndarray:
+        """The scene drawn at ``scale`` × the pane's size, background and all: (H, W, 3) uint8.
+
+        VTK draws it in tiles of the pane's size (its text ``scale`` times as large) and puts them
+        together: what pyvista's ``screenshot(scale=...)`` gives, pixel for pixel, without the draws
+        it makes around it (eleven in all at × 2, nine here, on the GUI thread).
+        """
+        grab = vtkWindowToImageFilter()
+        grab.SetInput(self.ren_win)
+        grab.SetScale(scale)
+        grab.FixBoundaryOn()  # no seams where the tiles meet (it draws (scale + 1)² tiles)
+        grab.SetInputBufferTypeToRGB()
+        grab.ReadFrontBufferOff()
+        self._vtk_draws_background(True)
+        self._grabbing = False  # its tiles are not the pane's picture
+        try:
+            grab.Update()
+        finally:
+            self._grabbing = True
+            self._vtk_draws_background(False)
+        image = grab.GetOutput()
+        w, h, _ = image.GetDimensions()
+        return np.ascontiguousarray(vtk_to_numpy(image.GetPointData().GetScalars()).reshape(h, w, 3)[::-1])
 
     def paintEngine(self):
         return QWidget.paintEngine(self)

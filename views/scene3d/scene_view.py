@@ -183,6 +183,19 @@ class SceneView(QWidget):
         self._frustum_faces.SetVisibility(True)
         self._draw()
 
+    def picture(self, scale: int) -> np.ndarray:
+        """The pane as it looks at rest (anti-aliased, the frustum's see-through faces drawn), at
+        ``scale`` × its size: (H, W, 3) uint8 sRGB levels.  Taken while the pane waits to be drawn
+        smooth (a change since), it has the faces all the same."""
+        fxaa, faces = self.plotter.renderer.GetUseFXAA(), self._frustum_faces.GetVisibility()
+        self.plotter.renderer.SetUseFXAA(True)
+        self._frustum_faces.SetVisibility(True)
+        try:
+            return self.plotter.picture_at(scale)
+        finally:
+            self.plotter.renderer.SetUseFXAA(fxaa)
+            self._frustum_faces.SetVisibility(faces)
+
     def set_scene(self, scene: Scene) -> None:
         """Draw every object and light, then the observer; frame the whole.
 
@@ -224,10 +237,12 @@ class SceneView(QWidget):
                                  opacity=opacity, specular=m.specular)
 
     def _add_surface(self, poly: pv.PolyData, name: str, **look):
-        """Add ``poly`` as a surface with flat faces and the look ``look`` (pyvista Property fields).
+        """Add ``poly`` (faces, lines or points) with flat faces and the look ``look`` (pyvista Property
+        fields: ``color``, ``opacity``, ``line_width``, ``style``, ...).
 
         What ``add_mesh(poly, smooth_shading=False, show_edges=False, **look)`` draws, pixel for pixel,
-        in a fifth of its time: a lesson step builds every object of its scene on the GUI thread.
+        in a fifth of its time: a lesson step builds every object of its scene, and its overlays, on the
+        GUI thread (add_mesh made a matplotlib colour map for each, 20-40 ms).
         """
         mapper = vtkPolyDataMapper()
         mapper.SetInputData(poly)
@@ -321,7 +336,7 @@ class SceneView(QWidget):
         """An overlay part's actor: ``poly`` drawn with ``style``, or its points labelled with the
         strings of its ``"labels"`` point array when ``style`` has ``"label_size"`` (points)."""
         if "label_size" not in style:
-            actor = self.plotter.add_mesh(poly, name=name, render=False, **style)
+            actor = self._add_surface(poly, name, **style)
         else:
             placed = vtk_convert.set_labels(pv.PolyData(poly.points.copy()),  # where they go: _place_labels
                                             poly.point_data["labels"])

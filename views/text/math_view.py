@@ -328,12 +328,18 @@ class MathView(QLabel):
             self.pending = self._done != self._request  # what it shows, or will show, is up to date
             return
         self._asked = (self._formula, size, color, dpi)
-        # What _render_now needs first, and the sizes the formula and its parts may be shrunk to.
+        # What _render_now needs first, the sizes the formula and its parts may be shrunk to, and the
+        # lines _wrap may try (runs of two parts or more): typeset on the GUI thread, a lesson
+        # step's wrapped formulas held it a quarter of a second.
         texts = [(self._formula, size)]
         with contextlib.suppress(ValueError):
-            parts = [join_parts([part]) for part in split_formula(self._formula)]
+            split = split_formula(self._formula)
+            parts = [join_parts([part]) for part in split]
             texts += [(part, size) for part in parts if part != self._formula]
             texts += [(text, size * s) for s in SHRINKS[1:] for text in [self._formula, *parts]]
+            n = len(split)
+            runs = [join_parts(split[i:j]) for i in range(n) for j in range(i + 2, n + 1) if j - i < n]
+            texts += [(run, size * s) for s in SHRINKS for run in runs]
         if self._typeset_signals is None:
             self._typeset_signals = _Typeset(self)
             self._typeset_signals.done.connect(self._typeset_done)

@@ -170,13 +170,13 @@ def test_the_picked_pixels_ray_tree_is_saved_as_json_and_as_the_3d_pane(qtbot, w
 
     _save_as(monkeypatch, tmp_path / "tree.png")
     plotter, taken = window.scene_view.plotter, []
-    screenshot = plotter.screenshot
+    picture_at = plotter.picture_at
 
-    def sized_screenshot(*args, **kwargs):  # the pane's size when the picture is taken
+    def sized_picture(*args, **kwargs):  # the pane's size when the picture is taken
         taken.append(tuple(plotter.ren_win.GetSize()))  # (the docks may settle a few pixels later)
-        return screenshot(*args, **kwargs)
+        return picture_at(*args, **kwargs)
 
-    monkeypatch.setattr(plotter, "screenshot", sized_screenshot)
+    monkeypatch.setattr(plotter, "picture_at", sized_picture)
     _export(qtbot, window, "Ray tree/3D pane")
     picture = iio.imread(tmp_path / "tree.png")
     [(width, height)] = taken
@@ -287,6 +287,8 @@ def test_the_3d_pane_is_saved_as_vtk_drew_it_and_the_status_bar_says_so(qtbot, w
     # The picture is read back on the GUI thread, then encoded and written off it.
     _show_full(qtbot, window, "image order")  # the observer's screen in the 3D pane shows the full image
     _save_as(monkeypatch, tmp_path / "pane.png")
+    pane = window.scene_view.view
+    qtbot.waitUntil(lambda: pane._frustum_faces.GetVisibility(), timeout=RENDER_TIMEOUT_MS)  # at rest
     # What VTK draws at twice the pane's size, read in the same turn of the event loop as the export's.
     drawn = window.scene_view.plotter.screenshot(None, return_img=True, scale=2)[..., :3].astype(int)
     _export(qtbot, window, "3D pane")
@@ -295,6 +297,33 @@ def test_the_3d_pane_is_saved_as_vtk_drew_it_and_the_status_bar_says_so(qtbot, w
     # Linear in between, 8-bit sRGB in the file: each level comes back within one.
     assert np.abs(saved - drawn).max() <= 1
     assert "pane.png" in window.statusBar().currentMessage()
+
+
+def test_the_3d_pane_exported_while_it_moves_has_its_see_through_frustum(qtbot, window, tmp_path,
+                                                                          monkeypatch):
+    # While the observer moves the pane draws the frustum by its edges only, and smooth once it
+    # rests; an export taken meanwhile lacked the frustum's see-through faces the pane then shows.
+    pane = window.scene_view.view
+    _save_as(monkeypatch, tmp_path / "moving.png")
+    cam = window.model.camera
+    window.model.set_camera(cam.orbit(cam.yaw_deg + 5, cam.pitch_deg))
+    assert not pane._frustum_faces.GetVisibility()  # the pane moves: drawn by the edges
+
+    def drawn(faces: bool):
+        """pyvista's picture at twice the pane's size, with or without the resting look."""
+        pane.plotter.renderer.SetUseFXAA(faces)
+        pane._frustum_faces.SetVisibility(faces)
+        picture = pane.plotter.screenshot(None, return_img=True, scale=2)[..., :3].astype(int)
+        pane.plotter.renderer.SetUseFXAA(False)
+        pane._frustum_faces.SetVisibility(False)
+        return picture
+
+    at_rest, edges_only = drawn(True), drawn(False)  # in the export's turn: the same pane size
+    _export(qtbot, window, "3D pane")
+    saved = iio.imread(tmp_path / "moving.png").astype(int)
+    faces = np.abs(at_rest - edges_only).max(axis=2) > 2  # where the faces tint the picture
+    assert faces.sum() > 1000
+    assert np.abs(saved - at_rest).max() <= 1  # tinted there as the resting pane is
 
 
 def test_a_picture_whose_writing_fails_off_the_gui_thread_shows_a_dialog_naming_it(qtbot, window, tmp_path,

@@ -139,6 +139,32 @@ def test_the_whole_z_buffer_picture_singles_out_no_polygon(qtbot, window):
     assert panel.image._highlight is not None
 
 
+def test_a_new_scene_and_step_at_once_show_that_step_and_leave_the_old_render_alone(
+        qtbot, window, monkeypatch):
+    # A lesson step sets its scene (a new render starts) and then its z-buffer step. The panel used
+    # to make that step's picture, on the GUI thread, of the old scene's render the new one replaces.
+    from views.panels import object_order_panel
+
+    _show_tab(qtbot, window, "object order")
+    pictured = []  # (scene, step) of each picture made on the GUI thread
+    real = object_order_panel.step_picture
+    monkeypatch.setattr(object_order_panel, "step_picture",
+                        lambda result, scene, k: pictured.append((scene, k)) or real(result, scene, k))
+    scene = presets.zbuffer_three_polygons()
+    window.model.set_scene(scene)
+    window.model.set_step(2)
+    qtbot.waitUntil(lambda: window.showing_full("object order"), timeout=RENDER_TIMEOUT_MS)
+    panel = window.tab("object order").widget
+    assert panel.scrubber.step == 2
+    assert panel.step_caption.text().startswith(f"Step 2 of {panel.result.history.n_steps}: polygon 1 ")
+    color, _ = panel.result.history.buffers(2)  # the image memory after two polygons
+    assert np.allclose(panel.image.rgb, color)
+    assert "polygon" in window.scene_view.overlay_names()
+    # The worker pictures the step the model has once it has rendered; the GUI thread only when the
+    # render ended before the step was set, and then of the new scene.
+    assert all(s is scene for s, _ in pictured)
+
+
 def test_object_order_steps_through_the_z_buffer(qtbot, window):
     _show_tab(qtbot, window, "object order")
     panel = window.tab("object order").widget

@@ -38,16 +38,16 @@ def _columns_whole(tree) -> bool:
             and header.length() <= tree.viewport().width())
 
 
-@pytest.mark.parametrize("lesson_id", ["ray_tracing", "ray_sphere"])
-def test_a_ray_lessons_second_step_shows_its_verdict_and_ray_tree_whole_presenting_at_x2(
-        qtbot, window, lesson_id):
+@pytest.mark.parametrize(("lesson_id", "step"), [("ray_tracing", 1), ("ray_sphere", 1), ("acceleration", 3)])
+def test_a_ray_lessons_step_shows_its_verdict_and_ray_tree_whole_presenting_at_x2(
+        qtbot, window, lesson_id, step):
     # Step 2 of both lessons, presenting at x2 on 1920x1080: the verdict ended in "…" before it said
     # why, and the returned colours were cut ("(0.114, 0.35…") while the last column, stretched to the
     # view's edge, made the header look as if it fitted.
     window.presentation.set_presenting(True)
     window.presentation.set_scale(2.0)
     lessons = [lesson.id for lesson in shipped_lessons()]
-    window.lesson_panel.select(lessons.index(lesson_id), 1)
+    window.lesson_panel.select(lessons.index(lesson_id), step)
     panel = window.tab("image order").widget
     qtbot.waitUntil(lambda: panel.tree.topLevelItemCount() == 1 and panel.verdict.shown is not None,
                     timeout=RENDER_TIMEOUT_MS)

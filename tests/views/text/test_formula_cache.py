@@ -24,6 +24,9 @@ print(view.sizeHint().width(), view.sizeHint().height(), "matplotlib" in sys.mod
 
 @pytest.fixture
 def cache_home(monkeypatch, tmp_path):
+    from views.text import math_view
+
+    math_view._typesetter().waitForDone()  # what earlier tests' views asked for is kept in their folder
     monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path))
     return tmp_path
 

@@ -113,3 +113,40 @@ def test_a_later_view_typesets_once_per_restyle_and_shows_a_formula_set_again(qt
     view.set_formula(SPHERE)  # the formula it showed before, set again: shown again
     qtbot.waitUntil(lambda: not view.pending)
     assert not view.pixmap().isNull() and view.shown_lines()[0]
+
+
+def test_a_later_view_wraps_its_formula_without_typesetting_on_the_gui_thread(qtbot, monkeypatch, tmp_path):
+    # A lesson step's formula, narrower than its line, is wrapped by trying runs of its parts on one
+    # line; those were typeset on the GUI thread (a quarter of a second in a lesson step).
+    import threading
+
+    from PySide6.QtWidgets import QVBoxLayout, QWidget
+
+    from views.text import math_view
+
+    monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path))  # nothing kept from an earlier run
+    math_view._typeset.cache_clear()
+    on_gui_thread = []
+    parser = math_view._parser()
+
+    class Watched:
+        def parse(self, *args, **kwargs):
+            on_gui_thread.append(threading.current_thread() is threading.main_thread())
+            return parser.parse(*args, **kwargs)
+
+    monkeypatch.setattr(math_view, "_parser", Watched)
+    formula = (r"$\mathrm{object\ order:}\ \mathbf{for}\ \mathrm{object}\ "
+               r"\mathbf{for}\ \mathrm{pixel\ it\ covers}$")
+    parent = QWidget()
+    qtbot.addWidget(parent)
+    QVBoxLayout(parent).addWidget(view := MathView(formula, parent, later=True))
+    parent.resize(160, 400)
+    parent.show()
+    qtbot.waitExposed(parent)
+    qtbot.waitUntil(lambda: not view.pending and view.pixmap() is not None and not view.pixmap().isNull())
+    for _ in range(3):  # the posted layout requests (a wrapped formula asks for more height)
+        QApplication.processEvents()
+    lines, _ = view.shown_lines()
+    assert len(lines) >= 2  # wrapped
+    assert on_gui_thread and not any(on_gui_thread)  # all typeset, none of it on the GUI thread
+    math_view._typeset.cache_clear()
