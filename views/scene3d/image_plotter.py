@@ -114,16 +114,23 @@ class ImagePlotter(QVTKRenderWindowInteractor, BasePlotter):
         self.renderer.SetGradientBackground(yes)
         self.renderer.SetBackgroundAlpha(1.0 if yes else 0.0)
 
-    def screenshot(self, *args, **kwargs):
-        """pyvista's screenshot, with the background drawn by VTK (gradient and all)."""
+    @contextlib.contextmanager
+    def _drawn_for_a_file(self):
+        """Meanwhile VTK draws the background itself (gradient and all), and its draws (at another size,
+        background drawn) are not taken as the pane's picture."""
         self._vtk_draws_background(True)
-        self._grabbing = False  # its pictures (at another size, background drawn) are not the pane's
+        self._grabbing = False
         try:
-            BasePlotter.render(self)
-            return BasePlotter.screenshot(self, *args, **kwargs)
+            yield
         finally:
             self._grabbing = True
             self._vtk_draws_background(False)
+
+    def screenshot(self, *args, **kwargs):
+        """pyvista's screenshot, with the background drawn by VTK (gradient and all)."""
+        with self._drawn_for_a_file():
+            BasePlotter.render(self)
+            return BasePlotter.screenshot(self, *args, **kwargs)
 
     def picture_at(self, scale: int) -> np.ndarray:
         """The scene drawn at ``scale`` × the pane's size, background and all: (H, W, 3) uint8.
@@ -138,13 +145,8 @@ class ImagePlotter(QVTKRenderWindowInteractor, BasePlotter):
         grab.FixBoundaryOn()  # no seams where the tiles meet (it draws (scale + 1)² tiles)
         grab.SetInputBufferTypeToRGB()
         grab.ReadFrontBufferOff()
-        self._vtk_draws_background(True)
-        self._grabbing = False  # its tiles are not the pane's picture
-        try:
+        with self._drawn_for_a_file():
             grab.Update()
-        finally:
-            self._grabbing = True
-            self._vtk_draws_background(False)
         image = grab.GetOutput()
         w, h, _ = image.GetDimensions()
         return np.ascontiguousarray(vtk_to_numpy(image.GetPointData().GetScalars()).reshape(h, w, 3)[::-1])

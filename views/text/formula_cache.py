@@ -93,8 +93,8 @@ def trim(where: Path, most: int = MAX_BYTES) -> None:
     """Delete the files of ``where`` used longest ago until they take at most ¾ of ``most`` bytes,
     if they take more than ``most``."""
     try:
-        files = [(entry.stat().st_mtime_ns, entry.stat().st_size, entry.path)
-                 for entry in os.scandir(where) if entry.name.endswith(".npy")]
+        files = [(stat.st_mtime_ns, stat.st_size, entry.path)
+                 for entry in os.scandir(where) if entry.name.endswith(".npy") for stat in [entry.stat()]]
     except OSError:
         return
     total = sum(size for _, size, _ in files)
