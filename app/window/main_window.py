@@ -196,7 +196,7 @@ class MainWindow(QMainWindow):
         self.renders.hold()  # the first render starts once the window is on screen
         self.background_compile = BackgroundCompile()
         self._compile_watch = QTimer(self, interval=1000, timeout=self._say_background_compile)
-        QApplication.instance().aboutToQuit.connect(self.background_compile.stop)
+        QApplication.instance().aboutToQuit.connect(self._quitting)
         AfterFirstFrame(self.tab_widget, self._first_frame_shown)
         self._tab_shown()
         available = self.screen().availableGeometry()
@@ -540,6 +540,12 @@ class MainWindow(QMainWindow):
         self.tab("image order").widget.show_tree(x, y, root, scene)  # the tree and its worked math
         self.overlays.show_ray_tree(root)
 
+    def _quitting(self) -> None:
+        """The application is quitting, with or without this window closed: stop what runs on other
+        threads that the interpreter's shutdown must not meet."""
+        self.background_compile.stop()
+        math_view.stop_typesetting(EXIT_WAIT_MS)
+
     def closeEvent(self, event):
         if not self.editor.may_replace_scene():
             event.ignore()
@@ -588,10 +594,11 @@ def run(scene_path: str | None = None, memory_limit: int | None = None) -> int:
         window.explain_if_too_large(Path(scene_path).name)
     status = app.exec()
     session.remember(window)
-    if not QThreadPool.globalInstance().waitForDone(EXIT_WAIT_MS):
+    if not QThreadPool.globalInstance().waitForDone(EXIT_WAIT_MS) or not math_view.stop_typesetting(0):
         # A render thread still inside a kernel compile (minutes on a fresh machine; it cannot be
-        # interrupted): end the process now rather than hang after the window closed. Every file is
-        # written whole or not at all, and numba writes each compiled kernel by renaming it into place.
+        # interrupted), or a formula still being typeset: end the process now rather than hang after the
+        # window closed, or crash in the interpreter's shutdown. Every file is written whole or not at
+        # all, and numba writes each compiled kernel by renaming it into place.
         sys.stdout.flush()
         sys.stderr.flush()
         os._exit(status)

@@ -180,6 +180,16 @@ def _typesetter() -> QThreadPool:
     return pool
 
 
+def stop_typesetting(wait_ms: int) -> bool:
+    """Drop the formulas still waiting to be typeset and wait up to ``wait_ms`` for the one being typeset
+    (False if it took longer).  Called as the application quits: a formula typeset while the
+    interpreter shut down crashed it."""
+    if _typesetter.cache_info().currsize == 0:  # nothing was ever typeset off the GUI thread
+        return True
+    _typesetter().clear()
+    return _typesetter().waitForDone(wait_ms)
+
+
 class _Typeset(QObject):
     done = Signal(int)  # the request's number
 
