@@ -405,6 +405,7 @@ def run(args) -> int:
     from core import presets
     from core.image_order import ray_tracing
     from core.object_order import pipeline
+    from views.text import math_view
 
     ray_tracing.ensure_compiled()  # compile (or load) the kernels first: this measures the window
     pipeline.ensure_compiled()
@@ -443,9 +444,9 @@ def run(args) -> int:
         print(f"\n{r['tab']}, the longest stall: " + "\n".join(r["why"]))
     window.close()
     QThreadPool.globalInstance().waitForDone()
+    # The formulas still queued are dropped, as when the window quits (typesetting them all took
+    # half a minute with an empty cache), and the one being typeset is waited for.
+    math_view.stop_typesetting(-1)
     if cold is not None:
-        from views.text import math_view
-
-        math_view._typesetter().waitForDone()  # it may still be keeping a formula in the cache
         cold.cleanup()
     return 0
