@@ -24,6 +24,7 @@ import threading
 from functools import lru_cache
 
 import numpy as np
+import shiboken6
 from PySide6.QtCore import QObject, QRectF, QRunnable, QSize, Qt, QThreadPool, QTimer, Signal
 from PySide6.QtGui import QColor, QFont, QFontMetricsF, QImage, QPainter, QPen, QPixmap
 from PySide6.QtWidgets import QLabel, QSizePolicy, QWidget
@@ -192,6 +193,7 @@ def stop_typesetting(wait_ms: int) -> bool:
 
 class _Typeset(QObject):
     done = Signal(int)  # the request's number
+    newest = 0  # the newest request the view made: an older one, or one of a deleted view, is dropped
 
 
 class _TypesetJob(QRunnable):
@@ -205,10 +207,15 @@ class _TypesetJob(QRunnable):
 
     def run(self):
         for text, size_pt in self.texts:
+            if not self._wanted():  # a newer formula (the next lesson step, a new pixel) waits behind it
+                return
             with contextlib.suppress(ValueError):
                 _typeset(text, size_pt, self.color, self.dpi, True)
         with contextlib.suppress(RuntimeError):  # the view was deleted meanwhile
             self.signals.done.emit(self.request)
+
+    def _wanted(self) -> bool:
+        return shiboken6.isValid(self.signals) and self.signals.newest == self.request
 
 
 class MathView(QLabel):
@@ -354,6 +361,7 @@ class MathView(QLabel):
             self._typeset_signals = _Typeset(self)
             self._typeset_signals.done.connect(self._typeset_done)
         self._request += 1
+        self._typeset_signals.newest = self._request
         self.pending = True
         _typesetter().start(_TypesetJob(self._request, texts, color, dpi, self._typeset_signals))
 

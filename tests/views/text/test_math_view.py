@@ -150,3 +150,42 @@ def test_a_later_view_wraps_its_formula_without_typesetting_on_the_gui_thread(qt
     assert len(lines) >= 2  # wrapped
     assert on_gui_thread and not any(on_gui_thread)  # all typeset, none of it on the GUI thread
     math_view._typeset.cache_clear()
+
+
+def test_a_formula_replaced_before_its_turn_is_never_typeset_and_the_new_one_shows(qtbot, monkeypatch):
+    # Stepping through a lesson asks for each step's formulas; the ones of a step already left waited
+    # in the typesetter's queue ahead of the step shown (and a closed window's kept it busy).
+    import threading
+
+    from PySide6.QtCore import QRunnable
+    from PySide6.QtWidgets import QWidget
+
+    from views.text import math_view
+
+    typeset = []
+    real = math_view._typeset
+    monkeypatch.setattr(math_view, "_typeset",
+                        lambda text, *args: (typeset.append(text), real(text, *args))[1])
+    asked = []
+    job = math_view._TypesetJob
+    monkeypatch.setattr(math_view, "_TypesetJob", lambda *args: (asked.append(args[1][0]), job(*args))[1])
+    busy, release = threading.Event(), threading.Event()
+
+    class Busy(QRunnable):  # holds the typesetter's one thread, as a long formula being typeset does
+        def run(self):
+            busy.set()
+            release.wait(30)
+
+    math_view._typesetter().start(Busy())
+    assert busy.wait(30)
+    parent = QWidget()
+    qtbot.addWidget(parent)
+    view = MathView(r"$x_{left} = 1$", parent, later=True)
+    parent.show()
+    qtbot.waitUntil(lambda: len(asked) == 1)  # asked for, waiting behind the busy thread
+    view.set_formula(r"$y_{shown} = 2$")
+    qtbot.waitUntil(lambda: len(asked) == 2)  # the new formula asked for, behind the old one
+    release.set()
+    qtbot.waitUntil(lambda: not view.pending)
+    assert not any("left" in text for text in typeset)
+    assert any("shown" in text for text in typeset) and not view.pixmap().isNull()
