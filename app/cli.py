@@ -7,20 +7,26 @@ loading Qt or VTK.
 from __future__ import annotations
 
 import argparse
+import importlib
 import os
 import signal
 import sys
 
-from app.bench import compile_time, gui, raster, startup, trace
-from app.commands import compile_kernels, cost, export, hardcases, intersect, lesson, pixel, render
 from app.process import ctrl_c
 from app.usage import UsageError
 from core.stopping import StoppedError
 
+SUBCOMMANDS = {"intersect": "intersect", "render": "render", "pixel": "pixel", "hardcases": "hardcases",
+               "cost": "cost", "export": "export", "compile": "compile_kernels", "lesson": "lesson"}
+"""Each subcommand's module in :mod:`app.commands`."""
+BENCHMARKS = {"raster": "raster", "trace": "trace", "gui": "gui", "startup": "startup",
+              "compile": "compile_time"}
+"""Each ``bench`` kind's module in :mod:`app.bench`."""
 
-def build_parser() -> argparse.ArgumentParser:
-    benchmarks = {"raster": raster, "trace": trace, "gui": gui, "startup": startup, "compile": compile_time}
 
+def build_parser(command: str | None = None) -> argparse.ArgumentParser:
+    """The command line's parser; with ``command``, only that subcommand's module is imported and
+    parsed (a run names one), else every subcommand's (``--help`` lists them all)."""
     parser = argparse.ArgumentParser(
         prog="python -m app",
         description="Render Explorer: see how a 3D scene becomes pixels.",
@@ -31,21 +37,23 @@ def build_parser() -> argparse.ArgumentParser:
     window.add_argument("--memory-limit", metavar="SIZE",
                         help="refuse renders estimated to need more memory, e.g. 8G or 512M "
                            "(default: half of the memory available)")
-    for command in (intersect, render, pixel, hardcases, cost, export, compile_kernels, lesson):
-        command.add_parser(sub)
-    bench_parser = sub.add_parser("bench",
-                                  help="time our pipelines against VTK / Embree (a benchmark, not a test)")
-    kinds = bench_parser.add_subparsers(dest="bench", metavar="KIND", required=True)
-    for name, module in benchmarks.items():
-        p = kinds.add_parser(name, help=module.__doc__.split("\n")[0].split(": ", 1)[-1])
-        module.add_arguments(p)
-        p.set_defaults(run=module.run)
+    for name, module in SUBCOMMANDS.items():
+        if command in (None, name):
+            importlib.import_module(f"app.commands.{module}").add_parser(sub)
+    if command in (None, "bench"):
+        bench_parser = sub.add_parser(
+            "bench", help="time our pipelines against VTK / Embree (a benchmark, not a test)")
+        kinds = bench_parser.add_subparsers(dest="bench", metavar="KIND", required=True)
+        for name, module in BENCHMARKS.items():
+            module = importlib.import_module(f"app.bench.{module}")
+            p = kinds.add_parser(name, help=module.__doc__.split("\n")[0].split(": ", 1)[-1])
+            module.add_arguments(p)
+            p.set_defaults(run=module.run)
     return parser
 
 
 #: The first words the command line understands; anything else opens the window on it.
-COMMANDS = {"gui", "intersect", "render", "pixel", "export", "bench", "hardcases", "cost", "compile",
-            "lesson", "-h", "--help"}
+COMMANDS = {"gui", "bench", *SUBCOMMANDS, "-h", "--help"}
 
 
 INTERRUPTED = "python -m app: interrupted; no output file was written or changed"
@@ -71,13 +79,14 @@ def main(argv: list[str] | None = None) -> int:
         argv.insert(0, "gui")
     if hasattr(signal, "SIGXFSZ"):  # over a file-size limit a write fails; the process lives
         signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
-    parser = build_parser()
+    parser = build_parser(None if argv[0] in ("-h", "--help") else argv[0])
     args = parser.parse_args(argv)
     try:
         if args.command == "gui":
+            from app.commands.render import parse_memory_limit
             from app.window.main_window import run
 
-            return run(args.scene, render.parse_memory_limit(args.memory_limit))
+            return run(args.scene, parse_memory_limit(args.memory_limit))
         ctrl_c.stop_kernels_on_ctrl_c()
         return args.run(args)
     except UsageError as exc:
