@@ -19,6 +19,7 @@ if _held:
 try:
     from app.cli import interrupted, main
     from app.process.freed_memory import keep_freed_memory
+    from app.process.thread_waits import let_waiting_threads_sleep
 finally:
     if _held:
         signal.signal(signal.SIGINT, signal.default_int_handler)
@@ -26,6 +27,7 @@ if _pressed:
     interrupted()
 try:
     keep_freed_memory()  # process-wide: the memory of one frame's arrays is reused by the next
+    let_waiting_threads_sleep()  # process-wide, before numba loads OpenMP: no core spent spinning
     status = main()
 except KeyboardInterrupt:  # while the command line is read, before the command's own handler
     interrupted()
