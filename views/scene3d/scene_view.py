@@ -199,8 +199,9 @@ class SceneView(QWidget):
     def set_scene(self, scene: Scene) -> None:
         """Draw every object and light, then the observer; frame the whole.
 
-        An object or light that is the same as in the scene drawn before (an edit
-        replaces only what it changes) keeps its actor; only the others are built.
+        An object or light equal to one in the scene drawn before keeps its actor (an edit
+        replaces only what it changes; the next lesson step often loads the same scene again);
+        only the others are built.
         """
         before: dict[tuple, list] = {}
         for key, thing, actor in self._kept:
@@ -210,9 +211,11 @@ class SceneView(QWidget):
         for thing, is_light in drawn:
             eye_inside = isinstance(thing, Sphere) and np.linalg.norm(
                 np.subtract(scene.camera.eye, thing.center)) < thing.radius
-            key = (id(thing), eye_inside)  # ``before`` holds its things: an id there is that thing
-            if before.get(key):
-                actor = before[key].pop()[1]
+            key = (type(thing), getattr(thing, "name", ""), eye_inside)
+            same = next((k for k, (old, _) in enumerate(before.get(key, ())) if _same(old, thing)), None)
+            if same is not None:
+                # The thing drawn before is kept with its actor: the actor's name holds its id.
+                thing, actor = before[key].pop(same)
             elif is_light:
                 actor = self._add_surface(pv.Sphere(radius=LIGHT_MARKER, center=thing.position),
                                           f"light:{id(thing)}", color="#fff6a0", lighting=False)
@@ -663,6 +666,17 @@ def _edges(poly: pv.PolyData) -> list[tuple[int, int]]:
                 pairs.append((ids[-1], ids[0]))
             k += n + 1
     return pairs
+
+
+def _same(drawn, thing) -> bool:
+    """Whether ``thing`` (an object or a light) is ``drawn`` or equal to it (an object made with an
+    array for a vector, whose dataclass equality has no single answer, only when it is ``drawn``)."""
+    if drawn is thing:
+        return True
+    try:
+        return bool(drawn == thing)
+    except ValueError:
+        return False
 
 
 def _box_corners(obj) -> np.ndarray:

@@ -7,6 +7,8 @@ a ``vtkCamera``.  Every conversion between the two lives here.
 
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 import pyvista as pv
 from vtkmodules.vtkCommonCore import vtkStringArray
@@ -40,11 +42,21 @@ def mesh_polydata(mesh: Mesh) -> pv.PolyData:
     return pv.PolyData(np.array(mesh.vertices), _faces(mesh.triangles))
 
 
+@functools.cache
+def _unit_sphere() -> pv.PolyData:
+    """The tessellation of the sphere of radius 1 at the origin that :func:`sphere_polydata` scales."""
+    return pv.Sphere(radius=1.0, center=(0.0, 0.0, 0.0), theta_resolution=48, phi_resolution=32)
+
+
 def sphere_polydata(sphere: Sphere) -> pv.PolyData:
-    """A smooth tessellation of an analytic sphere, for display only."""
-    return pv.Sphere(
-        radius=sphere.radius, center=sphere.center, theta_resolution=48, phi_resolution=32
-    )
+    """A smooth tessellation of an analytic sphere, for display only: pyvista's ``Sphere`` at 48 × 32,
+    scaled and moved from one made once (making it anew took 5-10 ms of the GUI thread per sphere
+    at each lesson step)."""
+    unit = _unit_sphere()
+    points = unit.points * float(sphere.radius) + np.asarray(sphere.center, dtype=float)
+    poly = pv.PolyData(points.astype(unit.points.dtype), unit.faces.copy())
+    poly.point_data.active_normals = unit.point_data["Normals"].copy()  # the same wherever and however large
+    return poly
 
 
 def object_polydata(obj: Mesh | Sphere) -> pv.PolyData:
