@@ -161,6 +161,8 @@ class SceneView(QWidget):
         self._frustum_faces.SetVisibility(False)
         self._smooth_timer.start()
         if self._render_timer.isActive():
+            if self._render_timer.interval() == 0:  # drawn at once: after this turn's last change
+                self._render_timer.start(0)
             return
         wait_ms = FRAME_MS - (time.perf_counter() - self._last_draw) * 1000.0
         # At once (after the changes queued in this turn of the event loop) if the last
