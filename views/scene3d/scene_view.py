@@ -219,7 +219,7 @@ class SceneView(QWidget):
                 # The thing drawn before is kept with its actor: the actor's name holds its id.
                 thing, actor = before[key].pop(same)
             elif is_light:
-                actor = self._add_surface(pv.Sphere(radius=LIGHT_MARKER, center=thing.position),
+                actor = self._add_surface(vtk_convert.placed_sphere(thing.position, LIGHT_MARKER, 30, 30),
                                           f"light:{id(thing)}", color="#fff6a0", lighting=False)
             else:
                 actor = self._add_object(thing, eye_inside)

@@ -103,9 +103,9 @@ def test_outlines_are_each_polygons_edges_and_no_others():
 @pytest.mark.parametrize("center, radius", [((0.0, 0.0, 0.0), 1.0), ((1.5, -0.25, 4.0), 0.3),
                                             ((-20.0, 7.0, 0.5), 12.0)])
 def test_a_sphere_is_pyvistas_sphere_of_that_centre_and_radius(center, radius):
-    """The pane's spheres are scaled and moved from one tessellation made once: the points, faces and
-    normals of the sphere pyvista makes for that centre and radius (points to float32's precision),
-    and for a bounding sphere's wire frame the edges pyvista extracts from it."""
+    """The pane's spheres (objects, light markers) are scaled and moved from one tessellation made
+    once: the points, faces and normals of the sphere pyvista makes for that centre and radius (points
+    to float32's precision), and for a bounding sphere's wire frame the edges pyvista extracts from it."""
     near = 1e-6 * (radius + np.abs(center).max())
     ours = vtk_convert.sphere_polydata(Sphere(center, radius))
     theirs = pv.Sphere(radius=radius, center=center, theta_resolution=48, phi_resolution=32)
@@ -113,6 +113,8 @@ def test_a_sphere_is_pyvistas_sphere_of_that_centre_and_radius(center, radius):
     assert np.array_equal(ours.faces, theirs.faces)
     assert np.allclose(ours.point_normals, theirs.point_normals, atol=1e-6)
     assert np.allclose(np.linalg.norm(ours.points - np.asarray(center), axis=1), radius, rtol=1e-3)
+    marker = vtk_convert.placed_sphere(center, radius, 30, 30)  # a light's, at pyvista's own resolution
+    assert np.allclose(marker.points, pv.Sphere(radius=radius, center=center).points, rtol=0, atol=near)
     wire = vtk_convert.placed_sphere(center, radius, 24, 16, edges=True)
     edges = pv.Sphere(radius=radius, center=center, theta_resolution=24, phi_resolution=16)
     edges = edges.extract_all_edges()
