@@ -519,9 +519,10 @@ class SceneView(QWidget):
                 direction = cam.forward * 0.6 - side - np.array([0.0, 0.7, 0.0])
                 up = (0.0, 1.0, 0.0)
             points = [cam.eye, *cam.screen_corners()]
+            forward = cam.forward  # worked out anew at each use: once here
             if on_subject:
                 points += [p for poly in subject for p in poly.points]
-                deepest = max(np.dot(np.subtract(p, cam.eye), cam.forward) for p in points)
+                deepest = float(np.max((np.asarray(points, float) - cam.eye) @ forward))
             else:
                 points.append(cam.target)
                 for obj in scene.objects:
@@ -530,7 +531,7 @@ class SceneView(QWidget):
             for name in framed:
                 for poly, actor, style in self._overlays[name]:
                     keep = np.ones(poly.n_points, bool) if not on_subject else \
-                        (poly.points - cam.eye) @ cam.forward <= deepest + 1e-9
+                        (poly.points - cam.eye) @ forward <= deepest + 1e-9
                     if "label_size" in style:
                         bounds += [b for b, k in zip(self._label_bounds(poly, actor), keep, strict=True) if k]
                         points += list(poly.points[keep])
