@@ -303,10 +303,16 @@ class ObjectOrderPanel(QWidget):
         the image draws them where its pixels show large enough to see which centres are covered."""
         if polygon is None:
             return None
-        cam = self.scene.camera
-        pixels = [project_point(c, cam.view_from_world, cam.clip_from_view, cam.width, cam.height).pixel
-                  for c in polygon]
+        pixels = self._pixels_of(polygon)
         return None if any(q is None for q in pixels) else np.array(pixels)
+
+    def _pixels_of(self, corners) -> list:
+        """Each world point of ``corners`` projected to the scene's image: its pixel coordinates, or None
+        behind the eye (the camera's matrices worked out once, not for each point)."""
+        cam = self.scene.camera
+        view_from_world, clip_from_view = cam.view_from_world, cam.clip_from_view
+        return [project_point(c, view_from_world, clip_from_view, cam.width, cam.height).pixel
+                for c in corners]
 
     def _polygon_name(self, p: int) -> str:
         return polygon_name(self.result, self.scene, p)
@@ -358,10 +364,8 @@ class ObjectOrderPanel(QWidget):
 
     def _show_vertex_path(self, p: int, x: int, y: int) -> None:
         """The path of polygon ``p``'s corner nearest to pixel ``(x, y)``, world to pixel."""
-        cam = self.scene.camera
         corners = self.result.draw.polygons.world_vertices(p)
-        pixels = [project_point(c, cam.view_from_world, cam.clip_from_view, cam.width, cam.height).pixel
-                  for c in corners]
+        pixels = self._pixels_of(corners)
         gaps = [np.inf if q is None else np.hypot(q[0] - x - 0.5, q[1] - y - 0.5) for q in pixels]
         k = int(np.argmin(gaps))
         self.show_vertex(corners[k], self.scene, f"corner {k} of {self._polygon_name(p)}")

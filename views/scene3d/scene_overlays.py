@@ -62,10 +62,9 @@ def label_font_file() -> str | None:
 
 def sphere_parts(scene) -> list[tuple[pv.PolyData, dict]]:
     """Wire-frame bounding spheres of the objects that are not spheres themselves."""
-    import pyvista as pv
+    from views.scene3d.vtk_convert import placed_sphere
 
-    return [(pv.Sphere(radius=b.radius, center=b.center, theta_resolution=24,
-                       phi_resolution=16).extract_all_edges(),
+    return [(placed_sphere(b.center, b.radius, 24, 16, edges=True),
              {"color": "#9fd3ff", "opacity": 0.35, "line_width": 1})
             for b in bounding_spheres(scene) if not b.exact]
 

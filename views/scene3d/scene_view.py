@@ -161,6 +161,8 @@ class SceneView(QWidget):
         self._frustum_faces.SetVisibility(False)
         self._smooth_timer.start()
         if self._render_timer.isActive():
+            if self._render_timer.interval() == 0:  # drawn at once: after this turn's last change
+                self._render_timer.start(0)
             return
         wait_ms = FRAME_MS - (time.perf_counter() - self._last_draw) * 1000.0
         # At once (after the changes queued in this turn of the event loop) if the last
@@ -199,8 +201,9 @@ class SceneView(QWidget):
     def set_scene(self, scene: Scene) -> None:
         """Draw every object and light, then the observer; frame the whole.
 
-        An object or light that is the same as in the scene drawn before (an edit
-        replaces only what it changes) keeps its actor; only the others are built.
+        An object or light equal to one in the scene drawn before keeps its actor (an edit
+        replaces only what it changes; the next lesson step often loads the same scene again);
+        only the others are built.
         """
         before: dict[tuple, list] = {}
         for key, thing, actor in self._kept:
@@ -210,11 +213,13 @@ class SceneView(QWidget):
         for thing, is_light in drawn:
             eye_inside = isinstance(thing, Sphere) and np.linalg.norm(
                 np.subtract(scene.camera.eye, thing.center)) < thing.radius
-            key = (id(thing), eye_inside)  # ``before`` holds its things: an id there is that thing
-            if before.get(key):
-                actor = before[key].pop()[1]
+            key = (type(thing), getattr(thing, "name", ""), eye_inside)
+            same = next((k for k, (old, _) in enumerate(before.get(key, ())) if _same(old, thing)), None)
+            if same is not None:
+                # The thing drawn before is kept with its actor: the actor's name holds its id.
+                thing, actor = before[key].pop(same)
             elif is_light:
-                actor = self._add_surface(pv.Sphere(radius=LIGHT_MARKER, center=thing.position),
+                actor = self._add_surface(vtk_convert.placed_sphere(thing.position, LIGHT_MARKER, 30, 30),
                                           f"light:{id(thing)}", color="#fff6a0", lighting=False)
             else:
                 actor = self._add_object(thing, eye_inside)
@@ -514,9 +519,10 @@ class SceneView(QWidget):
                 direction = cam.forward * 0.6 - side - np.array([0.0, 0.7, 0.0])
                 up = (0.0, 1.0, 0.0)
             points = [cam.eye, *cam.screen_corners()]
+            forward = cam.forward  # worked out anew at each use: once here
             if on_subject:
                 points += [p for poly in subject for p in poly.points]
-                deepest = max(np.dot(np.subtract(p, cam.eye), cam.forward) for p in points)
+                deepest = float(np.max((np.asarray(points, float) - cam.eye) @ forward))
             else:
                 points.append(cam.target)
                 for obj in scene.objects:
@@ -525,7 +531,7 @@ class SceneView(QWidget):
             for name in framed:
                 for poly, actor, style in self._overlays[name]:
                     keep = np.ones(poly.n_points, bool) if not on_subject else \
-                        (poly.points - cam.eye) @ cam.forward <= deepest + 1e-9
+                        (poly.points - cam.eye) @ forward <= deepest + 1e-9
                     if "label_size" in style:
                         bounds += [b for b, k in zip(self._label_bounds(poly, actor), keep, strict=True) if k]
                         points += list(poly.points[keep])
@@ -663,6 +669,17 @@ def _edges(poly: pv.PolyData) -> list[tuple[int, int]]:
                 pairs.append((ids[-1], ids[0]))
             k += n + 1
     return pairs
+
+
+def _same(drawn, thing) -> bool:
+    """Whether ``thing`` (an object or a light) is ``drawn`` or equal to it (an object made with an
+    array for a vector, whose dataclass equality has no single answer, only when it is ``drawn``)."""
+    if drawn is thing:
+        return True
+    try:
+        return bool(drawn == thing)
+    except ValueError:
+        return False
 
 
 def _box_corners(obj) -> np.ndarray:

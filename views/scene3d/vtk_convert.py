@@ -7,6 +7,8 @@ a ``vtkCamera``.  Every conversion between the two lives here.
 
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 import pyvista as pv
 from vtkmodules.vtkCommonCore import vtkStringArray
@@ -40,11 +42,29 @@ def mesh_polydata(mesh: Mesh) -> pv.PolyData:
     return pv.PolyData(np.array(mesh.vertices), _faces(mesh.triangles))
 
 
+@functools.cache
+def _unit_sphere(theta_resolution: int, phi_resolution: int, edges: bool) -> pv.PolyData:
+    """pyvista's sphere of radius 1 at the origin (its edges only if ``edges``), made once."""
+    sphere = pv.Sphere(radius=1.0, center=(0.0, 0.0, 0.0), theta_resolution=theta_resolution,
+                       phi_resolution=phi_resolution)
+    return sphere.extract_all_edges() if edges else sphere
+
+
+def placed_sphere(center, radius: float, theta_resolution: int = 48, phi_resolution: int = 32,
+                  edges: bool = False) -> pv.PolyData:
+    """pyvista's ``Sphere`` of that centre, radius and resolution (or its edges, as
+    ``extract_all_edges`` gives them), scaled and moved from one made once: making it anew took
+    5-10 ms of the GUI thread per sphere, and a lesson step shows its scene's spheres and the
+    bounding spheres of its other objects.  Each call gives a polydata of its own."""
+    unit = _unit_sphere(theta_resolution, phi_resolution, edges)
+    poly = unit.copy(deep=True)  # the normals too: the same wherever and however large
+    poly.points = (unit.points * float(radius) + np.asarray(center, dtype=float)).astype(unit.points.dtype)
+    return poly
+
+
 def sphere_polydata(sphere: Sphere) -> pv.PolyData:
     """A smooth tessellation of an analytic sphere, for display only."""
-    return pv.Sphere(
-        radius=sphere.radius, center=sphere.center, theta_resolution=48, phi_resolution=32
-    )
+    return placed_sphere(sphere.center, sphere.radius)
 
 
 def object_polydata(obj: Mesh | Sphere) -> pv.PolyData:

@@ -1,5 +1,7 @@
 """How the 3D pane is drawn: cheaply, and the same picture as VTK's most careful way."""
 
+from dataclasses import replace
+
 import numpy as np
 import pytest
 from PySide6.QtGui import QImage, QSurface
@@ -66,3 +68,31 @@ def test_every_polygon_the_frustum_cut_is_outlined_and_all_are_one_actor(qtbot, 
         assert n == len(polygon) + 1 and ids[0] == ids[-1]
         assert np.allclose(outlines.points[ids[:-1]], polygon)
         start += n + 1
+
+
+def _objects_drawn(view):
+    """The 3D pane's object actors and the colour each is drawn in."""
+    return [(actor, actor.prop.color.float_rgb) for name, actor in view.plotter.renderer.actors.items()
+            if name.startswith("object:")]
+
+
+def test_the_same_scene_loaded_again_keeps_its_drawing_and_a_changed_object_shows_its_change(qtbot, window):
+    """A lesson's next step loads its scene anew, often the same objects seen by another observer:
+    the pane keeps what it drew of them, as after an edit; an object that differs is drawn as it
+    now is."""
+    view = window.scene_view
+    before = _objects_drawn(view)
+    assert len(before) == len(window.model.scene.objects)
+    scene = presets.lecture_scene()  # made again: equal objects, not the same ones
+    window.model.set_scene(replace(scene, camera=scene.camera.replace(fov_y_deg=scene.camera.fov_y_deg + 5)))
+    again = _objects_drawn(view)
+    assert len(again) == len(before) and all(a is b for (a, _), (b, _) in zip(again, before, strict=True))
+    scene = presets.lecture_scene()
+    first = scene.objects[0]
+    green = (0.1, 0.9, 0.2)
+    recoloured = replace(first, material=replace(first.material, color=green))
+    window.model.set_scene(replace(scene, objects=(recoloured, *scene.objects[1:])))
+    after = _objects_drawn(view)
+    assert len(after) == len(before)
+    assert sum(np.allclose(colour, green, atol=0.5 / 255) for _, colour in after) == 1
+    assert sum(any(a is b for b, _ in before) for a, _ in after) == len(before) - 1

@@ -40,3 +40,50 @@ def test_labels_placed_one_after_the_other_do_not_cover_each_other():
     second = place_label((110, 100), (80, 20), no_lines, (400, 300), taken)
     a, b = taken[0], (second[0] - 40, second[1], second[0] + 40, second[1] + 20)
     assert a[2] <= b[0] or b[2] <= a[0] or a[3] <= b[1] or b[3] <= a[1]
+
+
+_AROUND = ((0, 1), (1, 1), (-1, 1), (0, -1), (1, 0), (-1, 0), (1, -1), (-1, -1))  # above first
+
+
+def _nearest_clear_spot(anchor, size, segments, pane, taken, gap):
+    """Brute force, spot by spot: the first spot (nearest first, above first at each distance) whose
+    box is in the pane, ``gap`` clear of the labels ``taken`` and of every line; its index too."""
+    (ax, ay), (w, h), (p, q, half) = anchor, size, segments
+    k = 0
+    for reach in np.arange(0.0, np.hypot(*pane), max(h / 4, 2.0)):
+        for dx, dy in _AROUND:
+            x = ax + dx * (w / 2 + gap + reach) if dx else ax  # the box's side nearest the point
+            bottom = ay + gap + reach if dy > 0 else ay - gap - h - reach if dy < 0 else ay - h / 2
+            box = (x - w / 2, bottom, x + w / 2, bottom + h)
+            in_pane = min(box[0], box[1]) >= 0 and box[2] <= pane[0] and box[3] <= pane[1]
+            clear = in_pane and not any(
+                box[0] < o[2] + gap and o[0] - gap < box[2] and box[1] < o[3] + gap and o[1] - gap < box[3]
+                for o in taken) and not segments_meet_box(p, q, half + gap, box).any()
+            if clear:
+                return (x, bottom), k
+            k += 1
+    return None, k
+
+
+def test_the_label_goes_to_the_nearest_clear_spot_however_far_it_is():
+    """Among thick lines crowding the point, nearest first: what checking every spot one by one finds."""
+    rng = np.random.default_rng(7)
+    pane, size, gap = (400.0, 300.0), (90.0, 16.0), 4.0
+    far = []
+    for _ in range(12):
+        n = int(rng.integers(5, 40))
+        anchor = rng.uniform((100, 80), (300, 220))
+        rows = anchor[1] + 14.0 * np.arange(-int(rng.integers(0, 14)), int(rng.integers(1, 14)))
+        p = np.vstack([anchor + rng.normal(0, 60, (n, 2)), np.c_[np.zeros_like(rows), rows]])
+        q = np.vstack([anchor + rng.normal(0, 60, (n, 2)), np.c_[np.full_like(rows, pane[0]), rows]])
+        half = np.r_[rng.uniform(1, 6, n), np.ones_like(rows)]  # lines, then rows too close for a label
+        taken = [tuple(np.r_[c, c + (60, 14)]) for c in rng.uniform((0, 0), (340, 286), (3, 2))]
+        expected, index = _nearest_clear_spot(anchor, size, (p, q, half), pane, taken, gap)
+        spot = place_label(anchor, size, (p, q, half), pane, taken, gap)
+        if expected is None:
+            assert spot is None
+        else:
+            assert spot is not None and np.allclose(spot, expected, rtol=0, atol=1e-9)
+        far.append(index if expected is not None else None)
+    assert max(k for k in far if k is not None) > 64 + 64  # some found only past the nearest spots ...
+    assert None in far  # ... and one nowhere, every spot checked

@@ -98,3 +98,30 @@ def test_outlines_are_each_polygons_edges_and_no_others():
     expected = {frozenset((tuple(map(float, p[k])), tuple(map(float, p[(k + 1) % len(p)]))))
                 for p in (triangle, square) for k in range(len(p))}
     assert found == expected  # 3 + 4 edges, none across a polygon or between the two
+
+
+@pytest.mark.parametrize("center, radius", [((0.0, 0.0, 0.0), 1.0), ((1.5, -0.25, 4.0), 0.3),
+                                            ((-20.0, 7.0, 0.5), 12.0)])
+def test_a_sphere_is_pyvistas_sphere_of_that_centre_and_radius(center, radius):
+    """The pane's spheres (objects, light markers) are scaled and moved from one tessellation made
+    once: the points, faces and normals of the sphere pyvista makes for that centre and radius (points
+    to float32's precision), and for a bounding sphere's wire frame the edges pyvista extracts from it."""
+    near = 1e-6 * (radius + np.abs(center).max())
+    ours = vtk_convert.sphere_polydata(Sphere(center, radius))
+    theirs = pv.Sphere(radius=radius, center=center, theta_resolution=48, phi_resolution=32)
+    assert np.allclose(ours.points, theirs.points, rtol=0, atol=near)
+    assert np.array_equal(ours.faces, theirs.faces)
+    assert np.allclose(ours.point_normals, theirs.point_normals, atol=1e-6)
+    assert np.allclose(np.linalg.norm(ours.points - np.asarray(center), axis=1), radius, rtol=1e-3)
+    marker = vtk_convert.placed_sphere(center, radius, 30, 30)  # a light's, at pyvista's own resolution
+    assert np.allclose(marker.points, pv.Sphere(radius=radius, center=center).points, rtol=0, atol=near)
+    wire = vtk_convert.placed_sphere(center, radius, 24, 16, edges=True)
+    edges = pv.Sphere(radius=radius, center=center, theta_resolution=24, phi_resolution=16)
+    edges = edges.extract_all_edges()
+    assert np.allclose(wire.points, edges.points, rtol=0, atol=near)
+    assert np.array_equal(wire.lines, edges.lines) and len(wire.faces) == 0
+    # Each call gives its own points: an overlay that takes new points into a drawn sphere changes no other.
+    again = vtk_convert.sphere_polydata(Sphere(center, radius))
+    again.points[:] = 0.0
+    fresh = vtk_convert.sphere_polydata(Sphere(center, radius))
+    assert np.allclose(fresh.points, theirs.points, rtol=0, atol=near)
