@@ -38,7 +38,9 @@ def _record(signal) -> list:
 
 
 @pytest.mark.gui
-def test_the_new_rows_edit_export_present_and_resize_the_text_and_leave_the_window_as_it_was(qapp, window):
+def test_the_new_rows_edit_export_present_and_resize_the_text_and_leave_the_window_as_it_was(qapp, window,
+                                                                                           monkeypatch):
+    monkeypatch.setattr(gui, "AFTER_S", 0.05)  # what is checked is what each step did, not its stalls
     scene, editor = window.model.scene, window.editor
     scenes = _record(window.model.scene_changed)
     row = gui._bench_action(qapp, window, "scene edits", gui._scene_edits(window), why=False)
