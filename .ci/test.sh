@@ -5,9 +5,6 @@ ensure_debian "${DEBIAN_GUI_PACKAGES[@]}" "${DEBIAN_TEST_PACKAGES[@]}"
 ensure_venv "[test]"
 export PATH="$VENV/bin:$PATH"
 ruff check .
-# Byte-compiled once: where the environment forbids writing bytecode (PYTHONDONTWRITEBYTECODE), each
-# of the suite's few hundred `python -m app` processes compiled the sources it imports again.
-python -m compileall -q -j 0 app core views tests > /dev/null
 # The kernels compile here, once per machine and version of the code, on both cores: no test waits
 # for a compile inside its own time limit.
 python -m app compile
