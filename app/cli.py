@@ -45,10 +45,10 @@ def build_parser(command: str | None = None) -> argparse.ArgumentParser:
             "bench", help="time our pipelines against VTK / Embree (a benchmark, not a test)")
         kinds = bench_parser.add_subparsers(dest="bench", metavar="KIND", required=True)
         for name, module in BENCHMARKS.items():
-            module = importlib.import_module(f"app.bench.{module}")
-            p = kinds.add_parser(name, help=module.__doc__.split("\n")[0].split(": ", 1)[-1])
-            module.add_arguments(p)
-            p.set_defaults(run=module.run)
+            bench = importlib.import_module(f"app.bench.{module}")
+            p = kinds.add_parser(name, help=bench.__doc__.split("\n")[0].split(": ", 1)[-1])
+            bench.add_arguments(p)
+            p.set_defaults(run=bench.run)
     return parser
 
 
