@@ -21,11 +21,12 @@ from __future__ import annotations
 
 import contextlib
 import threading
+import weakref
 from functools import lru_cache
 
 import numpy as np
 import shiboken6
-from PySide6.QtCore import QObject, QRectF, QRunnable, QSize, Qt, QThreadPool, QTimer, Signal
+from PySide6.QtCore import QObject, QRectF, QRunnable, QSize, Qt, QThreadPool, QTimer, Signal, Slot
 from PySide6.QtGui import QColor, QFont, QFontMetricsF, QImage, QPainter, QPen, QPixmap
 from PySide6.QtWidgets import QLabel, QSizePolicy, QWidget
 
@@ -191,9 +192,38 @@ def stop_typesetting(wait_ms: int) -> bool:
     return _typesetter().waitForDone(wait_ms)
 
 
+class _Wanted:
+    """The newest typesetting one view asked for: all the typesetter's thread reads of the view, as plain
+    Python (a Qt object of a view deleted meanwhile, touched from that thread, crashed the program)."""
+
+    def __init__(self, view: MathView):
+        self.newest = 0
+        self.view = weakref.ref(view)
+
+    def drop(self) -> None:
+        """The view is gone: nothing it asked for is typeset."""
+        self.newest = -1
+
+
 class _Typeset(QObject):
-    done = Signal(int)  # the request's number
-    newest = 0  # the newest request the view made: an older one, or one of a deleted view, is dropped
+    """Tells a view, on the GUI thread, that its request is typeset (one for all views, never deleted)."""
+
+    done = Signal(object, int)  # the view's wants, the request's number
+
+    def __init__(self):
+        super().__init__()
+        self.done.connect(self._deliver)  # queued onto the GUI thread, where this object lives
+
+    @Slot(object, int)
+    def _deliver(self, wanted: _Wanted, request: int) -> None:
+        view = wanted.view()
+        if view is not None and shiboken6.isValid(view):
+            view._typeset_done(request)
+
+
+@lru_cache(maxsize=1)
+def _notice() -> _Typeset:
+    return _Typeset()  # made by the first view's request, on the GUI thread
 
 
 class _TypesetJob(QRunnable):
@@ -201,21 +231,18 @@ class _TypesetJob(QRunnable):
     disk cache), then says so; a text that is not mathtext is left to the view to report."""
 
     def __init__(self, request: int, texts: list[tuple[str, float]], color: str, dpi: float,
-                 signals: _Typeset):
+                 wanted: _Wanted):
         super().__init__()
-        self.request, self.texts, self.color, self.dpi, self.signals = request, texts, color, dpi, signals
+        self.request, self.texts, self.color, self.dpi, self.wanted = request, texts, color, dpi, wanted
+        self.notice = _notice()
 
     def run(self):
         for text, size_pt in self.texts:
-            if not self._wanted():  # a newer formula (the next lesson step, a new pixel) waits behind it
-                return
+            if self.wanted.newest != self.request:  # a newer formula (the next lesson step, a new pixel)
+                return  # waits behind it, or the view is gone
             with contextlib.suppress(ValueError):
                 _typeset(text, size_pt, self.color, self.dpi, True)
-        with contextlib.suppress(RuntimeError):  # the view was deleted meanwhile
-            self.signals.done.emit(self.request)
-
-    def _wanted(self) -> bool:
-        return shiboken6.isValid(self.signals) and self.signals.newest == self.request
+        self.notice.done.emit(self.wanted, self.request)
 
 
 class MathView(QLabel):
@@ -243,7 +270,7 @@ class MathView(QLabel):
         self._done = 0  # the newest typesetting it finished
         self._asked: tuple | None = None  # what it was asked for: formula, size, colour, resolution
         self._asking = False  # asking it soon, once this turn's changes are in
-        self._typeset_signals: _Typeset | None = None
+        self._wanted: _Wanted | None = None
         self.pending = False
         """Typesetting on the typesetter's thread (``later`` views only)."""
         self._formula = formula
@@ -357,13 +384,13 @@ class MathView(QLabel):
             n = len(split)
             runs = [join_parts(split[i:j]) for i in range(n) for j in range(i + 2, n + 1) if j - i < n]
             texts += [(run, size * s) for s in SHRINKS for run in runs]
-        if self._typeset_signals is None:
-            self._typeset_signals = _Typeset(self)
-            self._typeset_signals.done.connect(self._typeset_done)
+        if self._wanted is None:
+            self._wanted = _Wanted(self)
+            self.destroyed.connect(self._wanted.drop)
         self._request += 1
-        self._typeset_signals.newest = self._request
+        self._wanted.newest = self._request
         self.pending = True
-        _typesetter().start(_TypesetJob(self._request, texts, color, dpi, self._typeset_signals))
+        _typesetter().start(_TypesetJob(self._request, texts, color, dpi, self._wanted))
 
     def _typeset_done(self, request: int) -> None:
         self._done = request

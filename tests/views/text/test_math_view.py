@@ -189,3 +189,41 @@ def test_a_formula_replaced_before_its_turn_is_never_typeset_and_the_new_one_sho
     qtbot.waitUntil(lambda: not view.pending)
     assert not any("left" in text for text in typeset)
     assert any("shown" in text for text in typeset) and not view.pixmap().isNull()
+
+
+def test_a_view_deleted_while_its_formula_is_typeset_gets_no_more_of_it_and_the_next_view_shows(
+        qtbot, monkeypatch):
+    # Closing a window while its formulas were being typeset crashed the program: the typesetter's
+    # thread read the deleted view's Qt objects. It now reads only what the view asked for.
+    import threading
+
+    import shiboken6
+    from PySide6.QtWidgets import QWidget
+
+    from views.text import math_view
+
+    typeset, first, release = [], threading.Event(), threading.Event()
+    real = math_view._typeset
+
+    def held(text, *args):  # the deleted view's first formula is being typeset while it is deleted
+        typeset.append(text)
+        if "gone" in text:
+            first.set()
+            release.wait(30)
+        return real(text, *args)
+
+    monkeypatch.setattr(math_view, "_typeset", held)
+    parents = [QWidget(), QWidget()]
+    for parent in parents:
+        qtbot.addWidget(parent)
+    gone = MathView(r"$x_{gone} = 1,\quad y_{gone} = 2$", parents[0], later=True)
+    parents[0].show()
+    qtbot.waitUntil(first.is_set)
+    kept = MathView(r"$z_{kept} = 3$", parents[1], later=True)
+    parents[1].show()
+    shiboken6.delete(parents[0])  # the window closed mid-typesetting
+    release.set()
+    qtbot.waitUntil(lambda: not kept.pending)
+    assert sum("gone" in text for text in typeset) == 1  # none of its other parts or sizes
+    assert not kept.pixmap().isNull() and kept.shown_lines()[0]
+    assert not shiboken6.isValid(gone)
