@@ -87,6 +87,22 @@ ROOM = (0.5, 0.3)
 """The least share of the figure's width and height the curves' axes keep (else the text shrinks)."""
 
 
+def _places(figure) -> tuple[list, list]:
+    """The places of ``figure``'s axes, and the entries of the legends they were laid out with.  While a
+    sweep runs the plot is drawn in the places of its last full layout, for speed, but only while the
+    legends are the same: a knob's curve added makes the legend under the curves taller, and drawn in
+    the old places it ran off the figure's bottom."""
+    return ([ax.get_position().frozen() for ax in figure.axes],
+            [_entries(ax.get_legend()) for ax in figure.axes])
+
+
+def _entries(legend) -> tuple:
+    """A legend's title and labels (nothing for no legend)."""
+    if legend is None:
+        return ()
+    return (legend.get_title().get_text(), *(text.get_text() for text in legend.get_texts()))
+
+
 class _CanvasBox(QWidget):
     """Where a canvas goes once made; meanwhile it asks for the room the canvas will ask for."""
 
@@ -189,7 +205,7 @@ class CostPanel(QWidget):
         self._points: dict[int, Point] = {}
         self._knees: dict[str, int] = {}
         self._lines: dict = {}
-        self._layout: list | None = None  # the axes' places in the last full draw of the plot
+        self._layout: tuple | None = None  # the axes' places in the last full draw of the plot (_places)
         self._replot = QTimer(self)
         self._replot.setSingleShot(True)
         self._replot.setInterval(REPLOT_MS)
@@ -525,7 +541,7 @@ class CostPanel(QWidget):
                 style = {**plot_theme.plot_style(dark), **plot_theme.fitted_style(figure)}
                 with matplotlib.rc_context(style):
                     lines = CostPanel._lay_out_plot(figure, rows, indices, dark, selected, layout)
-                full = [ax.get_position().frozen() for ax in figure.axes] if layout is None else None
+                full = _places(figure) if layout is None else None
                 return Drawn(figure, pixels(figure), {"lines": lines, "layout": full})
 
         return draw
@@ -542,10 +558,10 @@ class CostPanel(QWidget):
             with matplotlib.rc_context({"font.size": share * size}), warnings.catch_warnings():
                 # Text too large for the pane is what this loop measures and makes smaller.
                 warnings.filterwarnings("ignore", "constrained_layout not applied", UserWarning)
-                lines = CostPanel._first_layout(figure, rows, indices, dark, selected, layout)
+                lines, kept = CostPanel._first_layout(figure, rows, indices, dark, selected, layout)
             curves = figure.axes[0].bbox
-            if layout is not None or (curves.height >= ROOM[1] * figure.bbox.height
-                                      and curves.width >= ROOM[0] * figure.bbox.width):
+            if kept or (curves.height >= ROOM[1] * figure.bbox.height
+                        and curves.width >= ROOM[0] * figure.bbox.width):
                 break
         with matplotlib.rc_context({"font.size": share * size}):
             figure.set_layout_engine("none")  # the tick labels thinned stay where they were measured
@@ -554,14 +570,17 @@ class CostPanel(QWidget):
         return lines
 
     @staticmethod
-    def _first_layout(figure, rows, indices, dark, selected, layout) -> dict:
-        """Draw ``rows`` on ``figure`` and lay it out, the curves' legend under their axis label."""
+    def _first_layout(figure, rows, indices, dark, selected, layout) -> tuple[dict, bool]:
+        """Draw ``rows`` on ``figure`` and lay it out, the curves' legend under their axis label, or in
+        the places of ``layout`` (:func:`_places`) if they were made for the same axes and legends; its
+        lines, and whether those places were kept."""
         figure.set_facecolor(plot_theme.background(dark))
         figure.set_layout_engine("constrained")
         lines = draw_cost_plot(figure, rows, indices)
-        if layout is not None and len(layout) == len(figure.axes):
+        kept = layout is not None and layout[1] == _places(figure)[1]
+        if kept:
             figure.set_layout_engine("none")
-            for ax, box in zip(figure.axes, layout, strict=True):
+            for ax, box in zip(figure.axes, layout[0], strict=True):
                 ax.set_position(box)
         ax = figure.axes[0]
         if selected is not None:
@@ -574,7 +593,7 @@ class CostPanel(QWidget):
         plot_theme.fit_axis_labels(figure)
         tidy_cost_plot(figure)  # the legend under the axis label: laid out again to make room for it
         figure.canvas.draw()
-        return lines
+        return lines, kept
 
     def _plot_drawn(self, drawn: Drawn) -> None:
         """A new picture of the plot is shown: its lines answer clicks; a full one's places are kept."""

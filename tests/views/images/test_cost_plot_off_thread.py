@@ -107,3 +107,27 @@ def test_a_sweep_never_draws_the_plot_or_a_points_images_on_the_gui_thread(qtbot
     titles = [ax.get_title() for ax in shown.axes if ax.images]
     assert titles[0].startswith(f"depth = {panel._points[last].row.value}")
     assert titles[1].startswith("reference")
+
+
+def test_while_a_sweep_runs_a_new_knobs_curve_never_pushes_the_legend_off_the_plot():
+    # While a sweep runs the plot is drawn quickly, in the places of its last full layout. Presenting at
+    # x2 at 1920 x 1080, that layout was made for the first knob's one-line legend; with every knob's
+    # curve in, the legend under the curves ran off the figure's bottom until the sweep ended.
+    import matplotlib
+
+    from views.panels.cost_panel import _places
+
+    rows = [r for r in _all_knob_rows() if r.knob != "depth-format"]
+    first = [r for r in rows if r.knob == rows[0].knob]
+    size = (741, 644, 200.0)  # the pane's figure presenting at x2 at 1920 x 1080
+    full = agg_figure(*size)
+    with matplotlib.rc_context(plot_theme.fitted_style(full)):
+        CostPanel._lay_out_plot(full, first, list(range(len(first))), False, None, None)
+    quick = agg_figure(*size)
+    with matplotlib.rc_context(plot_theme.fitted_style(quick)):
+        CostPanel._lay_out_plot(quick, rows, list(range(len(rows))), False, None, _places(full))
+    renderer = quick.canvas.get_renderer()
+    legend = quick.axes[0].get_legend()
+    assert len(legend.get_texts()) == len({r.knob for r in rows})  # every knob's curve is named
+    box, edge = legend.get_window_extent(renderer), quick.bbox
+    assert edge.y0 - 1 <= box.y0 and box.y1 <= edge.y1 + 1  # and the names show whole
