@@ -124,7 +124,8 @@ def shown_tick_labels(axis) -> list:
             if label.get_visible() and label.get_text().strip() and low <= tick.get_loc() <= high]
 
 
-def _overlap(a, b, pad: float = 1.0) -> bool:
+def boxes_overlap(a, b, pad: float = 1.0) -> bool:
+    """Whether two boxes (display pixels) come within ``pad`` of each other."""
     return a.x0 < b.x1 + pad and b.x0 < a.x1 + pad and a.y0 < b.y1 + pad and b.y0 < a.y1 + pad
 
 
@@ -135,7 +136,7 @@ def _thin(texts: list, renderer, avoid: list | None = None, inside=None) -> None
         box = text.get_window_extent(renderer)
         outside = inside is not None and not (inside.x0 <= box.x0 and box.x1 <= inside.x1
                                                and inside.y0 <= box.y0 and box.y1 <= inside.y1)
-        if outside or any(_overlap(box, other) for other in kept):
+        if outside or any(boxes_overlap(box, other) for other in kept):
             text.set_visible(False)
         else:
             kept.append(box)

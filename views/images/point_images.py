@@ -14,10 +14,12 @@ false colour with their scale.
 
 from __future__ import annotations
 
+import textwrap
 from collections.abc import Callable
 
 from core.srgb import to_srgb8
 from views.images import plot_theme
+from views.images.cost_plot import boxes_overlap
 from views.images.figure_image import Drawn, agg_figure, pixels
 from views.images.matplotlib_lock import MATPLOTLIB
 
@@ -36,8 +38,8 @@ def _panels(point, reference) -> list:
 
 def draw_point_images(figure, point, reference) -> None:
     """Draw ``point``'s image, ``reference``'s and the FLIP error map (and the samples per pixel) on
-    ``figure``, two to a row, inside the caller's ``matplotlib.rc_context``.  The error map's scale is
-    FLIP's own, 0 to 1."""
+    ``figure``, two to a row, inside the caller's ``matplotlib.rc_context``, and draw it.  The error map's
+    scale is FLIP's own, 0 to 1."""
     for k, (image, title, cmap) in enumerate(_panels(point, reference)):
         ax = figure.add_subplot(2, 2, k + 1)
         limits = {"vmin": 0.0, "vmax": 1.0} if cmap == "magma" else {}
@@ -47,6 +49,27 @@ def draw_point_images(figure, point, reference) -> None:
         ax.set_title(title, fontsize=9)
         ax.set_xticks([])
         ax.set_yticks([])
+    _fit_titles(figure)
+
+
+def _fit_titles(figure) -> None:
+    """Break each title wider than its room over its words, its lines halved, until it fits: over an
+    image a fifth of a narrow figure wide ("FLIP against reference", presenting at x2), a title ran past
+    the figure's edge and into its neighbour's."""
+    for _ in range(3):
+        figure.canvas.draw()  # measures the titles where the layout put them
+        renderer, edge = figure.canvas.get_renderer(), figure.bbox
+        boxes = {ax: ax.title.get_window_extent(renderer) for ax in figure.axes if ax.get_title()}
+        wide = [ax for ax, box in boxes.items()
+                if box.x0 < edge.x0 or box.x1 > edge.x1
+                or any(other is not ax and boxes_overlap(box, boxes[other], 0.0) for other in boxes)]
+        if not wide:
+            return
+        for ax in wide:
+            halved = [textwrap.fill(line, max(6, (len(line) + 1) // 2))
+                      for line in ax.get_title().splitlines()]
+            ax.set_title("\n".join(halved), fontsize=9)
+    figure.canvas.draw()
 
 
 def point_images_drawing(point, reference, width: float, height: float, dpi: float,
@@ -62,7 +85,6 @@ def point_images_drawing(point, reference, width: float, height: float, dpi: flo
             figure.set_facecolor(plot_theme.background(dark))
             with matplotlib.rc_context(plot_theme.plot_style(dark)):
                 draw_point_images(figure, point, reference)
-                figure.canvas.draw()
             return Drawn(figure, pixels(figure))
 
     return draw
