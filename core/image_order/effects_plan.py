@@ -36,6 +36,19 @@ Typical results: one sphere (or one convex mesh) and any number of lights
 outside it: no shadow rays at all.  A ground quad under objects, lit from
 above: the ground blocks nothing, but the objects still shadow the ground,
 so the light keeps its shadow rays.
+
+Which objects can shadow which
+------------------------------
+The same pair by pair proof also says, for each receiving object, which
+objects may block its shadow rays (:attr:`LightPlan.blockers`): on the
+lecture scene only the cube and the cone can shadow the ground, and nothing
+can shadow the cube or the cone.  A shadow ray from the outside of a convex
+receiver (leaving it by the scaled offset of :mod:`core.image_order.ray_offset`)
+then first asks those objects' bounding spheres, the lecture's cheap
+stand-in (:mod:`core.image_order.bounding_spheres`), and goes through the
+scene only when it meets one of them; a ray that meets none reaches the
+light, as it would have found by searching the whole scene.  Worked out for
+scenes of at most ``PAIRS_LIMIT`` objects.
 """
 
 from __future__ import annotations
@@ -53,6 +66,8 @@ MODES = ("raycast", "raytrace")
 CONVEXITY_LIMIT = 4_000_000
 #: Relative tolerance of "on or behind a plane" and "strictly on one side".
 _PLANE_TOLERANCE = 1e-9
+#: Which objects can shadow which is worked out (every pair) for at most this many objects.
+PAIRS_LIMIT = 16
 
 
 @dataclass(frozen=True)
@@ -64,11 +79,16 @@ class LightPlan:
     index : int, index into ``scene.lights``.
     blockable : bool, some object might cast a shadow from this light.
     reason : str, why (in words).
+    blockers : tuple of tuples of int, or None
+        Per object of the scene (as a receiver), the objects that may cast a shadow on it
+        from this light (itself included when it is not convex); ``None`` when not worked
+        out (more than ``PAIRS_LIMIT`` objects).
     """
 
     index: int
     blockable: bool
     reason: str
+    blockers: tuple[tuple[int, ...], ...] | None = None
 
 
 @dataclass(frozen=True)
@@ -180,14 +200,27 @@ def _light_plan(scene: Scene, index: int) -> LightPlan:
         return LightPlan(index, False, "nothing in the scene can cast a shadow: no shadow rays")
     spheres = [bounding_sphere(o) for o in objects]
     planes = [_plane(o) for o in objects]
+    every_pair = len(objects) <= PAIRS_LIMIT  # else the first pair that may shadow decides
+    reason, blockers = None, []
     for y, receiver in enumerate(objects):
+        shadowing = []
         if not _is_convex(receiver):
-            return LightPlan(index, True, f"{receiver.name} may shadow itself (not convex): shadow rays")
+            reason = reason or f"{receiver.name} may shadow itself (not convex): shadow rays"
+            shadowing.append(y)
         for x, blocker in enumerate(objects):
+            if reason and not every_pair:
+                return LightPlan(index, True, reason)
             if x == y or _clear(spheres[x], spheres[y], light) or _beside(planes[x], receiver, light):
                 continue
-            return LightPlan(index, True, f"{blocker.name} may shadow {receiver.name}: shadow rays")
-    return LightPlan(index, False, "nothing can block it: no shadow rays")
+            reason = reason or f"{blocker.name} may shadow {receiver.name}: shadow rays"
+            shadowing.append(x)
+        blockers.append(tuple(shadowing))
+    if reason and not every_pair:
+        return LightPlan(index, True, reason)
+    if reason:
+        return LightPlan(index, True, reason, tuple(blockers))
+    return LightPlan(index, False, "nothing can block it: no shadow rays",
+                     tuple(blockers) if every_pair else None)
 
 
 def _clear(blocker, receiver, light) -> bool:

@@ -22,11 +22,16 @@ MAT_SPECULAR = 8
 MAT_SHININESS = 9
 MAT_SIZE = 10
 
-# --- lights: (L, LIGHT_SIZE) ------------------------------------------------------------
+# --- lights: (L, LIGHT_SIZE + O * RECEIVER_SIZE), O the scene's objects ----------------------
 LIGHT_POSITION = 0  # 3 columns, world space
 LIGHT_RGB = 3  # 3 columns, colour times intensity
 LIGHT_BLOCKABLE = 6  # 1.0 when something might cast a shadow from it (see core.image_order.effects_plan)
 LIGHT_SIZE = 7
+# Then RECEIVER_SIZE columns per object, as a receiver of shadows from this light: how many objects
+# may shadow it (BLOCKERS_UNKNOWN: not worked out, a shadow ray searches the whole scene), and
+# their indices (effects_plan's LightPlan.blockers).
+RECEIVER_SIZE = 8
+BLOCKERS_UNKNOWN = -1
 
 # --- camera: (CAM_SIZE,) -----------------------------------------------------------------
 CAM_EYE = 0  # 3

@@ -299,11 +299,20 @@ def kernel_inputs(scene: Scene, settings: TraceSettings, plan: EffectsPlan, flat
     opts[flat_layout.OPT_REFRACTION] = plan.refraction_rays
     opts[flat_layout.OPT_BACKGROUND:flat_layout.OPT_BACKGROUND + 3] = scene.background
     opts[flat_layout.OPT_PACKETS] = isinstance(structure, Bvh) and structure.packets_pay(scene.camera)
-    lights = np.zeros((len(scene.lights), flat_layout.LIGHT_SIZE))
+    width = flat_layout.LIGHT_SIZE + len(scene.objects) * flat_layout.RECEIVER_SIZE
+    lights = np.zeros((len(scene.lights), width))
     for i, (light, lp) in enumerate(zip(scene.lights, plan.lights, strict=True)):
         lights[i, flat_layout.LIGHT_POSITION:flat_layout.LIGHT_POSITION + 3] = light.position
         lights[i, flat_layout.LIGHT_RGB:flat_layout.LIGHT_RGB + 3] = np.multiply(light.color, light.intensity)
         lights[i, flat_layout.LIGHT_BLOCKABLE] = lp.blockable
+        for receiver in range(len(scene.objects)):
+            at = flat_layout.LIGHT_SIZE + receiver * flat_layout.RECEIVER_SIZE
+            blockers = None if lp.blockers is None else lp.blockers[receiver]
+            if blockers is None or len(blockers) >= flat_layout.RECEIVER_SIZE:
+                lights[i, at] = flat_layout.BLOCKERS_UNKNOWN
+            else:
+                lights[i, at] = len(blockers)
+                lights[i, at + 1:at + 1 + len(blockers)] = blockers
     grid = structure.kernel_tuple() if isinstance(structure, UniformGrid) else no_grid()
     bvh = structure.kernel_tuple() if isinstance(structure, Bvh) else no_bvh()
     depth = structure.depth if isinstance(structure, Bvh) else 0

@@ -205,7 +205,8 @@ class _Tracer:
         self.scratch = make_scratch(k.method, flat.geometry.n_prims, k.materials.shape[0], k.bvh_depth)
         self.counters = np.zeros(flat_layout.N_COUNTERS, np.int64)
         self.rec = np.empty(flat_layout.record_size(k.lights.shape[0]))
-        self.t_start = 0.0 if settings.offset == "scaled" else settings.epsilon
+        self.scaled = settings.offset == "scaled"
+        self.t_start = 0.0 if self.scaled else settings.epsilon
         self.background = np.asarray(scene.background, dtype=float)
 
     def _work(self, before) -> dict:
@@ -291,12 +292,18 @@ class _Tracer:
         t = float(rec[at + flat_layout.LR_BLOCKER_T]) if hit is not None else None
         work, cells = {"tests": 0, "bounds_tests": 0}, None
         if traced:  # the same query again, to count its work and list its cells
-            from core.image_order.kernels.closest_hit import closest_hit
+            from core.image_order.kernels.closest_hit import BVH, closest_hit
+            from core.image_order.kernels.shade import may_be_shadowed
 
             k, before = self.k, self.counters.copy()
             o, d = tuple(float(v) for v in origin), tuple(float(v) for v in direction)
-            closest_hit(k.method, o, d, self.t_start, distance, True, k.geo, k.grid, k.bvh, self.scratch,
-                        self.counters)
+            # As the render: from the outside of its object the ray asks the bounding spheres of
+            # the objects that may shadow it first, and searches the tree only if it meets one.
+            asked = k.method == BVH and self.scaled and rec[flat_layout.REC_FRONT] > 0.0
+            if not asked or may_be_shadowed(k.lights, i, int(rec[flat_layout.REC_OBJECT]), k.geo, o, d,
+                                            self.t_start, distance, self.counters):
+                closest_hit(k.method, o, d, self.t_start, distance, True, k.geo, k.grid, k.bvh,
+                            self.scratch, self.counters)
             work = self._work(before)
             cells = self._cells(o, d, self.t_start, t if t is not None else distance)
         return RayNode(

@@ -29,9 +29,11 @@ import math
 from core.image_order import flat_layout
 from core.image_order.intersect_sphere import outward_normal
 from core.image_order.intersect_triangle import barycentric_point, ray_shear
+from core.image_order.kernels.accel_spheres import bounding_roots
 from core.image_order.kernels.bvh_traverse import bvh_closest
 from core.image_order.kernels.closest_hit import BVH, closest_hit
 from core.image_order.kernels.jit import jit, jit_inline
+from core.image_order.kernels.primitives import no_hit
 from core.image_order.optics import dot, fresnel_dielectric, reflect, refract
 from core.image_order.ray_offset import error_bound, offset_ray_origin
 from core.image_order.shading import lambert, phong, surface_split
@@ -91,6 +93,60 @@ def _child(rec, at, origin, direction, weight, k, depth, opts):
     else:
         status = flat_layout.CHILD_TRACED
     rec[at + flat_layout.CHILD_STATUS] = status
+
+
+@jit_inline
+def may_be_shadowed(lights, light, receiver, geo, o, d, t_min, t_max, counters):
+    """Whether the shadow ray ``o + t d`` (``t_min <= t < t_max``), from the outside of object
+    ``receiver`` towards ``light``, meets the bounding sphere of an object that may shadow that
+    receiver (the effects plan's ``LightPlan.blockers``, laid out in ``lights``).
+
+    Where it meets none, no object can block it: the plan proved the others harmless, and a
+    shadow ray from the outside of a convex object never meets that object again (one that is
+    not convex is among its own blockers) -- when it starts from the scaled offset
+    (:mod:`core.image_order.ray_offset`); from a fixed epsilon it may meet its own surface
+    (shadow acne), so the caller asks only in the scaled mode.  Only the BVH asks: the other
+    methods do their work as the lecture shows it, so that their figures compare the methods
+    alone.  The test is the ``"spheres"`` method's
+    (:mod:`core.image_order.kernels.accel_spheres`): a padded sphere around a mesh, which no
+    crossing with one of its triangles can lie outside, and an analytic sphere itself; its roots
+    are found only for a sphere the line does not clearly pass by (:func:`_far_from_line`).
+    Counted as box and sphere tests.
+    """
+    at = flat_layout.LIGHT_SIZE + receiver * flat_layout.RECEIVER_SIZE
+    n = int(lights[light, at])
+    if n == flat_layout.BLOCKERS_UNKNOWN:
+        return True
+    bounding = geo[flat_layout.GEO_BOUNDING]
+    for k in range(n):
+        counters[flat_layout.BOUNDS_TESTS] += 1
+        blocker = int(lights[light, at + 1 + k])
+        if _far_from_line(o, d, bounding, blocker):
+            continue
+        enter, leave = bounding_roots(o, d, bounding, blocker)
+        if enter < t_max and leave >= t_min:
+            return True
+    return False
+
+
+#: A sphere is passed by without finding its roots when the squared distance of its centre from
+#: the line exceeds ``r^2`` by this share of ``2 (|f|^2 + r^2) >= (|f| + r)^2`` (``f``: the line's
+#: start minus the centre): the distance then exceeds ``r`` by about ``1e-9 (|f| + r)`` or more,
+#: far beyond the rounding of either computation and the tangent tolerance of ``sphere_roots``
+#: (``8 eps (|f| + r)``), so ``sphere_roots`` would have found no roots either.
+_CLEAR_MARGIN = 2.0**-30
+
+
+@jit_inline
+def _far_from_line(o, d, bounding, ob):
+    """Whether the line ``o + t d`` (``d`` of unit length) clearly passes object ``ob``'s bounding
+    sphere by: a dot product and no square root or division, where most shadow rays pass far
+    from every possible blocker."""
+    fx, fy, fz = o[0] - bounding[ob, 0], o[1] - bounding[ob, 1], o[2] - bounding[ob, 2]
+    along = fx * d[0] + fy * d[1] + fz * d[2]
+    f2 = fx * fx + fy * fy + fz * fz
+    r2 = bounding[ob, 3] * bounding[ob, 3]
+    return f2 - along * along > r2 + _CLEAR_MARGIN * 2.0 * (f2 + r2)
 
 
 @jit_inline
@@ -164,11 +220,16 @@ def shade_hit(o, d, hit, weight, depth, materials, lights, opts, geo, grid, bvh,
             sd = (sd[0] / s_dist, sd[1] / s_dist, sd[2] / s_dist)
             counters[flat_layout.SHADOW] += 1
             if method == BVH:
-                # The any-hit traversal inlined here, as for the render's primary rays: called
-                # through closest_hit, every array of the tree is bound anew for each shadow ray.
-                blocker = bvh_closest(so, sd, ray_shear(sd[0], sd[1], sd[2]), t_start, s_dist, True, bvh,
-                                      geo[flat_layout.GEO_N_SPHERES], scratch[flat_layout.SCRATCH_STACK],
-                                      scratch[flat_layout.SCRATCH_STACK_T], counters)
+                if scaled and front and not may_be_shadowed(lights, i, ob, geo, so, sd, t_start, s_dist,
+                                                            counters):
+                    blocker = no_hit()
+                else:
+                    # The any-hit traversal inlined here, as for the render's primary rays: called
+                    # through closest_hit, every array of the tree is bound anew for each shadow ray.
+                    blocker = bvh_closest(so, sd, ray_shear(sd[0], sd[1], sd[2]), t_start, s_dist, True,
+                                          bvh, geo[flat_layout.GEO_N_SPHERES],
+                                          scratch[flat_layout.SCRATCH_STACK],
+                                          scratch[flat_layout.SCRATCH_STACK_T], counters)
             else:
                 blocker = closest_hit(method, so, sd, t_start, s_dist, True, geo, grid, bvh, scratch,
                                       counters)

@@ -6,7 +6,7 @@ from dataclasses import replace
 import pytest
 
 from core import presets, presets_trace, shapes
-from core.image_order.effects_plan import effects_plan
+from core.image_order.effects_plan import PAIRS_LIMIT, effects_plan
 from core.scene import Material, PointLight, Scene, Sphere
 
 
@@ -88,6 +88,34 @@ def test_objects_resting_on_the_ground_shadow_it_but_the_ground_shadows_none_of_
     decal = shapes.quad((0.0, 0.0, 0.0), 1.0, name="decal")
     flat = Scene(objects=(ground, decal), lights=(PointLight((0.0, 6.0, 0.0)),))
     assert not effects_plan(flat).lights[0].blockable
+
+
+def test_the_plan_names_which_objects_may_shadow_each_object():
+    # Two balls high above the ground, far apart, the light straight above the first: both may
+    # shadow the ground (it lies below them, towards the light's other side); the second lies
+    # far from the line from the first to the light, and the ground is flat under both, so
+    # nothing can shadow either ball.  A notched prism is not convex: it may shadow itself.
+    ground = shapes.quad((0.0, 0.0, 0.0), 40.0, name="ground")
+    a, b = Sphere((0.0, 3.0, 0.0), 1.0, name="a"), Sphere((12.0, 3.0, 0.0), 1.0, name="b")
+    plan = effects_plan(Scene(objects=(ground, a, b), lights=(PointLight((0.0, 10.0, 0.0)),)))
+    assert plan.lights[0].blockers == ((1, 2), (), ())
+    # A third ball on the line from the first to the light: it may shadow the first.
+    c = Sphere((0.0, 6.0, 0.0), 1.0, name="c")
+    plan = effects_plan(Scene(objects=(ground, a, c), lights=(PointLight((0.0, 10.0, 0.0)),)))
+    assert plan.lights[0].blockers == ((1, 2), (2,), ())
+    prism = shapes.notched_prism((0.0, 1.0, 0.0), 2.0, 1.0, name="prism")
+    plan = effects_plan(Scene(objects=(prism,), lights=(PointLight((3.0, 5.0, 4.0)),)))
+    assert plan.lights[0].blockers == ((0,),)
+
+
+def test_past_the_pairs_limit_the_first_shadowing_pair_decides_and_no_blockers_are_named():
+    balls = tuple(Sphere((3.0 * k, 1.0, 0.0), 1.0, name=f"ball {k}") for k in range(PAIRS_LIMIT + 1))
+    ground = shapes.quad((0.0, 0.0, 0.0), 200.0, name="ground")
+    light = (PointLight((0.0, 10.0, 0.0)),)
+    many = effects_plan(Scene(objects=(ground, *balls), lights=light)).lights[0]
+    assert many.blockable and many.reason == "ball 0 may shadow ground: shadow rays" and many.blockers is None
+    few = effects_plan(Scene(objects=(ground, *balls[:2]), lights=light)).lights[0]
+    assert few.reason == many.reason and few.blockers == ((1, 2), (), ())
 
 
 @pytest.mark.parametrize("opacity, expected", [(1.0, False), (0.5, True)])

@@ -398,3 +398,61 @@ def test_band_statistics_add_up_to_the_whole_image():
     for key in ("prim_tests", "bounds_tests", "cells_visited", "tests_per_ray"):
         assert merged["accel"][key] == pytest.approx(whole["accel"][key])
     assert merged["pixels_traced"] == whole["pixels_traced"] and merged["rows"] == [0, 48]
+
+
+def _searching_every_shadow_ray(monkeypatch):
+    """Render with plans that name no blockers: every shadow ray searches the whole scene."""
+    import core.image_order.ray_tracing as ray_tracing
+
+    plan_of = ray_tracing.effects_plan
+
+    def no_blockers(scene, mode="raytrace"):
+        plan = plan_of(scene, mode)
+        return replace(plan, lights=tuple(replace(light, blockers=None) for light in plan.lights))
+
+    monkeypatch.setattr(ray_tracing, "effects_plan", no_blockers)
+
+
+@pytest.mark.parametrize("scene", [presets.lecture_scene, presets_trace.mirror_and_glass, lit_plane_scene,
+                                   lambda: translated(lit_plane_scene(), (1e4, 1e4, 1e4))])
+def test_shadow_rays_that_miss_every_possible_blocker_give_the_image_of_a_full_search(scene, monkeypatch):
+    frame = scene()
+    frame = replace(frame, camera=frame.camera.replace(width=96, height=72))
+    settings = TraceSettings(accel="bvh")
+    asking = render_trace(frame, settings)
+    _searching_every_shadow_ray(monkeypatch)
+    searching = render_trace(frame, settings)
+    for a, b in ((asking.color, searching.color), (asking.depth, searching.depth),
+                 (asking.object_index, searching.object_index)):
+        assert np.array_equal(a, b)
+    assert asking.stats["rays"] == searching.stats["rays"] and asking.stats["rays"]["shadow"] > 1000
+    # Most shadow rays met no bounding sphere of a possible blocker and tested no triangle.
+    assert asking.stats["accel"]["prim_tests"] < 0.8 * searching.stats["accel"]["prim_tests"]
+
+
+
+def test_a_receiver_with_more_possible_blockers_than_its_columns_hold_searches_the_whole_scene():
+    from core.image_order import flat_layout
+    from core.image_order.effects_plan import effects_plan
+    from core.image_order.flat_scene import kernel_inputs, trace_scene
+
+    ground = shapes.quad((0.0, 0.0, 0.0), 60.0, name="ground")
+    balls = tuple(Sphere((3.0 * k, 1.0, 0.0), 1.0, name=f"ball {k}")
+                  for k in range(flat_layout.RECEIVER_SIZE))
+    scene = Scene(objects=(ground, *balls), lights=(PointLight((0.0, 10.0, 0.0)),))
+    plan = effects_plan(scene)
+    assert len(plan.lights[0].blockers[0]) == flat_layout.RECEIVER_SIZE
+    lights = kernel_inputs(scene, TraceSettings(), plan, trace_scene(scene), None).lights
+    assert lights[0, flat_layout.LIGHT_SIZE] == flat_layout.BLOCKERS_UNKNOWN
+    first_ball = flat_layout.LIGHT_SIZE + flat_layout.RECEIVER_SIZE
+    assert lights[0, first_ball] == len(plan.lights[0].blockers[1])
+
+
+def test_a_ray_tree_counts_the_one_sphere_test_of_a_shadow_ray_that_misses_the_only_possible_blocker():
+    # Lit ground far from the ball's shadow: the ball is the only object that may shadow the
+    # ground, so the shadow ray asks the ball's sphere once, misses it and tests no triangle.
+    tree = trace_pixel(lit_plane_scene(), 5, 55, TraceSettings(accel="bvh"))
+    assert tree.hit_name == "ground"
+    shadow = [c for c in tree.children if c.kind == "shadow"][0]
+    assert shadow.traced and shadow.status == "reached the light" and shadow.hit is None
+    assert shadow.tests == 0 and shadow.bounds_tests == 1

@@ -306,3 +306,34 @@ def test_no_kernel_that_borrows_its_arrays_returns_one():
     found = json.loads(done.stdout.splitlines()[-1])
     assert found["compiled"] >= 20
     assert found["returning arrays"] == []
+
+
+def test_a_line_passed_over_as_far_from_a_sphere_is_one_the_sphere_test_finds_no_roots_for():
+    # Shadow rays skip the roots of a possible blocker's bounding sphere when the line clearly
+    # passes it by.  Near and far from tangency, on spheres of all sizes and distances, every line
+    # so passed over is one sphere_roots calls a miss, and every line out by more than 1e-8 of
+    # |f|^2 + r^2 in squared distance (f: the line's start minus the centre) is passed over.
+    from core.image_order.kernels.accel_spheres import bounding_roots
+    from core.image_order.kernels.shade import _far_from_line
+
+    rng = np.random.default_rng(36)
+    passed = 0
+    for _ in range(4000):
+        scale = 10.0 ** rng.uniform(-3, 4)
+        centre = rng.normal(size=3) * scale * rng.uniform(0, 50)
+        r = scale * rng.uniform(0.1, 1.0)
+        d = rng.normal(size=3)
+        d /= np.linalg.norm(d)
+        side = np.cross(d, rng.normal(size=3))
+        side /= np.linalg.norm(side)
+        gap = r * (1.0 + 10.0 ** rng.uniform(-16, -1) * rng.choice([-1.0, 1.0]))
+        origin = centre + gap * side - rng.uniform(-5, 5) * scale * d
+        bounding = np.array([[*centre, r]])
+        o, direction = tuple(origin), tuple(d)
+        if _far_from_line(o, direction, bounding, 0):
+            passed += 1
+            assert bounding_roots(o, direction, bounding, 0) == (math.inf, math.inf)
+        f2 = float(np.sum((origin - centre) ** 2))
+        if gap**2 > r**2 + 1e-8 * (f2 + r**2):
+            assert _far_from_line(o, direction, bounding, 0)
+    assert passed > 500
