@@ -19,6 +19,7 @@ then it shows nothing, never another formula.
 
 from __future__ import annotations
 
+import atexit
 import contextlib
 import threading
 import weakref
@@ -179,17 +180,31 @@ def _typesetter() -> QThreadPool:
     order they were asked for."""
     pool = QThreadPool()
     pool.setMaxThreadCount(1)
+    # Registered after PySide's own clean-up, so it runs before it: that deletes the Qt objects a
+    # formula being typeset reports to, and a process that ended mid-typesetting printed a traceback
+    # for each formula still queued (or crashed).
+    atexit.register(stop_typesetting, EXIT_WAIT_MS)
     return pool
 
 
+EXIT_WAIT_MS = 10_000
+"""How long a process that ends waits for the formula being typeset (typesetting one takes at most a
+second or so; the rest of its sizes and parts are dropped)."""
+_stopping = threading.Event()
+
+
 def stop_typesetting(wait_ms: int) -> bool:
-    """Drop the formulas still waiting to be typeset and wait up to ``wait_ms`` for the one being typeset
-    (False if it took longer).  Called as the application quits: a formula typeset while the
-    interpreter shut down crashed it."""
+    """Drop the formulas still waiting to be typeset, stop the one being typeset after its current text,
+    and wait up to ``wait_ms`` for it (False if it took longer).  Called as the application quits and
+    as the process ends: a formula typeset while the interpreter shut down crashed it."""
     if _typesetter.cache_info().currsize == 0:  # nothing was ever typeset off the GUI thread
         return True
+    _stopping.set()
     _typesetter().clear()
-    return _typesetter().waitForDone(wait_ms)
+    if not _typesetter().waitForDone(wait_ms):
+        return False
+    _stopping.clear()  # typesetting asked for from now on goes ahead (a test's next window)
+    return True
 
 
 class _Wanted:
@@ -238,11 +253,12 @@ class _TypesetJob(QRunnable):
 
     def run(self):
         for text, size_pt in self.texts:
-            if self.wanted.newest != self.request:  # a newer formula (the next lesson step, a new pixel)
-                return  # waits behind it, or the view is gone
+            if self.wanted.newest != self.request or _stopping.is_set():  # a newer formula (the next lesson
+                return  # step, a new pixel) waits behind it, or the view is gone, or the program ends
             with contextlib.suppress(ValueError):
                 _typeset(text, size_pt, self.color, self.dpi, True)
-        self.notice.done.emit(self.wanted, self.request)
+        if not _stopping.is_set():
+            self.notice.done.emit(self.wanted, self.request)
 
 
 class MathView(QLabel):

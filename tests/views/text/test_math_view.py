@@ -227,3 +227,38 @@ def test_a_view_deleted_while_its_formula_is_typeset_gets_no_more_of_it_and_the_
     assert sum("gone" in text for text in typeset) == 1  # none of its other parts or sizes
     assert not kept.pixmap().isNull() and kept.shown_lines()[0]
     assert not shiboken6.isValid(gone)
+
+
+ENDS_MID_TYPESETTING = r"""
+import sys
+from PySide6.QtCore import QEventLoop
+from PySide6.QtWidgets import QApplication, QWidget
+from views.text import math_view
+from views.text.math_view import MathView
+app = QApplication(sys.argv[:1])
+parent = QWidget()
+views = [MathView(rf"$x_{{{k}}} = \frac{{{k}}}{{{k + 1}}},\quad y = \sqrt{{{k}}}$", parent, later=True)
+         for k in range(40)]
+parent.show()
+while math_view._typesetter().activeThreadCount() == 0:
+    app.processEvents(QEventLoop.ProcessEventsFlag.AllEvents, 10)
+print("ending while typesetting", flush=True)
+"""
+
+
+@pytest.mark.gui
+def test_a_process_that_ends_while_formulas_are_typeset_ends_cleanly(tmp_path):
+    # A script or test process that ended mid-typesetting printed "Signal source has been deleted" for
+    # every formula still queued: the interpreter's shutdown deleted the Qt objects they report to.
+    import os
+    import subprocess
+    import sys
+
+    from checkout import ROOT
+
+    for run in range(3):
+        env = {**os.environ, "XDG_CACHE_HOME": str(tmp_path / str(run))}  # nothing typeset before
+        out = subprocess.run([sys.executable, "-c", ENDS_MID_TYPESETTING], cwd=ROOT, capture_output=True,
+                             text=True, env=env, timeout=300)
+        assert out.returncode == 0 and "ending while typesetting" in out.stdout, out.stderr
+        assert "Traceback" not in out.stderr and "Error" not in out.stderr, out.stderr
