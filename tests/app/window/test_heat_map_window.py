@@ -97,14 +97,16 @@ def test_overdraw_heat_map_in_the_object_order_pane_follows_the_steps(qtbot, win
     panel = window.tab("object order").widget
     plain = panel.image.rgb.copy()
     panel.overdraw.setChecked(True)
-    assert panel.overdraw_scale.isVisible() and not np.array_equal(panel.image.rgb, plain)
+    qtbot.waitUntil(panel.overdraw_scale.isVisible)
+    assert not np.array_equal(panel.image.rgb, plain)
     # From straight above, the box shows only its top (its sides and bottom are back faces, culled)
     # and the pane lies over it: at most 2 fragments reach a pixel.
     assert panel.overdraw_scale.high.text() == "2"
     total = panel.result.stats["fragments_generated"]
     assert f"{total:,} in all" in panel.overdraw_scale.units.text()
     panel.scrubber.set_step(0)
-    assert panel.overdraw_scale.high.text() == "0"
+    qtbot.waitUntil(lambda: panel.overdraw_scale.high.text() == "0")
     panel.overdraw.setChecked(False)
     panel.scrubber.last()
-    assert np.array_equal(panel.image.rgb, plain) and not panel.overdraw_scale.isVisible()
+    qtbot.waitUntil(lambda: not panel.overdraw_scale.isVisible())
+    assert np.array_equal(panel.image.rgb, plain)
