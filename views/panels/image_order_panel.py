@@ -41,7 +41,7 @@ from core.pixel_verdict import trace_verdict
 from core.scene import Scene
 from views.images.color_scale import ColorScale
 from views.images.image_view import DisplayImage, ImageView, display_image
-from views.jobs import JobRunner
+from views.jobs import JobRunner, own_thread
 from views.panels.panel_layout import pictures_over_details
 from views.panels.raytree_view import KIND_COLORS, RayKindLegend, RayTreeWidget
 from views.panels.side_column import SideColumn
@@ -144,7 +144,7 @@ class ImageOrderPanel(QWidget):
                                      "brightest the most any pixel of this image took")
         self.heat_scale.hide()
         self._traced: DisplayImage | None = None  # the traced image, under the heat map
-        self._heats = JobRunner(self)  # lays the heat map over it off the GUI thread
+        self._heats = JobRunner(self, own_thread(self))  # lays the heat map over it off the GUI thread
         self._heats.finished.connect(self._paint_heat)
         self._heat: np.ndarray | None = None  # (H, W, 2) its pixels' tests, or None
         self.show_spheres = QCheckBox("bounding spheres")

@@ -48,7 +48,7 @@ from views.images.color_scale import ColorScale
 from views.images.depth_view import DepthView
 from views.images.image_view import DisplayImage, ImageView, display_image
 from views.images.step_picture import StepPicture, polygon_name, step_picture
-from views.jobs import JobRunner
+from views.jobs import JobRunner, own_thread
 from views.panels.panel_layout import pictures_over_details
 from views.panels.side_column import SideColumn
 from views.panels.step_scrubber import StepScrubber
@@ -148,7 +148,7 @@ class ObjectOrderPanel(QWidget):
         self.result: RasterResult | None = None
         self.scene: Scene | None = None
         self._dropped = (None, ())  # ((result, pixel), its fragments culling and clipping dropped)
-        self._pictures = JobRunner(self)  # makes the step's picture off the GUI thread
+        self._pictures = JobRunner(self, own_thread(self))  # makes the step's picture off the GUI thread
         self._pictures.finished.connect(self._paint_step)
         self._stale = False  # a step was chosen while hidden: its picture is made once shown
         self.switches: dict[str, QCheckBox] = {}
