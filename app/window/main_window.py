@@ -298,8 +298,10 @@ class MainWindow(QMainWindow):
         return self.tabs[self.tab_widget.currentIndex()]
 
     def showing_full(self, name: str) -> bool:
-        """Whether tab ``name`` shows the full render of the current scene and settings."""
-        return self.renders.showing_full(self.tab(name))
+        """Whether tab ``name`` shows the full render of the current scene and settings, and the
+        pictures its panel makes of that render on a worker (the object-order step's) are painted."""
+        tab = self.tab(name)
+        return self.renders.showing_full(tab) and not getattr(tab.widget, "pending", False)
 
     # ----------------------------------------------------------------- menus
     def _action(self, menu, text, slot, shortcut=None, tip=""):

@@ -6,6 +6,10 @@ and refracted rays.  Clicking a pixel traces it again with every ray kept,
 shows the tree in the 3D pane and lists it here with the colours combined
 from the last hits back to the first, under one sentence that says what
 decided the pixel (:mod:`core.pixel_verdict`).
+
+A chosen heat map is coloured and laid over the traced image on a worker thread
+(a lesson step that turns it on held the window for a quarter of a second doing
+it on the GUI thread); the window only paints it.
 """
 
 from __future__ import annotations
@@ -29,7 +33,7 @@ from PySide6.QtWidgets import (
 )
 
 from core.accuracy.supersampling import AdaptiveImage
-from core.heat_map import heat_map
+from core.heat_map import HeatMap, heat_map
 from core.image_order.flat_layout import HEAT_BOUNDS_TESTS, HEAT_PRIM_TESTS
 from core.image_order.ray_tracing import TraceSettings
 from core.image_order.ray_tree import RayNode
@@ -37,6 +41,7 @@ from core.pixel_verdict import trace_verdict
 from core.scene import Scene
 from views.images.color_scale import ColorScale
 from views.images.image_view import DisplayImage, ImageView, display_image
+from views.jobs import JobRunner, own_thread
 from views.panels.panel_layout import pictures_over_details
 from views.panels.raytree_view import KIND_COLORS, RayKindLegend, RayTreeWidget
 from views.panels.side_column import SideColumn
@@ -54,6 +59,15 @@ HEAT_INDEX = {"prim": HEAT_PRIM_TESTS, "bounds": HEAT_BOUNDS_TESTS}
 SAMPLES_HEAT = ("samples", "Samples per pixel")
 ACCELS = [("bvh", "BVH"), ("grid+spheres", "Grid + spheres"), ("grid", "Grid of cuboids"),
           ("spheres", "Bounding spheres"), ("none", "None")]
+
+
+def _heat_over(counts: np.ndarray, what: str,
+               traced: DisplayImage) -> tuple[DisplayImage, DisplayImage, HeatMap]:
+    """The heat map of ``counts`` laid over the ``traced`` image, its colour scale, and the map
+    (made on a worker)."""
+    heat = heat_map(counts, what)
+    return (display_image(heat.over(traced.rgb), f"heat map: {what}"), display_image(heat.colorbar()),
+            heat)
 
 
 def _combo(items, tip):
@@ -130,6 +144,8 @@ class ImageOrderPanel(QWidget):
                                      "brightest the most any pixel of this image took")
         self.heat_scale.hide()
         self._traced: DisplayImage | None = None  # the traced image, under the heat map
+        self._heats = JobRunner(self, own_thread(self))  # lays the heat map over it off the GUI thread
+        self._heats.finished.connect(self._paint_heat)
         self._heat: np.ndarray | None = None  # (H, W, 2) its pixels' tests, or None
         self.show_spheres = QCheckBox("bounding spheres")
         self.show_grid = QCheckBox("grid cells")
@@ -334,28 +350,37 @@ class ImageOrderPanel(QWidget):
             return None if self._adaptive is None else self._adaptive.samples
         return None if kind == "off" or self._heat is None else self._heat[..., HEAT_INDEX[kind]]
 
+    @property
+    def pending(self) -> bool:
+        """The chosen heat map is being laid over the traced image on a worker."""
+        return self._heats.busy
+
     def _show_heat(self) -> None:
         kind = self.heat.currentData()
         counts = self._heat_counts(kind)
-        self.heat_scale.setVisible(counts is not None)
-        if self._traced is None:
+        if self._traced is None or counts is None:
+            self._heats.cancel()
+            self.heat_scale.setVisible(False)
+            if self._traced is not None:
+                self.image.set_image(self._traced)
             return
-        if counts is None:
-            self.image.set_image(self._traced)
-            return
-        what = self.heat.currentText().lower()
-        heat = heat_map(counts, what)
-        self.image.set_image(display_image(heat.over(self._traced.rgb), f"heat map: {what}"))
+        what, traced = self.heat.currentText().lower(), self._traced
+        self._heats.submit(lambda cancelled, progress: (kind, *_heat_over(counts, what, traced)))
+
+    def _paint_heat(self, shown: tuple) -> None:
+        kind, image, colorbar, heat = shown
+        self.image.set_image(image)
         if kind == SAMPLES_HEAT[0]:
             a = self._adaptive
             units = (f"samples a pixel, 1 where its corners agree; {int(a.refined.sum()):,} pixels refined, "
                      f"{a.traced:,} rays traced")
         else:
-            units = (f"{what} a pixel; {heat.total:,} in all, {heat.mean:.1f} a pixel "
+            units = (f"{heat.what} a pixel; {heat.total:,} in all, {heat.mean:.1f} a pixel "
                      f"({self.accel.currentText()})")
             if self._adaptive is not None:
                 units += "; of the rays through the pixel centres, before adaptive supersampling"
-        self.heat_scale.set_scale(display_image(heat.colorbar()), "0", f"{heat.top:,}", units)
+        self.heat_scale.set_scale(colorbar, "0", f"{heat.top:,}", units)
+        self.heat_scale.setVisible(True)
 
     def show_tree(self, x: int, y: int, root: RayNode, scene: Scene) -> None:
         """Pixel ``(x, y)``'s ray tree ``root``, traced in ``scene``, and the worked math of its first hit."""

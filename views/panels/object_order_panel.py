@@ -7,9 +7,16 @@ outlined in both buffers, and a click on a pixel lists every fragment that
 reached it: which polygon, its depth against the stored depth, whether it
 passed, and for transparent polygons the blend; above them one sentence says
 what decided the pixel (:mod:`core.pixel_verdict`).
+
+A step's picture (the buffers replayed to it, encoded for the screen, the overdraw
+heat map) is made on a worker thread; the window only paints it.  Making it on the
+GUI thread held the window at every lesson step and scrubber move, and it was made
+even while the panel was hidden: a hidden panel now makes it once it is shown.
 """
 
 from __future__ import annotations
+
+from dataclasses import dataclass
 
 import numpy as np
 from PySide6.QtCore import Qt, Signal
@@ -30,7 +37,7 @@ from PySide6.QtWidgets import (
     QWidget,
 )
 
-from core.heat_map import heat_map
+from core.heat_map import HeatMap, heat_map
 from core.object_order.depth_formats import BYTES_PER_PIXEL, DEPTH_FORMATS
 from core.object_order.pipeline import RasterResult, RasterSettings
 from core.pixel_verdict import dropped_fragments, raster_verdict
@@ -39,8 +46,9 @@ from core.scene import Scene
 from core.srgb import linear_to_srgb
 from views.images.color_scale import ColorScale
 from views.images.depth_view import DepthView
-from views.images.image_view import ImageView, display_image
+from views.images.image_view import DisplayImage, ImageView, display_image
 from views.images.step_picture import StepPicture, polygon_name, step_picture
+from views.jobs import JobRunner, own_thread
 from views.panels.panel_layout import pictures_over_details
 from views.panels.side_column import SideColumn
 from views.panels.step_scrubber import StepScrubber
@@ -93,6 +101,26 @@ def _text_box() -> QPlainTextEdit:
     return box
 
 
+@dataclass(frozen=True)
+class _Overdraw:
+    """The overdraw heat map of a step, laid over its image memory, and its colour scale."""
+
+    image: DisplayImage
+    colorbar: DisplayImage
+    heat: HeatMap
+
+
+def _step_shown(result: RasterResult, scene: Scene, k: int, overdraw: bool) -> tuple:
+    """What the panel paints at step ``k`` (made on a worker): its picture, and the overdraw heat map
+    when that is on (else ``None``)."""
+    picture = step_picture(result, scene, k)
+    if not overdraw:
+        return picture, None
+    heat = heat_map(result.history.fragments_per_pixel(k), "fragments")
+    return picture, _Overdraw(display_image(heat.over(picture.image.rgb), "overdraw"),
+                              display_image(heat.colorbar()), heat)
+
+
 VERTEX_PROMPT = ("Click a pixel in either buffer: the corner of its visible polygon "
                  "nearest to it is followed from world space to the pixel.")
 
@@ -120,6 +148,9 @@ class ObjectOrderPanel(QWidget):
         self.result: RasterResult | None = None
         self.scene: Scene | None = None
         self._dropped = (None, ())  # ((result, pixel), its fragments culling and clipping dropped)
+        self._pictures = JobRunner(self, own_thread(self))  # makes the step's picture off the GUI thread
+        self._pictures.finished.connect(self._paint_step)
+        self._stale = False  # a step was chosen while hidden: its picture is made once shown
         self.switches: dict[str, QCheckBox] = {}
         stages = QWidget()
         switches = QVBoxLayout(stages)
@@ -268,23 +299,52 @@ class ObjectOrderPanel(QWidget):
         self.scrubber.blockSignals(False)
         self.show_step(self.scrubber.step, picture)
 
+    @property
+    def pending(self) -> bool:
+        """The picture of the step shown by the scrubber is being made on a worker."""
+        return self._pictures.busy
+
     def show_step(self, k: int, picture: StepPicture | None = None) -> None:
-        """Buffers after the first ``k`` polygons, with polygon k's fragments outlined."""
+        """Buffers after the first ``k`` polygons, with polygon k's fragments outlined.
+
+        The scrubber moves at once; the buffers follow when a worker has made their picture
+        (``picture``: made already, painted at once), and a hidden panel makes it once shown.
+        """
         if self.result is None:
             return
-        if picture is None or picture.step != k:
-            picture = step_picture(self.result, self.scene, k)
         self.scrubber.blockSignals(True)
         self.scrubber.set_step(k)
         self.scrubber.blockSignals(False)
+        self._show_pixel(self.picked)
+        overdraw = self.overdraw.isChecked()
+        if picture is not None and picture.step == k and not overdraw:
+            self._pictures.cancel()
+            self._stale = False
+            self._paint_step((picture, None))
+            return
+        self._stale = not self.isVisible()
+        if self._stale:
+            self._pictures.cancel()
+            return
+        result, scene = self.result, self.scene
+        self._pictures.submit(lambda cancelled, progress: _step_shown(result, scene, k, overdraw))
+
+    def showEvent(self, event) -> None:  # noqa: N802 (Qt's name)
+        super().showEvent(event)
+        if self._stale:
+            self.show_step(self.scrubber.step)
+
+    def _paint_step(self, shown: tuple) -> None:
+        """Paint a step's picture and overdraw (:func:`_step_shown`) and single out its polygon."""
+        picture, overdraw = shown
         history = self.result.history
-        self.overdraw_scale.setVisible(self.overdraw.isChecked())
-        if self.overdraw.isChecked():
-            heat = heat_map(history.fragments_per_pixel(k), "fragments")
-            self.image.set_image(display_image(heat.over(picture.image.rgb), "overdraw"))
-            self.overdraw_scale.set_scale(display_image(heat.colorbar()), "0", f"{heat.top:,}",
-                                          f"fragments a pixel up to step {k}; {heat.total:,} in all, "
-                                          f"{heat.mean:.2f} a pixel")
+        self.overdraw_scale.setVisible(overdraw is not None)
+        if overdraw is not None:
+            heat = overdraw.heat
+            self.image.set_image(overdraw.image)
+            self.overdraw_scale.set_scale(overdraw.colorbar, "0", f"{heat.top:,}",
+                                          f"fragments a pixel up to step {picture.step}; {heat.total:,} "
+                                          f"in all, {heat.mean:.2f} a pixel")
         else:
             self.image.set_image(picture.image)
         self.depth.set_depth(picture.depth, history.near, history.far, picture.depth_image)
@@ -296,7 +356,6 @@ class ObjectOrderPanel(QWidget):
             view.set_highlight(picture.mask if chosen else None, outline=picture.outline)
         # Its edges are drawn only where pixels are large, and only for a chosen step, as the outline.
         self.image.set_edges(self._window_corners(picture.polygon) if chosen else None)
-        self._show_pixel(self.picked)
 
     def _window_corners(self, polygon) -> np.ndarray | None:
         """The drawn polygon's corners (world) in pixel coordinates (None at step 0 or behind the eye);

@@ -1,5 +1,7 @@
 """The heat maps in the window: tests a pixel over the traced image, fragments a pixel over image memory."""
 
+import threading
+
 import heat_scenes as hs
 import numpy as np
 import verdict_scenes as vs
@@ -31,7 +33,7 @@ def test_heat_map_over_the_traced_image_adds_up_to_the_counters(qtbot, window):
     assert not panel.heat_scale.isVisible()
 
     _choose(panel.heat, "prim")
-    assert panel.heat_scale.isVisible()
+    qtbot.waitUntil(lambda: window.showing_full("image order") and panel.heat_scale.isVisible())
     assert not np.array_equal(panel.image.rgb, image.rgb)
     assert heat[..., 0].sum() == stats["accel"]["prim_tests"] > 0
     assert panel.heat_scale.high.text() == f"{heat[..., 0].max():,}"
@@ -39,7 +41,7 @@ def test_heat_map_over_the_traced_image_adds_up_to_the_counters(qtbot, window):
     bvh_mean = heat[..., 0].mean()
 
     _choose(panel.heat, "bounds")
-    assert f"{stats['accel']['bounds_tests']:,} in all" in panel.heat_scale.units.text()
+    qtbot.waitUntil(lambda: f"{stats['accel']['bounds_tests']:,} in all" in panel.heat_scale.units.text())
 
     _, stats, heat = _heat_shown(qtbot, window, panel, "none")  # the heat map stays chosen
     assert panel.heat_scale.isVisible() and heat[..., 0].sum() == stats["accel"]["prim_tests"]
@@ -48,6 +50,24 @@ def test_heat_map_over_the_traced_image_adds_up_to_the_counters(qtbot, window):
     _choose(panel.heat, "off")
     assert np.array_equal(panel.image.rgb, window.last_result[0].rgb)
     assert not panel.heat_scale.isVisible()
+
+
+def test_a_chosen_heat_map_is_laid_over_the_image_off_the_gui_thread(qtbot, window, monkeypatch):
+    # Colouring the tests and laying them over the image held the GUI thread a quarter of a second
+    # at the lesson step that turns the heat map on.
+    from views.panels import image_order_panel
+
+    panel = window.tab("image order").widget
+    image, stats, heat = _heat_shown(qtbot, window, panel, "bvh")
+    on_gui_thread, real = [], image_order_panel.heat_map
+    monkeypatch.setattr(image_order_panel, "heat_map", lambda counts, what: on_gui_thread.append(
+        threading.current_thread() is threading.main_thread()) or real(counts, what))
+    _choose(panel.heat, "prim")
+    qtbot.waitUntil(lambda: panel.heat_scale.isVisible() and window.showing_full("image order"))
+    assert on_gui_thread == [False]
+    assert panel.heat_scale.high.text() == f"{heat[..., 0].max():,}"
+    assert not np.array_equal(panel.image.rgb, image.rgb)
+    assert f"{stats['accel']['prim_tests']:,} in all" in panel.heat_scale.units.text()
 
 
 def _heats(panel):
@@ -73,7 +93,7 @@ def test_adaptive_supersamplings_samples_per_pixel_in_the_heat_map(qtbot, window
     assert "adaptive supersampling: 30 pixels refined, 1,751 rays more" in window.status_caption.text()
 
     _choose(panel.heat, "samples")
-    assert panel.heat_scale.isVisible()
+    qtbot.waitUntil(lambda: window.showing_full("image order") and panel.heat_scale.isVisible())
     assert (panel.heat_scale.low.text(), panel.heat_scale.high.text()) == ("0", "17")
     assert "30 pixels refined, 1,751 rays traced" in panel.heat_scale.units.text()
     shown = panel.image.rgb
@@ -97,14 +117,16 @@ def test_overdraw_heat_map_in_the_object_order_pane_follows_the_steps(qtbot, win
     panel = window.tab("object order").widget
     plain = panel.image.rgb.copy()
     panel.overdraw.setChecked(True)
-    assert panel.overdraw_scale.isVisible() and not np.array_equal(panel.image.rgb, plain)
+    qtbot.waitUntil(panel.overdraw_scale.isVisible)
+    assert not np.array_equal(panel.image.rgb, plain)
     # From straight above, the box shows only its top (its sides and bottom are back faces, culled)
     # and the pane lies over it: at most 2 fragments reach a pixel.
     assert panel.overdraw_scale.high.text() == "2"
     total = panel.result.stats["fragments_generated"]
     assert f"{total:,} in all" in panel.overdraw_scale.units.text()
     panel.scrubber.set_step(0)
-    assert panel.overdraw_scale.high.text() == "0"
+    qtbot.waitUntil(lambda: panel.overdraw_scale.high.text() == "0")
     panel.overdraw.setChecked(False)
     panel.scrubber.last()
-    assert np.array_equal(panel.image.rgb, plain) and not panel.overdraw_scale.isVisible()
+    qtbot.waitUntil(lambda: not panel.overdraw_scale.isVisible())
+    assert np.array_equal(panel.image.rgb, plain)

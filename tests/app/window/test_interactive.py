@@ -298,7 +298,8 @@ def test_the_object_order_step_lives_in_the_model(qtbot, window):
     panel.scrubber.set_step(3)
     assert window.model.step == 3
     window.model.set_step(5)
-    assert panel.scrubber.step == 5 and "Step 5" in panel.step_caption.text()
+    assert panel.scrubber.step == 5
+    qtbot.waitUntil(lambda: "Step 5" in panel.step_caption.text())
     window.model.set_raster_settings(replace(window.model.raster_settings, back_face_culling=False))
     assert not panel.switches["back_face_culling"].isChecked()  # the switch shows the model
     _wait_full(qtbot, window, "object order")

@@ -2,6 +2,7 @@
 
 import json
 import re
+import threading
 
 import numpy as np
 import pytest
@@ -11,6 +12,7 @@ from window_helpers import RENDER_TIMEOUT_MS
 
 from core import presets
 from core.presets_trace import PRESETS_TRACE
+from views.images.image_view import mask_outline
 
 
 def _image(win):
@@ -134,9 +136,9 @@ def test_the_whole_z_buffer_picture_singles_out_no_polygon(qtbot, window):
     assert panel.scrubber.step == panel.result.history.n_steps > 0
     assert "polygon" not in window.scene_view.overlay_names()
     assert panel.image._highlight is None and panel.depth.image._highlight is None
-    window.model.set_step(1)  # a step chosen: its polygon is outlined
+    window.model.set_step(1)  # a step chosen: its polygon is outlined once its picture is made
+    qtbot.waitUntil(lambda: panel.image._highlight is not None)
     assert "polygon" in window.scene_view.overlay_names()
-    assert panel.image._highlight is not None
 
 
 def test_a_new_scene_and_step_at_once_show_that_step_and_leave_the_old_render_alone(
@@ -165,17 +167,65 @@ def test_a_new_scene_and_step_at_once_show_that_step_and_leave_the_old_render_al
     assert all(s is scene for s, _ in pictured)
 
 
+def _record_step_pictures(monkeypatch) -> list:
+    """Record (step, made on the GUI thread) of each step picture the object-order panel makes."""
+    from views.panels import object_order_panel
+
+    made, real = [], object_order_panel.step_picture
+    monkeypatch.setattr(object_order_panel, "step_picture", lambda result, scene, k: made.append(
+        (k, threading.current_thread() is threading.main_thread())) or real(result, scene, k))
+    return made
+
+
+def test_a_chosen_step_is_pictured_off_the_gui_thread_with_its_polygon_outlined(qtbot, window, monkeypatch):
+    # Each lesson step and scrubber move replayed the buffers on the GUI thread, holding the window.
+    window.model.set_scene(presets.zbuffer_three_polygons())
+    _show_tab(qtbot, window, "object order")
+    panel = window.tab("object order").widget
+    made = _record_step_pictures(monkeypatch)
+    window.model.set_step(2)
+    assert panel.scrubber.step == 2  # the scrubber follows at once, the buffers once pictured
+    qtbot.waitUntil(lambda: panel.step_caption.text().startswith("Step 2 "))
+    assert made == [(2, False)]
+    history = panel.result.history
+    color, _ = history.buffers(2)
+    assert np.allclose(panel.image.rgb, color)
+    cols, rows, _, _ = history.polygon_fragments(1)  # the polygon drawn at step 2 is outlined
+    polygon = np.zeros((history.height, history.width), bool)
+    polygon[rows, cols] = True
+    outline = panel.image._highlight  # segments (x0, y0, x1, y1) between pixel corners
+    assert outline is not None and len(outline) and np.array_equal(outline, mask_outline(polygon))
+    assert outline[:, [0, 2]].min() == cols.min() and outline[:, [0, 2]].max() == cols.max() + 1
+    assert "polygon" in window.scene_view.overlay_names()
+
+
+def test_a_hidden_object_order_panel_pictures_its_step_once_shown(qtbot, window, monkeypatch):
+    window.model.set_scene(presets.zbuffer_three_polygons())
+    _show_tab(qtbot, window, "object order")
+    panel = window.tab("object order").widget
+    _show_tab(qtbot, window, "image order")
+    made = _record_step_pictures(monkeypatch)
+    window.model.set_step(1)  # a lesson step on the image-order tab
+    assert made == [] and not panel.pending
+    window.show_tab("object order")
+    qtbot.waitUntil(lambda: panel.step_caption.text().startswith("Step 1 "))
+    assert made == [(1, False)]
+    color, _ = panel.result.history.buffers(1)
+    assert np.allclose(panel.image.rgb, color)
+
+
 def test_object_order_steps_through_the_z_buffer(qtbot, window):
     _show_tab(qtbot, window, "object order")
     panel = window.tab("object order").widget
     history = panel.result.history
     assert panel.scrubber.step == history.n_steps > 0
     panel.scrubber.first()
+    qtbot.waitUntil(lambda: panel.step_caption.text().startswith("Step 0"))
     background = np.asarray(window.model.scene.background)
     assert np.allclose(panel.image.rgb, background)  # step 0: image memory cleared
     assert "polygon" not in window.scene_view.overlay_names()
     panel.scrubber.set_step(5)
-    assert "Step 5" in panel.step_caption.text()
+    qtbot.waitUntil(lambda: "Step 5" in panel.step_caption.text())
     assert "polygon" in window.scene_view.overlay_names()  # the 4th polygon highlighted in 3D
     # Click the pixel at the centre of the image memory: its history lists fragments in order.
     panel.scrubber.last()
