@@ -12,8 +12,9 @@ the picture to the window through OpenGL (8 ms of a 20 ms draw in llvmpipe).
 Here VTK draws into its own off-screen framebuffer; :meth:`render` reads the
 picture back (about a millisecond) and the widget paints it like any other
 image.  The Qt window stays a plain raster surface (a repaint costs about a
-millisecond), and a paint never makes VTK draw: only :meth:`render` and a
-change of size do.
+millisecond), and a paint makes VTK draw only after a change of size, once
+however often the size changed since (a new text size or full screen resizes
+the pane four or five times in one turn of the event loop, each draw 8-30 ms).
 
 The plotter is both the Qt widget (mouse and keys go to VTK's trackball
 interactor, through VTK's own ``QVTKRenderWindowInteractor``) and a pyvista
@@ -76,6 +77,7 @@ class ImagePlotter(QVTKRenderWindowInteractor, BasePlotter):
         # VTK's widget would have VTK paint on screen; this one paints the picture itself.
         self.setAttribute(Qt.WidgetAttribute.WA_PaintOnScreen, False)
         self.picture: QImage | None = None
+        self._resized = False  # drawn at the next paint, at the size the pane has then
         self._pixels = vtkUnsignedCharArray()
         self._gradient = None  # (top, bottom) RGB in 0..1, painted under the picture
         self.ren_win = window
@@ -155,6 +157,8 @@ class ImagePlotter(QVTKRenderWindowInteractor, BasePlotter):
         return QWidget.paintEngine(self)
 
     def paintEvent(self, event) -> None:
+        if self._resized:
+            self.render()
         if self.picture is None:
             return
         painter = QPainter(self)
@@ -168,8 +172,8 @@ class ImagePlotter(QVTKRenderWindowInteractor, BasePlotter):
         painter.end()
 
     def resizeEvent(self, event) -> None:
-        super().resizeEvent(event)  # VTK's: the render window takes the new size
-        self.render()
+        super().resizeEvent(event)  # VTK's: the render window takes the new size, and a paint is asked
+        self._resized = True
 
     def render(self) -> None:
         """Draw the scene now and show it (nothing once closed or while hidden)."""
@@ -181,6 +185,7 @@ class ImagePlotter(QVTKRenderWindowInteractor, BasePlotter):
         """Read back the picture VTK just drew and paint it with the next frame."""
         if not self._grabbing or getattr(self, "_closed", False) or not self.isVisible():
             return
+        self._resized = False
         w, h = self.ren_win.GetSize()
         self.ren_win.GetRGBACharPixelData(0, 0, w - 1, h - 1, False, self._pixels)
         rgba = np.ascontiguousarray(vtk_to_numpy(self._pixels).reshape(h, w, 4)[::-1])  # row 0 on top

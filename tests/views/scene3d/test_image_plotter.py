@@ -16,7 +16,8 @@ from views.scene3d.image_plotter import ImagePlotter
 
 @pytest.fixture
 def shown(qtbot):
-    """A window with a plotter that sees one red, unlit square filling its view; and a draw counter."""
+    """A window with a plotter that sees one red, unlit square filling its view, shown and drawn; and a
+    counter of the draws after that."""
     window = QWidget()
     plotter = ImagePlotter(window)
     QVBoxLayout(window).addWidget(plotter)
@@ -27,6 +28,8 @@ def shown(qtbot):
     window.resize(300, 300)
     window.show()
     qtbot.waitExposed(window)
+    plotter.render()
+    qtbot.waitUntil(lambda: plotter.picture is not None and plotter.picture.width() == plotter.width())
     draws = []
     plotter.ren_win.AddObserver("EndEvent", lambda *_: draws.append(1))
     yield window, plotter, draws
@@ -93,6 +96,18 @@ def test_a_new_size_is_drawn_at_once(qtbot, shown):
     window.resize(360, 240)
     qtbot.waitUntil(lambda: plotter.picture is not None and plotter.picture.width() == plotter.width())
     assert draws and plotter.picture.height() == plotter.height()
+
+
+def test_sizes_changed_in_one_turn_are_drawn_once_at_the_last(qtbot, shown):
+    # A new text size or full screen resizes the pane several times before the window is painted.
+    window, plotter, draws = shown
+    for size in ((360, 240), (320, 280), (280, 200)):
+        window.resize(*size)
+        plotter.resize(size[0] - 20, size[1] - 20)
+    qtbot.waitUntil(lambda: plotter.picture is not None and plotter.picture.width() == plotter.width())
+    assert plotter.picture.height() == plotter.height() and len(draws) == 1
+    middle = _pixels(plotter.grab().toImage())[plotter.height() // 2, plotter.width() // 2]
+    assert middle[0] > 200 and middle[1] < 60  # the red square, drawn, not stretched from the old size
 
 
 def test_a_closed_plotter_no_longer_draws(shown):
