@@ -8,6 +8,28 @@ from core.files.lesson_file import shipped_lessons
 from views.panels.lesson_panel import LessonPanel
 from views.text.math_view import MIN_SHRINK, MathView, join_parts, split_formula
 
+
+@pytest.fixture
+def parsed_on_gui_thread(monkeypatch, tmp_path):
+    """For each formula mathtext parses from now on (nothing kept from an earlier run is reused), whether
+    it was parsed on the GUI thread."""
+    import threading
+
+    from views.text import math_view
+
+    monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path))
+    math_view._typeset.cache_clear()
+    parsed, parser = [], math_view._parser()
+
+    class Watched:
+        def parse(self, *args, **kwargs):
+            parsed.append(threading.current_thread() is threading.main_thread())
+            return parser.parse(*args, **kwargs)
+
+    monkeypatch.setattr(math_view, "_parser", Watched)
+    yield parsed
+    math_view._typeset.cache_clear()
+
 SPHERE = r"$c = (x_1-l)^2 + (y_1-m)^2 + (z_1-n)^2 - r^2,\quad \Delta = b^2 - 4ac$"
 
 
@@ -115,26 +137,12 @@ def test_a_later_view_typesets_once_per_restyle_and_shows_a_formula_set_again(qt
     assert not view.pixmap().isNull() and view.shown_lines()[0]
 
 
-def test_a_later_view_wraps_its_formula_without_typesetting_on_the_gui_thread(qtbot, monkeypatch, tmp_path):
+def test_a_later_view_wraps_its_formula_without_typesetting_on_the_gui_thread(qtbot, parsed_on_gui_thread):
     # A lesson step's formula, narrower than its line, is wrapped by trying runs of its parts on one
     # line; those were typeset on the GUI thread (a quarter of a second in a lesson step).
-    import threading
-
     from PySide6.QtWidgets import QVBoxLayout, QWidget
 
-    from views.text import math_view
 
-    monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path))  # nothing kept from an earlier run
-    math_view._typeset.cache_clear()
-    on_gui_thread = []
-    parser = math_view._parser()
-
-    class Watched:
-        def parse(self, *args, **kwargs):
-            on_gui_thread.append(threading.current_thread() is threading.main_thread())
-            return parser.parse(*args, **kwargs)
-
-    monkeypatch.setattr(math_view, "_parser", Watched)
     formula = (r"$\mathrm{object\ order:}\ \mathbf{for}\ \mathrm{object}\ "
                r"\mathbf{for}\ \mathrm{pixel\ it\ covers}$")
     parent = QWidget()
@@ -148,8 +156,7 @@ def test_a_later_view_wraps_its_formula_without_typesetting_on_the_gui_thread(qt
         QApplication.processEvents()
     lines, _ = view.shown_lines()
     assert len(lines) >= 2  # wrapped
-    assert on_gui_thread and not any(on_gui_thread)  # all typeset, none of it on the GUI thread
-    math_view._typeset.cache_clear()
+    assert parsed_on_gui_thread and not any(parsed_on_gui_thread)  # all typeset, none on the GUI thread
 
 
 def test_a_formula_replaced_before_its_turn_is_never_typeset_and_the_new_one_shows(qtbot, monkeypatch):
@@ -262,3 +269,22 @@ def test_a_process_that_ends_while_formulas_are_typeset_ends_cleanly(tmp_path):
                              text=True, env=env, timeout=300)
         assert out.returncode == 0 and "ending while typesetting" in out.stdout, out.stderr
         assert "Traceback" not in out.stderr and "Error" not in out.stderr, out.stderr
+
+
+def test_a_formula_typeset_just_before_a_new_text_size_is_never_typeset_on_the_gui_thread(
+        qtbot, parsed_on_gui_thread):
+    # Changing the text size held the window up to 400 ms: the typesetter finished the old size just as
+    # the new size was set, and the view showed it at once, at the new size, typesetting that on the
+    # GUI thread.
+    from PySide6.QtWidgets import QWidget
+
+    parent = QWidget()
+    qtbot.addWidget(parent)
+    view = MathView(r"$y_{sized} = 3$", parent, later=True)
+    parent.show()
+    qtbot.waitUntil(lambda: not view.pending)
+    small = view.pixmap().height()
+    view.set_scale(2.0)  # the new size is asked for on the next turn of the event loop ...
+    view._typeset_done(view._request)  # ... and the typesetter's notice of the old one arrives first
+    qtbot.waitUntil(lambda: not view.pending and view.pixmap().height() > 1.5 * small)
+    assert parsed_on_gui_thread and not any(parsed_on_gui_thread)  # typeset at both sizes, off it
