@@ -401,6 +401,7 @@ def run(args) -> int:
     from PySide6.QtCore import QThreadPool
     from PySide6.QtWidgets import QApplication
 
+    from app.process.long_lived import set_aside_once_loaded
     from app.window.main_window import MainWindow
     from core import presets
     from core.image_order import ray_tracing
@@ -412,6 +413,7 @@ def run(args) -> int:
     app = QApplication.instance() or QApplication([])
     window = MainWindow(presets.lecture_scene())
     window.resize(width, height)
+    set_aside_once_loaded(window)  # as python -m app does
     opening = _open(app, window, args.why)
     # Tabs that draw what the observer sees; Hard cases and Cost do not follow the observer.
     following = [t for t in window.tab_titles()

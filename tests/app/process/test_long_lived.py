@@ -1,0 +1,38 @@
+"""Once the program has loaded what it needs, Python's full garbage collection walks only what was made
+since: each such pass held the interpreter's lock (and so the window) about 110 ms."""
+
+import os
+import subprocess
+import sys
+
+import pytest
+from checkout import ROOT
+
+OPEN_AND_LOOK = r"""
+import gc, sys
+from PySide6.QtCore import QTimer
+from PySide6.QtWidgets import QApplication
+from app import cli
+
+app = QApplication(sys.argv[:1])
+
+def look():
+    if gc.get_freeze_count():
+        print(gc.get_freeze_count(), len(gc.get_objects()))
+        app.quit()
+
+QTimer(app, interval=200, timeout=look).start()
+QTimer.singleShot(60_000, lambda: (print(0, len(gc.get_objects())), app.quit()))  # never set aside
+sys.exit(cli.main([]))
+"""
+
+
+@pytest.mark.gui
+def test_once_everything_is_loaded_a_full_collection_walks_a_small_share_of_the_objects(tmp_path):
+    env = {**os.environ, "XDG_CONFIG_HOME": str(tmp_path)}  # no last session: the lecture scene
+    out = subprocess.run([sys.executable, "-c", OPEN_AND_LOOK], cwd=ROOT, capture_output=True, text=True,
+                         env=env, timeout=300)
+    assert out.returncode == 0, out.stderr
+    frozen, walked = (int(n) for n in out.stdout.split()[-2:])
+    assert frozen > 100_000  # the objects of what the program loaded, set aside
+    assert walked < frozen / 5  # what a full collection still walks
