@@ -284,7 +284,6 @@ class MathView(QLabel):
         self._later = later
         self._request = 0  # the newest typesetting asked of the typesetter's thread
         self._done = 0  # the newest typesetting it finished
-        self._shown = 0  # the newest typesetting shown
         self._asked: tuple | None = None  # what it was asked for: formula, size, colour, resolution
         self._asking = False  # asking it soon, once this turn's changes are in
         self._wanted: _Wanted | None = None
@@ -384,14 +383,11 @@ class MathView(QLabel):
     def _ask(self) -> None:
         """Ask the typesetter's thread for what the formula now needs, unless that was asked already."""
         self._asking = False
-        size, color, dpi = self.size_pt(), self._color_name(), self._dpi()
-        if self._asked == (self._formula, size, color, dpi):  # what it shows, or will show, is up to date
-            if self._done == self._request != self._shown:  # typeset while this change waited to ask
-                self._show_typeset()
-            else:
-                self.pending = self._done != self._request
+        if self._asked == self._needs():
+            self.pending = self._done != self._request  # what it shows, or will show, is up to date
             return
-        self._asked = (self._formula, size, color, dpi)
+        self._asked = self._needs()
+        _, size, color, dpi = self._asked
         # What _render_now needs first, the sizes the formula and its parts may be shrunk to, and the
         # lines _wrap may try (runs of two parts or more): typeset on the GUI thread, a lesson
         # step's wrapped formulas held it a quarter of a second.
@@ -414,15 +410,15 @@ class MathView(QLabel):
 
     def _typeset_done(self, request: int) -> None:
         self._done = request
-        # Else a newer typesetting is on its way, or is about to be asked for: shown now, the formula at
-        # a size or colour asked for since (a new text size) would be typeset here, on the GUI thread.
-        if request == self._request and not self._asking:
-            self._show_typeset()
+        # Else a newer typesetting is on its way, or is about to be asked for (a new text size since):
+        # shown now, the formula at that size would be typeset here, on the GUI thread.
+        if request == self._request and self._asked == self._needs():
+            self.pending = False
+            self._render_now()
 
-    def _show_typeset(self) -> None:
-        self.pending = False
-        self._shown = self._done
-        self._render_now()
+    def _needs(self) -> tuple:
+        """What the formula needs typeset now: formula, size, colour, resolution."""
+        return self._formula, self.size_pt(), self._color_name(), self._dpi()
 
     def _render_now(self) -> None:
         self.error = None
