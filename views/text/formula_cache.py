@@ -41,8 +41,12 @@ _trimming = threading.Lock()
 
 def folder() -> Path:
     """Where the typeset formulas are kept."""
-    base = os.environ.get("XDG_CACHE_HOME") or Path.home() / ".cache"
-    return Path(base) / "render-explorer" / "formulas"
+    return _folder(os.environ.get("XDG_CACHE_HOME", ""))
+
+
+@lru_cache(maxsize=4)
+def _folder(cache_home: str) -> Path:  # each formula looked up asks: worked out once per cache home
+    return Path(cache_home or Path.home() / ".cache") / "render-explorer" / "formulas"
 
 
 @lru_cache(maxsize=1)

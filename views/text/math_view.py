@@ -5,11 +5,12 @@ text outside the dollar signs is set as ordinary text).  It renders at the
 label's font size times a scale, in a given colour, at the screen's pixel
 density, so a formula stays sharp when presentation mode enlarges it.
 mathtext has no matrices, so :class:`MatrixView` draws a bracketed grid of
-numbers itself.  matplotlib loads with the first formula that is not in
+numbers itself.  Formulas are typeset in a process of their own
+(:mod:`views.text.typesetting_process`), started with the first formula that is not in
 :mod:`views.text.formula_cache` (formulas at their natural size are kept there), or
-earlier on a thread of its own when the window asks (:func:`load_typesetting_soon`).
+earlier when the window asks (:func:`load_typesetting_soon`).
 
-Reading a formula from that cache, or typesetting it, holds the thread that does
+Reading a formula from that cache, or waiting for its typesetting, holds the thread that does
 it: a lesson step's formulas held the GUI thread up to a second while other
 threads were busy (each file read gives up Python's lock, and getting it back
 waits for them).  A ``MathView(..., later=True)`` therefore typesets on a thread
@@ -32,8 +33,7 @@ from PySide6.QtGui import QColor, QFont, QFontMetricsF, QImage, QPainter, QPen, 
 from PySide6.QtWidgets import QLabel, QSizePolicy, QWidget
 
 from core.shown_numbers import shown_number
-from views.images.matplotlib_lock import MATPLOTLIB
-from views.text import formula_cache
+from views.text import formula_cache, typesetting_process
 
 
 def render_mathtext(text: str, size_pt: float, color: str, dpi: float, keep: bool = False) -> QImage:
@@ -64,16 +64,7 @@ def _typeset(text: str, size_pt: float, color: str, dpi: float, keep: bool) -> n
     if keep and (kept := formula_cache.load(text, size_pt, color, dpi)) is not None:
         kept.setflags(write=False)
         return kept
-    from matplotlib.colors import to_rgb
-    from matplotlib.font_manager import FontProperties
-
-    with MATPLOTLIB:  # the parser and its fonts are shared with every plot's drawing
-        ink = np.asarray(_parser().parse(text, dpi=dpi, prop=FontProperties(size=size_pt)).image)
-    pad = max(2, int(round(0.15 * size_pt * dpi / 72.0)))  # room for glyphs at the box's edge
-    alpha = np.pad(ink, pad)
-    rgba = np.empty((*alpha.shape, 4), np.uint8)
-    rgba[..., :3] = np.round(np.array(to_rgb(color)) * 255).astype(np.uint8)
-    rgba[..., 3] = alpha
+    rgba = typesetting_process.typeset(text, size_pt, color, dpi)
     rgba.setflags(write=False)
     if keep:
         formula_cache.store(text, size_pt, color, dpi, rgba)
@@ -106,9 +97,14 @@ def split_formula(text: str) -> list[tuple[str, str]]:
     >>> split_formula(r"$a = 1,\quad b = \frac{2}{3}$")
     [('a = 1,', '\\quad '), ('b = \\frac{2}{3}', '')]
     """
+    return list(_split(text))
+
+
+@lru_cache(maxsize=1024)
+def _split(text: str) -> tuple[tuple[str, str], ...]:  # asked at every typesetting and size of a formula
     body = text.strip()
     if len(body) < 2 or body[0] != "$" or body[-1] != "$" or "$" in body[1:-1].replace(r"\$", ""):
-        return [(text, "")]
+        return ((text, ""),)
     body = body[1:-1]
     parts, start, depth, i = [], 0, 0, 0
     while i < len(body):
@@ -131,9 +127,9 @@ def split_formula(text: str) -> list[tuple[str, str]]:
                 continue
         i += 1
     if not parts:
-        return [(text, "")]
+        return ((text, ""),)
     parts.append((body[start:].strip(), ""))
-    return parts
+    return tuple(parts)
 
 
 def join_parts(parts) -> str:
@@ -143,22 +139,16 @@ def join_parts(parts) -> str:
     return "$" + "".join(p + space for p, space in parts[:-1]) + parts[-1][0] + "$"
 
 
-@lru_cache(maxsize=1)
-def _parser():
-    from matplotlib.mathtext import MathTextParser
-
-    return MathTextParser("agg")  # typesets straight into an 8-bit coverage image
-
-
 loader: threading.Thread | None = None
 """The thread :func:`load_typesetting_soon` started, once it has."""
 
 
 def load_typesetting_soon() -> threading.Thread:
-    """Load matplotlib's typesetting on a thread of its own (once; returns that thread).
+    """Start the typesetting process and have it load matplotlib's typesetting, from a thread of its
+    own (once; returns that thread).
 
-    The first formula not in the cache otherwise waits on the GUI thread for mathtext and its
-    fonts to load and its grammar to be built: about 0.2 s the first time a pixel is picked.
+    The first formula not in the cache otherwise waits for the process to start and for mathtext and
+    its fonts to load and its grammar to be built: about 0.4 s the first time a pixel is picked.
     """
     global loader
     if loader is None:
@@ -168,10 +158,7 @@ def load_typesetting_soon() -> threading.Thread:
 
 
 def _warm_up() -> None:
-    from matplotlib.font_manager import FontProperties
-
-    with MATPLOTLIB:  # the parser and its fonts are shared with every plot's drawing
-        _parser().parse("$x^2$", dpi=72.0, prop=FontProperties(size=10.0))
+    typesetting_process.typeset("$x^2$", 10.0, "#000000", 72.0)
 
 
 @lru_cache(maxsize=1)
@@ -275,7 +262,10 @@ class MathView(QLabel):
 
     With ``later``, it is typeset off the GUI thread (:func:`_typesetter`) whenever
     its formula, size or colour changes: :attr:`pending` meanwhile, showing nothing
-    (a new formula) or the formula at its previous size or colour.
+    (a new formula) or the formula at its previous size or colour.  A hidden one
+    (a tab, dock or page not shown) waits until it is shown: a new text size asked
+    the typesetter for some 150 formulas of hidden panes after every lesson, and the
+    GUI thread then laid each one out again as it came back.
     """
 
     def __init__(self, formula: str = "", parent: QWidget | None = None, *, size_pt: float | None = None,
@@ -286,6 +276,7 @@ class MathView(QLabel):
         self._done = 0  # the newest typesetting it finished
         self._asked: tuple | None = None  # what it was asked for: formula, size, colour, resolution
         self._asking = False  # asking it soon, once this turn's changes are in
+        self._when_shown = False  # changed while hidden: typeset once shown
         self._wanted: _Wanted | None = None
         self.pending = False
         """Typesetting on the typesetter's thread (``later`` views only)."""
@@ -371,9 +362,28 @@ class MathView(QLabel):
         super().resizeEvent(event)
         self._show()
 
+    def _out_of_sight(self) -> bool:
+        """Whether the view is in a pane not shown: a hidden tab, dock or page, or a window not shown (a
+        view just made in a shown pane is not: Qt shows it at the next turn of the event loop)."""
+        widget = self
+        while not widget.isWindow():
+            if widget.isHidden() and widget.testAttribute(Qt.WidgetAttribute.WA_WState_ExplicitShowHide):
+                return True
+            widget = widget.parentWidget()
+        return not widget.isVisible()
+
+    def showEvent(self, event) -> None:
+        super().showEvent(event)
+        if self._when_shown:
+            self._when_shown = False
+            self._render()
+
     def _render(self) -> None:
         if not self._later or not self._formula:
             self._render_now()
+            return
+        if self._out_of_sight():
+            self._when_shown = True
             return
         self.pending = True
         if not self._asking:  # a restyle sends a font, a palette and a style change: typeset once

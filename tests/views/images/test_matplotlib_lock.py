@@ -1,6 +1,7 @@
-"""matplotlib is used by one thread at a time: a formula typeset off the GUI thread waits while a
-plot or an exported picture is drawn on another (shared FreeType faces failed with "invalid outline"
-when a lesson's formula and the Cost plot were drawn at once)."""
+"""matplotlib is used by one thread at a time: an exported picture, or a formula typeset in this process,
+waits while a plot is drawn on another thread (shared FreeType faces failed with "invalid outline" when
+a lesson's formula and the Cost plot were drawn at once).  Formulas are typeset in a process of their
+own, which waits for no plot."""
 
 import threading
 
@@ -8,7 +9,7 @@ import numpy as np
 
 from app.export.picture_sheet import Panel, compose
 from views.images.matplotlib_lock import MATPLOTLIB
-from views.text import math_view
+from views.text import math_view, typesetting_process
 
 
 def _waits_for_matplotlib(work) -> bool:
@@ -22,10 +23,19 @@ def _waits_for_matplotlib(work) -> bool:
     return waited and done.wait(60)
 
 
-def test_a_formula_waits_while_another_thread_draws_with_matplotlib():
+def test_a_formula_typeset_in_this_process_waits_while_another_thread_draws_with_matplotlib():
+    assert _waits_for_matplotlib(lambda: typesetting_process.ink(r"$\alpha + \beta_{lock}$", 13.7, "#000000",
+                                                                 96.0))
+
+
+def test_the_typesetting_process_goes_on_while_a_plot_is_drawn():
+    done = threading.Event()
     # keep=False: typeset now, not read from the formula cache; a size no other test uses.
-    assert _waits_for_matplotlib(lambda: math_view._typeset(r"$\alpha + \beta_{lock}$", 13.7, "#000000",
-                                                            96.0, False))
+    worker = threading.Thread(target=lambda: (math_view._typeset(r"$\gamma_{lock}$", 13.9, "#000000", 96.0,
+                                                                  False), done.set()), daemon=True)
+    with MATPLOTLIB:
+        worker.start()
+        assert done.wait(60)
 
 
 def test_an_exported_sheet_waits_too_and_the_same_thread_may_hold_it_again():

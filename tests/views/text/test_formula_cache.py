@@ -1,4 +1,4 @@
-"""Typeset formulas kept on disk: a later process shows them without loading matplotlib."""
+"""Typeset formulas kept on disk: a later process shows them without typesetting them again."""
 
 import os
 import subprocess
@@ -6,19 +6,19 @@ import sys
 
 import numpy as np
 import pytest
-from checkout import ROOT
+from checkout import ROOT, TYPESETTING
 
 from views.text import formula_cache
 from views.text.math_view import MathView, render_mathtext
 
 FORMULA = r"$a t^2 + b t + c = 0$"
-SHOW = f"""
+SHOW = TYPESETTING + f"""
 import sys
 from PySide6.QtWidgets import QApplication
 app = QApplication(sys.argv[:1])
 from views.text.math_view import MathView
 view = MathView({FORMULA!r}, size_pt=12.0)
-print(view.sizeHint().width(), view.sizeHint().height(), "matplotlib" in sys.modules)
+print(view.sizeHint().width(), view.sizeHint().height(), typesetting())
 """
 
 
@@ -40,12 +40,12 @@ def _show_in_new_process(cache_home):
 
 
 @pytest.mark.gui
-def test_a_formula_typeset_once_is_shown_by_the_next_process_without_matplotlib(tmp_path):
+def test_a_formula_typeset_once_is_shown_by_the_next_process_without_typesetting(tmp_path):
     # The processes' own cache folder: formulas this test process still typesets in the background
     # (for views of earlier tests) are kept where its own XDG_CACHE_HOME points, not here.
     home = tmp_path / "processes"
     first_size, first_loaded = _show_in_new_process(home)
-    assert first_loaded  # nothing kept yet: typeset with matplotlib
+    assert first_loaded  # nothing kept yet: typeset
     assert len(list((home / "render-explorer" / "formulas").glob("*.npy"))) == 1
     second_size, second_loaded = _show_in_new_process(home)
     assert not second_loaded

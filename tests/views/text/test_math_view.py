@@ -11,24 +11,24 @@ from views.text.math_view import MIN_SHRINK, MathView, join_parts, split_formula
 
 @pytest.fixture
 def parsed_on_gui_thread(monkeypatch, tmp_path):
-    """For each formula mathtext parses from now on (nothing kept from an earlier run is reused), whether
-    it was parsed on the GUI thread."""
+    """For each formula typeset from now on (nothing kept from an earlier run is reused), whether the GUI
+    thread asked for it (and waited for it)."""
     import threading
 
-    from views.text import math_view
+    from views.text import math_view, typesetting_process
 
     monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path))
     math_view._typeset.cache_clear()
-    parsed, parser = [], math_view._parser()
+    parsed, typeset = [], typesetting_process.typeset
 
-    class Watched:
-        def parse(self, *args, **kwargs):
-            parsed.append(threading.current_thread() is threading.main_thread())
-            return parser.parse(*args, **kwargs)
+    def watched(*args):
+        parsed.append(threading.current_thread() is threading.main_thread())
+        return typeset(*args)
 
-    monkeypatch.setattr(math_view, "_parser", Watched)
+    monkeypatch.setattr(typesetting_process, "typeset", watched)
     yield parsed
     math_view._typeset.cache_clear()
+
 
 SPHERE = r"$c = (x_1-l)^2 + (y_1-m)^2 + (z_1-n)^2 - r^2,\quad \Delta = b^2 - 4ac$"
 
@@ -135,6 +135,36 @@ def test_a_later_view_typesets_once_per_restyle_and_shows_a_formula_set_again(qt
     view.set_formula(SPHERE)  # the formula it showed before, set again: shown again
     qtbot.waitUntil(lambda: not view.pending)
     assert not view.pixmap().isNull() and view.shown_lines()[0]
+
+
+def test_a_formula_on_a_hidden_page_is_typeset_only_once_its_page_is_shown(qtbot, parsed_on_gui_thread):
+    # After every lesson, a new text size had some 150 formulas of hidden panes typeset, and the GUI
+    # thread laid each out again as it came back: a lecturer changing the size waited for all of them.
+    from PySide6.QtWidgets import QTabWidget
+
+    shown, hidden = r"$\alpha_{shown} = 1$", r"$\beta_{hidden} = 2$"
+    tabs = QTabWidget()
+    qtbot.addWidget(tabs)
+    views = {}
+    for formula in (shown, hidden):
+        views[formula] = MathView(formula, later=True)
+        tabs.addTab(views[formula], formula)
+    tabs.show()
+    qtbot.waitExposed(tabs)
+    qtbot.waitUntil(lambda: not views[shown].pending and not views[shown].pixmap().isNull())
+    font = QFont(tabs.font())
+    font.setPointSizeF(font.pointSizeF() * 1.5)
+    tabs.setFont(font)  # a new text size: the shown page's formula is typeset again at it
+    qtbot.waitUntil(lambda: not views[shown].pending)
+    assert len(parsed_on_gui_thread) >= 2 and not views[hidden].pending
+    assert views[hidden].pixmap().isNull() and views[hidden].shown_lines()[0] == []  # nothing typeset
+    count = len(parsed_on_gui_thread)
+    tabs.setCurrentIndex(1)
+    assert views[hidden].pending  # asked for as its page shows, at the size it is now
+    qtbot.waitUntil(lambda: not views[hidden].pending)
+    assert not views[hidden].pixmap().isNull() and views[hidden].shown_lines() == ([hidden],
+                                                                                 views[hidden].size_pt())
+    assert len(parsed_on_gui_thread) > count and not any(parsed_on_gui_thread)
 
 
 def test_a_later_view_wraps_its_formula_without_typesetting_on_the_gui_thread(qtbot, parsed_on_gui_thread):
