@@ -44,13 +44,18 @@ own work queue the process's CPU time is taken): the time spent waiting for
 a core is left out, so two versions of the code can be set side by side (on
 such a machine the medians of two runs then agree within 1-3%).  Embree
 through embreex, which runs on Python threads of its own, is left out then;
-its packet API runs on our one thread, as ours does.
+its packet API runs on our one thread, as ours does.  By the wall clock each
+Whitted frame also gets its CPU time, all threads, and how many times one of
+its threads had to give its core to another process: the frame took its CPU
+time per thread if no thread ever waited, and on a busy machine the gap is
+that wait.
 """
 
 from __future__ import annotations
 
 import argparse
 import os
+import resource
 import statistics
 import threading
 import time
@@ -145,7 +150,10 @@ def run(args) -> int:
         stats[title] = []
 
         def whitted_frame(frame=frame, whitted=whitted, out=stats[title]):
-            out.append(render_trace(frame, whitted).stats)
+            cpu, preempted = time.process_time(), _preempted()
+            frame_stats = render_trace(frame, whitted).stats
+            out.append({**frame_stats, "cpu": time.process_time() - cpu,
+                        "preempted": _preempted() - preempted})
 
         frames[title] = whitted_frame
     runs = _interleaved_runs(frames, args.repeats, args.clock)
@@ -158,6 +166,12 @@ def run(args) -> int:
               f"{rays['total']} rays = {rays['primary']} primary + {rays['shadow']} shadow + "
               f"{rays['reflection']} reflection + {rays['refraction']} refraction "
               f"({rays['total'] / frame_s / 1e6:.1f} Mrays/s); median ms per stage (wall clock): {stages}")
+        cpu_ms = statistics.median(s["cpu"] for s in stats[title]) * 1e3
+        preempted = statistics.median(s["preempted"] for s in stats[title])
+        print(f"  its CPU time {cpu_ms:.1f} ms over {numba.get_num_threads()} threads "
+              f"({cpu_ms / numba.get_num_threads():.1f} each), {preempted:.0f} times a thread had to leave "
+              "its core to another process (medians per frame): a frame longer than its CPU time per "
+              "thread waited, on a busy machine for a core")
     if disagree:
         print(f"bench trace: Embree and ours found different hits for {disagree:,} rays (see above)")
         return 1
@@ -222,6 +236,9 @@ def _mesh_rays(triangles: int, args, library) -> dict:
     flat_empty = trace_scene(empty)
     e = kernel_inputs(empty, TraceSettings(accel="bvh"), effects_plan(empty), flat_empty,
                       flat_empty.geometry.accel("bvh")[0])
+    # Its rays are made as ours are, in packets where ours go in packets (an empty tree alone would
+    # send them one by one, another loop).
+    e.opts[OPT_PACKETS] = k.opts[OPT_PACKETS]
     hits_empty, depth_empty = np.zeros_like(hits), np.zeros_like(depth)  # ours' hits stay for the comparison
 
     def nothing_to_hit():
@@ -456,6 +473,12 @@ def _report_shadow_agreement(packets, corners, origins, directions, t_min, t_max
         tb[other] = peer_t
     return _report_agreement("shadow", corners, origins, directions, prims_a, ta, prims_b, tb,
                              "the same answer (blocked or not)")
+
+
+def _preempted() -> int:
+    """How many times so far a thread of this process had to leave its core to another process
+    before it was done (involuntary context switches, all threads)."""
+    return resource.getrusage(resource.RUSAGE_SELF).ru_nivcsw
 
 
 def _clock(cpu_time: bool, threading_layer: str):

@@ -47,7 +47,7 @@ from __future__ import annotations
 import math
 
 from core.image_order.flat_layout import BOUNDS_TESTS, PRIM_TESTS
-from core.image_order.intersect_triangle import ray_shear
+from core.image_order.intersect_triangle import on_shear_axes, ray_shear
 from core.image_order.kernels.bvh_build import LEAF_SIZE, WIDE_REFS, WIDE_SIZE, WIDTH
 from core.image_order.kernels.bvh_traverse import (
     from_stack_entry,
@@ -59,14 +59,17 @@ from core.image_order.kernels.bvh_traverse import (
 from core.image_order.kernels.intrinsics.slabs4 import slab_interval4, slab_rays4
 from core.image_order.kernels.intrinsics.unchecked import load_at, store_at
 from core.image_order.kernels.jit import jit, jit_inline
+from core.image_order.ray_casting import primary_ray
 
 #: Pixels of a packet: rows and columns.
 PACKET_ROWS = PACKET_COLS = 4
 PACKET_SIZE = PACKET_ROWS * PACKET_COLS
 # Rows of the packet's rays: origin, 1 / d, t_min, the closest hit so far (t_max to start), the
-# shear of the watertight triangle test, the origin on its axes, the direction.
-R_ORIGIN, R_INVERSE, R_T_MIN, R_BEST_T, R_SHEAR, R_SHEARED_ORIGIN, R_DIRECTION = 0, 3, 6, 7, 8, 11, 14
-RAY_FIELDS = 17
+# shear of the watertight triangle test, the origin on its axes, the direction, and the pixel
+# (column, row) a primary ray goes through.
+R_ORIGIN, R_INVERSE, R_T_MIN, R_BEST_T, R_SHEAR, R_SHEARED_ORIGIN, R_DIRECTION, R_PIXEL = (0, 3, 6, 7, 8, 11,
+                                                                                          14, 17)
+RAY_FIELDS = 19
 # ... and the integer rows: the shear's axes kx, ky, kz, the closest primitive in leaf order (-1: none).
 A_AXES, A_BEST_K = 0, 3
 AXIS_FIELDS = 4
@@ -83,6 +86,7 @@ def _at(field, r):
 def set_ray(rays, axes, r, o, d, t_min, t_max):
     """Make ``o + t d`` (``t_min <= t < t_max``) ray ``r`` of the packet."""
     kx, ky, kz, sx, sy, sz = ray_shear(d[0], d[1], d[2])
+    okx, oky, okz = on_shear_axes(o[0], o[1], o[2], kz)
     for a in range(3):
         store_at(rays, _at(R_ORIGIN + a, r), o[a])
         store_at(rays, _at(R_INVERSE + a, r), 1.0 / d[a])
@@ -92,13 +96,37 @@ def set_ray(rays, axes, r, o, d, t_min, t_max):
     store_at(rays, _at(R_SHEAR, r), sx)
     store_at(rays, _at(R_SHEAR + 1, r), sy)
     store_at(rays, _at(R_SHEAR + 2, r), sz)
-    store_at(rays, _at(R_SHEARED_ORIGIN, r), o[kx])
-    store_at(rays, _at(R_SHEARED_ORIGIN + 1, r), o[ky])
-    store_at(rays, _at(R_SHEARED_ORIGIN + 2, r), o[kz])
+    store_at(rays, _at(R_SHEARED_ORIGIN, r), okx)
+    store_at(rays, _at(R_SHEARED_ORIGIN + 1, r), oky)
+    store_at(rays, _at(R_SHEARED_ORIGIN + 2, r), okz)
     store_at(axes, _at(A_AXES, r), kx)
     store_at(axes, _at(A_AXES + 1, r), ky)
     store_at(axes, _at(A_AXES + 2, r), kz)
     store_at(axes, _at(A_BEST_K, r), -1)
+
+
+@jit_inline
+def set_pixel(rays, r, x, y):
+    """Ray ``r`` of the packet goes through pixel column ``x``, row ``y`` (:func:`set_primary_rays`)."""
+    store_at(rays, _at(R_PIXEL, r), x)
+    store_at(rays, _at(R_PIXEL + 1, r), y)
+
+
+@jit_inline
+def set_primary_rays(cam, rays, axes, n):
+    """Make rays ``0 .. n-1`` of the packet the camera's primary rays through their pixels
+    (:func:`set_pixel`).
+
+    One loop over the rays, with no branch and no index that differs from ray to ray
+    (:func:`~core.image_order.intersect_triangle.on_shear_axes`): the compiler makes it four rays
+    per vector instruction, and the dozen divisions and the square root a ray costs (its
+    direction, near and far, ``1 / d`` and the shear) go four at a time.  Each lane rounds as
+    the scalar code does, so the rays are the same bit for bit.
+    """
+    for r in range(n):
+        x, y = load_at(rays, _at(R_PIXEL, r)), load_at(rays, _at(R_PIXEL + 1, r))
+        o, d, t_min, t_max = primary_ray(cam, x, y)
+        set_ray(rays, axes, r, o, d, t_min, t_max)
 
 
 @jit_inline

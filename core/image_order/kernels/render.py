@@ -44,7 +44,8 @@ from core.image_order.kernels.bvh_packet import (
     packet_closest,
     packet_hit,
     ray_of,
-    set_ray,
+    set_pixel,
+    set_primary_rays,
 )
 from core.image_order.kernels.bvh_traverse import bvh_closest
 from core.image_order.kernels.closest_hit import BVH, GRID, GRID_SPHERES, closest_hit
@@ -145,9 +146,9 @@ def _primary_packet(j0, j1, i0, i1, cam, xs, ys, geo, bvh, scratch, packet, hits
     n = 0
     for j in range(j0, j1):
         for i in range(i0, i1):
-            o, d, t_min, t_max = primary_ray(cam, xs[i], ys[j])
-            set_ray(rays, axes, n, o, d, t_min, t_max)
+            set_pixel(rays, n, xs[i], ys[j])
             n += 1
+    set_primary_rays(cam, rays, axes, n)
     count[flat_layout.PRIMARY] += n
     shared = bvh[0].shape[0] > 0 and can_share_walk(rays, n)
     if shared:

@@ -117,3 +117,20 @@ def test_cpu_time_times_one_thread_and_says_so():
     for kind in ("primary", "shadow"):
         assert sum(f"triangles, {kind:>7} rays: ours" in line for line in done.stdout.splitlines()) == 1
     assert "Whitted frame, mirror and glass" in done.stdout
+
+
+def test_each_whitted_frame_says_its_cpu_time_per_thread_which_its_wall_clock_time_never_falls_below():
+    # By the wall clock a frame lasts at least as long as the CPU time each of its threads spent
+    # (no thread runs for longer than the frame); the gap, if any, is time a thread waited.
+    done = _bench_without_embree("--triangles", "200", "--repeats", "3")
+    lines = done.stdout.splitlines()
+    for title in ("lecture scene", "mirror and glass"):
+        at = next(k for k, line in enumerate(lines) if line.startswith(f"Whitted frame, {title}"))
+        wall_ms = float(lines[at].split(":")[1].split()[0])
+        words = lines[at + 1].split()
+        assert words[:3] == ["its", "CPU", "time"], lines[at + 1]
+        total_ms, threads, each_ms = float(words[3]), int(words[6]), float(words[8].strip("("))
+        assert total_ms > 0.0 and threads >= 1
+        assert each_ms <= wall_ms
+        assert abs(each_ms - total_ms / threads) < 0.06
+        assert int(words[10]) >= 0  # times a thread had to leave its core

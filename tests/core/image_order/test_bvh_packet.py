@@ -30,11 +30,26 @@ from core.image_order.flat_layout import (
     PRIM_TESTS,
 )
 from core.image_order.flat_scene import TraceSettings, kernel_inputs, trace_scene
-from core.image_order.intersect_triangle import intersect_triangle
+from core.image_order.intersect_triangle import intersect_triangle, on_shear_axes, ray_shear
 from core.image_order.kernels import render
+from core.image_order.kernels.bvh_packet import (
+    AXIS_FIELDS,
+    PACKET_SIZE,
+    R_BEST_T,
+    R_DIRECTION,
+    R_INVERSE,
+    R_ORIGIN,
+    R_SHEAR,
+    R_SHEARED_ORIGIN,
+    R_T_MIN,
+    RAY_FIELDS,
+    set_pixel,
+    set_primary_rays,
+)
 from core.image_order.kernels.closest_hit import closest_hit
 from core.image_order.kernels.intrinsics.slabs4 import slab_interval4, slab_rays4, slab_test4
 from core.image_order.kernels.render import make_scratch
+from core.image_order.ray_casting import camera_array, primary_ray
 from core.scene import Material, Mesh, PointLight, Scene, Sphere
 
 
@@ -248,3 +263,48 @@ def test_tiny_images(width, height):
     hits, _, _, _, _ = primary_hits(Scene(camera=camera, objects=(BALL,), lights=LIGHT), "bvh")
     ref_hits, _, _, _, _ = primary_hits(Scene(camera=camera, objects=(BALL,), lights=LIGHT), "none")
     assert np.array_equal(hits[..., HIT_T], ref_hits[..., HIT_T])
+
+
+@njit
+def _packet_of(cam, xs, ys):
+    """The packet's arrays after :func:`set_primary_rays` for the pixels ``xs, ys``."""
+    rays, axes = np.zeros(PACKET_SIZE * RAY_FIELDS), np.zeros(PACKET_SIZE * AXIS_FIELDS, np.int64)
+    for r in range(len(xs)):
+        set_pixel(rays, r, xs[r], ys[r])
+    set_primary_rays(cam, rays, axes, len(xs))
+    return rays, axes
+
+
+@settings(max_examples=60, deadline=None)
+@given(seed=st.integers(0, 2**32 - 1), n=st.integers(1, PACKET_SIZE), orthographic=st.booleans(),
+       eye=st.tuples(*[st.floats(-4.0, 4.0)] * 3))
+def test_a_packets_rays_made_side_by_side_are_the_cameras_rays_bit_for_bit(seed, n, orthographic, eye):
+    # Made four at a time in vector instructions, each ray must still be the one a lone ray is:
+    # the camera's formula, its shear and its origin on the shear's axes, whatever axis is largest.
+    camera = Camera(eye=eye, target=(0.3, -0.2, 0.1), width=97, height=61, fov_y_deg=70.0,
+                    projection="orthographic" if orthographic else "perspective", ortho_height=3.0)
+    rng = np.random.default_rng(seed)
+    xs, ys = rng.integers(0, camera.width, n).astype(float), rng.integers(0, camera.height, n).astype(float)
+    cam = camera_array(camera)
+    rays, axes = _packet_of(cam, xs, ys)
+
+    def field(row, r):
+        return rays[row * PACKET_SIZE + r]
+
+    for r in range(n):
+        o, d, t_min, t_max = primary_ray(cam, xs[r], ys[r])
+        kx, ky, kz, sx, sy, sz = ray_shear(*d)
+        assert [axes[a * PACKET_SIZE + r] for a in range(3)] == [kx, ky, kz]
+        assert [field(R_ORIGIN + a, r) for a in range(3)] == list(o)
+        assert [field(R_DIRECTION + a, r) for a in range(3)] == list(d)
+        assert [field(R_INVERSE + a, r) for a in range(3)] == [1.0 / c for c in d]
+        assert [field(R_SHEAR + a, r) for a in range(3)] == [sx, sy, sz]
+        assert [field(R_SHEARED_ORIGIN + a, r) for a in range(3)] == [o[kx], o[ky], o[kz]]
+        assert (field(R_T_MIN, r), field(R_BEST_T, r)) == (t_min, t_max)
+
+
+@pytest.mark.parametrize("v", [(1.0, 2.0, 3.0), (-5.0, 0.5, 0.25), (0.0, -0.0, 7.0)])
+def test_a_vector_on_the_shear_axes_is_its_components_in_the_shears_order(v):
+    for kz in range(3):
+        kx, ky = (kz + 1) % 3, (kz + 2) % 3
+        assert on_shear_axes(*v, kz) == (v[kx], v[ky], v[kz])
