@@ -23,7 +23,7 @@ entering and leaving presentation mode, and the text size ×1.5, ×2 and back.
 
 With ``--cold`` the user's cache folder (``XDG_CACHE_HOME``: the formula cache,
 matplotlib's font list) is an empty one, as on a first run, the compiled kernels
-excepted: the actions run once so, then again with the formulas kept on disk
+and Mesa's compiled shaders excepted: the actions run once so, then again with the formulas kept on disk
 meanwhile (those in memory forgotten, as in a new process), and both tables are
 printed.  The tabs' rows and the opening are of the first run.
 
@@ -396,11 +396,16 @@ def run(args) -> int:
     if cold is not None:  # an empty cache folder (formulas, matplotlib's fonts), as on a first run ...
         from core.compiling.kernel_cache import cache_root
 
-        os.environ.setdefault("NUMBA_CACHE_DIR", str(cache_root()))  # ... but the kernels compiled
+        os.environ.setdefault("NUMBA_CACHE_DIR", str(cache_root()))  # ... but the kernels compiled,
+        # and the 3D pane's shaders as Mesa compiled them (on an empty Mesa cache the first smooth
+        # draw compiles them on the GUI thread: 167 ms, once per machine and graphics driver)
+        os.environ.setdefault("MESA_SHADER_CACHE_DIR",
+                              os.environ.get("XDG_CACHE_HOME") or os.path.expanduser("~/.cache"))
         os.environ["XDG_CACHE_HOME"] = cold.name
     from PySide6.QtCore import QThreadPool
     from PySide6.QtWidgets import QApplication
 
+    from app.process.lock_turns import hand_over_often
     from app.process.long_lived import set_aside_once_loaded
     from app.window.main_window import MainWindow
     from core import presets
@@ -414,6 +419,7 @@ def run(args) -> int:
     window = MainWindow(presets.lecture_scene())
     window.resize(width, height)
     set_aside_once_loaded(window)  # as python -m app does
+    hand_over_often()
     opening = _open(app, window, args.why)
     # Tabs that draw what the observer sees; Hard cases and Cost do not follow the observer.
     following = [t for t in window.tab_titles()

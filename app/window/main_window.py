@@ -37,6 +37,7 @@ from app.lessons.exercise_jobs import ExerciseJobs
 from app.lessons.fact_check import LessonFactCheck
 from app.lessons.recorder import LessonRecorder
 from app.lessons.runner import LESSON_OVERLAY, LessonRunner
+from app.process.lock_turns import hand_over_often
 from app.process.long_lived import set_aside_once_loaded
 from app.window import render_budget, session
 from app.window.background_compile import BackgroundCompile
@@ -594,6 +595,7 @@ def run(scene_path: str | None = None, memory_limit: int | None = None) -> int:
         window.setWindowTitle(f"Render Explorer — {window.scene_path.name}")
     window.show()
     set_aside_once_loaded(window)
+    hand_over_often()
     if scene_path is not None:
         window.explain_if_too_large(Path(scene_path).name)
     status = app.exec()
