@@ -15,3 +15,18 @@ def open_window(qtbot) -> MainWindow:
     qtbot.waitUntil(lambda: win.showing_full("image order"), timeout=RENDER_TIMEOUT_MS)
     qtbot.waitUntil(lambda: win.scene_view.view is not None, timeout=RENDER_TIMEOUT_MS)
     return win
+
+
+def run_as_the_app(script: str, config_home) -> str:
+    """Run ``script`` (which opens the window with ``app.cli.main``) in a process of its own, as
+    ``python -m app`` runs, with no last session (the lecture scene); its standard output."""
+    import os
+    import subprocess
+    import sys
+
+    from checkout import ROOT
+
+    out = subprocess.run([sys.executable, "-c", script], cwd=ROOT, capture_output=True, text=True,
+                         env={**os.environ, "XDG_CONFIG_HOME": str(config_home)}, timeout=300)
+    assert out.returncode == 0, out.stderr
+    return out.stdout

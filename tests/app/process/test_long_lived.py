@@ -2,12 +2,8 @@
 since: each such pass held the interpreter's lock (and so the window) about 110 ms.  Setting them aside
 makes no full pass either (that one held the window 150-250 ms)."""
 
-import os
-import subprocess
-import sys
-
 import pytest
-from checkout import ROOT
+from window_helpers import run_as_the_app
 
 OPEN_AND_LOOK = r"""
 import gc, sys
@@ -44,11 +40,8 @@ sys.exit(cli.main([]))
 
 @pytest.mark.gui
 def test_once_everything_is_loaded_a_full_collection_walks_a_small_share_of_the_objects(tmp_path):
-    env = {**os.environ, "XDG_CONFIG_HOME": str(tmp_path)}  # no last session: the lecture scene
-    out = subprocess.run([sys.executable, "-c", OPEN_AND_LOOK], cwd=ROOT, capture_output=True, text=True,
-                         env=env, timeout=300)
-    assert out.returncode == 0, out.stderr
-    oldest, frozen, walked = (int(n) for n in out.stdout.split()[-3:])
+    out = run_as_the_app(OPEN_AND_LOOK, tmp_path)
+    oldest, frozen, walked = (int(n) for n in out.split()[-3:])
     assert oldest in (0, 1)  # only the young generations collected first, no full pass
     assert frozen > 100_000  # the objects of what the program loaded, set aside
     assert walked < frozen / 5  # what a full collection still walks
