@@ -382,13 +382,14 @@ class MathView(QLabel):
         if not self._later or not self._formula:
             self._render_now()
             return
+        if self._asking:  # a restyle sends a font, a palette and a style change: asked once
+            return
         if self._out_of_sight():
             self._when_shown = True
             return
         self.pending = True
-        if not self._asking:  # a restyle sends a font, a palette and a style change: typeset once
-            self._asking = True
-            QTimer.singleShot(0, self, self._ask)
+        self._asking = True
+        QTimer.singleShot(0, self, self._ask)
 
     def _ask(self) -> None:
         """Ask the typesetter's thread for what the formula now needs, unless that was asked already."""
