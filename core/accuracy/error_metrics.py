@@ -6,7 +6,9 @@
   how visible the difference is to a viewer flipping between the two images
   on a screen, 0 (identical) to 1, with a per-pixel error map.  FLIP judges
   what a screen shows, so both images are encoded to sRGB first, in
-  :mod:`core.srgb`.
+  :mod:`core.srgb`.  ``flip-evaluator`` holds Python's lock for the whole of
+  its work (277 ms at 640×480), so it runs in a helper process
+  (:mod:`core.helper_process`): the window's thread goes on meanwhile.
 - :func:`wrong_pixel_fraction`: the share of pixels whose visible object (at
   the pixel centre) is another one than the reference's: silhouettes that
   moved, or surfaces the z-buffer put in the wrong order (z-fighting).
@@ -17,9 +19,9 @@
 
 from __future__ import annotations
 
-import flip_evaluator
 import numpy as np
 
+from core import helper_process
 from core.srgb import linear_to_srgb
 
 #: FLIP's default viewing condition: 67 pixels per degree of visual angle (a
@@ -56,8 +58,16 @@ def flip(reference: np.ndarray, test: np.ndarray,
     _same_shape(reference, test)
     ref = linear_to_srgb(reference).astype(np.float32)
     tst = linear_to_srgb(test).astype(np.float32)
+    mean, error_map = helper_process.call(__name__, "flip_here", ref, tst, float(pixels_per_degree))
+    return mean, error_map
+
+
+def flip_here(ref: np.ndarray, tst: np.ndarray, pixels_per_degree: float) -> tuple[float, np.ndarray]:
+    """:func:`flip` of two (H, W, 3) float32 sRGB images, computed by the process that calls it."""
+    import flip_evaluator
+
     error_map, mean, _ = flip_evaluator.evaluate(ref, tst, "LDR", inputsRGB=True, applyMagma=False,
-                                                 parameters={"ppd": float(pixels_per_degree)})
+                                                 parameters={"ppd": pixels_per_degree})
     return float(mean), np.asarray(error_map).reshape(ref.shape[:2])
 
 
