@@ -67,6 +67,23 @@ def test_the_new_rows_edit_export_present_and_resize_the_text_and_leave_the_wind
 
 
 @pytest.mark.gui
+def test_the_lesson_row_steps_through_every_step_the_panel_holds_and_reads_no_file_meanwhile(window,
+                                                                                        monkeypatch):
+    # Reading the 16 lesson files on the GUI thread, inside the row's clock, was charged to the window.
+    from core.files import lesson_file
+
+    read = []
+    monkeypatch.setattr(lesson_file, "load_lesson", lambda path: read.append(path))
+    steps = list(gui._lesson_steps(window))
+    assert read == []
+    assert len(steps) == sum(len(lesson.steps) for lesson in window.lesson_panel.lessons()) == 34
+    start, _ = steps[-1]
+    start()
+    last = len(window.lesson_panel.lessons()) - 1
+    assert window.lesson_panel.step_index() == (last, len(window.lesson_panel.lessons()[last].steps) - 1)
+
+
+@pytest.mark.gui
 def test_cold_prints_the_actions_with_an_empty_formula_cache_then_warm():
     argv = ["bench", "gui", "--seconds", "0.2", "--size", "800x600", "--actions", "present,text", "--cold"]
     out = subprocess.run([sys.executable, "-m", "app", *argv], cwd=ROOT, capture_output=True, text=True,
