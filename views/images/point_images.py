@@ -39,13 +39,19 @@ def _panels(point, reference) -> list:
 def draw_point_images(figure, point, reference) -> None:
     """Draw ``point``'s image, ``reference``'s and the FLIP error map (and the samples per pixel) on
     ``figure``, two to a row, inside the caller's ``matplotlib.rc_context``, and draw it.  The error map's
-    scale is FLIP's own, 0 to 1."""
-    for k, (image, title, cmap) in enumerate(_panels(point, reference)):
-        ax = figure.add_subplot(2, 2, k + 1)
+    scale is FLIP's own, 0 to 1.  Alone on its row (no samples), the error map takes the whole row:
+    in half of it, beside an empty cell, it was drawn a third as large as the images above, under its
+    title broken into four lines (presenting at x2)."""
+    panels = _panels(point, reference)
+    cells = figure.add_gridspec(2, 2)  # one grid, so that the layout makes room for every title
+    for k, (image, title, cmap) in enumerate(panels):
+        alone = k == len(panels) - 1 and k % 2 == 0
+        ax = figure.add_subplot(cells[k // 2, :] if alone else cells[k // 2, k % 2])
         limits = {"vmin": 0.0, "vmax": 1.0} if cmap == "magma" else {}
         shown = ax.imshow(image, cmap=cmap, interpolation="nearest", **limits)
-        if cmap:
-            figure.colorbar(shown, ax=ax, shrink=0.8)
+        if cmap:  # the scale's two ends only: a bar beside a small image had room for no more
+            bar = figure.colorbar(shown, ax=ax, shrink=0.8)
+            bar.set_ticks([shown.norm.vmin, shown.norm.vmax])
         ax.set_title(title, fontsize=9)
         ax.set_xticks([])
         ax.set_yticks([])
@@ -66,7 +72,7 @@ def _fit_titles(figure) -> None:
         if not wide:
             return
         for ax in wide:
-            halved = [textwrap.fill(line, max(6, (len(line) + 1) // 2))
+            halved = [textwrap.fill(line, max(6, (len(line) + 1) // 2), break_long_words=False)
                       for line in ax.get_title().splitlines()]
             ax.set_title("\n".join(halved), fontsize=9)
     figure.canvas.draw()

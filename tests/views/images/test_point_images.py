@@ -42,3 +42,25 @@ def test_every_title_shows_whole_and_apart(size, samples):
         assert edge.y0 - 1 <= box.y0 and box.y1 <= edge.y1 + 1
     for a, b in itertools.combinations(boxes, 2):
         assert not (a.x0 < b.x1 and b.x0 < a.x1 and a.y0 < b.y1 and b.y0 < a.y1)
+    words = " ".join(t.get_text() for t in titles).split()
+    assert ("adaptive" if samples else "reference") in words  # broken between words, never inside one
+    bars = [ax for ax in figure.axes if not ax.get_title()]
+    assert len(bars) == (2 if samples else 1)
+    for bar in bars:  # each scale's two ends, whose labels cannot overlap ("5", "10", "15" did)
+        assert len(bar.get_yticks()) == 2
+
+
+@pytest.mark.parametrize("size", [(350, 290, 100.0), (506, 435, 200.0)])  # 1280 x 720; x2 at 1920 x 1080
+def test_the_error_map_alone_on_its_row_is_drawn_as_large_as_the_images_above_under_a_short_title(size):
+    point, reference = _point(samples=False)
+    figure = point_images_drawing(point, reference, *size, dark=True)().figure
+    renderer = figure.canvas.get_renderer()
+    images = [ax for ax in figure.axes if ax.get_title()]
+    error = images[2]
+    assert error.get_title().startswith("FLIP")
+    shown = [ax.get_window_extent(renderer) for ax in images]  # each image's drawn box (aspect kept)
+    assert shown[2].width >= 0.9 * min(box.width for box in shown[:2])  # a third as large before
+    assert shown[2].height >= 0.9 * min(box.height for box in shown[:2])
+    assert len(error.get_title().splitlines()) <= 2  # "FLIP against reference" / "mean 0.0082"
+    title = error.title.get_window_extent(renderer)
+    assert not any(title.overlaps(box) for box in shown[:2])  # clear of the images above
