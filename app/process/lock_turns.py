@@ -5,7 +5,8 @@ let go, and gets it only after the interpreter's switch interval, 5 ms by defaul
 gives the lock up at many calls into Qt and VTK and must ask for it again each time, so while a
 thread draws a plot with matplotlib or measures a sweep's error in Python (the Cost tab), each of
 those waits cost it up to 5 ms: a sweep's longest stall of the window was 188-199 ms with 5 ms and
-102-134 ms with 1 ms (``bench gui --actions cost``, two runs each, interleaved, quiet 2-core machine).
+102-134 ms with 1 ms (``bench gui --seconds 1 --actions picks,cost,lessons,export``, two runs each,
+interleaved, quiet 2-core machine).
 The threads that lose the lock sooner are background work, which loses a few per cent of its speed.
 """
 

@@ -58,8 +58,7 @@ def flip(reference: np.ndarray, test: np.ndarray,
     _same_shape(reference, test)
     ref = linear_to_srgb(reference).astype(np.float32)
     tst = linear_to_srgb(test).astype(np.float32)
-    mean, error_map = helper_process.call(__name__, "flip_here", ref, tst, float(pixels_per_degree))
-    return mean, error_map
+    return helper_process.call(__name__, "flip_here", ref, tst, float(pixels_per_degree))
 
 
 def flip_here(ref: np.ndarray, tst: np.ndarray, pixels_per_degree: float) -> tuple[float, np.ndarray]:
