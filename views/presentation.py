@@ -25,6 +25,7 @@ from PySide6.QtCore import QEvent, QObject, Qt, QTime, QTimer, Signal
 from PySide6.QtGui import QAction, QActionGroup, QFont, QGuiApplication, QKeySequence
 from PySide6.QtWidgets import QApplication, QLabel, QMainWindow, QVBoxLayout, QWidget
 
+from views.high_contrast import HighContrast
 from views.panels.lesson_panel import ClickerKeys, LessonPanel
 from views.text.text_scale import NORMAL_TEXT_PT, normal_text_pt
 
@@ -34,32 +35,6 @@ SCALES = (1.0, 1.5, 2.0)
 PRESENTING_SCALE = 1.5
 #: On one screen, the share of its width the presenter window takes (at its right edge).
 PRESENTER_SHARE = 0.25
-
-#: Black and white with a yellow accent; colours only, so the font scale stays the application's.
-HIGH_CONTRAST = """
-QWidget { background-color: #000000; color: #ffffff; }
-QWidget:disabled { color: #9a9a9a; }
-QAbstractItemView { alternate-background-color: #262626; }
-QAbstractButton, QComboBox, QSpinBox, QDoubleSpinBox, QLineEdit {
-    border: 2px solid #ffffff; padding: 3px; }
-QAbstractButton:checked, QAbstractButton:pressed { background-color: #ffd400; color: #000000; }
-QToolButton { background-color: #ffffff; color: #000000; }
-QCheckBox, QRadioButton { border: none; }
-QCheckBox:checked, QRadioButton:checked { background-color: #000000; color: #ffffff; }
-QCheckBox::indicator, QRadioButton::indicator {
-    width: 0.8em; height: 0.8em; border: 2px solid #ffffff; background-color: #000000; }
-QCheckBox::indicator:checked, QRadioButton::indicator:checked { background-color: #ffd400; }
-QRadioButton::indicator { border-radius: 0.4em; }
-QListView::item:selected, QTreeView::item:selected, QTableView::item:selected {
-    background-color: #ffd400; color: #000000; }
-QTabBar::tab:selected { background-color: #ffd400; color: #000000; }
-QToolTip { background-color: #ffffff; color: #000000; }
-QSlider::groove:horizontal { height: 0.3em; background: #9a9a9a; border-radius: 0.15em; }
-QSlider::sub-page:horizontal { background: #ffd400; border-radius: 0.15em; }
-QSlider::handle:horizontal {
-    width: 1.2em; margin: -0.45em 0; background: #ffffff; border: 2px solid #ffd400; border-radius: 0.6em; }
-"""
-
 
 class _Blank(QWidget):
     """A black sheet over the whole window."""
@@ -100,12 +75,14 @@ class Presentation(QObject):
         self.panel = panel
         self._scale = 1.0
         self._presenting = False
-        self._high_contrast = False
+        self._contrast = HighContrast(window)
         self._normal_pt = normal_text_pt()
-        self._base_style = window.styleSheet()
         self._was_maximized = False
         self._normal_geometry = window.geometry()
         self._blank = _Blank(window)
+        self._stages: list = []  # what entering or leaving presentation mode has still to do
+        self._stage_timer = QTimer(self, singleShot=True, interval=0)
+        self._stage_timer.timeout.connect(self._next_stage)
         # Style sheets (high contrast; a widget's own colours) would otherwise keep the widgets
         # under them at the font they had when styled: a new text size would not reach them.
         QApplication.setAttribute(Qt.ApplicationAttribute.AA_UseStyleSheetPropagationInWidgetStyles)
@@ -158,7 +135,7 @@ class Presentation(QObject):
         return self._blank.isVisible()
 
     def high_contrast(self) -> bool:
-        return self._high_contrast
+        return self._contrast.on()
 
     def set_scale(self, scale: float) -> None:
         """Scale the window's text (and all that follows its font) to ``scale`` times normal."""
@@ -173,11 +150,9 @@ class Presentation(QObject):
         self.scale_changed.emit(self._scale)
 
     def set_high_contrast(self, on: bool) -> None:
-        if bool(on) != self._high_contrast:
-            self._high_contrast = bool(on)
-            self._apply_colours()
-        if self.actions["contrast"].isChecked() != self._high_contrast:
-            self.actions["contrast"].setChecked(self._high_contrast)
+        self._contrast.set_on(on)
+        if self.actions["contrast"].isChecked() != self.high_contrast():
+            self.actions["contrast"].setChecked(self.high_contrast())
 
     def text_size_pt(self) -> float:
         """The window's text size now, in points."""
@@ -200,32 +175,25 @@ class Presentation(QObject):
         # Every widget has it on return (Qt posts the change where no event loop runs yet).
         QApplication.sendPostedEvents(None, QEvent.Type.ApplicationFontChange)
 
-    def _apply_colours(self) -> None:
-        self.window.setStyleSheet(self._base_style + (HIGH_CONTRAST if self._high_contrast else ""))
-
     def set_presenting(self, on: bool) -> None:
-        """Enter (full screen, ×1.5 text, high contrast, arrow keys step) or leave presentation mode."""
+        """Enter (full screen, ×1.5 text, high contrast, arrow keys step) or leave presentation mode.
+
+        The text size changes at once; the colours and the window's size follow, each in a turn of
+        the event loop of its own, so that none holds the window long (``settled`` says when all
+        are done, and ``presenting_changed`` is sent then).
+        """
         on = bool(on)
         if on == self._presenting:
             return
         self._presenting = on
         if on:
-            self._was_maximized = self.window.isMaximized()
-            self._normal_geometry = self.window.geometry()
+            if not self.window.isFullScreen():  # not while still leaving
+                self._was_maximized = self.window.isMaximized()
+                self._normal_geometry = self.window.geometry()
             self.set_scale(max(self._scale, PRESENTING_SCALE))
-            self.set_high_contrast(True)
-            # The whole screen even where no window manager honours "full screen" (a bare X server).
-            self.window.setGeometry(self.window.screen().geometry())
-            self.window.showFullScreen()
         else:
             self.set_blanked(False)
             self.set_scale(1.0)
-            self.set_high_contrast(False)
-            if self._was_maximized:
-                self.window.showMaximized()
-            else:
-                self.window.showNormal()
-                self.window.setGeometry(self._normal_geometry)
         if self.clicker is not None:
             self.clicker.arrows = on
             self.panel.set_compact(on)
@@ -233,7 +201,31 @@ class Presentation(QObject):
         self.actions["leave"].setEnabled(on)
         if self.actions["present"].isChecked() != on:
             self.actions["present"].setChecked(on)
-        self.presenting_changed.emit(on)
+        self._stages = [lambda: self.set_high_contrast(on), self._enter_screen if on else self._leave_screen,
+                        lambda: self.presenting_changed.emit(on)]
+        self._stage_timer.start()
+
+    def settled(self) -> bool:
+        """Whether entering or leaving presentation mode is done (colours and window size too)."""
+        return not self._stages
+
+    def _next_stage(self) -> None:
+        if self._stages:
+            self._stages.pop(0)()
+        if self._stages:
+            self._stage_timer.start()
+
+    def _enter_screen(self) -> None:
+        # The whole screen even where no window manager honours "full screen" (a bare X server).
+        self.window.setGeometry(self.window.screen().geometry())
+        self.window.showFullScreen()
+
+    def _leave_screen(self) -> None:
+        if self._was_maximized:
+            self.window.showMaximized()
+        else:
+            self.window.showNormal()
+            self.window.setGeometry(self._normal_geometry)
 
     def set_blanked(self, on: bool) -> None:
         """Black the window out (``on``) or bring it back."""

@@ -354,7 +354,8 @@ def _presentation(window):
     presentation = window.presentation
     for on in (True, False, True, False):
         yield (lambda on=on: presentation.set_presenting(on),
-               lambda on=on: presentation.presenting() == on and not window.lesson_panel.typesetting())
+               lambda on=on: presentation.presenting() == on and presentation.settled()
+               and not window.lesson_panel.typesetting())
 
 
 def _text_sizes(window):

@@ -288,11 +288,15 @@ class MainWindow(QMainWindow):
 
     def _fit(self) -> None:
         self._fit_controls()
-        fit_window(self, self.presentation.scale())
+        self._share_room()
 
     def resizeEvent(self, event):
         super().resizeEvent(event)
+        self._share_room()
+
+    def _share_room(self) -> None:
         fit_window(self, self.presentation.scale())
+        self.tab("image order").widget.tree.widen_to_columns()  # the window may be wider now
 
     @property
     def current(self):

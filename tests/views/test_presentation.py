@@ -63,7 +63,9 @@ def test_presentation_mode_goes_full_screen_and_scales_the_text(hall, qtbot):
     presentation.set_scale(2.0)
     assert panel.text.font().pointSizeF() == pytest.approx(base_pt * 2)
     qtbot.waitUntil(lambda: _formula_height(panel) == pytest.approx(2 * base_formula, rel=0.15))
-    assert presentation.high_contrast() and "#000000" in window.styleSheet()
+    assert presentation.high_contrast()
+    assert panel.text.palette().color(QPalette.ColorRole.Window).name() == "#000000"  # white on black
+    assert panel.text.palette().color(QPalette.ColorRole.WindowText).name() == "#ffffff"
     qtbot.keyClick(window, Qt.Key.Key_Escape)
     qtbot.waitUntil(lambda: not window.isFullScreen())
     assert not presentation.presenting() and panel.text.font().pointSizeF() == pytest.approx(base_pt)
