@@ -9,8 +9,8 @@ once its first image is shown) or at the latest :data:`BUILD_AFTER_MS` after
 it was first painted.  Not earlier: the imports hold the GIL, so they would
 slow the first render by as much as they take.  pyvista, VTK's Qt widget and
 every VTK module the view loads are imported on a thread, so the window keeps
-answering meanwhile; the view is then built, and VTK draws its first frame, on
-the GUI thread.
+answering meanwhile; the view is then built, in two turns of the event loop, and
+VTK draws its first frame, on the GUI thread.
 
 Until then it keeps what the window asks of the 3D pane (overlays, which of
 them are shown, the overview camera) and hands it to the view when it is
@@ -36,13 +36,19 @@ seconds on a busy machine, where loading pyvista beside it would only slow it do
 
 class _Imported(QObject):
     done = Signal()
+    render_window = None  # VTK's render window for the pane, made beside the imports
 
 
 def _import_pyvista(imported: _Imported) -> None:
     try:
         import pyvista  # noqa: F401
+        from vtkmodules.vtkRenderingCore import vtkRenderWindow
 
         import views.scene3d.scene_picking  # noqa: F401  (the pane, VTK's Qt widget and OpenGL; clicks in the pane)
+
+        # The first one takes 40 ms (VTK's OpenGL sets itself up), not needing the GUI thread: only
+        # drawing needs the thread that shows it, and nothing is drawn until the pane is built.
+        imported.render_window = vtkRenderWindow()
     finally:
         with contextlib.suppress(RuntimeError):  # RuntimeError: the pane was deleted meanwhile
             imported.done.emit()  # queued: the view is built on the GUI thread
@@ -73,7 +79,8 @@ class DeferredSceneView(QWidget):
         self._painted = False
         self._importing = False
         self._imported = _Imported(self)
-        self._imported.done.connect(self.build)
+        self._imported.done.connect(self._build_in_two_turns)
+        self._plotter = None  # VTK's widget, made a turn before the view around it
         self._placeholder = QLabel(PLACEHOLDER)
         self._placeholder.setAlignment(Qt.AlignmentFlag.AlignCenter)
         self._placeholder.setStyleSheet("background: #1d2230; color: #c8cfdc;")
@@ -94,13 +101,24 @@ class DeferredSceneView(QWidget):
             threading.Thread(target=_import_pyvista, args=(self._imported,), name="import pyvista",
                              daemon=True).start()
 
+    def _build_in_two_turns(self) -> None:
+        """VTK's widget in this turn of the event loop (its render window and OpenGL, some 70 ms), the
+        view around it (the scene's actors, the observer, the axes) in the next: the window is held
+        for half as long at a time."""
+        if self.view is not None or self._plotter is not None:
+            return
+        from views.scene3d.image_plotter import ImagePlotter
+
+        self._plotter = ImagePlotter(self, self._imported.render_window)  # hidden until the view shows it
+        QTimer.singleShot(0, self, self.build)
+
     def build(self):
         """Import VTK and build the SceneView now (once); returns it."""
         if self.view is not None:
             return self.view
         from views.scene3d.scene_view import SceneView
 
-        view = SceneView(self.model, self)
+        view = SceneView(self.model, self, plotter=self._plotter)
         if self._visible[0]:
             view.show_overlays_only(self._visible[1])
         for name, parts in self._overlays.items():

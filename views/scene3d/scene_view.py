@@ -91,10 +91,10 @@ class SceneView(QWidget):
     screen : the drawn screen rectangle on the near plane.
     """
 
-    def __init__(self, model, parent: QWidget | None = None):
+    def __init__(self, model, parent: QWidget | None = None, plotter: ImagePlotter | None = None):
         super().__init__(parent)
         self.model = model
-        self.plotter = ImagePlotter(self)
+        self.plotter = ImagePlotter(self) if plotter is None else plotter  # made beforehand, or here
         # Translucent surfaces are blended in drawing order: VTK's order-independent
         # translucency costs a software OpenGL extra passes over the whole pane (nearly half
         # of a draw), and the few translucent surfaces here barely overlap.
