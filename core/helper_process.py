@@ -11,8 +11,8 @@ module (``python -m core.helper_process MODULE``), started at the module's first
 requests on its standard input and answers each in turn on its standard output.  It ends when its
 input closes, as when the window's process ends, however that ends.  It runs in a session of its own,
 so that Ctrl+C at the terminal reaches the window's process alone, which decides how to end, and it
-ignores an interrupt sent to it anyway.  It runs at a lower priority (``nice`` 5, as the renders'
-threads do), so that the window's thread gets a core first.  If a
+ignores an interrupt sent to it anyway.  It runs at a lower priority (:mod:`core.give_way`, as the
+renders' threads do), so that the window's thread gets a core first.  If a
 helper cannot be started, or dies, the call runs in this process, as it would without one (the
 same result, a slower window).
 
@@ -21,7 +21,6 @@ Arguments and results cross as pickles: arrays of a few megabytes take a few mil
 
 from __future__ import annotations
 
-import contextlib
 import importlib
 import os
 import pickle
@@ -30,8 +29,7 @@ import sys
 import threading
 from pathlib import Path
 
-HELPER_NICE = 5
-"""How much lower the helpers' priority is than the window's (0)."""
+from core import give_way
 
 
 class _Helper:
@@ -107,8 +105,7 @@ if __name__ == "__main__":
     import signal
 
     signal.signal(signal.SIGINT, signal.SIG_IGN)
-    with contextlib.suppress(OSError):  # a sandbox may forbid it: the helper still runs
-        os.nice(HELPER_NICE)
+    give_way.lower_this_process()
     answers = os.fdopen(os.dup(1), "wb")  # the answers' own copy of standard output ...
     os.dup2(2, 1)  # ... and whatever a library prints goes to standard error, not among them
     sys.stdout = sys.stderr

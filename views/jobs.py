@@ -95,7 +95,7 @@ def own_thread(parent: QObject) -> QThreadPool:
     """A pool of one thread for ``parent``'s quick jobs (a picture to paint).
 
     On the shared pool such a job waited behind the renders, and ran on a thread a render
-    had left at its lowered priority (:mod:`app.process.render_priority`) while it held
+    had left at its lowered priority (:mod:`core.give_way`) while it held
     Python's lock, which the window then waited for.
     """
     pool = QThreadPool(parent)

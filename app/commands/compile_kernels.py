@@ -22,6 +22,7 @@ import sys
 import time
 from pathlib import Path
 
+from core import give_way
 from core.compiling.warm_up import GROUPS, warm_up_of
 
 #: The folder that holds the ``app`` package: on the path of every process this command starts.
@@ -47,12 +48,16 @@ def add_parser(sub) -> argparse.ArgumentParser:
     parser.add_argument("--group", choices=sorted(GROUPS), action="append",
                         help="compile only this group (may be repeated)")
     parser.add_argument("--in-process", action="store_true", help=argparse.SUPPRESS)
+    parser.add_argument("--give-way", action="store_true",
+                        help="run at a lower priority, beside a window that should stay smooth")
     parser.set_defaults(run=run)
     return parser
 
 
 def run(args) -> int:
     groups = args.group or list(GROUPS)
+    if args.give_way:  # the processes it starts for each group inherit it
+        give_way.lower_this_process()
     if args.in_process:  # one group, in the process the parent started for it
         for group in groups:
             print(f"{warm_up_of(group)():.1f}", flush=True)

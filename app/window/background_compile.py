@@ -5,7 +5,9 @@ The window's first render would compile only what it needs, on one core, and
 every other tab would compile its own kernels when first shown.  So once the
 window is on screen, a thread looks whether every kernel group is compiled
 (that imports numba: not on the GUI thread), and if not it starts
-``python -m app compile`` in a process of its own at a lower priority, which
+``python -m app compile --give-way`` in a process of its own at a lower priority
+(:mod:`core.give_way`: the process lowers its own; a hook run between ``fork`` and ``exec``,
+as ``subprocess``'s ``preexec_fn``, is not safe in a process with threads), which
 compiles each group in a process of its own.  A render that needs kernels being
 compiled there waits for them (:class:`core.compiling.warm_up.WarmUp` holds a lock file
 while it compiles) and then loads them, saying so in its progress bar; the
@@ -30,7 +32,7 @@ class BackgroundCompile:
     """Start with :meth:`start`; :meth:`stop` ends the compile if it still runs."""
 
     #: What runs: ``python`` and these arguments.
-    COMMAND = ("-m", "app", "compile", "--quiet")
+    COMMAND = ("-m", "app", "compile", "--quiet", "--give-way")
 
     def __init__(self):
         self._process: subprocess.Popen | None = None
@@ -52,8 +54,7 @@ class BackgroundCompile:
     def _start(self) -> None:
         self._process = subprocess.Popen(
             [sys.executable, *self.COMMAND], env=child_env(), stdin=subprocess.DEVNULL,
-            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True,
-            preexec_fn=lambda: os.nice(5))
+            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True)
 
     @property
     def running(self) -> bool:

@@ -2,7 +2,7 @@
 
 A render is a job of :mod:`views.jobs` (``job(cancelled, progress) -> result``).
 :class:`Renderer` runs the jobs of one tab, the newest winning; its job's thread
-gives way to the window (:mod:`app.process.render_priority`), and partial results
+gives way to the window (:mod:`core.give_way`), and partial results
 reach the GUI thread at most :data:`PROGRESS_PER_SECOND` times a second.
 :class:`RenderSchedule` decides when each tab renders.
 """
@@ -13,8 +13,8 @@ from dataclasses import dataclass
 
 from PySide6.QtCore import QObject, QThreadPool, QTimer, Signal
 
-from app.process import render_priority
 from app.window import render_budget
+from core import give_way
 from views.jobs import JobRunner
 from views.panels.stale_cover import cover, uncover
 
@@ -39,7 +39,7 @@ class Renderer(JobRunner):
 
     def __init__(self, parent: QObject | None = None, pool: QThreadPool | None = None):
         super().__init__(parent, pool, progress_per_second=PROGRESS_PER_SECOND,
-                         prepare=render_priority.give_way_to_the_window)
+                         prepare=give_way.lower_this_thread)
 
 
 class RenderSchedule(QObject):

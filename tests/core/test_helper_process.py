@@ -13,7 +13,7 @@ import time
 import pytest
 from checkout import ROOT
 
-from core import helper_process
+from core import give_way, helper_process
 
 
 @pytest.fixture
@@ -61,7 +61,7 @@ def test_ctrl_c_leaves_the_helper_to_the_window(os_helper):
 def test_the_helper_gives_way_to_the_window(os_helper):
     assert helper_process.call("os", "getpid") == os_helper.process.pid
     assert os.getpriority(os.PRIO_PROCESS, os_helper.process.pid) == (
-        os.getpriority(os.PRIO_PROCESS, 0) + helper_process.HELPER_NICE)
+        os.getpriority(os.PRIO_PROCESS, 0) + give_way.NICE)
 
 
 def test_a_helper_that_died_is_replaced_by_running_the_call_here(os_helper):

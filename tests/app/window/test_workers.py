@@ -5,8 +5,8 @@ import os
 import threading
 import time
 
-from app.process.render_priority import RENDER_NICE
 from app.window.workers import PROGRESS_PER_SECOND, Renderer
+from core.give_way import NICE
 
 
 def _counting_job(value, release: threading.Event | None = None):
@@ -86,4 +86,4 @@ def test_a_job_runs_at_a_lower_priority_than_the_window(qtbot):
     renderer.submit(lambda cancelled, progress: os.getpriority(os.PRIO_PROCESS, threading.get_native_id()))
     qtbot.waitUntil(lambda: bool(got))
     window = os.getpriority(os.PRIO_PROCESS, threading.get_native_id())
-    assert got[0] == max(window, RENDER_NICE) > window
+    assert got[0] == max(window, NICE) > window
