@@ -131,6 +131,14 @@ def _details(report: PixelReport, names: list[str]) -> str:
     return "Fragments in drawing order:\n" + "\n".join(lines) if lines else report.found
 
 
+def _needed_height(widget: QWidget) -> int:
+    """The height ``widget`` needs at its width (its words wrapped to it), at least its minimum."""
+    height = widget.minimumSizeHint().height()
+    if widget.hasHeightForWidth():
+        height = max(height, widget.heightForWidth(widget.width()))
+    return height
+
+
 class ComparePanel(QWidget):
     """Two output selectors, the two images and their difference, the picked pixel, the explanation.
 
@@ -244,17 +252,20 @@ class ComparePanel(QWidget):
 
     def _make_room_for_explanation(self) -> None:
         """Give the sentences under the images the height they need to read whole, taken from the
-        images down to :data:`IMAGE_SHARE` of the height, then from the picked pixel down to what its
-        rows need (at text x2 they scrolled, three lines shown of eight); not after a drag."""
+        images down to :data:`IMAGE_SHARE` of the height (or what their captions need, if more),
+        then from the picked pixel down to what its rows need (at text x2 they scrolled, three lines
+        shown of eight); they give it back when the images' captions need it.  Not after a drag."""
         scroll = self.explanation_scroll
         width = scroll.width() - 2 * scroll.frameWidth()
         if self._room_as_dragged or width <= 0 or not self.explanation.text():
             return
         need = self.explanation.heightForWidth(width) + 2 * scroll.frameWidth()
         images, pixel, words = sizes = self.split.sizes()
-        total, least = sum(sizes), self.pixel_box.minimumSizeHint().height()
-        kept = round(IMAGE_SHARE * total)  # for the images
-        words = max(words, min(need, total - kept - least))
+        total, least = sum(sizes), _needed_height(self.pixel_box)
+        # For the images: their share, or more where their captions need it (at 1280 x 720 and text
+        # x1.5 the difference's units were cut to a line and a half).
+        kept = max(round(IMAGE_SHARE * total), _needed_height(self.split.widget(0)))
+        words = max(0, min(max(words, need), total - kept - least))
         pixel = max(least, min(pixel, total - words - kept))  # a resize shares out to images and pixel
         if [total - words - pixel, pixel, words] != sizes:
             self.split.setSizes([total - words - pixel, pixel, words])

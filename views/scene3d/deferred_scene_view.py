@@ -36,19 +36,13 @@ seconds on a busy machine, where loading pyvista beside it would only slow it do
 
 class _Imported(QObject):
     done = Signal()
-    render_window = None  # VTK's render window for the pane, made beside the imports
 
 
 def _import_pyvista(imported: _Imported) -> None:
     try:
         import pyvista  # noqa: F401
-        from vtkmodules.vtkRenderingCore import vtkRenderWindow
 
         import views.scene3d.scene_picking  # noqa: F401  (the pane, VTK's Qt widget and OpenGL; clicks in the pane)
-
-        # The first one takes 40 ms (VTK's OpenGL sets itself up), not needing the GUI thread: only
-        # drawing needs the thread that shows it, and nothing is drawn until the pane is built.
-        imported.render_window = vtkRenderWindow()
     finally:
         with contextlib.suppress(RuntimeError):  # RuntimeError: the pane was deleted meanwhile
             imported.done.emit()  # queued: the view is built on the GUI thread
@@ -102,14 +96,14 @@ class DeferredSceneView(QWidget):
                              daemon=True).start()
 
     def _build_in_two_turns(self) -> None:
-        """VTK's widget in this turn of the event loop (its render window and OpenGL, some 70 ms), the
-        view around it (the scene's actors, the observer, the axes) in the next: the window is held
-        for half as long at a time."""
+        """VTK's widget in this turn of the event loop (its render window, OpenGL and an empty first
+        frame, some 55 ms), the view around it (the scene's actors, the observer, the axes) in the
+        next: the window is held for half as long at a time."""
         if self.view is not None or self._plotter is not None:
             return
         from views.scene3d.image_plotter import ImagePlotter
 
-        self._plotter = ImagePlotter(self, self._imported.render_window)  # hidden until the view shows it
+        self._plotter = ImagePlotter(self)  # hidden until the view shows it
         QTimer.singleShot(0, self, self.build)
 
     def build(self):

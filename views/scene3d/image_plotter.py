@@ -66,8 +66,8 @@ class ImagePlotter(QVTKRenderWindowInteractor, BasePlotter):
     picture : the last picture drawn (a QImage in device pixels), or ``None`` before the first.
     """
 
-    def __init__(self, parent: QWidget | None = None, window: vtkRenderWindow | None = None):
-        window = vtkRenderWindow() if window is None else window  # one made beforehand, or a new one
+    def __init__(self, parent: QWidget | None = None):
+        window = vtkRenderWindow()
         window.SetOffScreenRendering(True)
         window.SetMultiSamples(0)  # anti-aliasing is FXAA, and only when the pane rests
         with _without_base_plotter_init():
@@ -91,11 +91,7 @@ class ImagePlotter(QVTKRenderWindowInteractor, BasePlotter):
         window.AddObserver("EndEvent", lambda *_: self._grab())
         self.iren = RenderWindowInteractor(self, interactor=window.GetInteractor())
         self.iren.interactor.RemoveObservers("MouseMoveEvent")  # pyvista's own: a draw per mouse move
-        # Not drawn here (VTK's Initialize draws an empty frame, and makes OpenGL for it): the
-        # first frame is the scene's, drawn in a later turn of the event loop than this one.
-        self.iren.interactor.EnableRenderOff()
         self.iren.initialize()
-        self.iren.interactor.EnableRenderOn()
         self.enable_trackball_style()
         self._first_time = False  # BasePlotter draws only after its first show(); this one is shown
 

@@ -170,3 +170,28 @@ def test_presenting_at_x2_on_1920x1080_the_sentences_read_whole_and_the_images_k
     assert images >= IMAGE_SHARE * (images + pixel + words) - 1  # the images keep their share
     assert pixel >= panel.pixel_box.minimumSizeHint().height()  # and the picked pixel its rows
     window.presentation.set_presenting(False)
+
+
+def test_at_1280x720_presenting_the_images_captions_and_the_difference_units_read_whole(qtbot, monkeypatch):
+    # The images kept 35 % of the height whatever their captions needed: at text x1.5 the difference's
+    # units ("max(|ΔR|, |ΔG|, |ΔB|), linear RGB units (1 = black against white)") showed a line and a half.
+    from PySide6.QtCore import QRect
+    from PySide6.QtGui import QScreen
+    from window_helpers import open_window
+
+    screen = QRect(0, 0, 1280, 720)
+    monkeypatch.setattr(QScreen, "availableGeometry", lambda self: screen)
+    monkeypatch.setattr(QScreen, "geometry", lambda self: screen)
+    window = open_window(qtbot)
+    window.presentation.set_presenting(True)
+    qtbot.waitUntil(window.presentation.settled)
+    panel = _compare(qtbot, window)
+    labels = [panel.scale.units, *panel.captions.values()]
+
+    def whole(label) -> bool:
+        return label.isVisible() and label.height() >= label.heightForWidth(label.width())
+
+    qtbot.waitUntil(lambda: all(whole(label) for label in labels), timeout=5000)
+    images, pixel, words = panel.split.sizes()
+    assert images >= IMAGE_SHARE * (images + pixel + words) - 1  # and the images keep their share
+    window.presentation.set_presenting(False)
