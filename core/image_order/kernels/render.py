@@ -162,7 +162,7 @@ def _primary_packet(j0, j1, i0, i1, cam, xs, ys, geo, bvh, scratch, packet, hits
         for i in range(i0, i1):
             o, d, shear, t_min, t_max = ray_of(rays, axes, r)
             if shared:
-                h = packet_hit(rays, axes, r, bvh, n_spheres)
+                h = packet_hit(rays, axes, r, bvh)
             else:
                 prim_before, bounds_before = count[flat_layout.PRIM_TESTS], _bounds_work(count)
                 h = bvh_closest(o, d, shear, t_min, t_max, False, bvh, n_spheres, stack, stack_t, count)

@@ -15,8 +15,12 @@ test would redo it with error-free products; the vector test instead marks
 the lane ``-inf`` ("too close to call") and the caller runs the scalar test
 for that triangle.  Every other lane computes bit for bit what the scalar
 test computes, so the hits are identical with or without the vector test.
-The vector test reports only ``t``; the caller gets the barycentric weights
-of the one triangle finally hit from the scalar test.
+Besides ``t`` the vector test reports each lane's three edge functions: where
+the lane is sure they are the scalar test's own (and none of them is 0), so the
+barycentric weights of the triangle finally hit are ``e_i / (e0 + e1 + e2)``,
+the scalar test's own division
+(:func:`~core.image_order.intersect_triangle.plane_crossing`), and that
+triangle is not tested a second time for them.
 """
 
 from __future__ import annotations
@@ -36,6 +40,8 @@ CORNER_STRIDE = 3 * AXIS_STRIDE
 GROUP_SIZE = 3 * CORNER_STRIDE
 #: A lane's result when only the exact scalar test can decide it.
 UNSURE = -math.inf
+#: Where the edge functions start in the result of :func:`triangle_test4`.
+EDGES = LANES
 
 
 @intrinsic
@@ -51,12 +57,14 @@ def triangle_test4(typingctx, groups, start, kx, ky, kz, okx, oky, okz, sx, sy, 
 
     Returns
     -------
-    (t0, t1, t2, t3) : floats
+    (t0, t1, t2, t3, ...) : 16 floats
         Per triangle ``t`` of the crossing, ``inf`` on a miss, ``UNSURE``
-        where the scalar test must decide.
+        where the scalar test must decide; then, from ``EDGES`` on, the edge
+        functions ``e0, e1, e2`` (:func:`~core.image_order.intersect_triangle.edge_functions`):
+        edge ``e`` of triangle ``lane`` at ``EDGES + e * LANES + lane``.
     """
-    signature = types.UniTuple(types.float64, 4)(groups, start, kx, ky, kz, okx, oky, okz, sx, sy, sz, t_min,
-                                                 t_max)
+    signature = types.UniTuple(types.float64, 4 * LANES)(groups, start, kx, ky, kz, okx, oky, okz, sx, sy, sz,
+                                                         t_min, t_max)
 
     def codegen(context, builder, sig, args):
         data = context.make_array(sig.args[0])(context, builder, args[0]).data
@@ -101,6 +109,6 @@ def triangle_test4(typingctx, groups, start, kx, ky, kz, okx, oky, okz, sx, sy, 
                                 builder.fcmp_ordered("<", t, splat(builder, args[12])))
         result = builder.select(builder.and_(inside, in_range), t, constant(math.inf))
         result = builder.select(sure, result, constant(UNSURE))
-        return lanes(context, builder, sig.return_type, result)
+        return lanes(context, builder, sig.return_type, result, *edges)
 
     return signature, codegen
