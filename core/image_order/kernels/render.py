@@ -87,10 +87,10 @@ def children_array(ny, nx):
     Made here, not by numpy: numpy asks the system for 2 MB pages for every array of 4 MB or
     more, and the first touch of such a page clears all of it.  A pixel's row of ``children`` is
     written only where a ray goes on, so a frame touches a few rows here and there of an array
-    that is fresh every frame (at 640 x 480, 39 MB: more than glibc ever keeps for reuse); with
-    2 MB pages that cleared some 13 of them in each frame of the mirror and glass (4-12 ms of sys
-    time over the threads, 1.5-3 ms of the frame).  The
-    compiled code's allocator takes plain 4 KB pages, and only those touched are cleared.
+    that is fresh every frame (at 640 x 480, 39 MB: more than glibc ever keeps for reuse).  In 2 MB
+    pages, each frame of the mirror and glass cleared some 13 of them (4-12 ms of sys time over
+    the threads, 1-3 ms of the frame); the compiled code's allocator takes plain 4 KB pages, and
+    clears only those touched (about 1,500, 6 MB).
     """
     return np.empty((ny, nx, flat_layout.N_SPAWNED, flat_layout.CHILD_SIZE))
 
