@@ -32,7 +32,7 @@ from core.image_order.flat_layout import BOUNDS_TESTS, PRIM_TESTS
 from core.image_order.kernels.bvh_build import LEAF_SIZE, WIDE_HI, WIDE_LO, WIDE_REFS, WIDE_SIZE, WIDTH
 from core.image_order.kernels.intersect import triangle_hit
 from core.image_order.kernels.intrinsics.slabs4 import slab_test4
-from core.image_order.kernels.intrinsics.triangle4 import EDGES, GROUP_SIZE, LANES, UNSURE, triangle_test4
+from core.image_order.kernels.intrinsics.triangle4 import GROUP_SIZE, LANES, UNSURE, triangle_test4
 from core.image_order.kernels.intrinsics.unchecked import load_at, store_at
 from core.image_order.kernels.jit import jit, jit_inline
 from core.image_order.kernels.primitives import no_hit, prim_hit
@@ -216,7 +216,8 @@ def test_leaf(groups, rows, order, n_spheres, first, count, group, o, d, shear, 
     kx, ky, kz, sx, sy, sz = shear
     for j in range(0, count, LANES):
         start = (group + j // LANES) * GROUP_SIZE
-        lanes = triangle_test4(groups, start, kx, ky, kz, okx, oky, okz, sx, sy, sz, t_min, best_t)
+        lanes, e0s, e1s, e2s = triangle_test4(groups, start, kx, ky, kz, okx, oky, okz, sx, sy, sz, t_min,
+                                              best_t)
         for lane in range(min(LANES, count - j)):
             t = lanes[lane]
             if t == UNSURE:
@@ -224,7 +225,7 @@ def test_leaf(groups, rows, order, n_spheres, first, count, group, o, d, shear, 
                 if t < best_t:
                     best_t, best_k, best_w = t, first + j + lane, (b0, b1, b2, 1.0)
             elif t < best_t:
-                e0, e1, e2 = lanes[EDGES + lane], lanes[EDGES + LANES + lane], lanes[EDGES + 2 * LANES + lane]
+                e0, e1, e2 = e0s[lane], e1s[lane], e2s[lane]
                 best_t, best_k, best_w = t, first + j + lane, (e0, e1, e2, e0 + e1 + e2)
     return best_t, best_k, best_w
 

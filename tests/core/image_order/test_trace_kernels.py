@@ -15,7 +15,7 @@ from core import shapes
 from core.image_order.intersect_sphere import intersect_sphere
 from core.image_order.intersect_triangle import difference_of_products, intersect_triangle, ray_shear
 from core.image_order.kernels.intersect import sphere_hit, triangle_hit
-from core.image_order.kernels.intrinsics.triangle4 import EDGES, UNSURE, triangle_test4
+from core.image_order.kernels.intrinsics.triangle4 import UNSURE, triangle_test4
 
 
 @njit
@@ -219,7 +219,7 @@ def test_four_triangles_at_a_time_give_the_scalar_test_bit_for_bit_or_defer_to_i
         tri = corners[4 * g + int(rng.integers(4))]
         target = (tri[0], (tri[0] + tri[1]) / 2, tri.mean(axis=0))[int(rng.integers(3))]
         d = target - o
-        lanes = four_at_a_time(tuple(o), tuple(d), groups, g * 36)
+        lanes, *edges = four_at_a_time(tuple(o), tuple(d), groups, g * 36)
         shear = ray_shear(*map(float, d))
         for q in range(4):
             scalar, *weights = triangle_hit(tuple(o), shear, rows, 4 * g + q, 0.0, math.inf)
@@ -230,8 +230,8 @@ def test_four_triangles_at_a_time_give_the_scalar_test_bit_for_bit_or_defer_to_i
                 assert lanes[q] == scalar or (math.isinf(lanes[q]) and math.isinf(scalar))
                 if scalar < math.inf:
                     hits += 1
-                    edges = [lanes[EDGES + e * 4 + q] for e in range(3)]
-                    assert [e / (edges[0] + edges[1] + edges[2]) for e in edges] == weights
+                    e = [edges[k][q] for k in range(3)]
+                    assert [e[k] / (e[0] + e[1] + e[2]) for k in range(3)] == weights
     assert unsure > 0 and decided > 3 * unsure and hits > 50
 
 

@@ -47,8 +47,7 @@ def fabs(builder, vector):
     return builder.call(fn, [vector])
 
 
-def lanes(context, builder, return_type, *vectors):
-    """The lanes of ``vectors``, one vector after the other, as a numba tuple of floats."""
-    values = [builder.extract_element(vector, ir.Constant(I32, lane)) for vector in vectors
-              for lane in range(LANES)]
+def lanes(context, builder, return_type, vector):
+    """The lanes of ``vector`` as a numba tuple of floats."""
+    values = [builder.extract_element(vector, ir.Constant(I32, lane)) for lane in range(LANES)]
     return context.make_tuple(builder, return_type, values)

@@ -40,8 +40,6 @@ CORNER_STRIDE = 3 * AXIS_STRIDE
 GROUP_SIZE = 3 * CORNER_STRIDE
 #: A lane's result when only the exact scalar test can decide it.
 UNSURE = -math.inf
-#: Where the edge functions start in the result of :func:`triangle_test4`.
-EDGES = LANES
 
 
 @intrinsic
@@ -57,14 +55,16 @@ def triangle_test4(typingctx, groups, start, kx, ky, kz, okx, oky, okz, sx, sy, 
 
     Returns
     -------
-    (t0, t1, t2, t3, ...) : 16 floats
-        Per triangle ``t`` of the crossing, ``inf`` on a miss, ``UNSURE``
-        where the scalar test must decide; then, from ``EDGES`` on, the edge
-        functions ``e0, e1, e2`` (:func:`~core.image_order.intersect_triangle.edge_functions`):
-        edge ``e`` of triangle ``lane`` at ``EDGES + e * LANES + lane``.
+    (t, e0, e1, e2) : four tuples of four floats, one number per triangle
+        ``t`` of the crossing, ``inf`` on a miss, ``UNSURE`` where the scalar
+        test must decide; and the edge functions
+        (:func:`~core.image_order.intersect_triangle.edge_functions`).  (Four
+        tuples of four, not one of sixteen: numba picks a lane of a tuple with a
+        branch per element, and the hot loop picks each ``t``.)
     """
-    signature = types.UniTuple(types.float64, 4 * LANES)(groups, start, kx, ky, kz, okx, oky, okz, sx, sy, sz,
-                                                         t_min, t_max)
+    four = types.UniTuple(types.float64, LANES)
+    signature = types.Tuple((four, four, four, four))(groups, start, kx, ky, kz, okx, oky, okz, sx, sy, sz,
+                                                      t_min, t_max)
 
     def codegen(context, builder, sig, args):
         data = context.make_array(sig.args[0])(context, builder, args[0]).data
@@ -109,6 +109,7 @@ def triangle_test4(typingctx, groups, start, kx, ky, kz, okx, oky, okz, sx, sy, 
                                 builder.fcmp_ordered("<", t, splat(builder, args[12])))
         result = builder.select(builder.and_(inside, in_range), t, constant(math.inf))
         result = builder.select(sure, result, constant(UNSURE))
-        return lanes(context, builder, sig.return_type, result, *edges)
+        return context.make_tuple(builder, sig.return_type,
+                                  [lanes(context, builder, sig.return_type[0], v) for v in (result, *edges)])
 
     return signature, codegen
