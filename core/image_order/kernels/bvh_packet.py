@@ -65,11 +65,12 @@ from core.image_order.ray_casting import primary_ray
 PACKET_ROWS = PACKET_COLS = 4
 PACKET_SIZE = PACKET_ROWS * PACKET_COLS
 # Rows of the packet's rays: origin, 1 / d, t_min, the closest hit so far (t_max to start), the
-# shear of the watertight triangle test, the origin on its axes, the direction, and the pixel
-# (column, row) a primary ray goes through.
-R_ORIGIN, R_INVERSE, R_T_MIN, R_BEST_T, R_SHEAR, R_SHEARED_ORIGIN, R_DIRECTION, R_PIXEL = (0, 3, 6, 7, 8, 11,
-                                                                                          14, 17)
-RAY_FIELDS = 19
+# shear of the watertight triangle test, the origin on its axes, the direction, the pixel
+# (column, row) a primary ray goes through, and the weights of the closest hit so far
+# (test_leaf's, set only once there is a hit).
+R_ORIGIN, R_INVERSE, R_T_MIN, R_BEST_T, R_SHEAR, R_SHEARED_ORIGIN, R_DIRECTION, R_PIXEL, R_WEIGHTS = (
+    0, 3, 6, 7, 8, 11, 14, 17, 19)
+RAY_FIELDS = 23
 # ... and the integer rows: the shear's axes kx, ky, kz, the closest primitive in leaf order (-1: none).
 A_AXES, A_BEST_K = 0, 3
 AXIS_FIELDS = 4
@@ -143,6 +144,12 @@ def _three(array, field, r):
     return load_at(array, _at(field, r)), load_at(array, _at(field + 1, r)), load_at(array, _at(field + 2, r))
 
 
+@jit_inline
+def _four(array, field, r):
+    """Numbers ``field`` to ``field + 3`` of ray ``r``."""
+    return _three(array, field, r) + (load_at(array, _at(field + 3, r)),)
+
+
 @jit
 def can_share_walk(rays, n):
     """Whether rays ``0 .. n-1`` have one origin, one sign of ``d`` per axis and finite ``1 / d``."""
@@ -214,11 +221,14 @@ def packet_closest(n, rays, axes, bvh, n_spheres, stack, stack_t, counters):
                             tests += count
                             o, d, shear, t_min, _ = ray_of(rays, axes, r)
                             okx, oky, okz = _three(rays, R_SHEARED_ORIGIN, r)
-                            best_t, best_k = test_leaf(groups, rows, order, n_spheres, first, count, group, o,
-                                                       d, shear, okx, oky, okz, t_min, best_t,
-                                                       load_at(axes, _at(A_BEST_K, r)))
+                            best_t, best_k, best_w = test_leaf(groups, rows, order, n_spheres, first, count,
+                                                               group, o, d, shear, okx, oky, okz, t_min,
+                                                               best_t, load_at(axes, _at(A_BEST_K, r)),
+                                                               _four(rays, R_WEIGHTS, r))
                             store_at(rays, _at(R_BEST_T, r), best_t)
                             store_at(axes, _at(A_BEST_K, r), best_k)
+                            for a in range(4):
+                                store_at(rays, _at(R_WEIGHTS + a, r), best_w[a])
                         t_high = max(t_high, best_t)
         if top == 0:
             break
@@ -230,8 +240,7 @@ def packet_closest(n, rays, axes, bvh, n_spheres, stack, stack_t, counters):
 
 
 @jit_inline
-def packet_hit(rays, axes, r, bvh, n_spheres):
+def packet_hit(rays, axes, r, bvh):
     """Ray ``r``'s closest hit after :func:`packet_closest`: ``(prim, t, b0, b1, b2)`` (prim -1: none)."""
-    o, d, shear, t_min, _ = ray_of(rays, axes, r)
-    best_k = load_at(axes, _at(A_BEST_K, r))
-    return hit_record(bvh[5], bvh[4], n_spheres, best_k, o, d, shear, t_min)
+    return hit_record(bvh[4], load_at(axes, _at(A_BEST_K, r)), load_at(rays, _at(R_BEST_T, r)),
+                      _four(rays, R_WEIGHTS, r))

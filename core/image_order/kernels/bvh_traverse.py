@@ -28,9 +28,9 @@ from __future__ import annotations
 
 import math
 
-from core.image_order.flat_layout import BOUNDS_TESTS, PRIM_TESTS, ROW_CENTER, ROW_RADIUS
+from core.image_order.flat_layout import BOUNDS_TESTS, PRIM_TESTS
 from core.image_order.kernels.bvh_build import LEAF_SIZE, WIDE_HI, WIDE_LO, WIDE_REFS, WIDE_SIZE, WIDTH
-from core.image_order.kernels.intersect import sphere_hit, triangle_hit
+from core.image_order.kernels.intersect import triangle_hit
 from core.image_order.kernels.intrinsics.slabs4 import slab_test4
 from core.image_order.kernels.intrinsics.triangle4 import GROUP_SIZE, LANES, UNSURE, triangle_test4
 from core.image_order.kernels.intrinsics.unchecked import load_at, store_at
@@ -153,6 +153,7 @@ def bvh_closest(o, d, shear, t_min, t_max, any_hit, bvh, n_spheres, stack, stack
     nx, ny, nz, fx, fy, fz = near_and_far_rows(ix, iy, iz)
     best_t = t_max
     best_k = -1
+    best_w = NO_WEIGHTS
     boxes = 0
     tests = 0
     top = 0
@@ -177,8 +178,8 @@ def bvh_closest(o, d, shear, t_min, t_max, any_hit, bvh, n_spheres, stack, stack
                 first, count = load_at(leaves, leaf), load_at(leaves, leaf + 1)
                 group = load_at(leaves, leaf + 2)
                 tests += count
-                best_t, best_k = test_leaf(groups, rows, order, n_spheres, first, count, group, o, d, shear,
-                                           okx, oky, okz, t_min, best_t, best_k)
+                best_t, best_k, best_w = test_leaf(groups, rows, order, n_spheres, first, count, group, o, d,
+                                                   shear, okx, oky, okz, t_min, best_t, best_k, best_w)
                 if any_hit and best_k >= 0:
                     top = 0
         if top == 0:
@@ -187,63 +188,65 @@ def bvh_closest(o, d, shear, t_min, t_max, any_hit, bvh, n_spheres, stack, stack
         node, enter = load_at(stack, top), load_at(stack_t, top)
     counters[BOUNDS_TESTS] += boxes
     counters[PRIM_TESTS] += tests
-    if best_k < 0:
-        return no_hit()
     if any_hit:  # a shadow ray needs only its blocker and where it lies
-        return order[best_k], best_t, 0.0, 0.0, 0.0
-    return hit_record(rows, order, n_spheres, best_k, o, d, shear, t_min)
+        return (order[best_k], best_t, 0.0, 0.0, 0.0) if best_k >= 0 else no_hit()
+    return hit_record(order, best_k, best_t, best_w)
+
+
+#: The weights of no crossing yet (:func:`test_leaf`).
+NO_WEIGHTS = (0.0, 0.0, 0.0, 1.0)
 
 
 @jit_inline
 def test_leaf(groups, rows, order, n_spheres, first, count, group, o, d, shear, okx, oky, okz, t_min, best_t,
-              best_k):
-    """Test the primitives of one leaf: ``(best_t, best_k)``, the closest crossing before ``best_t``
-    and its place in the leaf order (unchanged if none is closer).  ``okx, oky, okz`` are the
-    origin's coordinates on the shear's axes."""
+              best_k, best_w):
+    """Test the primitives of one leaf: ``(best_t, best_k, best_w)``, the closest crossing before
+    ``best_t``, its place in the leaf order and its weights (unchanged if none is closer).
+    ``okx, oky, okz`` are the origin's coordinates on the shear's axes.
+
+    The weights ``(w0, w1, w2, w)`` give the crossing's barycentric weights ``w_i / w``
+    (:func:`hit_record`): a triangle decided by the vector test keeps its edge functions and their
+    sum, the very numbers the scalar test divides; one decided by the scalar test keeps its
+    weights over 1 (a division by 1 is exact), a sphere zeros over 1.  So the walk that found the
+    crossing also gives its weights, and the triangle is not tested again for them.
+    """
     if group < 0:
-        return _leaf_one_by_one(rows, order, n_spheres, first, count, o, d, shear, t_min, best_t, best_k)
+        return _leaf_one_by_one(rows, order, n_spheres, first, count, o, d, shear, t_min, best_t, best_k,
+                                best_w)
     kx, ky, kz, sx, sy, sz = shear
     for j in range(0, count, LANES):
         start = (group + j // LANES) * GROUP_SIZE
-        lanes = triangle_test4(groups, start, kx, ky, kz, okx, oky, okz, sx, sy, sz, t_min, best_t)
+        lanes, e0s, e1s, e2s = triangle_test4(groups, start, kx, ky, kz, okx, oky, okz, sx, sy, sz, t_min,
+                                              best_t)
         for lane in range(min(LANES, count - j)):
             t = lanes[lane]
             if t == UNSURE:
-                t = triangle_hit(o, shear, rows, first + j + lane, t_min, best_t)[0]
-            if t < best_t:
-                best_t, best_k = t, first + j + lane
-    return best_t, best_k
+                t, b0, b1, b2 = triangle_hit(o, shear, rows, first + j + lane, t_min, best_t)
+                if t < best_t:
+                    best_t, best_k, best_w = t, first + j + lane, (b0, b1, b2, 1.0)
+            elif t < best_t:
+                e0, e1, e2 = e0s[lane], e1s[lane], e2s[lane]
+                best_t, best_k, best_w = t, first + j + lane, (e0, e1, e2, e0 + e1 + e2)
+    return best_t, best_k, best_w
 
 
 @jit_inline
-def hit_record(rows, order, n_spheres, best_k, o, d, shear, t_min):
-    """``(prim, t, b0, b1, b2)`` of the primitive at ``best_k`` in the leaf order (-1: none), known
-    to be the ray's closest crossing after ``t_min``."""
+def hit_record(order, best_k, best_t, best_w):
+    """``(prim, t, b0, b1, b2)`` of the crossing at ``best_t`` with the primitive at ``best_k`` in
+    the leaf order (-1: none) and the weights ``best_w`` of :func:`test_leaf`."""
     if best_k < 0:
         return no_hit()
-    prim = order[best_k]
-    if prim < n_spheres:
-        return _sphere_crossing(rows, best_k, prim, o, d, t_min)
-    t, b0, b1, b2 = triangle_hit(o, shear, rows, best_k, t_min, math.inf)
-    return prim, t, b0, b1, b2
+    w0, w1, w2, w = best_w
+    return order[best_k], best_t, w0 / w, w1 / w, w2 / w
 
 
-# The rare cases stay out of line, so that the hot loop above stays small.
+# The rare case stays out of line, so that the hot loop above stays small.
 @jit
-def _leaf_one_by_one(rows, order, n_spheres, first, count, o, d, shear, t_min, best_t, best_k):
+def _leaf_one_by_one(rows, order, n_spheres, first, count, o, d, shear, t_min, best_t, best_k, best_w):
     """Test the primitives of a leaf without a triangle group (a sphere's) one by one:
-    ``(best_t, best_k)`` updated."""
+    ``(best_t, best_k, best_w)`` updated as by :func:`test_leaf`."""
     for k in range(first, first + count):
-        t = prim_hit(rows, k, order[k] < n_spheres, o, d, shear, t_min, best_t)[0]
+        t, b0, b1, b2 = prim_hit(rows, k, order[k] < n_spheres, o, d, shear, t_min, best_t)
         if t < best_t:
-            best_t, best_k = t, k
-    return best_t, best_k
-
-
-@jit
-def _sphere_crossing(rows, k, prim, o, d, t_min):
-    """The hit record of sphere ``rows[k]`` (primitive ``prim``), known to be crossed after ``t_min``."""
-    c = ROW_CENTER
-    t = sphere_hit(o[0], o[1], o[2], d[0], d[1], d[2], rows[k, c], rows[k, c + 1], rows[k, c + 2],
-                   rows[k, ROW_RADIUS], t_min, math.inf)
-    return prim, t, 0.0, 0.0, 0.0
+            best_t, best_k, best_w = t, k, (b0, b1, b2, 1.0)
+    return best_t, best_k, best_w

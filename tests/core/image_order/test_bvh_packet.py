@@ -71,13 +71,21 @@ def primary_hits(scene: Scene, accel: str, packets: bool | None = True):
     return hits, depth, objects, counters, flat
 
 
+def assert_same_hits(hits, ref_hits):
+    """The same ``t`` at every pixel, and where the primitive is the same, the same barycentric
+    weights bit for bit (the walk keeps them from the test that found the hit)."""
+    assert np.array_equal(hits[..., HIT_T], ref_hits[..., HIT_T])
+    same = hits[..., HIT_PRIM] == ref_hits[..., HIT_PRIM]
+    assert np.array_equal(hits[same], ref_hits[same])
+
+
 def assert_same_as_brute_force(scene: Scene):
     """Every pixel: the same ``t``, depth and object as brute force; the same primitive, or another
-    one crossed at that very ``t`` (a ray through an edge two triangles share).  Returns the
-    packet run's counters."""
+    one crossed at that very ``t`` (a ray through an edge two triangles share); the same weights
+    where the primitive is the same.  Returns the packet run's counters."""
     hits, depth, objects, counters, flat = primary_hits(scene, "bvh")
     ref_hits, ref_depth, ref_objects, _, _ = primary_hits(scene, "none")
-    assert np.array_equal(hits[..., HIT_T], ref_hits[..., HIT_T])
+    assert_same_hits(hits, ref_hits)
     assert np.array_equal(depth, ref_depth) and np.array_equal(objects, ref_objects)
     origins, directions = scene.camera.primary_rays()
     rows, n_spheres = flat.geometry.rows, flat.geometry.n_spheres
@@ -171,7 +179,7 @@ def test_random_triangles_and_spheres_from_random_eyes(seed, eye, fov):
     camera = Camera(eye=eye, target=(0.0, 0.0, 0.0), fov_y_deg=fov, width=19, height=14)
     hits, _, _, _, _ = primary_hits(Scene(camera=camera, objects=objects, lights=LIGHT), "bvh")
     ref_hits, _, _, _, _ = primary_hits(Scene(camera=camera, objects=objects, lights=LIGHT), "none")
-    assert np.array_equal(hits[..., HIT_T], ref_hits[..., HIT_T])
+    assert_same_hits(hits, ref_hits)
 
 
 # --- the interval slab test never rejects a box one of its rays enters -------------------------
@@ -262,7 +270,7 @@ def test_tiny_images(width, height):
     camera = presets_trace.BIG_MESH_CAMERA.replace(width=width, height=height)
     hits, _, _, _, _ = primary_hits(Scene(camera=camera, objects=(BALL,), lights=LIGHT), "bvh")
     ref_hits, _, _, _, _ = primary_hits(Scene(camera=camera, objects=(BALL,), lights=LIGHT), "none")
-    assert np.array_equal(hits[..., HIT_T], ref_hits[..., HIT_T])
+    assert_same_hits(hits, ref_hits)
 
 
 @njit

@@ -202,7 +202,9 @@ def test_rays_from_inside_a_closed_mesh_always_hit():
 
 def test_four_triangles_at_a_time_give_the_scalar_test_bit_for_bit_or_defer_to_it():
     """The vector test either computes exactly the scalar test's t (inf for a miss) or marks the
-    lane UNSURE; rays aimed exactly at vertices and edge midpoints need the exact fallback."""
+    lane UNSURE; rays aimed exactly at vertices and edge midpoints need the exact fallback.  Where
+    it decides a hit, its edge functions over their sum are the scalar test's barycentric weights,
+    bit for bit (the walk takes a hit's weights from them)."""
     ball = shapes.uv_sphere((0.0, 0.0, 0.0), 1.0, rings=12, segments=16)
     rng = np.random.default_rng(9)
     corners = (ball.vertices * (1 + 0.05 * rng.standard_normal((len(ball.vertices), 1))))[ball.triangles]
@@ -210,23 +212,27 @@ def test_four_triangles_at_a_time_give_the_scalar_test_bit_for_bit_or_defer_to_i
     rows = corners.reshape(-1, 9)
     # Group g, corner v, axis a, lane q at g * 36 + v * 12 + a * 4 + q.
     groups = np.ascontiguousarray(corners.reshape(-1, 4, 3, 3).transpose(0, 2, 3, 1)).reshape(-1)
-    unsure = decided = 0
+    unsure = decided = hits = 0
     for _ in range(300):
         o = rng.normal(size=3) * 0.2
         g = int(rng.integers(len(rows) // 4))
         tri = corners[4 * g + int(rng.integers(4))]
         target = (tri[0], (tri[0] + tri[1]) / 2, tri.mean(axis=0))[int(rng.integers(3))]
         d = target - o
-        lanes = four_at_a_time(tuple(o), tuple(d), groups, g * 36)
+        lanes, *edges = four_at_a_time(tuple(o), tuple(d), groups, g * 36)
         shear = ray_shear(*map(float, d))
         for q in range(4):
-            scalar = triangle_hit(tuple(o), shear, rows, 4 * g + q, 0.0, math.inf)[0]
+            scalar, *weights = triangle_hit(tuple(o), shear, rows, 4 * g + q, 0.0, math.inf)
             if lanes[q] == UNSURE:
                 unsure += 1
             else:
                 decided += 1
                 assert lanes[q] == scalar or (math.isinf(lanes[q]) and math.isinf(scalar))
-    assert unsure > 0 and decided > 3 * unsure
+                if scalar < math.inf:
+                    hits += 1
+                    e = [edges[k][q] for k in range(3)]
+                    assert [e[k] / (e[0] + e[1] + e[2]) for k in range(3)] == weights
+    assert unsure > 0 and decided > 3 * unsure and hits > 50
 
 
 def test_the_stale_cache_guard_hashes_every_core_module_a_kernel_compiles_in():

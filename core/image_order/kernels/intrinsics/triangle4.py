@@ -15,8 +15,12 @@ test would redo it with error-free products; the vector test instead marks
 the lane ``-inf`` ("too close to call") and the caller runs the scalar test
 for that triangle.  Every other lane computes bit for bit what the scalar
 test computes, so the hits are identical with or without the vector test.
-The vector test reports only ``t``; the caller gets the barycentric weights
-of the one triangle finally hit from the scalar test.
+Besides ``t`` the vector test reports each lane's three edge functions: where
+the lane is sure they are the scalar test's own (and none of them is 0), so the
+barycentric weights of the triangle finally hit are ``e_i / (e0 + e1 + e2)``,
+the scalar test's own division
+(:func:`~core.image_order.intersect_triangle.plane_crossing`), and that
+triangle is not tested a second time for them.
 """
 
 from __future__ import annotations
@@ -51,12 +55,16 @@ def triangle_test4(typingctx, groups, start, kx, ky, kz, okx, oky, okz, sx, sy, 
 
     Returns
     -------
-    (t0, t1, t2, t3) : floats
-        Per triangle ``t`` of the crossing, ``inf`` on a miss, ``UNSURE``
-        where the scalar test must decide.
+    (t, e0, e1, e2) : four tuples of four floats, one number per triangle
+        ``t`` of the crossing, ``inf`` on a miss, ``UNSURE`` where the scalar
+        test must decide; and the edge functions
+        (:func:`~core.image_order.intersect_triangle.edge_functions`).  (Four
+        tuples of four, not one of sixteen: numba picks a lane of a tuple with a
+        branch per element, and the hot loop picks each ``t``.)
     """
-    signature = types.UniTuple(types.float64, 4)(groups, start, kx, ky, kz, okx, oky, okz, sx, sy, sz, t_min,
-                                                 t_max)
+    four = types.UniTuple(types.float64, LANES)
+    signature = types.Tuple((four, four, four, four))(groups, start, kx, ky, kz, okx, oky, okz, sx, sy, sz,
+                                                      t_min, t_max)
 
     def codegen(context, builder, sig, args):
         data = context.make_array(sig.args[0])(context, builder, args[0]).data
@@ -101,6 +109,7 @@ def triangle_test4(typingctx, groups, start, kx, ky, kz, okx, oky, okz, sx, sy, 
                                 builder.fcmp_ordered("<", t, splat(builder, args[12])))
         result = builder.select(builder.and_(inside, in_range), t, constant(math.inf))
         result = builder.select(sure, result, constant(UNSURE))
-        return lanes(context, builder, sig.return_type, result)
+        return context.make_tuple(builder, sig.return_type,
+                                  [lanes(context, builder, sig.return_type[0], v) for v in (result, *edges)])
 
     return signature, codegen
