@@ -30,3 +30,18 @@ def run_as_the_app(script: str, config_home) -> str:
                          env={**os.environ, "XDG_CONFIG_HOME": str(config_home)}, timeout=300)
     assert out.returncode == 0, out.stderr
     return out.stdout
+
+
+def presenting_on_1280x720(qtbot, monkeypatch, scale: float = 1.5) -> MainWindow:
+    """The window on a 1280x720 screen (a lecture hall's projector), presenting, text ``scale`` times."""
+    from PySide6.QtCore import QRect
+    from PySide6.QtGui import QScreen
+
+    screen = QRect(0, 0, 1280, 720)
+    monkeypatch.setattr(QScreen, "availableGeometry", lambda self: screen)
+    monkeypatch.setattr(QScreen, "geometry", lambda self: screen)
+    window = open_window(qtbot)
+    window.presentation.set_presenting(True)
+    window.presentation.set_scale(scale)
+    qtbot.waitUntil(window.presentation.settled)
+    return window

@@ -3,10 +3,8 @@
 import numpy as np
 import pytest
 import pyvista as pv
-from PySide6.QtCore import QRect
-from PySide6.QtGui import QScreen
 from vtkmodules.vtkRenderingCore import vtkTextRenderer
-from window_helpers import RENDER_TIMEOUT_MS, open_window
+from window_helpers import RENDER_TIMEOUT_MS, presenting_on_1280x720
 
 from core.files.lesson_file import shipped_lessons
 from views.panels.image_order_panel import IMAGE_SHARE, TREE_ROWS
@@ -134,13 +132,7 @@ LINES = 10
 
 def _lecture_hall_window(qtbot, monkeypatch):
     """The window on a 1280x720 screen, presenting, with text twice its size."""
-    screen = QRect(0, 0, 1280, 720)
-    monkeypatch.setattr(QScreen, "availableGeometry", lambda self: screen)
-    monkeypatch.setattr(QScreen, "geometry", lambda self: screen)
-    window = open_window(qtbot)
-    window.presentation.set_presenting(True)
-    window.presentation.set_scale(2.0)
-    return window
+    return presenting_on_1280x720(qtbot, monkeypatch, 2.0)
 
 
 def _words_shown(panel) -> int:

@@ -175,16 +175,9 @@ def test_presenting_at_x2_on_1920x1080_the_sentences_read_whole_and_the_images_k
 def test_at_1280x720_presenting_the_images_captions_and_the_difference_units_read_whole(qtbot, monkeypatch):
     # The images kept 35 % of the height whatever their captions needed: at text x1.5 the difference's
     # units ("max(|ΔR|, |ΔG|, |ΔB|), linear RGB units (1 = black against white)") showed a line and a half.
-    from PySide6.QtCore import QRect
-    from PySide6.QtGui import QScreen
-    from window_helpers import open_window
+    from window_helpers import presenting_on_1280x720
 
-    screen = QRect(0, 0, 1280, 720)
-    monkeypatch.setattr(QScreen, "availableGeometry", lambda self: screen)
-    monkeypatch.setattr(QScreen, "geometry", lambda self: screen)
-    window = open_window(qtbot)
-    window.presentation.set_presenting(True)
-    qtbot.waitUntil(window.presentation.settled)
+    window = presenting_on_1280x720(qtbot, monkeypatch)
     panel = _compare(qtbot, window)
     labels = [panel.scale.units, *panel.captions.values()]
 
