@@ -124,8 +124,9 @@ class HighContrast(QObject):
 
     def eventFilter(self, watched, event) -> bool:  # noqa: N802 (Qt's name)
         # A widget made later beside the panes (a dialog, a pane or a page added): styled as Qt
-        # first polishes it, before it is drawn.  (Inside a pane it takes the pane's sheet.)
-        if event.type() == QEvent.Type.ChildPolished:
+        # first polishes it, before it is drawn.  (Inside a pane it takes the pane's sheet.)  With
+        # the theme off there is nothing to give: a new widget has no sheet.
+        if self._on and event.type() == QEvent.Type.ChildPolished:
             child = event.child()
             if isinstance(child, QWidget):
                 self._style(child)

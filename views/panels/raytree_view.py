@@ -127,8 +127,8 @@ class RayTreeWidget(QTreeWidget):
 
     def changeEvent(self, event) -> None:  # noqa: N802 (Qt's name)
         super().changeEvent(event)
-        if event.type() in (QEvent.Type.FontChange, QEvent.Type.StyleChange):  # the columns grow with
-            QTimer.singleShot(0, self, self.widen_to_columns)  # the text and the style's padding
+        if event.type() == QEvent.Type.FontChange:  # the columns grow with the text
+            QTimer.singleShot(0, self, self.widen_to_columns)
 
     def widen_to_columns(self) -> None:
         """In a splitter, take the width every column needs (the last one, the returned colours,
