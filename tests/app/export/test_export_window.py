@@ -282,6 +282,12 @@ def test_the_hard_cases_pictures_are_named_after_their_method(qtbot, window, tmp
     assert not textbook.isEnabled() and "Not part of what the tab shows" in textbook.toolTip()
 
 
+def _drawn_twice_as_large(plotter) -> np.ndarray:
+    """pyvista's screenshot of the pane, its window twice as wide and tall for it: (H, W, 3) levels."""
+    width, height = plotter.window_size
+    return plotter.screenshot(None, return_img=True, window_size=(2 * width, 2 * height))[..., :3].astype(int)
+
+
 def test_the_3d_pane_is_saved_as_vtk_drew_it_and_the_status_bar_says_so(qtbot, window, tmp_path,
                                                                         monkeypatch):
     # The picture is read back on the GUI thread, then encoded and written off it.
@@ -290,7 +296,7 @@ def test_the_3d_pane_is_saved_as_vtk_drew_it_and_the_status_bar_says_so(qtbot, w
     pane = window.scene_view.view
     qtbot.waitUntil(lambda: pane._frustum_faces.GetVisibility(), timeout=RENDER_TIMEOUT_MS)  # at rest
     # What VTK draws at twice the pane's size, read in the same turn of the event loop as the export's.
-    drawn = window.scene_view.plotter.screenshot(None, return_img=True, scale=2)[..., :3].astype(int)
+    drawn = _drawn_twice_as_large(window.scene_view.plotter)
     _export(qtbot, window, "3D pane")
     saved = iio.imread(tmp_path / "pane.png").astype(int)
     assert saved.shape == drawn.shape
@@ -313,7 +319,7 @@ def test_the_3d_pane_exported_while_it_moves_has_its_see_through_frustum(qtbot, 
         """pyvista's picture at twice the pane's size, with or without the resting look."""
         pane.plotter.renderer.SetUseFXAA(faces)
         pane._frustum_faces.SetVisibility(faces)
-        picture = pane.plotter.screenshot(None, return_img=True, scale=2)[..., :3].astype(int)
+        picture = _drawn_twice_as_large(pane.plotter)
         pane.plotter.renderer.SetUseFXAA(False)
         pane._frustum_faces.SetVisibility(False)
         return picture
