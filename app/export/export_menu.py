@@ -121,7 +121,7 @@ class ExportMenu(QObject):
         self._file_signals.finished.connect(self._file_done)
         self._file_signals.failed.connect(self._file_failed)
         QApplication.instance().aboutToQuit.connect(self.cancel)
-        QTimer.singleShot(0, self.refresh)  # once the window is built: the entries ask it what it shows
+        QTimer.singleShot(0, self, self.refresh)  # once the window is built: the entries ask it what it shows
 
     # ------------------------------------------------------------------ menu
     def refresh(self) -> None:

@@ -284,7 +284,7 @@ class MainWindow(QMainWindow):
 
     def _refit(self) -> None:
         """Share the room again once the new text size or screen reached every widget."""
-        QTimer.singleShot(0, self._fit)
+        QTimer.singleShot(0, self, self._fit)  # (not after the window is gone)
 
     def _fit(self) -> None:
         self._fit_controls()
@@ -296,7 +296,7 @@ class MainWindow(QMainWindow):
 
     def _share_room(self) -> None:
         fit_window(self, self.presentation.scale())
-        self.tab("image order").widget.tree.widen_to_columns()  # the window may be wider now
+        self.tab("image order").widget.tree.widen_soon()  # the window may be wider now
 
     @property
     def current(self):
@@ -396,7 +396,7 @@ class MainWindow(QMainWindow):
     def scale_text(self, factor: float) -> None:
         """Make the normal text size ``factor`` times larger (presentation's scale applies on top)."""
         self.presentation.scale_normal_text(factor)
-        QTimer.singleShot(0, self._fit_controls)  # after the new font reached every widget
+        QTimer.singleShot(0, self, self._fit_controls)  # after the new font reached every widget
 
     def _fit_controls(self) -> None:
         """Keep the whole control panel visible at any text size (scrolling sideways on a small screen)."""

@@ -1,7 +1,7 @@
 """Presentation mode: full screen, scaled text, high contrast, blanking, clicker keys, presenter window."""
 
 import pytest
-from PySide6.QtCore import Qt
+from PySide6.QtCore import QEvent, QObject, Qt
 from PySide6.QtGui import QPalette
 from PySide6.QtWidgets import (
     QApplication,
@@ -255,3 +255,29 @@ def test_page_down_steps_from_a_dialog_too(hall, qtbot):
     qtbot.waitUntil(window.isActiveWindow)
     qtbot.keyClick(QApplication.focusWidget() or window, Qt.Key.Key_PageDown)  # where a typed key goes
     assert panel.step_index() == (0, 1)  # back in the main window, the keys step there too
+
+
+def test_entering_and_leaving_presentation_mode_show_only_their_final_look(hall, qtbot):
+    # Entering takes three turns of the event loop (text size, colours, full screen).  Painted at
+    # each, the hall saw the big text in the small window, then the colours, then the full screen,
+    # and each turn held the window for a paint of everything.
+    window, panel, presentation = hall
+    painted = []
+
+    class Paints(QObject):
+        def eventFilter(self, watched, event):
+            if event.type() == QEvent.Type.Paint:
+                painted.append((panel.text.font().pointSizeF(), window.isFullScreen(),
+                                panel.text.palette().color(QPalette.ColorRole.Window).name()))
+            return False
+
+    paints = Paints()
+    panel.text.installEventFilter(paints)
+    base_pt = panel.text.font().pointSizeF()
+    normal_background = panel.text.palette().color(QPalette.ColorRole.Window).name()
+    for on, look in ((True, (base_pt * PRESENTING_SCALE, True, "#000000")),
+                     (False, (base_pt, False, normal_background))):
+        painted.clear()
+        presentation.set_presenting(on)
+        qtbot.waitUntil(lambda: presentation.settled() and bool(painted))  # noqa: B023
+        assert painted == [look] * len(painted)

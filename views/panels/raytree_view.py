@@ -12,7 +12,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 import numpy as np
-from PySide6.QtCore import QEvent, Qt, QTimer
+from PySide6.QtCore import Qt, QTimer
 from PySide6.QtGui import QColor
 from PySide6.QtWidgets import (
     QGridLayout,
@@ -118,17 +118,19 @@ class RayTreeWidget(QTreeWidget):
         self.header().setStretchLastSection(False)
         self.setIndentation(14)  # a glass ball's tree is 5 deep: Qt's 20 px a level cost the colours
         self.header().setSectionResizeMode(QHeaderView.ResizeMode.ResizeToContents)
+        # Whenever a column takes a new width (a new tree, a new text size), once it has it.
+        self._widen = QTimer(self, singleShot=True, interval=0)
+        self._widen.timeout.connect(self.widen_to_columns)
+        self.header().sectionResized.connect(lambda *_: self.widen_soon())
 
     def set_tree(self, root: RayNode) -> None:
         self.clear()
         self.addTopLevelItem(self._item(root))
         self.expandAll()
-        QTimer.singleShot(0, self, self.widen_to_columns)  # once the columns took their widths
 
-    def changeEvent(self, event) -> None:  # noqa: N802 (Qt's name)
-        super().changeEvent(event)
-        if event.type() == QEvent.Type.FontChange:  # the columns grow with the text
-            QTimer.singleShot(0, self, self.widen_to_columns)
+    def widen_soon(self) -> None:
+        """:meth:`widen_to_columns` once the layouts around took the sizes given them now."""
+        self._widen.start()
 
     def widen_to_columns(self) -> None:
         """In a splitter, take the width every column needs (the last one, the returned colours,
