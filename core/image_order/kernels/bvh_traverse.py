@@ -43,7 +43,7 @@ from core.image_order.kernels.bvh_build import (
     from_leaf_group,
 )
 from core.image_order.kernels.intersect import triangle_hit
-from core.image_order.kernels.intrinsics.slabs4 import slab_test4
+from core.image_order.kernels.intrinsics.slabs4 import slab_mask4, slab_test4
 from core.image_order.kernels.intrinsics.triangle4 import GROUP_SIZE, LANES, UNSURE, triangle_test4
 from core.image_order.kernels.intrinsics.unchecked import load_at, store_at
 from core.image_order.kernels.jit import jit, jit_inline
@@ -100,24 +100,25 @@ def nearest_child(entries, refs, at, stack, stack_t, top, slots):
 
 
 @jit_inline
-def any_child(entries, refs, at, stack, top):
-    """For an any-hit walk: of the children of the node at ``at`` with the entries ``entries``
-    (``inf``: missed), the first one hit in slot order, ``(child, entry, top)``, after pushing
-    the other ones hit so that they come next in slot order, each as a :func:`stack_entry` with
-    its :func:`~core.image_order.kernels.bvh_build.leaf_groups` number; ``entry`` is ``inf``
-    when none is hit.
+def any_child(entered, refs, at, stack, top):
+    """For an any-hit walk: of the children of the node at ``at`` that the ray enters (bit ``c``
+    of ``entered``, :func:`~core.image_order.kernels.intrinsics.slabs4.slab_mask4`), the first in
+    slot order, ``(child, top)``, after pushing the other ones entered so that they come next in
+    slot order, each as a :func:`stack_entry` with its
+    :func:`~core.image_order.kernels.bvh_build.leaf_groups` number; ``child`` is -1 when none is
+    entered.
 
     Unlike :func:`nearest_child` nothing is sorted: a shadow ray stops at its first blocker, so
     it may meet a farther one first (and name that one)."""
-    near, near_t = 0, math.inf
+    near = -1
     for c in range(WIDTH - 1, -1, -1):
-        if entries[c] < math.inf:
-            if near_t < math.inf:
+        if entered >> c & 1:
+            if near >= 0:
                 store_at(stack, top, stack_entry(load_at(refs, at + WIDE_REFS + near),
                                                  load_at(refs, at + WIDE_GROUPS + near)))
                 top += 1
-            near, near_t = c, entries[c]
-    return near, near_t, top
+            near = c
+    return near, top
 
 
 _SLOT, _HALF = 1 << 32, 1 << 31  # node references are int32
@@ -232,11 +233,11 @@ def bvh_occluded(o, d, shear, t_min, t_max, bvh, n_spheres, stack, counters):
     while True:
         if node >= 0:
             at = node * WIDE_SIZE
-            entries = slab_test4(wide, at + nx, at + ny, at + nz, at + fx, at + fy, at + fz, ox, oy, oz, ix,
+            entered = slab_mask4(wide, at + nx, at + ny, at + nz, at + fx, at + fy, at + fz, ox, oy, oz, ix,
                                  iy, iz, t_min, t_max)
             boxes += WIDTH
-            near, near_t, top = any_child(entries, refs, at, stack, top)
-            if near_t < math.inf:
+            near, top = any_child(entered, refs, at, stack, top)
+            if near >= 0:
                 node, packed = load_at(refs, at + WIDE_REFS + near), load_at(refs, at + WIDE_GROUPS + near)
                 continue
         else:
