@@ -54,7 +54,9 @@ class Bvh:
         What the traversal reads: the four-wide tree (root first), per node
         the children's boxes rounded *outwards* to float32 and their
         references as int32 (read through ``wide.view(np.int32)``): a wide
-        node's index, or ``~leaf`` for a leaf.  The primitive tests stay in
+        node's index, or ``~leaf`` for a leaf; then, for a leaf of triangles,
+        its group and count (:func:`~core.image_order.kernels.bvh_build.leaf_groups`,
+        int32, 0 for the others).  The primitive tests stay in
         float64, so the hits are exactly those of the float64 boxes.
     leaves : (L, 3) int64
         Per leaf of the wide tree: its first entry in ``order``, its number of
@@ -136,9 +138,10 @@ def empty_kernel_tuple() -> tuple:
             np.zeros(0, np.int64), np.zeros((0, 9)))
 
 
-def pack_wide(boxes: np.ndarray, refs: np.ndarray) -> np.ndarray:
-    """The float32 rows of :attr:`Bvh.wide` from :func:`~core.image_order.kernels.bvh_build.widen`."""
-    from core.image_order.kernels.bvh_build import WIDE_HI, WIDE_LO, WIDE_REFS, WIDE_SIZE, WIDTH
+def pack_wide(boxes: np.ndarray, refs: np.ndarray, leaf_groups: np.ndarray) -> np.ndarray:
+    """The float32 rows of :attr:`Bvh.wide` from :func:`~core.image_order.kernels.bvh_build.widen`
+    and :func:`~core.image_order.kernels.bvh_build.leaf_groups`."""
+    from core.image_order.kernels.bvh_build import WIDE_GROUPS, WIDE_HI, WIDE_LO, WIDE_REFS, WIDE_SIZE, WIDTH
 
     lo, hi = boxes[:, 0:3, :], boxes[:, 3:6, :]
     lo32, hi32 = lo.astype(np.float32), hi.astype(np.float32)
@@ -148,13 +151,14 @@ def pack_wide(boxes: np.ndarray, refs: np.ndarray) -> np.ndarray:
     wide[:, WIDE_LO:WIDE_HI] = lo32.reshape(len(boxes), WIDE_HI - WIDE_LO)
     wide[:, WIDE_HI:WIDE_REFS] = hi32.reshape(len(boxes), WIDE_REFS - WIDE_HI)
     wide.view(np.int32)[:, WIDE_REFS:WIDE_REFS + WIDTH] = refs
+    wide.view(np.int32)[:, WIDE_GROUPS:WIDE_GROUPS + WIDTH] = leaf_groups
     return wide
 
 
 def build_bvh(geometry) -> Bvh:
     """Build the BVH over every primitive of ``geometry`` (a flat_scene ``Geometry``)."""
     from core.image_order.kernels.bvh_build import build_bvh as _build
-    from core.image_order.kernels.bvh_build import group_triangles, widen
+    from core.image_order.kernels.bvh_build import group_triangles, leaf_groups, widen
 
     nodes, order, depth = _build(geometry.lo, geometry.hi, geometry.n_spheres)
     rows = np.ascontiguousarray(geometry.rows[order])
@@ -162,4 +166,5 @@ def build_bvh(geometry) -> Bvh:
     groups = group_triangles(leaves, rows, order, geometry.n_spheres)
     sizes = np.linalg.norm(geometry.hi - geometry.lo, axis=1)
     size = float(np.median(sizes)) if len(sizes) else math.inf
-    return Bvh(nodes, order, rows, int(depth), pack_wide(boxes, refs), leaves, groups, size)
+    return Bvh(nodes, order, rows, int(depth), pack_wide(boxes, refs, leaf_groups(refs, leaves)),
+               leaves, groups, size)

@@ -37,7 +37,7 @@ from __future__ import annotations
 import numpy as np
 
 from core.image_order.kernels.intrinsics.triangle4 import AXIS_STRIDE, CORNER_STRIDE, GROUP_SIZE, LANES
-from core.image_order.kernels.jit import jit, jit_allocating
+from core.image_order.kernels.jit import jit, jit_allocating, jit_inline
 
 BINS = 16
 #: A leaf holds at most one group of four primitives (a node with more is always split).  Against
@@ -47,8 +47,11 @@ MAX_LEAF = LANES
 #: Children of a node of the wide tree.
 WIDTH = 4
 #: Columns of a row of the packed wide tree (:attr:`core.image_order.bvh.Bvh.wide`): the children's ``lo``
-#: sides (x, y, z rows of WIDTH), their ``hi`` sides, their references (int32), padding to 128 bytes.
-WIDE_LO, WIDE_HI, WIDE_REFS, WIDE_SIZE = 0, 3 * WIDTH, 6 * WIDTH, 8 * WIDTH
+#: sides (x, y, z rows of WIDTH), their ``hi`` sides, their references (int32), their
+#: :func:`leaf_group` s (int32; 128 bytes in all).
+WIDE_LO, WIDE_HI, WIDE_REFS, WIDE_GROUPS, WIDE_SIZE = 0, 3 * WIDTH, 6 * WIDTH, 7 * WIDTH, 8 * WIDTH
+#: Bits of a :func:`leaf_group` that hold the leaf's triangle count.
+_COUNT_BITS = 3
 #: Columns of a row of the leaves (:attr:`core.image_order.bvh.Bvh.leaves`): first primitive, count, group.
 LEAF_SIZE = 3
 
@@ -272,6 +275,28 @@ def widen(nodes):
                 top += 1
                 n_wide += 1
     return boxes[:n_wide].copy(), refs[:n_wide].copy(), leaves
+
+
+@jit_allocating
+def leaf_groups(refs, leaves):
+    """What each wide node's row says of its child leaves, so that a walk can test a leaf's
+    triangles without reading the leaf's row first: per child (``refs`` of :func:`widen`), the
+    leaf's triangle group and triangle count packed in one number (:func:`from_leaf_group`), and
+    0 for an inner node or a leaf whose primitives are tested one by one (a sphere's)."""
+    packed = np.zeros(refs.shape, np.int64)
+    for wide in range(refs.shape[0]):
+        for c in range(WIDTH):
+            if refs[wide, c] < 0:
+                leaf = ~refs[wide, c]
+                if leaves[leaf, 2] >= 0:
+                    packed[wide, c] = (leaves[leaf, 2] << _COUNT_BITS) + leaves[leaf, 1]
+    return packed
+
+
+@jit_inline
+def from_leaf_group(packed):
+    """``(group, count)`` of a nonzero number of :func:`leaf_groups`."""
+    return packed >> _COUNT_BITS, packed & ((1 << _COUNT_BITS) - 1)
 
 
 @jit_allocating

@@ -25,6 +25,7 @@ from core.image_order.flat_scene import TraceSettings, kernel_inputs, trace_scen
 from core.image_order.grid_of_cuboids import cells_on_ray
 from core.image_order.intersect_sphere import intersect_sphere
 from core.image_order.intersect_triangle import intersect_triangle
+from core.image_order.kernels.bvh_build import from_leaf_group
 from core.image_order.kernels.closest_hit import closest_hit
 from core.image_order.kernels.render import make_scratch
 from core.image_order.kernels.shadow_rays import trace_shadow_rays
@@ -274,11 +275,13 @@ def test_bvh_boxes_contain_what_is_below_them(scene):
 
 def test_wide_bvh_reaches_every_primitive_once_inside_its_float32_boxes(scene):
     """The four-wide float32 form the traversal reads holds the same primitives, in boxes rounded outwards,
-    and each leaf's triangle groups hold exactly its triangles."""
+    and each leaf's triangle groups hold exactly its triangles, which its parent's row names as well
+    (group and count, for a shadow ray to test them without reading the leaf's own row)."""
     geometry = trace_scene(scene).geometry
     bvh, _, _ = geometry.accel("bvh")
     boxes = bvh.wide[:, :24].astype(np.float64).reshape(-1, 2, 3, 4)  # node, lo/hi, axis, child
     refs = bvh.wide.view(np.int32)[:, 24:28]
+    named = bvh.wide.view(np.int32)[:, 28:32]  # per child: the leaf's group and count, or 0
     reached = []
     pending = [0]
     while pending:
@@ -289,6 +292,7 @@ def test_wide_bvh_reaches_every_primitive_once_inside_its_float32_boxes(scene):
                 continue
             ref = int(refs[node, c])
             if ref >= 0:
+                assert named[node, c] == 0
                 child = boxes[ref]
                 used = ~np.all(child[0] > child[1], axis=0)
                 assert np.all(child[0][:, used] >= lo[:, None]) and np.all(child[1][:, used] <= hi[:, None])
@@ -301,7 +305,12 @@ def test_wide_bvh_reaches_every_primitive_once_inside_its_float32_boxes(scene):
             reached.extend(prims.tolist())
             if np.any(prims < geometry.n_spheres):
                 assert count == 1 and group == -1  # a sphere's leaf holds it alone
+                assert named[node, c] == 0
                 continue
+            assert from_leaf_group(named[node, c]) == (group, count)
+            # Lanes past the count repeat the last triangle, so a test of all four finds no other crossing.
+            padded = bvh.groups[group].reshape(3, 3, 4).transpose(2, 0, 1).reshape(4, 9)
+            assert np.array_equal(padded, geometry.rows[prims[np.minimum(np.arange(4), count - 1)]])
             # groups[g] holds corner, axis, lane: triangle j of the leaf is lane j % 4 of group j // 4.
             lanes = bvh.groups[group:group + (count + 3) // 4].reshape(-1, 3, 3, 4).transpose(0, 3, 1, 2)
             assert np.array_equal(lanes.reshape(-1, 9)[:count], geometry.rows[prims])

@@ -47,7 +47,7 @@ from core.image_order.kernels.bvh_packet import (
     set_primary_rays,
 )
 from core.image_order.kernels.closest_hit import closest_hit
-from core.image_order.kernels.intrinsics.slabs4 import slab_interval4, slab_rays4, slab_test4
+from core.image_order.kernels.intrinsics.slabs4 import slab_interval4, slab_mask4, slab_rays4, slab_test4
 from core.image_order.kernels.render import make_scratch
 from core.image_order.ray_casting import camera_array, primary_ray
 from core.scene import Material, Mesh, PointLight, Scene, Sphere
@@ -263,6 +263,43 @@ def test_four_rays_against_one_box_enter_where_each_alone_enters_bit_for_bit(see
             sides = node.reshape(6, 4)[:, box].astype(float)
             assert np.all(point >= sides[:3] - 1e-6 * (1 + abs(point)))
             assert np.all(point <= sides[3:] + 1e-6 * (1 + abs(point)))
+
+
+# --- a shadow ray's mask of the boxes it enters: the same boxes as the slab test's entries ---------
+
+@njit
+def _mask_and_entries(node, near, far, o, inverse, t_min, t_max):
+    e = slab_test4(node, near[0], near[1], near[2], far[0], far[1], far[2], o[0], o[1], o[2], inverse[0],
+                   inverse[1], inverse[2], t_min, t_max)
+    mask = slab_mask4(node, near[0], near[1], near[2], far[0], far[1], far[2], o[0], o[1], o[2], inverse[0],
+                      inverse[1], inverse[2], t_min, t_max)
+    return mask, np.array([e[0], e[1], e[2], e[3]])
+
+
+@settings(max_examples=300, deadline=None)
+@given(seed=st.integers(0, 2**32 - 1))
+def test_a_shadow_rays_mask_names_exactly_the_boxes_it_enters(seed):
+    """Rays along axis planes (a zero component: ``1 / d`` infinite) and origins on a box's side
+    (``0 * inf``, NaN, which the slab test skips) included."""
+    rng = np.random.default_rng(seed)
+    node, o, directions, _, _ = _node_and_packet(rng, 0.5, 1)
+    d = directions[0]
+    d[rng.random(3) < 0.3] = rng.choice([0.0, -0.0])
+    sides = node.reshape(6, 4).astype(float)
+    on_side = rng.random(3) < 0.3
+    o = np.where(on_side, sides[rng.integers(0, 6), rng.integers(0, 4)], o)
+    with np.errstate(divide="ignore"):
+        inverse = 1.0 / d
+    negative = np.signbit(inverse)
+    near = np.array([4 * axis + (12 if negative[axis] else 0) for axis in range(3)])
+    far = np.array([4 * axis + (0 if negative[axis] else 12) for axis in range(3)])
+    t_min = rng.choice([0.0, 0.5])
+    mask, entries = _mask_and_entries(node, near, far, o, inverse, t_min, t_min + rng.choice([0.1, 3.0, 1e9]))
+    assert [bool(mask >> c & 1) for c in range(4)] == list(entries < math.inf)
+    for c in np.flatnonzero(entries < math.inf):  # and an entered box holds the point where the ray enters
+        point = o + np.nan_to_num(entries[c] * d)
+        assert np.all(point >= sides[:3, c] - 1e-6 * (1 + abs(point)))
+        assert np.all(point <= sides[3:, c] + 1e-6 * (1 + abs(point)))
 
 
 @pytest.mark.parametrize("width, height", [(1, 1), (5, 3)])

@@ -14,6 +14,11 @@ The comparisons keep pbrt's rule for a ray lying in a slab's plane:
 ``0 * inf`` is NaN, which fails every comparison and leaves the bound
 unchanged.
 
+:func:`slab_mask4` is the same test for a shadow ray, which only asks which
+boxes it enters: one bit per box from one vector comparison, where reading
+the four entries back out of the vector and comparing each costs an any-hit
+walk about a tenth of its time (``bench trace``'s 10,000-triangle ball).
+
 :func:`slab_interval4` is the same test for a packet of rays that share an
 origin (:mod:`core.image_order.kernels.bvh_packet`): one test of a node for
 all of them, never missing a box that one of them would enter.
@@ -26,6 +31,7 @@ from __future__ import annotations
 
 import math
 
+from llvmlite import ir
 from numba import types
 from numba.extending import intrinsic
 
@@ -62,6 +68,27 @@ def slab_test4(typingctx, rows, near_x, near_y, near_z, far_x, far_y, far_z, ox,
         return _slabs(context, builder, sig, _box_sides(context, builder, sig, args, near_and_far),
                       splat(builder, args[13]),
                       splat(builder, args[14]))
+
+    return signature, codegen
+
+
+@intrinsic
+def slab_mask4(typingctx, rows, near_x, near_y, near_z, far_x, far_y, far_z, ox, oy, oz, ix, iy, iz, t_min,
+               t_max):
+    """Which of the four boxes the ray enters, as :func:`slab_test4` decides it: bit ``c`` of the
+    result is set where its entry into box ``c`` is finite (an any-hit walk needs no more)."""
+    signature = types.int64(rows, near_x, near_y, near_z, far_x, far_y, far_z, ox, oy, oz, ix, iy, iz, t_min,
+                            t_max)
+
+    def codegen(context, builder, sig, args):
+        def near_and_far(distance, axis):
+            inverse = splat(builder, args[10 + axis])
+            return (builder.fmul(distance(1 + axis), inverse), builder.fmul(distance(4 + axis), inverse))
+
+        entry = _entries(builder, _box_sides(context, builder, sig, args, near_and_far),
+                         splat(builder, args[13]), splat(builder, args[14]))
+        entered = builder.bitcast(builder.fcmp_ordered("<", entry, constant(math.inf)), ir.IntType(4))
+        return builder.zext(entered, ir.IntType(64))
 
     return signature, codegen
 
@@ -152,9 +179,13 @@ def _box_sides(context, builder, sig, args, near_and_far):
 def _slabs(context, builder, sig, near_and_far, enter, leave):
     """The four entries, given ``near_and_far(axis)``, the four lanes' slab distances of an axis,
     and the four lanes' admissible range ``enter, leave``."""
+    return lanes(context, builder, sig.return_type, _entries(builder, near_and_far, enter, leave))
+
+
+def _entries(builder, near_and_far, enter, leave):
+    """:func:`_slabs`'s four entries as one vector."""
     for axis in range(3):
         t_near, t_far = near_and_far(axis)
         enter = builder.select(builder.fcmp_ordered(">", t_near, enter), t_near, enter)
         leave = builder.select(builder.fcmp_ordered("<", t_far, leave), t_far, leave)
-    entry = builder.select(builder.fcmp_ordered("<=", enter, leave), enter, constant(math.inf))
-    return lanes(context, builder, sig.return_type, entry)
+    return builder.select(builder.fcmp_ordered("<=", enter, leave), enter, constant(math.inf))
