@@ -66,8 +66,10 @@ class ImagePlotter(QVTKRenderWindowInteractor, BasePlotter):
     picture : the last picture drawn (a QImage in device pixels), or ``None`` before the first.
     """
 
-    def __init__(self, parent: QWidget | None = None):
-        window = vtkRenderWindow()
+    def __init__(self, parent: QWidget | None = None, render_window: vtkRenderWindow | None = None):
+        """``render_window``: a new VTK render window to draw in (one is made if not given; the first
+        one a process makes loads the OpenGL libraries, some 45 ms)."""
+        window = render_window if render_window is not None else vtkRenderWindow()
         window.SetOffScreenRendering(True)
         window.SetMultiSamples(0)  # anti-aliasing is FXAA, and only when the pane rests
         with _without_base_plotter_init():
