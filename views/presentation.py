@@ -181,9 +181,9 @@ class Presentation(QObject):
         The text size changes at once; the colours and the window's size follow, each in a turn of
         the event loop of its own, so that none holds the window long (``settled`` says when all
         are done, and ``presenting_changed`` is sent then).  The window is painted once, in its
-        final look: painted at each turn, each held it for a paint of everything (longest stall
-        56-72 ms against 31-50, ``/tmp/who/pres_gap.py``), and showed the big text in the small
-        window on the way.
+        final look: painted at each turn, each turn held it for a paint of everything (the longest
+        stall of an enter or leave, median of 10, 56-61 ms against 36-37 at 1600 × 900), and the
+        hall saw the big text in the small window on the way.
         """
         on = bool(on)
         if on == self._presenting:
