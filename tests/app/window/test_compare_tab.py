@@ -2,10 +2,11 @@
 
 import numpy as np
 from PySide6.QtCore import Qt
+from PySide6.QtWidgets import QLabel
 from window_helpers import RENDER_TIMEOUT_MS
 
 from core.compare import OUTPUTS
-from views.panels.compare_panel import IMAGE_SHARE
+from views.panels.compare_panel import IMAGE_SHARE, PICK_HINT
 
 
 def _compare(qtbot, window):
@@ -172,14 +173,25 @@ def test_presenting_at_x2_on_1920x1080_the_sentences_read_whole_and_the_images_k
     window.presentation.set_presenting(False)
 
 
-def test_at_1280x720_presenting_the_images_captions_and_the_difference_units_read_whole(qtbot, monkeypatch):
+def test_at_1280x720_presenting_the_captions_the_units_and_the_pick_hint_read_whole(qtbot, monkeypatch):
     # The images kept 35 % of the height whatever their captions needed: at text x1.5 the difference's
     # units ("max(|ΔR|, |ΔG|, |ΔB|), linear RGB units (1 = black against white)") showed a line and a half.
+    # Under empty A and B rows, "Click a pixel in any image to read it in both outputs." showed a line
+    # and a half too.
     from window_helpers import presenting_on_1280x720
 
     window = presenting_on_1280x720(qtbot, monkeypatch)
     panel = _compare(qtbot, window)
+    hint = next(label for label in panel.pixel_box.findChildren(QLabel) if label.text() == PICK_HINT)
     labels = [panel.scale.units, *panel.captions.values()]
+
+    def hint_whole() -> bool:  # all of it inside the box's scrolled view, unscrolled
+        viewport = hint.parentWidget().parentWidget().parentWidget()  # row, rows, the scroll area's view
+        bottom = hint.mapTo(viewport, hint.rect().bottomLeft()).y()
+        return (hint.isVisible() and hint.height() >= hint.heightForWidth(hint.width())
+                and bottom < viewport.height())
+
+    qtbot.waitUntil(hint_whole, timeout=5000)
 
     def whole(label) -> bool:
         return label.isVisible() and label.height() >= label.heightForWidth(label.width())
