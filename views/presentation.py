@@ -214,10 +214,12 @@ class Presentation(QObject):
         return not self._stages
 
     def _next_stage(self) -> None:
-        if self._stages:
-            self._stages.pop(0)()
-        if self._stages:
-            self._stage_timer.start()
+        try:
+            if self._stages:
+                self._stages.pop(0)()
+        finally:  # the stages after one that failed still run: the window is painted again
+            if self._stages:
+                self._stage_timer.start()
 
     def _enter_screen(self) -> None:
         # The whole screen even where no window manager honours "full screen" (a bare X server).

@@ -150,11 +150,16 @@ class ImagePlotter(QVTKRenderWindowInteractor, BasePlotter):
             self.ren_win.SetSize(scale * w, scale * h)
             try:
                 self.ren_win.Render()
-                self.ren_win.GetRGBACharPixelData(0, 0, scale * w - 1, scale * h - 1, False, pixels)
+                rgba = self._read_back(pixels)
             finally:
                 self.ren_win.SetSize(w, h)
-        rgba = vtk_to_numpy(pixels).reshape(scale * h, scale * w, 4)
-        return np.ascontiguousarray(rgba[::-1, :, :3])  # row 0 on top
+        return np.ascontiguousarray(rgba[..., :3])
+
+    def _read_back(self, pixels: vtkUnsignedCharArray) -> np.ndarray:
+        """What VTK last drew, read into ``pixels``: an (H, W, 4) view of it, row 0 on top."""
+        w, h = self.ren_win.GetSize()
+        self.ren_win.GetRGBACharPixelData(0, 0, w - 1, h - 1, False, pixels)
+        return vtk_to_numpy(pixels).reshape(h, w, 4)[::-1]
 
     def paintEngine(self):
         return QWidget.paintEngine(self)
@@ -189,9 +194,8 @@ class ImagePlotter(QVTKRenderWindowInteractor, BasePlotter):
         if not self._grabbing or getattr(self, "_closed", False) or not self.isVisible():
             return
         self._resized = False
-        w, h = self.ren_win.GetSize()
-        self.ren_win.GetRGBACharPixelData(0, 0, w - 1, h - 1, False, self._pixels)
-        rgba = np.ascontiguousarray(vtk_to_numpy(self._pixels).reshape(h, w, 4)[::-1])  # row 0 on top
+        rgba = np.ascontiguousarray(self._read_back(self._pixels))
+        h, w, _ = rgba.shape
         over = self._gradient is not None  # VTK drew over a transparent background
         kind = QImage.Format.Format_RGBA8888_Premultiplied if over else QImage.Format.Format_RGBX8888
         self.picture = QImage(rgba.data, w, h, 4 * w, kind).copy()

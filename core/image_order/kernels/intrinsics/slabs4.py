@@ -61,15 +61,19 @@ def slab_test4(typingctx, rows, near_x, near_y, near_z, far_x, far_y, far_z, ox,
                                                  oz, ix, iy, iz, t_min, t_max)
 
     def codegen(context, builder, sig, args):
-        def near_and_far(distance, axis):
-            inverse = splat(builder, args[10 + axis])
-            return (builder.fmul(distance(1 + axis), inverse), builder.fmul(distance(4 + axis), inverse))
-
-        return _slabs(context, builder, sig, _box_sides(context, builder, sig, args, near_and_far),
-                      splat(builder, args[13]),
-                      splat(builder, args[14]))
+        return lanes(context, builder, sig.return_type, _one_ray_entries(context, builder, sig, args))
 
     return signature, codegen
+
+
+def _one_ray_entries(context, builder, sig, args):
+    """The four entries of :func:`slab_test4` and :func:`slab_mask4` (same arguments) as one vector."""
+    def near_and_far(distance, axis):
+        inverse = splat(builder, args[10 + axis])
+        return (builder.fmul(distance(1 + axis), inverse), builder.fmul(distance(4 + axis), inverse))
+
+    return _entries(builder, _box_sides(context, builder, sig, args, near_and_far), splat(builder, args[13]),
+                    splat(builder, args[14]))
 
 
 @intrinsic
@@ -81,12 +85,7 @@ def slab_mask4(typingctx, rows, near_x, near_y, near_z, far_x, far_y, far_z, ox,
                             t_max)
 
     def codegen(context, builder, sig, args):
-        def near_and_far(distance, axis):
-            inverse = splat(builder, args[10 + axis])
-            return (builder.fmul(distance(1 + axis), inverse), builder.fmul(distance(4 + axis), inverse))
-
-        entry = _entries(builder, _box_sides(context, builder, sig, args, near_and_far),
-                         splat(builder, args[13]), splat(builder, args[14]))
+        entry = _one_ray_entries(context, builder, sig, args)
         entered = builder.bitcast(builder.fcmp_ordered("<", entry, constant(math.inf)), ir.IntType(4))
         return builder.zext(entered, ir.IntType(64))
 
