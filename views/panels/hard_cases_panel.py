@@ -25,6 +25,7 @@ import math
 
 import numpy as np
 from PySide6.QtCore import QEvent, QSize, Qt, QThreadPool, QTimer, Signal
+from PySide6.QtGui import QFontMetrics
 from PySide6.QtWidgets import (
     QComboBox,
     QGridLayout,
@@ -53,6 +54,8 @@ DEBOUNCE_MS = 120
 WRONG, RIGHT, MUTED = "#ff5c5c", "#6fd08c", "#8a93a6"
 #: What the user asked for runs before the start-up computation of the other cases.
 REQUEST_PRIORITY, PREFETCH_PRIORITY = 1, 0
+#: The table's three methods, in its columns' order.
+METHODS = ("textbook", "robust", "reference")
 
 
 def format_value(value) -> str:
@@ -131,9 +134,15 @@ def _case_run(request_id: int, name: str, value, options: dict, signals: JobSign
                   signals)
 
 
+def _named(name: str, text: str) -> str:
+    """Rich ``text`` after its method's muted ``name``, for the table's values one under another."""
+    return f'<span style="color:{MUTED}">{name}:</span> {text}'
+
+
 class _HorizontalScrollArea(QScrollArea):
-    """Scrolls its widget sideways only, as tall as the widget: a table wider than the pane (large
-    text) scrolls by itself, and the words above and below it keep the pane's width."""
+    """Scrolls its widget sideways only, as tall as the widget: a table wider than the pane even with its
+    values stacked (a very narrow pane) scrolls by itself, and the words above and below it keep the
+    pane's width."""
 
     def __init__(self, widget: QWidget):
         super().__init__()
@@ -220,9 +229,15 @@ class HardCasesPanel(QWidget):
 
         self.table = QGridLayout()
         self.table.setHorizontalSpacing(18)
-        table_box = QGroupBox("Naive, robust and exact, side by side (digits that differ from exact in red)")
+        self.table_caption = QLabel("Textbook, robust and exact (digits that differ from exact in red)")
+        self.table_caption.setWordWrap(True)  # a box's own title would not wrap, and hold the pane wide
+        table_box = QGroupBox()
         table_box.setLayout(self.table)
+        self.table_headers: list[QLabel] = []
         self.table_cells: list[list[QLabel]] = []
+        self._values: list[list[tuple[str, str]]] = []  # each row's three values, as rich and plain text
+        self._methods: tuple[str, str, str] = ("", "", "")  # the methods' descriptions, in METHODS' order
+        self._stacked: bool | None = None
 
         self.naive_image = ImageView(placeholder="")
         self.robust_image = ImageView(placeholder="")
@@ -252,7 +267,10 @@ class HardCasesPanel(QWidget):
         column.addWidget(self.slider_label)
         column.addLayout(sweep)
         column.addWidget(self.verdict)
+        column.addWidget(self.table_caption)
         self._table_area = _HorizontalScrollArea(table_box)
+        self._table_area.installEventFilter(self)
+        table_box.installEventFilter(self)
         column.addWidget(self._table_area)
         column.addWidget(self.image_box, 1)
         column.addWidget(self.explanation)
@@ -273,6 +291,12 @@ class HardCasesPanel(QWidget):
         layout.addWidget(splitter)
         self._prefetched = False
         self.cases.setCurrentRow(0)
+
+    def eventFilter(self, watched, event) -> bool:
+        # A new width, or new text sizes (the box asks for a new layout): side by side, or stacked?
+        if event.type() in (QEvent.Type.Resize, QEvent.Type.LayoutRequest):
+            self._arrange_table()
+        return False
 
     def showEvent(self, event):
         super().showEvent(event)
@@ -399,24 +423,82 @@ class HardCasesPanel(QWidget):
             if widget is not None:
                 widget.setParent(None)  # off screen now, not at the next event loop pass
                 widget.deleteLater()
-        headers = ("", f"textbook: {r.naive_method}", f"robust: {r.robust_method}",
-                   f"reference: {r.reference_method}")
-        for col, text in enumerate(headers):
-            label = QLabel(f"<b>{html.escape(text)}</b>")
+        self._methods = (r.naive_method, r.robust_method, r.reference_method)
+        self.table_headers = [QLabel() for _ in range(1 + len(METHODS))]
+        for label in self.table_headers:
             label.setWordWrap(True)
-            self.table.addWidget(label, 0, col)
-        self.table_cells = []
-        for i, row in enumerate(r.rows, start=1):
+        self.table_cells, self._values = [], []
+        for row in r.rows:
             exact = row.exact if row.compare else None
-            cells = [QLabel(html.escape(row.label)), QLabel(highlight_digits(row.naive, exact)),
-                     QLabel(highlight_digits(row.robust, exact)),
-                     QLabel(html.escape(format_value(row.exact)))]
-            for col, cell in enumerate(cells):
+            values = [(highlight_digits(row.naive, exact), format_value(row.naive)),
+                      (highlight_digits(row.robust, exact), format_value(row.robust)),
+                      (html.escape(format_value(row.exact)), format_value(row.exact))]
+            cells = [QLabel(), *(QLabel() for _ in values)]
+            for cell in cells:
                 cell.setTextFormat(Qt.TextFormat.RichText)
                 cell.setTextInteractionFlags(Qt.TextInteractionFlag.TextSelectableByMouse)
-                cell.setWordWrap(col == 0)
-                self.table.addWidget(cell, i, col)
+            cells[0].setWordWrap(True)
             self.table_cells.append(cells)
+            self._values.append(values)
+        self._stacked = None
+        self._arrange_table()
+
+    def _side_by_side_width(self) -> int:
+        """The narrowest the table can be with the three methods side by side: each value on one line,
+        the row names and (bold) headers wrapped at their longest word, with the box's margins and the
+        spacing between columns. Measured from the texts, so the same in either arrangement."""
+        plain = self.fontMetrics()
+        bold_font = self.font()
+        bold_font.setBold(True)
+        bold = QFontMetrics(bold_font)
+        words = [word for row in self.result.rows for word in row.label.split()]
+        widths = [max(plain.horizontalAdvance(word) for word in words)]
+        for col, (name, method) in enumerate(zip(METHODS, self._methods, strict=True), start=1):
+            header = [bold.horizontalAdvance(word) for word in f"{name}: {method}".split()]
+            values = [plain.horizontalAdvance(values[col - 1][1]) for values in self._values]
+            widths.append(max(*header, *values))
+        box, grid = self.table.parentWidget().contentsMargins(), self.table.contentsMargins()
+        margins = box.left() + box.right() + grid.left() + grid.right()
+        return sum(widths) + self.table.horizontalSpacing() * (len(widths) - 1) + margins
+
+    def _arrange_table(self) -> None:
+        """The three methods side by side where their values fit the pane's width, else each row's
+        values one under another, named: large text then reads whole without scrolling sideways."""
+        if not self.table_cells:
+            return
+        stacked = self._side_by_side_width() > self._table_area.viewport().width()
+        if stacked == self._stacked:
+            return
+        self._stacked = stacked
+        while self.table.count():
+            self.table.takeAt(0)  # the same labels, placed again below
+        for col in range(self.table.columnCount()):
+            self.table.setColumnStretch(col, 0)
+        self.table_headers[0].setVisible(not stacked)
+        for header, name, method in zip(self.table_headers[1:], METHODS, self._methods, strict=True):
+            header.setText(_named(name, html.escape(method)) if stacked else
+                           f"<b>{html.escape(f'{name}: {method}')}</b>")
+        indent = self.fontMetrics().horizontalAdvance("MM") if stacked else -1  # values under their row
+        for cells, values, row in zip(self.table_cells, self._values, self.result.rows, strict=True):
+            cells[0].setText(f"<b>{html.escape(row.label)}</b>" if stacked else html.escape(row.label))
+            for name, cell, (text, _) in zip(METHODS, cells[1:], values, strict=True):
+                cell.setText(_named(name, text) if stacked else text)
+                cell.setWordWrap(stacked)  # a value too long for the line goes under its method's name
+                cell.setIndent(indent)
+        if stacked:
+            for row, header in enumerate(self.table_headers[1:]):
+                self.table.addWidget(header, row, 0)
+            row = len(METHODS)
+            for cells in self.table_cells:
+                for cell in cells:
+                    self.table.addWidget(cell, row, 0)
+                    row += 1
+            return
+        for col, header in enumerate(self.table_headers):
+            self.table.addWidget(header, 0, col)
+        for row, cells in enumerate(self.table_cells, start=1):
+            for col, cell in enumerate(cells):
+                self.table.addWidget(cell, row, col)
         self.table.setColumnStretch(0, 2)
         for col in (1, 2, 3):
             self.table.setColumnStretch(col, 3)

@@ -49,6 +49,29 @@ def test_every_case_shows_its_title_numbers_verdict_and_explanation(qtbot, panel
         assert panel.option.isVisibleTo(panel) == (name == "shadow_acne")
 
 
+def test_the_methods_stand_side_by_side_where_they_fit_and_one_under_another_where_not(qtbot, panel):
+    _show(qtbot, panel, "tangent")
+
+    def arrangement() -> set[str]:  # how each row's three values stand to one another
+        tops = [{cell.mapTo(panel, cell.rect().topLeft()).y() for cell in cells[1:]}
+                for cells in panel.table_cells]
+        return {"side by side" if len(row) == 1 else "stacked" for row in tops}
+
+    qtbot.waitUntil(lambda: arrangement() == {"side by side"})
+    row = panel.result.rows[2]  # ray outside by offset: its difference, a long number
+    assert [cell.text() for cell in panel.table_cells[2][1:]] == [
+        highlight_digits(row.naive, row.exact), highlight_digits(row.robust, row.exact), repr(row.exact)]
+    panel.resize(560, 720)  # too narrow for the long values side by side
+    qtbot.waitUntil(lambda: arrangement() == {"stacked"})
+    for cells in panel.table_cells:  # each value under the last, after its method's name
+        for name, cell in zip(("textbook", "robust", "reference"), cells[1:], strict=True):
+            assert cell.text().startswith(f'<span style="color:#8a93a6">{name}:</span> ')
+        tops = [cell.mapTo(panel, cell.rect().topLeft()).y() for cell in cells]
+        assert tops == sorted(tops)
+    panel.resize(1280, 720)
+    qtbot.waitUntil(lambda: arrangement() == {"side by side"})
+
+
 def test_list_marks_each_case_once_its_robust_method_passed(qtbot, panel):
     def all_marked():
         return all(panel.cases.item(i).text().startswith("✓") for i in range(panel.cases.count()))
