@@ -97,15 +97,21 @@ def draw_cost_plot(figure: Figure, rows: list[Row], indices: list[int] | None = 
 
 def tidy_cost_plot(figure: Figure) -> None:
     """Make a drawn cost plot readable (the figure has been drawn once, so its texts have their extents):
-    the curves' legend below the x axis label, in as many columns as the figure's width holds; tick labels
-    and point labels that would overlap one kept before them hidden.  Draw the figure again after."""
+    the curves' legend below the x axis label, in as many columns as the figure's width holds, and the
+    z-buffer formats' legend beside or below their panel, never over it; tick labels and point labels
+    that would overlap one kept before them hidden.  Draw the figure again after."""
     renderer = figure.canvas.get_renderer()
     ax = figure.axes[0]
     if ax.get_legend() is not None and ax.get_xlabel().startswith("render time"):
         _below_the_axis_label(figure, ax, renderer)
     formats = figure.axes[-1]
     if formats.get_legend() is not None and formats.get_xlabel().startswith("far / near"):
-        _in_columns(formats, renderer, formats.bbox.width, loc="upper left")  # fewer rows over the panel
+        # Inside the panel, the legend covered the curves of a short one: beside the panel when the
+        # figure has the width for it, else under its axis label.
+        across = formats.bbox.width >= 0.5 * figure.bbox.width
+        if not (across and _in_columns(formats, renderer, 0.4 * figure.bbox.width, loc="center left",
+                                       bbox_to_anchor=(1.02, 0.5))):
+            _below_the_axis_label(figure, formats, renderer)
     for each in figure.axes:
         for axis in (each.xaxis, each.yaxis):
             _thin(shown_tick_labels(axis), renderer)
@@ -154,16 +160,17 @@ def _below_the_axis_label(figure: Figure, ax, renderer) -> None:
                 bbox_transform=offset_copy(ax.transAxes, figure, 0, -below, units="dots"))
 
 
-def _in_columns(ax, renderer, room: float, **where) -> None:
+def _in_columns(ax, renderer, room: float, **where) -> bool:
     """Lay ``ax``'s legend out again at ``where``, in the most columns (at most 3) that fit ``room``
-    pixels wide."""
+    pixels wide; whether one did (else it has one column)."""
     handles, labels = ax.get_legend_handles_labels()
     title = ax.get_legend().get_title().get_text() or None  # laid out again, it says the same
     for ncols in (3, 2, 1):
         legend = ax.legend(handles, labels, fontsize="small", ncols=ncols, title=title,
                            title_fontsize="small", **where)
         if legend.get_window_extent(renderer).width <= room:
-            return
+            return True
+    return False
 
 
 def point_position(figure: Figure, row: Row):

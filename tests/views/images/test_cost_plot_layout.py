@@ -42,6 +42,7 @@ def test_the_formats_panel_sits_where_there_is_room_and_no_text_runs_into_anothe
     canvas.draw()
     tidy_cost_plot(figure)  # the legend under the axis label, laid out again
     canvas.draw()
+    curves_ax = figure.axes[0]
     curves, formats = (ax.get_window_extent() for ax in figure.axes)
     if beside:
         assert formats.x0 >= curves.x1
@@ -57,9 +58,15 @@ def test_the_formats_panel_sits_where_there_is_room_and_no_text_runs_into_anothe
                          for t in (ax.title, ax.xaxis.label, ax.yaxis.label)]
     for a, b in itertools.combinations(titles_and_labels, 2):
         assert not (a.x0 < b.x1 - 1 and b.x0 < a.x1 - 1 and a.y0 < b.y1 - 1 and b.y0 < a.y1 - 1)
-    for ax in figure.axes:  # each legend within its own panel
-        legend, panel = ax.get_legend().get_window_extent(renderer), ax.get_window_extent()
-        assert panel.x0 - 1 <= legend.x0 and legend.x1 <= panel.x1 + 1
+    legend, panel = curves_ax.get_legend().get_window_extent(renderer), curves  # under its own panel
+    assert panel.x0 - 1 <= legend.x0 and legend.x1 <= panel.x1 + 1
+    points = [xy for ax in figure.axes for line in ax.get_lines() for xy in ax.transData.transform(
+        line.get_xydata())]
+    for ax in figure.axes:  # no legend over a point of either panel, nor over the other panel
+        legend = ax.get_legend().get_window_extent(renderer)
+        assert not any(legend.contains(*p) for p in points)
+        for other in figure.axes:
+            assert other is ax or not legend.overlaps(other.get_window_extent())
 
 
 @pytest.mark.parametrize("size", [(5.4, 4.8), (6.4, 3.6), (9.0, 6.0)])

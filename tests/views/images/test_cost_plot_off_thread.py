@@ -59,7 +59,10 @@ def test_the_finished_all_knobs_plot_reads_at_1280x720(qtbot, present, scale):
     legend = curves.get_legend().get_window_extent(renderer)
     inside = [p for p in points if curves.bbox.contains(*p)]
     assert len(inside) == len(points)  # every point of the curves shows
-    assert not any(legend.contains(*p) for p in points)  # the legend covers no point
+    formats = figure.axes[-1]  # and of the z-buffer formats' curves
+    points += [xy for line in formats.get_lines() for xy in formats.transData.transform(line.get_xydata())]
+    for ax in figure.axes:  # no legend covers a point
+        assert not any(ax.get_legend().get_window_extent(renderer).contains(*p) for p in points)
     for ax in figure.axes:
         for axis in (ax.xaxis, ax.yaxis):
             labels = [t.get_window_extent(renderer) for t in shown_tick_labels(axis)]
