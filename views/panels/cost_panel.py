@@ -23,7 +23,6 @@ pane is hidden; the window only paints their pictures.
 from __future__ import annotations
 
 import threading
-import warnings
 from dataclasses import replace
 
 import numpy as np
@@ -62,10 +61,9 @@ from core.accuracy.sweep import (
 )
 from core.scene import Scene
 from views.file_dialogs import ask_save
-from views.images import cost_files, plot_theme
-from views.images.cost_plot import draw_cost_plot, point_position, tidy_cost_plot
-from views.images.figure_image import Drawn, FigureImage, agg_figure, pixels
-from views.images.matplotlib_lock import MATPLOTLIB
+from views.images import cost_files, cost_plot_process, plot_theme
+from views.images.cost_plot import point_position
+from views.images.figure_image import Drawn, FigureImage
 from views.images.point_images import point_images_drawing
 from views.jobs import Job, JobRunner
 
@@ -79,28 +77,6 @@ REPLOT_MS = 1000
 the finished sweep is drawn in full.  (A full draw, matplotlib's constrained layout done three times
 to tidy the labels, takes a core about half a second on a small machine, and the points of cheap
 settings come in several a second.)"""
-
-
-TEXT_SHARES = (1.0, 0.85, 0.7, 0.6, 0.5)
-"""The shares of its text size the plot tries, largest first, until the curves get :data:`ROOM`."""
-ROOM = (0.5, 0.3)
-"""The least share of the figure's width and height the curves' axes keep (else the text shrinks)."""
-
-
-def _places(figure) -> tuple[list, list]:
-    """The places of ``figure``'s axes, and the entries of the legends they were laid out with.  While a
-    sweep runs the plot is drawn in the places of its last full layout, for speed, but only while the
-    legends are the same: a knob's curve added makes the legend under the curves taller, and drawn in
-    the old places it ran off the figure's bottom."""
-    return ([ax.get_position().frozen() for ax in figure.axes],
-            [_entries(ax.get_legend()) for ax in figure.axes])
-
-
-def _entries(legend) -> tuple:
-    """A legend's title and labels (nothing for no legend)."""
-    if legend is None:
-        return ()
-    return (legend.get_title().get_text(), *(text.get_text() for text in legend.get_texts()))
 
 
 class _CanvasBox(QWidget):
@@ -210,6 +186,11 @@ class CostPanel(QWidget):
         self._replot.setSingleShot(True)
         self._replot.setInterval(REPLOT_MS)
         self._replot.timeout.connect(lambda: self._draw_plot(quick=True))
+        # A new scene's empty plot and images are asked for a turn later: a lesson step sets its scene
+        # while this pane still shows and then shows its own tab, and the plot laid out meanwhile held
+        # the window for its first steps (a full layout takes a core a second or more, mostly in Python).
+        self._after_reset = QTimer(self, singleShot=True, interval=0)
+        self._after_reset.timeout.connect(self._draw_stale)
         self.selected: int | None = None
         self._swept_with: tuple | None = None
         self._sweep_lock = threading.Lock()  # one run at a time, even just after a cancel
@@ -311,11 +292,15 @@ class CostPanel(QWidget):
         if self.canvas is None:
             self._make_canvases()
         else:
-            if self._plot_stale:
-                self._draw_plot()
-            if self._images_stale:
-                self._draw_images()
+            self._draw_stale()
         super().showEvent(event)
+
+    def _draw_stale(self) -> None:
+        """Draw the plot and the images if they wait to be (a hidden pane's wait on)."""
+        if self._plot_stale:
+            self._draw_plot()
+        if self._images_stale:
+            self._draw_images()
 
     def changeEvent(self, event) -> None:  # noqa: N802 (Qt's name)
         """The plot and the images follow the window's theme (dark in high contrast) and text size."""
@@ -457,8 +442,8 @@ class CostPanel(QWidget):
         self._points, self._knees, self.selected = {}, {}, None
         self.progress.setValue(0)
         if drawn:
-            self._draw_plot()
-            self._draw_images()
+            self._plot_stale = self._images_stale = True  # shown again, the pane draws them at once
+            self._after_reset.start()
 
     def _on_event(self, event) -> None:
         if isinstance(event, Progress):
@@ -534,66 +519,9 @@ class CostPanel(QWidget):
         selected = self._points[self.selected].row if self.selected in self._points else None
 
         def draw() -> Drawn:
-            import matplotlib
-
-            with MATPLOTLIB:
-                figure = agg_figure(width, height, dpi)
-                style = {**plot_theme.plot_style(dark), **plot_theme.fitted_style(figure)}
-                with matplotlib.rc_context(style):
-                    lines = CostPanel._lay_out_plot(figure, rows, indices, dark, selected, layout)
-                full = _places(figure) if layout is None else None
-                return Drawn(figure, pixels(figure), {"lines": lines, "layout": full})
+            return cost_plot_process.drawn(width, height, dpi, rows, indices, dark, selected, layout)
 
         return draw
-
-    @staticmethod
-    def _lay_out_plot(figure, rows, indices, dark, selected, layout) -> dict:
-        """Draw ``rows`` on ``figure``, laid out and tidied (:func:`tidy_cost_plot`); its lines.  When
-        the text leaves the curves too little room (a small pane, large text), the text is drawn smaller,
-        down to :data:`LEAST_TEXT` of matplotlib's ``font.size`` of the caller."""
-        import matplotlib
-
-        size = matplotlib.rcParams["font.size"]
-        for share in TEXT_SHARES:  # the last is drawn however little room the curves get
-            with matplotlib.rc_context({"font.size": share * size}), warnings.catch_warnings():
-                # Text too large for the pane is what this loop measures and makes smaller.
-                warnings.filterwarnings("ignore", "constrained_layout not applied", UserWarning)
-                lines, kept = CostPanel._first_layout(figure, rows, indices, dark, selected, layout)
-            curves = figure.axes[0].bbox
-            if kept or (curves.height >= ROOM[1] * figure.bbox.height
-                        and curves.width >= ROOM[0] * figure.bbox.width):
-                break
-        with matplotlib.rc_context({"font.size": share * size}):
-            figure.set_layout_engine("none")  # the tick labels thinned stay where they were measured
-            tidy_cost_plot(figure)
-            figure.canvas.draw()
-        return lines
-
-    @staticmethod
-    def _first_layout(figure, rows, indices, dark, selected, layout) -> tuple[dict, bool]:
-        """Draw ``rows`` on ``figure`` and lay it out, the curves' legend under their axis label, or in
-        the places of ``layout`` (:func:`_places`) if they were made for the same axes and legends; its
-        lines, and whether those places were kept."""
-        figure.set_facecolor(plot_theme.background(dark))
-        figure.set_layout_engine("constrained")
-        lines = draw_cost_plot(figure, rows, indices)
-        kept = layout is not None and layout[1] == _places(figure)[1]
-        if kept:
-            figure.set_layout_engine("none")
-            for ax, box in zip(figure.axes, layout[0], strict=True):
-                ax.set_position(box)
-        ax = figure.axes[0]
-        if selected is not None:
-            at, x, y = point_position(figure, selected)
-            at.plot([x], [y], "x", color=plot_theme.foreground(dark), markersize=10, markeredgewidth=2)
-        if not rows:
-            ax.text(0.5, 0.5, "the curves fill in here,\npoint by point", transform=ax.transAxes,
-                    ha="center", va="center", color="gray")
-        figure.canvas.draw()
-        plot_theme.fit_axis_labels(figure)
-        tidy_cost_plot(figure)  # the legend under the axis label: laid out again to make room for it
-        figure.canvas.draw()
-        return lines, kept
 
     def _plot_drawn(self, drawn: Drawn) -> None:
         """A new picture of the plot is shown: its lines answer clicks; a full one's places are kept."""

@@ -5,7 +5,7 @@ from dataclasses import replace
 
 import numpy as np
 import pytest
-from PySide6.QtCore import QPoint, Qt
+from PySide6.QtCore import QPoint, Qt, QTimer
 
 from core.accuracy.sweep import KNOBS
 from core.presets_trace import mirror_and_glass
@@ -166,7 +166,7 @@ def test_knobs_the_scene_cannot_use_are_disabled(panel):
 def test_a_hidden_cost_pane_draws_its_plot_only_when_shown(qtbot, panel, monkeypatch):
     # A lesson step (a new scene) reset the plot of the hidden Cost tab and drew it in full on
     # the GUI thread, a quarter of a second for a pane nobody saw.
-    import views.panels.cost_panel as cost_panel
+    from views.images import cost_plot_process
 
     _pick(panel, "depth")
     with qtbot.waitSignal(panel.sweep_finished, timeout=TIMEOUT_MS):
@@ -174,13 +174,40 @@ def test_a_hidden_cost_pane_draws_its_plot_only_when_shown(qtbot, panel, monkeyp
     _drawn(qtbot, panel)
     assert _plotted_points(panel) > 0
     drawn = []
-    original = cost_panel.draw_cost_plot
-    monkeypatch.setattr(cost_panel, "draw_cost_plot", lambda *a, **k: (drawn.append(1), original(*a, **k))[1])
+    original = cost_plot_process.drawn
+    monkeypatch.setattr(cost_plot_process, "drawn", lambda *a, **k: (drawn.append(1), original(*a, **k))[1])
     panel.hide()
     scene = mirror_and_glass()
     panel.set_scene(replace(scene, camera=scene.camera.replace(width=160, height=120)))
     assert drawn == []  # hidden: not drawn
     panel.show()
     qtbot.waitUntil(lambda: drawn == [1], timeout=5000)  # shown: drawn once, the new scene's empty plot
+    _drawn(qtbot, panel)
+    assert _plotted_points(panel) == 0
+
+
+def test_a_new_scene_then_another_tab_in_the_same_turn_draws_no_plot_until_the_pane_is_back(
+        qtbot, panel, monkeypatch):
+    # A lesson step sets its scene while the Cost tab still shows, then shows its own tab. The Cost
+    # plot was laid out for the new scene in that moment: 1.5 s of matplotlib on a worker thread, which
+    # held Python's lock and the window with it for the step's first 100-120 ms stalls.
+    from views.images import cost_plot_process
+
+    _pick(panel, "depth")
+    with qtbot.waitSignal(panel.sweep_finished, timeout=TIMEOUT_MS):
+        panel.run()
+    _drawn(qtbot, panel)
+    drawn = []
+    original = cost_plot_process.drawn
+    monkeypatch.setattr(cost_plot_process, "drawn", lambda *a, **k: (drawn.append(1), original(*a, **k))[1])
+    scene = mirror_and_glass()
+    panel.set_scene(replace(scene, camera=scene.camera.replace(width=160, height=120)))
+    panel.hide()  # the same turn: a lesson step's own tab is shown
+    later = []
+    QTimer.singleShot(0, lambda: later.append(1))  # fires after what the panel deferred to a turn later
+    qtbot.waitUntil(lambda: later == [1])
+    assert drawn == [] and not panel.canvas.pending
+    panel.show()
+    qtbot.waitUntil(lambda: drawn == [1], timeout=5000)  # shown: the new scene's empty plot, once
     _drawn(qtbot, panel)
     assert _plotted_points(panel) == 0
