@@ -215,12 +215,8 @@ def _light_plan(scene: Scene, index: int) -> LightPlan:
             reason = reason or f"{blocker.name} may shadow {receiver.name}: shadow rays"
             shadowing.append(x)
         blockers.append(tuple(shadowing))
-    if reason and not every_pair:
-        return LightPlan(index, True, reason)
-    if reason:
-        return LightPlan(index, True, reason, tuple(blockers))
-    return LightPlan(index, False, "nothing can block it: no shadow rays",
-                     tuple(blockers) if every_pair else None)
+    found = tuple(blockers) if every_pair else None
+    return LightPlan(index, reason is not None, reason or "nothing can block it: no shadow rays", found)
 
 
 def _clear(blocker, receiver, light) -> bool:

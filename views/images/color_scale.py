@@ -7,11 +7,31 @@ value, right: the highest), with the values at its ends and their units.
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
+import numpy as np
 from PySide6.QtCore import QRectF
 from PySide6.QtGui import QPainter
 from PySide6.QtWidgets import QHBoxLayout, QLabel, QVBoxLayout, QWidget
 
-from views.images.image_view import DisplayImage
+from core.heat_map import HeatMap, heat_map
+from views.images.image_view import DisplayImage, display_image
+
+
+@dataclass(frozen=True)
+class HeatOver:
+    """A heat map laid over an image, ready to paint, with its colour scale's strip and its numbers."""
+
+    image: DisplayImage
+    colorbar: DisplayImage
+    heat: HeatMap
+
+
+def heat_over(counts: np.ndarray, what: str, rgb: np.ndarray, note: str) -> HeatOver:
+    """The heat map of ``counts`` (``what`` a pixel counts) laid over the linear ``rgb`` image, titled
+    ``note`` (made on a worker: the window only paints it)."""
+    heat = heat_map(counts, what)
+    return HeatOver(display_image(heat.over(rgb), note), display_image(heat.colorbar()), heat)
 
 
 class _Bar(QWidget):

@@ -33,14 +33,13 @@ from PySide6.QtWidgets import (
 )
 
 from core.accuracy.supersampling import AdaptiveImage
-from core.heat_map import HeatMap, heat_map
 from core.image_order.flat_layout import HEAT_BOUNDS_TESTS, HEAT_PRIM_TESTS
 from core.image_order.ray_tracing import TraceSettings
 from core.image_order.ray_tree import RayNode
 from core.pixel_verdict import trace_verdict
 from core.scene import Scene
-from views.images.color_scale import ColorScale
-from views.images.image_view import DisplayImage, ImageView, display_image
+from views.images.color_scale import ColorScale, heat_over
+from views.images.image_view import DisplayImage, ImageView
 from views.jobs import JobRunner, own_thread
 from views.panels.panel_layout import pictures_over_details
 from views.panels.raytree_view import KIND_COLORS, RayKindLegend, RayTreeWidget
@@ -59,15 +58,6 @@ HEAT_INDEX = {"prim": HEAT_PRIM_TESTS, "bounds": HEAT_BOUNDS_TESTS}
 SAMPLES_HEAT = ("samples", "Samples per pixel")
 ACCELS = [("bvh", "BVH"), ("grid+spheres", "Grid + spheres"), ("grid", "Grid of cuboids"),
           ("spheres", "Bounding spheres"), ("none", "None")]
-
-
-def _heat_over(counts: np.ndarray, what: str,
-               traced: DisplayImage) -> tuple[DisplayImage, DisplayImage, HeatMap]:
-    """The heat map of ``counts`` laid over the ``traced`` image, its colour scale, and the map
-    (made on a worker)."""
-    heat = heat_map(counts, what)
-    return (display_image(heat.over(traced.rgb), f"heat map: {what}"), display_image(heat.colorbar()),
-            heat)
 
 
 def _combo(items, tip):
@@ -365,11 +355,13 @@ class ImageOrderPanel(QWidget):
                 self.image.set_image(self._traced)
             return
         what, traced = self.heat.currentText().lower(), self._traced
-        self._heats.submit(lambda cancelled, progress: (kind, *_heat_over(counts, what, traced)))
+        self._heats.submit(lambda cancelled, progress: (kind, heat_over(counts, what, traced.rgb,
+                                                                          f"heat map: {what}")))
 
     def _paint_heat(self, shown: tuple) -> None:
-        kind, image, colorbar, heat = shown
-        self.image.set_image(image)
+        kind, over = shown
+        heat = over.heat
+        self.image.set_image(over.image)
         if kind == SAMPLES_HEAT[0]:
             a = self._adaptive
             units = (f"samples a pixel, 1 where its corners agree; {int(a.refined.sum()):,} pixels refined, "
@@ -379,7 +371,7 @@ class ImageOrderPanel(QWidget):
                      f"({self.accel.currentText()})")
             if self._adaptive is not None:
                 units += "; of the rays through the pixel centres, before adaptive supersampling"
-        self.heat_scale.set_scale(colorbar, "0", f"{heat.top:,}", units)
+        self.heat_scale.set_scale(over.colorbar, "0", f"{heat.top:,}", units)
         self.heat_scale.setVisible(True)
 
     def show_tree(self, x: int, y: int, root: RayNode, scene: Scene) -> None:

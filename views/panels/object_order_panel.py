@@ -16,8 +16,6 @@ even while the panel was hidden: a hidden panel now makes it once it is shown.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 import numpy as np
 from PySide6.QtCore import Qt, Signal
 from PySide6.QtGui import QColor, QFont
@@ -37,16 +35,15 @@ from PySide6.QtWidgets import (
     QWidget,
 )
 
-from core.heat_map import HeatMap, heat_map
 from core.object_order.depth_formats import BYTES_PER_PIXEL, DEPTH_FORMATS
 from core.object_order.pipeline import RasterResult, RasterSettings
 from core.pixel_verdict import dropped_fragments, raster_verdict
 from core.projection import project_point
 from core.scene import Scene
 from core.srgb import linear_to_srgb
-from views.images.color_scale import ColorScale
+from views.images.color_scale import ColorScale, heat_over
 from views.images.depth_view import DepthView
-from views.images.image_view import DisplayImage, ImageView, display_image
+from views.images.image_view import ImageView
 from views.images.step_picture import StepPicture, polygon_name, step_picture
 from views.jobs import JobRunner, own_thread
 from views.panels.panel_layout import pictures_over_details
@@ -101,24 +98,14 @@ def _text_box() -> QPlainTextEdit:
     return box
 
 
-@dataclass(frozen=True)
-class _Overdraw:
-    """The overdraw heat map of a step, laid over its image memory, and its colour scale."""
-
-    image: DisplayImage
-    colorbar: DisplayImage
-    heat: HeatMap
-
-
 def _step_shown(result: RasterResult, scene: Scene, k: int, overdraw: bool) -> tuple:
     """What the panel paints at step ``k`` (made on a worker): its picture, and the overdraw heat map
     when that is on (else ``None``)."""
     picture = step_picture(result, scene, k)
     if not overdraw:
         return picture, None
-    heat = heat_map(result.history.fragments_per_pixel(k), "fragments")
-    return picture, _Overdraw(display_image(heat.over(picture.image.rgb), "overdraw"),
-                              display_image(heat.colorbar()), heat)
+    return picture, heat_over(result.history.fragments_per_pixel(k), "fragments", picture.image.rgb,
+                              "overdraw")
 
 
 VERTEX_PROMPT = ("Click a pixel in either buffer: the corner of its visible polygon "

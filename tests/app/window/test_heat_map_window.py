@@ -55,12 +55,12 @@ def test_heat_map_over_the_traced_image_adds_up_to_the_counters(qtbot, window):
 def test_a_chosen_heat_map_is_laid_over_the_image_off_the_gui_thread(qtbot, window, monkeypatch):
     # Colouring the tests and laying them over the image held the GUI thread a quarter of a second
     # at the lesson step that turns the heat map on.
-    from views.panels import image_order_panel
+    from views.images import color_scale
 
     panel = window.tab("image order").widget
     image, stats, heat = _heat_shown(qtbot, window, panel, "bvh")
-    on_gui_thread, real = [], image_order_panel.heat_map
-    monkeypatch.setattr(image_order_panel, "heat_map", lambda counts, what: on_gui_thread.append(
+    on_gui_thread, real = [], color_scale.heat_map
+    monkeypatch.setattr(color_scale, "heat_map", lambda counts, what: on_gui_thread.append(
         threading.current_thread() is threading.main_thread()) or real(counts, what))
     _choose(panel.heat, "prim")
     qtbot.waitUntil(lambda: panel.heat_scale.isVisible() and window.showing_full("image order"))
