@@ -16,7 +16,8 @@ says how long, in its status line, while it runs.
 matplotlib loads, and the figures are made, when the panel is first shown
 (or first asked for a point), so the main window opens without it.  The plot
 and the point's images (:mod:`views.images.point_images`) are laid out and
-drawn off the GUI thread (:mod:`views.images.figure_image`), never while the
+drawn off the GUI thread (:mod:`views.images.figure_image`), the plot in a
+process of its own (:mod:`views.images.cost_plot_process`), never while the
 pane is hidden; the window only paints their pictures.
 """
 
