@@ -122,6 +122,17 @@ class RayTreeWidget(QTreeWidget):
         self._widen = QTimer(self, singleShot=True, interval=0)
         self._widen.timeout.connect(self.widen_to_columns)
         self.header().sectionResized.connect(lambda *_: self.widen_soon())
+        self._around_width = 0  # the splitter's width at the last resize
+
+    def resizeEvent(self, event) -> None:  # noqa: N802 (Qt's name)
+        """A narrower splitter (the lesson dock widened as its formulas came in) gave the tree its share
+        of less and cut the returned colours again: the tree takes back what its columns need.  A drag
+        of the splitter's handle leaves the splitter's width as it was, and the tree as dragged."""
+        super().resizeEvent(event)
+        around = self.parentWidget().width() if self.parentWidget() is not None else 0
+        if around < self._around_width:
+            self.widen_soon()
+        self._around_width = around
 
     def set_tree(self, root: RayNode) -> None:
         self.clear()

@@ -1,6 +1,8 @@
-"""The ray tree's columns, and the verdict over them, are seen whole while presenting at x2."""
+"""The ray tree's columns and the verdict over them are seen whole, presenting at x2 and in a narrower tab."""
 
 import pytest
+from PySide6.QtCore import Qt
+from PySide6.QtWidgets import QDockWidget
 from window_helpers import RENDER_TIMEOUT_MS
 
 from core.files.lesson_file import shipped_lessons
@@ -57,3 +59,26 @@ def test_a_ray_lessons_step_shows_its_verdict_and_ray_tree_whole_presenting_at_x
     colour = panel.tree.topLevelItem(0).text(4)  # the pixel's colour, linear r g b
     assert len(colour.split()) == 3 and all(float(v) >= 0 for v in colour.split())
     window.presentation.set_presenting(False)
+
+
+def test_the_ray_tree_takes_back_its_columns_width_when_the_tab_narrows(qtbot, window):
+    # At 1280 x 720, in the lesson on crossing a sphere: the tree's columns fitted in the image-order
+    # tab's splitter, then the lesson dock widened for the step's formulas, the tab narrowed, the
+    # splitter gave the tree its share of less, and the returned colours were cut again behind a
+    # sideways scroll bar.
+    lessons = [lesson.id for lesson in shipped_lessons()]
+    window.lesson_panel.select(lessons.index("ray_sphere"), 1)
+    panel = window.tab("image order").widget
+    qtbot.waitUntil(lambda: panel.tree.topLevelItemCount() == 1, timeout=RENDER_TIMEOUT_MS)
+    qtbot.waitUntil(lambda: _columns_whole(panel.tree), timeout=5000)
+    splitter = panel.tree.parentWidget()
+    tree, total = splitter.sizes()[0], sum(splitter.sizes())
+    narrower = round(total * (panel.tree.header().length() - 60) / tree)  # the tree's share: 60 px short
+    dock = next(d for d in window.findChildren(QDockWidget) if d.isAncestorOf(window.lesson_panel))
+    window.resizeDocks([dock], [dock.width() + total - narrower], Qt.Orientation.Horizontal)
+    qtbot.waitUntil(lambda: sum(splitter.sizes()) <= narrower + 5, timeout=5000)  # the tab narrowed ...
+    qtbot.waitUntil(lambda: _columns_whole(panel.tree), timeout=5000)  # ... the columns are whole again
+    handle = splitter.sizes()
+    splitter.setSizes([handle[0] - 40, handle[1] + 40])  # a drag of the handle stays as dragged
+    qtbot.waitUntil(lambda: splitter.sizes()[0] == handle[0] - 40)
+    assert not panel.tree._widen.isActive()
