@@ -14,7 +14,8 @@ picture back (about a millisecond) and the widget paints it like any other
 image.  The Qt window stays a plain raster surface (a repaint costs about a
 millisecond), and a paint makes VTK draw only after a change of size, once
 however often the size changed since (a new text size or full screen resizes
-the pane four or five times in one turn of the event loop, each draw 8-30 ms).
+the pane four or five times in one turn of the event loop, each draw 8-30 ms),
+and in the turn after that paint.
 
 The plotter is both the Qt widget (mouse and keys go to VTK's trackball
 interactor, through VTK's own ``QVTKRenderWindowInteractor``) and a pyvista
@@ -31,7 +32,7 @@ import vtkmodules.vtkInteractionWidgets  # noqa: F401  (these three: see below)
 import vtkmodules.vtkRenderingOpenGL2  # noqa: F401  (the OpenGL render window of this platform)
 import vtkmodules.vtkViewsContext2D  # noqa: F401
 import vtkmodules.vtkViewsCore  # noqa: F401
-from PySide6.QtCore import Qt
+from PySide6.QtCore import Qt, QTimer
 from PySide6.QtGui import QColor, QImage, QLinearGradient, QPainter
 from PySide6.QtWidgets import QWidget
 from pyvista.plotting.plotter import BasePlotter
@@ -79,7 +80,12 @@ class ImagePlotter(QVTKRenderWindowInteractor, BasePlotter):
         # VTK's widget would have VTK paint on screen; this one paints the picture itself.
         self.setAttribute(Qt.WidgetAttribute.WA_PaintOnScreen, False)
         self.picture: QImage | None = None
-        self._resized = False  # drawn at the next paint, at the size the pane has then
+        self._resized = False  # drawn the turn after the next paint, at the size the pane has then
+        # The draw after a new size waits for the turn after the paint that asked for it: a new text
+        # size or full screen relays and repaints the whole window in one turn, and VTK's draw (6-12
+        # ms) made that turn longer still.  Meanwhile the last picture is painted, stretched.
+        self._draw_resized = QTimer(self, singleShot=True, interval=0)
+        self._draw_resized.timeout.connect(lambda: self._resized and self.render())
         self._pixels = vtkUnsignedCharArray()
         self._gradient = None  # (top, bottom) RGB in 0..1, painted under the picture
         self.ren_win = window
@@ -166,7 +172,7 @@ class ImagePlotter(QVTKRenderWindowInteractor, BasePlotter):
 
     def paintEvent(self, event) -> None:
         if self._resized:
-            self.render()
+            self._draw_resized.start()
         if self.picture is None:
             return
         painter = QPainter(self)
