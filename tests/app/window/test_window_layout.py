@@ -196,3 +196,33 @@ def test_the_dock_titles_and_tool_icons_follow_the_text_scale_and_close_their_do
     assert not window.lesson_dock.isVisible()
     window.lesson_dock.toggleViewAction().trigger()  # View → Lessons
     assert window.lesson_dock.isVisible()
+
+
+def test_a_new_text_size_is_painted_once_laid_out_with_the_room_shared_again(qtbot, normal_text):
+    # Laid out, shared out (the window's refit, a turn later) and painted in one turn, a new text
+    # size held the window 51-61 ms; and its first paint showed the large text in the left column's
+    # old width, which the refit then changed.
+    from PySide6.QtCore import QEvent, QObject, QTimer
+
+    window = open_window(qtbot)
+    text = window.lesson_panel.text
+    painted = []
+
+    class Paints(QObject):
+        def eventFilter(self, watched, event):
+            if event.type() == QEvent.Type.Paint:
+                painted.append((text.font().pointSizeF(), window.lesson_dock.width()))
+            return False
+
+    paints = Paints()
+    text.installEventFilter(paints)
+    normal = text.font().pointSizeF()
+    for scale in (1.5, 1.0):
+        painted.clear()
+        window.presentation.set_scale(scale)
+        turns = []  # two turns of the event loop after the window's refit (asked for in this one)
+        QTimer.singleShot(0, lambda: (turns.append(1), QTimer.singleShot(0, lambda: turns.append(2))))  # noqa: B023
+        qtbot.waitUntil(lambda: turns == [1, 2] and window.presentation.settled() and bool(painted))  # noqa: B023
+        final = (pytest.approx(normal * scale), window.lesson_dock.width())
+        assert painted == [final] * len(painted)
+    text.removeEventFilter(paints)
