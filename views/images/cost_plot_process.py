@@ -61,13 +61,31 @@ def lay_out_plot(figure, rows, indices, dark, selected, layout) -> dict:
             lines, kept = _first_layout(figure, rows, indices, dark, selected, layout)
         curves = figure.axes[0].bbox
         if kept or (curves.height >= ROOM[1] * figure.bbox.height
-                    and curves.width >= ROOM[0] * figure.bbox.width):
+                    and curves.width >= ROOM[0] * figure.bbox.width and _legends_inside(figure)):
             break
     with matplotlib.rc_context({"font.size": share * size}):
         figure.set_layout_engine("none")  # the tick labels thinned stay where they were measured
         tidy_cost_plot(figure)
+        if not _legends_inside(figure):  # no room around the panels: the legends go inside them
+            for ax in figure.axes:
+                legend = ax.get_legend()
+                if legend is not None and not _legends_inside_box(legend, figure):
+                    ax.legend(fontsize="small", loc="best", title=legend.get_title().get_text() or None,
+                              title_fontsize="small")
         figure.canvas.draw()
     return lines
+
+
+def _legends_inside(figure) -> bool:
+    """Whether every legend of ``figure`` lies inside it: presenting at x2 in a narrow pane, the
+    z-buffer formats' legend under its axis label was laid out below the figure's bottom, unseen."""
+    return all(_legends_inside_box(ax.get_legend(), figure) for ax in figure.axes if ax.get_legend())
+
+
+def _legends_inside_box(legend, figure) -> bool:
+    """Whether ``legend`` lies inside ``figure``."""
+    box, edge = legend.get_window_extent(figure.canvas.get_renderer()), figure.bbox
+    return edge.x0 - 1 <= box.x0 and box.x1 <= edge.x1 + 1 and edge.y0 - 1 <= box.y0 and box.y1 <= edge.y1 + 1
 
 
 def _first_layout(figure, rows, indices, dark, selected, layout) -> tuple[dict, bool]:

@@ -140,3 +140,22 @@ def test_while_a_sweep_runs_a_new_knobs_curve_never_pushes_the_legend_off_the_pl
     assert len(legend.get_texts()) == len({r.knob for r in rows})  # every knob's curve is named
     box, edge = legend.get_window_extent(renderer), quick.bbox
     assert edge.y0 - 1 <= box.y0 and box.y1 <= edge.y1 + 1  # and the names show whole
+
+
+@pytest.mark.parametrize("size", [(530, 630), (755, 512)])  # x2 on 1920 x 1080; x2 at 1280 x 720
+def test_every_legend_of_the_all_knobs_plot_stays_inside_the_figure_presenting_at_x2(size):
+    # In the Cost pane presenting at x2 on a 1920 x 1080 screen (530 x 630 pixels at 200 dpi), the
+    # z-buffer formats' legend, laid out under its axis label, fell below the figure's bottom: unseen.
+    import matplotlib
+
+    figure = agg_figure(*size, 200.0)
+    rows = _all_knob_rows()
+    with matplotlib.rc_context(plot_theme.fitted_style(figure)):
+        cost_plot_process.lay_out_plot(figure, rows, list(range(len(rows))), False, None, None)
+    renderer, edge = figure.canvas.get_renderer(), figure.bbox
+    legends = [ax.get_legend() for ax in figure.axes]
+    assert len(legends) == 2 and all(legend is not None and legend.get_visible() for legend in legends)
+    for legend in legends:
+        box = legend.get_window_extent(renderer)
+        assert edge.x0 - 1 <= box.x0 and box.x1 <= edge.x1 + 1
+        assert edge.y0 - 1 <= box.y0 and box.y1 <= edge.y1 + 1
