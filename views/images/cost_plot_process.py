@@ -49,8 +49,9 @@ def _entries(legend) -> tuple:
 
 def lay_out_plot(figure, rows, indices, dark, selected, layout) -> dict:
     """Draw ``rows`` on ``figure``, laid out and tidied (:func:`tidy_cost_plot`); its lines.  When
-    the text leaves the curves too little room (a small pane, large text), the text is drawn smaller,
-    down to :data:`LEAST_TEXT` of matplotlib's ``font.size`` of the caller."""
+    the text leaves the curves too little room or a legend outside the figure (a small pane, large
+    text), the text is drawn smaller, down to the last of :data:`TEXT_SHARES` of matplotlib's
+    ``font.size`` of the caller; a legend still outside then goes inside its panel."""
     import matplotlib
 
     size = matplotlib.rcParams["font.size"]
