@@ -11,8 +11,7 @@ of its own it takes the other core, as the formulas' typesetting does
 The figure comes back pickled with its pixels and its lines (a click on the plot finds its point among
 them); unpickling it takes the window's drawing thread a few tens of milliseconds.
 
-The process makes no window: it loads Qt's modules only as the theme's colours and the figures'
-helpers come with them (:mod:`views.images.plot_theme`, :mod:`views.images.figure_image`).
+The process loads no Qt: matplotlib, numpy and the theme's colours and sizes only.
 """
 
 from __future__ import annotations
@@ -21,8 +20,8 @@ import warnings
 
 from core import helper_process
 from views.images import plot_theme
+from views.images.agg_figure import Drawn, agg_figure, pixels
 from views.images.cost_plot import draw_cost_plot, point_position, tidy_cost_plot
-from views.images.figure_image import Drawn, agg_figure, pixels
 from views.images.matplotlib_lock import MATPLOTLIB
 
 TEXT_SHARES = (1.0, 0.85, 0.7, 0.6, 0.5)

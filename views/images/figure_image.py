@@ -10,35 +10,19 @@ an older one: a request made while another is drawn waits, replacing any
 waiting before it, and the picture of a superseded request is not shown.
 
 A drawing function holds :data:`views.images.matplotlib_lock.MATPLOTLIB`
-while it uses matplotlib.
+while it uses matplotlib, and returns a :class:`views.images.agg_figure.Drawn`.
 """
 
 from __future__ import annotations
 
 import contextlib
 from collections.abc import Callable
-from dataclasses import dataclass
 
-import numpy as np
 from PySide6.QtCore import QObject, QPointF, QRectF, QRunnable, QThreadPool, Signal
 from PySide6.QtGui import QImage, QPainter
 from PySide6.QtWidgets import QWidget
 
-
-@dataclass
-class Drawn:
-    """A figure drawn off the GUI thread.
-
-    Attributes
-    ----------
-    figure : the matplotlib figure (on an Agg canvas); read it, do not draw it again.
-    rgba : its pixels, (height, width, 4) uint8, row 0 at the top.
-    extra : whatever the drawing function returned besides (e.g. its lines, for picking).
-    """
-
-    figure: object
-    rgba: np.ndarray
-    extra: object = None
+from views.images.agg_figure import Drawn
 
 
 class _Signals(QObject):
@@ -57,22 +41,6 @@ class _Draw(QRunnable):
             result = f"{type(exc).__name__}: {exc}"
         with contextlib.suppress(RuntimeError):  # the widget was deleted meanwhile
             self.signals.drawn.emit(self.request, result)
-
-
-def agg_figure(width_px: float, height_px: float, dpi: float):
-    """A new figure of ``width_px`` x ``height_px`` pixels at ``dpi``, on an Agg canvas, laid out by
-    constrained layout."""
-    from matplotlib.backends.backend_agg import FigureCanvasAgg
-    from matplotlib.figure import Figure
-
-    figure = Figure(figsize=(max(width_px, 1) / dpi, max(height_px, 1) / dpi), dpi=dpi, layout="constrained")
-    FigureCanvasAgg(figure)
-    return figure
-
-
-def pixels(figure) -> np.ndarray:
-    """The figure's last drawn pixels, a copy, (height, width, 4) uint8."""
-    return np.array(figure.canvas.buffer_rgba(), copy=True)
 
 
 class FigureImage(QWidget):

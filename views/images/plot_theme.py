@@ -13,10 +13,10 @@ Its figures follow the window's text size too (presentation mode's ×1.5,
 
 from __future__ import annotations
 
-from PySide6.QtGui import QPalette
-from PySide6.QtWidgets import QWidget
+from typing import TYPE_CHECKING
 
-from views.text.text_scale import text_scale
+if TYPE_CHECKING:  # Qt loads with the widgets that ask; the Cost plot's own process loads none
+    from PySide6.QtWidgets import QWidget
 
 DPI = 100.0
 """matplotlib's own figure resolution, dots per inch: a figure's size at text scale 1."""
@@ -32,11 +32,15 @@ DARK_CYCLE = ["#4fc3ff", "#ffb000", "#5cff7a", "#ff6b6b", "#d29bff", "#ffd400", 
 
 def is_dark(widget: QWidget) -> bool:
     """Whether ``widget`` is drawn on a dark background now."""
+    from PySide6.QtGui import QPalette
+
     return widget.palette().color(QPalette.ColorRole.Window).lightness() < 128
 
 
 def figure_dpi(widget: QWidget) -> float:
     """The resolution a figure in ``widget`` is made at, so that its text follows the widget's."""
+    from views.text.text_scale import text_scale
+
     return DPI * text_scale(widget)
 
 

@@ -19,8 +19,8 @@ from collections.abc import Callable
 
 from core.srgb import to_srgb8
 from views.images import plot_theme
+from views.images.agg_figure import Drawn, agg_figure, pixels
 from views.images.cost_plot import boxes_overlap
-from views.images.figure_image import Drawn, agg_figure, pixels
 from views.images.matplotlib_lock import MATPLOTLIB
 
 

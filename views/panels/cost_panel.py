@@ -63,8 +63,9 @@ from core.accuracy.sweep import (
 from core.scene import Scene
 from views.file_dialogs import ask_save
 from views.images import cost_files, cost_plot_process, plot_theme
+from views.images.agg_figure import Drawn
 from views.images.cost_plot import point_position
-from views.images.figure_image import Drawn, FigureImage
+from views.images.figure_image import FigureImage
 from views.images.point_images import point_images_drawing
 from views.jobs import Job, JobRunner
 

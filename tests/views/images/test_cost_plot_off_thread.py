@@ -11,8 +11,8 @@ import pytest
 
 from core.accuracy.sweep import KNOB_NAMES, KNOBS, Row
 from views.images import cost_plot_process, plot_theme
+from views.images.agg_figure import agg_figure
 from views.images.cost_plot import shown_tick_labels
-from views.images.figure_image import agg_figure
 from views.panels.cost_panel import CostPanel
 
 TIMEOUT_MS = 240_000
