@@ -237,7 +237,7 @@ class HardCasesPanel(QWidget):
         self.table_cells: list[list[QLabel]] = []
         self._values: list[list[tuple[str, str]]] = []  # each row's three values, as rich and plain text
         self._methods: tuple[str, str, str] = ("", "", "")  # the methods' descriptions, in METHODS' order
-        self._stacked: bool | None = None
+        self._arrangement: tuple | None = None  # (stacked, text size) the table was laid out for
 
         self.naive_image = ImageView(placeholder="")
         self.robust_image = ImageView(placeholder="")
@@ -440,7 +440,7 @@ class HardCasesPanel(QWidget):
             cells[0].setWordWrap(True)
             self.table_cells.append(cells)
             self._values.append(values)
-        self._stacked = None
+        self._arrangement = None
         self._arrange_table()
 
     def _side_by_side_width(self) -> int:
@@ -467,9 +467,10 @@ class HardCasesPanel(QWidget):
         if not self.table_cells:
             return
         stacked = self._side_by_side_width() > self._table_area.viewport().width()
-        if stacked == self._stacked:
+        arrangement = (stacked, self.font().pointSizeF())  # the indent under a row follows the text size
+        if arrangement == self._arrangement:
             return
-        self._stacked = stacked
+        self._arrangement = arrangement
         while self.table.count():
             self.table.takeAt(0)  # the same labels, placed again below
         for col in range(self.table.columnCount()):
