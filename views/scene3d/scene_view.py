@@ -278,8 +278,12 @@ class SceneView(QWidget):
 
     def _frame_if_due(self, *_) -> None:
         """Frame the scene for the pane's size and text size now, if they changed since (VTK's
-        ``StartEvent``: before every draw, the picture's for a file too)."""
-        if self._frame_due and self._scene is not None:
+        ``StartEvent``: before every draw, the picture's for a file too), unless the view was moved
+        meanwhile (by the user, or set by a program): that one stays."""
+        if not self._frame_due:
+            return
+        self._frame_due = False
+        if self._scene is not None and self.plotter.camera_position == self._framed_at:
             self._frame(self._scene)
 
     def set_camera(self, camera: Camera) -> None:
@@ -452,7 +456,9 @@ class SceneView(QWidget):
 
     # ----------------------------------------------------- mouse helpers
     def widget_pos(self, point) -> QPointF:
-        """Where the world point ``point`` appears in the pane (widget coordinates)."""
+        """Where the world point ``point`` appears in the pane (widget coordinates), framed for the
+        pane's size now (a framing due at the next draw is done first)."""
+        self._frame_if_due()
         renderer = self.plotter.renderer
         renderer.SetWorldPoint(*np.asarray(point, float), 1.0)
         renderer.WorldToDisplay()
@@ -464,6 +470,7 @@ class SceneView(QWidget):
     def ray_under(self, pos: QPointF) -> tuple[np.ndarray, np.ndarray]:
         """The overview camera's ray through widget position ``pos``: origin on the near
         plane and direction to the far plane (world space)."""
+        self._frame_if_due()  # the camera of the pane's size now
         renderer = self.plotter.renderer
         ratio = self.plotter.devicePixelRatioF()
         x, y = pos.x() * ratio, self.plotter.ren_win.GetSize()[1] - pos.y() * ratio
