@@ -121,11 +121,6 @@ class SceneView(QWidget):
         self._last_draw = -1.0
         self._changed = False  # something changed since the last frame was drawn
         self.plotter.ren_win.AddObserver("EndEvent", self._drawn)
-        # A new size or text size frames the scene at the next draw, once: a new text size resizes the
-        # pane four or five times in one turn of the event loop, and framed at each (7-10 ms in all)
-        # it held the window that much longer.  Framed first, the labels are then placed for it.
-        self._frame_due = False
-        self.plotter.renderer.AddObserver("StartEvent", self._frame_if_due, 1.0)
         self.plotter.renderer.AddObserver("StartEvent", self._place_labels)
         self._smooth_timer = QTimer(self)
         self._smooth_timer.setSingleShot(True)
@@ -273,18 +268,8 @@ class SceneView(QWidget):
         """Frame the scene again for the new shape, unless the user has moved the view."""
         super().resizeEvent(event)
         if self._scene is not None and self.plotter.camera_position == self._framed_at:
-            self._frame_due = True
-            self.request_render()
-
-    def _frame_if_due(self, *_) -> None:
-        """Frame the scene for the pane's size and text size now, if they changed since (VTK's
-        ``StartEvent``: before every draw, the picture's for a file too), unless the view was moved
-        meanwhile (by the user, or set by a program): that one stays."""
-        if not self._frame_due:
-            return
-        self._frame_due = False
-        if self._scene is not None and self.plotter.camera_position == self._framed_at:
             self._frame(self._scene)
+            self.request_render()
 
     def set_camera(self, camera: Camera) -> None:
         """Move the observer, its frustum, its screen and its target marker to ``camera``; an eye
@@ -412,7 +397,7 @@ class SceneView(QWidget):
             self._scale_actor(actor)
         self._add_axes()
         if self._scene is not None and self.plotter.camera_position == self._framed_at:
-            self._frame_due = True  # larger labels need more room
+            self._frame(self._scene)  # larger labels need more room
         self.request_render()
 
     def _add_axes(self) -> None:
@@ -456,9 +441,7 @@ class SceneView(QWidget):
 
     # ----------------------------------------------------- mouse helpers
     def widget_pos(self, point) -> QPointF:
-        """Where the world point ``point`` appears in the pane (widget coordinates), framed for the
-        pane's size now (a framing due at the next draw is done first)."""
-        self._frame_if_due()
+        """Where the world point ``point`` appears in the pane (widget coordinates)."""
         renderer = self.plotter.renderer
         renderer.SetWorldPoint(*np.asarray(point, float), 1.0)
         renderer.WorldToDisplay()
@@ -470,7 +453,6 @@ class SceneView(QWidget):
     def ray_under(self, pos: QPointF) -> tuple[np.ndarray, np.ndarray]:
         """The overview camera's ray through widget position ``pos``: origin on the near
         plane and direction to the far plane (world space)."""
-        self._frame_if_due()  # the camera of the pane's size now
         renderer = self.plotter.renderer
         ratio = self.plotter.devicePixelRatioF()
         x, y = pos.x() * ratio, self.plotter.ren_win.GetSize()[1] - pos.y() * ratio
@@ -518,7 +500,6 @@ class SceneView(QWidget):
         objects, and the frustum with its labels when that overlay is shown;
         the rest of the frustum may leave the view.
         """
-        self._frame_due = False
         view = self._view or {}
         framed = [name for name in FRAMED_OVERLAYS if name in self.overlay_names()]
         subject = [poly for poly, _, _ in self._overlays.get(HIGHLIGHT_OVERLAY, [])]

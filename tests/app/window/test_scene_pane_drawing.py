@@ -96,23 +96,3 @@ def test_the_same_scene_loaded_again_keeps_its_drawing_and_a_changed_object_show
     assert len(after) == len(before)
     assert sum(np.allclose(colour, green, atol=0.5 / 255) for _, colour in after) == 1
     assert sum(any(a is b for b, _ in before) for a, _ in after) == len(before) - 1
-
-
-def test_a_new_text_size_frames_the_overview_once_per_draw_for_the_size_drawn(qtbot, window, monkeypatch):
-    # A new text size resizes the pane four or five times in one turn of the event loop, and the
-    # overview was framed at each (7-10 ms in all); it is framed before a draw, for the size drawn.
-    from views.scene3d.scene_view import SceneView
-
-    view = window.scene_view.view
-    qtbot.waitUntil(view.plotter.renderer.GetUseFXAA)  # at rest
-    framed, drawn, original = [], [], SceneView._frame
-    size = lambda: (view.plotter.width(), view.plotter.height())  # noqa: E731
-    monkeypatch.setattr(SceneView, "_frame", lambda self, scene: (framed.append(size()),
-                                                                  original(self, scene))[1])
-    view.plotter.ren_win.AddObserver("EndEvent", lambda *_: drawn.append(size()))
-    window.presentation.set_scale(1.5)
-    qtbot.waitUntil(lambda: view.plotter.renderer.GetUseFXAA() and not view._frame_due, timeout=10_000)
-    assert framed and len(framed) <= len(drawn)
-    assert all(each in drawn for each in framed) and framed[-1] == size()
-    assert view.plotter.camera_position == view._framed_at  # the overview, as framed for that size
-    window.presentation.set_scale(1.0)
