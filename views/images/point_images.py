@@ -38,15 +38,18 @@ def _panels(point, reference) -> list:
 
 def draw_point_images(figure, point, reference) -> None:
     """Draw ``point``'s image, ``reference``'s and the FLIP error map (and the samples per pixel) on
-    ``figure``, two to a row, inside the caller's ``matplotlib.rc_context``, and draw it.  The error map's
-    scale is FLIP's own, 0 to 1.  Alone on its row (no samples), the error map takes the whole row:
-    in half of it, beside an empty cell, it was drawn a third as large as the images above, under its
-    title broken into four lines (presenting at x2)."""
+    ``figure``, two to a row or all in one (:func:`_columns`), inside the caller's
+    ``matplotlib.rc_context``, and draw it.  The error map's scale is FLIP's own, 0 to 1.  Alone on its
+    row (no samples), the error map takes the whole row: in half of it, beside an empty cell, it was
+    drawn a third as large as the images above, under its title broken into four lines (presenting
+    at x2)."""
     panels = _panels(point, reference)
-    cells = figure.add_gridspec(2, 2)  # one grid, so that the layout makes room for every title
+    columns = _columns(figure, len(panels), panels[0][0].shape)
+    rows = -(-len(panels) // columns)
+    cells = figure.add_gridspec(rows, columns)  # one grid, so that the layout makes room for every title
     for k, (image, title, cmap) in enumerate(panels):
-        alone = k == len(panels) - 1 and k % 2 == 0
-        ax = figure.add_subplot(cells[k // 2, :] if alone else cells[k // 2, k % 2])
+        alone = k == len(panels) - 1 and k % columns == 0 and columns > 1
+        ax = figure.add_subplot(cells[k // columns, :] if alone else cells[k // columns, k % columns])
         limits = {"vmin": 0.0, "vmax": 1.0} if cmap == "magma" else {}
         shown = ax.imshow(image, cmap=cmap, interpolation="nearest", **limits)
         if cmap:  # the scale's two ends only: a bar beside a small image had room for no more
@@ -56,6 +59,20 @@ def draw_point_images(figure, point, reference) -> None:
         ax.set_xticks([])
         ax.set_yticks([])
     _fit_titles(figure)
+
+
+def _columns(figure, count: int, shape: tuple) -> int:
+    """Two images to a row, or all ``count`` in one where that draws them larger: a pane much wider than
+    tall (the chosen point's own page, presenting at x2) held two rows of small images beside an empty
+    half.  Each image (``shape``, rows by columns) is fitted into its cell under a two-line title."""
+    title = 2 * 1.4 * 9 / 72 * figure.dpi  # two lines of the 9-point titles, in pixels
+    width, height = figure.bbox.width, figure.bbox.height
+
+    def scale(columns: int) -> float:
+        rows = -(-count // columns)
+        return min(width / columns / shape[1], (height / rows - title) / shape[0])
+
+    return count if scale(count) > scale(2) else 2
 
 
 def _fit_titles(figure) -> None:

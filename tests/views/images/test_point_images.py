@@ -64,3 +64,18 @@ def test_the_error_map_alone_on_its_row_is_drawn_as_large_as_the_images_above_un
     assert len(error.get_title().splitlines()) <= 2  # "FLIP against reference" / "mean 0.0082"
     title = error.title.get_window_extent(renderer)
     assert not any(title.overlaps(box) for box in shown[:2])  # clear of the images above
+
+
+@pytest.mark.parametrize("samples", [False, True])
+def test_a_wide_figure_draws_the_images_in_one_row_larger_than_two_rows_would(samples):
+    # The chosen point's own page presenting at x2 on 1920 x 1080: about 1250 x 560 pixels at 200 dpi.
+    point, reference = _point(samples)
+    figure = point_images_drawing(point, reference, 1250, 560, 200.0, dark=True)().figure
+    renderer = figure.canvas.get_renderer()
+    shown = [ax.get_window_extent(renderer) for ax in figure.axes if ax.get_title()]
+    assert len({round(box.y0) for box in shown}) == 1  # one row
+    # Two rows of 560 pixels leave an image less than 280 - 2 title lines (~100 px) tall, whatever its width.
+    assert min(box.height for box in shown) > 180
+    titles = [ax.title.get_window_extent(renderer) for ax in figure.axes if ax.get_title()]
+    for a, b in itertools.combinations(titles, 2):
+        assert not a.overlaps(b)
