@@ -40,7 +40,6 @@ from PySide6.QtWidgets import (
     QScrollArea,
     QSizePolicy,
     QSpinBox,
-    QSplitter,
     QVBoxLayout,
     QWidget,
 )
@@ -68,6 +67,7 @@ from views.images.cost_plot import point_position
 from views.images.figure_image import FigureImage
 from views.images.point_images import point_images_drawing
 from views.jobs import Job, JobRunner
+from views.panels.cost_sheet import CostSheet
 
 MODES = [("raytrace", "Ray tracing"), ("raycast", "Ray casting"), ("raster", "Rasterization")]
 #: The sweep's image is at most this wide (the scene's aspect kept), so a sweep takes minutes, not hours.
@@ -253,7 +253,6 @@ class CostPanel(QWidget):
         self._dark = False  # the figures were drawn in the dark theme
         self._dpi = plot_theme.DPI  # the figures' resolution, after the text size they were made for
         self._plot_box, self._image_box = _CanvasBox(), _CanvasBox()
-        self._plot_box.setMinimumSize(240, 200)
         self._image_box.setMinimumSize(200, 160)
 
         controls = QGridLayout()  # three to a row, so that a narrow window keeps every control in view
@@ -268,18 +267,14 @@ class CostPanel(QWidget):
         right_layout.addWidget(self._image_box, 1)
         self._words = _VerticalScrollArea(self.explanation)
         right_layout.addWidget(self._words)
-        split = QSplitter(Qt.Orientation.Horizontal)
-        split.addWidget(self._plot_box)
-        split.addWidget(right)
-        split.setStretchFactor(0, 3)
-        split.setStretchFactor(1, 2)
+        self.sheet = CostSheet(self._plot_box, right)  # side by side, or pages on a small pane
         layout = QVBoxLayout(self)
         layout.addLayout(controls)
         status_row = QHBoxLayout()
         status_row.addWidget(self.progress, 1)
         status_row.addWidget(self.status, 3)
         layout.addLayout(status_row)
-        layout.addWidget(split, 1)
+        layout.addWidget(self.sheet, 1)
 
         self.run_button.clicked.connect(self.run)
         self.cancel_button.clicked.connect(self.cancel)
@@ -541,6 +536,7 @@ class CostPanel(QWidget):
             hit, info = line.contains(event)
             if hit and len(info["ind"]):
                 self.show_point(indices[int(info["ind"][0])])
+                self.sheet.show_point_page()  # on a small pane the point has a page of its own
                 return
 
     def point_position(self, index: int) -> tuple[float, float]:
