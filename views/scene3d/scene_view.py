@@ -174,13 +174,24 @@ class SceneView(QWidget):
         self.plotter.render()
 
     def _draw_if_changed(self) -> None:
-        if self._changed:
+        if self._changed and not self._frozen(self._render_timer):
             self._draw()
+
+    def _frozen(self, timer: QTimer) -> bool:
+        """Whether the window paints nothing now (a new text size or presentation mode is being laid
+        out, to be painted once at its end); ``timer`` then tries again a frame later.  A draw then
+        was never seen, and it lengthened the turns of that change (``bench gui``)."""
+        if self.window().updatesEnabled():
+            return False
+        timer.start(FRAME_MS)
+        return True
 
     def _drawn(self, *_) -> None:
         self._changed = False
 
     def _smooth(self) -> None:
+        if self._frozen(self._smooth_timer):
+            return
         self.plotter.renderer.SetUseFXAA(True)
         self._frustum_faces.SetVisibility(True)
         self._draw()

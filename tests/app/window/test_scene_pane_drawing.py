@@ -96,3 +96,23 @@ def test_the_same_scene_loaded_again_keeps_its_drawing_and_a_changed_object_show
     assert len(after) == len(before)
     assert sum(np.allclose(colour, green, atol=0.5 / 255) for _, colour in after) == 1
     assert sum(any(a is b for b, _ in before) for a, _ in after) == len(before) - 1
+
+
+def test_while_the_window_paints_nothing_the_pane_draws_nothing_and_it_draws_once_the_window_paints(
+        qtbot, window):
+    # A new text size, or entering presentation mode, is laid out with the window's painting off and
+    # painted once at its end: a draw of the 3D pane meanwhile was never seen, and made those turns longer.
+    qtbot.waitUntil(window.scene_view.plotter.renderer.GetUseFXAA, timeout=RENDER_TIMEOUT_MS)  # at rest
+    view = window.scene_view.view
+    draws, tries = [], []
+    view.plotter.ren_win.AddObserver("EndEvent", lambda *_: draws.append(view.plotter.renderer.GetUseFXAA()))
+    view._render_timer.timeout.connect(lambda: tries.append(True))
+    window.setUpdatesEnabled(False)
+    cam = window.model.camera
+    window.model.set_camera(cam.orbit(cam.yaw_deg + 10, cam.pitch_deg))
+    qtbot.waitUntil(lambda: len(tries) >= 3 or bool(draws))  # the draw was due three times
+    assert draws == []
+    window.setUpdatesEnabled(True)
+    qtbot.waitUntil(lambda: bool(draws), timeout=RENDER_TIMEOUT_MS)
+    qtbot.waitUntil(lambda: any(draws), timeout=RENDER_TIMEOUT_MS)  # and drawn smooth once at rest
+    assert view.plotter.picture is not None
