@@ -41,13 +41,45 @@ def sphere_roots(ox, oy, oz, dx, dy, dz, cx, cy, cz, r):
 
 @jit
 def sphere_hit(ox, oy, oz, dx, dy, dz, cx, cy, cz, r, t_min, t_max):
-    """The first crossing with ``t_min <= t < t_max`` of a ray with a sphere, ``inf`` if none."""
+    """The first crossing with ``t_min <= t < t_max`` of a ray with a sphere, ``inf`` if none.
+
+    A ray that starts outside the sphere and moves away from its centre has both crossings
+    behind it: those rays are answered before the roots (:func:`_behind`).
+    """
+    if _behind(ox, oy, oz, dx, dy, dz, cx, cy, cz, r, t_min):
+        return math.inf
     t0, t1 = sphere_roots(ox, oy, oz, dx, dy, dz, cx, cy, cz, r)
     if t_min <= t0 < t_max:
         return t0
     if t_min <= t1 < t_max:
         return t1
     return math.inf
+
+
+#: Bounds within which :func:`_behind` decides: no quotient of the roots' formula can then
+#: round to zero (its numbers lie between ``2^-400`` and ``2^401``).
+_SMALLEST, _LARGEST = 2.0**-400, 2.0**400
+
+
+@jit_inline
+def _behind(ox, oy, oz, dx, dy, dz, cx, cy, cz, r, t_min):
+    """Whether :func:`sphere_roots` would find no crossing at or after ``t_min >= 0``: the ray starts
+    outside the sphere (``c = |f|^2 - r^2 > 0``, ``f = o - centre``) and moves away from its centre
+    (``half_b = f . d > 0``), both as the roots' formula rounds them.
+
+    Such are a mirror's reflected ray and a glass ball's ray out, tested against their own
+    sphere, and every ray whose sphere lies behind it; they cost no square root or division.
+    The answer is that of the roots, exactly: the formula's ``q = -(half_b + sqrt(...))`` is
+    then negative, so both roots ``q / a`` and ``c / q`` (or the tangent's ``-half_b / a``) are
+    negative, and within the bounds none of them rounds to ``-0.0``, which ``t_min = 0`` would
+    let through.
+    """
+    fx, fy, fz = ox - cx, oy - cy, oz - cz
+    half_b = fx * dx + fy * dy + fz * dz
+    f2 = fx * fx + fy * fy + fz * fz
+    r2 = r * r
+    return (t_min >= 0.0 and half_b > _SMALLEST and f2 - r2 > _SMALLEST and f2 < _LARGEST and r2 < _LARGEST
+            and dx * dx + dy * dy + dz * dz < _LARGEST)
 
 
 @jit_inline

@@ -65,6 +65,52 @@ def test_sphere_kernel_from_inside_finds_the_exit():
     assert sphere_hit(0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.5) == math.inf
 
 
+def test_a_ray_leaving_a_sphere_gets_the_answer_of_the_roots_without_them():
+    # A mirror's reflected ray and a glass ball's ray out start just outside their own ball, by
+    # the scaled offset, and move away from it; sphere_hit answers them before the roots
+    # (_behind).  Its answer is the roots' formula's own, bit for bit, for such rays (down to
+    # grazing ones) and for rays from anywhere, at scales from 1e-200 to 1e200 and from t_min 0
+    # or more; and the rays leaving a ball are the ones answered early.
+    from core.image_order.intersect_sphere import sphere_roots as formula
+    from core.image_order.kernels.intersect import _behind
+    from core.image_order.ray_offset import error_bound
+
+    # Outside, moving away, and yet a root rounds to -0.0, which t_min = 0 admits: a tiny ball
+    # and a huge direction, where sphere_hit must not answer early.
+    tiny = (-1.2555846465087333e-151, -3.0330689096012106e-151, 1.5348381102441408e-151,
+            -2.626556290259407e+153, -6.3448738764486705e+153, 3.2107263370901447e+153, 0.0, 0.0, 0.0,
+            2.659854650400948e-151)
+    assert formula(*tiny)[7] == 0.0 and math.copysign(1.0, formula(*tiny)[7]) == -1.0
+    assert math.copysign(1.0, sphere_hit(*tiny, 0.0, math.inf)) == -1.0
+    rng = np.random.default_rng(36)
+    early = leaving = 0
+    for case in range(6000):
+        scale = 10.0 ** rng.uniform(-200, 200) if case % 3 == 0 else 10.0 ** rng.uniform(-3, 4)
+        c = rng.normal(size=3) * scale * rng.uniform(0, 20)
+        r = scale * rng.uniform(0.1, 2.0)
+        n = rng.normal(size=3)
+        n /= np.linalg.norm(n)
+        if case % 2 == 0:  # from the ball's surface, out by the offset, away from the ball
+            leaving += 1
+            p = c + r * n
+            o = p + error_bound(float(np.max(np.abs(c)) + r)) * n
+            side = np.cross(n, rng.normal(size=3))
+            d = side / np.linalg.norm(side) + 10.0 ** rng.uniform(-18, 1) * n
+        else:
+            o = c + rng.normal(size=3) * r * rng.uniform(0, 3)
+            d = rng.normal(size=3)
+        d = d * 10.0 ** rng.uniform(-3, 3)
+        t_min = float(rng.choice([0.0, 1e-4 * scale, r]))
+        t_max = float(rng.choice([math.inf, 2.0 * r]))
+        ray = (*map(float, o), *map(float, d), *map(float, c), float(r))
+        t0, t1 = formula(*ray)[6:]
+        expected = t0 if t_min <= t0 < t_max else t1 if t_min <= t1 < t_max else math.inf
+        assert sphere_hit(*ray, t_min, t_max) == expected
+        assert math.copysign(1.0, sphere_hit(*ray, t_min, t_max)) == math.copysign(1.0, expected)
+        early += _behind(*ray, t_min)
+    assert early > 0.9 * leaving
+
+
 def test_triangle_kernel_matches_the_exact_barycentric_solution_on_random_rays():
     rng = np.random.default_rng(11)
     hits = misses = 0
