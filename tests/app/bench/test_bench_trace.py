@@ -110,6 +110,22 @@ def test_cpu_time_leaves_out_the_time_spent_waiting():
     assert cpu[0] < 0.05
 
 
+def test_runs_follow_each_other_back_to_back_or_after_the_pause_asked_for():
+    # The Whitted frames come back to back, as at 60 frames a second; the meshes' runs each after a
+    # pause that lets the other library's idle threads get out of the way.
+    import time
+
+    starts = []
+    for pause in (0.0, 0.2):
+        starts.clear()
+        _interleaved_runs({"a": lambda: starts.append(time.perf_counter()),
+                           "b": lambda: starts.append(time.perf_counter())}, 3, pause=pause)
+        timed = starts[2:]  # after the warm-ups
+        gaps = [later - earlier for earlier, later in zip(timed, timed[1:], strict=False)]
+        assert len(gaps) == 5
+        assert all(gap < 0.05 for gap in gaps) if pause == 0.0 else all(gap >= 0.2 for gap in gaps)
+
+
 def test_cpu_time_times_one_thread_and_says_so():
     done = _bench_without_embree("--cpu-time", "--triangles", "200")
     header = done.stdout.splitlines()[0]
