@@ -157,9 +157,10 @@ def run(args) -> int:
                         "preempted": _preempted() - preempted})
 
         frames[title] = whitted_frame
-    # Back to back, as frames at 60 a second come.  After the meshes' pause of 0.2 s, each frame began
-    # with numba's threads asleep: 14.2-14.5 and 23.7-24.3 ms, against 12.3-13.8 and 21.6-23.5 back to
-    # back (the lecture and mirror and glass, in one process after a mesh's rows, 4 interleaved runs).
+    # Back to back, as frames at 60 a second come.  After the meshes' pause of 0.2 s each frame began
+    # with numba's threads asleep (``python -m app`` lets waiting threads sleep at once): the lecture
+    # and mirror and glass took 22-26 and 37-47 ms, their threads losing their cores 12-24 times a
+    # frame, against 13.5-14.1 and 22.0-22.7 ms and 0-1 times back to back (interleaved runs).
     runs = _interleaved_runs(frames, args.repeats, args.clock, pause=0.0)
     for title, goal in (("lecture scene", 16), ("mirror and glass", 25)):  # issue 36's goals
         frame_s = statistics.median(runs[title])
