@@ -268,6 +268,7 @@ class CostPanel(QWidget):
         self._words = _VerticalScrollArea(self.explanation)
         right_layout.addWidget(self._words)
         self.sheet = CostSheet(self._plot_box, right)  # side by side, or pages on a small pane
+        self.sheet.shown.connect(self._draw_stale)
         layout = QVBoxLayout(self)
         layout.addLayout(controls)
         status_row = QHBoxLayout()
@@ -293,7 +294,7 @@ class CostPanel(QWidget):
         super().showEvent(event)
 
     def _draw_stale(self) -> None:
-        """Draw the plot and the images if they wait to be (a hidden pane's wait on)."""
+        """Draw the plot and the images if they wait to be (a hidden pane's or page's wait on)."""
         if self._plot_stale:
             self._draw_plot()
         if self._images_stale:
@@ -328,10 +329,12 @@ class CostPanel(QWidget):
         self.canvas.drawn.connect(self._plot_drawn)
         self.canvas.failed.connect(lambda message: self.status.setText(f"The plot failed: {message}"))
         self._plot_box.layout().addWidget(self.canvas)
+        self.canvas.show()  # now, not a turn later: whether it shows decides whether it is drawn
         self.image_canvas = FigureImage()
         self.image_canvas.resized.connect(self._draw_images)
         self.image_canvas.failed.connect(lambda message: self.status.setText(f"The images failed: {message}"))
         self._image_box.layout().addWidget(self.image_canvas)
+        self.image_canvas.show()
         self._draw_images()
         self._draw_plot()
 
@@ -495,15 +498,15 @@ class CostPanel(QWidget):
         """The rows received so far, in setting order, knees marked."""
         return marked_rows(self._points, self._knees)
 
-    def _draw_plot(self, quick: bool = False, hidden: bool = False) -> None:
+    def _draw_plot(self, quick: bool = False) -> None:
         """Ask for the points found so far to be drawn, off the GUI thread.  ``quick`` (while a sweep
-        runs): the axes keep the places of the last full draw, when there are as many.  A hidden pane
-        is drawn when it is shown, unless ``hidden``."""
+        runs): the axes keep the places of the last full draw, when there are as many.  A hidden plot
+        (a hidden pane, or the point's page shown) is drawn when it is shown."""
         if self.canvas is None:
             return  # drawn when the canvas is made
-        self._plot_stale = not (self.isVisible() or hidden)
+        self._plot_stale = not self.canvas.isVisible()
         if self._plot_stale:
-            return  # drawn when the pane is shown (a lesson step resets the plot of a hidden tab)
+            return  # drawn when shown (a lesson step resets the plot of a hidden tab)
         self._dark = plot_theme.is_dark(self)
         ratio = self.canvas.devicePixelRatioF()
         self.canvas.request(self._plot_drawing(self.canvas.width() * ratio, self.canvas.height() * ratio,
@@ -535,8 +538,8 @@ class CostPanel(QWidget):
         for line, indices in self._lines.items():
             hit, info = line.contains(event)
             if hit and len(info["ind"]):
-                self.show_point(indices[int(info["ind"][0])])
                 self.sheet.show_point_page()  # on a small pane the point has a page of its own
+                self.show_point(indices[int(info["ind"][0])])
                 return
 
     def point_position(self, index: int) -> tuple[float, float]:
@@ -565,7 +568,7 @@ class CostPanel(QWidget):
             self._images_stale = False
             self.image_canvas.clear()
             return
-        self._images_stale = not self.isVisible()
+        self._images_stale = not self.image_canvas.isVisible()
         if self._images_stale:
             return
         reference = self.sweep.references[point.row.mode]

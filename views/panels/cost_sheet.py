@@ -13,7 +13,7 @@ with the images beside it as thumbnails.  So the plot is never drawn smaller tha
 
 from __future__ import annotations
 
-from PySide6.QtCore import QEvent, Qt
+from PySide6.QtCore import QEvent, Qt, Signal
 from PySide6.QtWidgets import QFrame, QScrollArea, QSplitter, QStackedWidget, QTabWidget, QWidget
 
 from views.images import plot_theme
@@ -54,7 +54,14 @@ class _PlotArea(QScrollArea):
 
 
 class CostSheet(QStackedWidget):
-    """``plot`` and ``point`` side by side where they both fit, else as two pages (see the module)."""
+    """``plot`` and ``point`` side by side where they both fit, else as two pages (see the module).
+
+    Signals
+    -------
+    shown() : another page, or both sides, came into view (what was not drawn while hidden is due).
+    """
+
+    shown = Signal()
 
     def __init__(self, plot: QWidget, point: QWidget):
         super().__init__()
@@ -63,6 +70,7 @@ class CostSheet(QStackedWidget):
         self._split.setChildrenCollapsible(False)
         self._pages = QTabWidget()
         self._pages.setDocumentMode(True)
+        self._pages.currentChanged.connect(lambda _: self.shown.emit())
         self.addWidget(self._split)
         self.addWidget(self._pages)
         self._arrange(side_by_side=True)
@@ -90,6 +98,7 @@ class CostSheet(QStackedWidget):
                 self._split.setStretchFactor(i, stretch)
                 widget.show()  # a page not shown was hidden by the pages, and stays so in a splitter
             self.setCurrentWidget(self._split)
+            self.shown.emit()
         else:
             self._pages.addTab(self._area, "Plot")
             self._pages.addTab(self._point, "Chosen point")

@@ -3,13 +3,17 @@ plot and the point are two pages, and a click on a point shows the point's page.
 
 from dataclasses import replace
 
+import numpy as np
 import pytest
 from PySide6.QtCore import QPoint, Qt
+from PySide6.QtWidgets import QTabWidget
 
 from core.accuracy.sweep import DEPTH_RATIOS, KNOB_NAMES, KNOBS, Row
 from core.object_order.depth_formats import DEPTH_FORMATS
 from core.presets_trace import mirror_and_glass
+from core.srgb import to_srgb8
 from views.images import cost_plot_process, plot_theme
+from views.images.cost_plot import point_position
 from views.panels.cost_panel import CostPanel
 from views.panels.cost_sheet import plot_inches
 
@@ -101,16 +105,25 @@ def test_presenting_at_x2_the_plot_and_the_point_are_pages_and_a_click_shows_the
     assert panel.canvas.visibleRegion().boundingRect().width() == panel.canvas.width()
     assert not panel.image_canvas.isVisible()
 
-    x, y = panel.point_position(0)
+    last = max(panel._points)  # the sweep showed its first point; the last is another
+    x, y = panel.point_position(last)
     with qtbot.waitSignal(panel.point_selected, timeout=5000) as picked:
         qtbot.mouseClick(panel.canvas, Qt.MouseButton.LeftButton, pos=QPoint(round(x), round(y)))
-    assert picked.args == [0]
+    assert picked.args == [last]
     assert not panel.sheet.showing_plot()
+    assert not panel.canvas.pending  # the plot behind its page is not drawn
     qtbot.waitUntil(lambda: _whole_in_view(panel.image_canvas) and not panel.image_canvas.pending,
                     timeout=TIMEOUT_MS)
     setting, reference, _ = panel.shown_images()
+    assert np.array_equal(setting, to_srgb8(panel._points[last].color))
     assert setting.shape == reference.shape == (24, 32, 3)
     assert panel.explanation.isVisible() and "ray depth" in panel.explanation.text()
+
+    with qtbot.waitSignal(panel.plot_drawn, timeout=TIMEOUT_MS):  # drawn once its page shows again
+        panel.sheet.findChild(QTabWidget).setCurrentIndex(0)
+    ax, *at = point_position(panel.plot_figure, panel._points[last].row)
+    (mark,) = [line for line in ax.get_lines() if line.get_marker() == "x"]  # the chosen point marked
+    assert tuple(mark.get_xydata()[0]) == pytest.approx(tuple(at))
 
     presentation.set_scale(1.0)  # back at x1 the pane has the width for both again
     qtbot.waitUntil(lambda: panel.sheet.side_by_side)
