@@ -15,7 +15,8 @@ then lets it rest.  Per tab it prints:
 
 Then the window's other work that a user waits on (``--actions``), each with the
 GUI thread's longest and 99th-percentile stall: picking pixels of the traced
-image (the ray tree and its worked math), a Cost sweep of every knob,
+image (the ray tree and its worked math) and of the rasterized one (the pixel's
+fragments, the z-buffer's verdict), a Cost sweep of every knob,
 stepping through every step of every lesson (until its formulas are shown),
 scene edits (move, colour, add, delete, then undo each), exports (a pane's
 picture, the 3D pane, the z-buffer steps as a GIF written in the background),
@@ -46,7 +47,8 @@ MOVES_PER_SECOND = 25
 TICK_MS = 5
 ACTIONS = ("picks", "cost", "lessons", "edits", "export", "present", "text")
 PICKS = 12
-"""Pixels picked in the traced image, at places drawn from a seeded generator."""
+"""Pixels picked in the traced image, and as many in the rasterized one (their fragments' history), at
+places drawn from a seeded generator."""
 AFTER_S = 0.3
 """How long each action's stalls are still counted after it is done (the 3D pane's draws, repaints)."""
 
@@ -283,6 +285,12 @@ def _picks(window):
         x, y = rng.randrange(cam.width), rng.randrange(cam.height)
         yield (lambda x=x, y=y: window.pick_ray_tree(x, y),
                lambda x=x, y=y: window.ray_tree is not None and window.ray_tree[:2] == (x, y))
+    window.show_tab("object order")
+    panel = window.tab("object order").widget
+    for _ in range(PICKS):
+        x, y = rng.randrange(cam.width), rng.randrange(cam.height)
+        yield (lambda x=x, y=y: panel.pick_pixel(x, y),
+               lambda x=x, y=y: window.showing_full("object order") and window.model.buffer_pixel == (x, y))
 
 
 def _cost_sweep(window):
@@ -365,7 +373,7 @@ def _text_sizes(window):
                lambda: not window.lesson_panel.typesetting())
 
 
-_ACTION_STEPS = {"picks": ("picked pixels", _picks), "cost": ("Cost sweep, all knobs", _cost_sweep),
+_ACTION_STEPS = {"picks": ("picked pixels, 2 tabs", _picks), "cost": ("Cost sweep, all knobs", _cost_sweep),
                  "lessons": ("lesson steps", _lesson_steps), "edits": ("scene edits", _scene_edits),
                  "export": ("exports", _exports), "present": ("presentation on/off", _presentation),
                  "text": ("text size", _text_sizes)}

@@ -67,6 +67,21 @@ def test_the_new_rows_edit_export_present_and_resize_the_text_and_leave_the_wind
 
 
 @pytest.mark.gui
+def test_the_picks_row_picks_pixels_in_both_pipelines_each_shown_in_turn(qapp, window, monkeypatch):
+    monkeypatch.setattr(gui, "AFTER_S", 0.05)  # what is checked is what each step did, not its stalls
+    traced, rasterized = _record(window.model.ray_pixel_changed), _record(window.model.buffer_pixel_changed)
+    row = gui._bench_action(qapp, window, "picked pixels", gui._picks(window), why=False)
+    assert row["count"] == 2 * gui.PICKS
+    assert len(set(traced)) == len(set(rasterized)) == gui.PICKS  # 12 pixels of each image, all apart
+    x, y = rasterized[-1]
+    caption = window.tab("object order").widget.history_caption.text()
+    assert caption.startswith(f"Pixel ({x}, {y}): ")  # its fragments' history shown
+    assert window.ray_tree[:2] == traced[-1]
+    cam = window.model.camera
+    assert all(0 <= px < cam.width and 0 <= py < cam.height for px, py in [*traced, *rasterized])
+
+
+@pytest.mark.gui
 def test_the_lesson_row_steps_through_every_step_the_panel_holds_and_reads_no_file_meanwhile(window,
                                                                                         monkeypatch):
     # Reading the 16 lesson files on the GUI thread, inside the row's clock, was charged to the window.
