@@ -61,4 +61,5 @@ def test_bench_gui_prints_a_row_per_tab_that_follows_the_observer_and_the_openin
     assert "the 3D pane's first frame after" in opening and "longest stall meanwhile" in opening
     assert lines[blank + 1].split() == ["action", "count", "longest", "stall", "p99", "stall"]
     picks = lines[blank + 2].split()
-    assert picks[:3] == ["picked", "pixels", "12"] and picks[4] == "ms" and len(lines) == blank + 3
+    assert picks[:4] == ["picked", "pixels,", "2", "tabs"] and picks[4] == "24" and picks[6] == "ms"
+    assert len(lines) == blank + 3
