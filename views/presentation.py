@@ -173,7 +173,7 @@ class Presentation(QObject):
         if self._stages or not self.window.updatesEnabled():
             return
         self.window.setUpdatesEnabled(False)
-        self._stages = [lambda: None, lambda: self.window.setUpdatesEnabled(True)]
+        self._stages = [_layouts, lambda: self.window.setUpdatesEnabled(True)]
         self._stage_timer.start()
 
     def _apply_font(self) -> None:
