@@ -292,14 +292,14 @@ class _Tracer:
         t = float(rec[at + flat_layout.LR_BLOCKER_T]) if hit is not None else None
         work, cells = {"tests": 0, "bounds_tests": 0}, None
         if traced:  # the same query again, to count its work and list its cells
-            from core.image_order.kernels.closest_hit import BVH, closest_hit
-            from core.image_order.kernels.shade import may_be_shadowed
+            from core.image_order.kernels.closest_hit import closest_hit
+            from core.image_order.kernels.shade import asks_bounds_first, may_be_shadowed
 
             k, before = self.k, self.counters.copy()
             o, d = tuple(float(v) for v in origin), tuple(float(v) for v in direction)
-            # As the render: from the outside of its object the ray asks the bounding spheres of
-            # the objects that may shadow it first, and searches the tree only if it meets one.
-            asked = k.method == BVH and self.scaled and rec[flat_layout.REC_FRONT] > 0.0
+            # As the render: the ray may ask the bounding spheres of the objects that may shadow it
+            # first, and then searches the scene only if it meets one.
+            asked = asks_bounds_first(k.method, self.scaled, bool(rec[flat_layout.REC_FRONT] > 0.0))
             if not asked or may_be_shadowed(k.lights, i, int(rec[flat_layout.REC_OBJECT]), k.geo, o, d,
                                             self.t_start, distance, self.counters):
                 closest_hit(k.method, o, d, self.t_start, distance, True, k.geo, k.grid, k.bvh,

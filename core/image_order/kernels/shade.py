@@ -129,6 +129,14 @@ def may_be_shadowed(lights, light, receiver, geo, o, d, t_min, t_max, counters):
     return False
 
 
+@jit_inline
+def asks_bounds_first(method, scaled, front):
+    """Whether a shadow ray asks :func:`may_be_shadowed` before it searches the scene: through the
+    BVH, from the scaled offset, leaving the front of its surface (the conditions under which
+    that answer is proved; the render and the ray tree of one pixel both ask this)."""
+    return method == BVH and scaled and front
+
+
 #: A sphere is passed by without finding its roots when the squared distance of its centre from
 #: the line exceeds ``r^2`` by this share of ``2 (|f|^2 + r^2) >= (|f| + r)^2`` (``f``: the line's
 #: start minus the centre): the distance then exceeds ``r`` by about ``1e-9 (|f| + r)`` or more,
@@ -219,17 +227,15 @@ def shade_hit(o, d, hit, weight, depth, materials, lights, opts, geo, grid, bvh,
             s_dist = math.sqrt(dot(sd, sd))
             sd = (sd[0] / s_dist, sd[1] / s_dist, sd[2] / s_dist)
             counters[flat_layout.SHADOW] += 1
-            if method == BVH:
-                if scaled and front and not may_be_shadowed(lights, i, ob, geo, so, sd, t_start, s_dist,
-                                                            counters):
-                    blocker = no_hit()
-                else:
-                    # The any-hit traversal inlined here, as for the render's primary rays: called
-                    # through closest_hit, every array of the tree is bound anew for each shadow ray.
-                    blocker = bvh_closest(so, sd, ray_shear(sd[0], sd[1], sd[2]), t_start, s_dist, True,
-                                          bvh, geo[flat_layout.GEO_N_SPHERES],
-                                          scratch[flat_layout.SCRATCH_STACK],
-                                          scratch[flat_layout.SCRATCH_STACK_T], counters)
+            if asks_bounds_first(method, scaled, front) and not may_be_shadowed(lights, i, ob, geo, so, sd,
+                                                                                 t_start, s_dist, counters):
+                blocker = no_hit()
+            elif method == BVH:
+                # The any-hit traversal inlined here, as for the render's primary rays: called
+                # through closest_hit, every array of the tree is bound anew for each shadow ray.
+                blocker = bvh_closest(so, sd, ray_shear(sd[0], sd[1], sd[2]), t_start, s_dist, True, bvh,
+                                      geo[flat_layout.GEO_N_SPHERES], scratch[flat_layout.SCRATCH_STACK],
+                                      scratch[flat_layout.SCRATCH_STACK_T], counters)
             else:
                 blocker = closest_hit(method, so, sd, t_start, s_dist, True, geo, grid, bvh, scratch,
                                       counters)
