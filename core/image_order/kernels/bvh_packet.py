@@ -152,16 +152,21 @@ def _four(array, field, r):
 
 @jit
 def can_share_walk(rays, n):
-    """Whether rays ``0 .. n-1`` have one origin, one sign of ``d`` per axis and finite ``1 / d``."""
-    for r in range(n):
-        for a in range(3):
-            inverse = rays[_at(R_INVERSE + a, r)]
-            if not abs(inverse) < math.inf:
-                return False
-            if (rays[_at(R_ORIGIN + a, r)] != rays[_at(R_ORIGIN + a, 0)]
-                    or (inverse < 0.0) != (rays[_at(R_INVERSE + a, 0)] < 0.0)):
-                return False
-    return True
+    """Whether rays ``0 .. n-1`` have one origin, one sign of ``d`` per axis and finite ``1 / d``.
+
+    All the rays are looked at, with no early way out: the loop then has no branch, and the
+    compiler makes it four rays per vector instruction (a packet almost always can share; the
+    test ray by ray, stopping at the first that cannot, took about a twentieth of the primary
+    stage on the benchmark's 100,000 triangles, one thread's CPU).
+    """
+    shared = True
+    for a in range(3):
+        origin, negative = rays[_at(R_ORIGIN + a, 0)], rays[_at(R_INVERSE + a, 0)] < 0.0
+        for r in range(n):
+            inverse = load_at(rays, _at(R_INVERSE + a, r))
+            shared &= ((abs(inverse) < math.inf) & (load_at(rays, _at(R_ORIGIN + a, r)) == origin)
+                       & ((inverse < 0.0) == negative))
+    return shared
 
 
 @jit
