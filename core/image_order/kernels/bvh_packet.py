@@ -87,11 +87,13 @@ def _at(field, r):
 @jit_inline
 def set_ray(rays, axes, r, o, d, t_min, t_max):
     """Make ``o + t d`` (``t_min <= t < t_max``) ray ``r`` of the packet."""
-    kx, ky, kz, sx, sy, sz = ray_shear(d[0], d[1], d[2])
+    inverse = (1.0 / d[0], 1.0 / d[1], 1.0 / d[2])
+    kx, ky, kz, sx, sy, _ = ray_shear(d[0], d[1], d[2])
+    sz = on_shear_axes(inverse[0], inverse[1], inverse[2], kz)[2]  # the shear's 1 / d_kz, not divided again
     okx, oky, okz = on_shear_axes(o[0], o[1], o[2], kz)
     for a in range(3):
         store_at(rays, _at(R_ORIGIN + a, r), o[a])
-        store_at(rays, _at(R_INVERSE + a, r), 1.0 / d[a])
+        store_at(rays, _at(R_INVERSE + a, r), inverse[a])
         store_at(rays, _at(R_DIRECTION + a, r), d[a])
     store_at(rays, _at(R_T_MIN, r), t_min)
     store_at(rays, _at(R_BEST_T, r), t_max)
