@@ -42,6 +42,7 @@ from core.image_order.kernels.bvh_packet import (
     RAY_FIELDS,
     can_share_walk,
     packet_closest,
+    packet_depth,
     packet_hit,
     ray_of,
     set_pixel,
@@ -146,7 +147,7 @@ def _primary_rows(first, last, cam, xs, ys, opts, geo, grid, bvh, scratch, packe
             else:
                 h = closest_hit(method, o, d, t_min, t_max, False, geo, grid, bvh, scratch, count)
             _add_heat(heat, j, i, count, prim_before, bounds_before)
-            _write_primary(cam, geo, hits, depth, objects, j, i, o, d, h)
+            _write_primary(geo, hits, depth, objects, j, i, h, view_depth(cam, o, d, h[1]))
 
 
 @jit
@@ -182,7 +183,7 @@ def _primary_packet(j0, j1, i0, i1, cam, xs, ys, geo, bvh, scratch, packet, hits
                 prim_before, bounds_before = count[flat_layout.PRIM_TESTS], _bounds_work(count)
                 h = bvh_closest(o, d, shear, t_min, t_max, False, bvh, n_spheres, stack, stack_t, count)
                 _add_heat(heat, j, i, count, prim_before, bounds_before)
-            _write_primary(cam, geo, hits, depth, objects, j, i, o, d, h)
+            _write_primary(geo, hits, depth, objects, j, i, h, packet_depth(rays, r, h[1]))
             r += 1
 
 
@@ -199,14 +200,15 @@ def _share_walk(heat, j0, j1, i0, i1, n, prims, bounds):
 
 
 @jit_inline
-def _write_primary(cam, geo, hits, depth, objects, j, i, o, d, h):
-    """Pixel ``(j, i)``'s closest hit ``h`` into the hits, its depth and the object it shows."""
+def _write_primary(geo, hits, depth, objects, j, i, h, hit_depth):
+    """Pixel ``(j, i)``'s closest hit ``h`` into the hits, its depth ``hit_depth`` (read where
+    there is a hit) and the object it shows."""
     prim, t, b0, b1, b2 = h
     hits[j, i, flat_layout.HIT_PRIM], hits[j, i, flat_layout.HIT_T] = prim, t
     hits[j, i, flat_layout.HIT_B0], hits[j, i, flat_layout.HIT_B1] = b0, b1
     hits[j, i, flat_layout.HIT_B2] = b2
     if prim >= 0:
-        depth[j, i] = view_depth(cam, o, d, t)
+        depth[j, i] = hit_depth
         objects[j, i] = geo[flat_layout.GEO_PRIM_OBJECT][prim]
     else:
         depth[j, i] = math.inf

@@ -43,13 +43,14 @@ from core.image_order.kernels.bvh_packet import (
     R_SHEARED_ORIGIN,
     R_T_MIN,
     RAY_FIELDS,
+    packet_depth,
     set_pixel,
     set_primary_rays,
 )
 from core.image_order.kernels.closest_hit import closest_hit
 from core.image_order.kernels.intrinsics.slabs4 import slab_interval4, slab_mask4, slab_rays4, slab_test4
 from core.image_order.kernels.render import make_scratch
-from core.image_order.ray_casting import camera_array, primary_ray
+from core.image_order.ray_casting import camera_array, primary_ray, view_depth
 from core.scene import Material, Mesh, PointLight, Scene, Sphere
 
 
@@ -325,7 +326,8 @@ def _packet_of(cam, xs, ys):
        eye=st.tuples(*[st.floats(-4.0, 4.0)] * 3))
 def test_a_packets_rays_made_side_by_side_are_the_cameras_rays_bit_for_bit(seed, n, orthographic, eye):
     # Made four at a time in vector instructions, each ray must still be the one a lone ray is:
-    # the camera's formula, its shear and its origin on the shear's axes, whatever axis is largest.
+    # the camera's formula, its shear and its origin on the shear's axes, whatever axis is largest;
+    # and the depth the image shows for a hit along it must be the lone ray's view depth.
     camera = Camera(eye=eye, target=(0.3, -0.2, 0.1), width=97, height=61, fov_y_deg=70.0,
                     projection="orthographic" if orthographic else "perspective", ortho_height=3.0)
     rng = np.random.default_rng(seed)
@@ -346,6 +348,8 @@ def test_a_packets_rays_made_side_by_side_are_the_cameras_rays_bit_for_bit(seed,
         assert [field(R_SHEAR + a, r) for a in range(3)] == [sx, sy, sz]
         assert [field(R_SHEARED_ORIGIN + a, r) for a in range(3)] == [o[kx], o[ky], o[kz]]
         assert (field(R_T_MIN, r), field(R_BEST_T, r)) == (t_min, t_max)
+        for t in (t_min, 0.37 * t_min + 0.63 * t_max, t_max):
+            assert packet_depth(rays, r, t) == view_depth(cam, o, d, t)
 
 
 @pytest.mark.parametrize("v", [(1.0, 2.0, 3.0), (-5.0, 0.5, 0.25), (0.0, -0.0, 7.0)])
