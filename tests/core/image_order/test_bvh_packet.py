@@ -48,7 +48,13 @@ from core.image_order.kernels.bvh_packet import (
     set_primary_rays,
 )
 from core.image_order.kernels.closest_hit import closest_hit
-from core.image_order.kernels.intrinsics.slabs4 import slab_interval4, slab_mask4, slab_rays4, slab_test4
+from core.image_order.kernels.intrinsics.slabs4 import (
+    RAYS,
+    slab_interval4,
+    slab_mask4,
+    slab_rays_mask,
+    slab_test4,
+)
 from core.image_order.kernels.render import make_scratch
 from core.image_order.ray_casting import camera_array, primary_ray, view_depth
 from core.scene import Material, Mesh, PointLight, Scene, Sphere
@@ -230,37 +236,48 @@ def test_the_packets_bound_lies_below_every_rays_own_entry(seed, spread):
     assert np.all(bound <= np.where(entered, own, math.inf).min(axis=0))
 
 
-# --- four rays against one box: each lane is that ray's own test ------------------------------
+# --- sixteen rays against one box: each bit is that ray's own test --------------------------------
 
 @njit
-def _one_box_four_rays(node, near, far, o, per_ray, box):
-    """slab_rays4's entries into box ``box`` of the node, and slab_test4's for each ray alone.
-    ``per_ray``: 1 / d per axis, t_min, t_max, each four rays side by side."""
-    lanes = slab_rays4(node, near[0] + box, near[1] + box, near[2] + box, far[0] + box, far[1] + box,
-                       far[2] + box, o[0], o[1], o[2], per_ray, 0, 4, 8, 12, 16)
-    alone = np.empty(4)
-    for r in range(4):
+def _one_box_sixteen_rays(node, near, far, o, per_ray, box):
+    """slab_rays_mask's bits for box ``box`` of the node, and slab_test4's entry for each ray alone.
+    ``per_ray``: 1 / d per axis, t_min, t_max, each sixteen rays side by side."""
+    mask = slab_rays_mask(node, near[0] + box, near[1] + box, near[2] + box, far[0] + box, far[1] + box,
+                          far[2] + box, o[0], o[1], o[2], per_ray, 0, RAYS, 2 * RAYS, 3 * RAYS, 4 * RAYS)
+    bits, alone = np.empty(RAYS, np.bool_), np.empty(RAYS)
+    for r in range(RAYS):
         e = slab_test4(node, near[0], near[1], near[2], far[0], far[1], far[2], o[0], o[1], o[2],
-                       per_ray[r], per_ray[4 + r], per_ray[8 + r], per_ray[12 + r], per_ray[16 + r])
-        alone[r] = e[box]
-    return np.array([lanes[0], lanes[1], lanes[2], lanes[3]]), alone
+                       per_ray[r], per_ray[RAYS + r], per_ray[2 * RAYS + r], per_ray[3 * RAYS + r],
+                       per_ray[4 * RAYS + r])
+        bits[r], alone[r] = (mask >> r) & 1, e[box]
+    return bits, alone
+
+
+def test_a_packet_is_as_many_rays_as_the_leaf_box_test_has_lanes():
+    assert PACKET_SIZE == RAYS
 
 
 @settings(max_examples=200, deadline=None)
 @given(seed=st.integers(0, 2**32 - 1), spread=st.sampled_from([1e-9, 0.05, 0.5]))
-def test_four_rays_against_one_box_enter_where_each_alone_enters_bit_for_bit(seed, spread):
+def test_sixteen_rays_against_one_box_enter_where_each_alone_enters_bit_for_bit(seed, spread):
+    # Bit r is set where ray r alone enters the box before its t_max (the packet then tests that
+    # leaf's triangles for it): every bit must be that lone ray's own slab test.
     rng = np.random.default_rng(seed)
-    node, o, directions, near, far = _node_and_packet(rng, spread, 4)
-    t_min = rng.choice([0.0, 0.5, 2.0], 4)
-    t_max = t_min + rng.choice([0.1, 3.0, math.inf], 4)  # a closest hit so far, or none
-    per_ray = np.concatenate([1.0 / directions.T.reshape(-1), t_min, t_max])
+    node, o, directions, near, far = _node_and_packet(rng, spread, RAYS)
+    t_min = rng.choice([0.0, 0.5, 2.0], RAYS)
+    t_max = t_min + rng.choice([0.0, 0.1, 3.0, math.inf], RAYS)  # a closest hit so far, or none
     for box in range(4):
-        lanes, alone = _one_box_four_rays(node, near, far, o, per_ray, box)
-        assert np.array_equal(lanes, alone)
-        # and what a ray enters is where its line is inside the box, within [t_min, t_max]
-        for r in np.flatnonzero(lanes < math.inf):
-            point = o + lanes[r] * directions[r]
-            assert t_min[r] <= lanes[r] <= t_max[r]
+        # Some rays' closest hit so far lies exactly where they enter the box: they must not enter.
+        unbounded = np.concatenate([1.0 / directions.T.reshape(-1), t_min, np.full(RAYS, math.inf)])
+        _, entry = _one_box_sixteen_rays(node, near, far, o, unbounded, box)
+        t_max = np.where((rng.random(RAYS) < 0.3) & (entry < math.inf), entry, t_max)
+        per_ray = np.concatenate([1.0 / directions.T.reshape(-1), t_min, t_max])
+        bits, alone = _one_box_sixteen_rays(node, near, far, o, per_ray, box)
+        assert np.array_equal(bits, alone < t_max)
+        # and what a ray enters is where its line is inside the box, within [t_min, t_max)
+        for r in np.flatnonzero(bits):
+            point = o + alone[r] * directions[r]
+            assert t_min[r] <= alone[r] < t_max[r]
             sides = node.reshape(6, 4)[:, box].astype(float)
             assert np.all(point >= sides[:3] - 1e-6 * (1 + abs(point)))
             assert np.all(point <= sides[3:] + 1e-6 * (1 + abs(point)))

@@ -1,0 +1,24 @@
+"""The lowest set bit of a mask, for loops that visit only the lanes a vector test selected."""
+
+from __future__ import annotations
+
+from llvmlite import ir
+from numba import types
+from numba.core import cgutils
+from numba.extending import intrinsic
+
+_I64 = ir.IntType(64)
+
+
+@intrinsic
+def lowest_bit(typingctx, bits):
+    """The index of the lowest set bit of the int64 ``bits``, which must not be 0 (one instruction:
+    ``llvm.cttz``)."""
+    signature = types.int64(types.int64)
+
+    def codegen(context, builder, sig, args):
+        count = cgutils.get_or_insert_function(builder.module, ir.FunctionType(_I64, [_I64, ir.IntType(1)]),
+                                               "llvm.cttz.i64")
+        return builder.call(count, [args[0], ir.Constant(ir.IntType(1), 1)])
+
+    return signature, codegen
