@@ -56,6 +56,7 @@ from core.image_order.flat_layout import BOUNDS_TESTS, PRIM_TESTS
 from core.image_order.intersect_triangle import on_shear_axes, ray_shear
 from core.image_order.kernels.bvh_build import LEAF_SIZE, WIDE_REFS, WIDE_SIZE, WIDTH
 from core.image_order.kernels.bvh_traverse import (
+    NO_WEIGHTS,
     from_stack_entry,
     hit_record,
     near_and_far_rows,
@@ -241,10 +242,10 @@ def packet_closest(n, rays, axes, bvh, n_spheres, stack, stack_t, counters):
                     tests += count
                     o, d, shear, t_min, before = ray_of(rays, axes, r)
                     okx, oky, okz = _three(rays, R_SHEARED_ORIGIN, r)
+                    # The closest hit so far goes in as none: test_leaf gives it back only when the
+                    # leaf has nothing closer, and then nothing is stored.
                     best_t, best_k, best_w = test_leaf(groups, rows, order, n_spheres, first, count, group, o,
-                                                       d, shear, okx, oky, okz, t_min, before,
-                                                       load_at(axes, _at(A_BEST_K, r)),
-                                                       _four(rays, R_WEIGHTS, r))
+                                                       d, shear, okx, oky, okz, t_min, before, -1, NO_WEIGHTS)
                     if best_t < before:
                         closer = True
                         store_at(rays, _at(R_BEST_T, r), best_t)
