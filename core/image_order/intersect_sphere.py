@@ -66,6 +66,23 @@ CLASSIFICATIONS = ("misses", "tangent", "crosses")
 
 
 @jitable(forceinline=True)
+def line_terms(ox, oy, oz, dx, dy, dz, cx, cy, cz, r):
+    """The numbers the quadratic of the line ``o + t d`` and a sphere is made of:
+    ``(fx, fy, fz, a, half_b, f2, r2)`` with ``f = o - centre``, ``a = d·d``, ``half_b = f·d``,
+    ``f2 = f·f`` and ``r2 = r²`` (so ``c = f2 - r2``).  :func:`sphere_roots` and the tracer's
+    quick answers for rays that clearly miss a sphere take them from here, rounded alike.
+
+    Examples
+    --------
+    >>> line_terms(0.0, 0.0, 5.0, 0.0, 0.0, -1.0, 0.0, 0.0, 0.0, 1.0)
+    (0.0, 0.0, 5.0, 1.0, -5.0, 25.0, 1.0)
+    """
+    fx, fy, fz = ox - cx, oy - cy, oz - cz
+    return (fx, fy, fz, dx * dx + dy * dy + dz * dz, fx * dx + fy * dy + fz * dz, fx * fx + fy * fy + fz * fz,
+            r * r)
+
+
+@jitable(forceinline=True)
 def sphere_roots(ox, oy, oz, dx, dy, dz, cx, cy, cz, r):
     """The quadratic of the line ``o + t d`` and a sphere, and its two roots, without cancellation.
 
@@ -92,17 +109,15 @@ def sphere_roots(ox, oy, oz, dx, dy, dz, cx, cy, cz, r):
     >>> sphere_roots(0.0, 0.0, 5.0, 0.0, 0.0, -1.0, 0.0, 0.0, 0.0, 1.0)
     (1.0, -5.0, 24.0, 0.0, 4.0, 2, 4.0, 6.0)
     """
-    fx, fy, fz = ox - cx, oy - cy, oz - cz
-    a = dx * dx + dy * dy + dz * dz
-    half_b = fx * dx + fy * dy + fz * dz
-    c = fx * fx + fy * fy + fz * fz - r * r
+    fx, fy, fz, a, half_b, f2, r2 = line_terms(ox, oy, oz, dx, dy, dz, cx, cy, cz, r)
+    c = f2 - r2
     # The perpendicular offset v from the centre to the line, and its length |v|.
     k = half_b / a
     vx, vy, vz = fx - k * dx, fy - k * dy, fz - k * dz
     dist = math.sqrt(vx * vx + vy * vy + vz * vz)
     discriminant = 4.0 * a * (r + dist) * (r - dist)
     # Decide from the discriminant, then find the roots: q / a and c / q, no cancellation.
-    if abs(dist - r) <= TANGENT_TOLERANCE * (math.sqrt(fx * fx + fy * fy + fz * fz) + r):
+    if abs(dist - r) <= TANGENT_TOLERANCE * (math.sqrt(f2) + r):
         t = -half_b / a
         return a, half_b, c, dist, discriminant, TANGENT, t, t
     if dist > r:

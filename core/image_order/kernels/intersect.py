@@ -24,6 +24,7 @@ from __future__ import annotations
 
 import math
 
+from core.image_order.intersect_sphere import line_terms
 from core.image_order.intersect_sphere import sphere_roots as sphere_formula
 from core.image_order.intersect_triangle import crossing, edge_functions, straddles, to_ray_space
 from core.image_order.kernels.jit import jit, jit_inline
@@ -74,12 +75,9 @@ def _behind(ox, oy, oz, dx, dy, dz, cx, cy, cz, r, t_min):
     negative, and within the bounds none of them rounds to ``-0.0``, which ``t_min = 0`` would
     let through.
     """
-    fx, fy, fz = ox - cx, oy - cy, oz - cz
-    half_b = fx * dx + fy * dy + fz * dz
-    f2 = fx * fx + fy * fy + fz * fz
-    r2 = r * r
+    _, _, _, a, half_b, f2, r2 = line_terms(ox, oy, oz, dx, dy, dz, cx, cy, cz, r)
     return (t_min >= 0.0 and half_b > _SMALLEST and f2 - r2 > _SMALLEST and f2 < _LARGEST and r2 < _LARGEST
-            and dx * dx + dy * dy + dz * dz < _LARGEST)
+            and a < _LARGEST)
 
 
 @jit_inline

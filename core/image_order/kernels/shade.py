@@ -27,7 +27,7 @@ from __future__ import annotations
 import math
 
 from core.image_order import flat_layout
-from core.image_order.intersect_sphere import outward_normal
+from core.image_order.intersect_sphere import line_terms, outward_normal
 from core.image_order.intersect_triangle import barycentric_point, ray_shear
 from core.image_order.kernels.accel_spheres import bounding_roots
 from core.image_order.kernels.bvh_traverse import bvh_closest
@@ -150,10 +150,8 @@ def _far_from_line(o, d, bounding, ob):
     """Whether the line ``o + t d`` (``d`` of unit length) clearly passes object ``ob``'s bounding
     sphere by: a dot product and no square root or division, where most shadow rays pass far
     from every possible blocker."""
-    fx, fy, fz = o[0] - bounding[ob, 0], o[1] - bounding[ob, 1], o[2] - bounding[ob, 2]
-    along = fx * d[0] + fy * d[1] + fz * d[2]
-    f2 = fx * fx + fy * fy + fz * fz
-    r2 = bounding[ob, 3] * bounding[ob, 3]
+    _, _, _, _, along, f2, r2 = line_terms(o[0], o[1], o[2], d[0], d[1], d[2], bounding[ob, 0],
+                                           bounding[ob, 1], bounding[ob, 2], bounding[ob, 3])
     return f2 - along * along > r2 + _CLEAR_MARGIN * 2.0 * (f2 + r2)
 
 
