@@ -43,6 +43,7 @@ from core.image_order.kernels.bvh_build import (
     from_leaf_group,
 )
 from core.image_order.kernels.intersect import triangle_hit
+from core.image_order.kernels.intrinsics.bits import lowest_bit
 from core.image_order.kernels.intrinsics.slabs4 import slab_mask4, slab_test4
 from core.image_order.kernels.intrinsics.triangle4 import GROUP_SIZE, LANES, UNSURE, triangle_test4
 from core.image_order.kernels.intrinsics.unchecked import load_at, store_at
@@ -215,7 +216,8 @@ def bvh_occluded(o, d, shear, t_min, t_max, bvh, n_spheres, stack, counters):
     their slots (:func:`any_child`).  A leaf of triangles is tested with what its parent's row
     says of it (:func:`~core.image_order.kernels.bvh_build.leaf_groups`); the leaf's own row,
     one more read from memory before the test could start, is read only when a triangle is hit
-    or too close to call, to name it.  Returns ``(prim, t, 0, 0, 0)`` (no weights; ``t`` exact).
+    or too close to call, to name it (the group's test is not made again).  Returns
+    ``(prim, t, 0, 0, 0)`` (no weights; ``t`` exact).
     """
     wide, refs, leaves, groups, order, rows = bvh
     if wide.shape[0] == 0:
@@ -245,13 +247,14 @@ def bvh_occluded(o, d, shear, t_min, t_max, bvh, n_spheres, stack, counters):
             if packed != 0:
                 group, count = from_leaf_group(packed)
                 tests += count
-                t, _, _, _ = triangle_test4(groups, group * GROUP_SIZE, kx, ky, kz, okx, oky, okz, sx, sy, sz,
-                                            t_min, t_max)
+                crossings = triangle_test4(groups, group * GROUP_SIZE, kx, ky, kz, okx, oky, okz, sx, sy, sz,
+                                           t_min, t_max)
+                t = crossings[0]
                 # Lanes past the count repeat the last triangle: they add no crossing of their own.
                 if min(min(t[0], t[1]), min(t[2], t[3])) < t_max:  # a crossing, or UNSURE (-inf)
                     first = load_at(leaves, leaf)
-                    best_t, best_k, _ = test_leaf(groups, rows, order, n_spheres, first, count, group, o, d,
-                                                  shear, okx, oky, okz, t_min, best_t, best_k, NO_WEIGHTS)
+                    best_t, best_k, _ = closest_in_group(crossings, rows, o, shear, first, count, t_min,
+                                                         best_t, best_k, NO_WEIGHTS)
             else:
                 first, count = load_at(leaves, leaf), load_at(leaves, leaf + 1)
                 tests += count
@@ -292,17 +295,39 @@ def test_leaf(groups, rows, order, n_spheres, first, count, group, o, d, shear, 
     kx, ky, kz, sx, sy, sz = shear
     for j in range(0, count, LANES):
         start = (group + j // LANES) * GROUP_SIZE
-        lanes, e0s, e1s, e2s = triangle_test4(groups, start, kx, ky, kz, okx, oky, okz, sx, sy, sz, t_min,
-                                              best_t)
-        for lane in range(min(LANES, count - j)):
-            t = lanes[lane]
-            if t == UNSURE:
-                t, b0, b1, b2 = triangle_hit(o, shear, rows, first + j + lane, t_min, best_t)
-                if t < best_t:
-                    best_t, best_k, best_w = t, first + j + lane, (b0, b1, b2, 1.0)
-            elif t < best_t:
-                e0, e1, e2 = e0s[lane], e1s[lane], e2s[lane]
-                best_t, best_k, best_w = t, first + j + lane, (e0, e1, e2, e0 + e1 + e2)
+        crossings = triangle_test4(groups, start, kx, ky, kz, okx, oky, okz, sx, sy, sz, t_min, best_t)
+        best_t, best_k, best_w = closest_in_group(crossings, rows, o, shear, first + j, min(LANES, count - j),
+                                                  t_min, best_t, best_k, best_w)
+    return best_t, best_k, best_w
+
+
+@jit_inline
+def closest_in_group(crossings, rows, o, shear, first, count, t_min, best_t, best_k, best_w):
+    """:func:`test_leaf`'s closest crossing after the vector test of one group,
+    ``crossings`` (:func:`~core.image_order.kernels.intrinsics.triangle4.triangle_test4`), whose
+    first ``count`` lanes hold the primitives from ``first`` on in the leaf order.
+
+    The lanes that can matter (a crossing before ``best_t``, or ``UNSURE``) are found first, in
+    one mask made of four comparisons at fixed lanes, and only those are visited, in lane
+    order; most groups have none.  numba picks the lane of a tuple at a changing index with a
+    branch per lane, which a loop over every lane paid for each group: with the packets' pairs
+    of rays, visiting only the mask's lanes took the primary stage on the 1,000,000-triangle
+    benchmark from 95 to 85 ms of one thread's CPU (100,000: 33 to 30).
+    """
+    lanes, e0s, e1s, e2s = crossings
+    candidates = (((lanes[0] < best_t) | ((lanes[1] < best_t) << 1) | ((lanes[2] < best_t) << 2)
+                   | ((lanes[3] < best_t) << 3)) & ((1 << count) - 1))
+    while candidates != 0:
+        lane = lowest_bit(candidates)
+        candidates &= candidates - 1
+        t = lanes[lane]
+        if t == UNSURE:
+            t, b0, b1, b2 = triangle_hit(o, shear, rows, first + lane, t_min, best_t)
+            if t < best_t:
+                best_t, best_k, best_w = t, first + lane, (b0, b1, b2, 1.0)
+        elif t < best_t:
+            e0, e1, e2 = e0s[lane], e1s[lane], e2s[lane]
+            best_t, best_k, best_w = t, first + lane, (e0, e1, e2, e0 + e1 + e2)
     return best_t, best_k, best_w
 
 

@@ -15,13 +15,25 @@ from core import shapes
 from core.image_order.intersect_sphere import intersect_sphere
 from core.image_order.intersect_triangle import difference_of_products, intersect_triangle, ray_shear
 from core.image_order.kernels.intersect import sphere_hit, triangle_hit
-from core.image_order.kernels.intrinsics.triangle4 import UNSURE, triangle_test4
+from core.image_order.kernels.intrinsics.triangle4 import UNSURE, triangle_test4, triangle_test4x2
 
 
 @njit
 def four_at_a_time(o, d, groups, start):
     kx, ky, kz, sx, sy, sz = ray_shear(d[0], d[1], d[2])
     return triangle_test4(groups, start, kx, ky, kz, o[kx], o[ky], o[kz], sx, sy, sz, 0.0, math.inf)
+
+
+@njit
+def two_at_a_time(ray_a, ray_b, groups, start):
+    """``triangle_test4x2`` of two rays, each ``(o, d, t_max)``, and ``triangle_test4`` of each alone."""
+    tests = []
+    for o, d, t_max in (ray_a, ray_b):
+        kx, ky, kz, sx, sy, sz = ray_shear(d[0], d[1], d[2])
+        tests.append((kx, ky, kz, o[kx], o[ky], o[kz], sx, sy, sz, 0.0, t_max))
+    a, b = tests[0], tests[1]
+    alone = (triangle_test4(groups, start, *a), triangle_test4(groups, start, *b))
+    return triangle_test4x2(groups, start, a, b), alone
 
 
 @njit
@@ -279,6 +291,36 @@ def test_four_triangles_at_a_time_give_the_scalar_test_bit_for_bit_or_defer_to_i
                     e = [edges[k][q] for k in range(3)]
                     assert [e[k] / (e[0] + e[1] + e[2]) for k in range(3)] == weights
     assert unsure > 0 and decided > 3 * unsure and hits > 50
+
+
+def test_two_rays_at_a_time_give_each_ray_its_own_four_lanes_bit_for_bit():
+    """The packets test a leaf's group against two rays in one vector of eight lanes: each ray's
+    half must be exactly its own four-lane test (t, UNSURE marks and edge functions), whatever
+    shear axes and range the other ray has.  The rays start at different points, aim at corners,
+    edge midpoints and centres of the group's triangles (so that some lanes are UNSURE), and one
+    of each pair stops before its crossing half of the time."""
+    ball = shapes.uv_sphere((0.0, 0.0, 0.0), 1.0, rings=12, segments=16)
+    rng = np.random.default_rng(11)
+    corners = (ball.vertices * (1 + 0.05 * rng.standard_normal((len(ball.vertices), 1))))[ball.triangles]
+    corners = corners[: len(corners) // 4 * 4]
+    groups = np.ascontiguousarray(corners.reshape(-1, 4, 3, 3).transpose(0, 2, 3, 1)).reshape(-1)
+    mixed_axes = unsure = hits = 0
+    for _ in range(300):
+        g = int(rng.integers(len(corners) // 4))
+        rays = []
+        for _ in range(2):
+            o = rng.normal(size=3) * 0.2
+            tri = corners[4 * g + int(rng.integers(4))]
+            target = (tri[0], (tri[0] + tri[1]) / 2, tri.mean(axis=0))[int(rng.integers(3))]
+            rays.append((tuple(o), tuple(target - o), float(rng.choice([math.inf, 0.5]))))
+        pair, alone = two_at_a_time(rays[0], rays[1], groups, g * 36)
+        for ray in range(2):
+            half = np.array(pair[4 * ray:4 * ray + 4])
+            assert half.tobytes() == np.array(alone[ray]).tobytes()
+            unsure += int(np.sum(half[0] == UNSURE))
+            hits += int(np.sum(np.isfinite(half[0])))
+        mixed_axes += ray_shear(*rays[0][1])[:3] != ray_shear(*rays[1][1])[:3]
+    assert mixed_axes > 30 and unsure > 0 and hits > 100
 
 
 def test_the_stale_cache_guard_hashes_every_core_module_a_kernel_compiles_in():

@@ -8,6 +8,9 @@ brings, say, the z coordinate of all four corners A, and
 :func:`~core.image_order.kernels.intersect.triangle_hit` (translate, permute,
 shear, three edge functions, the sign test, ``t``) on all four triangles in
 the same instructions (see :mod:`core.image_order.kernels.intrinsics.simd`).
+:func:`triangle_test4x2` tests one group against two rays at once, in vectors
+of eight lanes: a packet's rays that enter the same leaf go through it in
+pairs (:mod:`core.image_order.kernels.bvh_packet`).
 
 Exactness is kept by falling back rather than by doing it in vector form:
 where a rounded edge function is too small to trust its sign, the scalar
@@ -29,10 +32,11 @@ import math
 
 from llvmlite import ir
 from numba import types
+from numba.core import cgutils
 from numba.extending import intrinsic
 
 from core.image_order.intersect_triangle import EDGE_ERROR, UNDERFLOW
-from core.image_order.kernels.intrinsics.simd import FOUR_F64, LANES, constant, fabs, lanes, load, splat
+from core.image_order.kernels.intrinsics.simd import F64, FOUR_F64, I32, LANES, load
 
 AXIS_STRIDE = LANES
 CORNER_STRIDE = 3 * AXIS_STRIDE
@@ -40,6 +44,85 @@ CORNER_STRIDE = 3 * AXIS_STRIDE
 GROUP_SIZE = 3 * CORNER_STRIDE
 #: A lane's result when only the exact scalar test can decide it.
 UNSURE = -math.inf
+
+
+def _crossings(builder, data, start, rays):
+    """The test of one group against ``len(rays)`` rays (one or two), four lanes a ray, as vectors
+    ``(t, e0, e1, e2)`` of ``4 * len(rays)`` lanes.  ``rays`` holds each ray's
+    ``(kx, ky, kz, okx, oky, okz, sx, sy, sz, t_min, t_max)``."""
+    width = LANES * len(rays)
+    vector_type = ir.VectorType(F64, width)
+    index_type = start.type
+
+    def joined(fours):
+        """One vector of the rays' four-lane vectors, the first ray's lanes first."""
+        if len(fours) == 1:
+            return fours[0]
+        order = ir.Constant(ir.VectorType(I32, width), list(range(width)))
+        return builder.shuffle_vector(fours[0], fours[1], order)
+
+    def same(value):
+        return ir.Constant(vector_type, [ir.Constant(F64, value)] * width)
+
+    def spread(k):
+        """Number ``k`` of each ray, in that ray's four lanes."""
+        vector = ir.Constant(vector_type, ir.Undefined)
+        for lane in range(width):
+            vector = builder.insert_element(vector, rays[lane // LANES][k], ir.Constant(I32, lane))
+        return vector
+
+    def absolute(vector):
+        signature = ir.FunctionType(vector_type, [vector_type])
+        name = f"llvm.fabs.v{width}f64"
+        return builder.call(cgutils.get_or_insert_function(builder.module, signature, name), [vector])
+
+    def coordinate(corner, k):
+        """Corner ``corner`` of the four triangles on each ray's shear axis ``k`` (0: kx, 1: ky, 2: kz)."""
+        fours = []
+        for ray in rays:
+            axis = ray[k]
+            offset = builder.mul(builder.sext(axis, index_type) if axis.type != index_type else axis,
+                                 ir.Constant(index_type, AXIS_STRIDE))
+            index = builder.add(builder.add(start, ir.Constant(index_type, corner * CORNER_STRIDE)), offset)
+            fours.append(load(builder, data, index, FOUR_F64))
+        return joined(fours)
+
+    okx, oky, okz, sx, sy, sz, t_min, t_max = [spread(k) for k in range(3, 11)]
+    x, y, z = [], [], []
+    for corner in range(3):
+        z.append(builder.fsub(coordinate(corner, 2), okz))
+        x.append(builder.fadd(builder.fsub(coordinate(corner, 0), okx), builder.fmul(sx, z[-1])))
+        y.append(builder.fadd(builder.fsub(coordinate(corner, 1), oky), builder.fmul(sy, z[-1])))
+    edges, sure = [], None
+    for i, j in ((1, 2), (2, 0), (0, 1)):
+        left, right = builder.fmul(x[i], y[j]), builder.fmul(y[i], x[j])
+        value = builder.fsub(left, right)
+        bound = builder.fadd(builder.fmul(same(EDGE_ERROR), builder.fadd(absolute(left), absolute(right))),
+                             same(UNDERFLOW))
+        trusted = builder.fcmp_ordered(">", absolute(value), bound)
+        sure = trusted if sure is None else builder.and_(sure, trusted)
+        edges.append(value)
+    zero = same(0.0)
+    negative = builder.or_(builder.or_(builder.fcmp_ordered("<", edges[0], zero),
+                                       builder.fcmp_ordered("<", edges[1], zero)),
+                           builder.fcmp_ordered("<", edges[2], zero))
+    positive = builder.or_(builder.or_(builder.fcmp_ordered(">", edges[0], zero),
+                                       builder.fcmp_ordered(">", edges[1], zero)),
+                           builder.fcmp_ordered(">", edges[2], zero))
+    det = builder.fadd(builder.fadd(edges[0], edges[1]), edges[2])
+    weighted = [builder.fmul(edges[c], builder.fmul(z[c], sz)) for c in range(3)]
+    t = builder.fdiv(builder.fadd(builder.fadd(weighted[0], weighted[1]), weighted[2]), det)
+    inside = builder.and_(builder.not_(builder.and_(negative, positive)),
+                          builder.fcmp_unordered("!=", det, zero))
+    in_range = builder.and_(builder.fcmp_ordered("<=", t_min, t), builder.fcmp_ordered("<", t, t_max))
+    result = builder.select(builder.and_(inside, in_range), t, same(math.inf))
+    return (builder.select(sure, result, same(UNSURE)), *edges)
+
+
+def _quarters(context, builder, four, vectors, ray):
+    """Ray ``ray``'s lanes (``4 ray`` to ``4 ray + 3``) of each of ``vectors``, as numba tuples of four."""
+    at = [ir.Constant(I32, LANES * ray + lane) for lane in range(LANES)]
+    return [context.make_tuple(builder, four, [builder.extract_element(v, i) for i in at]) for v in vectors]
 
 
 @intrinsic
@@ -63,53 +146,34 @@ def triangle_test4(typingctx, groups, start, kx, ky, kz, okx, oky, okz, sx, sy, 
         branch per element, and the hot loop picks each ``t``.)
     """
     four = types.UniTuple(types.float64, LANES)
-    signature = types.Tuple((four, four, four, four))(groups, start, kx, ky, kz, okx, oky, okz, sx, sy, sz,
-                                                      t_min, t_max)
+    signature = types.Tuple((four,) * 4)(groups, start, kx, ky, kz, okx, oky, okz, sx, sy, sz, t_min, t_max)
 
     def codegen(context, builder, sig, args):
         data = context.make_array(sig.args[0])(context, builder, args[0]).data
-        start, kx, ky, kz = args[1:5]
-        index_type = start.type
+        vectors = _crossings(builder, data, args[1], [args[2:]])
+        return context.make_tuple(builder, sig.return_type, _quarters(context, builder, four, vectors, 0))
 
-        def coordinate(corner, axis):
-            offset = builder.mul(builder.sext(axis, index_type) if axis.type != index_type else axis,
-                                 ir.Constant(index_type, AXIS_STRIDE))
-            index = builder.add(builder.add(start, ir.Constant(index_type, corner * CORNER_STRIDE)), offset)
-            return load(builder, data, index, FOUR_F64)
+    return signature, codegen
 
-        okx, oky, okz, sx, sy, sz = [splat(builder, value) for value in args[5:11]]
-        x, y, z = [], [], []
-        for corner in range(3):
-            z.append(builder.fsub(coordinate(corner, kz), okz))
-            x.append(builder.fadd(builder.fsub(coordinate(corner, kx), okx), builder.fmul(sx, z[-1])))
-            y.append(builder.fadd(builder.fsub(coordinate(corner, ky), oky), builder.fmul(sy, z[-1])))
-        edges, sure = [], None
-        for i, j in ((1, 2), (2, 0), (0, 1)):
-            left, right = builder.fmul(x[i], y[j]), builder.fmul(y[i], x[j])
-            value = builder.fsub(left, right)
-            bound = builder.fadd(builder.fmul(constant(EDGE_ERROR), builder.fadd(fabs(builder, left),
-                                                                                  fabs(builder, right))),
-                                 constant(UNDERFLOW))
-            trusted = builder.fcmp_ordered(">", fabs(builder, value), bound)
-            sure = trusted if sure is None else builder.and_(sure, trusted)
-            edges.append(value)
-        zero = constant(0.0)
-        negative = builder.or_(builder.or_(builder.fcmp_ordered("<", edges[0], zero),
-                                           builder.fcmp_ordered("<", edges[1], zero)),
-                               builder.fcmp_ordered("<", edges[2], zero))
-        positive = builder.or_(builder.or_(builder.fcmp_ordered(">", edges[0], zero),
-                                           builder.fcmp_ordered(">", edges[1], zero)),
-                               builder.fcmp_ordered(">", edges[2], zero))
-        det = builder.fadd(builder.fadd(edges[0], edges[1]), edges[2])
-        weighted = [builder.fmul(edges[c], builder.fmul(z[c], sz)) for c in range(3)]
-        t = builder.fdiv(builder.fadd(builder.fadd(weighted[0], weighted[1]), weighted[2]), det)
-        inside = builder.and_(builder.not_(builder.and_(negative, positive)),
-                              builder.fcmp_unordered("!=", det, zero))
-        in_range = builder.and_(builder.fcmp_ordered("<=", splat(builder, args[11]), t),
-                                builder.fcmp_ordered("<", t, splat(builder, args[12])))
-        result = builder.select(builder.and_(inside, in_range), t, constant(math.inf))
-        result = builder.select(sure, result, constant(UNSURE))
-        return context.make_tuple(builder, sig.return_type,
-                                  [lanes(context, builder, sig.return_type[0], v) for v in (result, *edges)])
+
+@intrinsic
+def triangle_test4x2(typingctx, groups, start, ray_a, ray_b):
+    """:func:`triangle_test4` for two rays at once, in vectors of eight lanes (one AVX-512
+    instruction where the machine has it, for two of four lanes).  The rays need not share
+    their shear axes: each ray's coordinates are loaded on its own axes and the two halves joined.
+
+    ``ray_a`` and ``ray_b`` are each a ray's ``(kx, ky, kz, okx, oky, okz, sx, sy, sz, t_min,
+    t_max)``; each lane rounds as it would alone.  Returns ``ray_a``'s four tuples, then
+    ``ray_b``'s.
+    """
+    four = types.UniTuple(types.float64, LANES)
+    signature = types.Tuple((four,) * 8)(groups, start, ray_a, ray_b)
+
+    def codegen(context, builder, sig, args):
+        data = context.make_array(sig.args[0])(context, builder, args[0]).data
+        rays = [[builder.extract_value(ray, k) for k in range(11)] for ray in args[2:4]]
+        vectors = _crossings(builder, data, args[1], rays)
+        return context.make_tuple(builder, sig.return_type, _quarters(context, builder, four, vectors, 0)
+                                  + _quarters(context, builder, four, vectors, 1))
 
     return signature, codegen
