@@ -200,6 +200,8 @@ def _test_ray(rays, axes, r):
 def _take(crossings, rays, axes, r, rows, first, count):
     """Keep ray ``r``'s closest crossing among ``crossings``, its four lanes of a pair's test of
     the leaf's ``count`` primitives from ``first`` on (:func:`_keep`); whether it came nearer."""
+    if crossings[4] == 0:  # nothing in the group comes nearer (padding lanes repeat the last)
+        return False
     o, d, shear, t_min, before = ray_of(rays, axes, r)
     best_t, best_k, best_w = closest_in_group(crossings, rows, o, shear, first, count, t_min, before, -1,
                                               NO_WEIGHTS)
@@ -279,8 +281,8 @@ def packet_closest(n, rays, axes, bvh, n_spheres, stack, stack_t, counters):
                         tests += 2 * count
                         c = triangle_test4x2(groups, group * GROUP_SIZE, _test_ray(rays, axes, r),
                                              _test_ray(rays, axes, q))
-                        closer |= _take(c[0:4], rays, axes, r, rows, first, count)
-                        closer |= _take(c[4:8], rays, axes, q, rows, first, count)
+                        closer |= _take(c[0:5], rays, axes, r, rows, first, count)
+                        closer |= _take(c[5:10], rays, axes, q, rows, first, count)
                         continue
                     tests += count
                     o, d, shear, t_min, before = ray_of(rays, axes, r)

@@ -277,7 +277,7 @@ def test_four_triangles_at_a_time_give_the_scalar_test_bit_for_bit_or_defer_to_i
         tri = corners[4 * g + int(rng.integers(4))]
         target = (tri[0], (tri[0] + tri[1]) / 2, tri.mean(axis=0))[int(rng.integers(3))]
         d = target - o
-        lanes, *edges = four_at_a_time(tuple(o), tuple(d), groups, g * 36)
+        lanes, *edges, _ = four_at_a_time(tuple(o), tuple(d), groups, g * 36)
         shear = ray_shear(*map(float, d))
         for q in range(4):
             scalar, *weights = triangle_hit(tuple(o), shear, rows, 4 * g + q, 0.0, math.inf)
@@ -295,7 +295,8 @@ def test_four_triangles_at_a_time_give_the_scalar_test_bit_for_bit_or_defer_to_i
 
 def test_two_rays_at_a_time_give_each_ray_its_own_four_lanes_bit_for_bit():
     """The packets test a leaf's group against two rays in one vector of eight lanes: each ray's
-    half must be exactly its own four-lane test (t, UNSURE marks and edge functions), whatever
+    half must be exactly its own four-lane test (t, UNSURE marks, edge functions and the mask of
+    the lanes that can matter), whatever
     shear axes and range the other ray has.  The rays start at different points, aim at corners,
     edge midpoints and centres of the group's triangles (so that some lanes are UNSURE), and one
     of each pair stops before its crossing half of the time."""
@@ -315,10 +316,13 @@ def test_two_rays_at_a_time_give_each_ray_its_own_four_lanes_bit_for_bit():
             rays.append((tuple(o), tuple(target - o), float(rng.choice([math.inf, 0.5]))))
         pair, alone = two_at_a_time(rays[0], rays[1], groups, g * 36)
         for ray in range(2):
-            half = np.array(pair[4 * ray:4 * ray + 4])
-            assert half.tobytes() == np.array(alone[ray]).tobytes()
-            unsure += int(np.sum(half[0] == UNSURE))
-            hits += int(np.sum(np.isfinite(half[0])))
+            *half, candidates = pair[5 * ray:5 * ray + 5]
+            *own, own_candidates = alone[ray]
+            assert np.array(half).tobytes() == np.array(own).tobytes()
+            # The lanes that can matter: a crossing before t_max, or UNSURE.
+            assert candidates == own_candidates == sum(1 << q for q in range(4) if half[0][q] < rays[ray][2])
+            unsure += sum(t == UNSURE for t in half[0])
+            hits += sum(math.isfinite(t) for t in half[0])
         mixed_axes += ray_shear(*rays[0][1])[:3] != ray_shear(*rays[1][1])[:3]
     assert mixed_axes > 30 and unsure > 0 and hits > 100
 

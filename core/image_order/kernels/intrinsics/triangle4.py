@@ -116,13 +116,21 @@ def _crossings(builder, data, start, rays):
                           builder.fcmp_unordered("!=", det, zero))
     in_range = builder.and_(builder.fcmp_ordered("<=", t_min, t), builder.fcmp_ordered("<", t, t_max))
     result = builder.select(builder.and_(inside, in_range), t, same(math.inf))
-    return (builder.select(sure, result, same(UNSURE)), *edges)
+    result = builder.select(sure, result, same(UNSURE))
+    return (result, *edges, builder.fcmp_ordered("<", result, t_max))
 
 
 def _quarters(context, builder, four, vectors, ray):
-    """Ray ``ray``'s lanes (``4 ray`` to ``4 ray + 3``) of each of ``vectors``, as numba tuples of four."""
+    """Ray ``ray``'s lanes (``4 ray`` to ``4 ray + 3``) of each of the vectors ``(t, e0, e1, e2)``,
+    as numba tuples of four, and of the comparison ``candidates`` as the bits of an int64."""
     at = [ir.Constant(I32, LANES * ray + lane) for lane in range(LANES)]
-    return [context.make_tuple(builder, four, [builder.extract_element(v, i) for i in at]) for v in vectors]
+    *numbers, candidates = vectors
+    bits = builder.zext(builder.bitcast(candidates, ir.IntType(candidates.type.count)), ir.IntType(64))
+    if ray:
+        bits = builder.lshr(bits, ir.Constant(ir.IntType(64), LANES * ray))
+    bits = builder.and_(bits, ir.Constant(ir.IntType(64), (1 << LANES) - 1))
+    tuples = [context.make_tuple(builder, four, [builder.extract_element(v, i) for i in at]) for v in numbers]
+    return tuples + [bits]
 
 
 @intrinsic
@@ -138,15 +146,18 @@ def triangle_test4(typingctx, groups, start, kx, ky, kz, okx, oky, okz, sx, sy, 
 
     Returns
     -------
-    (t, e0, e1, e2) : four tuples of four floats, one number per triangle
+    (t, e0, e1, e2, candidates) : four tuples of four floats, one number per triangle
         ``t`` of the crossing, ``inf`` on a miss, ``UNSURE`` where the scalar
         test must decide; and the edge functions
         (:func:`~core.image_order.intersect_triangle.edge_functions`).  (Four
         tuples of four, not one of sixteen: numba picks a lane of a tuple with a
-        branch per element, and the hot loop picks each ``t``.)
+        branch per element.)  ``candidates`` has bit ``q`` set where lane ``q``
+        is below ``t_max``: a crossing, or ``UNSURE``; only those lanes need
+        to be picked.
     """
     four = types.UniTuple(types.float64, LANES)
-    signature = types.Tuple((four,) * 4)(groups, start, kx, ky, kz, okx, oky, okz, sx, sy, sz, t_min, t_max)
+    signature = types.Tuple((four,) * 4 + (types.int64,))(groups, start, kx, ky, kz, okx, oky, okz, sx, sy,
+                                                          sz, t_min, t_max)
 
     def codegen(context, builder, sig, args):
         data = context.make_array(sig.args[0])(context, builder, args[0]).data
@@ -163,11 +174,11 @@ def triangle_test4x2(typingctx, groups, start, ray_a, ray_b):
     their shear axes: each ray's coordinates are loaded on its own axes and the two halves joined.
 
     ``ray_a`` and ``ray_b`` are each a ray's ``(kx, ky, kz, okx, oky, okz, sx, sy, sz, t_min,
-    t_max)``; each lane rounds as it would alone.  Returns ``ray_a``'s four tuples, then
+    t_max)``; each lane rounds as it would alone.  Returns ``ray_a``'s five results, then
     ``ray_b``'s.
     """
     four = types.UniTuple(types.float64, LANES)
-    signature = types.Tuple((four,) * 8)(groups, start, ray_a, ray_b)
+    signature = types.Tuple(((four,) * 4 + (types.int64,)) * 2)(groups, start, ray_a, ray_b)
 
     def codegen(context, builder, sig, args):
         data = context.make_array(sig.args[0])(context, builder, args[0]).data
