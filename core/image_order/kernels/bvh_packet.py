@@ -17,7 +17,9 @@ leaf's primitives with exactly the arithmetic of a lone ray
 a mask, and a loop visits only the rays it names, two at a time: both test the
 leaf's triangles in one vector test of eight lanes
 (:func:`~core.image_order.kernels.intrinsics.triangle4.triangle_test4x2`,
-each lane rounding as the ray's own test).  The packet's bound on
+each lane rounding as the ray's own test); the leaf's group and count come from
+its parent's row, already read for the box, and the leaf's own row only to name
+a crossing.  The packet's bound on
 its rays' closest hits is worked out again only after a leaf that brought one
 of them closer.  On the 1,000,000-triangle benchmark a packet meets about 22
 leaf boxes and each ray enters about 6 of them: with a branch per ray on
@@ -57,7 +59,14 @@ import math
 
 from core.image_order.flat_layout import BOUNDS_TESTS, PRIM_TESTS
 from core.image_order.intersect_triangle import on_shear_axes, ray_shear
-from core.image_order.kernels.bvh_build import LEAF_SIZE, WIDE_REFS, WIDE_SIZE, WIDTH
+from core.image_order.kernels.bvh_build import (
+    LEAF_SIZE,
+    WIDE_GROUPS,
+    WIDE_REFS,
+    WIDE_SIZE,
+    WIDTH,
+    from_leaf_group,
+)
 from core.image_order.kernels.bvh_traverse import (
     NO_WEIGHTS,
     closest_in_group,
@@ -69,7 +78,7 @@ from core.image_order.kernels.bvh_traverse import (
 )
 from core.image_order.kernels.intrinsics.bits import lowest_bit
 from core.image_order.kernels.intrinsics.slabs4 import slab_interval4, slab_rays_mask
-from core.image_order.kernels.intrinsics.triangle4 import GROUP_SIZE, triangle_test4x2
+from core.image_order.kernels.intrinsics.triangle4 import GROUP_SIZE, triangle_test4, triangle_test4x2
 from core.image_order.kernels.intrinsics.unchecked import load_at, store_at
 from core.image_order.kernels.jit import jit, jit_inline
 from core.image_order.ray_casting import primary_ray, view_depth_of_ray
@@ -197,11 +206,12 @@ def _test_ray(rays, axes, r):
 
 
 @jit_inline
-def _take(crossings, rays, axes, r, rows, first, count):
-    """Keep ray ``r``'s closest crossing among ``crossings``, its four lanes of a pair's test of
-    the leaf's ``count`` primitives from ``first`` on (:func:`_keep`); whether it came nearer."""
+def _take(crossings, rays, axes, r, rows, leaves, leaf, count):
+    """Keep ray ``r``'s closest crossing among ``crossings``, its vector test of the ``count``
+    triangles of the leaf whose row is at ``leaf`` (:func:`_keep`); whether it came nearer."""
     if crossings[4] == 0:  # nothing in the group comes nearer (padding lanes repeat the last)
         return False
+    first = load_at(leaves, leaf)
     o, d, shear, t_min, before = ray_of(rays, axes, r)
     best_t, best_k, best_w = closest_in_group(crossings, rows, o, shear, first, count, t_min, before, -1,
                                               NO_WEIGHTS)
@@ -258,9 +268,14 @@ def packet_closest(n, rays, axes, bvh, n_spheres, stack, stack_t, counters):
                     continue
             else:
                 leaf = LEAF_SIZE * ~node
-                first, count = load_at(leaves, leaf), load_at(leaves, leaf + 1)
-                group = load_at(leaves, leaf + 2)
                 p = (slot // WIDTH) * WIDE_SIZE + slot % WIDTH  # the leaf's box in its parent's row
+                # A leaf of triangles is known from its parent's row, already read: its own row is
+                # read only to name a crossing (_take).
+                packed = load_at(refs, p + WIDE_GROUPS) if slot >= 0 else 0
+                if packed != 0:
+                    group, count = from_leaf_group(packed)
+                else:
+                    count, group = load_at(leaves, leaf + 1), load_at(leaves, leaf + 2)
                 if slot >= 0:  # only the rays that enter the leaf's box test what it holds
                     entered = slab_rays_mask(wide, p + nx, p + ny, p + nz, p + fx, p + fy, p + fz, ox, oy, oz,
                                              rays, _at(R_INVERSE, 0), _at(R_INVERSE + 1, 0),
@@ -275,23 +290,31 @@ def packet_closest(n, rays, axes, bvh, n_spheres, stack, stack_t, counters):
                 while entered != 0:
                     r = lowest_bit(entered)
                     entered &= entered - 1
-                    if group >= 0 and entered != 0:  # two rays in one test (the leaf holds one group)
+                    if group < 0:  # an analytic sphere's leaf, tested one by one
+                        tests += count
+                        o, d, shear, t_min, before = ray_of(rays, axes, r)
+                        okx, oky, okz = _three(rays, R_SHEARED_ORIGIN, r)
+                        # The closest hit so far goes in as none: test_leaf gives it back only when
+                        # the leaf has nothing closer, and then nothing is stored.
+                        first = load_at(leaves, leaf)
+                        best_t, best_k, best_w = test_leaf(groups, rows, order, n_spheres, first, count,
+                                                           group, o, d, shear, okx, oky, okz, t_min, before,
+                                                           -1, NO_WEIGHTS)
+                        closer |= _keep(rays, axes, r, before, best_t, best_k, best_w)
+                    elif entered != 0:  # two rays in one test (the leaf holds one group)
                         q = lowest_bit(entered)
                         entered &= entered - 1
                         tests += 2 * count
                         c = triangle_test4x2(groups, group * GROUP_SIZE, _test_ray(rays, axes, r),
                                              _test_ray(rays, axes, q))
-                        closer |= _take(c[0:5], rays, axes, r, rows, first, count)
-                        closer |= _take(c[5:10], rays, axes, q, rows, first, count)
-                        continue
-                    tests += count
-                    o, d, shear, t_min, before = ray_of(rays, axes, r)
-                    okx, oky, okz = _three(rays, R_SHEARED_ORIGIN, r)
-                    # The closest hit so far goes in as none: test_leaf gives it back only when the
-                    # leaf has nothing closer, and then nothing is stored.
-                    best_t, best_k, best_w = test_leaf(groups, rows, order, n_spheres, first, count, group, o,
-                                                       d, shear, okx, oky, okz, t_min, before, -1, NO_WEIGHTS)
-                    closer |= _keep(rays, axes, r, before, best_t, best_k, best_w)
+                        closer |= _take(c[0:5], rays, axes, r, rows, leaves, leaf, count)
+                        closer |= _take(c[5:10], rays, axes, q, rows, leaves, leaf, count)
+                    else:
+                        tests += count
+                        kx, ky, kz, okx, oky, okz, sx, sy, sz, t_min, before = _test_ray(rays, axes, r)
+                        c = triangle_test4(groups, group * GROUP_SIZE, kx, ky, kz, okx, oky, okz, sx, sy, sz,
+                                           t_min, before)
+                        closer |= _take(c, rays, axes, r, rows, leaves, leaf, count)
                 if closer:  # the packet's farthest closest hit so far may have come nearer
                     t_high = load_at(rays, _at(R_BEST_T, 0))
                     for r in range(1, n):
