@@ -63,7 +63,37 @@ def phong(n, to_light, to_eye, shininess: float) -> float:
     cos_rv = dot(r, to_eye)
     if cos_rv <= 0.0 and shininess > 0.0:  # 0^n = 0: the same answer without the power
         return 0.0
-    return max(0.0, cos_rv) ** shininess
+    return power(max(0.0, cos_rv), shininess)
+
+
+#: Whole exponents up to this are raised by repeated squaring (:func:`power`).
+WHOLE_POWERS = 1024
+
+
+@jitable
+def power(x: float, n: float) -> float:
+    """``x ** n`` for ``0 <= x <= 1`` and ``n >= 0``: by repeated squaring where ``n`` is a whole
+    number up to ``WHOLE_POWERS`` (a Phong exponent almost always is), else by the C library.
+
+    Each of the at most ``2 log2(n)`` products rounds once, and the relative error of ``x^(2^k)``
+    at most doubles with each squaring, so the result lies within ``n`` units in the last place
+    of ``x ** n`` (before it underflows).  ``0 ** 0`` is 1, as Python has it.
+
+    Examples
+    --------
+    >>> power(0.5, 3.0), power(0.0, 0.0), power(0.25, 0.5)
+    (0.125, 1.0, 0.5)
+    """
+    if n == int(n) and n <= WHOLE_POWERS:
+        k = int(n)
+        result, base = 1.0, x
+        while k > 0:
+            if k & 1:
+                result *= base
+            base *= base
+            k >>= 1
+        return result
+    return x ** n
 
 
 @jitable

@@ -2,11 +2,14 @@
 
 import math
 
+import mpmath
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from core.image_order.optics import critical_angle_deg, dot, fresnel_dielectric, reflect, refract
-from core.image_order.shading import lambert, phong, surface_split
+from core.image_order.shading import WHOLE_POWERS, lambert, phong, power, surface_split
 
 PAIRS = [(1.0, 1.5), (1.5, 1.0), (1.0, 1.33), (1.33, 1.0), (1.0, 2.42), (2.42, 1.0), (1.2, 1.7)]
 
@@ -139,6 +142,27 @@ def test_lambert_and_phong_by_hand():
     away = tuple(unit([1.0, 0.0, 0.0]))
     assert phong(n, light, away, 4.0) == 0.0
     assert phong(n, light, away, 0.0) == 1.0
+
+
+@settings(max_examples=400, deadline=None)
+@given(x=st.floats(0.0, 1.0), n=st.integers(0, WHOLE_POWERS))
+def test_a_whole_power_by_repeated_squaring_is_within_n_units_in_the_last_place(x, n):
+    """Phong's ``max(0, R.V)^n`` for a whole ``n`` is raised by repeated squaring; each product
+    rounds once and the error of ``x^(2^k)`` at most doubles per squaring, so the result lies
+    within ``n`` units of 2^-53 of the exact power (mpmath, 60 digits), above the range where
+    doubles lose precision (2^-1000)."""
+    exact = mpmath.mpf(x) ** n
+    got = power(x, float(n))
+    if exact > mpmath.mpf(2) ** -1000:
+        assert abs(mpmath.mpf(got) - exact) <= max(n, 1) * mpmath.mpf(2) ** -53 * exact
+    else:
+        assert 0.0 <= got <= 2.0**-990
+
+
+def test_a_power_that_is_not_whole_is_the_c_librarys():
+    for x, n in [(0.3, 2.5), (0.9, 1e-3), (0.5, WHOLE_POWERS + 1.0), (0.999, 4096.0)]:
+        assert power(x, n) == x**n
+    assert power(0.0, 0.0) == 1.0 and power(0.0, 3.0) == 0.0 and power(1.0, 1000.0) == 1.0
 
 
 def test_surface_split_adds_up_to_one():
