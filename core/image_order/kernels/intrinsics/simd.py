@@ -21,17 +21,17 @@ FOUR_F32 = ir.VectorType(ir.FloatType(), LANES)
 FOUR_F64 = ir.VectorType(F64, LANES)
 
 
-def splat(builder, value):
-    """A vector with ``value`` (a double) in every lane."""
-    vector = ir.Constant(FOUR_F64, ir.Undefined)
-    for lane in range(LANES):
+def splat(builder, value, width=LANES):
+    """A vector of ``width`` lanes with ``value`` (a double) in every lane."""
+    vector = ir.Constant(ir.VectorType(F64, width), ir.Undefined)
+    for lane in range(width):
         vector = builder.insert_element(vector, value, ir.Constant(I32, lane))
     return vector
 
 
-def constant(value: float):
-    """A constant vector with ``value`` in every lane."""
-    return ir.Constant(FOUR_F64, [ir.Constant(F64, value)] * LANES)
+def constant(value: float, width=LANES):
+    """A constant vector of ``width`` lanes with ``value`` in every lane."""
+    return ir.Constant(ir.VectorType(F64, width), [ir.Constant(F64, value)] * width)
 
 
 def load(builder, data, index, vector_type):
@@ -41,13 +41,13 @@ def load(builder, data, index, vector_type):
 
 
 def fabs(builder, vector):
-    """``|vector|`` lane by lane."""
-    signature = ir.FunctionType(FOUR_F64, [FOUR_F64])
-    fn = cgutils.get_or_insert_function(builder.module, signature, "llvm.fabs.v4f64")
-    return builder.call(fn, [vector])
+    """``|vector|`` lane by lane (a vector of doubles, any width)."""
+    signature = ir.FunctionType(vector.type, [vector.type])
+    name = f"llvm.fabs.v{vector.type.count}f64"
+    return builder.call(cgutils.get_or_insert_function(builder.module, signature, name), [vector])
 
 
-def lanes(context, builder, return_type, vector):
-    """The lanes of ``vector`` as a numba tuple of floats."""
-    values = [builder.extract_element(vector, ir.Constant(I32, lane)) for lane in range(LANES)]
+def lanes(context, builder, return_type, vector, first=0):
+    """Lanes ``first`` to ``first + LANES - 1`` of ``vector`` as a numba tuple of floats."""
+    values = [builder.extract_element(vector, ir.Constant(I32, first + lane)) for lane in range(LANES)]
     return context.make_tuple(builder, return_type, values)

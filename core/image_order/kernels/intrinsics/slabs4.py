@@ -164,7 +164,7 @@ def slab_rays_mask(typingctx, rows, near_x, near_y, near_z, far_x, far_y, far_z,
 
         def distance(k):  # the one side, minus the origin, in every lane: slab_test4's subtraction
             side = builder.fpext(builder.load(builder.gep(data, [args[k]])), F64)
-            return _splat_rays(builder, builder.fsub(side, args[7 + (k - 1) % 3]))
+            return splat(builder, builder.fsub(side, args[7 + (k - 1) % 3]), RAYS)
 
         enter, leave = row(args[14]), row(args[15])
         for axis in range(3):
@@ -178,13 +178,6 @@ def slab_rays_mask(typingctx, rows, near_x, near_y, near_z, far_x, far_y, far_z,
         return builder.zext(builder.bitcast(entered, ir.IntType(RAYS)), ir.IntType(64))
 
     return signature, codegen
-
-
-def _splat_rays(builder, value):
-    vector = ir.Constant(_RAYS_F64, ir.Undefined)
-    for lane in range(RAYS):
-        vector = builder.insert_element(vector, value, ir.Constant(ir.IntType(32), lane))
-    return vector
 
 
 def _box_sides(context, builder, sig, args, near_and_far):

@@ -32,11 +32,10 @@ import math
 
 from llvmlite import ir
 from numba import types
-from numba.core import cgutils
 from numba.extending import intrinsic
 
 from core.image_order.intersect_triangle import EDGE_ERROR, UNDERFLOW
-from core.image_order.kernels.intrinsics.simd import F64, FOUR_F64, I32, LANES, load
+from core.image_order.kernels.intrinsics.simd import F64, FOUR_F64, I32, LANES, constant, fabs, lanes, load
 
 AXIS_STRIDE = LANES
 CORNER_STRIDE = 3 * AXIS_STRIDE
@@ -48,10 +47,10 @@ UNSURE = -math.inf
 
 def _crossings(builder, data, start, rays):
     """The test of one group against ``len(rays)`` rays (one or two), four lanes a ray, as vectors
-    ``(t, e0, e1, e2)`` of ``4 * len(rays)`` lanes.  ``rays`` holds each ray's
+    of ``4 * len(rays)`` lanes: ``(t, e0, e1, e2, candidates)``, the last the comparison
+    ``t < t_max`` (:func:`triangle_test4`).  ``rays`` holds each ray's
     ``(kx, ky, kz, okx, oky, okz, sx, sy, sz, t_min, t_max)``."""
     width = LANES * len(rays)
-    vector_type = ir.VectorType(F64, width)
     index_type = start.type
 
     def joined(fours):
@@ -60,21 +59,6 @@ def _crossings(builder, data, start, rays):
             return fours[0]
         order = ir.Constant(ir.VectorType(I32, width), list(range(width)))
         return builder.shuffle_vector(fours[0], fours[1], order)
-
-    def same(value):
-        return ir.Constant(vector_type, [ir.Constant(F64, value)] * width)
-
-    def spread(k):
-        """Number ``k`` of each ray, in that ray's four lanes."""
-        vector = ir.Constant(vector_type, ir.Undefined)
-        for lane in range(width):
-            vector = builder.insert_element(vector, rays[lane // LANES][k], ir.Constant(I32, lane))
-        return vector
-
-    def absolute(vector):
-        signature = ir.FunctionType(vector_type, [vector_type])
-        name = f"llvm.fabs.v{width}f64"
-        return builder.call(cgutils.get_or_insert_function(builder.module, signature, name), [vector])
 
     def coordinate(corner, k):
         """Corner ``corner`` of the four triangles on each ray's shear axis ``k`` (0: kx, 1: ky, 2: kz)."""
@@ -87,6 +71,13 @@ def _crossings(builder, data, start, rays):
             fours.append(load(builder, data, index, FOUR_F64))
         return joined(fours)
 
+    def spread(k):
+        """Number ``k`` of each ray, in that ray's four lanes."""
+        vector = ir.Constant(ir.VectorType(F64, width), ir.Undefined)
+        for lane in range(width):
+            vector = builder.insert_element(vector, rays[lane // LANES][k], ir.Constant(I32, lane))
+        return vector
+
     okx, oky, okz, sx, sy, sz, t_min, t_max = [spread(k) for k in range(3, 11)]
     x, y, z = [], [], []
     for corner in range(3):
@@ -97,12 +88,13 @@ def _crossings(builder, data, start, rays):
     for i, j in ((1, 2), (2, 0), (0, 1)):
         left, right = builder.fmul(x[i], y[j]), builder.fmul(y[i], x[j])
         value = builder.fsub(left, right)
-        bound = builder.fadd(builder.fmul(same(EDGE_ERROR), builder.fadd(absolute(left), absolute(right))),
-                             same(UNDERFLOW))
-        trusted = builder.fcmp_ordered(">", absolute(value), bound)
+        bound = builder.fadd(builder.fmul(constant(EDGE_ERROR, width),
+                                          builder.fadd(fabs(builder, left), fabs(builder, right))),
+                             constant(UNDERFLOW, width))
+        trusted = builder.fcmp_ordered(">", fabs(builder, value), bound)
         sure = trusted if sure is None else builder.and_(sure, trusted)
         edges.append(value)
-    zero = same(0.0)
+    zero = constant(0.0, width)
     negative = builder.or_(builder.or_(builder.fcmp_ordered("<", edges[0], zero),
                                        builder.fcmp_ordered("<", edges[1], zero)),
                            builder.fcmp_ordered("<", edges[2], zero))
@@ -115,22 +107,20 @@ def _crossings(builder, data, start, rays):
     inside = builder.and_(builder.not_(builder.and_(negative, positive)),
                           builder.fcmp_unordered("!=", det, zero))
     in_range = builder.and_(builder.fcmp_ordered("<=", t_min, t), builder.fcmp_ordered("<", t, t_max))
-    result = builder.select(builder.and_(inside, in_range), t, same(math.inf))
-    result = builder.select(sure, result, same(UNSURE))
+    result = builder.select(builder.and_(inside, in_range), t, constant(math.inf, width))
+    result = builder.select(sure, result, constant(UNSURE, width))
     return (result, *edges, builder.fcmp_ordered("<", result, t_max))
 
 
 def _quarters(context, builder, four, vectors, ray):
     """Ray ``ray``'s lanes (``4 ray`` to ``4 ray + 3``) of each of the vectors ``(t, e0, e1, e2)``,
     as numba tuples of four, and of the comparison ``candidates`` as the bits of an int64."""
-    at = [ir.Constant(I32, LANES * ray + lane) for lane in range(LANES)]
     *numbers, candidates = vectors
     bits = builder.zext(builder.bitcast(candidates, ir.IntType(candidates.type.count)), ir.IntType(64))
     if ray:
         bits = builder.lshr(bits, ir.Constant(ir.IntType(64), LANES * ray))
     bits = builder.and_(bits, ir.Constant(ir.IntType(64), (1 << LANES) - 1))
-    tuples = [context.make_tuple(builder, four, [builder.extract_element(v, i) for i in at]) for v in numbers]
-    return tuples + [bits]
+    return [lanes(context, builder, four, v, LANES * ray) for v in numbers] + [bits]
 
 
 @intrinsic
