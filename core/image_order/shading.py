@@ -84,7 +84,7 @@ def power(x: float, n: float) -> float:
     >>> power(0.5, 3.0), power(0.0, 0.0), power(0.25, 0.5)
     (0.125, 1.0, 0.5)
     """
-    if n == int(n) and n <= WHOLE_POWERS:
+    if 0.0 <= n <= WHOLE_POWERS and n == int(n):  # in range before int(), which a huge n overflows
         k = int(n)
         result, base = 1.0, x
         while k > 0:
