@@ -20,8 +20,9 @@ Figures, each the median of several runs after a warm-up run:
    so the rays are split over one Python thread per core.  Embree works in
    float32, we in float64;
 3. the shadow rays of those hits: from every hit on the lit side of its
-   triangle towards the light, any hit, ours one ray at a time as shading
-   traces them (:mod:`core.image_order.kernels.shadow_rays`), Embree's with
+   triangle towards the light, any hit, ours in packets of 16 consecutive
+   rays where they share a walk, each finding the blocker it finds alone
+   (:mod:`core.image_order.kernels.shadow_rays`), Embree's with
    ``rtcOccluded16`` -- both the very same rays, rounded to float32;
 4. a full Whitted render (all rays counted) of the lecture scene and of the
    mirror-and-glass scene at 640 x 480 with depth 5, the two in turns, frame
@@ -312,8 +313,8 @@ def _mesh_rays(triangles: int, args, library) -> dict:
     runs = _interleaved_runs(runners, args.repeats, args.clock)
     seconds = {name: statistics.median(times) for name, times in runs.items()}
     per_ray = shadow_counters[0] / max(n_shadow, 1)
-    print(f"  shadow rays ({n_shadow:,}: every lit hit towards the light), ours (any hit, one ray at a "
-          f"time): {_spread(runs['ours'])}  {n_shadow / seconds['ours'] / 1e6:6.2f} Mrays/s  "
+    print(f"  shadow rays ({n_shadow:,}: every lit hit towards the light), ours (any hit, packets of 16 "
+          f"rays): {_spread(runs['ours'])}  {n_shadow / seconds['ours'] / 1e6:6.2f} Mrays/s  "
           f"({(blockers >= 0).mean():.0%} blocked; per ray {per_ray[BOUNDS_TESTS]:.1f} box and "
           f"{per_ray[PRIM_TESTS]:.1f} triangle tests)")
     row["shadow"]["ours"] = seconds["ours"] * 1e3

@@ -47,6 +47,16 @@ plane; a packet straddling the plane where one component of ``d`` changes
 sign), its rays go through the tree one at a time
 (:func:`~core.image_order.kernels.bvh_traverse.bvh_closest`).
 
+Shadow rays go in packets too (:func:`packet_occluded`, for the bench's batch of
+shadow rays, :mod:`core.image_order.kernels.shadow_rays`): sixteen rays from
+neighbouring hits to one light, whose origins differ.  Their walk tests every
+node's four boxes with each ray on its own (sixteen rays a box in one vector
+test), so each ray meets exactly the nodes and leaves of its lone walk, in the
+same order, and names the same blocker; the packet reads each node once for
+all of them.  On the benchmark's shadow rays (one thread's CPU, rays in rows
+of pixels) the batch takes 9.3, 20.5 and 68 ms at 10,000, 100,000 and
+1,000,000 triangles where the rays one by one took 11.4, 25.5 and 74.
+
 A packet is kept in two small per-thread arrays: ``rays`` (RAY_FIELDS x
 PACKET_SIZE floats) and ``axes`` (AXIS_FIELDS x PACKET_SIZE integers), with
 the rows named below: one number of all the packet's rays side by side, so
@@ -74,9 +84,10 @@ from core.image_order.kernels.bvh_traverse import (
     hit_record,
     near_and_far_rows,
     nearest_child,
+    stack_entry,
     test_leaf,
 )
-from core.image_order.kernels.intrinsics.bits import lowest_bit
+from core.image_order.kernels.intrinsics.bits import bit_count, lowest_bit
 from core.image_order.kernels.intrinsics.slabs4 import slab_interval4, slab_rays_mask
 from core.image_order.kernels.intrinsics.triangle4 import GROUP_SIZE, triangle_test4, triangle_test4x2
 from core.image_order.kernels.intrinsics.unchecked import load_at, store_at
@@ -89,11 +100,11 @@ PACKET_SIZE = PACKET_ROWS * PACKET_COLS  # the lanes of slabs4.slab_rays_mask (R
 # Rows of the packet's rays: origin, 1 / d, t_min, the closest hit so far (t_max to start), the
 # shear of the watertight triangle test, the origin on its axes, the direction, the pixel
 # (column, row) a primary ray goes through, the weights of the closest hit so far (test_leaf's,
-# set only once there is a hit), and the view depth's start and step along the ray
-# (ray_casting.view_depth_of_ray).
+# set only once there is a hit), the view depth's start and step along the ray
+# (ray_casting.view_depth_of_ray), and inf (an any-hit walk's bound on where a box is entered).
 (R_ORIGIN, R_INVERSE, R_T_MIN, R_BEST_T, R_SHEAR, R_SHEARED_ORIGIN, R_DIRECTION, R_PIXEL, R_WEIGHTS,
- R_DEPTH) = (0, 3, 6, 7, 8, 11, 14, 17, 19, 23)
-RAY_FIELDS = 25
+ R_DEPTH, R_NO_BOUND) = (0, 3, 6, 7, 8, 11, 14, 17, 19, 23, 25)
+RAY_FIELDS = 26
 # ... and the integer rows: the shear's axes kx, ky, kz, the closest primitive in leaf order (-1: none).
 A_AXES, A_BEST_K = 0, 3
 AXIS_FIELDS = 4
@@ -118,6 +129,7 @@ def set_ray(rays, axes, r, o, d, t_min, t_max):
         store_at(rays, _at(R_DIRECTION + a, r), d[a])
     store_at(rays, _at(R_T_MIN, r), t_min)
     store_at(rays, _at(R_BEST_T, r), t_max)
+    store_at(rays, _at(R_NO_BOUND, r), math.inf)
     store_at(rays, _at(R_SHEAR, r), sx)
     store_at(rays, _at(R_SHEAR + 1, r), sy)
     store_at(rays, _at(R_SHEAR + 2, r), sz)
@@ -179,8 +191,9 @@ def _four(array, field, r):
 
 
 @jit
-def can_share_walk(rays, n):
-    """Whether rays ``0 .. n-1`` have one origin, one sign of ``d`` per axis and finite ``1 / d``.
+def can_share_walk(rays, n, one_origin):
+    """Whether rays ``0 .. n-1`` have one sign of ``d`` per axis and finite ``1 / d``, and with
+    ``one_origin`` also one origin (:func:`packet_closest`; :func:`packet_occluded` needs none).
 
     All the rays are looked at, with no early way out: the loop then has no branch, and the
     compiler makes it four rays per vector instruction (a packet almost always can share).  On
@@ -193,7 +206,8 @@ def can_share_walk(rays, n):
         origin, negative = rays[_at(R_ORIGIN + a, 0)], rays[_at(R_INVERSE + a, 0)] < 0.0
         for r in range(n):
             inverse = load_at(rays, _at(R_INVERSE + a, r))
-            shared &= ((abs(inverse) < math.inf) & (load_at(rays, _at(R_ORIGIN + a, r)) == origin)
+            same_origin = load_at(rays, _at(R_ORIGIN + a, r)) == origin
+            shared &= ((abs(inverse) < math.inf) & (same_origin | (not one_origin))
                        & ((inverse < 0.0) == negative))
     return shared
 
@@ -267,55 +281,13 @@ def packet_closest(n, rays, axes, bvh, n_spheres, stack, stack_t, counters):
                     node, enter, slot = load_at(refs, at + WIDE_REFS + near), near_t, node * WIDTH + near
                     continue
             else:
-                leaf = LEAF_SIZE * ~node
-                p = (slot // WIDTH) * WIDE_SIZE + slot % WIDTH  # the leaf's box in its parent's row
-                # A leaf of triangles is known from its parent's row, already read: its own row is
-                # read only to name a crossing (_take).
-                packed = load_at(refs, p + WIDE_GROUPS) if slot >= 0 else 0
-                if packed != 0:
-                    group, count = from_leaf_group(packed)
-                else:
-                    count, group = load_at(leaves, leaf + 1), load_at(leaves, leaf + 2)
-                if slot >= 0:  # only the rays that enter the leaf's box test what it holds
-                    entered = slab_rays_mask(wide, p + nx, p + ny, p + nz, p + fx, p + fy, p + fz, ox, oy, oz,
-                                             rays, _at(R_INVERSE, 0), _at(R_INVERSE + 1, 0),
-                                             _at(R_INVERSE + 2, 0), _at(R_T_MIN, 0), _at(R_BEST_T, 0))
-                    entered &= (1 << n) - 1
-                    boxes += n
-                else:  # a tree of one leaf
-                    entered = 0
-                    for r in range(n):
-                        entered |= (enter < load_at(rays, _at(R_BEST_T, r))) << r
-                closer = False
-                while entered != 0:
-                    r = lowest_bit(entered)
-                    entered &= entered - 1
-                    if group < 0:  # an analytic sphere's leaf, tested one by one
-                        tests += count
-                        o, d, shear, t_min, before = ray_of(rays, axes, r)
-                        okx, oky, okz = _three(rays, R_SHEARED_ORIGIN, r)
-                        # The closest hit so far goes in as none: test_leaf gives it back only when
-                        # the leaf has nothing closer, and then nothing is stored.
-                        first = load_at(leaves, leaf)
-                        best_t, best_k, best_w = test_leaf(groups, rows, order, n_spheres, first, count,
-                                                           group, o, d, shear, okx, oky, okz, t_min, before,
-                                                           -1, NO_WEIGHTS)
-                        closer |= _keep(rays, axes, r, before, best_t, best_k, best_w)
-                    elif entered != 0:  # two rays in one test (the leaf holds one group)
-                        q = lowest_bit(entered)
-                        entered &= entered - 1
-                        tests += 2 * count
-                        c = triangle_test4x2(groups, group * GROUP_SIZE, _test_ray(rays, axes, r),
-                                             _test_ray(rays, axes, q))
-                        closer |= _take(c[0:5], rays, axes, r, rows, leaves, leaf, count)
-                        closer |= _take(c[5:10], rays, axes, q, rows, leaves, leaf, count)
-                    else:
-                        tests += count
-                        kx, ky, kz, okx, oky, okz, sx, sy, sz, t_min, before = _test_ray(rays, axes, r)
-                        c = triangle_test4(groups, group * GROUP_SIZE, kx, ky, kz, okx, oky, okz, sx, sy, sz,
-                                           t_min, before)
-                        closer |= _take(c, rays, axes, r, rows, leaves, leaf, count)
-                if closer:  # the packet's farthest closest hit so far may have come nearer
+                p, leaf, group, count = _leaf_below(refs, leaves, node, slot)
+                # only the rays that enter the leaf's box test what it holds
+                entered = _rays_entering(wide, p, nx, ny, nz, fx, fy, fz, rays, R_BEST_T) & ((1 << n) - 1)
+                boxes += n
+                closer, leaf_tests = _leaf_for_rays(entered, rays, axes, bvh, n_spheres, leaf, group, count)
+                tests += leaf_tests
+                if closer != 0:  # the packet's farthest closest hit so far may have come nearer
                     t_high = load_at(rays, _at(R_BEST_T, 0))
                     for r in range(1, n):
                         t_high = max(t_high, load_at(rays, _at(R_BEST_T, r)))
@@ -326,6 +298,157 @@ def packet_closest(n, rays, axes, bvh, n_spheres, stack, stack_t, counters):
         enter = load_at(stack_t, top)
     counters[BOUNDS_TESTS] += boxes
     counters[PRIM_TESTS] += tests
+
+
+@jit_inline
+def _leaf_below(refs, leaves, node, slot):
+    """The leaf ``node`` (< 0) whose box is at ``slot`` of its parent (``parent * WIDTH +
+    child``; the root is never a leaf): ``(p, leaf, group, count)``, the flat index of its box in
+    the parent's row, the index of its own row, its group of triangles (-1: an analytic sphere's
+    leaf) and how many primitives it holds.  A leaf of triangles is known from its parent's row,
+    already read for its box: its own row is read only to name a crossing (:func:`_take`)."""
+    leaf = LEAF_SIZE * ~node
+    p = (slot // WIDTH) * WIDE_SIZE + slot % WIDTH
+    packed = load_at(refs, p + WIDE_GROUPS)
+    if packed != 0:
+        group, count = from_leaf_group(packed)
+    else:
+        count, group = load_at(leaves, leaf + 1), load_at(leaves, leaf + 2)
+    return p, leaf, group, count
+
+
+@jit_inline
+def _leaf_for_rays(entered, rays, axes, bvh, n_spheres, leaf, group, count):
+    """The rays ``entered`` (a mask) test what the leaf whose row is at ``leaf`` holds (``group``
+    and ``count``: its triangle group, -1 for an analytic sphere's leaf): ``(closer, tests)``, the
+    mask of the rays whose closest hit came nearer (:func:`_keep`) and the primitive tests made.
+
+    The rays go two at a time through a leaf of triangles, one vector test of eight lanes
+    (:func:`~core.image_order.kernels.intrinsics.triangle4.triangle_test4x2`); a sphere's leaf is
+    tested by each ray alone.  Each ray's arithmetic is that of its lone walk.
+    """
+    wide, refs, leaves, groups, order, rows = bvh
+    closer = 0
+    tests = 0
+    while entered != 0:
+        r = lowest_bit(entered)
+        entered &= entered - 1
+        if group < 0:  # an analytic sphere's leaf, tested one by one
+            tests += count
+            o, d, shear, t_min, before = ray_of(rays, axes, r)
+            okx, oky, okz = _three(rays, R_SHEARED_ORIGIN, r)
+            # The closest hit so far goes in as none: test_leaf gives it back only when the leaf
+            # has nothing closer, and then nothing is stored.
+            first = load_at(leaves, leaf)
+            best_t, best_k, best_w = test_leaf(groups, rows, order, n_spheres, first, count, group, o, d,
+                                               shear, okx, oky, okz, t_min, before, -1, NO_WEIGHTS)
+            if _keep(rays, axes, r, before, best_t, best_k, best_w):
+                closer |= 1 << r
+        elif entered != 0:  # two rays in one test (the leaf holds one group)
+            q = lowest_bit(entered)
+            entered &= entered - 1
+            tests += 2 * count
+            c = triangle_test4x2(groups, group * GROUP_SIZE, _test_ray(rays, axes, r),
+                                 _test_ray(rays, axes, q))
+            if _take(c[0:5], rays, axes, r, rows, leaves, leaf, count):
+                closer |= 1 << r
+            if _take(c[5:10], rays, axes, q, rows, leaves, leaf, count):
+                closer |= 1 << q
+        else:
+            tests += count
+            kx, ky, kz, okx, oky, okz, sx, sy, sz, t_min, before = _test_ray(rays, axes, r)
+            c = triangle_test4(groups, group * GROUP_SIZE, kx, ky, kz, okx, oky, okz, sx, sy, sz, t_min,
+                               before)
+            if _take(c, rays, axes, r, rows, leaves, leaf, count):
+                closer |= 1 << r
+    return closer, tests
+
+
+@jit_inline
+def _rays_entering(wide, p, nx, ny, nz, fx, fy, fz, rays, below):
+    """Which of the packet's rays enter the box whose slot in its parent's row is at ``p``, each
+    by its own test (:func:`~core.image_order.kernels.intrinsics.slabs4.slab_rays_mask`), with
+    an entry below their numbers ``below`` (``R_BEST_T``, or ``R_NO_BOUND``)."""
+    return slab_rays_mask(wide, p + nx, p + ny, p + nz, p + fx, p + fy, p + fz, rays, _at(R_ORIGIN, 0),
+                          _at(R_ORIGIN + 1, 0), _at(R_ORIGIN + 2, 0), _at(R_INVERSE, 0),
+                          _at(R_INVERSE + 1, 0), _at(R_INVERSE + 2, 0), _at(R_T_MIN, 0), _at(R_BEST_T, 0),
+                          _at(below, 0))
+
+
+@jit
+def packet_occluded(n, rays, axes, bvh, n_spheres, stack, stack_rays, counters):
+    """Whether each of the packet's shadow rays ``0 .. n-1`` crosses anything (rays that
+    :func:`can_share_walk` without one origin); a blocked ray's ``A_BEST_K`` and ``R_BEST_T`` then
+    name its blocker (:func:`packet_blocker`).
+
+    The packet walks the tree as a lone shadow ray does
+    (:func:`~core.image_order.kernels.bvh_traverse.bvh_occluded`): the children entered in the
+    order of their slots, nothing sorted.  Its rays start at different points (the hits of
+    neighbouring pixels, all going to one light).  At a node every ray that entered it and is not
+    yet blocked tests the four children's boxes on its own, sixteen rays a box in one vector test
+    (:func:`_rays_entering`, lane for lane the lone ray's test); a child is visited with the rays
+    that enter it, and a leaf's triangles are tested by those rays, two at a time, as in
+    :func:`packet_closest`.  So each ray meets the very nodes and leaves it would meet alone, in
+    the same order, and names the same blocker; the packet reads each node once for all its rays.
+    The walk ends when every ray is blocked.  ``stack`` and ``stack_rays`` (int64, the rays that
+    entered each pushed node) hold ``3 * depth + 2`` entries.
+    """
+    wide, refs, leaves, groups, order, rows = bvh
+    nx, ny, nz, fx, fy, fz = near_and_far_rows(*_three(rays, R_INVERSE, 0))  # all the rays' signs agree
+    boxes = 0
+    tests = 0
+    top = 0
+    node, slot = 0, -1
+    unblocked = (1 << n) - 1
+    inside = unblocked  # the rays that entered the node's box
+    while True:
+        inside &= unblocked
+        if inside != 0:
+            if node >= 0:
+                at = node * WIDE_SIZE
+                boxes += WIDTH * bit_count(inside)
+                # The four boxes' tests first, before anything is stored: the rays' numbers are
+                # then loaded once for all four.
+                children = (_rays_entering(wide, at, nx, ny, nz, fx, fy, fz, rays, R_NO_BOUND) & inside,
+                            _rays_entering(wide, at + 1, nx, ny, nz, fx, fy, fz, rays, R_NO_BOUND) & inside,
+                            _rays_entering(wide, at + 2, nx, ny, nz, fx, fy, fz, rays, R_NO_BOUND) & inside,
+                            _rays_entering(wide, at + 3, nx, ny, nz, fx, fy, fz, rays, R_NO_BOUND) & inside)
+                near, near_rays = -1, 0
+                for c in range(WIDTH - 1, -1, -1):  # pushed so that they come out in slot order
+                    entered = children[c]
+                    if entered != 0:
+                        if near >= 0:
+                            store_at(stack, top, stack_entry(load_at(refs, at + WIDE_REFS + near),
+                                                             node * WIDTH + near))
+                            store_at(stack_rays, top, near_rays)
+                            top += 1
+                        near, near_rays = c, entered
+                if near >= 0:
+                    node, slot, inside = load_at(refs, at + WIDE_REFS + near), node * WIDTH + near, near_rays
+                    continue
+            else:
+                _, leaf, group, count = _leaf_below(refs, leaves, node, slot)
+                blocked, leaf_tests = _leaf_for_rays(inside, rays, axes, bvh, n_spheres, leaf, group, count)
+                tests += leaf_tests
+                unblocked &= ~blocked
+                if unblocked == 0:
+                    break
+        if top == 0:
+            break
+        top -= 1
+        node, slot = from_stack_entry(load_at(stack, top))
+        inside = load_at(stack_rays, top)
+    counters[BOUNDS_TESTS] += boxes
+    counters[PRIM_TESTS] += tests
+
+
+@jit_inline
+def packet_blocker(rays, axes, r, bvh):
+    """Ray ``r``'s blocker after :func:`packet_occluded`: ``(prim, t)``, as
+    :func:`~core.image_order.kernels.bvh_traverse.bvh_occluded` gives it for the ray alone
+    (``(-1, inf)``: none)."""
+    k = load_at(axes, _at(A_BEST_K, r))
+    return (bvh[4][k], load_at(rays, _at(R_BEST_T, r))) if k >= 0 else (-1, math.inf)
 
 
 @jit_inline

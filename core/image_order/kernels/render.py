@@ -166,7 +166,7 @@ def _primary_packet(j0, j1, i0, i1, cam, xs, ys, geo, bvh, scratch, packet, hits
             n += 1
     set_primary_rays(cam, rays, axes, n)
     count[flat_layout.PRIMARY] += n
-    shared = bvh[0].shape[0] > 0 and can_share_walk(rays, n)
+    shared = bvh[0].shape[0] > 0 and can_share_walk(rays, n, True)
     if shared:
         prim_before, bounds_before = count[flat_layout.PRIM_TESTS], _bounds_work(count)
         packet_closest(n, rays, axes, bvh, n_spheres, stack, stack_t, count)

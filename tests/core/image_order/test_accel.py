@@ -7,6 +7,7 @@ import numpy as np
 import pytest
 
 from core import shapes
+from core.camera import Camera
 from core.image_order.bounding_spheres import bounding_spheres
 from core.image_order.effects_plan import effects_plan
 from core.image_order.flat_layout import (
@@ -123,6 +124,49 @@ def test_a_batch_of_shadow_rays_on_all_cores_is_blocked_where_brute_force_is_blo
         assert (blockers[r], blocker_t[r]) == alone[:2], r
     assert counters[SHADOW] == len(origins)
     assert 200 < (blockers >= 0).sum() < 700
+
+
+def _shadow_rays_of_the_view(scene, light, width, height):
+    """From every hit of a 4 x 4-pixel tile's rays (tile after tile, as the bench orders them)
+    towards ``light``: origins just before the hit, directions to the light, ``t < 1``."""
+    camera = Camera(eye=(7.0, 6.0, 9.0), target=(0.0, 0.8, 0.0), width=width, height=height)
+    eyes, directions = camera.primary_rays()
+    tiles = [(j, i) for y in range(0, height, 4) for x in range(0, width, 4)
+             for j in range(y, y + 4) for i in range(x, x + 4)]
+    brute = Query(scene, "none")
+    origins = []
+    for j, i in tiles:
+        prim, t, *_ = brute(eyes[j, i], directions[j, i])
+        if prim >= 0:
+            origins.append(eyes[j, i] + t * (1.0 - 1e-9) * directions[j, i])
+    origins = np.array(origins)
+    return origins, np.asarray(light, float) - origins
+
+
+@pytest.mark.parametrize("light", [(-6.0, 5.0, 3.0), (-5.0, 3.0, -2.0), (0.3, 9.0, 0.2)])
+def test_shadow_rays_of_neighbouring_hits_in_packets_find_the_blocker_each_finds_alone(scene, light):
+    """The bench's shadow rays: sixteen neighbouring hits' rays to one light walk the tree as one
+    packet (their origins differ); each ray must get the blocker and ``t`` of its own walk alone,
+    bit for bit, and be blocked exactly where brute force finds a crossing before the light.
+    The light above the middle makes packets whose directions straddle an axis plane, which go
+    one by one."""
+    origins, directions = _shadow_rays_of_the_view(scene, light, 40, 32)
+    n = len(origins)
+    bvh, brute = Query(scene, "bvh"), Query(scene, "none")
+    blockers, blocker_t = np.empty(n, np.int64), np.empty(n)
+    counters = trace_shadow_rays(origins, directions, np.zeros(n), np.ones(n), bvh.k.bvh,
+                                 bvh.k.geo[GEO_N_SPHERES], bvh.k.bvh_depth, 2, blockers, blocker_t)
+    spheres_blocking = 0
+    for r in range(n):
+        alone = bvh(origins[r], directions[r], 1.0, any_hit=True)
+        assert (blockers[r], blocker_t[r]) == alone[:2], r
+        assert (blockers[r] >= 0) == (brute(origins[r], directions[r], 1.0)[0] >= 0), r
+        spheres_blocking += 0 <= blockers[r] < bvh.k.geo[GEO_N_SPHERES]
+    # most packets share a walk: the rays of a packet point one way on every axis
+    signs = np.sign(directions[:n - n % 16]).reshape(-1, 16, 3)
+    assert (signs == signs[:, :1]).all(axis=(1, 2)).mean() > 0.5
+    assert counters[SHADOW] == n
+    assert 0.1 * n < (blockers >= 0).sum() < 0.9 * n and spheres_blocking > 0
 
 
 def test_a_shadow_rays_blocker_is_reported_where_the_ray_crosses_it(scene):

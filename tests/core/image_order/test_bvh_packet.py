@@ -208,13 +208,14 @@ def _entries(node, near, far, o, inverses, t_min, t_max):
     return own, np.array([e[0], e[1], e[2], e[3]])
 
 
-def _node_and_packet(rng, spread, n):
-    """A random node of four boxes (flat ones too), a random origin and ``n`` directions of one
-    sign per axis spread by ``spread``, with the node's rows of the near and far sides."""
+def _node_and_packet(rng, spread, n, origin_spread=0.0):
+    """A random node of four boxes (flat ones too), ``n`` random origins spread by
+    ``origin_spread`` about one point and ``n`` directions of one sign per axis spread by
+    ``spread``, with the node's rows of the near and far sides."""
     lo = rng.uniform(-3.0, 3.0, (3, 4))
     hi = lo + rng.exponential(1.0, (3, 4)) * rng.choice([0.0, 1e-6, 1.0], (3, 4))
     node = np.concatenate([lo, hi]).astype(np.float32).reshape(-1)
-    o = rng.uniform(-4.0, 4.0, 3)
+    origins = rng.uniform(-4.0, 4.0, 3) + rng.normal(scale=origin_spread, size=(n, 3))
     base = rng.normal(size=3)
     base[np.abs(base) < 0.05] = 0.05  # keep each axis' sign over the packet
     directions = base + rng.normal(scale=spread, size=(n, 3)) * np.abs(base)
@@ -222,15 +223,15 @@ def _node_and_packet(rng, spread, n):
     negative = directions[0] < 0.0
     near = np.array([4 * axis + (12 if negative[axis] else 0) for axis in range(3)])
     far = np.array([4 * axis + (0 if negative[axis] else 12) for axis in range(3)])
-    return node, o, directions, near, far
+    return node, origins, directions, near, far
 
 
 @settings(max_examples=200, deadline=None)
 @given(seed=st.integers(0, 2**32 - 1), spread=st.sampled_from([1e-9, 1e-4, 0.05, 0.5]))
 def test_the_packets_bound_lies_below_every_rays_own_entry(seed, spread):
-    node, o, directions, near, far = _node_and_packet(np.random.default_rng(seed), spread, 16)
+    node, origins, directions, near, far = _node_and_packet(np.random.default_rng(seed), spread, 16)
     inverses = 1.0 / directions
-    own, bound = _entries(node, near, far, o, inverses, 0.0, math.inf)
+    own, bound = _entries(node, near, far, origins[0], inverses, 0.0, math.inf)
     entered = own < math.inf
     assert np.all(bound[entered.any(axis=0)] < math.inf)
     assert np.all(bound <= np.where(entered, own, math.inf).min(axis=0))
@@ -239,16 +240,19 @@ def test_the_packets_bound_lies_below_every_rays_own_entry(seed, spread):
 # --- sixteen rays against one box: each bit is that ray's own test --------------------------------
 
 @njit
-def _one_box_sixteen_rays(node, near, far, o, per_ray, box):
+def _one_box_sixteen_rays(node, near, far, per_ray, box):
     """slab_rays_mask's bits for box ``box`` of the node, and slab_test4's entry for each ray alone.
-    ``per_ray``: 1 / d per axis, t_min, t_max, each sixteen rays side by side."""
+    ``per_ray``: the origin and 1 / d per axis, t_min, t_max and the bound on the entry, each
+    sixteen rays side by side."""
     mask = slab_rays_mask(node, near[0] + box, near[1] + box, near[2] + box, far[0] + box, far[1] + box,
-                          far[2] + box, o[0], o[1], o[2], per_ray, 0, RAYS, 2 * RAYS, 3 * RAYS, 4 * RAYS)
+                          far[2] + box, per_ray, 0, RAYS, 2 * RAYS, 3 * RAYS, 4 * RAYS, 5 * RAYS, 6 * RAYS,
+                          7 * RAYS, 8 * RAYS)
     bits, alone = np.empty(RAYS, np.bool_), np.empty(RAYS)
     for r in range(RAYS):
+        o = per_ray[r], per_ray[RAYS + r], per_ray[2 * RAYS + r]
         e = slab_test4(node, near[0], near[1], near[2], far[0], far[1], far[2], o[0], o[1], o[2],
-                       per_ray[r], per_ray[RAYS + r], per_ray[2 * RAYS + r], per_ray[3 * RAYS + r],
-                       per_ray[4 * RAYS + r])
+                       per_ray[3 * RAYS + r], per_ray[4 * RAYS + r], per_ray[5 * RAYS + r],
+                       per_ray[6 * RAYS + r], per_ray[7 * RAYS + r])
         bits[r], alone[r] = (mask >> r) & 1, e[box]
     return bits, alone
 
@@ -258,25 +262,31 @@ def test_a_packet_is_as_many_rays_as_the_leaf_box_test_has_lanes():
 
 
 @settings(max_examples=200, deadline=None)
-@given(seed=st.integers(0, 2**32 - 1), spread=st.sampled_from([1e-9, 0.05, 0.5]))
-def test_sixteen_rays_against_one_box_enter_where_each_alone_enters_bit_for_bit(seed, spread):
+@given(seed=st.integers(0, 2**32 - 1), spread=st.sampled_from([1e-9, 0.05, 0.5]),
+       origin_spread=st.sampled_from([0.0, 0.01, 1.0]))
+def test_sixteen_rays_against_one_box_enter_where_each_alone_enters_bit_for_bit(seed, spread, origin_spread):
     # Bit r is set where ray r alone enters the box before its t_max (the packet then tests that
-    # leaf's triangles for it): every bit must be that lone ray's own slab test.
+    # leaf's triangles for it): every bit must be that lone ray's own slab test, from its own origin.
+    # With no bound (a shadow ray's walk) a box entered right at t_max is entered, as a lone shadow
+    # ray's mask (slab_mask4) has it.
     rng = np.random.default_rng(seed)
-    node, o, directions, near, far = _node_and_packet(rng, spread, RAYS)
+    node, origins, directions, near, far = _node_and_packet(rng, spread, RAYS, origin_spread)
+    rows = np.concatenate([origins.T.reshape(-1), 1.0 / directions.T.reshape(-1)])
     t_min = rng.choice([0.0, 0.5, 2.0], RAYS)
     t_max = t_min + rng.choice([0.0, 0.1, 3.0, math.inf], RAYS)  # a closest hit so far, or none
     for box in range(4):
         # Some rays' closest hit so far lies exactly where they enter the box: they must not enter.
-        unbounded = np.concatenate([1.0 / directions.T.reshape(-1), t_min, np.full(RAYS, math.inf)])
-        _, entry = _one_box_sixteen_rays(node, near, far, o, unbounded, box)
+        unbounded = np.concatenate([rows, t_min, np.full(2 * RAYS, math.inf)])
+        _, entry = _one_box_sixteen_rays(node, near, far, unbounded, box)
         t_max = np.where((rng.random(RAYS) < 0.3) & (entry < math.inf), entry, t_max)
-        per_ray = np.concatenate([1.0 / directions.T.reshape(-1), t_min, t_max])
-        bits, alone = _one_box_sixteen_rays(node, near, far, o, per_ray, box)
+        bits, alone = _one_box_sixteen_rays(node, near, far, np.concatenate([rows, t_min, t_max, t_max]), box)
         assert np.array_equal(bits, alone < t_max)
+        any_hit, _ = _one_box_sixteen_rays(node, near, far,
+                                           np.concatenate([rows, t_min, t_max, np.full(RAYS, math.inf)]), box)
+        assert np.array_equal(any_hit, alone < math.inf)
         # and what a ray enters is where its line is inside the box, within [t_min, t_max)
         for r in np.flatnonzero(bits):
-            point = o + alone[r] * directions[r]
+            point = origins[r] + alone[r] * directions[r]
             assert t_min[r] <= alone[r] < t_max[r]
             sides = node.reshape(6, 4)[:, box].astype(float)
             assert np.all(point >= sides[:3] - 1e-6 * (1 + abs(point)))
@@ -300,8 +310,8 @@ def test_a_shadow_rays_mask_names_exactly_the_boxes_it_enters(seed):
     """Rays along axis planes (a zero component: ``1 / d`` infinite) and origins on a box's side
     (``0 * inf``, NaN, which the slab test skips) included."""
     rng = np.random.default_rng(seed)
-    node, o, directions, _, _ = _node_and_packet(rng, 0.5, 1)
-    d = directions[0]
+    node, origins, directions, _, _ = _node_and_packet(rng, 0.5, 1)
+    o, d = origins[0], directions[0]
     d[rng.random(3) < 0.3] = rng.choice([0.0, -0.0])
     sides = node.reshape(6, 4).astype(float)
     on_side = rng.random(3) < 0.3

@@ -1,4 +1,5 @@
-"""The lowest set bit of a mask, for loops that visit only the lanes a vector test selected."""
+"""Bits of a mask: the lowest set bit, for loops that visit only the lanes a vector test selected, and
+how many are set."""
 
 from __future__ import annotations
 
@@ -20,5 +21,18 @@ def lowest_bit(typingctx, bits):
         count = cgutils.get_or_insert_function(builder.module, ir.FunctionType(_I64, [_I64, ir.IntType(1)]),
                                                "llvm.cttz.i64")
         return builder.call(count, [args[0], ir.Constant(ir.IntType(1), 1)])
+
+    return signature, codegen
+
+
+@intrinsic
+def bit_count(typingctx, bits):
+    """How many bits of the int64 ``bits`` are set (one instruction: ``llvm.ctpop``)."""
+    signature = types.int64(types.int64)
+
+    def codegen(context, builder, sig, args):
+        count = cgutils.get_or_insert_function(builder.module, ir.FunctionType(_I64, [_I64]),
+                                               "llvm.ctpop.i64")
+        return builder.call(count, [args[0]])
 
     return signature, codegen

@@ -23,8 +23,8 @@ walk about a tenth of its time (``bench trace``'s 10,000-triangle ball).
 origin (:mod:`core.image_order.kernels.bvh_packet`): one test of a node for
 all of them, never missing a box that one of them would enter.
 :func:`slab_rays_mask` turns the vector the other way: one box, the sixteen
-rays of such a packet, each lane computing exactly what :func:`slab_test4`
-computes for that ray and that box.
+rays of a packet (from one origin or not), each lane computing exactly what
+:func:`slab_test4` computes for that ray and that box.
 """
 
 from __future__ import annotations
@@ -130,19 +130,21 @@ _RAYS_F64 = ir.VectorType(F64, RAYS)
 
 
 @intrinsic
-def slab_rays_mask(typingctx, rows, near_x, near_y, near_z, far_x, far_y, far_z, ox, oy, oz, rays, ix_at,
-                   iy_at, iz_at, t_min_at, t_max_at):
-    """Which of ``RAYS`` rays from one origin enter one box before their ``t_max``: bit ``r`` set
-    where ray ``r``'s :func:`slab_test4` entry into the box is below its ``t_max``.
+def slab_rays_mask(typingctx, rows, near_x, near_y, near_z, far_x, far_y, far_z, rays, ox_at, oy_at, oz_at,
+                   ix_at, iy_at, iz_at, t_min_at, t_max_at, below_at):
+    """Which of ``RAYS`` rays enter one box: bit ``r`` set where ray ``r``'s :func:`slab_test4`
+    entry into the box is finite and below its bound at ``below_at``.
 
     Parameters
     ----------
     rows, near_x ... far_z : as for :func:`slab_test4`, but each index names the one number of
         the one box (a single float32), the same side for all the rays (their signs agree).
-    ox, oy, oz : float, the rays' common origin.
-    rays : 1-D float64 array; ``ix_at, iy_at, iz_at`` the flat indices of the rays' ``1 / d`` per
-        axis and ``t_min_at, t_max_at`` of their admissible ranges of ``t``, ``RAYS`` numbers side
-        by side at each.
+    rays : 1-D float64 array; ``ox_at, oy_at, oz_at`` the flat indices of the rays' origins per
+        axis, ``ix_at, iy_at, iz_at`` of their ``1 / d``, ``t_min_at, t_max_at`` of their
+        admissible ranges of ``t`` and ``below_at`` of the bounds the entry must lie below,
+        ``RAYS`` numbers side by side at each.  A closest-hit walk bounds the entry by the
+        closest hit so far (its ``t_max``), as its lone walk drops a box entered there; an
+        any-hit walk by ``inf``, as :func:`slab_mask4` keeps a box entered at ``t_max``.
 
     Returns
     -------
@@ -151,20 +153,20 @@ def slab_rays_mask(typingctx, rows, near_x, near_y, near_z, far_x, far_y, far_z,
     packet of the 1,000,000-triangle benchmark meets about 22 leaf boxes, and each of its rays
     enters about 6 of them).
     """
-    signature = types.int64(rows, near_x, near_y, near_z, far_x, far_y, far_z, ox, oy, oz, rays, ix_at, iy_at,
-                            iz_at, t_min_at, t_max_at)
+    signature = types.int64(rows, near_x, near_y, near_z, far_x, far_y, far_z, rays, ox_at, oy_at, oz_at,
+                            ix_at, iy_at, iz_at, t_min_at, t_max_at, below_at)
 
     def codegen(context, builder, sig, args):
         data = context.make_array(sig.args[0])(context, builder, args[0]).data
-        per_ray = context.make_array(sig.args[10])(context, builder, args[10]).data
+        per_ray = context.make_array(sig.args[7])(context, builder, args[7]).data
 
         def row(at):
             pointer = builder.bitcast(builder.gep(per_ray, [at]), _RAYS_F64.as_pointer())
             return builder.load(pointer, align=8)
 
-        def distance(k):  # the one side, minus the origin, in every lane: slab_test4's subtraction
+        def distance(k):  # the one side minus each ray's origin: slab_test4's subtraction
             side = builder.fpext(builder.load(builder.gep(data, [args[k]])), F64)
-            return splat(builder, builder.fsub(side, args[7 + (k - 1) % 3]), RAYS)
+            return builder.fsub(splat(builder, side, RAYS), row(args[8 + (k - 1) % 3]))
 
         enter, leave = row(args[14]), row(args[15])
         for axis in range(3):
@@ -174,7 +176,7 @@ def slab_rays_mask(typingctx, rows, near_x, near_y, near_z, far_x, far_y, far_z,
             enter = builder.select(builder.fcmp_ordered(">", t_near, enter), t_near, enter)
             leave = builder.select(builder.fcmp_ordered("<", t_far, leave), t_far, leave)
         entered = builder.and_(builder.fcmp_ordered("<=", enter, leave),
-                               builder.fcmp_ordered("<", enter, row(args[15])))
+                               builder.fcmp_ordered("<", enter, row(args[16])))
         return builder.zext(builder.bitcast(entered, ir.IntType(RAYS)), ir.IntType(64))
 
     return signature, codegen
