@@ -23,7 +23,8 @@ Figures, each the median of several runs after a warm-up run:
    triangle towards the light, any hit, ours in packets of 16 consecutive
    rays where they share a walk, each finding the blocker it finds alone
    (:mod:`core.image_order.kernels.shadow_rays`), Embree's with
-   ``rtcOccluded16`` -- both the very same rays, rounded to float32;
+   ``rtcOccluded16`` -- both the very same rays, rounded to float32, and
+   the runs back to back, as shading traces them (both run on numba's threads);
 4. a full Whitted render (all rays counted) of the lecture scene and of the
    mirror-and-glass scene at 640 x 480 with depth 5, the two in turns, frame
    after frame with no pause, as at 60 frames a second.
@@ -310,7 +311,12 @@ def _mesh_rays(triangles: int, args, library) -> dict:
     runners = {"ours": ours_shadow}
     if packets is not None:
         runners["packets"], occluded = packets.tracer(so, sd, s_min, s_max, True)
-    runs = _interleaved_runs(runners, args.repeats, args.clock)
+    # Back to back, as shading traces them within a frame: both tracers run on numba's threads, and
+    # no other library's threads spin meanwhile.  After the pause of 0.2 s the primary rays take,
+    # the second thread often woke on the first one's core and the two took turns on it for the
+    # whole run: on the 100,000-triangle ball ours took 12-16.5 ms, Embree 10.4-15 (their CPU
+    # time 22 and 17.6 ms), against 10.9-11.1 and 8.7-9.0 back to back.
+    runs = _interleaved_runs(runners, args.repeats, args.clock, pause=0.0)
     seconds = {name: statistics.median(times) for name, times in runs.items()}
     per_ray = shadow_counters[0] / max(n_shadow, 1)
     print(f"  shadow rays ({n_shadow:,}: every lit hit towards the light), ours (any hit, packets of 16 "
