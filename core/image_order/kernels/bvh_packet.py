@@ -293,11 +293,19 @@ def packet_closest(n, rays, axes, bvh, n_spheres, stack, stack_t, counters):
                         t_high = max(t_high, load_at(rays, _at(R_BEST_T, r)))
         if top == 0:
             break
-        top -= 1
-        node, slot = from_stack_entry(load_at(stack, top))
-        enter = load_at(stack_t, top)
+        top, node, slot, enter = _pop(stack, stack_t, top)
     counters[BOUNDS_TESTS] += boxes
     counters[PRIM_TESTS] += tests
+
+
+@jit_inline
+def _pop(stack, beside, top):
+    """Take the last entry off a packet's stack of ``top`` entries: ``(top, node, slot, kept)``,
+    ``kept`` what ``beside`` holds with it (where the packet enters the node, or the rays that
+    entered it)."""
+    top -= 1
+    node, slot = from_stack_entry(load_at(stack, top))
+    return top, node, slot, load_at(beside, top)
 
 
 @jit_inline
@@ -435,9 +443,7 @@ def packet_occluded(n, rays, axes, bvh, n_spheres, stack, stack_rays, counters):
                     break
         if top == 0:
             break
-        top -= 1
-        node, slot = from_stack_entry(load_at(stack, top))
-        inside = load_at(stack_rays, top)
+        top, node, slot, inside = _pop(stack, stack_rays, top)
     counters[BOUNDS_TESTS] += boxes
     counters[PRIM_TESTS] += tests
 

@@ -101,13 +101,13 @@ def nearest_child(entries, refs, at, stack, stack_t, top, slots):
 
 
 @jit_inline
-def any_child(entered, refs, at, stack, top, slots):
+def any_child(entered, refs, at, stack, top):
     """For an any-hit walk: of the children of the node at ``at`` that the ray enters (bit ``c``
     of ``entered``, :func:`~core.image_order.kernels.intrinsics.slabs4.slab_mask4`), the first in
     slot order, ``(child, top)``, after pushing the other ones entered so that they come next in
     slot order, each as a :func:`stack_entry` with its
-    :func:`~core.image_order.kernels.bvh_build.leaf_groups` number (with ``slots >= 0``, a
-    packet's: ``slots + child``, the slot of its box); ``child`` is -1 when none is entered.
+    :func:`~core.image_order.kernels.bvh_build.leaf_groups` number; ``child`` is -1 when none is
+    entered.
 
     Unlike :func:`nearest_child` nothing is sorted: a shadow ray stops at its first blocker, so
     it may meet a farther one first (and name that one)."""
@@ -115,8 +115,8 @@ def any_child(entered, refs, at, stack, top, slots):
     for c in range(WIDTH - 1, -1, -1):
         if entered >> c & 1:
             if near >= 0:
-                number = slots + near if slots >= 0 else load_at(refs, at + WIDE_GROUPS + near)
-                store_at(stack, top, stack_entry(load_at(refs, at + WIDE_REFS + near), number))
+                store_at(stack, top, stack_entry(load_at(refs, at + WIDE_REFS + near),
+                                                 load_at(refs, at + WIDE_GROUPS + near)))
                 top += 1
             near = c
     return near, top
@@ -238,7 +238,7 @@ def bvh_occluded(o, d, shear, t_min, t_max, bvh, n_spheres, stack, counters):
             entered = slab_mask4(wide, at + nx, at + ny, at + nz, at + fx, at + fy, at + fz, ox, oy, oz, ix,
                                  iy, iz, t_min, t_max)
             boxes += WIDTH
-            near, top = any_child(entered, refs, at, stack, top, -1)
+            near, top = any_child(entered, refs, at, stack, top)
             if near >= 0:
                 node, packed = load_at(refs, at + WIDE_REFS + near), load_at(refs, at + WIDE_GROUPS + near)
                 continue

@@ -8,9 +8,9 @@ This kernel traces a whole batch of given rays, so that ``python -m app bench
 trace`` can time the shadow rays alone, next to Embree's ``rtcOccluded16`` on
 the same rays.  Sixteen consecutive rays go as one packet
 (:func:`~core.image_order.kernels.bvh_packet.packet_occluded`) where they
-can share a walk (one sign of ``d`` per axis; the bench's rays come from the
-hits of 4 x 4 pixels and go to one light), else one by one; either way each
-ray gets the blocker and ``t`` it gets alone, bit for bit.
+can share a walk (one sign of ``d`` per axis; the bench's rays start at the
+lit hits of neighbouring pixels, row by row, and go to one light), else one by
+one; either way each ray gets the blocker and ``t`` it gets alone, bit for bit.
 
 The rays are dealt out in chunks of neighbouring rays, taken by the threads
 one at a time from a shared counter
