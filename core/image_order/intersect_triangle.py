@@ -143,8 +143,10 @@ def ray_shear(dx, dy, dz):
     x_largest = (ax > ay) & (ax > az)
     y_largest = (ay > az) & (ax <= ay)
     kz = 2 - 1 * y_largest - 2 * x_largest
-    kx = (kz + 1) % 3
-    ky = (kx + 1) % 3
+    # (kz + 1) % 3 without the remainder, whose integer division made the compiler judge a loop
+    # making a packet's rays not worth four rays per vector instruction
+    kx = kz + 1 - 3 * (kz == 2)
+    ky = kx + 1 - 3 * (kx == 2)
     d_kx, d_ky, d_kz = on_shear_axes(dx, dy, dz, kz)
     return kx, ky, kz, -d_kx / d_kz, -d_ky / d_kz, 1.0 / d_kz
 

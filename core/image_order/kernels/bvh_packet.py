@@ -53,9 +53,11 @@ neighbouring hits to one light, whose origins differ.  Their walk tests every
 node's four boxes with each ray on its own (sixteen rays a box in one vector
 test), so each ray meets exactly the nodes and leaves of its lone walk, in the
 same order, and names the same blocker; the packet reads each node once for
-all of them.  On the benchmark's shadow rays (one thread's CPU, rays in rows
-of pixels) the batch takes 9.3, 20.5 and 68 ms at 10,000, 100,000 and
-1,000,000 triangles where the rays one by one took 11.4, 25.5 and 74.
+all of them.  How a node's boxes are tested depends on how many of the rays
+are still in it (:func:`_children_entering`): deep in the tree a few rays
+test them one by one, higher up all of them at once, sixteen lanes a box,
+and only the boxes that the cone from the light to the rays' origins may
+enter (:func:`_cone`).
 
 A packet is kept in two small per-thread arrays: ``rays`` (RAY_FIELDS x
 PACKET_SIZE floats) and ``axes`` (AXIS_FIELDS x PACKET_SIZE integers), with
@@ -88,7 +90,14 @@ from core.image_order.kernels.bvh_traverse import (
     test_leaf,
 )
 from core.image_order.kernels.intrinsics.bits import bit_count, lowest_bit
-from core.image_order.kernels.intrinsics.slabs4 import slab_interval4, slab_rays_mask
+from core.image_order.kernels.intrinsics.slabs4 import (
+    HALF,
+    slab_cone_mask4,
+    slab_half_mask,
+    slab_interval4,
+    slab_mask4,
+    slab_rays_mask,
+)
 from core.image_order.kernels.intrinsics.triangle4 import GROUP_SIZE, triangle_test4, triangle_test4x2
 from core.image_order.kernels.intrinsics.unchecked import load_at, store_at
 from core.image_order.kernels.jit import jit, jit_inline
@@ -119,17 +128,25 @@ def _at(field, r):
 @jit_inline
 def set_ray(rays, axes, r, o, d, t_min, t_max):
     """Make ``o + t d`` (``t_min <= t < t_max``) ray ``r`` of the packet."""
+    for a in range(3):
+        store_at(rays, _at(R_ORIGIN + a, r), o[a])
+        store_at(rays, _at(R_DIRECTION + a, r), d[a])
+    store_at(rays, _at(R_T_MIN, r), t_min)
+    store_at(rays, _at(R_BEST_T, r), t_max)
+    store_at(rays, _at(R_NO_BOUND, r), math.inf)
+    _derive(rays, axes, r, o, d)
+
+
+@jit_inline
+def _derive(rays, axes, r, o, d):
+    """What ray ``r`` of the packet, from ``o`` along ``d``, needs besides: ``1 / d``, the shear
+    of the watertight triangle test and the origin on its axes; and no closest hit yet."""
     inverse = (1.0 / d[0], 1.0 / d[1], 1.0 / d[2])
     kx, ky, kz, sx, sy, _ = ray_shear(d[0], d[1], d[2])
     sz = on_shear_axes(inverse[0], inverse[1], inverse[2], kz)[2]  # the shear's 1 / d_kz, not divided again
     okx, oky, okz = on_shear_axes(o[0], o[1], o[2], kz)
     for a in range(3):
-        store_at(rays, _at(R_ORIGIN + a, r), o[a])
         store_at(rays, _at(R_INVERSE + a, r), inverse[a])
-        store_at(rays, _at(R_DIRECTION + a, r), d[a])
-    store_at(rays, _at(R_T_MIN, r), t_min)
-    store_at(rays, _at(R_BEST_T, r), t_max)
-    store_at(rays, _at(R_NO_BOUND, r), math.inf)
     store_at(rays, _at(R_SHEAR, r), sx)
     store_at(rays, _at(R_SHEAR + 1, r), sy)
     store_at(rays, _at(R_SHEAR + 2, r), sz)
@@ -140,6 +157,27 @@ def set_ray(rays, axes, r, o, d, t_min, t_max):
     store_at(axes, _at(A_AXES + 1, r), ky)
     store_at(axes, _at(A_AXES + 2, r), kz)
     store_at(axes, _at(A_BEST_K, r), -1)
+
+
+@jit_inline
+def set_rays(rays, axes, origins, directions, t_min, t_max, start, n):
+    """Make rays ``0 .. n-1`` of the packet rays ``start .. start + n - 1`` of the arrays
+    (:func:`set_ray`; ``origins`` and ``directions`` (N, 3)).
+
+    Their numbers are copied in first; then what follows from them is worked out in one loop
+    with no branch that reads and writes only the packet's rows, four rays per vector
+    instruction, as :func:`set_primary_rays` does (a ray's five divisions among them), where
+    the loop that read each ray's numbers from the arrays and made it went one ray at a time.
+    """
+    for r in range(n):
+        for a in range(3):
+            store_at(rays, _at(R_ORIGIN + a, r), origins[start + r, a])
+            store_at(rays, _at(R_DIRECTION + a, r), directions[start + r, a])
+        store_at(rays, _at(R_T_MIN, r), t_min[start + r])
+        store_at(rays, _at(R_BEST_T, r), t_max[start + r])
+        store_at(rays, _at(R_NO_BOUND, r), math.inf)
+    for r in range(n):
+        _derive(rays, axes, r, _three(rays, R_ORIGIN, r), _three(rays, R_DIRECTION, r))
 
 
 @jit_inline
@@ -383,6 +421,143 @@ def _rays_entering(wide, p, nx, ny, nz, fx, fy, fz, rays, below):
                           _at(below, 0))
 
 
+#: At most this many rays in a node: each tests the node's four boxes on its own (one vector test
+#: of four lanes a ray) rather than all sixteen lanes a box.  On the bench's 100,000-triangle
+#: ball a packet's node holds 2.3 rays on average where it holds so few, 13 where it holds more.
+_FEW_RAYS = 4
+
+
+@jit_inline
+def _children_entering(wide, at, sides, rays, inside, cone):
+    """Which of the rays ``inside`` (a mask) enter each of the four boxes of the node at ``at``:
+    four masks, each bit from that ray's own test, lane for lane its lone walk's
+    (:func:`~core.image_order.kernels.intrinsics.slabs4.slab_mask4`).  ``sides``: the rows of
+    the boxes' near and far sides (:func:`~core.image_order.kernels.bvh_traverse.near_and_far_rows`),
+    ``cone``: the packet's :func:`_cone`.
+
+    The tests cost what the rays inside need.  A few rays (:data:`_FEW_RAYS`, deep in the tree)
+    each test the four boxes on their own.  Rays all in one half of the packet test each box
+    eight lanes at a time
+    (:func:`~core.image_order.kernels.intrinsics.slabs4.slab_half_mask`); else sixteen, and only
+    the boxes that the packet's cone may enter (:func:`_cone_may_enter`): on the bench's rays a
+    node higher up is entered by 1.5 to 2.4 of its four children and the cone lets 1.6 to 2.8
+    through (10,000 to 1,000,000 triangles).
+    """
+    nx, ny, nz, fx, fy, fz = sides
+    if bit_count(inside) <= _FEW_RAYS:
+        return _each_ray_entering(wide, at, sides, rays, inside)
+    if inside >> HALF == 0 or inside & ((1 << HALF) - 1) == 0:
+        first = 0 if inside >> HALF == 0 else HALF
+        return (_half_entering(wide, at, sides, rays, first) << first & inside,
+                _half_entering(wide, at + 1, sides, rays, first) << first & inside,
+                _half_entering(wide, at + 2, sides, rays, first) << first & inside,
+                _half_entering(wide, at + 3, sides, rays, first) << first & inside)
+    may = _cone_may_enter(wide, at, cone)
+    return (_rays_entering(wide, at, nx, ny, nz, fx, fy, fz, rays, R_NO_BOUND) & inside if may & 1 else 0,
+            _rays_entering(wide, at + 1, nx, ny, nz, fx, fy, fz, rays, R_NO_BOUND) & inside if may & 2 else 0,
+            _rays_entering(wide, at + 2, nx, ny, nz, fx, fy, fz, rays, R_NO_BOUND) & inside if may & 4 else 0,
+            _rays_entering(wide, at + 3, nx, ny, nz, fx, fy, fz, rays, R_NO_BOUND) & inside if may & 8 else 0)
+
+
+@jit_inline
+def _each_ray_entering(wide, at, sides, rays, inside):
+    """:func:`_children_entering` ray by ray: each ray ``inside`` tests the four boxes as it does
+    alone."""
+    nx, ny, nz, fx, fy, fz = sides
+    c0 = c1 = c2 = c3 = 0
+    todo = inside
+    while todo != 0:
+        r = lowest_bit(todo)
+        todo &= todo - 1
+        ox, oy, oz = _three(rays, R_ORIGIN, r)
+        ix, iy, iz = _three(rays, R_INVERSE, r)
+        entered = slab_mask4(wide, at + nx, at + ny, at + nz, at + fx, at + fy, at + fz, ox, oy, oz, ix, iy,
+                             iz, load_at(rays, _at(R_T_MIN, r)), load_at(rays, _at(R_BEST_T, r)))
+        c0 |= (entered & 1) << r
+        c1 |= ((entered >> 1) & 1) << r
+        c2 |= ((entered >> 2) & 1) << r
+        c3 |= ((entered >> 3) & 1) << r
+    return c0, c1, c2, c3
+
+
+@jit_inline
+def _half_entering(wide, p, sides, rays, first):
+    """:func:`_rays_entering` (no bound on the entry) for the ``HALF`` rays from ray ``first`` on,
+    their bits from bit 0."""
+    nx, ny, nz, fx, fy, fz = sides
+    return slab_half_mask(wide, p + nx, p + ny, p + nz, p + fx, p + fy, p + fz, rays, _at(R_ORIGIN, first),
+                          _at(R_ORIGIN + 1, first), _at(R_ORIGIN + 2, first), _at(R_INVERSE, first),
+                          _at(R_INVERSE + 1, first), _at(R_INVERSE + 2, first), _at(R_T_MIN, first),
+                          _at(R_BEST_T, first), _at(R_NO_BOUND, first))
+
+
+#: How far the cone's boxes grow (:func:`_cone`) beyond the spread of the rays' far ends,
+#: relative to the size of the rays' numbers: far more than all the rounding of both slab tests
+#: (a few times 2**-53 of it).
+_CONE_SLACK = 2.0**-40
+#: The cone's rays end where the packet's rays start, at ``t = 1``: a little more to be safe.
+_CONE_T = 1.0 + 2.0**-30
+
+
+@jit_inline
+def _cone(rays, n):
+    """The cone of rays from one point, the far end of ray 0 (the light), to the origins of the
+    packet's rays ``0 .. n-1``, as :func:`_cone_may_enter` takes it; its last number says
+    whether it serves: every ray's far end lies within a small distance of the apex (the rays
+    go to one light), and the cone's ``1 / d`` are finite and of one sign per axis.
+
+    The cone holds every ray's segment: a point of a segment lies within the far ends' spread of
+    the cone's ray to that origin.  So the cone's boxes grow by that spread, and by
+    :data:`_CONE_SLACK` of the numbers' size for the rounding of both slab tests, which is why a
+    ray whose own rounded test enters a box always leaves that box to the cone.
+    """
+    t_0 = load_at(rays, _at(R_BEST_T, 0))
+    ox, oy, oz = _three(rays, R_ORIGIN, 0)
+    dx, dy, dz = _three(rays, R_DIRECTION, 0)
+    ex, ey, ez = ox + t_0 * dx, oy + t_0 * dy, oz + t_0 * dz
+    ax, bx, ok_x, spread_x, size_x = _cone_axis(rays, n, 0, ex)
+    ay, by, ok_y, spread_y, size_y = _cone_axis(rays, n, 1, ey)
+    az, bz, ok_z, spread_z, size_z = _cone_axis(rays, n, 2, ez)
+    size = max(size_x, size_y, size_z)
+    spread = max(spread_x, spread_y, spread_z)
+    ok = ok_x and ok_y and ok_z and spread <= _CONE_SLACK * 2.0**20 * size
+    margin = spread * (1.0 + 2.0**-20) + _CONE_SLACK * size
+    # The near sides' distances are taken from the apex moved away from them, the far sides'
+    # from the apex moved towards them: the boxes grow by the margin on every side.
+    px, py, pz = math.copysign(margin, ax), math.copysign(margin, ay), math.copysign(margin, az)
+    return (near_and_far_rows(ax, ay, az), (ex + px, ey + py, ez + pz), (ex - px, ey - py, ez - pz),
+            (ax, ay, az), (bx, by, bz), ok)
+
+
+@jit_inline
+def _cone_axis(rays, n, a, apex):
+    """Axis ``a`` of :func:`_cone` (``apex``: its coordinate): ``(low, high, ok, spread, size)``,
+    the least and greatest ``1 / d`` of the cone's rays, whether they are finite and of one
+    sign, how far the rays' far ends lie from the apex, and the largest size of the numbers."""
+    low, high = math.inf, -math.inf
+    spread, size = 0.0, abs(apex)
+    for r in range(n):
+        o = load_at(rays, _at(R_ORIGIN + a, r))
+        end = o + load_at(rays, _at(R_BEST_T, r)) * load_at(rays, _at(R_DIRECTION + a, r))
+        inverse = 1.0 / (o - apex)
+        low, high = min(low, inverse), max(high, inverse)
+        spread, size = max(spread, abs(end - apex)), max(size, abs(o) + abs(end))
+    ok = (low > 0.0 or high < 0.0) and abs(low) < math.inf and abs(high) < math.inf
+    return low, high, ok, spread, size
+
+
+@jit_inline
+def _cone_may_enter(wide, at, cone):
+    """Which of the four boxes of the node at ``at`` the packet's :func:`_cone` may enter (bit
+    ``c`` for box ``c``; all four where the cone does not serve)."""
+    (nx, ny, nz, fx, fy, fz), near, far, low, high, ok = cone
+    if not ok:
+        return (1 << WIDTH) - 1
+    return slab_cone_mask4(wide, at + nx, at + ny, at + nz, at + fx, at + fy, at + fz, near[0], near[1],
+                           near[2], far[0], far[1], far[2], low[0], low[1], low[2], high[0], high[1], high[2],
+                           0.0, _CONE_T)
+
+
 @jit
 def packet_occluded(n, rays, axes, bvh, n_spheres, stack, stack_rays, counters):
     """Whether each of the packet's shadow rays ``0 .. n-1`` crosses anything (rays that
@@ -393,9 +568,9 @@ def packet_occluded(n, rays, axes, bvh, n_spheres, stack, stack_rays, counters):
     (:func:`~core.image_order.kernels.bvh_traverse.bvh_occluded`): the children entered in the
     order of their slots, nothing sorted.  Its rays start at different points (the hits of
     neighbouring pixels, all going to one light).  At a node every ray that entered it and is not
-    yet blocked tests the four children's boxes on its own, sixteen rays a box in one vector test
-    (:func:`_rays_entering`, lane for lane the lone ray's test); a child is visited with the rays
-    that enter it, and a leaf's triangles are tested by those rays, two at a time, as in
+    yet blocked tests the four children's boxes on its own (:func:`_children_entering`, lane for
+    lane the lone ray's test, in vectors as wide as the rays inside need); a child is visited with
+    the rays that enter it, and a leaf's triangles are tested by those rays, two at a time, as in
     :func:`packet_closest`.  So each ray meets the very nodes and leaves it would meet alone, in
     the same order, and names the same blocker; the packet reads each node once for all its rays.
     The walk ends when every ray is blocked.  ``stack`` and ``stack_rays`` (int64, the rays that
@@ -403,6 +578,8 @@ def packet_occluded(n, rays, axes, bvh, n_spheres, stack, stack_rays, counters):
     """
     wide, refs, leaves, groups, order, rows = bvh
     nx, ny, nz, fx, fy, fz = near_and_far_rows(*_three(rays, R_INVERSE, 0))  # all the rays' signs agree
+    sides = nx, ny, nz, fx, fy, fz
+    cone = _cone(rays, n)
     boxes = 0
     tests = 0
     top = 0
@@ -415,12 +592,7 @@ def packet_occluded(n, rays, axes, bvh, n_spheres, stack, stack_rays, counters):
             if node >= 0:
                 at = node * WIDE_SIZE
                 boxes += WIDTH * bit_count(inside)
-                # The four boxes' tests first, before anything is stored: the rays' numbers are
-                # then loaded once for all four.
-                children = (_rays_entering(wide, at, nx, ny, nz, fx, fy, fz, rays, R_NO_BOUND) & inside,
-                            _rays_entering(wide, at + 1, nx, ny, nz, fx, fy, fz, rays, R_NO_BOUND) & inside,
-                            _rays_entering(wide, at + 2, nx, ny, nz, fx, fy, fz, rays, R_NO_BOUND) & inside,
-                            _rays_entering(wide, at + 3, nx, ny, nz, fx, fy, fz, rays, R_NO_BOUND) & inside)
+                children = _children_entering(wide, at, sides, rays, inside, cone)
                 near, near_rays = -1, 0
                 for c in range(WIDTH - 1, -1, -1):  # pushed so that they come out in slot order
                     entered = children[c]

@@ -32,7 +32,7 @@ from core.image_order.kernels.bvh_packet import (
     packet_blocker,
     packet_occluded,
     ray_of,
-    set_ray,
+    set_rays,
 )
 from core.image_order.kernels.bvh_traverse import bvh_closest
 from core.image_order.kernels.intrinsics.bands import take_band
@@ -56,10 +56,7 @@ def _worker(queue, origins, directions, t_min, t_max, bvh, n_spheres, bvh_depth,
             break
         for start in range(first, min(first + CHUNK_RAYS, n), PACKET_SIZE):
             size = min(PACKET_SIZE, n - start)
-            for r in range(size):
-                o = (origins[start + r, 0], origins[start + r, 1], origins[start + r, 2])
-                d = (directions[start + r, 0], directions[start + r, 1], directions[start + r, 2])
-                set_ray(rays, axes, r, o, d, t_min[start + r], t_max[start + r])
+            set_rays(rays, axes, origins, directions, t_min, t_max, start, size)
             count[flat_layout.SHADOW] += size
             if bvh[0].shape[0] > 0 and can_share_walk(rays, size, False):
                 packet_occluded(size, rays, axes, bvh, n_spheres, stack, stack_rays, count)

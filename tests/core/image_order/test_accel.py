@@ -143,15 +143,24 @@ def _shadow_rays_of_the_view(scene, light, width, height):
     return origins, np.asarray(light, float) - origins
 
 
-@pytest.mark.parametrize("light", [(-6.0, 5.0, 3.0), (-5.0, 3.0, -2.0), (0.3, 9.0, 0.2)])
+_LIGHTS = [(-6.0, 5.0, 3.0), (-5.0, 3.0, -2.0), (0.3, 9.0, 0.2)]
+
+
+@pytest.mark.parametrize("light", [*_LIGHTS, "each ray another light"])
 def test_shadow_rays_of_neighbouring_hits_in_packets_find_the_blocker_each_finds_alone(scene, light):
     """The bench's shadow rays: sixteen neighbouring hits' rays to one light walk the tree as one
     packet (their origins differ); each ray must get the blocker and ``t`` of its own walk alone,
     bit for bit, and be blocked exactly where brute force finds a crossing before the light.
     The light above the middle makes packets whose directions straddle an axis plane, which go
-    one by one."""
-    origins, directions = _shadow_rays_of_the_view(scene, light, 40, 32)
+    one by one.  Rays to three lights near one another in turn share walks too (their
+    directions' signs agree), with no cone of rays to one light to pass over boxes
+    (bvh_packet._cone)."""
+    origins, directions = _shadow_rays_of_the_view(scene, _LIGHTS[0] if light == "each ray another light"
+                                                   else light, 40, 32)
     n = len(origins)
+    if light == "each ray another light":
+        lights = np.asarray(_LIGHTS[0]) + [[0.0, 0.0, 0.0], [0.5, 1.0, -0.5], [-0.5, -0.5, 0.5]]
+        directions = lights[np.arange(n) % 3] - origins
     bvh, brute = Query(scene, "bvh"), Query(scene, "none")
     blockers, blocker_t = np.empty(n, np.int64), np.empty(n)
     counters = trace_shadow_rays(origins, directions, np.zeros(n), np.ones(n), bvh.k.bvh,

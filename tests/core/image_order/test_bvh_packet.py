@@ -43,13 +43,18 @@ from core.image_order.kernels.bvh_packet import (
     R_SHEARED_ORIGIN,
     R_T_MIN,
     RAY_FIELDS,
+    _cone,
+    _cone_may_enter,
     packet_depth,
     set_pixel,
     set_primary_rays,
+    set_rays,
 )
 from core.image_order.kernels.closest_hit import closest_hit
 from core.image_order.kernels.intrinsics.slabs4 import (
+    HALF,
     RAYS,
+    slab_half_mask,
     slab_interval4,
     slab_mask4,
     slab_rays_mask,
@@ -241,12 +246,20 @@ def test_the_packets_bound_lies_below_every_rays_own_entry(seed, spread):
 
 @njit
 def _one_box_sixteen_rays(node, near, far, per_ray, box):
-    """slab_rays_mask's bits for box ``box`` of the node, and slab_test4's entry for each ray alone.
+    """slab_rays_mask's bits for box ``box`` of the node (slab_half_mask's for either half of the
+    rays must be the same), and slab_test4's entry for each ray alone.
     ``per_ray``: the origin and 1 / d per axis, t_min, t_max and the bound on the entry, each
     sixteen rays side by side."""
     mask = slab_rays_mask(node, near[0] + box, near[1] + box, near[2] + box, far[0] + box, far[1] + box,
                           far[2] + box, per_ray, 0, RAYS, 2 * RAYS, 3 * RAYS, 4 * RAYS, 5 * RAYS, 6 * RAYS,
                           7 * RAYS, 8 * RAYS)
+    for first in range(0, RAYS, HALF):  # each half of the rays alone must give the same bits
+        half = slab_half_mask(node, near[0] + box, near[1] + box, near[2] + box, far[0] + box,
+                              far[1] + box, far[2] + box, per_ray, first, RAYS + first, 2 * RAYS + first,
+                              3 * RAYS + first, 4 * RAYS + first, 5 * RAYS + first, 6 * RAYS + first,
+                              7 * RAYS + first, 8 * RAYS + first)
+        if half != (mask >> first) & ((1 << HALF) - 1):
+            raise AssertionError("half a packet's bits differ from the whole packet's")
     bits, alone = np.empty(RAYS, np.bool_), np.empty(RAYS)
     for r in range(RAYS):
         o = per_ray[r], per_ray[RAYS + r], per_ray[2 * RAYS + r]
@@ -291,6 +304,82 @@ def test_sixteen_rays_against_one_box_enter_where_each_alone_enters_bit_for_bit(
             sides = node.reshape(6, 4)[:, box].astype(float)
             assert np.all(point >= sides[:3] - 1e-6 * (1 + abs(point)))
             assert np.all(point <= sides[3:] + 1e-6 * (1 + abs(point)))
+
+
+# --- the cone of a packet of shadow rays to one light leaves every box one of its rays enters ------
+
+@njit
+def _cone_and_rays(node, near, far, origins, directions, t_max):
+    """The packet's cone's boxes (bits), whether the cone serves, and each ray's own mask
+    (slab_mask4, its lone walk's test: entering anywhere in ``[0, t_max]``)."""
+    n = origins.shape[0]
+    rays, axes = np.empty(RAY_FIELDS * PACKET_SIZE), np.empty(AXIS_FIELDS * PACKET_SIZE, np.int64)
+    set_rays(rays, axes, origins, directions, np.zeros(n), t_max, 0, n)
+    cone = _cone(rays, n)
+    own = np.empty(n, np.int64)
+    for r in range(n):
+        inverse = 1.0 / directions[r, 0], 1.0 / directions[r, 1], 1.0 / directions[r, 2]
+        own[r] = slab_mask4(node, near[0], near[1], near[2], far[0], far[1], far[2], origins[r, 0],
+                            origins[r, 1], origins[r, 2], inverse[0], inverse[1], inverse[2], 0.0, t_max[r])
+    return _cone_may_enter(node, 0, cone), cone[-1], own
+
+
+@settings(max_examples=300, deadline=None)
+@given(seed=st.integers(0, 2**32 - 1), origin_spread=st.sampled_from([1e-6, 0.01, 0.3]),
+       light_size=st.sampled_from([0.0, 1e-8, 5e-8]))
+def test_the_cone_of_shadow_rays_to_one_light_leaves_every_box_a_ray_enters(seed, origin_spread, light_size):
+    # The bench's shadow rays: sixteen origins near one point, each ray's direction to the light
+    # rounded to float32 and t_max its float32 distance, so that the far ends miss the light by
+    # rounding; with ``light_size`` the rays go to points of a small light (relative to its
+    # distance), so the far ends lie off ray 0's far end, the cone's apex, by more.  Box 0 is a
+    # tiny box around a point of one ray's segment, often its far end, which may lie off the
+    # cone's rays by that much.  No box that a ray's own test enters may be left out by the cone,
+    # and the cone must serve (else it tests nothing).
+    rng = np.random.default_rng(seed)
+    node, origins, _, near, far = _node_and_packet(rng, 0.0, RAYS, origin_spread)
+    distance = rng.choice([1.0, 10.0, 1000.0])
+    light = origins[0] + rng.normal(size=3) * distance
+    to_light = light + rng.normal(scale=light_size * np.abs(light).max(), size=(RAYS, 3)) - origins
+    length = np.linalg.norm(to_light, axis=1)
+    directions = (to_light / length[:, None]).astype(np.float32).astype(float)
+    t_max = length.astype(np.float32).astype(float)
+    if np.any(np.sign(directions) != np.sign(directions[0])) or np.any(directions == 0.0):
+        return  # the packet would not share a walk (can_share_walk)
+    negative = directions[0] < 0.0
+    near = np.array([4 * axis + (12 if negative[axis] else 0) for axis in range(3)])
+    far = np.array([4 * axis + (0 if negative[axis] else 12) for axis in range(3)])
+    r = rng.integers(RAYS)
+    point = origins[r] + rng.choice([rng.uniform(0.0, 1.0), 1.0]) * t_max[r] * directions[r]
+    half = 1e-9 * np.abs(point).max()
+    sides = node.reshape(6, 4)
+    sides[:3, 0] = np.nextafter((point - half).astype(np.float32), np.float32(-np.inf))
+    sides[3:, 0] = np.nextafter((point + half).astype(np.float32), np.float32(np.inf))
+    may, serves, own = _cone_and_rays(node, near, far, origins, directions, t_max)
+    assert serves
+    assert own[r] & 1  # the ray enters the tiny box
+    entered = np.bitwise_or.reduce(own)
+    assert entered & ~may == 0, (entered, may)
+
+
+def test_the_cone_leaves_boxes_out_and_does_not_serve_rays_to_two_lights():
+    # Rays from around (0, 0, 0) up to a light at (0.5, 10, 0.7): the box around their origins and
+    # the one on their way (boxes 0 and 3) are entered, the two off to the side (1 and 2) are left
+    # out by the cone too; rays to two lights far apart make no cone.
+    node = np.array([[-0.1, 5.0, 4.0, -1.0], [4.0, 4.0, 4.0, 9.0], [-0.1, 5.0, 4.0, -1.0],
+                     [0.8, 6.0, 5.0, 1.0], [6.0, 6.0, 6.0, 9.5], [0.9, 6.0, 5.0, 1.0]],
+                    np.float32).reshape(-1)
+    rng = np.random.default_rng(3)
+    origins = rng.normal(scale=0.05, size=(RAYS, 3))
+    for lights, serves in (([0.5, 10.0, 0.7],), True), (([0.5, 10.0, 0.7], [0.9, 10.0, 0.2]), False):
+        ends = np.array(lights)[np.arange(RAYS) % len(lights)]
+        directions = ends - origins
+        near, far = np.array([0, 4, 8]), np.array([12, 16, 20])
+        may, ok, own = _cone_and_rays(node, near, far, origins, directions, np.ones(RAYS))
+        assert ok == serves
+        if serves:
+            assert np.bitwise_or.reduce(own) == 0b1001 and may == 0b1001
+        else:
+            assert may == 0b1111
 
 
 # --- a shadow ray's mask of the boxes it enters: the same boxes as the slab test's entries ---------

@@ -24,7 +24,11 @@ origin (:mod:`core.image_order.kernels.bvh_packet`): one test of a node for
 all of them, never missing a box that one of them would enter.
 :func:`slab_rays_mask` turns the vector the other way: one box, the sixteen
 rays of a packet (from one origin or not), each lane computing exactly what
-:func:`slab_test4` computes for that ray and that box.
+:func:`slab_test4` computes for that ray and that box; :func:`slab_half_mask`
+is the same for half a packet.  :func:`slab_cone_mask4` is the interval test
+for the shadow rays of neighbouring points to one light, which share no
+origin: the rays from the light back to their origins do, and their cone,
+its boxes grown a little, holds every ray's segment.
 """
 
 from __future__ import annotations
@@ -85,9 +89,7 @@ def slab_mask4(typingctx, rows, near_x, near_y, near_z, far_x, far_y, far_z, ox,
                             t_max)
 
     def codegen(context, builder, sig, args):
-        entry = _one_ray_entries(context, builder, sig, args)
-        entered = builder.bitcast(builder.fcmp_ordered("<", entry, constant(math.inf)), ir.IntType(4))
-        return builder.zext(entered, ir.IntType(64))
+        return _mask(builder, _one_ray_entries(context, builder, sig, args))
 
     return signature, codegen
 
@@ -109,24 +111,59 @@ def slab_interval4(typingctx, rows, near_x, near_y, near_z, far_x, far_y, far_z,
                                                  oz, ax, ay, az, bx, by, bz, t_min, t_max)
 
     def codegen(context, builder, sig, args):
-        def near_and_far(distance, axis):
-            low, high = splat(builder, args[10 + axis]), splat(builder, args[13 + axis])
-            near, far = distance(1 + axis), distance(4 + axis)
-            near_a, near_b = builder.fmul(near, low), builder.fmul(near, high)
-            far_a, far_b = builder.fmul(far, low), builder.fmul(far, high)
-            return (builder.select(builder.fcmp_ordered("<", near_a, near_b), near_a, near_b),
-                    builder.select(builder.fcmp_ordered(">", far_a, far_b), far_a, far_b))
-
-        return _slabs(context, builder, sig, _box_sides(context, builder, sig, args, near_and_far),
-                      splat(builder, args[16]),
-                      splat(builder, args[17]))
+        entry = _interval_entries(context, builder, sig, args[:10] + args[7:])
+        return lanes(context, builder, sig.return_type, entry)
 
     return signature, codegen
 
 
-#: Rays of :func:`slab_rays_mask` (a packet of 4 x 4).
+@intrinsic
+def slab_cone_mask4(typingctx, rows, near_x, near_y, near_z, far_x, far_y, far_z, nx, ny, nz, fx, fy, fz,
+                    ax, ay, az, bx, by, bz, t_min, t_max):
+    """Which of four boxes, each grown by a margin on every side, a cone of rays from one apex may
+    enter: :func:`slab_interval4` with the near sides' distances taken from ``(nx, ny, nz)`` and
+    the far sides' from ``(fx, fy, fz)``, the apex moved away from the near sides and towards the
+    far ones by the margin (:func:`~core.image_order.kernels.bvh_packet._cone`).  Bit ``c`` of
+    the result is set where box ``c`` may be entered."""
+    signature = types.int64(rows, near_x, near_y, near_z, far_x, far_y, far_z, nx, ny, nz, fx, fy, fz, ax,
+                            ay, az, bx, by, bz, t_min, t_max)
+
+    def codegen(context, builder, sig, args):
+        return _mask(builder, _interval_entries(context, builder, sig, args))
+
+    return signature, codegen
+
+
+def _interval_entries(context, builder, sig, args):
+    """:func:`slab_interval4`'s four entries as one vector, from ``args``: the rows and the six
+    indices, the origin of the near sides' and of the far sides' distances, ``a``, ``b``, ``t_min``
+    and ``t_max``."""
+    data = context.make_array(sig.args[0])(context, builder, args[0]).data
+
+    def distance(k, origin):
+        side = builder.fpext(load(builder, data, args[k], FOUR_F32), FOUR_F64)
+        return builder.fsub(side, splat(builder, args[origin]))
+
+    def near_and_far(axis):
+        low, high = splat(builder, args[13 + axis]), splat(builder, args[16 + axis])
+        near, far = distance(1 + axis, 7 + axis), distance(4 + axis, 10 + axis)
+        near_a, near_b = builder.fmul(near, low), builder.fmul(near, high)
+        far_a, far_b = builder.fmul(far, low), builder.fmul(far, high)
+        return (builder.select(builder.fcmp_ordered("<", near_a, near_b), near_a, near_b),
+                builder.select(builder.fcmp_ordered(">", far_a, far_b), far_a, far_b))
+
+    return _entries(builder, near_and_far, splat(builder, args[19]), splat(builder, args[20]))
+
+
+def _mask(builder, entry):
+    """Bit ``c`` set where entry ``c`` of the four is finite."""
+    entered = builder.bitcast(builder.fcmp_ordered("<", entry, constant(math.inf)), ir.IntType(4))
+    return builder.zext(entered, ir.IntType(64))
+
+
+#: Rays of :func:`slab_rays_mask` (a packet of 4 x 4), and of :func:`slab_half_mask`.
 RAYS = 16
-_RAYS_F64 = ir.VectorType(F64, RAYS)
+HALF = RAYS // 2
 
 
 @intrinsic
@@ -155,18 +192,35 @@ def slab_rays_mask(typingctx, rows, near_x, near_y, near_z, far_x, far_y, far_z,
     """
     signature = types.int64(rows, near_x, near_y, near_z, far_x, far_y, far_z, rays, ox_at, oy_at, oz_at,
                             ix_at, iy_at, iz_at, t_min_at, t_max_at, below_at)
+    return signature, _rays_mask(RAYS)
+
+
+@intrinsic
+def slab_half_mask(typingctx, rows, near_x, near_y, near_z, far_x, far_y, far_z, rays, ox_at, oy_at, oz_at,
+                   ix_at, iy_at, iz_at, t_min_at, t_max_at, below_at):
+    """:func:`slab_rays_mask` for ``HALF`` rays, the ones whose numbers start at the given flat
+    indices (half a packet: an any-hit walk where only one half of the packet's rays still
+    entered the node pays for the test of those alone)."""
+    signature = types.int64(rows, near_x, near_y, near_z, far_x, far_y, far_z, rays, ox_at, oy_at, oz_at,
+                            ix_at, iy_at, iz_at, t_min_at, t_max_at, below_at)
+    return signature, _rays_mask(HALF)
+
+
+def _rays_mask(width):
+    """The code of :func:`slab_rays_mask` for ``width`` rays."""
+    vector = ir.VectorType(F64, width)
 
     def codegen(context, builder, sig, args):
         data = context.make_array(sig.args[0])(context, builder, args[0]).data
         per_ray = context.make_array(sig.args[7])(context, builder, args[7]).data
 
         def row(at):
-            pointer = builder.bitcast(builder.gep(per_ray, [at]), _RAYS_F64.as_pointer())
+            pointer = builder.bitcast(builder.gep(per_ray, [at]), vector.as_pointer())
             return builder.load(pointer, align=8)
 
         def distance(k):  # the one side minus each ray's origin: slab_test4's subtraction
             side = builder.fpext(builder.load(builder.gep(data, [args[k]])), F64)
-            return builder.fsub(splat(builder, side, RAYS), row(args[8 + (k - 1) % 3]))
+            return builder.fsub(splat(builder, side, width), row(args[8 + (k - 1) % 3]))
 
         enter, leave = row(args[14]), row(args[15])
         for axis in range(3):
@@ -177,9 +231,9 @@ def slab_rays_mask(typingctx, rows, near_x, near_y, near_z, far_x, far_y, far_z,
             leave = builder.select(builder.fcmp_ordered("<", t_far, leave), t_far, leave)
         entered = builder.and_(builder.fcmp_ordered("<=", enter, leave),
                                builder.fcmp_ordered("<", enter, row(args[16])))
-        return builder.zext(builder.bitcast(entered, ir.IntType(RAYS)), ir.IntType(64))
+        return builder.zext(builder.bitcast(entered, ir.IntType(width)), ir.IntType(64))
 
-    return signature, codegen
+    return codegen
 
 
 def _box_sides(context, builder, sig, args, near_and_far):
@@ -194,14 +248,9 @@ def _box_sides(context, builder, sig, args, near_and_far):
     return lambda axis: near_and_far(distance, axis)
 
 
-def _slabs(context, builder, sig, near_and_far, enter, leave):
-    """The four entries, given ``near_and_far(axis)``, the four lanes' slab distances of an axis,
-    and the four lanes' admissible range ``enter, leave``."""
-    return lanes(context, builder, sig.return_type, _entries(builder, near_and_far, enter, leave))
-
-
 def _entries(builder, near_and_far, enter, leave):
-    """:func:`_slabs`'s four entries as one vector."""
+    """The four entries as one vector, given ``near_and_far(axis)``, the four lanes' slab distances
+    of an axis, and the four lanes' admissible range ``enter, leave``."""
     for axis in range(3):
         t_near, t_far = near_and_far(axis)
         enter = builder.select(builder.fcmp_ordered(">", t_near, enter), t_near, enter)

@@ -102,10 +102,20 @@ def _crossings(builder, data, start, rays):
                                        builder.fcmp_ordered(">", edges[1], zero)),
                            builder.fcmp_ordered(">", edges[2], zero))
     det = builder.fadd(builder.fadd(edges[0], edges[1]), edges[2])
-    weighted = [builder.fmul(edges[c], builder.fmul(z[c], sz)) for c in range(3)]
-    t = builder.fdiv(builder.fadd(builder.fadd(weighted[0], weighted[1]), weighted[2]), det)
     inside = builder.and_(builder.not_(builder.and_(negative, positive)),
                           builder.fcmp_unordered("!=", det, zero))
+    # t only where some lane's ray passes inside its triangle: the division is the test's
+    # slowest instruction, and most tests (a shadow ray's near its own surface) have no lane inside.
+    any_inside = builder.icmp_unsigned("!=", builder.bitcast(inside, ir.IntType(width)),
+                                       ir.Constant(ir.IntType(width), 0))
+    before = builder.basic_block
+    with builder.if_then(any_inside, likely=False):
+        weighted = [builder.fmul(edges[c], builder.fmul(z[c], sz)) for c in range(3)]
+        divided = builder.fdiv(builder.fadd(builder.fadd(weighted[0], weighted[1]), weighted[2]), det)
+        computed = builder.basic_block
+    t = builder.phi(divided.type)
+    t.add_incoming(divided, computed)
+    t.add_incoming(constant(math.inf, width), before)
     in_range = builder.and_(builder.fcmp_ordered("<=", t_min, t), builder.fcmp_ordered("<", t, t_max))
     result = builder.select(builder.and_(inside, in_range), t, constant(math.inf, width))
     result = builder.select(sure, result, constant(UNSURE, width))
