@@ -394,8 +394,11 @@ def _leaf_for_rays(entered, rays, axes, bvh, n_spheres, leaf, group, count):
             q = lowest_bit(entered)
             entered &= entered - 1
             tests += 2 * count
-            c = triangle_test4x2(groups, group * GROUP_SIZE, _test_ray(rays, axes, r),
-                                 _test_ray(rays, axes, q))
+            ray_r, ray_q = _test_ray(rays, axes, r), _test_ray(rays, axes, q)
+            if ray_r[0:3] == ray_q[0:3]:  # one shear: the group's numbers are loaded once for both
+                c = triangle_test4x2(groups, group * GROUP_SIZE, ray_r, ray_r[0:3] + ray_q[3:])
+            else:
+                c = triangle_test4x2(groups, group * GROUP_SIZE, ray_r, ray_q)
             if _take(c[0:5], rays, axes, r, rows, leaves, leaf, count):
                 closer |= 1 << r
             if _take(c[5:10], rays, axes, q, rows, leaves, leaf, count):
