@@ -23,6 +23,7 @@ pane is hidden; the window only paints their pictures.
 
 from __future__ import annotations
 
+import math
 import threading
 from dataclasses import replace
 
@@ -531,16 +532,25 @@ class CostPanel(QWidget):
         self.plot_drawn.emit()
 
     def _on_click(self, x: float, y: float) -> None:
-        """A press on the plot at (x, y), the shown figure's pixels: the point under it is shown."""
+        """A press on the plot at (x, y), the shown figure's pixels: the point under it is shown, the
+        nearest where several lie within reach (settings that cost about the same and err about as
+        much, as the deepest rays of a depth sweep, sit a few pixels apart)."""
         from matplotlib.backend_bases import MouseEvent
 
         event = MouseEvent("button_press_event", self.plot_figure.canvas, x, y, button=1)
+        nearest, distance = None, math.inf
         for line, indices in self._lines.items():
             hit, info = line.contains(event)
-            if hit and len(info["ind"]):
-                self.sheet.show_point_page()  # on a small pane the point has a page of its own
-                self.show_point(indices[int(info["ind"][0])])
-                return
+            if not hit:
+                continue
+            shown = line.get_transform().transform(line.get_xydata())
+            for i in info["ind"]:
+                away = math.hypot(shown[i][0] - x, shown[i][1] - y)
+                if away < distance:
+                    nearest, distance = indices[int(i)], away
+        if nearest is not None:
+            self.sheet.show_point_page()  # on a small pane the point has a page of its own
+            self.show_point(nearest)
 
     def point_position(self, index: int) -> tuple[float, float]:
         """Where setting ``index``'s point is drawn on the plot canvas, in widget pixels (x right, y down)."""

@@ -65,6 +65,34 @@ def test_sweep_fills_the_plot_and_a_click_shows_the_point(qtbot, panel):
     assert error_map.shape == (24, 32)
     assert float(np.mean(error_map)) == pytest.approx(point.row.flip, rel=1e-4)
     assert "ray depth" in panel.explanation.text()
+    # A click right on any point shows that point, even where the deepest settings, costing about
+    # the same and erring as much, lie within a few pixels of one another.
+    for index in reversed(range(n)):
+        x, y = panel.point_position(index)
+        with qtbot.waitSignal(panel.point_selected, timeout=5000) as picked:
+            qtbot.mouseClick(panel.canvas, Qt.MouseButton.LeftButton, pos=QPoint(round(x), round(y)))
+        assert picked.args == [index]
+
+
+def test_of_points_within_reach_of_a_click_the_nearest_is_shown(qtbot, panel, monkeypatch):
+    # Three points, the last two 4 pixels apart, both within a click's reach (6 pixels): a click
+    # on either shows that one.
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+
+    figure = Figure(figsize=(4, 3), dpi=100)
+    FigureCanvasAgg(figure)
+    ax = figure.add_axes((0, 0, 1, 1), xlim=(0, 100), ylim=(0, 100))
+    (line,) = ax.plot([10, 50, 51], [10, 50, 50], "o-", picker=True, pickradius=6)
+    monkeypatch.setattr(type(panel), "plot_figure", property(lambda self: figure))
+    monkeypatch.setattr(panel, "_lines", {line: [4, 7, 9]}, raising=False)
+    shown = []
+    monkeypatch.setattr(panel, "show_point", shown.append)
+    for x, index in ((50, 7), (51, 9), (10, 4)):
+        panel._on_click(*ax.transData.transform((x, 50 if index != 4 else 10)))
+        assert shown[-1] == index
+    panel._on_click(*ax.transData.transform((90, 90)))  # far from every point: nothing new
+    assert shown == [7, 9, 4]
 
 
 def test_a_running_sweep_draws_its_plot_seldom_and_the_finished_one_in_full(qtbot, panel):
