@@ -506,8 +506,8 @@ _CONE_T = 1.0 + 2.0**-30
 def _cone(rays, n):
     """The cone of rays from one point, the far end of ray 0 (the light), to the origins of the
     packet's rays ``0 .. n-1``, as :func:`_cone_may_enter` takes it; its last number says
-    whether it serves: every ray's far end lies within a small distance of the apex (the rays
-    go to one light), and the cone's ``1 / d`` are finite and of one sign per axis.
+    whether it serves: every ray's far end is finite and lies within a small distance of the
+    apex (the rays go to one light), and the cone's ``1 / d`` are finite and of one sign per axis.
 
     The cone holds every ray's segment: a point of a segment lies within the far ends' spread of
     the cone's ray to that origin.  So the cone's boxes grow by that spread, and by
@@ -523,7 +523,7 @@ def _cone(rays, n):
     az, bz, ok_z, spread_z, size_z = _cone_axis(rays, n, 2, ez)
     size = max(size_x, size_y, size_z)
     spread = max(spread_x, spread_y, spread_z)
-    ok = ok_x and ok_y and ok_z and spread <= _CONE_SLACK * 2.0**20 * size
+    ok = ok_x and ok_y and ok_z and spread <= _CONE_SLACK * 2.0**20 * size and size < math.inf
     margin = spread * (1.0 + 2.0**-20) + _CONE_SLACK * size
     # The near sides' distances are taken from the apex moved away from them, the far sides'
     # from the apex moved towards them: the boxes grow by the margin on every side.

@@ -146,7 +146,8 @@ def _shadow_rays_of_the_view(scene, light, width, height):
 _LIGHTS = [(-6.0, 5.0, 3.0), (-5.0, 3.0, -2.0), (0.3, 9.0, 0.2)]
 
 
-@pytest.mark.parametrize("light", [*_LIGHTS, "each ray another light"])
+@pytest.mark.parametrize("light", [*_LIGHTS, "each ray another light", "a light at infinity",
+                                   "every other ray without an end"])
 def test_shadow_rays_of_neighbouring_hits_in_packets_find_the_blocker_each_finds_alone(scene, light):
     """The bench's shadow rays: sixteen neighbouring hits' rays to one light walk the tree as one
     packet (their origins differ); each ray must get the blocker and ``t`` of its own walk alone,
@@ -155,21 +156,26 @@ def test_shadow_rays_of_neighbouring_hits_in_packets_find_the_blocker_each_finds
     one by one.  Rays to three lights near one another in turn share walks too (their
     directions' signs agree), with no cone of rays to one light to pass over boxes
     (bvh_packet._cone)."""
-    origins, directions = _shadow_rays_of_the_view(scene, _LIGHTS[0] if light == "each ray another light"
-                                                   else light, 40, 32)
+    origins, directions = _shadow_rays_of_the_view(scene, light if light in _LIGHTS else _LIGHTS[0], 40, 32)
     n = len(origins)
+    t_max = np.ones(n)
     if light == "each ray another light":
         lights = np.asarray(_LIGHTS[0]) + [[0.0, 0.0, 0.0], [0.5, 1.0, -0.5], [-0.5, -0.5, 0.5]]
         directions = lights[np.arange(n) % 3] - origins
+    elif light == "a light at infinity":  # one direction, no end
+        directions = np.tile(np.asarray(_LIGHTS[0]) / np.linalg.norm(_LIGHTS[0]), (n, 1))
+        t_max = np.full(n, math.inf)
+    elif light == "every other ray without an end":  # a packet's far ends, some infinitely far
+        t_max[1::2] = math.inf
     bvh, brute = Query(scene, "bvh"), Query(scene, "none")
     blockers, blocker_t = np.empty(n, np.int64), np.empty(n)
-    counters = trace_shadow_rays(origins, directions, np.zeros(n), np.ones(n), bvh.k.bvh,
+    counters = trace_shadow_rays(origins, directions, np.zeros(n), t_max, bvh.k.bvh,
                                  bvh.k.geo[GEO_N_SPHERES], bvh.k.bvh_depth, 2, blockers, blocker_t)
     spheres_blocking = 0
     for r in range(n):
-        alone = bvh(origins[r], directions[r], 1.0, any_hit=True)
+        alone = bvh(origins[r], directions[r], t_max[r], any_hit=True)
         assert (blockers[r], blocker_t[r]) == alone[:2], r
-        assert (blockers[r] >= 0) == (brute(origins[r], directions[r], 1.0)[0] >= 0), r
+        assert (blockers[r] >= 0) == (brute(origins[r], directions[r], t_max[r])[0] >= 0), r
         spheres_blocking += 0 <= blockers[r] < bvh.k.geo[GEO_N_SPHERES]
     # most packets share a walk: the rays of a packet point one way on every axis
     signs = np.sign(directions[:n - n % 16]).reshape(-1, 16, 3)
