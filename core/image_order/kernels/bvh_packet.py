@@ -50,14 +50,13 @@ sign), its rays go through the tree one at a time
 Shadow rays go in packets too (:func:`packet_occluded`, for the bench's batch of
 shadow rays, :mod:`core.image_order.kernels.shadow_rays`): sixteen rays from
 neighbouring hits to one light, whose origins differ.  Their walk tests every
-node's four boxes with each ray on its own (sixteen rays a box in one vector
-test), so each ray meets exactly the nodes and leaves of its lone walk, in the
-same order, and names the same blocker; the packet reads each node once for
-all of them.  How a node's boxes are tested depends on how many of the rays
-are still in it (:func:`_children_entering`): deep in the tree a few rays
-test them one by one, higher up all of them at once, sixteen lanes a box,
-and only the boxes that the cone from the light to the rays' origins may
-enter (:func:`_cone`).
+node's four boxes with each ray on its own, so each ray meets exactly the nodes
+and leaves of its lone walk, in the same order, and names the same blocker; the
+packet reads each node once for all of them.  How a node's boxes are tested
+depends on how many of the rays are still in it (:func:`_children_entering`):
+deep in the tree a few rays test them one by one, higher up all of them at
+once, sixteen lanes a box, and only the boxes that the cone from the light to
+the rays' origins may enter (:func:`_cone`).
 
 A packet is kept in two small per-thread arrays: ``rays`` (RAY_FIELDS x
 PACKET_SIZE floats) and ``axes`` (AXIS_FIELDS x PACKET_SIZE integers), with
