@@ -9,7 +9,10 @@ Figures, each the median of several runs after a warm-up run:
    :mod:`core.image_order.bvh`; rays of 4 x 4 pixels walk the tree together
    where a packet covers less than a typical triangle, see
    :mod:`core.image_order.kernels.bvh_packet`), so that a reader sees how the
-   cost grows with the mesh;
+   cost grows with the mesh; and on the lecture scene (its cube, cone and
+   ground, 110 triangles, from its camera at the same size, with its light),
+   where the rays are many and each does little: there what a packet costs to
+   set up shows;
 2. the same rays with Intel Embree, twice (an optional extra:
    ``pip install -e '.[bench]'`` installs the ``embreex`` wheel, which holds
    Embree's library): through Embree's own packet API, ``rtcIntersect16``
@@ -132,15 +135,22 @@ def run(args) -> int:
     if library is None:
         print("Embree: not measured, the embreex package (whose wheel holds Embree's library) is missing; "
               "install it with `.venv/bin/pip install -e '.[bench]'`")
-    rows = [_mesh_rays(triangles, args, library) for triangles in args.triangles]
-    print("against mesh size (median ms; ratio: the peer's time over ours, paired runs, as above):")
+    size_camera = presets_trace.BIG_MESH_CAMERA.replace(width=args.width, height=args.height)
+    rows = [_scene_rays(f"{len(mesh.triangles):>9,} triangles", mesh, size_camera, _MESH_LIGHT, args, library)
+            for mesh in map(presets_trace.bumpy_ball, args.triangles)]
+    lecture = presets.lecture_scene()
+    rows.append(_scene_rays(f"lecture scene ({len(_one_mesh(lecture).triangles)} triangles)",
+                            _one_mesh(lecture), lecture.camera.replace(width=args.width, height=args.height),
+                            lecture.lights[0].position, args, library))
+    print("against mesh size, and the lecture scene (median ms; ratio: the peer's time over ours, paired "
+          "runs, as above):")
     for row in rows:
         for kind in ("primary", "shadow"):
             figures = row[kind]
             peers = "".join(f"  {_PEER_NAMES[peer]} {figures[peer]:7.1f} "
                             f"(ratio {figures[f'ratio {peer}']:.2f})"
                             for peer in ("embreex", "packets") if peer in figures)
-            print(f"  {row['triangles']:>9,} triangles, {kind:>7} rays: ours {figures['ours']:7.1f}{peers}")
+            print(f"  {row['label']}, {kind:>7} rays: ours {figures['ours']:7.1f}{peers}")
     disagree = sum(row["disagree"] for row in rows)
 
     # 3. Whitted frames, all rays counted, the two scenes in turns.
@@ -188,19 +198,35 @@ def run(args) -> int:
 _STAGES = ("primary", "shading", "secondary")
 
 
-def _mesh_rays(triangles: int, args, library) -> dict:
-    """Time the primary and the shadow rays on a mesh of about ``triangles`` triangles, ours and
-    the peers', in turns, and check that the peers find the same hits.
+#: The light of the bench's meshes.
+_MESH_LIGHT = (4.0, 8.0, 6.0)
+
+
+def _one_mesh(scene):
+    """The triangles of ``scene``'s meshes as one mesh (its spheres left out: the lecture scene has
+    none), for the peer, which takes one triangle geometry."""
+    import numpy as np
+
+    from core.scene import Mesh
+
+    meshes = [o for o in scene.objects if isinstance(o, Mesh)]
+    starts = np.cumsum([0] + [len(m.vertices) for m in meshes])
+    return Mesh(np.concatenate([m.vertices for m in meshes]),
+                np.concatenate([m.triangles + start for m, start in zip(meshes, starts, strict=False)]))
+
+
+def _scene_rays(label: str, mesh, camera, light, args, library) -> dict:
+    """Time the primary and the shadow rays of ``camera`` and ``light`` on ``mesh``, ours and the
+    peers', in turns, and check that the peers find the same hits.
 
     ``library``: Embree's library (:func:`app.bench.embree_packets.find_library`), ``None`` to
-    time ours alone.  Prints the figures; returns a summary row: the triangle count, per ray kind
-    (``"primary"``, ``"shadow"``) the median ms of each tracer and the median ratios of
+    time ours alone.  Prints the figures; returns a summary row: ``label`` and the triangle count,
+    per ray kind (``"primary"``, ``"shadow"``) the median ms of each tracer and the median ratios of
     side-by-side runs, and ``"disagree"``, the rays where a peer found another hit.
     """
     import numba
     import numpy as np
 
-    from core import presets_trace
     from core.image_order.effects_plan import effects_plan
     from core.image_order.flat_layout import (
         BOUNDS_TESTS,
@@ -218,9 +244,7 @@ def _mesh_rays(triangles: int, args, library) -> dict:
     from core.scene import PointLight, Scene
 
     n_rays = args.width * args.height
-    mesh = presets_trace.bumpy_ball(triangles)
-    scene = Scene(camera=presets_trace.BIG_MESH_CAMERA.replace(width=args.width, height=args.height),
-                  objects=(mesh,), lights=(PointLight((4.0, 8.0, 6.0)),))
+    scene = Scene(camera=camera, objects=(mesh,), lights=(PointLight(light),))
     flat = trace_scene(scene)
     bvh, build_s, _ = flat.geometry.accel("bvh")
     k = kernel_inputs(scene, TraceSettings(accel="bvh"), effects_plan(scene), flat, bvh)
@@ -253,7 +277,7 @@ def _mesh_rays(triangles: int, args, library) -> dict:
                            children, spawned, e.materials, e.lights, e.opts, e.geo, e.grid, e.bvh,
                            e.bvh_depth, numba.get_num_threads(), render.no_heat())
 
-    print(f"mesh: {len(mesh.triangles):,} triangles; BVH build {build_s:.3f} s, {len(bvh.nodes)} nodes, "
+    print(f"{label.strip()}: BVH build {build_s:.3f} s, {len(bvh.nodes)} nodes, "
           f"depth {bvh.depth}")
     o, d, t_min, t_max = _primary_rays(scene.camera)
     runners = {"ours": ours, "nothing to hit": nothing_to_hit}
@@ -279,7 +303,7 @@ def _mesh_rays(triangles: int, args, library) -> dict:
           f"{per_ray[BOUNDS_TESTS]:.1f} box and {per_ray[PRIM_TESTS]:.1f} triangle tests)")
     print(f"         the same rays, nothing to hit: {_spread(runs['nothing to hit'])}  (making the rays and "
           "writing their hits and depths; the peers' rays are made before their clocks start)")
-    row = {"triangles": len(mesh.triangles), "disagree": 0,
+    row = {"label": label, "disagree": 0,
            "primary": {"ours": seconds["ours"] * 1e3}, "shadow": {}}
     if packets is not None:
         if "embreex" in runs:

@@ -93,6 +93,11 @@ def test_without_embree_the_bench_says_so_in_one_line_and_times_ours():
                        if f"triangles, {kind:>7} rays: ours" in line and line.split()[0] == triangles]
             assert len(summary) == 1, done.stdout
             assert "ratio" not in summary[0]
+    # and the lecture scene's rays: its cube, cone and ground (12 + 96 + 2 triangles), its light
+    for kind in ("primary", "shadow"):
+        summary = [line for line in done.stdout.splitlines()
+                   if line.strip().startswith(f"lecture scene (110 triangles), {kind:>7} rays: ours")]
+        assert len(summary) == 1, done.stdout
     assert "Whitted frame, lecture scene" in done.stdout
 
 

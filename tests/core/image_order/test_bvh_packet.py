@@ -46,11 +46,13 @@ from core.image_order.kernels.bvh_packet import (
     _cone,
     _cone_may_enter,
     packet_depth,
+    ray_of,
     set_pixel,
     set_primary_rays,
     set_rays,
 )
 from core.image_order.kernels.closest_hit import closest_hit
+from core.image_order.kernels.intrinsics.rows import ROW
 from core.image_order.kernels.intrinsics.slabs4 import (
     HALF,
     RAYS,
@@ -313,7 +315,8 @@ def _cone_and_rays(node, near, far, origins, directions, t_max):
     """The packet's cone's boxes (bits), whether the cone serves, and each ray's own mask
     (slab_mask4, its lone walk's test: entering anywhere in ``[0, t_max]``)."""
     n = origins.shape[0]
-    rays, axes = np.empty(RAY_FIELDS * PACKET_SIZE), np.empty(AXIS_FIELDS * PACKET_SIZE, np.int64)
+    # The lanes past the packet's rays hold what an earlier packet left there: huge numbers here.
+    rays, axes = np.full(RAY_FIELDS * PACKET_SIZE, -1e300), np.empty(AXIS_FIELDS * PACKET_SIZE, np.int64)
     set_rays(rays, axes, origins, directions, np.zeros(n), t_max, 0, n)
     cone = _cone(rays, n)
     own = np.empty(n, np.int64)
@@ -326,15 +329,17 @@ def _cone_and_rays(node, near, far, origins, directions, t_max):
 
 @settings(max_examples=300, deadline=None)
 @given(seed=st.integers(0, 2**32 - 1), origin_spread=st.sampled_from([1e-6, 0.01, 0.3]),
-       light_size=st.sampled_from([0.0, 1e-8, 5e-8]))
-def test_the_cone_of_shadow_rays_to_one_light_leaves_every_box_a_ray_enters(seed, origin_spread, light_size):
+       light_size=st.sampled_from([0.0, 1e-8, 5e-8]), n=st.sampled_from([RAYS, RAYS - 1, 5, 1]))
+def test_the_cone_of_shadow_rays_to_one_light_leaves_every_box_a_ray_enters(seed, origin_spread, light_size,
+                                                                             n):
     # The bench's shadow rays: sixteen origins near one point, each ray's direction to the light
     # rounded to float32 and t_max its float32 distance, so that the far ends miss the light by
     # rounding; with ``light_size`` the rays go to points of a small light (relative to its
     # distance), so the far ends lie off ray 0's far end, the cone's apex, by more.  Box 0 is a
     # tiny box around a point of one ray's segment, often its far end, which may lie off the
     # cone's rays by that much.  No box that a ray's own test enters may be left out by the cone,
-    # and the cone must serve (else it tests nothing).
+    # and the cone must serve (else it tests nothing).  A packet at the end of a batch holds
+    # fewer rays than sixteen (``n``).
     rng = np.random.default_rng(seed)
     node, origins, _, near, far = _node_and_packet(rng, 0.0, RAYS, origin_spread)
     distance = rng.choice([1.0, 10.0, 1000.0])
@@ -348,7 +353,8 @@ def test_the_cone_of_shadow_rays_to_one_light_leaves_every_box_a_ray_enters(seed
     negative = directions[0] < 0.0
     near = np.array([4 * axis + (12 if negative[axis] else 0) for axis in range(3)])
     far = np.array([4 * axis + (0 if negative[axis] else 12) for axis in range(3)])
-    r = rng.integers(RAYS)
+    origins, directions, t_max = origins[:n], directions[:n], t_max[:n]
+    r = rng.integers(n)
     point = origins[r] + rng.choice([rng.uniform(0.0, 1.0), 1.0]) * t_max[r] * directions[r]
     half = 1e-9 * np.abs(point).max()
     sides = node.reshape(6, 4)
@@ -380,6 +386,34 @@ def test_the_cone_leaves_boxes_out_and_does_not_serve_rays_to_two_lights():
             assert np.bitwise_or.reduce(own) == 0b1001 and may == 0b1001
         else:
             assert may == 0b1111
+
+
+@njit
+def _packet_rows(origins, directions, t_min, t_max, start, n):
+    """The packet's rows of origins and directions after set_rays, and its rays read back."""
+    rays, axes = np.full(RAY_FIELDS * PACKET_SIZE, np.nan), np.empty(AXIS_FIELDS * PACKET_SIZE, np.int64)
+    set_rays(rays, axes, origins, directions, t_min, t_max, start, n)
+    back = np.empty((n, 8))
+    for r in range(n):
+        o, d, _, ray_t_min, ray_t_max = ray_of(rays, axes, r)
+        back[r] = o[0], o[1], o[2], d[0], d[1], d[2], ray_t_min, ray_t_max
+    return back
+
+
+@pytest.mark.parametrize("start, n", [(0, RAYS), (37, RAYS), (100 - RAYS, RAYS), (40, 7), (99, 1)])
+def test_a_packet_of_shadow_rays_holds_the_batchs_rays_from_its_start(start, n):
+    # A whole packet's coordinates are copied three rows at once (rows.deinterleave3), a short
+    # one's one by one: either way ray r of the packet is ray start + r of the batch, exactly.
+    rng = np.random.default_rng(start)
+    origins, directions = rng.normal(size=(100, 3)), rng.normal(size=(100, 3))
+    t_min, t_max = rng.uniform(0.0, 1.0, 100), rng.uniform(1.0, 2.0, 100)
+    back = _packet_rows(origins, directions, t_min, t_max, start, n)
+    expected = np.hstack([origins, directions, t_min[:, None], t_max[:, None]])[start:start + n]
+    assert np.array_equal(back, expected)
+
+
+def test_a_packet_is_as_many_rays_as_a_row_of_copied_coordinates():
+    assert PACKET_SIZE == ROW
 
 
 # --- a shadow ray's mask of the boxes it enters: the same boxes as the slab test's entries ---------
