@@ -332,6 +332,42 @@ def test_the_image_does_not_depend_on_how_many_threads_share_it():
     assert shared.stats["rays"] == alone.stats["rays"] and shared.stats["rays"]["primary"] == 50 * 37
 
 
+def test_frames_in_a_row_and_at_once_each_give_their_own_image_and_leave_the_last_as_it_was():
+    # A thread reuses its working arrays from one frame to the next of the same size: nothing of a
+    # frame may show in the next, the image a caller keeps must stay as it was, and two threads
+    # rendering at once must not share them.
+    import threading
+
+    settings = TraceSettings(mode="raytrace", max_depth=5)
+    scenes = {"lecture": small(presets.lecture_scene(), 80, 60),
+              "mirror": small(presets_trace.mirror_and_glass(), 80, 60)}
+    first = {name: render_trace(scene, settings) for name, scene in scenes.items()}
+    kept = {name: result.color.copy() for name, result in first.items()}
+    again = render_trace(scenes["lecture"], settings)
+    assert np.array_equal(again.color, kept["lecture"])
+    assert np.array_equal(again.depth, first["lecture"].depth)
+    assert all(np.array_equal(first[name].color, kept[name]) for name in scenes)  # the kept images unchanged
+    assert not np.array_equal(kept["lecture"], kept["mirror"])
+    images, failures = {name: [] for name in scenes}, []
+
+    def frames(name):
+        try:
+            for _ in range(4):
+                images[name].append(render_trace(scenes[name], settings).color)
+        except Exception as error:  # noqa: BLE001 - reported below, with the thread's scene
+            failures.append((name, error))
+
+    threads = [threading.Thread(target=frames, args=(name,)) for name in scenes]
+    for thread in threads:
+        thread.start()
+    for thread in threads:
+        thread.join(timeout=300)
+    assert not failures and not any(thread.is_alive() for thread in threads)
+    for name in scenes:
+        assert len(images[name]) == 4, name
+        assert all(np.array_equal(image, kept[name]) for image in images[name]), name
+
+
 def test_a_coarse_image_repeats_one_ray_per_block():
     scene = small(presets_trace.mirror_and_glass())
     whole = render_trace(scene)
