@@ -167,10 +167,12 @@ def set_rays(rays, axes, origins, directions, t_min, t_max, start, n):
     """Make rays ``0 .. n-1`` of the packet rays ``start .. start + n - 1`` of the arrays
     (:func:`set_ray`; ``origins`` and ``directions`` (N, 3)).
 
-    Their numbers are copied in first; then what follows from them is worked out in one loop
-    with no branch that reads and writes only the packet's rows, four rays per vector
-    instruction, as :func:`set_primary_rays` does (a ray's five divisions among them), where
-    the loop that read each ray's numbers from the arrays and made it went one ray at a time.
+    Their numbers are copied in first (a whole packet's coordinates three rows at once,
+    :func:`~core.image_order.kernels.intrinsics.rows.deinterleave3`); then what follows from
+    them is worked out in one loop with no branch that reads and writes only the packet's rows,
+    four rays per vector instruction, as :func:`set_primary_rays` does (a ray's five divisions
+    among them), where the loop that read each ray's numbers from the arrays and made it went
+    one ray at a time.
     """
     if n == PACKET_SIZE:
         deinterleave3(origins, start, rays, _at(R_ORIGIN, 0), _at(R_ORIGIN + 1, 0), _at(R_ORIGIN + 2, 0))

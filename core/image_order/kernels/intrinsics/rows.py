@@ -5,7 +5,7 @@ row of sixteen, so that its tests read four or eight rays' numbers in one load. 
 arrays hold the rays the other way, one ray's three coordinates after another (``(N, 3)``,
 C order).  :func:`deinterleave3` turns sixteen of them into three rows with one load and a few
 shuffles; numba's loop read and wrote them one number at a time (on the lecture scene's shadow
-rays, a third of the work of making a packet).
+rays, about half of the time spent making a packet).
 """
 
 from __future__ import annotations
