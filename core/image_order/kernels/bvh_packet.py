@@ -111,8 +111,9 @@ PACKET_SIZE = PACKET_ROWS * PACKET_COLS  # the lanes of slabs4.slab_rays_mask (R
 # (column, row) a primary ray goes through, the weights of the closest hit so far (test_leaf's,
 # set only once there is a hit), the view depth's start and step along the ray
 # (ray_casting.view_depth_of_ray), and inf (an any-hit walk's bound on where a box is entered);
-# then the shadow packets' cone's work rows (_cone): each ray's origin from the apex, its far
-# end's distance from the apex and the size of its numbers.
+# then the shadow packets' cone's work rows (_cone): each ray's origin from the apex (twice: one
+# row halved to its least, one to its greatest), its far end's distance from the apex and the
+# size of its numbers.
 (R_ORIGIN, R_INVERSE, R_T_MIN, R_BEST_T, R_SHEAR, R_SHEARED_ORIGIN, R_DIRECTION, R_PIXEL, R_WEIGHTS,
  R_DEPTH, R_NO_BOUND, R_CONE_LOW, R_CONE_HIGH, R_CONE_SPREAD, R_CONE_SIZE) = (
     0, 3, 6, 7, 8, 11, 14, 17, 19, 23, 25, 26, 29, 32, 33)
@@ -627,8 +628,7 @@ def packet_occluded(n, rays, axes, bvh, n_spheres, stack, stack_rays, counters):
     entered each pushed node) hold ``3 * depth + 2`` entries.
     """
     wide, refs, leaves, groups, order, rows = bvh
-    nx, ny, nz, fx, fy, fz = near_and_far_rows(*_three(rays, R_INVERSE, 0))  # all the rays' signs agree
-    sides = nx, ny, nz, fx, fy, fz
+    sides = near_and_far_rows(*_three(rays, R_INVERSE, 0))  # all the rays' signs agree
     cone = _cone(rays, n)
     boxes = 0
     tests = 0

@@ -14,16 +14,10 @@ from llvmlite import ir
 from numba import types
 from numba.extending import intrinsic
 
-from core.image_order.kernels.intrinsics.simd import F64, I32
+from core.image_order.kernels.intrinsics.simd import F64, I32, load
 
 #: Numbers in a row (the rays of a packet, :data:`core.image_order.kernels.bvh_packet.PACKET_SIZE`).
 ROW = 16
-
-
-def _pointer(context, builder, array_type, array, index, vector_type):
-    """A pointer to ``array.flat[index]`` as a pointer to ``vector_type``."""
-    data = context.make_array(array_type)(context, builder, array).data
-    return builder.bitcast(builder.gep(data, [index]), vector_type.as_pointer())
 
 
 @intrinsic
@@ -34,14 +28,14 @@ def deinterleave3(typingctx, points, start, rows, x_at, y_at, z_at):
     signature = types.none(points, start, rows, x_at, y_at, z_at)
 
     def codegen(context, builder, sig, args):
-        source = ir.VectorType(F64, 3 * ROW)
-        first = builder.mul(args[1], ir.Constant(args[1].type, 3))
-        values = builder.load(_pointer(context, builder, sig.args[0], args[0], first, source), align=8)
+        source, row_type = ir.VectorType(F64, 3 * ROW), ir.VectorType(F64, ROW)
+        points = context.make_array(sig.args[0])(context, builder, args[0]).data
+        rows_data = context.make_array(sig.args[2])(context, builder, args[2]).data
+        values = load(builder, points, builder.mul(args[1], ir.Constant(args[1].type, 3)), source)
         for axis, at in enumerate(args[3:6]):
             order = ir.Constant(ir.VectorType(I32, ROW), [3 * r + axis for r in range(ROW)])
             row = builder.shuffle_vector(values, ir.Constant(source, ir.Undefined), order)
-            target = _pointer(context, builder, sig.args[2], args[2], at, ir.VectorType(F64, ROW))
-            builder.store(row, target, align=8)
+            builder.store(row, builder.bitcast(builder.gep(rows_data, [at]), row_type.as_pointer()), align=8)
         return context.get_dummy_value()
 
     return signature, codegen

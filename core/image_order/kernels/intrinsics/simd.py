@@ -35,7 +35,7 @@ def constant(value: float, width=LANES):
 
 
 def load(builder, data, index, vector_type):
-    """The ``LANES`` numbers at ``data[index]`` onwards as one vector (aligned as one number)."""
+    """The numbers at ``data[index]`` onwards as one vector of ``vector_type`` (aligned as one number)."""
     pointer = builder.bitcast(builder.gep(data, [index]), vector_type.as_pointer())
     return builder.load(pointer, align=4 if vector_type is FOUR_F32 else 8)
 
