@@ -100,7 +100,7 @@ from core.image_order.kernels.intrinsics.slabs4 import (
 )
 from core.image_order.kernels.intrinsics.triangle4 import GROUP_SIZE, triangle_test4, triangle_test4x2
 from core.image_order.kernels.intrinsics.unchecked import load_at, store_at
-from core.image_order.kernels.jit import jit, jit_inline
+from core.image_order.kernels.jit import jit_inline
 from core.image_order.ray_casting import primary_ray, view_depth_of_ray
 
 #: Pixels of a packet: rows and columns.
@@ -294,7 +294,7 @@ def _keep(rays, axes, r, before, best_t, best_k, best_w):
     return False
 
 
-@jit
+@jit_inline
 def packet_closest(n, rays, axes, bvh, n_spheres, stack, stack_t, counters):
     """Find the closest crossing of each of the packet's rays ``0 .. n-1`` (:func:`can_share_walk`
     holds); each ray's ``R_BEST_T`` and ``A_BEST_K`` then name it (``A_BEST_K`` -1: none).

@@ -150,7 +150,7 @@ def _primary_rows(first, last, cam, xs, ys, opts, geo, grid, bvh, scratch, packe
             _write_primary(geo, hits, depth, objects, j, i, h, view_depth(cam, o, d, h[1]))
 
 
-@jit
+@jit_inline
 def _primary_packet(j0, j1, i0, i1, cam, xs, ys, geo, bvh, scratch, packet, hits, depth, objects, count,
                     heat):
     """The primary rays of pixels ``[j0, j1) x [i0, i1)`` through the BVH, as one packet when they
