@@ -89,7 +89,7 @@ from core.image_order.kernels.bvh_traverse import (
     test_leaf,
 )
 from core.image_order.kernels.intrinsics.bits import bit_count, lowest_bit
-from core.image_order.kernels.intrinsics.rows import deinterleave3
+from core.image_order.kernels.intrinsics.rows import deinterleave3, row_greatest, row_least
 from core.image_order.kernels.intrinsics.slabs4 import (
     HALF,
     slab_cone_mask4,
@@ -533,7 +533,7 @@ def _cone(rays, n):
     apex = (ex, ey, ez)
     # Each ray's numbers side by side in the work rows, in a loop with no branch (four rays per
     # vector instruction; a lane past the packet's rays holds a number that changes no extreme),
-    # then each row's least or greatest by halving, the same way.  The loop that carried the
+    # then each row's least or greatest by halving it in registers.  The loop that carried the
     # extremes from ray to ray, and divided once a ray, waited on each step: on the lecture
     # scene's shadow rays it took a fifth of the time.
     for r in range(PACKET_SIZE):
@@ -548,17 +548,13 @@ def _cone(rays, n):
             spread, size = max(spread, abs(end - apex[a])), max(size, abs(o) + abs(end))
         store_at(rays, _at(R_CONE_SPREAD, r), spread if used else 0.0)
         store_at(rays, _at(R_CONE_SIZE, r), (size if abs(t) < math.inf else math.inf) if used else 0.0)
-    for half in (PACKET_SIZE // 2, PACKET_SIZE // 4, PACKET_SIZE // 8, PACKET_SIZE // 16):
-        for r in range(half):
-            for a in range(3):
-                _keep_least(rays, R_CONE_LOW + a, r, half)
-                _keep_greatest(rays, R_CONE_HIGH + a, r, half)
-            _keep_greatest(rays, R_CONE_SPREAD, r, half)
-            _keep_greatest(rays, R_CONE_SIZE, r, half)
-    near_x, near_y, near_z = _three(rays, R_CONE_LOW, 0)
-    far_x, far_y, far_z = _three(rays, R_CONE_HIGH, 0)
-    spread = load_at(rays, _at(R_CONE_SPREAD, 0))
-    size = max(load_at(rays, _at(R_CONE_SIZE, 0)), abs(ex), abs(ey), abs(ez))
+    low, high = _at(R_CONE_LOW, 0), _at(R_CONE_HIGH, 0)
+    near_x, near_y, near_z = (row_least(rays, low), row_least(rays, low + PACKET_SIZE),
+                              row_least(rays, low + 2 * PACKET_SIZE))
+    far_x, far_y, far_z = (row_greatest(rays, high), row_greatest(rays, high + PACKET_SIZE),
+                           row_greatest(rays, high + 2 * PACKET_SIZE))
+    spread = row_greatest(rays, _at(R_CONE_SPREAD, 0))
+    size = max(row_greatest(rays, _at(R_CONE_SIZE, 0)), abs(ex), abs(ey), abs(ez))
     ax, bx, ok_x = _cone_axis(near_x, far_x)
     ay, by, ok_y = _cone_axis(near_y, far_y)
     az, bz, ok_z = _cone_axis(near_z, far_z)
@@ -569,18 +565,6 @@ def _cone(rays, n):
     px, py, pz = math.copysign(margin, ax), math.copysign(margin, ay), math.copysign(margin, az)
     return (near_and_far_rows(ax, ay, az), (ex + px, ey + py, ez + pz), (ex - px, ey - py, ez - pz),
             (ax, ay, az), (bx, by, bz), ok)
-
-
-@jit_inline
-def _keep_least(rays, field, r, half):
-    """Number ``field`` of ray ``r`` becomes the lesser of its own and ray ``r + half``'s."""
-    store_at(rays, _at(field, r), min(load_at(rays, _at(field, r)), load_at(rays, _at(field, r + half))))
-
-
-@jit_inline
-def _keep_greatest(rays, field, r, half):
-    """Number ``field`` of ray ``r`` becomes the greater of its own and ray ``r + half``'s."""
-    store_at(rays, _at(field, r), max(load_at(rays, _at(field, r)), load_at(rays, _at(field, r + half))))
 
 
 @jit_inline

@@ -52,7 +52,7 @@ from core.image_order.kernels.bvh_packet import (
     set_rays,
 )
 from core.image_order.kernels.closest_hit import closest_hit
-from core.image_order.kernels.intrinsics.rows import ROW
+from core.image_order.kernels.intrinsics.rows import ROW, row_greatest, row_least
 from core.image_order.kernels.intrinsics.slabs4 import (
     HALF,
     RAYS,
@@ -414,6 +414,40 @@ def test_a_packet_of_shadow_rays_holds_the_batchs_rays_from_its_start(start, n):
 
 def test_a_packet_is_as_many_rays_as_a_row_of_copied_coordinates():
     assert PACKET_SIZE == ROW
+
+
+@njit
+def _row_extremes(numbers, at):
+    return row_least(numbers, at), row_greatest(numbers, at)
+
+
+def _halved(row, keep):
+    """Python's own ``min`` or ``max`` (``keep``) of each number and the one half a row on, as the
+    cone's rows were halved in memory before: 8, 4, 2 then 1 apart."""
+    row = list(row)
+    half = len(row) // 2
+    while half >= 1:
+        row[:half] = [keep(row[r], row[r + half]) for r in range(half)]
+        half //= 2
+    return row[0]
+
+
+_ROW_NUMBERS = st.sampled_from([0.0, -0.0, 1.0, -1.0, 2.5, 1e-300, -1e300, math.inf, -math.inf, math.nan])
+
+
+@settings(max_examples=300, deadline=None)
+@given(row=st.lists(st.one_of(_ROW_NUMBERS, st.floats(allow_nan=True)), min_size=ROW, max_size=ROW),
+       at=st.integers(0, 3))
+def test_a_rows_least_and_greatest_are_those_of_halving_it_bit_for_bit(row, at):
+    # The cone's extremes are taken in registers (rows.row_least / row_greatest); they must be the
+    # very numbers the halving loops left, signed zeros, ties and NaN included.
+    numbers = np.full(ROW + 4, 7.0)
+    numbers[at:at + ROW] = row
+    least, greatest = _row_extremes(numbers, at)
+    for got, keep in ((least, min), (greatest, max)):
+        want = _halved(row, keep)
+        same_bits = np.array([got]).tobytes() == np.array([want]).tobytes()
+        assert same_bits or (math.isnan(got) and math.isnan(want))
 
 
 # --- a shadow ray's mask of the boxes it enters: the same boxes as the slab test's entries ---------

@@ -1,11 +1,13 @@
-"""A packet's rows filled from an array of points: three coordinates a point, one row an axis.
+"""A packet's rows: filled from an array of points (three coordinates a point, one row an axis),
+and a row's least or greatest number.
 
 A packet of rays (:mod:`core.image_order.kernels.bvh_packet`) keeps each number of its rays in a
 row of sixteen, so that its tests read four or eight rays' numbers in one load.  The tracer's
 arrays hold the rays the other way, one ray's three coordinates after another (``(N, 3)``,
 C order).  :func:`deinterleave3` turns sixteen of them into three rows with one load and a few
 shuffles; numba's loop read and wrote them one number at a time (on the lecture scene's shadow
-rays, about half of the time spent making a packet).
+rays, about half of the time spent making a packet).  :func:`row_least` and :func:`row_greatest`
+halve a row in registers, the same comparisons the loops over the row in memory made.
 """
 
 from __future__ import annotations
@@ -39,3 +41,44 @@ def deinterleave3(typingctx, points, start, rows, x_at, y_at, z_at):
         return context.get_dummy_value()
 
     return signature, codegen
+
+
+def _halved(builder, values, compare):
+    """Halve the vector ``values`` until one lane is left: each lane ``r`` of the lower half becomes
+    lane ``r + half`` where ``compare`` holds between that and lane ``r``, else keeps its own.  As
+    numba's ``min`` (``compare`` ``<``) and ``max`` (``>``) of two floats, lane ``r`` first: ties,
+    signed zeros and NaN come out as they do from those."""
+    width = values.type.count
+    while width > 1:
+        half = width // 2
+        own = builder.shuffle_vector(values, values, ir.Constant(ir.VectorType(I32, half), list(range(half))))
+        other = builder.shuffle_vector(values, values,
+                                       ir.Constant(ir.VectorType(I32, half), list(range(half, width))))
+        values = builder.select(builder.fcmp_ordered(compare, other, own), other, own)
+        width = half
+    return builder.extract_element(values, ir.Constant(I32, 0))
+
+
+
+def _row_extreme(rows, at, compare):
+    signature = types.float64(rows, at)
+
+    def codegen(context, builder, sig, args):
+        data = context.make_array(sig.args[0])(context, builder, args[0]).data
+        return _halved(builder, load(builder, data, args[1], ir.VectorType(F64, ROW)), compare)
+
+    return signature, codegen
+
+
+@intrinsic
+def row_least(typingctx, rows, at):
+    """The least of the ``ROW`` numbers of the float64 array ``rows`` from flat index ``at`` on: the
+    number, bit for bit, that halving the row in memory with numba's ``min`` (``rows[r] =
+    min(rows[r], rows[r + half])`` for ``half`` 8, 4, 2, 1) leaves in ``rows[at]``."""
+    return _row_extreme(rows, at, "<")
+
+
+@intrinsic
+def row_greatest(typingctx, rows, at):
+    """The greatest of the ``ROW`` numbers from ``rows[at]`` on, as :func:`row_least` with ``max``."""
+    return _row_extreme(rows, at, ">")
