@@ -112,8 +112,8 @@ PACKET_SIZE = PACKET_ROWS * PACKET_COLS  # the lanes of slabs4.slab_rays_mask (R
 # set only once there is a hit), the view depth's start and step along the ray
 # (ray_casting.view_depth_of_ray), and inf (an any-hit walk's bound on where a box is entered);
 # then the shadow packets' cone's work rows (_cone): each ray's origin from the apex (twice: one
-# row halved to its least, one to its greatest), its far end's distance from the apex and the
-# size of its numbers.
+# row for its least, whose lanes past the packet's rays hold inf, one for its greatest, -inf),
+# its far end's distance from the apex and the size of its numbers.
 (R_ORIGIN, R_INVERSE, R_T_MIN, R_BEST_T, R_SHEAR, R_SHEARED_ORIGIN, R_DIRECTION, R_PIXEL, R_WEIGHTS,
  R_DEPTH, R_NO_BOUND, R_CONE_LOW, R_CONE_HIGH, R_CONE_SPREAD, R_CONE_SIZE) = (
     0, 3, 6, 7, 8, 11, 14, 17, 19, 23, 25, 26, 29, 32, 33)
