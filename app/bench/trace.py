@@ -139,8 +139,9 @@ def run(args) -> int:
     rows = [_scene_rays(f"{len(mesh.triangles):>9,} triangles", mesh, size_camera, _MESH_LIGHT, args, library)
             for mesh in map(presets_trace.bumpy_ball, args.triangles)]
     lecture = presets.lecture_scene()
-    rows.append(_scene_rays(f"lecture scene ({len(_one_mesh(lecture).triangles)} triangles)",
-                            _one_mesh(lecture), lecture.camera.replace(width=args.width, height=args.height),
+    lecture_mesh = _one_mesh(lecture)
+    rows.append(_scene_rays(f"lecture scene ({len(lecture_mesh.triangles)} triangles)", lecture_mesh,
+                            lecture.camera.replace(width=args.width, height=args.height),
                             lecture.lights[0].position, args, library))
     print("against mesh size, and the lecture scene (median ms; ratio: the peer's time over ours, paired "
           "runs, as above):")
@@ -203,16 +204,12 @@ _MESH_LIGHT = (4.0, 8.0, 6.0)
 
 
 def _one_mesh(scene):
-    """The triangles of ``scene``'s meshes as one mesh (its spheres left out: the lecture scene has
-    none), for the peer, which takes one triangle geometry."""
-    import numpy as np
-
+    """``scene``'s objects as one mesh, as the rasterizer joins them (its spheres tessellated: the
+    lecture scene has none), for the peer, which takes one triangle geometry."""
+    from core.object_order.pipeline import joined_triangles, object_mesh
     from core.scene import Mesh
 
-    meshes = [o for o in scene.objects if isinstance(o, Mesh)]
-    starts = np.cumsum([0] + [len(m.vertices) for m in meshes])
-    return Mesh(np.concatenate([m.vertices for m in meshes]),
-                np.concatenate([m.triangles + start for m, start in zip(meshes, starts, strict=False)]))
+    return Mesh(*joined_triangles(tuple(object_mesh(obj) for obj in scene.objects)))
 
 
 def _scene_rays(label: str, mesh, camera, light, args, library) -> dict:

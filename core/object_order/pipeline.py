@@ -187,6 +187,19 @@ def object_mesh(obj: SceneObject) -> Mesh:
     return obj
 
 
+def joined_triangles(meshes) -> tuple[np.ndarray, np.ndarray]:
+    """The vertices and triangles of ``meshes``, in order, as one pair of arrays: each mesh's
+    corner indices moved past the vertices of the meshes before it.  One mesh: its own arrays, no
+    copies."""
+    if len(meshes) == 1:
+        return meshes[0].vertices, meshes[0].triangles
+    vertex_offsets = np.cumsum([0] + [len(m.vertices) for m in meshes])
+    world = np.vstack([m.vertices for m in meshes] + [np.empty((0, 3))])
+    triangles = np.vstack([m.triangles + v for m, v in zip(meshes, vertex_offsets[:-1], strict=True)]
+                          + [np.empty((0, 3), np.int64)])
+    return world, triangles
+
+
 class _Stopwatch:
     """Seconds spent per stage, read with :meth:`lap` at the end of each stage."""
 
@@ -267,13 +280,7 @@ def _render(scene: Scene, settings: RasterSettings) -> RasterResult:
     meshes = tuple(object_mesh(obj) for obj in scene.objects)
     face_counts = np.array([len(m.triangles) for m in meshes], dtype=np.int64)
     face_offsets = np.concatenate([[0], np.cumsum(face_counts)]).astype(np.int64)
-    if len(meshes) == 1:  # one mesh: its own arrays, no copies
-        world, triangles = meshes[0].vertices, meshes[0].triangles
-    else:
-        vertex_offsets = np.cumsum([0] + [len(m.vertices) for m in meshes])
-        world = np.vstack([m.vertices for m in meshes] + [np.empty((0, 3))])
-        triangles = np.vstack([m.triangles + v for m, v in zip(meshes, vertex_offsets[:-1], strict=True)]
-                              + [np.empty((0, 3), np.int64)])
+    world, triangles = joined_triangles(meshes)
     # Read-only either way: a mesh's own arrays are, and numba compiles a kernel apart for read-only
     # arguments, so a one-mesh scene would compile (seconds) inside a stage, after the warm-up.
     world, triangles = _read_only(world), _read_only(triangles)

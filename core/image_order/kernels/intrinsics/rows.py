@@ -7,7 +7,8 @@ arrays hold the rays the other way, one ray's three coordinates after another (`
 C order).  :func:`deinterleave3` turns sixteen of them into three rows with one load and a few
 shuffles; numba's loop read and wrote them one number at a time (on the lecture scene's shadow
 rays, about half of the time spent making a packet).  :func:`row_least` and :func:`row_greatest`
-halve a row in registers, the same comparisons the loops over the row in memory made.
+halve a row in registers with numba's ``min`` and ``max`` comparisons, in the order a loop
+halving it in memory would make them.
 """
 
 from __future__ import annotations
