@@ -214,8 +214,21 @@ def pixel_ray(x, y, width, height, half_width, half_height, eye, rotation, forwa
         The part of the ray between the near and the far plane, so the ray
         sees what the frustum holds.
     """
-    px = ((x + 0.5) / width * 2.0 - 1.0) * half_width
-    py = (1.0 - (y + 0.5) / height * 2.0) * half_height
+    px, py = image_plane_point(x, y, width, height, half_width, half_height)
+    return ray_through(px, py, eye, rotation, forward, near, far, orthographic)
+
+
+@jitable(forceinline=True)
+def image_plane_point(x, y, width, height, half_width, half_height):
+    """Where the centre of pixel ``(x, y)`` lies on the image plane, ``(px, py)`` in view space
+    (:func:`pixel_ray`'s first step; ``px`` depends on the column alone, ``py`` on the row)."""
+    return ((x + 0.5) / width * 2.0 - 1.0) * half_width, (1.0 - (y + 0.5) / height * 2.0) * half_height
+
+
+@jitable(forceinline=True)
+def ray_through(px, py, eye, rotation, forward, near, far, orthographic):
+    """The rest of :func:`pixel_ray`: the ray through the image plane's point ``(px, py)``
+    (:func:`image_plane_point`)."""
     r = rotation
     ex, ey, ez = eye
     fx, fy, fz = forward

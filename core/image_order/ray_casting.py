@@ -22,7 +22,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from core.camera import Camera, pixel_ray
+from core.camera import Camera, image_plane_point, ray_through
 from core.compiling.jitable import jitable
 from core.image_order import flat_layout
 
@@ -47,14 +47,28 @@ def primary_ray(cam, x, y):
     ``cam`` is :func:`camera_array`; the rest is :func:`core.camera.pixel_ray`
     (``t_min, t_max``: from the near to the far plane).
     """
+    px, py = pixel_on_image_plane(cam, x, y)
+    return primary_ray_through(cam, px, py)
+
+
+@jitable(forceinline=True)
+def pixel_on_image_plane(cam, x, y):
+    """:func:`primary_ray`'s first step, :func:`core.camera.image_plane_point`: ``(px, py)``,
+    ``px`` from the column alone and ``py`` from the row, so a render works them out once for
+    each column and each row rather than for each pixel."""
+    return image_plane_point(x, y, cam[flat_layout.CAM_WIDTH], cam[flat_layout.CAM_HEIGHT],
+                             cam[flat_layout.CAM_HALF_WIDTH], cam[flat_layout.CAM_HALF_HEIGHT])
+
+
+@jitable(forceinline=True)
+def primary_ray_through(cam, px, py):
+    """:func:`primary_ray` from the pixel's point on the image plane (:func:`pixel_on_image_plane`)."""
     e, r, f = flat_layout.CAM_EYE, flat_layout.CAM_ROTATION, flat_layout.CAM_FORWARD
-    return pixel_ray(x, y, cam[flat_layout.CAM_WIDTH], cam[flat_layout.CAM_HEIGHT],
-                     cam[flat_layout.CAM_HALF_WIDTH], cam[flat_layout.CAM_HALF_HEIGHT],
-                     (cam[e], cam[e + 1], cam[e + 2]),
-                     (cam[r], cam[r + 1], cam[r + 2], cam[r + 3], cam[r + 4], cam[r + 5], cam[r + 6],
-                      cam[r + 7], cam[r + 8]),
-                     (cam[f], cam[f + 1], cam[f + 2]), cam[flat_layout.CAM_NEAR], cam[flat_layout.CAM_FAR],
-                     cam[flat_layout.CAM_ORTHOGRAPHIC] > 0.0)
+    return ray_through(px, py, (cam[e], cam[e + 1], cam[e + 2]),
+                       (cam[r], cam[r + 1], cam[r + 2], cam[r + 3], cam[r + 4], cam[r + 5], cam[r + 6],
+                        cam[r + 7], cam[r + 8]),
+                       (cam[f], cam[f + 1], cam[f + 2]), cam[flat_layout.CAM_NEAR], cam[flat_layout.CAM_FAR],
+                       cam[flat_layout.CAM_ORTHOGRAPHIC] > 0.0)
 
 
 @jitable(forceinline=True)

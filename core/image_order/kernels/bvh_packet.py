@@ -101,20 +101,21 @@ from core.image_order.kernels.intrinsics.slabs4 import (
 from core.image_order.kernels.intrinsics.triangle4 import GROUP_SIZE, triangle_test4, triangle_test4x2
 from core.image_order.kernels.intrinsics.unchecked import load_at, store_at
 from core.image_order.kernels.jit import jit_inline
-from core.image_order.ray_casting import primary_ray, view_depth_of_ray
+from core.image_order.ray_casting import primary_ray_through, view_depth_of_ray
 
 #: Pixels of a packet: rows and columns.
 PACKET_ROWS = PACKET_COLS = 4
 PACKET_SIZE = PACKET_ROWS * PACKET_COLS  # the lanes of slabs4.slab_rays_mask (RAYS)
 # Rows of the packet's rays: origin, 1 / d, t_min, the closest hit so far (t_max to start), the
-# shear of the watertight triangle test, the origin on its axes, the direction, the pixel
-# (column, row) a primary ray goes through, the weights of the closest hit so far (test_leaf's,
-# set only once there is a hit), the view depth's start and step along the ray
+# shear of the watertight triangle test, the origin on its axes, the direction, the point on the
+# image plane a primary ray goes through (ray_casting.pixel_on_image_plane), the weights of the
+# closest hit so far (test_leaf's, set only once there is a hit), the view depth's start and step
+# along the ray
 # (ray_casting.view_depth_of_ray), and inf (an any-hit walk's bound on where a box is entered);
 # then the shadow packets' cone's work rows (_cone): each ray's origin from the apex (twice: one
 # row for its least, whose lanes past the packet's rays hold inf, one for its greatest, -inf),
 # its far end's distance from the apex and the size of its numbers.
-(R_ORIGIN, R_INVERSE, R_T_MIN, R_BEST_T, R_SHEAR, R_SHEARED_ORIGIN, R_DIRECTION, R_PIXEL, R_WEIGHTS,
+(R_ORIGIN, R_INVERSE, R_T_MIN, R_BEST_T, R_SHEAR, R_SHEARED_ORIGIN, R_DIRECTION, R_IMAGE_POINT, R_WEIGHTS,
  R_DEPTH, R_NO_BOUND, R_CONE_LOW, R_CONE_HIGH, R_CONE_SPREAD, R_CONE_SIZE) = (
     0, 3, 6, 7, 8, 11, 14, 17, 19, 23, 25, 26, 29, 32, 33)
 RAY_FIELDS = 34
@@ -193,27 +194,28 @@ def set_rays(rays, axes, origins, directions, t_min, t_max, start, n):
 
 
 @jit_inline
-def set_pixel(rays, r, x, y):
-    """Ray ``r`` of the packet goes through pixel column ``x``, row ``y`` (:func:`set_primary_rays`)."""
-    store_at(rays, _at(R_PIXEL, r), x)
-    store_at(rays, _at(R_PIXEL + 1, r), y)
+def set_image_point(rays, r, px, py):
+    """Ray ``r`` of the packet goes through the point ``(px, py)`` of the image plane, a pixel's
+    :func:`~core.image_order.ray_casting.pixel_on_image_plane` (:func:`set_primary_rays`)."""
+    store_at(rays, _at(R_IMAGE_POINT, r), px)
+    store_at(rays, _at(R_IMAGE_POINT + 1, r), py)
 
 
 @jit_inline
 def set_primary_rays(cam, rays, axes, n):
-    """Make rays ``0 .. n-1`` of the packet the camera's primary rays through their pixels
-    (:func:`set_pixel`).
+    """Make rays ``0 .. n-1`` of the packet the camera's primary rays through their points on the
+    image plane (:func:`set_image_point`).
 
     One loop over the rays, with no branch and no index that differs from ray to ray
     (:func:`~core.image_order.intersect_triangle.on_shear_axes`): the compiler makes it four rays
-    per vector instruction, and the dozen divisions and the square root a ray costs (its
+    per vector instruction, and the ten divisions and the square root a ray costs (its
     direction, near and far, ``1 / d`` and the shear) go four at a time.  Each lane rounds as
     the scalar code does, so the rays are the same bit for bit.  The view depth of the rays'
     hits is prepared here too (:func:`packet_depth`).
     """
     for r in range(n):
-        x, y = load_at(rays, _at(R_PIXEL, r)), load_at(rays, _at(R_PIXEL + 1, r))
-        o, d, t_min, t_max = primary_ray(cam, x, y)
+        px, py = load_at(rays, _at(R_IMAGE_POINT, r)), load_at(rays, _at(R_IMAGE_POINT + 1, r))
+        o, d, t_min, t_max = primary_ray_through(cam, px, py)
         set_ray(rays, axes, r, o, d, t_min, t_max)
         start, step = view_depth_of_ray(cam, o, d)
         store_at(rays, _at(R_DEPTH, r), start)

@@ -47,7 +47,7 @@ from core.image_order.kernels.bvh_packet import (
     _cone_may_enter,
     packet_depth,
     ray_of,
-    set_pixel,
+    set_image_point,
     set_primary_rays,
     set_rays,
 )
@@ -63,7 +63,7 @@ from core.image_order.kernels.intrinsics.slabs4 import (
     slab_test4,
 )
 from core.image_order.kernels.render import make_scratch
-from core.image_order.ray_casting import camera_array, primary_ray, view_depth
+from core.image_order.ray_casting import camera_array, pixel_on_image_plane, primary_ray, view_depth
 from core.scene import Material, Mesh, PointLight, Scene, Sphere
 
 
@@ -500,7 +500,8 @@ def _packet_of(cam, xs, ys):
     """The packet's arrays after :func:`set_primary_rays` for the pixels ``xs, ys``."""
     rays, axes = np.zeros(PACKET_SIZE * RAY_FIELDS), np.zeros(PACKET_SIZE * AXIS_FIELDS, np.int64)
     for r in range(len(xs)):
-        set_pixel(rays, r, xs[r], ys[r])
+        px, py = pixel_on_image_plane(cam, xs[r], ys[r])
+        set_image_point(rays, r, px, py)
     set_primary_rays(cam, rays, axes, len(xs))
     return rays, axes
 
