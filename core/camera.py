@@ -184,8 +184,9 @@ def pixel_ray(x, y, width, height, half_width, half_height, eye, rotation, forwa
     """The primary ray through the centre of pixel ``(x, y)``: ``(origin, direction, t_min, t_max)``.
 
     The lecture's ray "from the eye of the observer through the pixel".  One
-    formula for the tracer's kernels (compiled in, per pixel) and for
-    :meth:`Camera.primary_rays` (plain numpy, ``x`` and ``y`` arrays of pixels).
+    formula for the tracer's kernels (compiled in: its two steps,
+    :func:`image_plane_point` once per column and row, :func:`ray_through` per pixel)
+    and for :meth:`Camera.primary_rays` (plain numpy, ``x`` and ``y`` arrays of pixels).
 
     Parameters
     ----------
