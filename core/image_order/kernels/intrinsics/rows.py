@@ -60,7 +60,6 @@ def _halved(builder, values, compare):
     return builder.extract_element(values, ir.Constant(I32, 0))
 
 
-
 def _row_extreme(rows, at, compare):
     signature = types.float64(rows, at)
 
