@@ -260,6 +260,29 @@ def test_scaled_offset_gives_the_same_image_near_the_origin_and_ten_thousand_uni
     assert lit.sum() > 1000 and not differs[lit].any()  # no acne on the lit ground
 
 
+@pytest.mark.parametrize("side", [1.0, -1.0])
+def test_a_shadow_ray_starts_just_off_the_surface_on_the_side_of_its_light(side):
+    """The scaled offset pushes a shadow ray's origin along the normal towards the light: above the
+    ground when the eye and the light are above it (its front), below it when both are below (its
+    back, whose normal faces the eye the other way).  The render decides that side from the normal
+    facing the eye (kernels.shade); pbrt decides it from the direction to the light: past the test
+    that the light is not behind the surface, the two are the same side."""
+    scene = lit_plane_scene()
+    below = replace(scene,
+                    camera=scene.camera.replace(eye=(0.0, 4.0 * side, 7.0)),
+                    objects=(scene.objects[0], replace(scene.objects[1], center=(1.0, 1.0 * side, -1.0))),
+                    lights=(PointLight((-2.0, 8.0 * side, 3.0)),))
+    root = trace_pixel(below, *pixel_of(below, (0.3, 0.0, 0.2)))
+    assert root.hit_name == "ground" and root.front_face == (side > 0)
+    shadow = [c for c in root.children if c.kind == "shadow"][0]
+    assert shadow.traced and shadow.status == "reached the light"
+    step = shadow.origin - root.point
+    assert step[0] == 0.0 and step[2] == 0.0  # along the ground's normal only
+    assert 0.0 < step[1] * side < 1e-12  # towards the light, by the error bound
+    to_light = np.subtract(below.lights[0].position, root.point)
+    assert np.dot(step, to_light) > 0.0
+
+
 def test_fixed_epsilon_of_zero_shows_shadow_acne_far_from_the_origin():
     far = translated(lit_plane_scene(), (1e4, 1e4, 1e4))
     good = render_trace(far)
