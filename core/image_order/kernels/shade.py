@@ -224,7 +224,7 @@ def shade_hit(o, d, hit, weight, depth, materials, lights, opts, geo, grid, bvh,
             # above found dot(n, to_light) > 0, and where n = -n_out that sum is exactly minus the
             # offset's dot(to_light, n_out) (the same products, negated, added in the same order).
             # So ``n`` picks the very side ``to_light`` would, bit for bit, without waiting for
-            # its square root and divisions: a Whitted frame took 1/1.03-1/1.07 of its time.
+            # its square root and divisions: a Whitted frame took about 1/1.04 of its time.
             so = offset_ray_origin(p, n_out, error, n) if scaled else p
             sd = (lx - so[0], ly - so[1], lz - so[2])
             s_dist = math.sqrt(dot(sd, sd))
