@@ -238,10 +238,13 @@ class RenderSchedule(QObject):
             tab.show_progress(partial)
 
     def _finished(self, tab, result):
+        waited = tab.title in self._waiting
         self._waiting.discard(tab.title)
         scene, preview = self._jobs.pop(tab.title)
         if not preview and scene is not self.model.scene:
             return  # a full image of a superseded scene is never shown
+        if waited:  # no progress came after the wait was said (thinned away): over before the image shows
+            self._set_status(tab, None, f"{tab.title}: rendering… %p%")
         self.last_result = result
         caption = tab.show(result)
         uncover(tab.widget)
