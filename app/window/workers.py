@@ -229,22 +229,26 @@ class RenderSchedule(QObject):
             self._waiting.add(tab.title)
             self._set_status(tab, percent, f"{tab.title}: {partial.what}… %p%")
             partial = partial.partial
-        elif tab.title in self._waiting:
-            self._waiting.discard(tab.title)
-            self._set_status(tab, percent, f"{tab.title}: rendering… %p%")
-        else:
+        elif not self._end_wait(tab, percent):
             self._set_status(tab, percent)
         if partial is not None and hasattr(tab, "show_progress"):
             tab.show_progress(partial)
 
-    def _finished(self, tab, result):
-        waited = tab.title in self._waiting
+    def _end_wait(self, tab, percent) -> bool:
+        """If the tab's job last said what it waits on, the bar stops saying it; whether it did."""
+        if tab.title not in self._waiting:
+            return False
         self._waiting.discard(tab.title)
+        self._set_status(tab, percent, f"{tab.title}: rendering… %p%")
+        return True
+
+    def _finished(self, tab, result):
         scene, preview = self._jobs.pop(tab.title)
         if not preview and scene is not self.model.scene:
+            self._waiting.discard(tab.title)
             return  # a full image of a superseded scene is never shown
-        if waited:  # no progress came after the wait was said (thinned away): over before the image shows
-            self._set_status(tab, None, f"{tab.title}: rendering… %p%")
+        # A job whose progress after the wait was thinned away ends it before its image shows.
+        self._end_wait(tab, None)
         self.last_result = result
         caption = tab.show(result)
         uncover(tab.widget)
