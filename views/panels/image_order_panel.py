@@ -157,6 +157,7 @@ class ImageOrderPanel(QWidget):
                               ("ε", self.epsilon), ("", self.adaptive), ("Threshold", self.threshold),
                               ("Heat map", self.heat)]:
             form.addRow(label, widget)
+        form.addRow(self.heat_scale)  # under its choice: in view at 1280 x 720, where the column scrolls
         form.addRow(QLabel("Show in 3D:"))
         for box in (self.show_spheres, self.show_grid, self.show_walk):
             form.addRow(box)
@@ -200,7 +201,7 @@ class ImageOrderPanel(QWidget):
         top_layout = QHBoxLayout(top)
         top_layout.setContentsMargins(0, 0, 0, 0)
         top_layout.addWidget(self.image, 1)
-        top_layout.addWidget(SideColumn([form_box, self.heat_scale, self.rays, QLabel("<b>Ray colours</b>"),
+        top_layout.addWidget(SideColumn([form_box, self.rays, QLabel("<b>Ray colours</b>"),
                                          RayKindLegend(per_line=3)]))
         self.split = pictures_over_details(self, top, self.details)
         self._room_for_tree = False  # asked by a lesson, kept until the user drags the divider

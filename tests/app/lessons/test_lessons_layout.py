@@ -191,3 +191,23 @@ def test_the_acceleration_lessons_settings_and_ray_colours_fit_beside_the_image_
             assert legend.isVisible() and bottom < column.viewport().height()  # the legend whole
 
         qtbot.waitUntil(fits)
+
+
+def test_at_1280x720_the_heat_maps_colour_scale_shows_beside_the_image_without_scrolling(qtbot, window):
+    # The heat-map step says "dark for none, bright for the most any pixel took": the scale that
+    # says which is which sat below the settings, out of the column's view at 1280x720.
+    window.show()
+    window.resize(1280, 720)
+    qtbot.waitUntil(lambda: window.width() == 1280)
+    panel = window.tab("image order").widget
+    column = panel.findChild(SideColumn)
+    window.lesson_panel.select(LESSONS["acceleration"], 3)
+    qtbot.waitUntil(lambda: window.showing_full("image order"), timeout=RENDER_TIMEOUT_MS)
+
+    def shown_whole():
+        scale = panel.heat_scale
+        assert scale.isVisible()
+        top = scale.mapTo(column.viewport(), scale.rect().topLeft()).y()
+        assert top >= 0 and top + scale.height() <= column.viewport().height(), (top, scale.height())
+
+    qtbot.waitUntil(shown_whole)
