@@ -6,8 +6,8 @@ counts each pixel's tests (``render_trace(..., heat=True)``, primitive tests and
 bounding-volume tests apart) and object order counts the fragments that reach
 each pixel (:meth:`core.object_order.step_history.StepHistory.fragments_per_pixel`,
 the overdraw).  :func:`heat_map` turns one such count per pixel into colours
-from 0 (the colour map's first colour) to the largest count (its last), laid
-over the image so that what the pixel shows stays readable.
+from 0 (the colour map's first colour) to the largest count (its last), shaded
+by the image beneath so that the scene stays readable and each colour reads on the scale.
 """
 
 from __future__ import annotations
@@ -16,11 +16,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from core.srgb import colormapped
+from core.srgb import LUMINANCE, colormapped
 
 COLORMAP = "inferno"
-#: How much of a pixel's shown colour is the heat's, over the image (0: the image only).
-OPACITY = 0.75
+#: How much the image beneath darkens a heat map's colour, where the image is black (0: not at all).
+SHADE = 0.4
 
 
 @dataclass(frozen=True, eq=False)
@@ -49,9 +49,17 @@ class HeatMap:
         """The mean count a pixel."""
         return float(self.counts.mean()) if self.counts.size else 0.0
 
-    def over(self, image: np.ndarray, opacity: float = OPACITY) -> np.ndarray:
-        """The heat laid over ``image`` (H, W, 3) linear RGB: ``opacity`` heat, the rest image."""
-        return opacity * self.colored + (1.0 - opacity) * np.asarray(image, dtype=float)
+    def over(self, image: np.ndarray, shade: float = SHADE) -> np.ndarray:
+        """The heat shaded by ``image`` (H, W, 3) linear RGB: each pixel its count's colour on the
+        scale, darkened where the image is dark, by ``shade`` where it is black.
+
+        So the scene stays readable and every pixel still reads on the scale beside the map: a
+        pixel with no count is the scale's darkest colour over any image.  (Laid over the image
+        at three quarters, such a pixel over a white image showed a light grey, nowhere on the
+        scale.)
+        """
+        brightness = np.clip(np.asarray(image, dtype=float) @ LUMINANCE, 0.0, 1.0)
+        return self.colored * (1.0 - shade + shade * brightness)[..., None]
 
     def colorbar(self, length: int = 256, thickness: int = 12) -> np.ndarray:
         """The colour scale as a (thickness, length, 3) linear-RGB strip: 0 left, ``top`` right."""

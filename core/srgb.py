@@ -28,6 +28,9 @@ def srgb_to_linear(srgb: np.ndarray) -> np.ndarray:
     return np.where(c <= 0.04045, c / 12.92, np.power((c + 0.055) / 1.055, 2.4))
 
 
+#: The weights of a linear RGB colour's luminance (Rec. 709, the sRGB primaries).
+LUMINANCE = np.array([0.2126, 0.7152, 0.0722])
+
 #: Values converted at a time by :func:`to_srgb8`: a 4096 x 4096 frame in one go made several
 #: 400 MB temporaries and held the program for seconds, deaf to Ctrl+C (checked between blocks).
 BLOCK_VALUES = 1 << 20

@@ -24,6 +24,7 @@ import numpy as np
 from core.camera import Camera
 from core.projection import pixel_from_ndc
 from core.scene import Mesh
+from core.srgb import LUMINANCE
 
 CREASE_DEG = 30.0
 """Faces meeting at a larger angle than this have their shared edge drawn."""
@@ -32,7 +33,6 @@ INK = 0.2
 half-way from the object's colour to white)."""
 DARK = 0.18
 """Pixels of lower luminance (linear RGB) than this are dark."""
-LUMINANCE = np.array([0.2126, 0.7152, 0.0722])
 SAMPLES_PER_PIXEL = 2.0
 """Samples along an edge for every pixel it crosses."""
 DEPTH_SLACK_PX = 1.5

@@ -8,12 +8,13 @@ import pytest
 import verdict_scenes as vs
 
 from core.accuracy.supersampling import trace_adaptive
-from core.heat_map import heat_map
+from core.heat_map import SHADE, heat_map
 from core.image_order.flat_layout import HEAT_BOUNDS_TESTS, HEAT_PRIM_TESTS
 from core.image_order.ray_tracing import TraceSettings, render_trace
 from core.image_order.ray_tree import trace_pixel
 from core.object_order.pipeline import RasterSettings, render_raster
 from core.presets_trace import big_mesh, mirror_and_glass
+from core.srgb import LUMINANCE
 
 ACCELS = ("none", "spheres", "grid", "grid+spheres", "bvh")
 
@@ -113,3 +114,28 @@ def test_adaptive_supersampling_takes_the_fewest_samples_away_from_an_edge_and_m
     # Away from the edge the corners' mean is the flat colour itself; on it, a mix of both.
     assert np.all(adaptive.color[:, :24] == 1.0) and np.all(adaptive.color[:, 25:] == 0.0)
     assert np.all((adaptive.color[:, 24] > 0.0) & (adaptive.color[:, 24] < 1.0))
+
+
+def test_each_heat_map_pixel_is_its_counts_colour_on_the_scale_only_darkened_by_the_image_beneath():
+    # The heat-map lesson step says "dark for none, bright for the most any pixel took", and the
+    # window shows the scale beside the map: a pixel must read on that scale.  Laid over the
+    # image at three quarters, a pixel with no count over a white image showed a quarter white, a
+    # light grey that is nowhere on the scale.  Each pixel is its count's colour on the scale
+    # (top = 6, so the scale's colour k/6 is count k's), the same colour where the image is white
+    # and darker, never another hue, by at most SHADE where the image is black.
+    counts = np.array([[0, 0, 0, 3], [6, 6, 6, 1]])
+    image = np.array([[[1.0, 1.0, 1.0], [0.0, 0.0, 0.0], [0.2, 0.5, 0.9], [1.0, 1.0, 1.0]],
+                      [[1.0, 1.0, 1.0], [0.0, 0.0, 0.0], [0.3, 0.9, 0.1], [0.5, 0.5, 0.5]]])
+    heat = heat_map(counts, "primitive tests")
+    shown = heat.over(image)
+    scale = heat.colorbar(length=heat.top + 1)[0]  # the strip's colour k is count k's
+    for (y, x), count in np.ndenumerate(counts):
+        colour = scale[count]
+        factor = shown[y, x] / colour
+        assert np.allclose(factor, factor[0]), (y, x)  # the same hue, only darker or lighter
+        assert 1.0 - SHADE - 1e-12 <= factor[0] <= 1.0 + 1e-12, (y, x)
+        if image[y, x].min() == 1.0:
+            assert np.allclose(shown[y, x], colour), (y, x)
+    none = shown[counts == 0]
+    assert none.max() <= scale[0].max() + 1e-12  # no count: as dark as the scale's darkest colour
+    assert shown[1, 0] @ LUMINANCE > 0.9  # the most, over white: the scale's brightest (pale yellow)
