@@ -142,9 +142,13 @@ class JobRunner(QObject):
         self.cancel()
         self._latest += 1
         self._cancel = stopping.StopRequest()
-        self._pool.start(JobRun(self._latest, job, self._signals, self._cancel, self._progress_per_second,
-                                self._prepare))
+        self._start(JobRun(self._latest, job, self._signals, self._cancel, self._progress_per_second,
+                           self._prepare))
         return self._latest
+
+    def _start(self, run: JobRun) -> None:
+        """Start ``run`` on the pool (at once; a subclass may wait)."""
+        self._pool.start(run)
 
     def cancel(self) -> None:
         """Stop the running job, if any; its result will not be delivered."""

@@ -67,6 +67,29 @@ def test_only_the_newest_job_is_delivered(qtbot):
     assert delivered == ["new"]
 
 
+def test_renders_asked_for_in_one_turn_start_after_it_and_only_the_last(qtbot):
+    # A lesson step changes the settings, the scene and the tab in one turn of the event loop,
+    # each asking for a render.  None may start while the turn lasts (its thread would run Python
+    # beside the GUI thread drawing the step), and only the last one ever starts.
+    renderer = Renderer()
+    started = {name: threading.Event() for name in ("settings", "scene", "tab")}
+
+    def job(name):
+        def run(cancelled, progress):
+            started[name].set()
+            return name
+        return run
+
+    for name in started:
+        renderer.submit(job(name))
+    assert renderer.busy
+    assert not started["tab"].wait(0.2)  # the turn is not over: no thread has begun
+    with qtbot.waitSignal(renderer.finished, timeout=10000) as blocker:
+        pass
+    assert blocker.args == ["tab"]
+    assert [name for name, event in started.items() if event.is_set()] == ["tab"]
+
+
 def test_a_failing_job_is_reported_not_lost(qtbot):
     renderer = Renderer()
 
