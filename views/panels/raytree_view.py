@@ -12,12 +12,13 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 import numpy as np
-from PySide6.QtCore import Qt, QTimer
+from PySide6.QtCore import QEvent, QSize, Qt, QTimer
 from PySide6.QtGui import QColor
 from PySide6.QtWidgets import (
     QGridLayout,
     QHeaderView,
     QLabel,
+    QLayout,
     QSplitter,
     QTreeWidget,
     QTreeWidgetItem,
@@ -37,6 +38,8 @@ KIND_COLORS = {
     "refraction": "#CC79A7",  # reddish purple
 }
 BLOCKED_COLOR = "#8a8a8a"
+SWATCH_SIZE = (22, 8)
+"""A ray kind's swatch in the legend, pixels."""
 COLUMNS = ["ray", "hit", "t", "weight", "returns colour"]
 MOST_OF_SPLITTER = 0.8
 """The most of a splitter's width the tree takes to show every column whole; the rest stays beside it."""
@@ -79,20 +82,68 @@ def ray_tree_parts(root: RayNode, miss_length: float) -> list[tuple[pv.PolyData,
 
 
 class RayKindLegend(QWidget):
-    """One coloured swatch per kind of ray, ``per_line`` to a line (so a narrow pane keeps them all)."""
+    """One coloured swatch per kind of ray, as many to a line as its width holds, ``per_line`` at most.
+
+    Its least width is one swatch and its name: in a narrow settings column, or at a large text
+    size, the swatches take more lines rather than widening the column (three to a line, at text
+    x2 on a 1280 x 720 screen, left the traced image beside the column a quarter of the pane).
+    """
 
     def __init__(self, per_line: int = 3, parent: QWidget | None = None):
         super().__init__(parent)
-        layout = QGridLayout(self)
-        layout.setContentsMargins(0, 0, 0, 0)
-        for i, (kind, color) in enumerate([*KIND_COLORS.items(), ("blocked shadow", BLOCKED_COLOR)]):
+        self._most, self._per_line = per_line, 0
+        self._grid = QGridLayout(self)
+        self._grid.setContentsMargins(0, 0, 0, 0)
+        # The grid of the moment sets no least size: the widget's own (one swatch wide) holds.
+        self._grid.setSizeConstraint(QLayout.SizeConstraint.SetNoConstraint)
+        self._items = []
+        for kind, color in [*KIND_COLORS.items(), ("blocked shadow", BLOCKED_COLOR)]:
             swatch = QLabel()
-            swatch.setFixedSize(22, 8)
+            swatch.setFixedSize(*SWATCH_SIZE)
             swatch.setStyleSheet(f"background: {color}; border: 1px solid #333;")
+            self._items.append((swatch, QLabel(kind)))
+        self._arrange(per_line)
+
+    def _width_of(self, per_line: int) -> int:
+        """The width the swatches take ``per_line`` to a line: each column as wide as its longest name."""
+        spacing = self._grid.horizontalSpacing()
+        names = [label.sizeHint().width() for _, label in self._items]
+        columns = [max(names[c::per_line]) for c in range(min(per_line, len(names)))]
+        return sum(SWATCH_SIZE[0] + spacing + name for name in columns) + (len(columns) - 1) * spacing
+
+    def _arrange(self, per_line: int) -> None:
+        if per_line == self._per_line:
+            return
+        self._per_line = per_line
+        while self._grid.count():
+            self._grid.takeAt(0)
+        for column in range(self._grid.columnCount()):
+            self._grid.setColumnStretch(column, 0)
+        for i, (swatch, label) in enumerate(self._items):
             row, column = divmod(i, per_line)
-            layout.addWidget(swatch, row, 2 * column)
-            layout.addWidget(QLabel(kind), row, 2 * column + 1)
-        layout.setColumnStretch(2 * per_line, 1)
+            self._grid.addWidget(swatch, row, 2 * column)
+            self._grid.addWidget(label, row, 2 * column + 1)
+        self._grid.setColumnStretch(2 * per_line, 1)
+        self.updateGeometry()  # another height
+
+    def sizeHint(self) -> QSize:
+        return QSize(self._width_of(self._most), self._grid.sizeHint().height())
+
+    def minimumSizeHint(self) -> QSize:
+        return QSize(self._width_of(1), self._grid.minimumSize().height())
+
+    def resizeEvent(self, event) -> None:
+        super().resizeEvent(event)
+        self._fit(event.size().width())
+
+    def changeEvent(self, event) -> None:
+        super().changeEvent(event)
+        if event.type() == QEvent.Type.FontChange:  # other names' widths in the same width
+            self._fit(self.width())
+
+    def _fit(self, width: int) -> None:
+        fits = [n for n in range(1, self._most + 1) if self._width_of(n) <= width]
+        self._arrange(max(fits, default=1))
 
 
 def _rgb(c) -> str:

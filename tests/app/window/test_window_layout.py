@@ -3,11 +3,13 @@
 import pytest
 from PySide6.QtCore import QRect, Qt
 from PySide6.QtGui import QFont, QFontDatabase, QFontMetrics, QScreen
-from PySide6.QtWidgets import QApplication, QDockWidget, QToolButton
-from window_helpers import RENDER_TIMEOUT_MS, open_window
+from PySide6.QtWidgets import QApplication, QDockWidget, QLabel, QToolButton
+from window_helpers import RENDER_TIMEOUT_MS, open_window, presenting_on_1280x720
 
 from views.panels.hard_cases_panel import HardCasesPanel
 from views.panels.raytree_view import COLUMNS as RAY_TREE_COLUMNS
+from views.panels.raytree_view import RayKindLegend
+from views.panels.side_column import SideColumn
 from views.presentation import SCALES
 from views.text.math_view import MathView
 from views.text.text_scale import normal_text_pt
@@ -153,6 +155,29 @@ def test_compare_reads_the_picked_pixel_in_two_columns_that_fit_a_small_screen_a
                 assert label.height() >= label.heightForWidth(label.width()), label.text()
 
     qtbot.waitUntil(laid_out, timeout=5000)
+
+
+def test_presenting_at_x2_on_a_small_screen_the_traced_image_keeps_half_its_row_and_the_ray_colours_show(
+        qtbot, monkeypatch, normal_text):
+    # The ray colours' legend kept three kinds to a line (520 px at x2), so the settings beside the
+    # traced image took 538 px of the row's 732 and the image, the tab's subject, 176.
+    window = presenting_on_1280x720(qtbot, monkeypatch, 2.0)
+    panel = window.tab("image order").widget
+    column = panel.findChild(SideColumn)
+    legend = column.findChild(RayKindLegend)
+
+    def laid_out():
+        image = panel.image.width()
+        assert image >= 0.45 * (image + column.width()), (image, column.width())
+        names = [label for label in legend.findChildren(QLabel) if label.text()]
+        assert len(names) == 5
+        for label in names:  # every kind's name whole, inside the column's view
+            right = label.mapTo(column.viewport(), label.rect().topRight()).x()
+            assert label.width() >= label.sizeHint().width(), label.text()
+            assert right < column.viewport().width(), label.text()
+
+    qtbot.waitUntil(laid_out, timeout=5000)
+    window.presentation.set_presenting(False)
 
 
 def test_what_is_made_after_the_text_is_scaled_is_as_large_as_the_rest(qtbot, normal_text):
