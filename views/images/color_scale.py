@@ -16,6 +16,7 @@ from PySide6.QtWidgets import QHBoxLayout, QLabel, QVBoxLayout, QWidget
 
 from core.heat_map import HeatMap, heat_map
 from views.images.image_view import DisplayImage, display_image
+from views.text.elided_label import ElidedLabel
 
 
 @dataclass(frozen=True)
@@ -51,15 +52,25 @@ class _Bar(QWidget):
 
 
 class ColorScale(QWidget):
-    """A colour bar with the values at its two ends and a line naming the units."""
+    """A colour bar with the values at its two ends and a line naming the units.
 
-    def __init__(self, tip: str, parent: QWidget | None = None):
+    ``units_lines``: the units take at most that many lines, the last shortened with "…" if they
+    go on (the whole in their tooltip), where an image above them needs the height; by default
+    they take every line they need.
+    """
+
+    def __init__(self, tip: str, parent: QWidget | None = None, units_lines: int | None = None):
         super().__init__(parent)
         self.bar = _Bar()
-        self.low, self.high, self.units = QLabel(), QLabel(), QLabel()
-        self.units.setWordWrap(True)
-        for widget in (self.bar, self.low, self.high, self.units):
-            widget.setToolTip(tip)
+        self.low, self.high = QLabel(), QLabel()
+        if units_lines is None:
+            self.units = QLabel()
+            self.units.setWordWrap(True)
+        else:
+            self.units = ElidedLabel()
+            self.units.set_max_lines(units_lines)
+        for widget in (self.bar, self.low, self.high) + (() if units_lines else (self.units,)):
+            widget.setToolTip(tip)  # (shortened units tell their whole text instead)
         row = QHBoxLayout()
         row.setContentsMargins(0, 0, 0, 0)
         row.addWidget(self.low)

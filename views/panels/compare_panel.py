@@ -191,8 +191,11 @@ class ComparePanel(QWidget):
             view.pixel_clicked.connect(self.pick)
             layout.addWidget(view, 1)
             if key == "difference":
+                # Its units in three lines at most: at text x2 on 1280 x 720 they took four, more than
+                # the image above them, and were cut at their top and bottom.
                 self.scale = ColorScale("Difference colour scale: the map's darkest colour means no "
-                                        "difference, its brightest the largest one in this image")
+                                        "difference, its brightest the largest one in this image",
+                                        units_lines=3)
                 layout.addWidget(self.scale)
             else:
                 caption = self.captions[key] = QLabel()

@@ -1,7 +1,7 @@
 """The Compare tab as a user works it: choose two outputs, read their difference, pick one pixel in all."""
 
 import numpy as np
-from PySide6.QtCore import Qt
+from PySide6.QtCore import QRect, Qt
 from PySide6.QtWidgets import QLabel
 from window_helpers import RENDER_TIMEOUT_MS
 
@@ -193,10 +193,45 @@ def test_at_1280x720_presenting_the_captions_the_units_and_the_pick_hint_read_wh
 
     qtbot.waitUntil(hint_whole, timeout=5000)
 
-    def whole(label) -> bool:
-        return label.isVisible() and label.height() >= label.heightForWidth(label.width())
+    def whole(label) -> bool:  # every word shown (the units not shortened), every line in the label
+        return label.isVisible() and _shown(label).replace("\n", " ") == label.text() and _fits(label)
 
     qtbot.waitUntil(lambda: all(whole(label) for label in labels), timeout=5000)
     images, pixel, words = panel.split.sizes()
     assert images >= IMAGE_SHARE * (images + pixel + words) - 1  # and the images keep their share
+    window.presentation.set_presenting(False)
+
+
+def _shown(label) -> str:
+    """The text ``label`` draws (a shortened label's ``text()`` is its whole text)."""
+    return QLabel.text(label)
+
+
+def _fits(label) -> bool:
+    """Whether each line ``label`` draws lies whole inside it (none cut at its top or bottom)."""
+    flags = Qt.TextFlag.TextWordWrap if label.wordWrap() else 0
+    drawn = label.fontMetrics().boundingRect(QRect(0, 0, label.width(), 10_000), flags, _shown(label))
+    return drawn.height() <= label.height()
+
+
+def test_at_1280x720_presenting_at_x2_the_difference_units_show_in_three_whole_lines_at_most(
+        qtbot, monkeypatch):
+    # At x2 the units took four lines, more than the difference image above them, and the room
+    # there was, so they were cut at their top and bottom ("max(|ΔR|, |" half hidden).
+    from window_helpers import presenting_on_1280x720
+
+    window = presenting_on_1280x720(qtbot, monkeypatch, 2.0)
+    panel = _compare(qtbot, window)
+    units = panel.scale.units
+    whole = "max(|ΔR|, |ΔG|, |ΔB|), linear RGB units (1 = black against white)"
+
+    def read() -> None:
+        shown = _shown(units)
+        assert units.isVisible() and _fits(units), (shown, units.height())
+        assert len(shown.splitlines()) <= 3, shown
+        assert shown.startswith("max(|ΔR|, |ΔG|,")  # from its first word
+        if shown.replace("\n", " ") != whole:  # shortened: it says so, and tells the rest on hovering
+            assert shown.endswith("…") and units.toolTip() == whole
+
+    qtbot.waitUntil(read, timeout=5000)
     window.presentation.set_presenting(False)
