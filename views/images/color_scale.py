@@ -63,14 +63,15 @@ class ColorScale(QWidget):
         super().__init__(parent)
         self.bar = _Bar()
         self.low, self.high = QLabel(), QLabel()
+        for widget in (self.bar, self.low, self.high):
+            widget.setToolTip(tip)
         if units_lines is None:
             self.units = QLabel()
             self.units.setWordWrap(True)
-        else:
+            self.units.setToolTip(tip)
+        else:  # its tooltip is its whole text
             self.units = ElidedLabel()
             self.units.set_max_lines(units_lines)
-        for widget in (self.bar, self.low, self.high) + (() if units_lines else (self.units,)):
-            widget.setToolTip(tip)  # (shortened units tell their whole text instead)
         row = QHBoxLayout()
         row.setContentsMargins(0, 0, 0, 0)
         row.addWidget(self.low)
