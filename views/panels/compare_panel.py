@@ -115,6 +115,7 @@ class ReadoutRow(QWidget):
         self.swatch.setVisible(bool(title))
         self.setVisible(bool(title or found))
         self.numbers.setText("" if rgb is None else "linear RGB " + " ".join(f"{c:.3f}" for c in self.rgb))
+        self.numbers.setVisible(rgb is not None)  # empty, it kept a line's height above a hint
         if rgb is None:
             self.swatch.setStyleSheet("")
         else:

@@ -182,16 +182,8 @@ def test_at_1280x720_presenting_the_captions_the_units_and_the_pick_hint_read_wh
 
     window = presenting_on_1280x720(qtbot, monkeypatch)
     panel = _compare(qtbot, window)
-    hint = next(label for label in panel.pixel_box.findChildren(QLabel) if label.text() == PICK_HINT)
     labels = [panel.scale.units, *panel.captions.values()]
-
-    def hint_whole() -> bool:  # all of it inside the box's scrolled view, unscrolled
-        viewport = hint.parentWidget().parentWidget().parentWidget()  # row, rows, the scroll area's view
-        bottom = hint.mapTo(viewport, hint.rect().bottomLeft()).y()
-        return (hint.isVisible() and hint.height() >= hint.heightForWidth(hint.width())
-                and bottom < viewport.height())
-
-    qtbot.waitUntil(hint_whole, timeout=5000)
+    qtbot.waitUntil(lambda: _hint_whole(panel), timeout=5000)
 
     def whole(label) -> bool:  # every word shown (the units not shortened), every line in the label
         return label.isVisible() and _shown(label).replace("\n", " ") == label.text() and _fits(label)
@@ -199,6 +191,35 @@ def test_at_1280x720_presenting_the_captions_the_units_and_the_pick_hint_read_wh
     qtbot.waitUntil(lambda: all(whole(label) for label in labels), timeout=5000)
     images, pixel, words = panel.split.sizes()
     assert images >= IMAGE_SHARE * (images + pixel + words) - 1  # and the images keep their share
+    window.presentation.set_presenting(False)
+
+
+def _hint_whole(panel) -> bool:
+    """Whether the pick hint shows all its lines inside the picked pixel's box, unscrolled."""
+    hint = next(label for label in panel.pixel_box.findChildren(QLabel) if label.text() == PICK_HINT)
+    viewport = hint.parentWidget().parentWidget().parentWidget()  # row, rows, the scroll area's view
+    bottom = hint.mapTo(viewport, hint.rect().bottomLeft()).y()
+    return (hint.isVisible() and hint.height() >= hint.heightForWidth(hint.width())
+            and bottom < viewport.height())
+
+
+def test_at_1280x720_presenting_at_x2_the_pick_hint_is_the_first_line_of_its_box_and_reads_whole(
+        qtbot, monkeypatch):
+    # With nothing picked, the empty line for a pixel's numbers stayed above the hint: at x2 the box
+    # had room for its two lines, but they began a line down and the second was cut in half.
+    from window_helpers import presenting_on_1280x720
+
+    window = presenting_on_1280x720(qtbot, monkeypatch, 2.0)
+    panel = _compare(qtbot, window)
+    hint = next(label for label in panel.pixel_box.findChildren(QLabel) if label.text() == PICK_HINT)
+    viewport = hint.parentWidget().parentWidget().parentWidget()
+
+    def read() -> None:
+        top = hint.mapTo(viewport, hint.rect().topLeft()).y()
+        assert top < hint.fontMetrics().height() / 2, top  # no blank line above it
+        assert _hint_whole(panel)
+
+    qtbot.waitUntil(read, timeout=5000)
     window.presentation.set_presenting(False)
 
 
