@@ -149,7 +149,12 @@ class LessonRunner:
             self.window.statusBar().clearMessage()
 
     def apply(self, step: LessonStep) -> None:
-        """Load ``step``'s scene and settings, show its panes, set its view, picks and highlight."""
+        """Load ``step``'s scene and settings, show its panes, set its view, picks and highlight.
+        The 3D pane follows a turn later (:meth:`views.scene3d.scene_view.SceneView.held`)."""
+        with self.window.scene_view.held():
+            self._apply(step)
+
+    def _apply(self, step: LessonStep) -> None:
         w, model = self.window, self.window.model
         self.step = step
         w.scene_path = None

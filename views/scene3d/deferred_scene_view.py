@@ -16,7 +16,8 @@ Until then it keeps what the window asks of the 3D pane (overlays, which of
 them are shown, the overview camera) and hands it to the view when it is
 built, so the pane shows the same as if it had been there from the start.
 Any other attribute of the view (``plotter``, ``frustum``, ...) builds it at
-once when asked for.
+once when asked for, and has the changes that wait a turn
+(:meth:`~views.scene3d.scene_view.SceneView.held`) made first.
 """
 
 from __future__ import annotations
@@ -163,6 +164,11 @@ class DeferredSceneView(QWidget):
         else:
             self._line_scale = float(scale)
 
+    def held(self):
+        """The view's :meth:`~views.scene3d.scene_view.SceneView.held`; before the view is built its
+        changes are kept until it is, in any case."""
+        return self.view.held() if self.view is not None else contextlib.nullcontext()
+
     def overlay_names(self) -> list[str]:
         if self.view is not None:
             return self.view.overlay_names()
@@ -184,4 +190,6 @@ class DeferredSceneView(QWidget):
         # attribute could have (PySide's connect looks a lambda slot up as "<lambda>") build nothing.
         if name.startswith("_") or not name.isidentifier() or name in ("view", "model"):
             raise AttributeError(name)
-        return getattr(self.build(), name)
+        view = self.build()
+        view.catch_up()  # answered for every change asked before (SceneView.held)
+        return getattr(view, name)

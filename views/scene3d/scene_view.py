@@ -25,6 +25,8 @@ so a draw never makes Qt compose the whole window through OpenGL.
 
 from __future__ import annotations
 
+import contextlib
+import functools
 import time
 
 import numpy as np
@@ -64,6 +66,9 @@ HIGHLIGHT_OVERLAY = "lesson"
 """The overlay that marks what a lesson step talks about (see :meth:`SceneView.look_from`)."""
 SHOWN_WITH = {PROJECTOR_OVERLAY: "frustum"}
 """Overlays shown exactly when another is (:meth:`SceneView.show_overlays_only` names that one)."""
+HELD_MS = 10
+"""How long after :meth:`SceneView.held` ends the changes it held are made: a timer's turn of the event
+loop, after the one that lays out and paints what else changed."""
 ENCLOSING_OPACITY = 0.25
 """A sphere the observer stands inside (as in the lecture's exercise) is drawn this translucent,
 so that the observer and its rays inside stay visible."""
@@ -79,6 +84,27 @@ def _unit_glyph() -> pv.PolyData:
 def glyph_size(camera: Camera) -> float:
     """Edge of the camera glyph's box, scene units: a fixed share of the eye–target distance."""
     return 0.07 * max(camera.distance, 1.0)
+
+
+def _held(change):
+    """A change of the pane that waits, in order, while :meth:`SceneView.held` holds changes or others
+    wait."""
+    @functools.wraps(change)
+    def make_or_wait(self, *args):
+        if (self._holding or self._waiting) and not self._catching_up:
+            self._waiting.append((change, args))
+        else:
+            change(self, *args)
+    return make_or_wait
+
+
+def _current(question):
+    """A question about the pane: the changes that wait are made before it is answered."""
+    @functools.wraps(question)
+    def answer(self, *args):
+        self.catch_up()
+        return question(self, *args)
+    return answer
 
 
 class SceneView(QWidget):
@@ -114,6 +140,9 @@ class SceneView(QWidget):
         self._eye = None  # where the observer's eye was drawn last (world space)
         self._labels_placed_for = None  # the camera, pane and labels _place_labels placed for
         self._view: dict | None = None  # the overview camera look_from was given, if any
+        self._holding = 0  # held() blocks entered and not left
+        self._waiting: list[tuple] = []  # (change, its arguments) held, in the order asked
+        self._catching_up = False  # catch_up is making them
         self._render_timer = QTimer(self)
         self._render_timer.setSingleShot(True)
         self._render_timer.setInterval(FRAME_MS)
@@ -169,6 +198,33 @@ class SceneView(QWidget):
         # frame is old enough, else when it is.
         self._render_timer.start(max(0, int(wait_ms) + 1))
 
+    @contextlib.contextmanager
+    def held(self):
+        """Within this block the pane's changes (a new scene, its overlays, the overview camera, the
+        line scale) wait, in order, and are made :data:`HELD_MS` after it, in a turn of the event loop
+        of their own: a lesson step built the 3D actors of its scene and marks, 17-23 ms, in the turn
+        that also laid out and painted its words and panes.  A question about the pane (an
+        overlay's parts, where a point is drawn, ...) has them made first, so it is always answered
+        for what was asked."""
+        self._holding += 1
+        try:
+            yield
+        finally:
+            self._holding -= 1
+            if not self._holding and self._waiting:
+                QTimer.singleShot(HELD_MS, self, self.catch_up)
+
+    def catch_up(self) -> None:
+        """Make the changes that wait (see :meth:`held`) now, in order."""
+        if self._catching_up:
+            return
+        waiting, self._waiting, self._catching_up = self._waiting, [], True
+        try:
+            for change, args in waiting:  # what each calls of the others is made at once
+                change(self, *args)
+        finally:
+            self._catching_up = False
+
     def _draw(self) -> None:
         self._last_draw = time.perf_counter()
         self.plotter.render()
@@ -180,7 +236,10 @@ class SceneView(QWidget):
     def _frozen(self, timer: QTimer) -> bool:
         """Whether the window paints nothing now (a new text size or presentation mode is being laid
         out, to be painted once at its end); ``timer`` then tries again a frame later.  A draw then
-        was never seen, and it lengthened the turns of that change (``bench gui``)."""
+        was never seen, and it lengthened the turns of that change (``bench gui``).  Nor is it drawn
+        while changes wait (:meth:`held`): once made, they ask for a draw."""
+        if self._waiting:
+            return True
         if self.window().updatesEnabled():
             return False
         timer.start(FRAME_MS)
@@ -196,6 +255,7 @@ class SceneView(QWidget):
         self._frustum_faces.SetVisibility(True)
         self._draw()
 
+    @_current
     def picture(self, scale: int) -> np.ndarray:
         """The pane as it looks at rest (anti-aliased, the frustum's see-through faces drawn), at
         ``scale`` × its size: (H, W, 3) uint8 sRGB levels.  Taken while the pane waits to be drawn
@@ -209,6 +269,7 @@ class SceneView(QWidget):
             self.plotter.renderer.SetUseFXAA(fxaa)
             self._frustum_faces.SetVisibility(faces)
 
+    @_held
     def set_scene(self, scene: Scene) -> None:
         """Draw every object and light, then the observer; frame the whole.
 
@@ -268,6 +329,7 @@ class SceneView(QWidget):
         self.plotter.add_actor(actor, name=name, render=False, reset_camera=False)
         return actor
 
+    @_current
     def actor_of(self, item):
         """The actor that draws ``item`` of the scene (``("object", i)`` or ``("light", i)``), or None."""
         if self._scene is None or item is None or item[0] not in ("object", "light"):
@@ -276,12 +338,18 @@ class SceneView(QWidget):
         return self._object_actors[index] if index < len(self._object_actors) else None
 
     def resizeEvent(self, event):
-        """Frame the scene again for the new shape, unless the user has moved the view."""
         super().resizeEvent(event)
+        self._frame_new_shape()
+
+    @_held
+    def _frame_new_shape(self) -> None:
+        """Frame the scene again for the pane's new shape, unless the user has moved the view (after
+        the changes that wait: a lesson step that shows the pane anew frames its own scene)."""
         if self._scene is not None and self.plotter.camera_position == self._framed_at:
             self._frame(self._scene)
             self.request_render()
 
+    @_held
     def set_camera(self, camera: Camera) -> None:
         """Move the observer, its frustum, its screen and its target marker to ``camera``; an eye
         that walks out of the pane (orbiting with the arrow keys) is followed (:meth:`_follow_eye`)."""
@@ -325,6 +393,7 @@ class SceneView(QWidget):
             points, view.direction, view.up, view.view_angle, aspect)]
         self.plotter.reset_camera_clipping_range()
 
+    @_held
     def set_overlay(self, name: str, parts: list[tuple[pv.PolyData, dict]]) -> None:
         """Show extra geometry under ``name`` (replacing what was there), e.g. a ray tree.
 
@@ -400,6 +469,7 @@ class SceneView(QWidget):
             actor.GetProperty().SetLineWidth(actor._unscaled[1] * self.line_scale)
             actor.GetProperty().SetPointSize(actor._unscaled[2] * self.line_scale)
 
+    @_held
     def set_line_scale(self, scale: float) -> None:
         """Draw every line, point and the axes ``scale`` times as large, the labels :func:`label_scale`
         times (presentation mode)."""
@@ -426,6 +496,7 @@ class SceneView(QWidget):
             shaft.SetLineWidth(round(3 * self.line_scale))
         renderer.axes_widget.SetViewport(0.0, 0.0, side, side)
 
+    @_held
     def show_overlays_only(self, names) -> None:
         """Show only the overlays in ``names`` (the others are kept, hidden); ``None`` shows all."""
         self._visible_overlays = None if names is None else set(names)
@@ -442,15 +513,18 @@ class SceneView(QWidget):
             actor.SetVisibility(shown)
             getattr(actor, "_leader_actor", actor).SetVisibility(shown)
 
+    @_current
     def overlay_names(self) -> list[str]:
         """Names of the overlays currently shown (with at least one part)."""
         return [name for name, parts in self._overlays.items() if parts and self._shown(name)]
 
+    @_current
     def overlay_parts(self, name: str) -> list[pv.PolyData]:
         """The polydata drawn for overlay ``name`` (empty if none)."""
         return [poly for poly, _, _ in self._overlays.get(name, [])]
 
     # ----------------------------------------------------- mouse helpers
+    @_current
     def widget_pos(self, point) -> QPointF:
         """Where the world point ``point`` appears in the pane (widget coordinates)."""
         renderer = self.plotter.renderer
@@ -461,6 +535,7 @@ class SceneView(QWidget):
         height = self.plotter.ren_win.GetSize()[1]
         return QPointF(x / ratio, (height - y) / ratio)
 
+    @_current
     def ray_under(self, pos: QPointF) -> tuple[np.ndarray, np.ndarray]:
         """The overview camera's ray through widget position ``pos``: origin on the near
         plane and direction to the far plane (world space)."""
@@ -491,6 +566,7 @@ class SceneView(QWidget):
                 return name
         return None
 
+    @_held
     def look_from(self, view) -> None:
         """Place the overview camera: ``view`` maps ``position``, ``focal_point`` and ``up``
         (world space, scene units); without them, the pane frames the scene and observer itself.

@@ -70,6 +70,7 @@ def test_the_label_font_draws_the_prime_of_a_prime(qtbot, window):
 
     window.lesson_panel.select(LESSONS["perspective"], 0)
     qtbot.waitUntil(lambda: window.scene_view.view is not None, timeout=RENDER_TIMEOUT_MS)  # VTK loaded
+    qtbot.waitUntil(lambda: PROJECTOR_OVERLAY in window.scene_view.view._overlays)  # drawn a turn later
     (actor,) = [actor for _, actor, style in window.scene_view.view._overlays[PROJECTOR_OVERLAY]
                 if "label_size" in style]
     text = actor.GetMapper().GetLabelTextProperty()

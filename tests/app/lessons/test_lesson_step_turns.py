@@ -1,0 +1,48 @@
+"""A lesson step shows its words first and builds its 3D marks a turn later, so the window answers
+between the two; anything that asks the 3D pane meanwhile gets the step's answer."""
+
+import numpy as np
+from PySide6.QtWidgets import QApplication
+
+from core.files.lesson_file import shipped_lessons
+
+LESSONS = {lesson.id: i for i, lesson in enumerate(shipped_lessons())}
+
+
+def test_a_step_lays_out_and_paints_its_words_before_the_3d_pane_builds_its_marks(qtbot, window, monkeypatch):
+    # The 3D pane built a step's scene and marks (17-23 ms) in the turn that also laid out and painted
+    # its words: the window answered nothing for up to 100 ms.
+    panel, view = window.lesson_panel, window.scene_view.view
+    panel.select(LESSONS["zbuffer"], 0)  # another scene, without a highlighted face
+    window.scene_view.overlay_names()  # asked, the pane has made that step's changes
+    built: list[str] = []
+    add_actor = view.plotter.add_actor
+
+    def add_and_tell(actor, name=None, **kwargs):
+        built.append(name)
+        return add_actor(actor, name=name, **kwargs)
+
+    monkeypatch.setattr(view.plotter, "add_actor", add_and_tell)
+
+    panel.select(LESSONS["back_faces"], 0)  # the pyramid, its back face highlighted with its normal
+    assert not built  # nothing of the 3D pane in the step's own turn
+    QApplication.sendPostedEvents()  # what the step asked of the window: its layout, the paint of its words
+    assert not built and panel.text.text().startswith(panel.current_step().text[:20])
+    qtbot.waitUntil(lambda: any(name.startswith("lesson:") for name in built))  # then, a turn of its own
+    assert window.lessons.highlighted == "triangle 2 of 'pyramid'"
+    pyramid = next(o for o in window.model.scene.objects if o.name == "pyramid")
+    face = pyramid.vertices[pyramid.triangles[2]]
+    assert any(part.n_points == 3 and np.allclose(part.points, face)  # the face's outline, drawn
+               for part in window.scene_view.overlay_parts("lesson"))
+
+
+def test_asked_before_its_turn_the_3d_pane_answers_for_the_step(qtbot, window):
+    panel = window.lesson_panel
+    panel.select(LESSONS["zbuffer"], 0)
+    panel.select(LESSONS["back_faces"], 0)
+    # At once, before the turn that builds them: the step's marks and its framing.
+    assert window.scene_view.overlay_parts("lesson")
+    objects = {o.name for o in window.model.scene.objects}
+    assert "pyramid" in objects
+    pyramid = next(o for o in window.model.scene.objects if o.name == "pyramid")
+    assert window.scene_view.actor_of(("object", window.model.scene.objects.index(pyramid))) is not None
