@@ -9,7 +9,8 @@ waiting: after a new text size the thread typesetting formulas ran 230 ms of a 3
 :func:`call` runs a function of a module in a helper process for that module instead: one process per
 module (``python -m core.helper_process MODULE``), started at the module's first call, which reads
 requests on its standard input and answers each in turn on its standard output.  It ends when its
-input closes, as when the window's process ends, however that ends.  It runs in a session of its own,
+input closes, as when the window's process ends, however that ends, and quietly when that happens
+during a call.  It runs in a session of its own,
 so that Ctrl+C at the terminal reaches the window's process alone, which decides how to end, and it
 ignores an interrupt sent to it anyway.  It runs at a lower priority (:mod:`core.give_way`, as the
 renders' threads do), so that the window's thread gets a core first.  If a
@@ -97,8 +98,14 @@ def _serve(module: str, requests, answers) -> None:
         except Exception as why:  # a result or exception that does not pickle: its message does
             shown = why if answer[0] else answer[1]
             data = pickle.dumps((False, RuntimeError(f"{type(shown).__name__}: {shown}")))
-        answers.write(data)
-        answers.flush()
+        try:
+            answers.write(data)
+            answers.flush()
+        except BrokenPipeError:  # the window's process ended while this call ran: no one to answer
+            # What is left in the buffer goes nowhere at exit, not into a second error (Python's
+            # documentation on SIGPIPE does the same).
+            os.dup2(os.open(os.devnull, os.O_WRONLY), answers.fileno())
+            return
 
 
 if __name__ == "__main__":

@@ -103,3 +103,28 @@ def test_the_helper_ends_with_the_window_process_however_that_ends():
         window.kill()  # no clean-up of its own at all
         window.wait(60)
     assert _ended(pid)
+
+
+ASKED_AND_KILLED = """
+import pickle, sys
+from core import helper_process
+helper = helper_process.helper("time")
+pickle.dump(("sleep", (1.0,)), helper.process.stdin)  # a call under way, as _Helper.ask makes it ...
+helper.process.stdin.flush()
+print(helper.process.pid, flush=True)
+sys.stdin.read()  # ... when this process is killed
+"""
+
+
+def test_a_window_process_killed_during_a_call_leaves_the_helper_to_end_quietly():
+    # The helper answered into the closed pipe: "BrokenPipeError" and its traceback on the terminal.
+    window = subprocess.Popen([sys.executable, "-c", ASKED_AND_KILLED], cwd=ROOT, stdin=subprocess.PIPE,
+                              stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    try:
+        pid = int(window.stdout.readline())
+    finally:
+        window.kill()
+        window.wait(60)
+    said = window.stderr.read()  # to its end: the helper, which shares it, has closed it too
+    assert _ended(pid)
+    assert said == ""
