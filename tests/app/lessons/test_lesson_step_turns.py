@@ -46,3 +46,22 @@ def test_asked_before_its_turn_the_3d_pane_answers_for_the_step(qtbot, window):
     assert "pyramid" in objects
     pyramid = next(o for o in window.model.scene.objects if o.name == "pyramid")
     assert window.scene_view.actor_of(("object", window.model.scene.objects.index(pyramid))) is not None
+
+
+def test_steps_taken_faster_than_the_pane_follows_leave_it_showing_the_last(qtbot, window):
+    # Three steps with no turn of the event loop between them, as keys held down may give: each step's
+    # changes wait behind the one before, and the pane ends where the last step is.
+    panel = window.lesson_panel
+    panel.select(LESSONS["back_faces"], 0)  # the pyramid, its triangle 2
+    panel.select(LESSONS["zbuffer"], 0)
+    panel.select(LESSONS["back_faces"], 1)  # the notched prism, its triangle 13
+    view = window.scene_view.view
+    qtbot.waitUntil(lambda: not view._waiting)  # made in their own turn, not by a question
+    prism = next(o for o in window.model.scene.objects if o.name == "notched prism")
+    face = prism.vertices[prism.triangles[13]]
+    parts = window.scene_view.overlay_parts("lesson")
+    assert any(part.n_points == 3 and np.allclose(part.points, face) for part in parts)
+    objects = window.model.scene.objects
+    drawn = {id(window.scene_view.actor_of(("object", k))) for k in range(len(objects))}
+    shown = {id(actor) for name, actor in view.plotter.renderer.actors.items() if name.startswith("object:")}
+    assert drawn == shown and len(shown) == len(objects)  # its objects, none of the other steps'
