@@ -216,7 +216,7 @@ class SceneView(QWidget):
 
     def catch_up(self) -> None:
         """Make the changes that wait (see :meth:`held`) now, in order."""
-        if self._catching_up:
+        if self._catching_up or not self._waiting:  # asked before each draw: mostly nothing waits
             return
         waiting, self._waiting, self._catching_up = self._waiting, [], True
         try:
