@@ -13,7 +13,8 @@ answer stored in the file except the numbers a fact itself states.
 Every fact is one JSON object whose ``"fact"`` names its kind (pixels are
 ``[column, row]`` from the top left; objects are named as in the scene)::
 
-    {"fact": "frustum", "object": "object 5", "is": "outside"}      # inside | crossing | outside
+    {"fact": "frustum", "object": "cube", "is": "inside"}           # inside | crossing | outside
+    {"fact": "frustum", "object": "object 5", "is": "outside", "beyond": "left"}
     {"fact": "back_face", "object": "pyramid", "triangle": 2, "is": true}
     {"fact": "clipped", "object": "ground", "plane": "near", "is": true}
     {"fact": "zbuffer_keeps", "pixel": [80, 60], "object": "blue", "after": 3}
@@ -31,6 +32,9 @@ Every fact is one JSON object whose ``"fact"`` names its kind (pixels are
     {"fact": "ray_triangle", "origin": [0, 0, 0], "direction": [1, 1, 1], "a": [3, 0, 0],
      "b": [0, 3, 0], "c": [0, 0, 3], "value": "t", "equals": 1, "tolerance": 1e-9}
 
+``frustum`` decides where the object's bounding sphere lies (object order's frustum culling); an
+object ``outside`` may add the plane it lies wholly ``beyond`` (``left``, ``right``, ``bottom``,
+``top``, ``near``, ``far``), as words such as "off to the observer's left" or "behind the eye" say.
 ``after`` (z-buffer facts) is the number of polygons drawn so far; left out it
 is the step's ``zbuffer_step``, or every polygon; they and ``seen`` (some pixel
 of the finished object-order image shows the object) may narrow the object to
@@ -85,7 +89,7 @@ HEAT_TESTS = MappingProxyType({"primitive tests": HEAT_PRIM_TESTS, "box and sphe
 
 #: Fact kind -> (required fields, optional fields).
 KINDS = MappingProxyType({
-    "frustum": (("object", "is"), ()),
+    "frustum": (("object", "is"), ("beyond",)),
     "back_face": (("object", "triangle"), ("is",)),
     "clipped": (("object", "plane"), ("is",)),
     "zbuffer_keeps": (("pixel", "object"), ("triangle", "after")),
@@ -124,7 +128,8 @@ class Fact:
         yes = a.get("is", True)
         neg = "" if yes else "not "
         if self.kind == "frustum":
-            return f"{a['object']!r} is {a['is']} the frustum"
+            beyond = f", beyond its {a['beyond']} plane" if a.get("beyond") else ""
+            return f"{a['object']!r} is {a['is']} the frustum{beyond}"
         if self.kind == "back_face":
             return f"triangle {a['triangle']} of {a['object']!r} is {neg}a back face"
         if self.kind == "clipped":
@@ -251,6 +256,11 @@ def _read_arg(r, kind: str, key: str, v, path: str, scene: Scene | None, d: dict
             r.add(path, f"the scene has {len(scene.lights)} light(s), numbered from 0; got {got}")
         return got
     if key == "plane":
+        return r.choice(v, path, PLANES, "plane")
+    if key == "beyond":
+        if d.get("is") != "outside":
+            r.add(path, f"only an object outside the frustum lies beyond one of its planes; \"is\" is "
+                        f"{show(d.get('is'))}")
         return r.choice(v, path, PLANES, "plane")
     if key == "event":
         return r.choice(v, path, EVENTS, "event")
@@ -403,8 +413,25 @@ def _frustum(a, p):
     r = p.raster
     if r.objects is None:
         return False, "frustum culling is switched off in this step"
-    state = r.objects.state[p.object_index(a["object"])]
-    return state == a["is"], f"{a['object']!r} is {state} the frustum"
+    index = p.object_index(a["object"])
+    state = r.objects.state[index]
+    beyond = _planes_beyond(r.objects, index)
+    where = f", beyond its {_and(beyond)} plane{'s' if len(beyond) > 1 else ''}" if beyond else ""
+    holds = state == a["is"] and a.get("beyond") in (None, *beyond)
+    return holds, f"{a['object']!r} is {state} the frustum{where}"
+
+
+def _and(words) -> str:
+    """``a``, ``a and b``, ``a, b and c``."""
+    return " and ".join([", ".join(words[:-1]), words[-1]] if len(words) > 1 else words)
+
+
+def _planes_beyond(culling, index: int) -> tuple[str, ...]:
+    """The frustum planes whose outside holds object ``index``'s whole bounding sphere (in the
+    order of :data:`core.object_order.clipping.PLANES`); one at least for an object culled as
+    outside, none for the others."""
+    distance, radius = culling.distance[index], culling.radius[index]
+    return tuple(plane for plane, d in zip(PLANES, distance, strict=True) if d < -radius)
 
 
 def _back_face(a, p):

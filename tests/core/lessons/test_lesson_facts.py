@@ -38,9 +38,55 @@ def test_a_false_fact_is_reported_with_lesson_step_fact_and_what_was_computed():
     assert np.dot(box - eye, target - eye) < 0
     lesson = from_dict(_lesson([{"fact": "frustum", "object": "box behind the observer", "is": "inside"},
                                 {"fact": "frustum", "object": "box behind the observer", "is": "outside"}]))
-    lines = check_lesson(lesson)
-    assert lines == ["lesson mine, step 1 'one', steps[0].facts[0] ('box behind the observer' is inside the "
-                     "frustum): computed 'box behind the observer' is outside the frustum"]
+    (line,) = check_lesson(lesson)
+    said, computed = line.split("): computed ")
+    assert said == ("lesson mine, step 1 'one', steps[0].facts[0] ('box behind the observer' is inside the "
+                    "frustum")
+    assert computed.startswith("'box behind the observer' is outside the frustum, beyond its ")
+    assert line.endswith(" near planes")  # behind the eye (below), and beyond side planes too
+
+
+def test_an_object_outside_the_frustum_lies_beyond_the_plane_the_fact_names_and_no_other():
+    # The box's centre lies (box - eye) . axis = -25.12 / |target - eye| = -2.23 along the view axis
+    # (the sums above), its bounding sphere's radius is 1.2 √3 / 2 = 1.04: wholly behind the eye, so
+    # beyond the near plane (1 in front of it) and on the near side of the far one (30).
+    eye, target, box = np.array([6, 4, 9.0]), np.array([0, 0.8, 0]), np.array([7.5, 0.6, 12])
+    along = np.dot(box - eye, (target - eye) / np.linalg.norm(target - eye))
+    radius = 0.6 * np.sqrt(3)
+    assert along + radius < 0 < along - radius + 30
+    fact = {"fact": "frustum", "object": "box behind the observer", "is": "outside"}
+    assert check_lesson(from_dict(_lesson([{**fact, "beyond": "near"}]))) == []
+    (line,) = check_lesson(from_dict(_lesson([{**fact, "beyond": "far"}])))
+    said, computed = line.split("): computed ")
+    assert said.endswith("('box behind the observer' is outside the frustum, beyond its far plane")
+    assert computed.startswith("'box behind the observer' is outside the frustum, beyond its ")
+    assert "near" in computed and "far" not in computed
+
+
+def test_observer_b_sees_object_5_off_to_its_left():
+    """The observer lesson's second step says object 5 is "off to the observer's left": its bounding
+    sphere lies wholly beyond the left side of B's viewing pyramid, worked out here from B's camera."""
+    step = BY_ID["observer"].steps[1]
+    assert "off to the observer's left" in step.text
+    camera, (obj,) = step.scene.camera, [o for o in step.scene.objects if o.name == "object 5"]
+    eye = np.asarray(camera.eye, float)
+    forward = np.asarray(camera.target, float) - eye
+    forward /= np.linalg.norm(forward)
+    right = np.cross(forward, camera.up)
+    right /= np.linalg.norm(right)
+    half = np.arctan(np.tan(np.radians(camera.fov_y_deg) / 2) * camera.width / camera.height)
+    inward = np.cos(half) * right + np.sin(half) * forward  # the left side's inward normal
+    corners = obj.vertices
+    centre = (corners.min(axis=0) + corners.max(axis=0)) / 2
+    assert np.dot(corners - eye, inward).max() < 0  # every corner beyond the left side
+    assert np.dot(centre - eye, right) < 0
+    fact = next(f for f in step.facts if f.kind == "frustum" and f.args["object"] == "object 5")
+    assert fact.args["beyond"] == "left"
+    wrong = {"fact": "frustum", "object": "object 5", "is": "outside", "beyond": "right"}
+    lesson = from_dict(_lesson([wrong], scene="observers_top_view",
+                               camera={"eye": list(camera.eye), "target": list(camera.target)}))
+    (line,) = check_lesson(lesson)
+    assert line.split("): computed ")[1].startswith("'object 5' is outside the frustum, beyond its left")
 
 
 def test_the_lectures_numbers_are_facts_of_the_worked_intersection():
@@ -79,7 +125,9 @@ def test_bad_facts_are_refused_with_their_field_path():
              {"fact": "clipped", "object": "ground", "plane": "front"},
              {"fact": "telepathy"},
              {"fact": "ray_sphere", "origin": [0, 0, 0], "center": [0, 0, 0], "radius": 1,
-              "value": "a", "equals": 1}]
+              "value": "a", "equals": 1},
+             {"fact": "frustum", "object": "cube", "is": "inside", "beyond": "left"},
+             {"fact": "frustum", "object": "box behind the observer", "is": "outside", "beyond": "behind"}]
     with pytest.raises(LessonFileError) as info:
         from_dict(_lesson(facts))
     problems = info.value.problems
@@ -89,7 +137,9 @@ def test_bad_facts_are_refused_with_their_field_path():
     assert problems[3].startswith("steps[0].facts[3].plane: unknown plane 'front'")
     assert problems[4].startswith('steps[0].facts[4].fact: unknown fact "telepathy"')
     assert problems[5].startswith('steps[0].facts[5]: give either "end"')
-    assert len(problems) == 6
+    assert problems[6].startswith("steps[0].facts[6].beyond: only an object outside the frustum lies beyond")
+    assert problems[7].startswith("steps[0].facts[7].beyond: unknown plane 'behind'")
+    assert len(problems) == 8
 
 
 def _run_check(*files) -> subprocess.CompletedProcess:
@@ -114,7 +164,7 @@ def test_lesson_check_passes_on_the_shipped_lessons_fails_on_a_false_fact_and_re
     assert out.returncode == 1
     (line,) = out.stdout.splitlines()
     assert line.startswith(f"{lying}: lesson observer, step 1 'Observer A', steps[0].facts[0]")
-    assert line.endswith("computed 'object 5' is outside the frustum")
+    assert "computed 'object 5' is outside the frustum, beyond its " in line
 
     broken = tmp_path / "broken.json"
     broken.write_text("{not json", encoding="utf-8")
