@@ -51,6 +51,7 @@ from core import presets
 from core.files import scene_file
 from core.files.mesh_files import read_mesh
 from core.image_order.ray_tree import trace_pixel
+from core.lessons.exercises import named_pane
 from core.presets_trace import PRESETS_TRACE
 from core.scene import Scene
 from views.dock_title import DockTitle
@@ -259,6 +260,9 @@ class MainWindow(QMainWindow):
             if pixel is not None:
                 self.model.set_ray_pixel(tuple(pixel))
                 self.model.set_buffer_pixel(tuple(pixel))
+                pane = named_pane(exercises.exercise())  # the pane that reads that pixel
+                if pane is not None:
+                    self.show_tab(pane.capitalize())
 
         exercises.show_me.connect(show_me)
         self.presentation.presenting_changed.connect(exercises.set_room)

@@ -11,6 +11,9 @@ answer typed into the file.  Kinds::
      "why": "Blue is the nearest of the three there."}
     {"kind": "click_pixel", "question": "Click a pixel in the cone's shadow.",
      "fact": {"fact": "shadow", "pixel": "$pixel", "object": "cone"}, "why": "..."}
+    {"kind": "click_pixel", "question": "Click a pixel where yellow wins over green.",
+     "fact": [{"fact": "zbuffer_keeps", "pixel": "$pixel", "object": "green", "after": 2},
+              {"fact": "zbuffer_keeps", "pixel": "$pixel", "object": "yellow"}], "why": "..."}
     {"kind": "number", "question": "What is Δ?", "tolerance": 0.5,
      "value": {"of": "ray_sphere", "origin": [2, 1, 2], "end": [10, 6, 6], "center": [6, 4, 6],
                "radius": 10, "value": "discriminant"}, "why": "..."}
@@ -23,7 +26,7 @@ answer typed into the file.  Kinds::
 
 A ``choose_one`` choice is right when its fact (``$choice`` put in) holds; a
 lesson check demands exactly one right choice.  A ``click_pixel`` answer is
-right when the fact holds at the clicked pixel (``$pixel``).  A ``number``'s
+right when the fact holds at the clicked pixel (``$pixel``), or each fact of a list.  A ``number``'s
 ``value`` is computed: ``ray_sphere`` / ``ray_triangle`` values (the lecture's
 data), ``depth`` (the distance the z-buffer stores at ``pixel`` after ``after``
 polygons), ``hit_t`` (the distance to the first hit of ``pixel``'s ray),
@@ -195,12 +198,18 @@ def _read(r, value, path: str, steps) -> Exercise | None:
         for i, choice in enumerate(choices):  # each choice must make a readable fact
             read_fact(r, _substituted(d["fact"], "$choice", choice), f"{path}.fact (choice {i})", scene)
         args.update(choices=tuple(choices), fact=MappingProxyType(dict(d["fact"])))
-    elif kind == "click_pixel":
-        if not isinstance(d["fact"], dict) or "$pixel" not in d["fact"].values():
-            r.add(join(path, "fact"), 'the fact must say "pixel": "$pixel" (the clicked pixel)')
-        else:
-            read_fact(r, _substituted(d["fact"], "$pixel", [0, 0]), join(path, "fact"), scene)
-        args.update(fact=MappingProxyType(dict(d["fact"])) if isinstance(d["fact"], dict) else None)
+    elif kind == "click_pixel":  # one fact, or a list of facts that must all hold
+        listed = d["fact"] if isinstance(d["fact"], list) else [d["fact"]]
+        many = isinstance(d["fact"], list)
+        if not listed:
+            r.add(join(path, "fact"), "give at least one fact")
+        for i, template in enumerate(listed):
+            at = f"{path}.fact[{i}]" if many else join(path, "fact")
+            if not isinstance(template, dict) or "$pixel" not in template.values():
+                r.add(at, 'the fact must say "pixel": "$pixel" (the clicked pixel)')
+            else:
+                read_fact(r, _substituted(template, "$pixel", [0, 0]), at, scene)
+        args.update(facts=tuple(MappingProxyType(dict(t)) for t in listed if isinstance(t, dict)))
     elif kind == "number":
         args.update(value=_read_number(r, d["value"], join(path, "value"), scene),
                     tolerance=r.number(d["tolerance"], join(path, "tolerance"), ge=0))
@@ -241,13 +250,43 @@ def _read_ray_paths(r, items, pixel, path: str, scene) -> None:
                                         f"(primary, then {' or '.join(RAY_STEPS)}), got {item!r}")
 
 
+#: Values a choice may name, as the student reads them (a ``ray_sphere`` fact's ``chosen`` root).
+CHOICE_WORDS = MappingProxyType({"t_near": "t1, the smaller root", "t_far": "t2, the larger root"})
+
+
 def choice_label(choice) -> str:
     """A choice as the student reads it."""
     if choice is None:
         return "nothing (the background)"
     if isinstance(choice, bool):
         return "yes" if choice else "no"
-    return str(choice)
+    return CHOICE_WORDS.get(choice, str(choice))
+
+
+#: The pipeline whose pane shows what an exercise asks about, by its fact or its number.
+_PIPELINE_OF = MappingProxyType({
+    "zbuffer_keeps": "object order", "ztest_fails": "object order", "blend": "object order",
+    "depth": "object order", "first_hit": "image order", "shadow": "image order",
+    "ray_event": "image order", "hit_t": "image order", "ray_tree_colours": "image order"})
+
+
+def named_pane(ex: Exercise) -> str | None:
+    """The tab (``"object order"`` or ``"image order"``) whose pane shows the pixel the exercise
+    names, or None."""
+    if ex.kind == "order":
+        return _PIPELINE_OF.get(ex.args["by"])
+    source = ex.args.get("fact") if ex.kind == "choose_one" else ex.args.get("value")
+    return None if source is None else _PIPELINE_OF.get(source.get("fact", source.get("of")))
+
+
+def named_pixel(ex: Exercise) -> tuple[int, int] | None:
+    """The pixel an exercise asks about by its coordinates (its fact's, its number's or its ray tree's),
+    or None (a pixel exercise asks the student for one; others name none)."""
+    if ex.kind == "order":
+        return ex.args.get("pixel")
+    source = ex.args.get("fact") if ex.kind == "choose_one" else ex.args.get("value")
+    pixel = source.get("pixel") if source is not None else None
+    return tuple(pixel) if isinstance(pixel, (list, tuple)) else None
 
 
 def _read_number(r, value, path: str, scene):
@@ -297,14 +336,26 @@ def right_choices(ex: Exercise, p: StepPipelines) -> list[int]:
             if check_fact(_fact(ex.args["fact"], "$choice", choice, ex.path), p)[0]]
 
 
+def _facts(ex: Exercise) -> tuple:
+    """A ``click_pixel`` exercise's facts (templates with ``"$pixel"``), all to hold at the pixel."""
+    return ex.args["facts"]
+
+
 def pixel_is_right(ex: Exercise, p: StepPipelines, pixel) -> tuple[bool, str]:
-    """Does the ``click_pixel`` fact hold at ``pixel``? (holds, what was computed there)."""
-    return check_fact(_fact(ex.args["fact"], "$pixel", tuple(pixel), ex.path), p)
+    """Do the ``click_pixel`` facts all hold at ``pixel``? (holds, what was computed there: of the
+    first fact that does not hold, or of them all)."""
+    said = []
+    for template in _facts(ex):
+        holds, computed = check_fact(_fact(template, "$pixel", tuple(pixel), ex.path), p)
+        if not holds:
+            return False, computed
+        said.append(computed)
+    return True, " and ".join(dict.fromkeys(said))
 
 
 def a_right_pixel(ex: Exercise, p: StepPipelines) -> tuple[int, int] | None:
     """A pixel where a ``click_pixel`` answer is right ("show me"), searched on a grid from the centre."""
-    template = ex.args["fact"]
+    template = _facts(ex)[0]
     if template["fact"] == "projects_to":  # one pixel: where the vertex projects
         obj = next(o for o in p.step.scene.objects if o.name == template["object"])
         cam = p.step.scene.camera
@@ -369,33 +420,46 @@ def pictures(ex: Exercise, p: StepPipelines) -> dict[str, np.ndarray]:
     return {key: inked_view(small, camera)[0] for key, camera in four_cameras(small).items()}
 
 
+#: Facts whose computed words, at a wrongly clicked pixel, would name the right one (where the point lands).
+_SAYS_WHERE = ("projects_to",)
+
+
 def judge(ex: Exercise, p: StepPipelines, given) -> Verdict:
-    """Right or wrong, with one sentence why: ``given`` is a choice index, a pixel ``(x, y)``, a number,
-    or a list of the items in order."""
+    """Right or wrong, with one sentence: ``given`` is a choice index, a pixel ``(x, y)``, a number,
+    or a list of the items in order.  A right answer gets the exercise's ``why``; a wrong one only
+    what is wrong with it (what the clicked pixel shows, whether a number is too high or too low,
+    how many items stand in their place), never the answer: the student tries again or asks for it
+    (Reveal)."""
     why = f" {ex.why}" if ex.why else ""
     if ex.kind == "choose_one":
-        right = right_choices(ex, p)
-        names = [choice_label(c) for c in ex.args["choices"]]
-        if given in right:
-            return Verdict(True, f"Right: {names[given]}.{why}")
-        answer = ", ".join(names[i] for i in right)
-        return Verdict(False, f"Not {names[given]}: the pipelines give {answer}.{why}")
+        name = choice_label(ex.args["choices"][given])
+        if given in right_choices(ex, p):
+            return Verdict(True, f"Right: {name}.{why}")
+        return Verdict(False, f"“{name}” is not the answer.")
     if ex.kind == "click_pixel":
         holds, computed = pixel_is_right(ex, p, given)
-        head = "Right" if holds else "Not there"
-        return Verdict(holds, f"{head}: at pixel {tuple(given)} {computed}.{why}")
+        if holds:
+            return Verdict(True, f"Right: at pixel {tuple(given)} {computed}.{why}")
+        if _facts(ex)[0]["fact"] in _SAYS_WHERE:
+            return Verdict(False, f"Not there: it does not land at pixel {tuple(given)}.")
+        return Verdict(False, f"Not there: at pixel {tuple(given)} {computed}.")
     if ex.kind == "number":
-        value, tol = number(ex, p), ex.args["tolerance"]
-        ok = bool(abs(float(given) - value) <= tol)
-        return Verdict(ok, f"{'Right' if ok else 'Not quite'}: the pipelines compute {value:.6g} "
-                           f"(within {tol:g}).{why}")
+        value, tol, given = number(ex, p), ex.args["tolerance"], float(given)
+        if abs(given - value) <= tol:
+            return Verdict(True, f"Right: the pipelines compute {value:.6g} (within {tol:g}).{why}")
+        near = abs(given - value) <= max(10 * tol, 0.1 * abs(value))
+        return Verdict(False, f"{'Not quite' if near else 'No'}: {given:.6g} is too "
+                              f"{'high' if given > value else 'low'}.")
     if ex.kind == "pick_picture":
-        ok = given == ex.args["view"]
-        return Verdict(ok, f"{'Right' if ok else 'Not that one'}: that is the {_view_words(given)}."
-                           + ("" if ok else f" The {_view_words(ex.args['view'])} is another.") + why)
+        if given == ex.args["view"]:
+            return Verdict(True, f"Right: that is the {_view_words(given)}.{why}")
+        return Verdict(False, f"Not that one: that is the {_view_words(given)}.")
     order = right_order(ex, p)
-    ok = list(given) == order
-    return Verdict(ok, f"{'Right' if ok else 'Not that order'}: {' → '.join(order)}.{why}")
+    if list(given) == order:
+        return Verdict(True, f"Right: {' → '.join(order)}.{why}")
+    placed = sum(a == b for a, b in zip(given, order, strict=True))
+    return Verdict(False, f"Not that order: {placed} of {len(order)} in {'its' if placed == 1 else 'their'} "
+                          "place.")
 
 
 def _order_problem(ex: Exercise, p: StepPipelines) -> str | None:

@@ -4,8 +4,9 @@ The student predicts, then checks: :class:`ExercisePanel` shows the question
 and an answer widget for its kind (choices, a number, a pixel, a list to put in
 order), or pictures to pick from, and judges the answer with :func:`core.lessons.exercises.judge`, which
 asks the pipelines.  Feedback comes at once: right or wrong and one sentence
-why; a wrong first answer gets a second try; "Show me" asks the window to show
-the step (and for a pixel exercise, a right pixel); "Reveal" gives the answer.
+why; a wrong answer is told what is wrong with it, never the answer, and gets a second try;
+Enter checks; "Show me" asks the window to show the step (and the pixel the question names, or
+for a pixel exercise a right pixel); "Reveal" gives the answer.
 
 While presenting, :meth:`ExercisePanel.set_room` puts the question to the room:
 large, with the answers hidden until Space (or "Show answers") reveals them.
@@ -19,7 +20,7 @@ from __future__ import annotations
 
 import random
 
-from PySide6.QtCore import QSettings, Qt, Signal
+from PySide6.QtCore import QEvent, QSettings, Qt, Signal
 from PySide6.QtWidgets import (
     QApplication,
     QButtonGroup,
@@ -41,6 +42,7 @@ from core.lessons.exercises import (
     a_right_pixel,
     choice_label,
     judge,
+    named_pixel,
     number,
     pictures,
     right_choices,
@@ -139,11 +141,14 @@ class ExercisePanel(QWidget):
         self.answer_layout.setContentsMargins(0, 0, 0, 0)
         self.choices = QButtonGroup(self)
         self.number_edit = QLineEdit()
-        self.number_edit.setPlaceholderText("a number, e.g. 1.56")
+        self.number_edit.setPlaceholderText("a number; Enter checks it")
         self.pixel_edit = QLineEdit()
         self.pixel_edit.setPlaceholderText("x, y — or click the pixel in the image")
         self.order_list = QListWidget()
         self.order_list.setDragDropMode(QListWidget.DragDropMode.InternalMove)
+        self.order_list.setToolTip("Drag the items into order, or move the selected one with Alt+Up and "
+                                   "Alt+Down")
+        self.order_list.installEventFilter(self)
         self.picture_grid = QWidget()  # pick_picture: the pictures, each with its radio button
         self.picture_layout = QGridLayout(self.picture_grid)
         self.picture_views: list[ImageView] = []
@@ -172,23 +177,28 @@ class ExercisePanel(QWidget):
         buttons = QHBoxLayout()
         for b in (self.check_button, self.show_button, self.reveal_button):
             buttons.addWidget(b)
-        content = QWidget()  # scrolls at a large text scale: the panel never makes the window taller
+        # The question and its answers scroll (at a large text scale, or four pictures in a short
+        # dock: the panel never makes the window taller); Check and the verdict stay in view below.
+        content = QWidget()
         layout = QVBoxLayout(content)
         layout.addLayout(top)
         layout.addWidget(self.question)
         layout.addWidget(self.answer_area)
         layout.addWidget(self.room_button)
-        layout.addLayout(buttons)
-        layout.addWidget(self.feedback)
         layout.addStretch(1)
         layout.addWidget(self.reset_button)
-        scroll = QScrollArea()
+        scroll = self.scroll = QScrollArea()
         scroll.setWidgetResizable(True)
         scroll.setFrameShape(QFrame.Shape.NoFrame)
         scroll.setWidget(content)
         outer = QVBoxLayout(self)
         outer.setContentsMargins(0, 0, 0, 0)
-        outer.addWidget(scroll)
+        outer.addWidget(scroll, 1)
+        below = QVBoxLayout()
+        below.setContentsMargins(layout.contentsMargins().left(), 0, layout.contentsMargins().right(), 0)
+        below.addLayout(buttons)
+        below.addWidget(self.feedback)
+        outer.addLayout(below)
         self.set_lesson(None)
 
     # --- which exercise -----------------------------------------------------
@@ -256,10 +266,33 @@ class ExercisePanel(QWidget):
             p = self._p(ex)
             self._run(lambda: pictures(ex, p), lambda drawn: self._show_pictures(ex, drawn))
         else:
-            self.order_list.clear()
-            self.order_list.addItems(list(ex.args["items"]))
+            self._set_order(list(ex.args["items"]))
             self.answer_layout.addWidget(self.order_list)
         self.set_answers_hidden(self.room)
+
+    def _set_order(self, items: list[str]) -> None:
+        """The items to put in order, the list as tall as they are (no scrolling, no empty rows)."""
+        self.order_list.clear()
+        self.order_list.addItems(items)
+        self.order_list.setCurrentRow(0)
+        rows = sum(self.order_list.sizeHintForRow(i) for i in range(len(items)))
+        self.order_list.setFixedHeight(rows + 2 * self.order_list.frameWidth() + 4)
+
+    def move_item(self, step: int) -> None:
+        """Move the order list's selected item ``step`` places down (negative: up)."""
+        row = self.order_list.currentRow()
+        to = row + step
+        if row >= 0 and 0 <= to < self.order_list.count():
+            self.order_list.insertItem(to, self.order_list.takeItem(row))
+            self.order_list.setCurrentRow(to)
+
+    def eventFilter(self, watched, event) -> bool:
+        if watched is self.order_list and event.type() == QEvent.Type.KeyPress \
+                and event.modifiers() & Qt.KeyboardModifier.AltModifier \
+                and event.key() in (Qt.Key.Key_Up, Qt.Key.Key_Down):
+            self.move_item(-1 if event.key() == Qt.Key.Key_Up else 1)
+            return True
+        return super().eventFilter(watched, event)
 
     def _show_pictures(self, ex: Exercise, drawn: dict) -> None:
         """The pictures in this student's order (their seed shuffles them), each with a button."""
@@ -270,7 +303,8 @@ class ExercisePanel(QWidget):
         for i, key in enumerate(keys):
             view = ImageView()
             view.set_image(drawn[key])
-            view.setMinimumSize(120, 90)
+            view.setMinimumSize(96, 72)
+            view.setMaximumHeight(120)  # four and the buttons below them fit a short dock
             button = QRadioButton(f"picture {i + 1}")
             view.pixel_clicked.connect(lambda _x, _y, b=button: b.setChecked(True))
             self.choices.addButton(button, i)
@@ -300,7 +334,7 @@ class ExercisePanel(QWidget):
             try:
                 return float(self.number_edit.text().replace(",", "."))
             except ValueError:
-                return Missing("Type a number (for example 1.56).")
+                return Missing("Type a number: digits, a point before decimals, a minus sign if below zero.")
         if ex.kind == "click_pixel":
             parts = self.pixel_edit.text().replace("(", "").replace(")", "").split(",")
             try:
@@ -375,8 +409,7 @@ class ExercisePanel(QWidget):
             self.pixel_edit.setText(f"{computed[0]}, {computed[1]}")
         else:
             order = computed
-            self.order_list.clear()
-            self.order_list.addItems(order)
+            self._set_order(order)
             answer = " → ".join(order)
         self._record(REVEALED)
         self._say(f"The answer: {answer}. {ex.why}".strip(), True)
@@ -384,8 +417,8 @@ class ExercisePanel(QWidget):
 
     def _show_me(self) -> None:
         ex = self.exercise()
-        if ex.kind != "click_pixel":
-            self.show_me.emit(ex.step, None)
+        if ex.kind != "click_pixel":  # the pixel the question names, if it names one
+            self.show_me.emit(ex.step, named_pixel(ex))
             return
         p = self._p(ex)
         self._run(lambda: a_right_pixel(ex, p), lambda pixel: self.show_me.emit(ex.step, pixel))
@@ -423,5 +456,8 @@ class ExercisePanel(QWidget):
     def keyPressEvent(self, event) -> None:
         if event.key() == Qt.Key.Key_Space and not self.answer_area.isVisible():
             self.set_answers_hidden(False)
+        elif event.key() in (Qt.Key.Key_Return, Qt.Key.Key_Enter) and self.check_button.isEnabled() \
+                and self.answer_area.isVisible():
+            self.check()  # Enter checks the answer: typed in a field (which passes the key on), or chosen
         else:
             super().keyPressEvent(event)

@@ -55,6 +55,20 @@ def test_pagedown_in_the_exercises_dock_opens_the_first_lessons_exercises_as_it_
     assert exercises.question.text() and exercises.check_button.isEnabled()
 
 
+def test_show_me_brings_the_step_the_pixel_the_question_names_and_the_pane_that_reads_it(qtbot, window):
+    """The first exercise asks what object order's z-buffer keeps at pixel (155, 110): Show me shows
+    its step, picks that pixel in both pipelines and brings the Object order tab, whose pixel history
+    then lists the fragments there (the step itself opens on the Compare tab)."""
+    panel, exercises = window.lesson_panel, window.exercise_panel
+    panel.select(LESSONS["two_orders"], 1)
+    exercises.set_lesson(panel.current_lesson())
+    assert "(155, 110)" in exercises.question.text() and "z-buffer" in exercises.question.text()
+    exercises.show_button.click()
+    assert panel.step_index() == (LESSONS["two_orders"], 0)
+    assert window.model.buffer_pixel == (155, 110) and window.model.ray_pixel == (155, 110)
+    assert window.current.title == "Object order"
+
+
 def test_every_shipped_lesson_step_shows_its_panes_scene_text_and_highlight(qtbot, window):
     panel = window.lesson_panel
     for row, lesson in enumerate(shipped_lessons()):

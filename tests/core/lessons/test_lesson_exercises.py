@@ -46,12 +46,12 @@ def test_question_6_every_number_of_its_solution():
     ex, p = _exercise("ray_sphere", "Continued as a ray")
     assert judge(ex, p, ex.args["choices"].index("t_far")).right
     verdict = judge(ex, p, ex.args["choices"].index("t_near"))
-    assert not verdict.right and verdict.sentence.startswith("Not t_near: the pipelines give t_far.")
+    assert not verdict.right and verdict.sentence == "“t1, the smaller root” is not the answer."
 
 
 def test_the_triangle_weights_from_exact_arithmetic():
     # Cramer's rule in fractions: α = 481/1558, β = 957/3116, t = 784/779 (see the lesson's text).
-    for start, exact in (("For the picked pixel's ray", Fraction(481, 1558)),
+    for start, exact in (("For the ray o + t d", Fraction(481, 1558)),
                          ("What is β", Fraction(957, 3116)), ("What is t, in units", Fraction(784, 779))):
         ex, p = _exercise("ray_triangle", start)
         assert number(ex, p) == pytest.approx(float(exact), abs=1e-12)
@@ -107,16 +107,25 @@ def test_an_exercise_the_pipelines_cannot_answer_is_reported_and_bad_ones_refuse
         {"kind": "guess", "question": "?"},
         {"kind": "click_pixel", "question": "?", "fact": {"fact": "seen", "object": "green"}},
         {"kind": "number", "question": "?", "tolerance": 1, "value": {"of": "weight"}},
-        {"kind": "order", "question": "?", "items": ["green"], "by": "drawing_order", "step": 3}]
+        {"kind": "order", "question": "?", "items": ["green"], "by": "drawing_order", "step": 3},
+        {"kind": "click_pixel", "question": "?", "fact": [
+            {"fact": "zbuffer_keeps", "pixel": "$pixel", "object": "green"},
+            {"fact": "seen", "object": "blue"},
+            {"fact": "zbuffer_keeps", "pixel": "$pixel", "object": "purple"}]},
+        {"kind": "click_pixel", "question": "?", "fact": []}]
     with pytest.raises(LessonFileError) as info:
         from_dict(lesson)
-    assert info.value.problems == [
+    assert info.value.problems[:4] == [
         "exercises[0].kind: unknown exercise kind \"guess\" "
         "(known: choose_one, click_pixel, number, order, pick_picture)",
         'exercises[1].fact: the fact must say "pixel": "$pixel" (the clicked pixel)',
         'exercises[2].value.of: unknown quantity "weight" '
         "(known: ray_sphere, ray_triangle, depth, hit_t, blend)",
         "exercises[3].step: the lesson has steps 0 to 0, got 3"]
+    assert info.value.problems[4] == ('exercises[4].fact[1]: the fact must say "pixel": "$pixel" '
+                                      "(the clicked pixel)")
+    assert info.value.problems[5].startswith("exercises[4].fact[2].object: no object 'purple' in the scene")
+    assert info.value.problems[6:] == ["exercises[5].fact: give at least one fact"]
 
 
 def test_variants_draw_other_pixels_by_seed_and_each_is_judged_by_its_own_answer():
@@ -191,7 +200,9 @@ def test_the_ray_tree_is_put_in_order_last_hits_first_as_in_fig_vii_11():
     # The second stage: C's colour first, then B's (it needs C's), then A's (it needs B's): the pixel.
     assert judge(ex, p, [c, b, a]).right
     wrong = judge(ex, p, [a, b, c])
-    assert not wrong.right and wrong.sentence.startswith(f"Not that order: {c} → {b} → {a}.")
+    assert not wrong.right and wrong.sentence == "Not that order: 1 of 3 in its place."  # b, in the middle
+    assert judge(ex, p, [b, c, a]).sentence == "Not that order: 1 of 3 in its place."  # a, last
+    assert judge(ex, p, [a, c, b]).sentence == "Not that order: 0 of 3 in their place."
 
 
 def test_a_ray_tree_order_off_one_branch_or_not_traced_is_reported_and_bad_paths_refused():

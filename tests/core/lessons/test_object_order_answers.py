@@ -127,10 +127,17 @@ def test_zbuffer_keeps_the_nearest_polygon_at_each_variants_pixel(variant):
     assert_only(ex, p, hits(scene, *pixel_ray(scene.camera, *ex.args["fact"]["pixel"]))[0][1])
 
 
-def test_zbuffer_a_click_where_yellow_is_nearest_is_right():
+def test_zbuffer_yellow_wins_over_green_only_where_green_was_there_first():
+    # Drawn green, blue, yellow: yellow wins over green where it is the nearest of the three and
+    # green lies behind it, nearer than blue (so green, not blue or nothing, held the pixel before).
     ex, p = exercise("zbuffer", 1)
-    shown = nearest(image_hits(_scene(p)))
-    assert judge(ex, p, inner_pixel(shown == "yellow")).right
+    t = image_hits(_scene(p))
+    shown = nearest(t)
+    over_green = (shown == "yellow") & np.isfinite(t["green"]) & (t["green"] < t["blue"])
+    assert judge(ex, p, inner_pixel(over_green)).right
+    over_nothing = (shown == "yellow") & ~np.isfinite(t["green"]) & ~np.isfinite(t["blue"])
+    assert inner_pixel(over_nothing) is not None  # yellow alone: it wins over no one there
+    assert not judge(ex, p, inner_pixel(over_nothing)).right
     assert not judge(ex, p, inner_pixel(shown == "green")).right
     assert not judge(ex, p, inner_pixel(shown == "blue")).right
 

@@ -1,5 +1,6 @@
-"""The exercise panel: asked, answered, judged at once with one sentence why, a second try,
-reveal, progress kept across restarts and reset, and the question put to the room."""
+"""The exercise panel: asked, answered, judged at once with one sentence (why, when right; what is
+wrong, never the answer, when wrong), a second try, Enter to check, reveal, progress kept across
+restarts and reset, and the question put to the room."""
 
 import math
 
@@ -66,14 +67,16 @@ def test_a_wrong_number_gets_a_second_try_then_reveal_gives_the_pipelines_answer
     panel.go(3)  # the discriminant: 126² + 4·105·59 = 40656
     panel.number_edit.setText("4065.6")
     panel.check()
-    assert panel.feedback.text().startswith("Not quite: the pipelines compute 40656")
-    assert "Try once more" in panel.feedback.text()
+    assert panel.feedback.text() == "No: 4065.6 is too low. Try once more."  # not the answer
+    panel.number_edit.setText("40000")
+    panel.check()
+    assert panel.feedback.text() == "Not quite: 40000 is too low. Press Reveal for the answer."
     panel.number_edit.setText("forty")
     panel.check()
-    assert panel.feedback.text() == "Type a number (for example 1.56)." and panel.tries == 1
+    assert panel.feedback.text().startswith("Type a number:") and panel.tries == 2
     panel.number_edit.setText("40656")
     panel.check()
-    assert panel.feedback.text().startswith("Right")
+    assert panel.feedback.text().startswith("Right: the pipelines compute 40656")
     assert ExerciseProgress(settings).outcome("ray_sphere", 3) == LATER
     panel.go(4)  # t1 = (126 - √40656) / 210
     panel.reveal()
@@ -84,8 +87,8 @@ def test_a_wrong_number_gets_a_second_try_then_reveal_gives_the_pipelines_answer
 def test_an_order_and_a_clicked_pixel_are_judged(panel, qtbot):
     panel.set_lesson(BY_ID["transparency"])
     assert [panel.order_list.item(i).text() for i in range(3)] == ["red pane", "green pane", "blue pane"]
-    panel.check()  # as listed: nearest first, wrong
-    assert panel.feedback.text().startswith("Not that order: blue pane → green pane → red pane")
+    panel.check()  # as listed: nearest first, wrong; only the green pane, in the middle, is in its place
+    assert panel.feedback.text() == "Not that order: 1 of 3 in its place. Try once more."
     panel.set_lesson(BY_ID["ray_casting"])
     with qtbot.waitSignal(panel.show_me) as shown:
         panel.show_button.click()
@@ -136,3 +139,96 @@ def test_a_picture_is_picked_by_clicking_it_and_judged(panel, qtbot):
     panel.picture_views[panel.picture_keys.index("top")].pixel_clicked.emit(5, 5)
     panel.check()
     assert panel.feedback.text().startswith("Right: that is the top view.")
+
+
+def test_no_wrong_answer_is_told_the_right_one(panel, settings):
+    """A wrong choice, number, order or pixel is told what is wrong with it, not the answer: the
+    second try would be pointless otherwise, and so would Reveal."""
+    panel.set_lesson(BY_ID["two_orders"])  # the cone is in front at (155, 110): the z-buffer keeps it
+    labels = [b.text() for b in panel.choices.buttons()]
+    panel.choices.button(labels.index("cube")).setChecked(True)
+    panel.check()
+    assert panel.feedback.text() == "“cube” is not the answer. Try once more."
+    panel.set_lesson(BY_ID["perspective"])  # A′ lands at one pixel: a wrong click may not say where
+    panel.click(1, 1)
+    assert panel.feedback.text() == "Not there: it does not land at pixel (1, 1). Try once more."
+    panel.set_lesson(BY_ID["ray_sphere"])
+    panel.go(7)  # continued as a ray, the first crossing is the larger root: the start is inside
+    labels = [b.text() for b in panel.choices.buttons()]
+    assert labels == ["t1, the smaller root", "t2, the larger root"]  # the question's names, not code's
+    panel.choices.button(0).setChecked(True)
+    panel.check()
+    assert panel.feedback.text() == "“t1, the smaller root” is not the answer. Try once more."
+    panel.go(5)  # t2 = (126 + √40656) / 210 = 1.56016: no hint of it before an answer
+    assert "1.5" not in panel.number_edit.placeholderText()
+    panel.number_edit.setText("x")
+    panel.check()
+    assert "1.5" not in panel.feedback.text()
+
+
+def test_enter_checks_a_typed_number_a_chosen_answer_and_an_order(panel, qtbot):
+    panel.set_lesson(BY_ID["ray_sphere"])  # a = 8² + 5² + 4² = 105
+    panel.number_edit.setFocus()
+    qtbot.keyClicks(panel.number_edit, "105")
+    qtbot.keyClick(panel.number_edit, Qt.Key.Key_Return)
+    assert panel.feedback.text().startswith("Right: the pipelines compute 105") and panel.tries == 1
+    panel.set_lesson(BY_ID["rasterization"])  # (11, 7): on the right edge, so not the triangle's
+    labels = [b.text() for b in panel.choices.buttons()]
+    button = panel.choices.button(labels.index("nothing (the background)"))
+    button.setFocus()
+    qtbot.keyClick(button, Qt.Key.Key_Space)  # chosen from the keyboard
+    qtbot.keyClick(button, Qt.Key.Key_Enter)
+    assert panel.feedback.text().startswith("Right: nothing (the background).") and panel.tries == 1
+
+
+def test_an_order_is_made_from_the_keyboard_with_alt_up_and_down(panel, qtbot):
+    """Sorted as the lecture says, the panes are drawn farthest first: blue, green, red (the red pane
+    at z = 1.4 is nearest; listed red, green, blue)."""
+    panel.set_lesson(BY_ID["transparency"])
+    items = panel.order_list
+    assert [items.item(i).text() for i in range(3)] == ["red pane", "green pane", "blue pane"]
+    assert items.height() < 6 * items.sizeHintForRow(0)  # as tall as its three rows, not a screenful
+    items.setFocus()
+    items.setCurrentRow(2)
+    qtbot.keyClick(items, Qt.Key.Key_Up, Qt.KeyboardModifier.AltModifier)
+    qtbot.keyClick(items, Qt.Key.Key_Up, Qt.KeyboardModifier.AltModifier)  # blue to the top: blue, red, green
+    assert items.currentItem().text() == "blue pane"  # the moved item stays selected
+    qtbot.keyClick(items, Qt.Key.Key_Down)  # select red
+    qtbot.keyClick(items, Qt.Key.Key_Down, Qt.KeyboardModifier.AltModifier)  # red below green
+    assert [items.item(i).text() for i in range(3)] == ["blue pane", "green pane", "red pane"]
+    qtbot.keyClick(items, Qt.Key.Key_Return)
+    assert panel.feedback.text().startswith("Right: blue pane → green pane → red pane.")
+
+
+def test_show_me_picks_the_pixel_the_question_names(panel, qtbot):
+    panel.set_lesson(BY_ID["two_orders"])
+    assert "(155, 110)" in panel.question.text()
+    with qtbot.waitSignal(panel.show_me) as shown:
+        panel.show_button.click()
+    assert shown.args == [0, (155, 110)]
+    panel.set_lesson(BY_ID["ray_sphere"])  # names no pixel: the step alone
+    with qtbot.waitSignal(panel.show_me) as shown:
+        panel.show_button.click()
+    assert shown.args == [1, None]
+
+
+def test_in_a_short_dock_check_and_the_verdict_stay_in_view_below_the_pictures(qtbot, settings):
+    """Four pictures filled a 340 x 330 dock (the Exercises tab under the 3D pane at 1280 x 720) and
+    pushed Check and the verdict out of view: the pictures now scroll, Check and the verdict not."""
+    panel = shown_widget(qtbot, ExercisePanel(ExerciseProgress(settings)), 340, 260)
+    lesson = BY_ID["three_views"]
+    panel.set_lesson(lesson)
+    panel.go(next(i for i, e in enumerate(lesson.exercises) if e.question.endswith("top view?")))
+    qtbot.waitUntil(lambda: len(panel.picture_views) == 4)
+    qtbot.waitUntil(lambda: panel.scroll.verticalScrollBar().maximum() > 0)  # the pictures do not all fit
+
+    def shown_whole(widget):
+        top_left = widget.mapTo(panel, widget.rect().topLeft())
+        return widget.isVisible() and top_left.y() >= 0 and top_left.y() + widget.height() <= panel.height()
+
+    assert shown_whole(panel.check_button) and shown_whole(panel.reveal_button)
+    wrong = next(i for i, key in enumerate(panel.picture_keys) if key != "top")
+    panel.picture_views[wrong].pixel_clicked.emit(5, 5)
+    panel.check()
+    qtbot.waitUntil(lambda: shown_whole(panel.feedback) and panel.feedback.height() > 0)
+    assert panel.feedback.text().startswith("Not that one")
