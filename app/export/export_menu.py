@@ -49,6 +49,7 @@ from app.export.pane_pictures import PanePicture, tab_pictures
 from app.export.picture_sheet import four_views
 from app.export.ray_tree_json import ray_tree_json
 from app.lessons.runner import LESSON_OVERLAY
+from app.window import render_budget
 from app.window.workers import Renderer
 from core import budget
 from core.files.safe_files import write_atomic
@@ -147,7 +148,8 @@ class ExportMenu(QObject):
                   "One frame per polygon drawn, from the cleared buffers on, the polygon of each step tinted")
         orbit = self._submenu("Orbit of the observer (GIF or MP4)")
         for pane, (shows, _) in _orbit_pictures(self.window.model).items():
-            self._add(orbit, f"Orbit/{pane}", f"{pane}…", lambda _=False, p=pane: self._ask_orbit(p), "",
+            self._add(orbit, f"Orbit/{pane}", f"{pane}…", lambda _=False, p=pane: self._ask_orbit(p),
+                      self._orbit_why_not(pane),
                       f"The observer walks once around the target; each frame shows {shows}")
         self.menu.addSeparator()
         tree = self._submenu("Ray tree of the picked pixel")
@@ -322,8 +324,19 @@ class ExportMenu(QObject):
         self._start(path, "the z-buffer steps", lambda: zbuffer_steps(scene, settings))
         return True
 
+    def _orbit_why_not(self, pane: str) -> str:
+        """Why an orbit of ``pane`` may not be made: each frame is that tab's full render of the scene,
+        and the window's memory budget refuses it (as the tab itself does); "" when it may."""
+        refusal, _ = render_budget.check(self.window.tab(pane), self.window.model.scene, False,
+                                         self.window.model.memory_limit)
+        return refusal or ""
+
     def export_orbit(self, pane: str, frames: int, path: str) -> bool:
         """Start writing an orbit of ``frames`` frames of ``pane`` ("Image order", ...) to ``path``."""
+        refusal = self._orbit_why_not(pane)
+        if refusal:
+            self._fail(path, refusal)
+            return False
         if not self._checked(path, ANIMATION_EXTENSIONS):
             return False
         scene = self.window.model.scene

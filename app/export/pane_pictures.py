@@ -30,6 +30,7 @@ from core.srgb import srgb_to_linear
 from views.images.depth_view import DepthView
 from views.images.image_grid import ImageGrid
 from views.images.image_view import ImageView
+from views.panels.stale_cover import covered_with
 
 
 @dataclass(frozen=True)
@@ -52,9 +53,16 @@ class PanePicture:
 
 
 def tab_pictures(tab) -> list[PanePicture]:
-    """The pictures ``tab`` offers: its own ``pictures()``, else those of its widget's panes."""
+    """The pictures ``tab`` offers: its own ``pictures()``, else those of its widget's panes; none of
+    them while the tab is covered (what it shows is not of the current scene: a render refused or
+    failed), each then with the cover's reason."""
     offered = getattr(tab, "pictures", None)
-    return offered() if offered is not None else widget_pictures(tab.title, tab.widget)
+    pictures = offered() if offered is not None else widget_pictures(tab.title, tab.widget)
+    covered = covered_with(tab.widget)
+    if covered is None:
+        return pictures
+    why = covered.split("\n")[0]
+    return [PanePicture(p.tab, p.pane, None, why) for p in pictures]
 
 
 def shown_rgb(view: ImageView) -> np.ndarray:

@@ -5,6 +5,7 @@ path); every entry is triggered from the menu as a user would.
 """
 
 import json
+from dataclasses import replace
 from pathlib import Path
 
 import imageio.v3 as iio
@@ -107,6 +108,30 @@ def test_entries_with_nothing_to_export_are_disabled_and_say_why(window):
     window.exports.refresh()
     steps = window.exports.actions["z-buffer steps"]
     assert not steps.isEnabled() and "fewer objects or triangles" in steps.toolTip()
+
+
+def test_a_tab_whose_render_was_refused_exports_nothing_and_no_orbit_over_the_budget(qtbot, window, tmp_path,
+                                                                                   monkeypatch):
+    """Over the memory budget the traced image is not rendered and the tab is covered: its export
+    wrote the previous scene's image as this one's, and an orbit of frames each over the budget was
+    made anyway. Both entries are now disabled with the tab's reason, and the orbit is refused."""
+    _show_full(qtbot, window, "Image order")  # the lecture scene's image, 320 x 240
+    window.model.memory_limit = 30_000_000
+    scene = window.model.scene
+    big = replace(scene, camera=scene.camera.replace(width=1600, height=1200))
+    window.model.set_scene(big)
+    qtbot.waitUntil(lambda: window.progress.format() == "Image order: not rendered, over the memory budget")
+    window.exports.refresh()
+    for entry in ("Image order/Image", "Orbit/Image order"):
+        action = window.exports.actions[entry]
+        assert not action.isEnabled(), entry
+        assert "the budget is 30 MB" in action.toolTip() or "not of the current scene" in action.toolTip()
+    boxes = []
+    monkeypatch.setattr(QMessageBox, "critical", lambda parent, title, text: boxes.append(text))
+    path = tmp_path / "orbit.gif"
+    assert not window.exports.export_orbit("Image order", 3, str(path))
+    assert not path.exists() and "the budget is 30 MB" in boxes[0]
+    assert window.exports.actions["Orbit/Object order"].isEnabled() is False  # its frames as large
 
 
 def test_zbuffer_steps_gif_has_one_frame_per_polygon_after_the_cleared_buffers(qtbot, window, tmp_path,
