@@ -37,6 +37,7 @@ import numpy as np
 
 from core import shapes
 from core.files import scene_file
+from core.files.checked_json import Reader
 from core.scene import Mesh, Scene
 
 Item = tuple[str, int]
@@ -176,11 +177,16 @@ def moved(scene: Scene, item: Item, position, base_dir=None, read_mesh=None) -> 
     A mesh is moved by moving its vertices; one read from a file is then
     written into the scene file (inline), since the file no longer holds it.
     """
-    position = [float(c) for c in position]
     key = position_key(scene, item)
+    r = Reader()  # three numbers, checked as the scene file's are: never a bare ValueError
+    kind, index = item
+    given = position.tolist() if isinstance(position, np.ndarray) else (
+        list(position) if isinstance(position, (list, tuple)) else position)
+    position = r.vector(given, f"{'objects' if kind == 'object' else 'lights'}[{index}].{key or 'position'}")
+    if r.problems:
+        raise scene_file.SceneFileError(r.problems)
     if key is not None:
-        return with_field(scene, item, key, position, base_dir, read_mesh)
-    index = item[1]
+        return with_field(scene, item, key, list(position), base_dir, read_mesh)
     obj = scene.objects[index]
     vertices = obj.vertices + (np.asarray(position) - position_of(scene, item))
     # The moved vertices pass the checks of a mesh read from a file (numbers in range,

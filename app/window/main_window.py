@@ -315,9 +315,11 @@ class MainWindow(QMainWindow):
 
     # ----------------------------------------------------------------- menus
     def _action(self, menu, text, slot, shortcut=None, tip=""):
+        """A menu entry; ``shortcut`` a key, or a list of keys that do the same."""
         action = QAction(text, self)
         if shortcut:
-            action.setShortcut(QKeySequence(shortcut))
+            keys = shortcut if isinstance(shortcut, list) else [shortcut]
+            action.setShortcuts([QKeySequence(k) for k in keys])
             self._keyed_actions.append(action)
         action.setStatusTip(tip)
         action.setToolTip(tip)
@@ -349,7 +351,7 @@ class MainWindow(QMainWindow):
                          lambda _=False, m=move: self.model.set_camera(m(self.model.camera)), key)
         view = self.menuBar().addMenu("&View")
         self._action(view, "Larger text (lecture hall)", lambda: self.scale_text(1.25),
-                     QKeySequence.StandardKey.ZoomIn)
+                     [QKeySequence.StandardKey.ZoomIn, "Ctrl+="])  # Ctrl+= : the + key without Shift
         self._action(view, "Smaller text", lambda: self.scale_text(0.8),
                      QKeySequence.StandardKey.ZoomOut)
         self._action(view, "Re-render", self.rerender, "F5")
@@ -381,11 +383,12 @@ class MainWindow(QMainWindow):
     def keys_text(self) -> str:
         """Every keyboard shortcut and mouse gesture, one a line."""
         lines = ["Keys (a focused number box keeps the arrow keys for itself):"]
-        lines += [f"  {a.shortcut().toString(QKeySequence.SequenceFormat.NativeText):<14} "
+        native = QKeySequence.SequenceFormat.NativeText
+        lines += [f"  {' or '.join(k.toString(native) for k in a.shortcuts()):<24} "
                   f"{a.text().replace('&', '')}" for a in self._keyed_actions]
-        lines += [f"  {'PageDown':<14} Next lesson step (from anywhere)",
-                  f"  {'PageUp':<14} Previous lesson step (from anywhere)",
-                  f"  {'Esc':<14} Cancel the render in progress (while presenting: leave full screen)",
+        lines += [f"  {'PageDown':<24} Next lesson step (from anywhere)",
+                  f"  {'PageUp':<24} Previous lesson step (from anywhere)",
+                  f"  {'Esc':<24} Cancel the render in progress (while presenting: leave full screen)",
                   "", "Mouse in the 3D pane:"]
         lines += [f"  {gesture}: {what}" for gesture, what in MOUSE_GESTURES]
         return "\n".join(lines)
@@ -427,6 +430,7 @@ class MainWindow(QMainWindow):
         self.scene_path = Path(path)
         self.setWindowTitle(f"Render Explorer — {self.scene_path.name}")
         self.model.set_scene(scene)
+        self.editor.stack.clear()  # even a scene equal to the one shown starts with nothing to undo
         self.leave_lesson_step(f"The window shows {self.scene_path.name} now.")
         self.explain_if_too_large(self.scene_path.name)
         return True
@@ -464,6 +468,7 @@ class MainWindow(QMainWindow):
         self.scene_path = None
         self.setWindowTitle(f"Render Explorer — example: {key}")
         self.model.set_scene(build())
+        self.editor.stack.clear()  # even a scene equal to the one shown starts with nothing to undo
         self.leave_lesson_step(f"The window shows the example {key!r} now.")
 
     def leave_lesson_step(self, why: str) -> None:

@@ -69,10 +69,13 @@ class SceneEditor(QObject):
             pane.ready.connect(lambda: self._attach_picker(pane.view))
         self.model.scene_changed.connect(self._scene_changed)
         self.model.selection_changed.connect(self._selection_changed)
-        self.stack.cleanChanged.connect(lambda clean: window.setWindowModified(not clean))
+        self.stack.cleanChanged.connect(self._clean_changed)  # a method: disconnected with the editor
         window.windowTitleChanged.connect(self._title_changed)
         self._title_changed(window.windowTitle())
         self._selection_changed(self.model.selection)
+
+    def _clean_changed(self, clean: bool) -> None:
+        self.window.setWindowModified(not clean)
 
     # ----------------------------------------------------------- actions
     def _action(self, text, slot, shortcut=None, tip="") -> QAction:
@@ -90,7 +93,7 @@ class SceneEditor(QObject):
         self.undo_action = self.stack.createUndoAction(w, "Undo")
         self.undo_action.setShortcut(QKeySequence("Ctrl+Z"))
         self.redo_action = self.stack.createRedoAction(w, "Redo")
-        self.redo_action.setShortcut(QKeySequence("Ctrl+Shift+Z"))
+        self.redo_action.setShortcuts([QKeySequence("Ctrl+Shift+Z"), QKeySequence("Ctrl+Y")])
         self.keyed_actions += [self.undo_action, self.redo_action]
         self.add_menu = QMenu("&Add", w)
         for type_name in checked_edits.NEW_OBJECTS:
@@ -332,9 +335,11 @@ class SceneEditor(QObject):
         """Whether the scene may go: nothing unsaved, or the user saved or discarded it."""
         if self.stack.isClean():
             return True
-        where = self.window.scene_path.name if self.window.scene_path is not None else "the scene"
+        where = self.window.scene_path.name if self.window.scene_path is not None else "a file"
+        # The last edit, or, undone past the last save, the first edit undone since.
+        last = self.stack.undoText() or f"undone: {self.stack.redoText()}"
         box = QMessageBox(QMessageBox.Icon.Question, "Unsaved changes",
-                          f"The scene has changes that are not saved ({self.stack.undoText()}, …).\n"
+                          f"The scene has changes that are not saved ({last}, …).\n"
                           f"Save them to {where} first?",
                           QMessageBox.StandardButton.Save | QMessageBox.StandardButton.Discard
                           | QMessageBox.StandardButton.Cancel, self.window)

@@ -171,4 +171,7 @@ def test_the_object_limit_holds_for_added_objects():
 def test_a_mesh_moved_beyond_the_coordinate_limit_is_refused():
     scene = Scene(objects=(Mesh(TETRA_V, TETRA_T, name="tetra"),))
     (problem,) = _problems(lambda: checked_edits.moved(scene, ("object", 0), (2e6, 0.0, 0.0)))
+    assert problem == "objects[0].position: numbers must be within ±1,000,000, got [2000000.0, 0.0, 0.0]"
+    # A centre within the limit whose vertices are not: the tetrahedron's reach 0.5 beyond its centre.
+    (problem,) = _problems(lambda: checked_edits.moved(scene, ("object", 0), (999_999.9, 0.0, 0.0)))
     assert "coordinates must be within ±1,000,000" in problem and problem.startswith("objects[0]")

@@ -134,13 +134,18 @@ class _Field(QWidget):
 
     def set_value(self, value) -> None:
         values = value if self.vector else [value]
+        self._set = list(values)  # as given: a box shows 10 digits, an unedited one keeps them all
         for box, v in zip(self.boxes, values, strict=False):
             box.setText(show_value(v))  # also clears "modified"
             box.setCursorPosition(0)
         self.show_problem("")
 
     def value(self):
-        values = [read_text(b.text()) for b in self.boxes]
+        """The field's value: what was typed in the boxes the user changed, the value given for the
+        others (editing y of a centre leaves x as it was, not rounded to what its box shows)."""
+        kept = getattr(self, "_set", [])
+        values = [kept[k] if k < len(kept) and not box.isModified() else read_text(box.text())
+                  for k, box in enumerate(self.boxes)]
         return values if self.vector else values[0]
 
     def show_problem(self, text: str) -> None:
@@ -149,9 +154,10 @@ class _Field(QWidget):
 
     def _finished(self) -> None:
         if any(b.isModified() for b in self.boxes):
+            value = self.value()
             for b in self.boxes:
                 b.setModified(False)
-            self.edited.emit(self.value())
+            self.edited.emit(value)
 
 
 class _NameField(_Field):

@@ -208,6 +208,27 @@ def test_help_lists_every_key(window):
     for key in ("W", "A", "S", "D", "Q", "E", "Left", "Right", "Up", "Down", "P", "F5", "Esc"):
         assert f"  {key} " in text, key
     assert "Drag the camera glyph" in text
+    for keys in ("Ctrl+Shift+Z or Ctrl+Y ", ". or B ", "Ctrl++ or Ctrl+= "):  # every key of an entry
+        assert keys in text, keys
+
+
+def test_ctrl_y_redoes_and_ctrl_equals_enlarges_the_text_as_in_other_programs(qtbot, window):
+    window.activateWindow()
+    qtbot.waitUntil(window.isActiveWindow)
+    window.editor.add_light()
+    try:
+        window.editor.undo_action.trigger()
+        lights = len(window.model.scene.lights)
+        qtbot.keyClick(window, Qt.Key.Key_Y, Qt.KeyboardModifier.ControlModifier)
+        assert len(window.model.scene.lights) == lights + 1
+    finally:
+        window.editor.stack.setClean()  # closing asks nothing
+    size = QApplication.font().pointSizeF()
+    try:
+        qtbot.keyClick(window, Qt.Key.Key_Equal, Qt.KeyboardModifier.ControlModifier)
+        assert QApplication.font().pointSizeF() == pytest.approx(1.25 * size, rel=0.05)
+    finally:
+        window.scale_text(0.8)
 
 
 def test_a_tab_shown_again_shows_its_own_progress_and_status(qtbot, window):

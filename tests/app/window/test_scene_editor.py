@@ -205,6 +205,18 @@ def test_a_typed_centre_moves_the_object_and_text_is_refused(qtbot, window):
     assert window.editor.undo_action.text() == "Undo Change centre of cube"
 
 
+def test_editing_one_component_leaves_the_others_exactly_as_they_were(qtbot, window):
+    """A box shows 10 digits; editing y re-read x from its box, so x = 1.6641005886756874 became
+    1.664100589."""
+    model, panel = window.model, window.editor.panel
+    x = 1.6641005886756874
+    model.set_scene(replace(model.scene, objects=(*model.scene.objects, Sphere((x, 1.0, -0.5), 0.5))))
+    model.set_selection(("object", 3))
+    assert panel.fields["center"].boxes[0].text() == "1.664100589"
+    _type_into(qtbot, panel.fields["center"].boxes[1], "2")
+    assert model.scene.objects[3].center == (x, 2.0, -0.5)
+
+
 def test_the_old_value_typed_again_clears_the_red_problem(qtbot, window):
     model, panel = window.model, window.editor.panel
     model.set_selection(("object", 0))
@@ -365,6 +377,11 @@ def test_a_mesh_file_is_added_through_the_safe_reader(qtbot, window, tmp_path):
     moved = window.model.scene.objects[-1]
     assert np.allclose(_centre(moved), (2.5, 0.5, 0.5)) and moved.source is None  # now saved inline
     assert window.editor.undo_action.text() == "Undo Move tetra"
+    for typed, shown in (("abc", '"abc"'), ("true", "true"), ("[1]", "[1]")):  # a ValueError once
+        _type_into(qtbot, window.editor.panel.fields["position"].boxes[0], typed)
+        assert window.editor.panel.problem("position") == (
+            f"objects[3].position: expected 3 numbers, got [{shown}, 0.5, 0.5]")
+        assert window.model.scene.objects[-1] is moved
 
     bad = tmp_path / "broken.obj"
     bad.write_text("v 0 0 0\nf 1 2 3\n")
@@ -398,6 +415,61 @@ def test_closing_with_unsaved_edits_asks_and_cancel_keeps_the_window(qtbot, wind
     assert asked and not window.isVisible()
 
 
+QUIT_DISCARDING = r"""
+import os
+import sys
+from PySide6.QtCore import QTimer
+from PySide6.QtGui import QAction, QKeySequence
+from PySide6.QtWidgets import QApplication, QMessageBox
+from app import cli
+from app.window.main_window import MainWindow
+
+app = QApplication(sys.argv[:1])
+
+
+def answer():
+    box = QApplication.activeModalWidget()
+    if isinstance(box, QMessageBox):
+        print("asked:", box.text().splitlines()[0], flush=True)
+        box.button(QMessageBox.StandardButton.Discard).click()
+    else:
+        QTimer.singleShot(20, answer)
+
+
+def edit_and_quit():
+    window = next((w for w in app.topLevelWidgets() if isinstance(w, MainWindow) and w.isVisible()), None)
+    if window is None:
+        QTimer.singleShot(20, edit_and_quit)
+        return
+    window.editor.add_light()
+    QTimer.singleShot(0, answer)
+    quits = [a for a in window.findChildren(QAction) if a.shortcut() == QKeySequence.StandardKey.Quit]
+    quit_action = quits[0]
+    quit_action.trigger()  # what Ctrl+Q does (a key needs the window active, which Xvfb alone never makes)
+
+
+QTimer.singleShot(0, edit_and_quit)
+QTimer.singleShot(120_000, lambda: os._exit(3))  # never a hung test
+sys.exit(cli.main([]))
+"""
+
+
+def test_quitting_with_ctrl_q_and_discarding_the_edits_ends_quietly(tmp_path):
+    """The undo stack, deleted after the window, told the window it was clean again: a RuntimeError and
+    its traceback on the terminal at every such quit."""
+    import os
+    import subprocess
+    import sys
+
+    from checkout import ROOT
+
+    out = subprocess.run([sys.executable, "-c", QUIT_DISCARDING], cwd=ROOT, capture_output=True, text=True,
+                         env={**os.environ, "XDG_CONFIG_HOME": str(tmp_path)}, timeout=300)
+    assert out.returncode == 0, out.stderr
+    assert "asked: The scene has changes that are not saved" in out.stdout
+    assert "Traceback" not in out.stderr and "RuntimeError" not in out.stderr, out.stderr
+
+
 def test_save_from_the_question_writes_the_file_and_clears_the_star(qtbot, window, tmp_path):
     path = tmp_path / "edited.json"
     assert window.open_scene(str(_saved_lecture(path)))
@@ -410,6 +482,33 @@ def test_save_from_the_question_writes_the_file_and_clears_the_star(qtbot, windo
     assert [o.name for o in window.model.scene.objects] == ["cube", "cone", "ground"]
     assert not window.isWindowModified()
     assert window.editor.stack.count() == 0  # a new scene starts a fresh history
+
+
+def test_undone_past_a_save_the_question_names_the_undone_edit_and_an_equal_scene_starts_afresh(
+        qtbot, window, tmp_path):
+    """Saved with a sphere added, then undone: the question read "(, …)" (nothing left to undo), and
+    the lecture scene loaded after Discard, equal to the one shown, kept the history: the title's star,
+    Redo of the edit, and the question again at quitting."""
+    path = tmp_path / "a.json"
+    assert window.open_scene(str(_saved_lecture(path)))
+    _editor_action(window, "sphere").trigger()
+    window.editor.save_action.trigger()
+    window.editor.undo_action.trigger()  # the scene is the lecture's again, unlike a.json
+    assert window.isWindowModified()
+    seen = []
+
+    def read_and_discard(box):
+        seen.append(box.text())
+        box.button(QMessageBox.StandardButton.Discard).click()
+
+    _answer_modal(qtbot, read_and_discard)
+    window.load_preset("lecture", presets.lecture_scene)
+    qtbot.waitUntil(lambda: bool(seen))
+    assert seen[0] == ("The scene has changes that are not saved (undone: Add sphere, …).\n"
+                       "Save them to a.json first?")
+    assert not window.isWindowModified() and window.editor.stack.count() == 0
+    assert not window.editor.redo_action.isEnabled()
+    assert window.editor.may_replace_scene()  # nothing to ask about
 
 
 def _saved_lecture(path):
