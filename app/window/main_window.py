@@ -45,7 +45,7 @@ from app.window.first_frame import AfterFirstFrame
 from app.window.scene_editor import SceneEditor
 from app.window.state import SceneModel
 from app.window.tabs import TABS
-from app.window.window_layout import LEFT_SHARE, fit_window, tabbed_dock
+from app.window.window_layout import LEFT_SHARE, dock_action, fit_window, tabbed_dock
 from app.window.workers import Renderer, RenderSchedule
 from core import presets
 from core.files import scene_file
@@ -360,9 +360,7 @@ class MainWindow(QMainWindow):
         self._action(view, "Show all panes", self.show_all_panes,
                      tip="Every tab and the 3D pane again, after a lesson showed only some")
         view.addSeparator()
-        lessons = self.lesson_dock.toggleViewAction()
-        lessons.setText("Lessons")
-        lessons.setShortcut(QKeySequence("Ctrl+Shift+L"))
+        lessons = dock_action(self.lesson_dock, "Lessons", "Ctrl+Shift+L")
         view.addAction(lessons)
         self._keyed_actions.append(lessons)
         acts = self.presentation.actions

@@ -25,7 +25,7 @@ from PySide6.QtGui import QAction, QKeySequence, QUndoStack
 from PySide6.QtWidgets import QMenu, QMessageBox
 
 from app.window.undo_commands import SceneEdit
-from app.window.window_layout import in_front, tabbed_dock
+from app.window.window_layout import dock_action, in_front, tabbed_dock
 from app.window.workers import Renderer
 from core import checked_edits
 from core.files import scene_file
@@ -125,9 +125,7 @@ class SceneEditor(QObject):
         menu.addMenu(self.add_menu)
         menu.addActions([self.duplicate_action, self.rename_action, self.delete_action])
         menu.addSeparator()
-        show = self.dock.toggleViewAction()
-        show.setText("Scene editor")
-        show.setShortcut(QKeySequence("Ctrl+Shift+E"))
+        show = dock_action(self.dock, "Scene editor", "Ctrl+Shift+E")
         self.keyed_actions.append(show)
         menu.addAction(show)
         bar = w.menuBar().actions()

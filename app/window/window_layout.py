@@ -16,6 +16,7 @@ scale changes or a lesson step is shown.
 from __future__ import annotations
 
 from PySide6.QtCore import Qt
+from PySide6.QtGui import QAction, QKeySequence
 from PySide6.QtWidgets import QDockWidget
 
 from views.dock_title import DockTitle
@@ -48,6 +49,28 @@ def in_front(dock: QDockWidget) -> bool:
     """Whether ``dock`` is seen: shown and, if tabbed with others, the tab in front (a dock behind
     another tab stays "visible" to Qt, only covered)."""
     return dock.isVisible() and not dock.visibleRegion().isEmpty()
+
+
+def dock_action(dock: QDockWidget, text: str, key: str) -> QAction:
+    """The View menu's entry for ``dock``, checked while it is in front: it brings the dock to the
+    front (shown, its tab raised) and hides it only when it is in front already.  (The dock's own
+    toggle hid a dock tabbed behind another, and showed it again behind.)"""
+    action = QAction(text, dock.parent())
+    action.setCheckable(True)
+    action.setShortcut(QKeySequence(key))
+
+    def toggle() -> None:
+        if in_front(dock):
+            dock.hide()
+        else:
+            dock.show()
+            dock.raise_()
+        action.setChecked(dock.isVisible())
+
+    action.triggered.connect(toggle)
+    dock.visibilityChanged.connect(action.setChecked)  # a tab chosen or covered: in front or not
+    action.setChecked(in_front(dock))
+    return action
 
 
 def left_share(scale: float) -> float:

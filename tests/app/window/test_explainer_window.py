@@ -7,9 +7,11 @@ import mpmath
 import numpy as np
 import pytest
 from PySide6.QtCore import Qt
+from PySide6.QtGui import QAction
 from PySide6.QtWidgets import QApplication
 from window_helpers import RENDER_TIMEOUT_MS
 
+from app.window.window_layout import in_front
 from core import presets
 from core.files.lesson_file import shipped_lessons
 from core.object_order.depth_formats import DEPTH_FORMATS
@@ -239,10 +241,31 @@ def test_z_test_and_depth_format_switches_set_the_raster_settings(qtbot, window)
 def test_the_lessons_dock_toggles_from_the_view_menu(qtbot, window):
     view = next(a.menu() for a in window.menuBar().actions() if a.text() == "&View")
     toggle = next(a for a in view.actions() if a.text() == "Lessons")
+    assert in_front(window.lesson_dock) and toggle.isChecked()
     toggle.trigger()
-    assert not window.lesson_dock.isVisible()
+    assert not window.lesson_dock.isVisible() and not toggle.isChecked()
     toggle.trigger()
     assert window.lesson_dock.isVisible()
+
+
+def test_ctrl_shift_l_and_e_bring_their_dock_forward_from_behind_another_tab(qtbot, window):
+    """Tabbed behind another dock, Lessons and the scene editor were hidden by their key's first press
+    and shown, still behind, by the second: the key now brings the dock to the front, and hides it
+    only when it is in front."""
+    lessons = next(a for a in window.findChildren(QAction) if a.text() == "Lessons")
+    editor = window.editor
+    editor_key = next(a for a in editor.keyed_actions if a.text() == "Scene editor")
+    window.exercise_dock.raise_()  # Exercises in front of Lessons and the scene editor
+    qtbot.waitUntil(lambda: in_front(window.exercise_dock))
+    assert not in_front(window.lesson_dock) and not lessons.isChecked()
+    lessons.trigger()  # Ctrl+Shift+L
+    qtbot.waitUntil(lambda: in_front(window.lesson_dock))
+    assert lessons.isChecked()
+    editor_key.trigger()  # Ctrl+Shift+E
+    qtbot.waitUntil(lambda: in_front(editor.dock))
+    assert not in_front(window.lesson_dock) and not lessons.isChecked()
+    editor_key.trigger()  # in front: hidden
+    assert not editor.dock.isVisible() and not editor_key.isChecked()
 
 
 def test_a_picked_buffer_pixel_follows_its_polygons_nearest_corner_to_the_screen(qtbot, window):
