@@ -333,9 +333,10 @@ def new_light(scene: Scene, at) -> dict:
             "name": unique_name("light", names(scene, "light"))}
 
 
-def read_object(value: dict, read_mesh=None):
-    """One object from its form, checked on its own (e.g. a mesh file, read in the background)."""
-    return scene_file.read_object(value, 0, 1, read_mesh=read_mesh)
+def read_object(value: dict, read_mesh=None, index: int = 0):
+    """One object from its form, checked on its own (e.g. a mesh file, read in the background), its
+    problems named as those of object ``index`` (where it is to go)."""
+    return scene_file.read_object(value, index, index + 1, read_mesh=read_mesh)
 
 
 # --- checking ------------------------------------------------------------------------

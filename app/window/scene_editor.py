@@ -74,6 +74,13 @@ class SceneEditor(QObject):
         self._title_changed(window.windowTitle())
         self._selection_changed(self.model.selection)
 
+    def start_rename(self) -> None:
+        """Rename the selection in the tree (F2), its dock brought to the front first: the tree's
+        editor opened unseen behind another tab, and typing there renamed the object."""
+        self.dock.show()
+        self.dock.raise_()
+        self.panel.start_rename()
+
     def _clean_changed(self, clean: bool) -> None:
         self.window.setWindowModified(not clean)
 
@@ -108,7 +115,7 @@ class SceneEditor(QObject):
         self.add_menu.addAction(self.add_light_action)
         self.duplicate_action = self._action("&Duplicate", self.duplicate, "Ctrl+D",
                                              "A copy of the selected object or light, in the same place")
-        self.rename_action = self._action("&Rename", self.panel.start_rename, "F2",
+        self.rename_action = self._action("&Rename", self.start_rename, "F2",
                                           "Type a new name for the selected object or light")
         self.delete_action = self._action("De&lete", self.delete, QKeySequence.StandardKey.Delete,
                                           "Delete the selected object or light")
@@ -254,11 +261,12 @@ class SceneEditor(QObject):
     def add_mesh_file(self, path) -> None:
         """Read the mesh file ``path`` in the background, then add it (one undo entry)."""
         value = checked_edits.new_mesh_file(self.model.scene, path)
+        index = len(self.model.scene.objects)  # where it goes: its problems are named so
         self.window.statusBar().showMessage(f"Reading {Path(path).name}…")
 
         def job(cancelled, progress):
             try:
-                return value, checked_edits.read_object(value, read_mesh)
+                return value, checked_edits.read_object(value, read_mesh, index)
             except SceneFileError as exc:
                 return value, exc
 

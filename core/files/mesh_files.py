@@ -27,6 +27,7 @@ from typing import NamedTuple
 import numpy as np
 
 from core.files import safe_files
+from core.files.checked_json import MAX_MAGNITUDE
 from core.files.scene_file import MAX_TRIANGLES, degenerate
 
 EXTENSIONS = (".obj", ".stl", ".ply")
@@ -92,10 +93,15 @@ def read_mesh(path) -> tuple[np.ndarray, np.ndarray]:
         raise MeshFileError(f"cannot read mesh file {path}: the file is damaged ({exc})") from None
     if len(faces) and not np.isfinite(vertices).all():
         raise MeshFileError(f"cannot read mesh file {path}: vertices are not finite numbers")
+    if len(faces) and np.abs(vertices).max() > MAX_MAGNITUDE:  # before any area: squares would overflow
+        raise MeshFileError(f"cannot read mesh file {path}: coordinates must be within "
+                            f"±{MAX_MAGNITUDE:,.0f}, found {np.abs(vertices).max():g}")
     zero_area = degenerate(vertices, faces)
     triangles = faces[~zero_area] if zero_area.any() else faces
     if len(triangles) == 0:
-        raise MeshFileError(f"mesh file has no triangles: {path}")
+        every = ("" if not len(faces) else " (its one triangle has zero area)" if len(faces) == 1
+                 else f" (all {len(faces):,} of its triangles have zero area)")
+        raise MeshFileError(f"mesh file has no triangles{every}: {path}")
     return vertices, np.ascontiguousarray(triangles)
 
 

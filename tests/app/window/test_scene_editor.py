@@ -318,6 +318,18 @@ def test_rename_duplicate_delete_from_the_edit_menu(qtbot, window):
     assert not _editor_action(window, "Duplicate").isEnabled()
 
 
+def test_f2_with_the_editor_behind_another_tab_brings_it_forward_to_rename(qtbot, window):
+    """The tree's name editor opened unseen behind the Exercises tab, and typing there renamed the
+    object."""
+    window.exercise_dock.raise_()
+    qtbot.waitUntil(lambda: in_front(window.exercise_dock))
+    window.model.set_selection(("object", 0))
+    _editor_action(window, "Rename").trigger()  # F2
+    qtbot.waitUntil(lambda: in_front(window.editor.dock))
+    line = window.editor.panel.tree.findChild(QLineEdit)
+    assert line is not None and line.isVisible() and line.text() == "cube"
+
+
 def test_delete_in_a_field_edits_the_text_not_the_scene(qtbot, window):
     model, panel = window.model, window.editor.panel
     model.set_selection(("object", 0))
@@ -394,7 +406,7 @@ def test_a_mesh_file_is_added_through_the_safe_reader(qtbot, window, tmp_path):
     _answer_modal(qtbot, read_and_close)
     window.editor.add_mesh_file(bad)
     qtbot.waitUntil(lambda: bool(said))
-    assert "broken.obj" in said[0] and "objects[0].path" in said[0]
+    assert "broken.obj" in said[0] and "objects[4].path" in said[0]  # the fifth object, were it added
     assert len(window.model.scene.objects) == 4
 
 

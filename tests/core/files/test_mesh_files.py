@@ -5,6 +5,7 @@ from __future__ import annotations
 import json
 import subprocess
 import sys
+import warnings
 
 import numpy as np
 import pytest
@@ -107,6 +108,12 @@ def test_zero_area_triangles_are_left_out(tmp_path):
         ("model", "x", r"unsupported mesh file type '\(no extension\)'"),
         ("empty.obj", "", "mesh file has no triangles"),
         ("points.obj", "v 0 0 0\nv 1 0 0\nl 1 2\n", "mesh file has no triangles"),
+        # In a line: no area (it was "no triangles" with no word why).
+        ("flat.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n",
+         r"no triangles \(its one triangle has zero area\)"),
+        # Beyond the range a scene allows: said so (it was "no triangles", its area overflowing to inf
+        # with numpy's warning on the terminal).
+        ("huge.obj", "v 0 0 0\nv 1e300 0 0\nv 0 1 0\nf 1 2 3\n", r"within ±1,000,000, found 1e\+300"),
         ("garbage.stl", b"\x00\x01garbage", "cannot read mesh file"),
         ("garbage.ply", "ply\nformat nonsense\n", "cannot read mesh file"),
     ],
@@ -117,8 +124,10 @@ def test_bad_files_give_a_value_error_naming_the_file(tmp_path, name, content, f
         path.write_bytes(content)
     elif content is not None:
         path.write_text(content)
-    with pytest.raises(ValueError, match=fragment) as info:
-        read_mesh(path)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # no RuntimeWarning either
+        with pytest.raises(ValueError, match=fragment) as info:
+            read_mesh(path)
     assert str(path) in str(info.value)
 
 
