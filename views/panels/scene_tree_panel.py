@@ -24,7 +24,7 @@ from __future__ import annotations
 import json
 
 import numpy as np
-from PySide6.QtCore import QEvent, Qt, Signal
+from PySide6.QtCore import QEvent, Qt, QTimer, Signal
 from PySide6.QtGui import QColor
 from PySide6.QtWidgets import (
     QColorDialog,
@@ -197,7 +197,8 @@ class _ColorField(_Field):
 
 
 class _Tree(QTreeWidget):
-    """The tree keeps the keys it moves with, even where they are also the observer's shortcuts."""
+    """The tree keeps the keys it moves with, even where they are also the observer's shortcuts, and its
+    names' column as wide as they are at any text size (at x2 "cube" showed as "c…")."""
 
     OWN_KEYS = {Qt.Key.Key_Up, Qt.Key.Key_Down, Qt.Key.Key_Left, Qt.Key.Key_Right,
                 Qt.Key.Key_Home, Qt.Key.Key_End}
@@ -206,6 +207,8 @@ class _Tree(QTreeWidget):
         if event.type() == QEvent.Type.ShortcutOverride and event.key() in self.OWN_KEYS:
             event.accept()
             return True
+        if event.type() == QEvent.Type.FontChange:
+            QTimer.singleShot(0, self, lambda: self.resizeColumnToContents(0))  # once the rows have it
         return super().event(event)
 
 

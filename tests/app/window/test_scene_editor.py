@@ -156,6 +156,17 @@ def test_at_1280x720_the_lecture_scenes_every_row_shows_in_the_tree(qtbot, windo
     qtbot.waitUntil(every_row_shown, timeout=5000)
 
 
+def test_at_twice_the_text_size_the_trees_names_show_whole(qtbot, window):
+    """The names' column kept its width at x1: at x2 "cube" read "c…" and "Objects (3)" "Obj…"."""
+    window.editor.dock.raise_()
+    tree = window.editor.panel.tree
+    window.presentation.set_scale(2.0)
+    # Qt's own measure of the column's widest name, its indentation and branch mark included.
+    names_whole = lambda: tree.columnWidth(0) >= tree.sizeHintForColumn(0) > 0  # noqa: E731
+    qtbot.waitUntil(names_whole, timeout=5000)
+    window.presentation.set_scale(1.0)
+
+
 def test_an_edit_redraws_only_what_it_changed_in_the_3d_pane(qtbot, window):
     editor, model = window.editor, window.model
     before = dict(window.scene_view.plotter.renderer.actors)
