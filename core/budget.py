@@ -88,7 +88,7 @@ def estimate(scene, mode: str, accel: str = "bvh", max_depth: int = 5,
     scene : core.scene.Scene
     mode : ``"raster"``, ``"raycast"`` or ``"raytrace"``.
     accel : image order: ``"none"`` tests every ray against every primitive.
-    max_depth : ray tracing: deepest bounce.
+    max_depth : ray tracing: deepest bounce (counted only where some surface mirrors or refracts).
     sphere_triangles : object order: triangles each analytic sphere is tessellated into.
 
     Examples
@@ -110,7 +110,11 @@ def estimate(scene, mode: str, accel: str = "bvh", max_depth: int = 5,
         seconds = triangles * SECONDS_PER_TRIANGLE + pixels * 1e-7
     else:
         lights = len(scene.lights)
-        rays = pixels * (1 + lights) * (1 if mode == "raycast" else 1 + max_depth)
+        # Bounces only where some surface mirrors or refracts (the effects plan's rule): a scene with
+        # none traces primary and shadow rays alone, in either mode.
+        bounces = max_depth if mode == "raytrace" and any(
+            o.material.reflectivity > 0 or o.material.transparency > 0 for o in scene.objects) else 0
+        rays = pixels * (1 + lights) * (1 + bounces)
         primitives = spheres + triangles
         if accel == "none":
             seconds = rays * primitives * SECONDS_PER_TEST
