@@ -305,7 +305,11 @@ class ExportMenu(QObject):
         self.exported.emit(path)
 
     def _fail(self, path: str, message: str) -> None:
-        QMessageBox.critical(self.window, "Export failed", f"Could not export {path}:\n\n{message}")
+        """Say why ``path`` was not written: the file's name once (the message may give its whole path),
+        and no exception's class name (an animation's writing failed on a worker, which adds one)."""
+        message = message.removeprefix(f"{OutputError.__name__}: ")
+        named = os.path.basename(path) if path in message else path
+        QMessageBox.critical(self.window, "Export failed", f"Could not export {named}:\n\n{message}")
 
     # ------------------------------------------------------------ animations
     def _steps_why_not(self, extension: str) -> str:

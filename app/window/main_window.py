@@ -450,12 +450,7 @@ class MainWindow(QMainWindow):
     def save_scene_dialog(self) -> None:
         path, _ = ask_save(self, "Save scene", "scene.json", "Scene files (*.json)") or ("", "")
         if path:
-            try:
-                scene_file.save(self.model.scene, path)
-            except OSError as exc:
-                QMessageBox.critical(self, "Cannot save scene", f"{path}:\n\n{exc}")
-            else:
-                self.editor.saved(path)
+            self.editor.save_to(path)
 
     def reset_scene(self) -> None:
         self.load_preset("lecture", presets.lecture_scene)

@@ -329,10 +329,15 @@ class SceneEditor(QObject):
         if path is None:
             self.window.save_scene_dialog()
             return self.stack.isClean()
+        return self.save_to(path)
+
+    def save_to(self, path) -> bool:
+        """Save the scene to ``path``, which is its file from then on; a dialog says why not."""
         try:
             scene_file.save(self.model.scene, path)
-        except OSError as exc:
-            QMessageBox.critical(self.window, "Cannot save scene", f"{path}:\n\n{exc}")
+        except OSError as exc:  # the message names the whole path: the head only the file's name
+            QMessageBox.critical(self.window, "Cannot save scene",
+                                 f"Could not save {Path(path).name}:\n\n{exc}")
             return False
         self.saved(path)
         return True

@@ -231,6 +231,7 @@ def test_an_animation_that_cannot_be_written_shows_a_dialog_naming_it(qtbot, win
     folder.rmdir()  # the folder goes away while the frames are made
     qtbot.waitUntil(lambda: bool(shown), timeout=EXPORT_TIMEOUT_MS)
     assert str(out) in shown[0] and "No such file or directory" in shown[0]
+    assert shown[0].count(str(out)) == 1 and "OutputError" not in shown[0]  # the path once, no class name
     assert not any(d.isVisible() for d in window.findChildren(QProgressDialog))
 
 

@@ -534,6 +534,18 @@ def test_undone_past_a_save_the_question_names_the_undone_edit_and_an_equal_scen
     assert window.editor.may_replace_scene()  # nothing to ask about
 
 
+def test_a_scene_that_cannot_be_saved_says_why_naming_the_file_once(qtbot, window, tmp_path, monkeypatch):
+    shown = []
+    monkeypatch.setattr(QMessageBox, "critical", lambda _parent, title, text, *_: shown.append((title, text)))
+    _editor_action(window, "sphere").trigger()
+    path = tmp_path / "gone" / "a.json"  # no such folder
+    assert not window.editor.save_to(path)
+    ((title, text),) = shown
+    assert title == "Cannot save scene" and text.startswith("Could not save a.json:\n\n")
+    assert text.count(str(path)) == 1 and "No such file or directory" in text
+    assert window.isWindowModified() and window.scene_path != path and not path.exists()
+
+
 def _saved_lecture(path):
     scene_file.save(presets.lecture_scene(), path)
     return path
