@@ -270,22 +270,24 @@ _PIPELINE_OF = MappingProxyType({
     "ray_event": "image order", "hit_t": "image order", "ray_tree_colours": "image order"})
 
 
+def _asked(ex: Exercise):
+    """What the exercise asks about: its fact (a choice), its number's quantity, or its order's
+    fields; None for a pixel or a picture to find."""
+    return {"choose_one": ex.args.get("fact"), "number": ex.args.get("value"),
+            "order": ex.args}.get(ex.kind)
+
+
 def named_pane(ex: Exercise) -> str | None:
     """The tab (``"object order"`` or ``"image order"``) whose pane shows the pixel the exercise
     names, or None."""
-    if ex.kind == "order":
-        return _PIPELINE_OF.get(ex.args["by"])
-    source = ex.args.get("fact") if ex.kind == "choose_one" else ex.args.get("value")
-    return None if source is None else _PIPELINE_OF.get(source.get("fact", source.get("of")))
+    asked = _asked(ex)
+    return None if asked is None else _PIPELINE_OF.get(asked.get("fact", asked.get("of", asked.get("by"))))
 
 
 def named_pixel(ex: Exercise) -> tuple[int, int] | None:
     """The pixel an exercise asks about by its coordinates (its fact's, its number's or its ray tree's),
     or None (a pixel exercise asks the student for one; others name none)."""
-    if ex.kind == "order":
-        return ex.args.get("pixel")
-    source = ex.args.get("fact") if ex.kind == "choose_one" else ex.args.get("value")
-    pixel = source.get("pixel") if source is not None else None
+    pixel = (_asked(ex) or {}).get("pixel")
     return tuple(pixel) if isinstance(pixel, (list, tuple)) else None
 
 

@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import random
 
-from PySide6.QtCore import QEvent, QSettings, Qt, Signal
+from PySide6.QtCore import QEvent, QSettings, Qt, QTimer, Signal
 from PySide6.QtWidgets import (
     QApplication,
     QButtonGroup,
@@ -275,7 +275,11 @@ class ExercisePanel(QWidget):
         self.order_list.clear()
         self.order_list.addItems(items)
         self.order_list.setCurrentRow(0)
-        rows = sum(self.order_list.sizeHintForRow(i) for i in range(len(items)))
+        self._fit_order()
+
+    def _fit_order(self) -> None:
+        """The order list as tall as its rows at the text size now."""
+        rows = sum(self.order_list.sizeHintForRow(i) for i in range(self.order_list.count()))
         self.order_list.setFixedHeight(rows + 2 * self.order_list.frameWidth() + 4)
 
     def move_item(self, step: int) -> None:
@@ -292,6 +296,8 @@ class ExercisePanel(QWidget):
                 and event.key() in (Qt.Key.Key_Up, Qt.Key.Key_Down):
             self.move_item(-1 if event.key() == Qt.Key.Key_Up else 1)
             return True
+        if watched is self.order_list and event.type() == QEvent.Type.FontChange:
+            QTimer.singleShot(0, self, self._fit_order)  # a new text size: rows of another height
         return super().eventFilter(watched, event)
 
     def _show_pictures(self, ex: Exercise, drawn: dict) -> None:

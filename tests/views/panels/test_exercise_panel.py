@@ -188,6 +188,10 @@ def test_an_order_is_made_from_the_keyboard_with_alt_up_and_down(panel, qtbot):
     items = panel.order_list
     assert [items.item(i).text() for i in range(3)] == ["red pane", "green pane", "blue pane"]
     assert items.height() < 6 * items.sizeHintForRow(0)  # as tall as its three rows, not a screenful
+    font = items.font()
+    font.setPointSizeF(2 * font.pointSizeF())
+    items.setFont(font)  # a text size twice as large: the rows still all show
+    qtbot.waitUntil(lambda: items.height() >= 3 * items.sizeHintForRow(0))
     items.setFocus()
     items.setCurrentRow(2)
     qtbot.keyClick(items, Qt.Key.Key_Up, Qt.KeyboardModifier.AltModifier)
