@@ -257,12 +257,17 @@ class MainWindow(QMainWindow):
 
         def show_me(step: int, pixel) -> None:
             panel.select(panel.step_index()[0], step)
+            shown = f"step {step + 1}, whose scene it asks about"
             if pixel is not None:
                 self.model.set_ray_pixel(tuple(pixel))
                 self.model.set_buffer_pixel(tuple(pixel))
+                shown += f", with pixel ({pixel[0]}, {pixel[1]}) picked"
                 pane = named_pane(exercises.exercise())  # the pane that reads that pixel
                 if pane is not None:
                     self.show_tab(pane.capitalize())
+                    shown += f" in the {pane.capitalize()} tab"
+            # In place of the step's own "Look at ...", which may name another object than the question.
+            self.statusBar().showMessage(f"Exercise {exercises.index + 1}: showing {shown}", 15000)
 
         exercises.show_me.connect(show_me)
         self.presentation.presenting_changed.connect(exercises.set_room)

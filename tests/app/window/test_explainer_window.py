@@ -69,6 +69,8 @@ def test_show_me_brings_the_step_the_pixel_the_question_names_and_the_pane_that_
     assert panel.step_index() == (LESSONS["two_orders"], 0)
     assert window.model.buffer_pixel == (155, 110) and window.model.ray_pixel == (155, 110)
     assert window.current.title == "Object order"
+    assert window.statusBar().currentMessage() == ("Exercise 1: showing step 1, whose scene it asks about, "
+                                                   "with pixel (155, 110) picked in the Object order tab")
 
 
 def test_every_shipped_lesson_step_shows_its_panes_scene_text_and_highlight(qtbot, window):
