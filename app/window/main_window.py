@@ -45,7 +45,7 @@ from app.window.first_frame import AfterFirstFrame
 from app.window.scene_editor import SceneEditor
 from app.window.state import SceneModel
 from app.window.tabs import TABS
-from app.window.window_layout import LEFT_SHARE, dock_action, fit_window, tabbed_dock
+from app.window.window_layout import LEFT_SHARE, dock_action, fit_window, keys_only_in_front, tabbed_dock
 from app.window.workers import Renderer, RenderSchedule
 from core import presets
 from core.files import scene_file
@@ -134,7 +134,7 @@ class MainWindow(QMainWindow):
         self.addDockWidget(Qt.DockWidgetArea.LeftDockWidgetArea, self.scene_pane)
         self.setCentralWidget(right)
 
-        dock = QDockWidget("Controls", self)
+        dock = self.controls_dock = QDockWidget("Controls", self)
         dock.setFeatures(QDockWidget.DockWidgetFeature.DockWidgetMovable)
         dock.setTitleBarWidget(QWidget())  # the group boxes carry the titles
         self._controls = QScrollArea()
@@ -144,6 +144,7 @@ class MainWindow(QMainWindow):
         self._fit_controls()
         self.addDockWidget(Qt.DockWidgetArea.LeftDockWidgetArea, dock)
         self.splitDockWidget(self.scene_pane, dock, Qt.Orientation.Vertical)
+        keys_only_in_front(dock)  # the first of the tabs beside it (tabbed_dock does the others)
         # The panel opens on the first lesson without applying it: the scene stays
         # the one given until the user picks a step.
         self.lesson_panel = LessonPanel()

@@ -42,7 +42,23 @@ def tabbed_dock(window, title: str, name: str, widget, beside):
     DockTitle(dock)
     window.addDockWidget(Qt.DockWidgetArea.LeftDockWidgetArea, dock)
     window.tabifyDockWidget(beside, dock)
+    keys_only_in_front(dock)
     return dock
+
+
+def keys_only_in_front(dock: QDockWidget) -> None:
+    """Keep the keyboard out of ``dock`` while another tab of its group covers it: Qt keeps a covered
+    dock "visible", only moved off screen, so Tab walked into its fields and title buttons unseen (and
+    an arrow key there moved the observer).  Its contents and title bar are disabled meanwhile, which
+    takes them out of the focus chain and keeps their size (hidden, they gave up their room and the
+    column narrowed)."""
+    def changed(seen: bool) -> None:
+        usable = seen or not dock.isVisible()  # a closed dock keeps them as they are
+        for part in (dock.widget(), dock.titleBarWidget()):
+            if part is not None:
+                part.setEnabled(usable)
+
+    dock.visibilityChanged.connect(changed)
 
 
 def in_front(dock: QDockWidget) -> bool:

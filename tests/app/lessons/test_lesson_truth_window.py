@@ -6,6 +6,7 @@ import json
 from PySide6.QtWidgets import QMessageBox
 from window_helpers import RENDER_TIMEOUT_MS
 
+from app.window.window_layout import in_front
 from core.files.lesson_file import FILES, shipped_lessons
 
 LESSONS = {lesson.id: i for i, lesson in enumerate(shipped_lessons())}
@@ -126,6 +127,8 @@ def test_exercises_follow_the_lesson_a_click_answers_and_progress_shows_in_the_l
     panel.select(k, 0)
     assert exercises.lesson is panel.current_lesson()
     assert exercises.question.text() == "Click a pixel in the cone's shadow."
+    window.exercise_dock.raise_()  # the student opens the Exercises tab
+    qtbot.waitUntil(lambda: in_front(window.exercise_dock))
     with qtbot.waitSignal(panel.step_selected):  # "show me": the shadow step, a pixel in the shadow
         exercises.show_button.click()
     qtbot.waitUntil(lambda: window.model.ray_pixel is not None, timeout=RENDER_TIMEOUT_MS)

@@ -64,6 +64,8 @@ def test_show_me_brings_the_step_the_pixel_the_question_names_and_the_pane_that_
     panel, exercises = window.lesson_panel, window.exercise_panel
     panel.select(LESSONS["two_orders"], 1)
     exercises.set_lesson(panel.current_lesson())
+    window.exercise_dock.raise_()
+    qtbot.waitUntil(lambda: in_front(window.exercise_dock))
     assert "(155, 110)" in exercises.question.text() and "z-buffer" in exercises.question.text()
     exercises.show_button.click()
     assert panel.step_index() == (LESSONS["two_orders"], 0)
@@ -138,6 +140,8 @@ def test_pagedown_walks_the_zbuffer_lesson_from_anywhere_and_nothing_else_takes_
     oo = window.tab("object order").widget
     spin = window.camera_panel.eye[0]
     distance_before = spin.value()
+    window.controls_dock.raise_()  # its fields take the keyboard only in front
+    qtbot.waitUntil(lambda: in_front(window.controls_dock))
     for k, step in enumerate(lesson.steps):
         if k:
             target = oo.scrubber.slider if k % 2 else spin  # widgets that would page or step on their own

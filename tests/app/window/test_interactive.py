@@ -14,6 +14,7 @@ from PySide6.QtGui import QWheelEvent
 from PySide6.QtWidgets import QApplication
 from window_helpers import RENDER_TIMEOUT_MS
 
+from app.window.window_layout import in_front
 from core import presets, shapes
 from core.files import scene_file
 from core.image_order.ray_tracing import render_trace
@@ -185,6 +186,8 @@ def test_walk_keys_move_eye_and_target_by_a_tenth_of_the_distance(qtbot, window,
 def test_a_focused_number_box_takes_the_arrow_keys(qtbot, window):
     window.activateWindow()
     qtbot.waitUntil(window.isActiveWindow)
+    window.controls_dock.raise_()  # its fields take the keyboard only in front
+    qtbot.waitUntil(lambda: in_front(window.controls_dock))
     box = window.camera_panel.near
     box.setFocus()
     qtbot.waitUntil(box.hasFocus)
@@ -193,6 +196,31 @@ def test_a_focused_number_box_takes_the_arrow_keys(qtbot, window):
     cam = window.model.camera
     assert cam.near == pytest.approx(before.near + box.singleStep())
     assert cam.eye == before.eye  # the observer did not orbit
+
+
+def test_tab_never_walks_into_a_dock_covered_by_another_tab(qtbot, window):
+    """Qt keeps a dock tabbed behind another "visible", only moved off screen: Tab walked from the
+    scene editor into the Controls, Lessons and Exercises behind it, and an arrow key there moved the
+    observer unseen."""
+    window.activateWindow()
+    qtbot.waitUntil(window.isActiveWindow)
+    window.editor.dock.raise_()
+    qtbot.waitUntil(lambda: in_front(window.editor.dock))
+    covered = [window.controls_dock, window.lesson_dock, window.exercise_dock]
+    assert not any(in_front(dock) for dock in covered)
+    window.editor.panel.tree.setFocus()
+    qtbot.waitUntil(window.editor.panel.tree.hasFocus)
+    reached = []
+    for _ in range(80):  # round the window's whole focus chain
+        qtbot.keyClick(QApplication.focusWidget(), Qt.Key.Key_Tab)
+        reached.append(QApplication.focusWidget())
+    assert window.editor.panel.tree in reached  # round and back
+    assert not [w for w in reached if any(dock.isAncestorOf(w) for dock in covered)]
+    window.controls_dock.raise_()  # in front again, its fields take the keyboard
+    qtbot.waitUntil(lambda: in_front(window.controls_dock))
+    box = window.camera_panel.eye[0]
+    box.setFocus()
+    qtbot.waitUntil(box.hasFocus)
 
 
 def test_eye_boxes_take_the_whole_range_a_scene_file_allows(qtbot, window):

@@ -35,6 +35,8 @@ def window(qtbot):
     win.show()
     qtbot.waitUntil(lambda: win.showing_full("image order"), timeout=RENDER_TIMEOUT_MS)
     qtbot.waitUntil(lambda: win.scene_view.view is not None, timeout=RENDER_TIMEOUT_MS)  # the 3D pane
+    win.editor.dock.raise_()  # in front, as when a user edits (a covered dock takes no keys)
+    qtbot.waitUntil(lambda: in_front(win.editor.dock))
     yield win
     win.editor.stack.setClean()
     win.close()
@@ -644,8 +646,9 @@ def test_clicking_an_object_in_the_3d_pane_selects_it(qtbot, window):
 
 def test_clicking_an_object_during_a_lesson_keeps_the_lesson_in_front(qtbot, window):
     view, model = window.scene_view, window.model
+    window.lesson_dock.raise_()
     window.lesson_panel.select(0, 0)  # a lesson step is shown: its words are in the left dock
-    assert in_front(window.lesson_dock)
+    qtbot.waitUntil(lambda: in_front(window.lesson_dock))
     at = view.widget_pos(_centre(model.scene.objects[0]))
     assert view.grabbable_at(at) is None
     qtbot.mouseClick(view.plotter, Qt.MouseButton.LeftButton, pos=at.toPoint())
