@@ -21,6 +21,7 @@ works in sRGB, as screens do, and converts.
 
 from __future__ import annotations
 
+import html
 import json
 
 import numpy as np
@@ -360,7 +361,8 @@ class SceneTreePanel(QWidget):
         kind = item[0]
         what = _type_name(scene.objects[item[1]]) if kind == "object" else kind
         extra = _mesh_note(scene.objects[item[1]]) if kind == "object" else ""
-        self.title.setText(f"<b>{checked_edits.name_of(scene, item)}</b> — {what}{extra}")
+        self.title.setText(f"<b>{html.escape(_shortened(checked_edits.name_of(scene, item)))}</b> — "
+                           f"{html.escape(what + extra)}")
 
     def _build(self, item, specs) -> None:
         while self.form.rowCount():
@@ -403,6 +405,16 @@ def _type_name(obj) -> str:
     if not isinstance(obj, Mesh):
         return "sphere"
     return (obj.source or {}).get("type", "mesh")
+
+
+#: The most of a name the fields' title shows: one without spaces cannot wrap, and longer it widened
+#: the fields beyond the dock (the name's own box holds it whole).
+TITLE_NAME_CHARS = 40
+
+
+def _shortened(name: str) -> str:
+    """``name``, cut to :data:`TITLE_NAME_CHARS` characters with "…" where it is longer."""
+    return name if len(name) <= TITLE_NAME_CHARS else name[:TITLE_NAME_CHARS - 1] + "…"
 
 
 def _mesh_note(obj) -> str:

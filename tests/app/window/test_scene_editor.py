@@ -230,6 +230,27 @@ def test_editing_one_component_leaves_the_others_exactly_as_they_were(qtbot, win
     assert model.scene.objects[3].center == (x, 2.0, -0.5)
 
 
+def test_a_long_or_marked_up_name_keeps_the_fields_in_view_and_reads_as_typed(qtbot, window):
+    """A 5000-character name without spaces widened the fields beyond the dock (the title above them
+    cannot wrap it), and a name with "<" was read as markup."""
+    model, panel = window.model, window.editor.panel
+    cube, *others = model.scene.objects
+    model.set_scene(replace(model.scene, objects=(replace(cube, name="x" * 5000), *others)), edit=True)
+    model.set_selection(("object", 0))
+    z = panel.fields["center"].boxes[2]
+
+    def whole_in_view():
+        right = z.mapTo(panel, z.rect().topRight()).x()
+        return z.isVisible() and right <= panel.width()
+
+    qtbot.waitUntil(whole_in_view)
+    assert panel.fields["name"].boxes[0].text() == "x" * 5000  # the name's own box holds all of it
+    marked = replace(cube, name="<i>crate</i> & co")
+    model.set_scene(replace(model.scene, objects=(marked, *others)), edit=True)
+    model.set_selection(("object", 0))
+    assert "&lt;i&gt;crate&lt;/i&gt; &amp; co" in panel.title.text()
+
+
 def test_the_old_value_typed_again_clears_the_red_problem(qtbot, window):
     model, panel = window.model, window.editor.panel
     model.set_selection(("object", 0))
