@@ -88,7 +88,7 @@ def estimate(scene, mode: str, accel: str = "bvh", max_depth: int = 5,
     scene : core.scene.Scene
     mode : ``"raster"``, ``"raycast"`` or ``"raytrace"``.
     accel : image order: ``"none"`` tests every ray against every primitive.
-    max_depth : ray tracing: deepest bounce (counted only where some surface mirrors or refracts).
+    max_depth : ray tracing: deepest bounce (counted only where the effects plan traces reflected rays).
     sphere_triangles : object order: triangles each analytic sphere is tessellated into.
 
     Examples
@@ -110,10 +110,11 @@ def estimate(scene, mode: str, accel: str = "bvh", max_depth: int = 5,
         seconds = triangles * SECONDS_PER_TRIANGLE + pixels * 1e-7
     else:
         lights = len(scene.lights)
-        # Bounces only where some surface mirrors or refracts (the effects plan's rule): a scene with
-        # none traces primary and shadow rays alone, in either mode.
-        bounces = max_depth if mode == "raytrace" and any(
-            o.material.reflectivity > 0 or o.material.transparency > 0 for o in scene.objects) else 0
+        # Bounces only where the effects plan traces them (some surface mirrors or refracts): a scene
+        # with none traces primary and shadow rays alone, in either mode.
+        from core.image_order.effects_plan import effects_plan
+
+        bounces = max_depth if mode == "raytrace" and effects_plan(scene, mode).reflection_rays else 0
         rays = pixels * (1 + lights) * (1 + bounces)
         primitives = spheres + triangles
         if accel == "none":

@@ -118,6 +118,7 @@ class _Field(QWidget):
         layout.setContentsMargins(0, 0, 0, 0)
         layout.setSpacing(3)
         self.boxes: list[QLineEdit] = []
+        self._set: list = []  # the value given (set_value), component by component
         for c in components or [None]:
             if c is not None:
                 layout.addWidget(QLabel(c))
@@ -144,8 +145,7 @@ class _Field(QWidget):
     def value(self):
         """The field's value: what was typed in the boxes the user changed, the value given for the
         others (editing y of a centre leaves x as it was, not rounded to what its box shows)."""
-        kept = getattr(self, "_set", [])
-        values = [kept[k] if k < len(kept) and not box.isModified() else read_text(box.text())
+        values = [self._set[k] if k < len(self._set) and not box.isModified() else read_text(box.text())
                   for k, box in enumerate(self.boxes)]
         return values if self.vector else values[0]
 
