@@ -75,6 +75,20 @@ def test_out_naming_a_mesh_file_of_the_scene_is_refused(tmp_path):
     assert obj.read_bytes() == before
 
 
+@pytest.mark.parametrize("vertices, fragment", [
+    ("v 0 0 0\nv 1e300 0 0\nv 0 1 0\n", "coordinates must be within ±1,000,000, found 1e+300"),
+    ("v 0 0 0\nv 1 0 0\nv 2 0 0\n", "no triangles (its one triangle has zero area)"),
+])
+def test_a_mesh_file_out_of_range_or_flat_is_one_line_naming_why(tmp_path, vertices, fragment):
+    """A coordinate of 1e300 was called "no triangles", after numpy's overflow warning on the terminal."""
+    (tmp_path / "tri.obj").write_text(vertices + "f 1 2 3\n")
+    scene = tmp_path / "s.json"
+    scene.write_text(json.dumps({"objects": [{"type": "mesh_file", "path": "tri.obj"}]}))
+    result = _run("render", str(scene), "--out", str(tmp_path / "image.png"))
+    _clean_refusal(result, "objects[0].path", fragment)
+    assert "Warning" not in result.stderr and not (tmp_path / "image.png").exists()
+
+
 @pytest.mark.parametrize(
     "option, name, fragment",
     [
