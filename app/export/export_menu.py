@@ -48,7 +48,6 @@ from app.export.image_files import (
 from app.export.pane_pictures import PanePicture, tab_pictures
 from app.export.picture_sheet import four_views
 from app.export.ray_tree_json import ray_tree_json
-from app.lessons.runner import LESSON_OVERLAY
 from app.window import render_budget
 from app.window.workers import Renderer
 from core import budget
@@ -246,7 +245,7 @@ class ExportMenu(QObject):
             levels = view.picture(SCREENSHOT_SCALE)
         finally:
             if only is not None:  # back to what the visible tab shows
-                view.show_overlays_only((*self.window.current.overlays, LESSON_OVERLAY))
+                self.window.show_overlays()
         return self._write(path, lambda: write_image(path, srgb_to_linear(levels / 255.0)))
 
     def export_ray_tree_png(self, path: str) -> bool:

@@ -30,7 +30,7 @@ from core.srgb import srgb_to_linear
 from views.images.depth_view import DepthView
 from views.images.image_grid import ImageGrid
 from views.images.image_view import ImageView
-from views.panels.stale_cover import covered_with
+from views.panels.pane_cover import covered_with
 
 
 @dataclass(frozen=True)

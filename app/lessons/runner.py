@@ -23,6 +23,10 @@ SCENE_PANE = "scene 3D"
 """The lesson name of the 3D pane (the others are tab titles)."""
 LESSON_OVERLAY = "lesson"
 """The 3D overlay that marks a step's highlighted object or face; shown with every tab."""
+FACE_SIDE_OVERLAY = "lesson: face side"
+"""The words on a highlighted face's normal, "N: front face" or "N: back face": the culling test's
+result, kept apart from :data:`LESSON_OVERLAY` so that the window can withhold them while an exercise
+asks for that result."""
 MODEL_OVERLAYS = {"bounding spheres": "spheres", "grid cells": "grid", "frustum": "frustum"}
 """Lesson overlay names and the model's names for them."""
 OBJECT_STYLE = {"color": "#ffd400", "style": "wireframe", "line_width": 3}
@@ -61,8 +65,9 @@ def _top(obj) -> np.ndarray:
     return np.array([(low[0] + high[0]) / 2, high[1] + lift, (low[2] + high[2]) / 2])
 
 
-def _normal_parts(corners: np.ndarray, eye) -> list:
-    """The face's outward normal as an arrow from its centroid, labelled with where it points."""
+def _normal_parts(corners: np.ndarray, eye) -> tuple[list, list]:
+    """The face's outward normal as an arrow from its centroid, and its label saying where it points
+    (for :data:`FACE_SIDE_OVERLAY`)."""
     import pyvista as pv
 
     from views.scene3d.scene_overlays import LABEL_PT
@@ -75,8 +80,8 @@ def _normal_parts(corners: np.ndarray, eye) -> list:
     toward = float(np.dot(normal, np.asarray(eye, dtype=float) - centroid)) > 0  # the culling test
     words = "N: front face" if toward else "N: back face"  # short: it must fit the pane at x2
     tip = pv.PolyData(np.array([centroid + 1.15 * size * normal]))
-    return [(pv.Arrow(start=centroid, direction=normal, scale=size), {"color": NORMAL_COLOR}),
-            (set_labels(tip, [words]), {"label_size": LABEL_PT, "color": NORMAL_COLOR})]
+    return ([(pv.Arrow(start=centroid, direction=normal, scale=size), {"color": NORMAL_COLOR})],
+            [(set_labels(tip, [words]), {"label_size": LABEL_PT, "color": NORMAL_COLOR})])
 
 
 FLAT = 0.1
@@ -144,6 +149,7 @@ class LessonRunner:
         self.step = None
         self.highlighted = ""
         self.window.scene_view.set_overlay(LESSON_OVERLAY, [])
+        self.window.scene_view.set_overlay(FACE_SIDE_OVERLAY, [])
         self.projector.show_point(None)
         if self.window.statusBar().currentMessage().startswith("Look at "):
             self.window.statusBar().clearMessage()
@@ -195,7 +201,7 @@ class LessonRunner:
 
     def _highlight(self, scene: Scene, highlight) -> None:
         w = self.window
-        parts, words, vertex_point = [], [], None
+        parts, side, words, vertex_point = [], [], [], None
         image_order = w.tab("image order").widget
         image_order.ray_kind = highlight.get("ray")
         image_order.tree.select_kind(image_order.ray_kind)
@@ -214,8 +220,8 @@ class LessonRunner:
             face = highlight["face"]
             mesh = _find(scene, face["object"])
             corners = mesh.vertices[mesh.triangles[face["triangle"]]]
-            parts += polygon_parts(corners)
-            parts += _normal_parts(np.asarray(corners, dtype=float), scene.camera.eye)
+            arrow, side = _normal_parts(np.asarray(corners, dtype=float), scene.camera.eye)
+            parts += polygon_parts(corners) + arrow
             words.append(f"triangle {face['triangle']} of {mesh.name!r}")
         if "vertex" in highlight:
             vertex = highlight["vertex"]
@@ -235,6 +241,7 @@ class LessonRunner:
             words.append(f"pixel {tuple(highlight['pixel'])}")
         parts += _name_parts(named_objects(scene, self.step.text if self.step is not None else ""), scene)
         w.scene_view.set_overlay(LESSON_OVERLAY, parts)
+        w.scene_view.set_overlay(FACE_SIDE_OVERLAY, side)
         self.projector.show_point(vertex_point)
         self.highlighted = ", ".join(words)
         if self.highlighted:

@@ -37,6 +37,7 @@ from app.lessons.exercise_jobs import ExerciseJobs
 from app.lessons.fact_check import LessonFactCheck
 from app.lessons.recorder import LessonRecorder
 from app.lessons.runner import LESSON_OVERLAY, LessonRunner
+from app.lessons.withheld_answers import WithheldAnswers
 from app.process.lock_turns import hand_over_often
 from app.process.long_lived import set_aside_once_loaded
 from app.window import render_budget, session
@@ -167,6 +168,7 @@ class MainWindow(QMainWindow):
         self._keyed_actions += self.editor.keyed_actions
         self.lesson_panel.step_selected.connect(self.apply_lesson_step)
         self._wire_exercises()
+        self.withheld_answers = WithheldAnswers(self)
         self.fact_check = LessonFactCheck(self)  # File → Open lesson: are the new lesson's facts true?
         self.lesson_panel.lesson_opened.connect(self.fact_check.check)
         self.presentation.presenting_changed.connect(self._presenting_changed)
@@ -489,9 +491,15 @@ class MainWindow(QMainWindow):
         """Stop the visible tab's render; what was drawn so far stays on screen."""
         self.renders.cancel()
 
+    def show_overlays(self) -> None:
+        """Show the 3D overlays of the visible tab, of the scene and of the lesson step (less what an
+        exercise waiting for its answer withholds)."""
+        self.scene_view.show_overlays_only((*self.current.overlays, *SCENE_OVERLAYS, LESSON_OVERLAY,
+                                            *self.withheld_answers.overlays()))
+
     def _tab_shown(self, *_) -> None:
         tab = self.current
-        self.scene_view.show_overlays_only((*tab.overlays, *SCENE_OVERLAYS, LESSON_OVERLAY))
+        self.show_overlays()
         self.renders.show_tab(tab)
         self._show_status(tab)
 

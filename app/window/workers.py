@@ -16,7 +16,7 @@ from PySide6.QtCore import QObject, QThreadPool, QTimer, Signal
 from app.window import render_budget
 from core import give_way
 from views.jobs import JobRun, JobRunner
-from views.panels.stale_cover import cover, uncover
+from views.panels.pane_cover import cover, uncover
 
 PROGRESS_PER_SECOND = 30
 

@@ -284,6 +284,19 @@ def named_pane(ex: Exercise) -> str | None:
     return None if asked is None else _PIPELINE_OF.get(asked.get("fact", asked.get("of", asked.get("by"))))
 
 
+RESULTS, PICTURES = "results", "pictures"
+"""What the window withholds while an exercise waits for its answer (:func:`withheld`)."""
+
+
+def withheld(ex: Exercise) -> tuple[str, ...]:
+    """What the window must not show while ``ex`` waits for its answer: always :data:`RESULTS`, the
+    readouts that state what the pipelines found in words and numbers (a picked pixel's history, ray
+    tree and worked math, the step drawn, a face's side): every exercise asks the student to predict
+    one of those; and for a ``pick_picture`` exercise also :data:`PICTURES`, the Four views, which
+    are the pictures offered, titled.  The pictures of the scene stay: the student reasons from them."""
+    return (RESULTS, PICTURES) if ex.kind == "pick_picture" else (RESULTS,)
+
+
 def named_pixel(ex: Exercise) -> tuple[int, int] | None:
     """The pixel an exercise asks about by its coordinates (its fact's, its number's or its ray tree's),
     or None (a pixel exercise asks the student for one; others name none)."""

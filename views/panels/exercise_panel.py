@@ -6,7 +6,9 @@ order), or pictures to pick from, and judges the answer with :func:`core.lessons
 asks the pipelines.  Feedback comes at once: right or wrong and one sentence
 why; a wrong answer is told what is wrong with it, never the answer, and gets a second try;
 Enter checks; "Show me" asks the window to show the step (and the pixel the question names, or
-for a pixel exercise a right pixel); "Reveal" gives the answer.
+for a pixel exercise a right pixel); "Reveal" gives the answer.  Until it is answered right or
+revealed, an exercise is :attr:`ExercisePanel.waiting_for` its answer, and the window withholds the
+readouts that would give it away (:mod:`app.lessons.withheld_answers`).
 
 While presenting, :meth:`ExercisePanel.set_room` puts the question to the room:
 large, with the answers hidden until Space (or "Show answers") reveals them.
@@ -116,10 +118,13 @@ class ExercisePanel(QWidget):
     show_me(int step, object pixel) : show the lesson step (0-based) the exercise is about and,
         when not None, pick the pixel ``(x, y)``.
     progressed(str lesson_id) : an exercise of that lesson was answered or revealed.
+    waiting(object exercise) : the exercise asked now waits for its answer; None once it is answered
+        right or revealed (or when nothing is asked).  See :attr:`waiting_for`.
     """
 
     show_me = Signal(int, object)
     progressed = Signal(str)
+    waiting = Signal(object)
 
     def __init__(self, progress: ExerciseProgress, run=None, parent: QWidget | None = None):
         """``run(work, done)`` runs ``work()`` (which asks the pipelines: up to a second on a large
@@ -131,6 +136,7 @@ class ExercisePanel(QWidget):
         self.index = 0
         self.tries = 0
         self.room = False
+        self.waiting_for: Exercise | None = None  # the exercise asked and not yet answered right or revealed
         self._pipelines: dict[int, StepPipelines] = {}
 
         self.position = QLabel()
@@ -223,6 +229,11 @@ class ExercisePanel(QWidget):
         self.tries = 0
         self.feedback.clear()
         self._fill()
+        self._wait_for(self.exercise())
+
+    def _wait_for(self, ex: Exercise | None) -> None:
+        self.waiting_for = ex
+        self.waiting.emit(ex)
 
     def _fill(self) -> None:
         ex = self.exercise()
@@ -379,6 +390,7 @@ class ExercisePanel(QWidget):
         if verdict.right:
             self._record(FIRST_TRY if self.tries == 1 else LATER)
             self._say(verdict.sentence, True)
+            self._wait_for(None)
         elif self.tries == 1:
             self._say(f"{verdict.sentence} Try once more.", False)
         else:
@@ -420,6 +432,7 @@ class ExercisePanel(QWidget):
         self._record(REVEALED)
         self._say(f"The answer: {answer}. {ex.why}".strip(), True)
         self.set_answers_hidden(False)
+        self._wait_for(None)
 
     def _show_me(self) -> None:
         ex = self.exercise()

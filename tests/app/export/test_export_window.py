@@ -202,7 +202,11 @@ def test_the_picked_pixels_ray_tree_is_saved_as_json_and_as_the_3d_pane(qtbot, w
         return picture_at(*args, **kwargs)
 
     monkeypatch.setattr(plotter, "picture_at", sized_picture)
+    window.model.set_overlay("frustum", True)
+    qtbot.waitUntil(lambda: "frustum" in window.scene_view.overlay_names())
+    shown = set(window.scene_view.overlay_names())
     _export(qtbot, window, "Ray tree/3D pane")
+    assert set(window.scene_view.overlay_names()) == shown  # the pane shows what it showed (the frustum went)
     picture = iio.imread(tmp_path / "tree.png")
     [(width, height)] = taken
     assert picture.shape == (2 * height, 2 * width, 3)  # twice the pane's size

@@ -6,6 +6,7 @@ import numpy as np
 from PySide6.QtGui import QAction, QKeySequence
 from window_helpers import RENDER_TIMEOUT_MS
 
+from app.lessons.runner import FACE_SIDE_OVERLAY
 from core.files.lesson_file import shipped_lessons
 
 LESSONS = shipped_lessons()
@@ -44,6 +45,7 @@ def test_leaving_the_step_for_another_scene_takes_its_marks_away(window, qtbot):
     ctrl_l.trigger()  # File → Lecture scene
     qtbot.waitUntil(lambda: "pyramid" not in [obj.name for obj in window.model.scene.objects])
     assert window.scene_view.overlay_parts("lesson") == []
+    assert window.scene_view.overlay_parts(FACE_SIDE_OVERLAY) == []
     assert window.lessons.highlighted == ""
     assert "Look at" not in window.statusBar().currentMessage()
     assert "Press Next (PageDown) to show this step again" in window.lesson_panel.text.text()

@@ -6,6 +6,7 @@ import json
 from PySide6.QtWidgets import QMessageBox
 from window_helpers import RENDER_TIMEOUT_MS
 
+from app.lessons.runner import FACE_SIDE_OVERLAY
 from app.window.window_layout import in_front
 from core.files.lesson_file import FILES, shipped_lessons
 
@@ -93,8 +94,10 @@ def test_an_opened_lesson_with_a_false_fact_shows_the_author_what_was_computed(w
 
 
 def _lesson_labels(window) -> list[str]:
-    return [str(t) for poly in window.scene_view.overlay_parts("lesson")
-            if "labels" in poly.point_data for t in poly.point_data["labels"]]
+    """The words the lesson writes in the 3D pane: objects' names and a face's side."""
+    view = window.scene_view
+    parts = [poly for overlay in ("lesson", FACE_SIDE_OVERLAY) for poly in view.overlay_parts(overlay)]
+    return [str(t) for poly in parts if "labels" in poly.point_data for t in poly.point_data["labels"]]
 
 
 def test_the_objects_the_text_names_are_labelled_in_the_3d_pane(window, qtbot):

@@ -18,7 +18,7 @@ from app.window.window_layout import in_front
 from core import presets, shapes
 from core.files import scene_file
 from core.image_order.ray_tracing import render_trace
-from views.panels.stale_cover import covered_with
+from views.panels.pane_cover import covered_with
 from views.scene3d.observer_keys import WALK_FRACTION
 from views.scene3d.scene_view import FOV_STEP_DEG
 

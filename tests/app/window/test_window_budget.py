@@ -22,7 +22,7 @@ from app.window import render_budget
 from core import budget, presets
 from core.files import scene_file
 from core.scene import PointLight
-from views.panels.stale_cover import covered_with
+from views.panels.pane_cover import covered_with
 
 PEAK = """
 def peak_bytes():  # the high-water mark of this process's resident memory

@@ -6,7 +6,7 @@ from PySide6.QtWidgets import QScrollArea, QWidget
 
 from core import hard_cases
 from views.panels.hard_cases_panel import HardCasesPanel
-from views.panels.stale_cover import cover
+from views.panels.pane_cover import cover
 
 
 @pytest.fixture
