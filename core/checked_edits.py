@@ -138,8 +138,11 @@ def position_of(scene: Scene, item: Item) -> np.ndarray | None:
 
 def with_field(scene: Scene, item: Item, key: str, value, base_dir=None, read_mesh=None) -> Scene:
     """``scene`` with the item's field ``key`` (``"radius"``, ``"material.color"``) set to ``value``
-    (a JSON value: number, list, string), checked as the loader checks a file."""
+    (a JSON value: number, list, string), checked as the loader checks a file, and a new name
+    checked to be free (:func:`_name_free`)."""
     kind, index = item
+    if key == "name":
+        _name_free(scene, item, value)
     keeps_geometry = kind == "object" and _is_plain_mesh(scene.objects[index])
     new = _small_form(scene, item, base_dir) if keeps_geometry else form(scene, item, base_dir)
     *parents, last = key.split(".")
@@ -153,6 +156,18 @@ def with_field(scene: Scene, item: Item, key: str, value, base_dir=None, read_me
                                geometry_of=objects[index])
         return replace(scene, objects=tuple(objects))
     return with_form(scene, item, new, base_dir, read_mesh)
+
+
+def _name_free(scene: Scene, item: Item, name) -> None:
+    """Refuse ``name`` for ``item`` when another object (another light, for a light) has it: lessons,
+    their facts and exercises pick objects out by name, and two of one name would leave the second
+    unreachable.  The item's own name, typed again, is fine."""
+    kind, index = item
+    taken = names(scene, kind)
+    if name != taken[index] and name in taken:
+        whose = f"{kind}s[{taken.index(name)}]"
+        raise scene_file.SceneFileError([f"{kind}s[{index}].name: {name!r} is already the name of {whose}; "
+                                         f"each {kind} needs a name of its own"])
 
 
 def with_form(scene: Scene, item: Item, value: dict, base_dir=None, read_mesh=None) -> Scene:

@@ -123,6 +123,19 @@ def test_removed_and_unique_names():
     assert checked_edits.unique_name("cone", ["cube"]) == "cone"
 
 
+def test_a_name_another_object_or_light_has_is_refused_saying_whose_it_is():
+    """Lessons and their facts pick objects out by name: a second "ball" could not be reached."""
+    scene = _scene()
+    assert _problems(lambda: checked_edits.with_field(scene, ("object", 1), "name", "ball")) == [
+        "objects[1].name: 'ball' is already the name of objects[0]; each object needs a name of its own"]
+    assert checked_edits.with_field(scene, ("object", 1), "name", "cube") == scene  # its own, typed again
+    assert checked_edits.with_field(scene, ("object", 1), "name", "crate").objects[1].name == "crate"
+    lit = Scene(lights=(PointLight((0.0, 5.0, 0.0), name="key"), PointLight((1.0, 5.0, 0.0), name="fill")))
+    assert _problems(lambda: checked_edits.with_field(lit, ("light", 1), "name", "key")) == [
+        "lights[1].name: 'key' is already the name of lights[0]; each light needs a name of its own"]
+    assert checked_edits.with_field(lit, ("light", 1), "name", "ball").lights[1].name == "ball"  # an object's
+
+
 def test_light_names_are_saved_and_loaded():
     scene = Scene(lights=(PointLight((0.0, 5.0, 0.0), name="key light"),))
     d = scene_file.to_dict(scene)

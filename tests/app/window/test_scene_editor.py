@@ -334,6 +334,18 @@ def test_rename_duplicate_delete_from_the_edit_menu(qtbot, window):
     _type_into(qtbot, editor.panel.fields["name"].boxes[0], "")
     assert editor.panel.problem("name") == "name: must not be empty"
     assert model.scene.objects[2].name == "spire" and editor.stack.count() == 2
+    _type_into(qtbot, editor.panel.fields["name"].boxes[0], "cube")  # another object's name
+    assert editor.panel.problem("name") == ("objects[2].name: 'cube' is already the name of objects[0]; "
+                                            "each object needs a name of its own")
+    _editor_action(window, "Rename").trigger()  # and in the tree
+    line = tree.findChild(QLineEdit)
+    line.selectAll()
+    qtbot.keyClicks(line, "cone")
+    qtbot.keyClick(line, Qt.Key.Key_Return)
+    qtbot.waitUntil(lambda: tree.findChild(QLineEdit) is None or not tree.findChild(QLineEdit).isVisible())
+    qtbot.waitUntil(lambda: tree.currentItem().text(0) == "spire")  # the tree reads the scene's name again
+    assert [o.name for o in model.scene.objects] == ["cube", "cone", "spire", "ground"]
+    assert editor.stack.count() == 2
 
     model.set_selection(("light", 0))
     _editor_action(window, "Duplicate").trigger()
