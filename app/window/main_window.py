@@ -68,6 +68,7 @@ from views.scene3d.observer_keys import MOUSE_GESTURES, OBSERVER_KEYS, EditorsKe
 from views.scene3d.scene_overlays import SCENE_OVERLAYS, SceneOverlays
 from views.text import math_view
 from views.text.elided_label import ElidedLabel, ElidedProgressBar
+from views.text.tab_titles import TitlesThatFit
 from views.text.text_dialog import text_dialog
 from views.user_settings import user_settings
 
@@ -95,6 +96,7 @@ class MainWindow(QMainWindow):
         self.tab_widget = QTabWidget()
         self.tab_widget.setElideMode(Qt.TextElideMode.ElideRight)  # every tab stays in view, however narrow
         self.tab_widget.setUsesScrollButtons(False)
+        self._tab_titles = TitlesThatFit(self.tab_widget, {})  # short ones before elided ones
         self.tabs: list = []
         self.renders = RenderSchedule(self.model, self)
         self.progress = ElidedProgressBar()
@@ -213,6 +215,7 @@ class MainWindow(QMainWindow):
         """Show ``tab`` (see :mod:`app.window.tabs` for what a tab provides) as the last tab."""
         self.tabs.append(tab)
         self.tab_widget.addTab(tab.widget, tab.title)
+        self._tab_titles.short[tab.title] = getattr(tab, "short_title", tab.title)
         self.renders.add(tab)
 
     def tab(self, name: str):

@@ -4,6 +4,8 @@ A tab is any object with
 
 - ``title`` : the tab's label; the window finds it by name,
   ``window.tab("image order")`` (case does not matter);
+- optionally ``short_title`` : its label when the tab bar is too narrow for the titles
+  (:mod:`views.text.tab_titles`);
 - ``widget`` : the QWidget shown under the tab;
 - ``overlays`` : names of the 3D-pane overlays that belong to it (shown only
   while it is visible; see :mod:`views.scene3d.scene_overlays`);
@@ -159,6 +161,7 @@ class ImageOrderTab:
     """
 
     title = "Image order"
+    short_title = "Image"
     overlays = IMAGE_ORDER_OVERLAYS
 
     def __init__(self, model):
@@ -250,6 +253,7 @@ class ObjectOrderTab:
     """Object order step by step: the recorded z-buffer render of the observer's view."""
 
     title = "Object order"
+    short_title = "Object"
     overlays = OBJECT_ORDER_OVERLAYS
 
     def __init__(self, model):
@@ -301,6 +305,7 @@ class FourViewsTab:
     """The lecture's four views: front, side and top orthographic, and the observer's perspective."""
 
     title = "Four views"
+    short_title = "Views"
     overlays = ()
     PANES = list(four_views.PANES)
 
