@@ -293,15 +293,26 @@ class _Tracer:
         work, cells = {"tests": 0, "bounds_tests": 0}, None
         if traced:  # the same query again, to count its work and list its cells
             from core.image_order.kernels.closest_hit import closest_hit
-            from core.image_order.kernels.shade import asks_bounds_first, may_be_shadowed
+            from core.image_order.kernels.shade import (
+                asks_bounds_first,
+                asks_its_sphere_first,
+                leaves_its_sphere,
+                may_be_shadowed,
+            )
 
             k, before = self.k, self.counters.copy()
             o, d = tuple(float(v) for v in origin), tuple(float(v) for v in direction)
-            # As the render: the ray may ask the bounding spheres of the objects that may shadow it
-            # first, and then searches the scene only if it meets one.
-            asked = asks_bounds_first(k.method, self.scaled, bool(rec[flat_layout.REC_FRONT] > 0.0))
-            if not asked or may_be_shadowed(k.lights, i, int(rec[flat_layout.REC_OBJECT]), k.geo, o, d,
-                                            self.t_start, distance, self.counters):
+            # As the render: from the inside of a sphere the ray tests that sphere first; from the
+            # outside it may ask the bounding spheres of the objects that may shadow it; it searches
+            # the scene unless either answered.
+            front, prim = bool(rec[flat_layout.REC_FRONT] > 0.0), int(rec[flat_layout.REC_PRIM])
+            searched = True
+            if asks_its_sphere_first(k.method, front, prim, k.geo[flat_layout.GEO_N_SPHERES]):
+                searched = leaves_its_sphere(k.geo, prim, o, d, self.t_start, distance, self.counters)[0] < 0
+            elif asks_bounds_first(k.method, self.scaled, front):
+                searched = may_be_shadowed(k.lights, i, int(rec[flat_layout.REC_OBJECT]), k.geo, o, d,
+                                           self.t_start, distance, self.counters)
+            if searched:
                 closest_hit(k.method, o, d, self.t_start, distance, True, k.geo, k.grid, k.bvh,
                             self.scratch, self.counters)
             work = self._work(before)

@@ -8,8 +8,9 @@ it
 1. rebuilds the hit point and the surface normal (see :mod:`core.image_order.ray_offset`
    for why the point is recomputed in the ``scaled`` mode);
 2. sends one shadow ray towards every light in front of the surface (unless
-   the effects plan says nothing can block that light) and adds the light's
-   Lambert and Phong terms if the ray reaches it (:mod:`core.image_order.shading`);
+   the effects plan says nothing can block that light; from the inside of a sphere it
+   tests that sphere first, which it must cross to reach a light outside) and adds the
+   light's Lambert and Phong terms if the ray reaches it (:mod:`core.image_order.shading`);
 3. prepares the reflected ray (mirror direction) at a reflective or
    transparent surface and the refracted ray (Snell's law) at a transparent
    one, with their coefficients (Fresnel's split, :mod:`core.image_order.optics`) and
@@ -32,6 +33,7 @@ from core.image_order.intersect_triangle import barycentric_point, ray_shear
 from core.image_order.kernels.accel_spheres import bounding_roots
 from core.image_order.kernels.bvh_traverse import bvh_closest
 from core.image_order.kernels.closest_hit import BVH, closest_hit
+from core.image_order.kernels.intersect import sphere_hit
 from core.image_order.kernels.jit import jit, jit_inline
 from core.image_order.kernels.primitives import no_hit
 from core.image_order.optics import dot, fresnel_dielectric, reflect, refract
@@ -137,6 +139,37 @@ def asks_bounds_first(method, scaled, front):
     return method == BVH and scaled and front
 
 
+@jit_inline
+def asks_its_sphere_first(method, front, prim, n_spheres):
+    """Whether a shadow ray tests its own sphere before it searches the scene
+    (:func:`leaves_its_sphere`): through the BVH, from the inside of an analytic sphere (the render and
+    the ray tree of one pixel both ask this)."""
+    return method == BVH and not front and prim < n_spheres
+
+
+@jit_inline
+def leaves_its_sphere(geo, prim, o, d, t_min, t_max, counters):
+    """The hit ``(prim, t, 0, 0, 0)`` where the shadow ray ``o + t d`` (``t_min <= t < t_max``), sent
+    from the inside of the analytic sphere ``prim``, crosses that sphere, or :func:`no_hit`.
+
+    A ray from a point inside a sphere to a light outside it must leave the sphere: a hit seen from
+    inside (a glass ball's rays, after refraction) lies in the shadow of its own sphere for every
+    light outside it.  This is the sphere's own test (:func:`~core.image_order.kernels.primitives.prim_hit`,
+    the same numbers in the same order), which the search of the scene makes too (the crossing lies
+    in the sphere's box, so its leaf is entered): where it finds the crossing the search would have
+    found a blocker (this one, or another first), so the light's status is the same, and the
+    search is not needed.  Where it finds none (a light inside the sphere), the caller searches.
+    Counted as one primitive test.
+    """
+    counters[flat_layout.PRIM_TESTS] += 1
+    rows, c = geo[flat_layout.GEO_ROWS], flat_layout.ROW_CENTER
+    t = sphere_hit(o[0], o[1], o[2], d[0], d[1], d[2], rows[prim, c], rows[prim, c + 1], rows[prim, c + 2],
+                   rows[prim, flat_layout.ROW_RADIUS], t_min, t_max)
+    if t < t_max:
+        return prim, t, 0.0, 0.0, 0.0
+    return no_hit()
+
+
 #: A sphere is passed by without finding its roots when the squared distance of its centre from
 #: the line exceeds ``r^2`` by this share of ``2 (|f|^2 + r^2) >= (|f| + r)^2`` (``f``: the line's
 #: start minus the centre): the distance then exceeds ``r`` by about ``1e-9 (|f| + r)`` or more,
@@ -230,16 +263,22 @@ def shade_hit(o, d, hit, weight, depth, materials, lights, opts, geo, grid, bvh,
             s_dist = math.sqrt(dot(sd, sd))
             sd = (sd[0] / s_dist, sd[1] / s_dist, sd[2] / s_dist)
             counters[flat_layout.SHADOW] += 1
-            if asks_bounds_first(method, scaled, front) and not may_be_shadowed(lights, i, ob, geo, so, sd,
-                                                                                 t_start, s_dist, counters):
-                blocker = no_hit()
-            elif method == BVH:
+            # From the inside of a sphere the ray tests that sphere first; from the outside it may ask
+            # the bounding spheres of the objects that may shadow it; it searches the scene unless
+            # either answered.
+            blocker, searched = no_hit(), True
+            if asks_its_sphere_first(method, front, prim, geo[flat_layout.GEO_N_SPHERES]):
+                blocker = leaves_its_sphere(geo, prim, so, sd, t_start, s_dist, counters)
+                searched = blocker[flat_layout.HIT_PRIM] < 0
+            elif asks_bounds_first(method, scaled, front):
+                searched = may_be_shadowed(lights, i, ob, geo, so, sd, t_start, s_dist, counters)
+            if searched and method == BVH:
                 # The any-hit traversal inlined here, as for the render's primary rays: called
                 # through closest_hit, every array of the tree is bound anew for each shadow ray.
                 blocker = bvh_closest(so, sd, ray_shear(sd[0], sd[1], sd[2]), t_start, s_dist, True, bvh,
                                       geo[flat_layout.GEO_N_SPHERES], scratch[flat_layout.SCRATCH_STACK],
                                       scratch[flat_layout.SCRATCH_STACK_T], counters)
-            else:
+            elif searched:
                 blocker = closest_hit(method, so, sd, t_start, s_dist, True, geo, grid, bvh, scratch,
                                       counters)
             if full:

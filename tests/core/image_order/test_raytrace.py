@@ -150,6 +150,25 @@ def test_glass_ball_pixel_refracts_in_and_out():
     assert out.traced and np.linalg.norm(out.origin - center) > radius
 
 
+def test_a_shadow_ray_from_inside_a_glass_ball_tests_the_ball_alone_and_the_image_is_every_methods():
+    """A ray from inside a ball to a light outside it must leave the ball: the BVH's shadow ray from
+    the inside tests that ball first and, finding the crossing, searches nothing else.  The light's
+    status is what a search of the whole scene finds: the image is bit for bit that of the methods
+    that search (no acceleration, the grid)."""
+    scene = small(presets_trace.mirror_and_glass())
+    center, radius = np.array([1.3, 0.75, 1.4]), 0.75
+    inside = [c for c in trace_pixel(scene, *pixel_of(scene, center), TraceSettings(accel="bvh")).children
+              if c.kind == "refraction"][0]
+    assert inside.front_face is False
+    [shadow] = [c for c in inside.children if c.kind == "shadow"]
+    assert np.linalg.norm(shadow.origin - center) < radius  # it starts inside
+    assert shadow.hit_name == "glass ball" and shadow.tests == 1 and shadow.bounds_tests == 0
+    # Where it leaves the ball: on the sphere, by hand.
+    assert np.linalg.norm(shadow.origin + shadow.t * shadow.direction - center) == pytest.approx(radius)
+    images = [render_trace(scene, TraceSettings(accel=accel)).color for accel in ("bvh", "none", "grid")]
+    assert np.array_equal(images[0], images[1]) and np.array_equal(images[0], images[2])
+
+
 def test_total_internal_reflection_inside_a_glass_block():
     glass = Material(transparency=1.0, ior=1.5)
     scene = Scene(camera=presets_trace.mirror_and_glass().camera.replace(eye=(0.0, 3.0, 4.0),
