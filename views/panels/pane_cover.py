@@ -9,7 +9,8 @@ Two kinds (:data:`KINDS`):
   (one of them may be what brings it back).
 - ``"answer"``: a readout that would give away the answer to the exercise being
   asked (:func:`core.lessons.exercises.withheld`); an opaque sheet hides it until
-  the exercise is answered or revealed.
+  the exercise is answered or revealed, and the readout is disabled meanwhile, so
+  that Tab does not walk into it unseen (nor a screen reader read it).
 
 :func:`cover` lays a sheet over a pane, :func:`uncover` takes it away, :func:`covered_with`
 says why a pane is covered.
@@ -59,13 +60,17 @@ def cover(pane: QWidget, why: str, kind: str = STALE) -> None:
     sheet.setText(why)
     sheet.show()
     sheet.raise_()
+    if kind == ANSWER:
+        pane.setEnabled(False)
 
 
 def uncover(pane: QWidget, kind: str = STALE) -> None:
     """Take ``pane``'s cover of ``kind`` off, if it has one."""
     sheet = _found(pane, kind)
-    if sheet is not None:
+    if sheet is not None and not sheet.isHidden():
         sheet.hide()
+        if kind == ANSWER:
+            pane.setEnabled(True)
 
 
 def covered_with(pane: QWidget, kind: str = STALE) -> str | None:

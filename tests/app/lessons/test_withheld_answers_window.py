@@ -50,11 +50,12 @@ def test_the_ray_tree_that_names_the_blocker_is_covered_until_the_question_is_an
     why = covered_with(panel.details, ANSWER)
     assert why is not None and why.startswith("Hidden while exercise 2 waits for your answer")
     assert isinstance(_seen_at_centre(panel.tree), PaneCover)
+    assert not panel.tree.isEnabled()  # Tab does not walk into it unseen
     assert _choose(qtbot, exercises, "cube").startswith("“cube” is not the answer")
     assert covered_with(panel.details, ANSWER) is not None
     assert _choose(qtbot, exercises, "cone").startswith("Right")
     assert covered_with(panel.details, ANSWER) is None
-    assert _seen_at_centre(panel.tree) is panel.tree.viewport()
+    assert _seen_at_centre(panel.tree) is panel.tree.viewport() and panel.tree.isEnabled()
     exercises.go(0)  # asked again: "Click a pixel in the cone's shadow."
     assert covered_with(panel.details, ANSWER) is not None
 
