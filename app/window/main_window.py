@@ -57,6 +57,7 @@ from core.presets_trace import PRESETS_TRACE
 from core.scene import Scene
 from views.dock_title import DockTitle
 from views.file_dialogs import ask_open, ask_save
+from views.images.image_view import PICTURE_KEYS
 from views.keyboard_focus import follow_focus
 from views.on_screen import KeepWindowsOnScreen
 from views.panels.camera_panel import CameraPanel
@@ -259,7 +260,7 @@ class MainWindow(QMainWindow):
         panel, exercises = self.lesson_panel, self.exercise_panel
         panel.step_selected.connect(lambda _step: exercises.set_lesson(panel.current_lesson()))
         for tab in ("image order", "object order"):
-            self.tab(tab).widget.image.pixel_clicked.connect(exercises.click)
+            self.tab(tab).widget.image.pixel_chosen.connect(exercises.click)  # a click, or Enter
 
         def show_me(step: int, pixel) -> None:
             panel.select(panel.step_index()[0], step)
@@ -391,13 +392,14 @@ class MainWindow(QMainWindow):
 
     def keys_text(self) -> str:
         """Every keyboard shortcut and mouse gesture, one a line."""
-        lines = ["Keys (a focused number box keeps the arrow keys for itself):"]
+        lines = ["Keys (a focused number box or picture keeps the arrow keys for itself):"]
         native = QKeySequence.SequenceFormat.NativeText
         lines += [f"  {' or '.join(k.toString(native) for k in a.shortcuts()):<24} "
                   f"{a.text().replace('&', '')}" for a in self._keyed_actions]
         lines += [f"  {'PageDown':<24} Next lesson step (from anywhere)",
                   f"  {'PageUp':<24} Previous lesson step (from anywhere)",
                   f"  {'Esc':<24} Cancel the render in progress (while presenting: leave full screen)",
+                  *(f"  {keys:<24} {what}" for keys, what in PICTURE_KEYS),
                   "", "Mouse in the 3D pane:"]
         lines += [f"  {gesture}: {what}" for gesture, what in MOUSE_GESTURES]
         return "\n".join(lines)

@@ -30,7 +30,7 @@ class ImageGrid(QWidget):
             heading = QLabel(f"<b>{title}</b>")
             heading.setWordWrap(True)
             layout.addWidget(heading)
-            self.views[key] = ImageView(placeholder="rendering…")
+            self.views[key] = ImageView(placeholder="rendering…", pickable=False)  # no pixel readout
             self.captions[key] = QLabel()
             self.captions[key].setWordWrap(True)
             layout.addWidget(self.views[key], 1)

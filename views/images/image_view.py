@@ -7,6 +7,9 @@ set of highlighted pixels (for example one polygon's fragments) can be
 outlined on top, and a polygon's edges drawn; the outline leaves every pixel's
 colour true.  When each pixel is shown large (a small image), the pixel grid and
 every pixel's centre are drawn too: a fragment is made where a triangle covers a centre.
+A picture that picks pixels is reached with Tab too: focused, it wears a frame,
+the arrow keys move the picked pixel and Enter chooses it, as a click does
+(:data:`PICTURE_KEYS`).
 
 Renderers produce *linear* RGB; :func:`core.srgb.to_srgb8` encodes it for
 the screen.  That conversion, and the QImage, can be made off the GUI thread
@@ -20,8 +23,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from PySide6.QtCore import QPointF, QRectF, Qt, Signal
-from PySide6.QtGui import QColor, QImage, QPainter, QPen
+from PySide6.QtCore import QEvent, QPointF, QRectF, Qt, Signal
+from PySide6.QtGui import QColor, QImage, QPainter, QPalette, QPen
 from PySide6.QtWidgets import QSizePolicy, QWidget
 
 from core.srgb import to_srgb8
@@ -30,6 +33,17 @@ GRID_CELL_PX = 14
 """On-screen size (px) of one pixel from which its square's border and its centre are drawn."""
 EDGE_COLOR = "#00e5ff"
 """A polygon's edges drawn over the image (cyan: apart from the magenta fragment outline)."""
+FOCUS_MARGIN = 3
+"""Room (px) kept around a pickable image for its focus frame, which so never covers a pixel."""
+SHIFT_STEP = 10
+"""Pixels a Shift+arrow moves the pick by (an arrow alone: one)."""
+ARROWS = {Qt.Key.Key_Left: (-1, 0), Qt.Key.Key_Right: (1, 0), Qt.Key.Key_Up: (0, -1), Qt.Key.Key_Down: (0, 1)}
+PICTURE_KEYS = [
+    ("Arrow keys", "Move the picked pixel of a focused picture (Tab or click to focus it)"),
+    ("Shift+arrows", f"Move it by {SHIFT_STEP} pixels"),
+    ("Enter", "Answer a click-a-pixel exercise with the pixel picked in a focused picture"),
+]
+"""(keys, description) of the keys of a focused picture, for Help → Keys."""
 
 
 @dataclass(frozen=True)
@@ -103,15 +117,32 @@ def mask_outline(mask: np.ndarray) -> np.ndarray:
 class ImageView(QWidget):
     """Shows an RGB image scaled to fit, with its pixels kept square and sharp.
 
+    A ``pickable`` view (the default) picks a pixel by a click, or from the keyboard:
+    it takes the focus by Tab or a click, and an arrow key moves the picked pixel by
+    one (Shift+arrow by :data:`SHIFT_STEP`, kept inside the image; with none picked,
+    the first arrow picks the centre pixel).  Other keys, Enter too, go on to the
+    view's parents (the Exercises panel checks its answer on Enter).  A view that is
+    only looked at (``pickable=False``) takes neither clicks nor the focus.
+
     Signals
     -------
-    pixel_clicked(int x, int y) : column and row of the clicked pixel.
+    pixel_clicked(int x, int y) : column and row of the pixel picked by a click or an arrow key.
+    pixel_chosen(int x, int y) : the pixel given as an answer: clicked, or picked when Enter was
+        pressed (arrow keys walk through pixels on the way and only show them).
     """
 
     pixel_clicked = Signal(int, int)
+    pixel_chosen = Signal(int, int)
 
-    def __init__(self, parent: QWidget | None = None, placeholder: str = "rendering…"):
+    def __init__(self, parent: QWidget | None = None, placeholder: str = "rendering…",
+                 pickable: bool = True):
         super().__init__(parent)
+        self.pickable = pickable
+        self._margin = FOCUS_MARGIN if pickable else 0
+        if pickable:
+            self.setFocusPolicy(Qt.FocusPolicy.StrongFocus)
+            self.setAccessibleDescription(f"Click a pixel to pick it; arrow keys move the picked pixel, "
+                                          f"Shift+arrows by {SHIFT_STEP}")
         self._image: QImage | None = None
         self._highlight: np.ndarray | None = None
         self._highlight_shape: tuple[int, int] | None = None
@@ -167,7 +198,8 @@ class ImageView(QWidget):
         """Where the image is drawn inside the widget (aspect kept, centred)."""
         if self._image is None:
             return QRectF()
-        scale = min(self.width() / self._image.width(), self.height() / self._image.height())
+        room_w, room_h = max(1, self.width() - 2 * self._margin), max(1, self.height() - 2 * self._margin)
+        scale = min(room_w / self._image.width(), room_h / self._image.height())
         w, h = self._image.width() * scale, self._image.height() * scale
         return QRectF((self.width() - w) / 2, (self.height() - h) / 2, w, h)
 
@@ -188,7 +220,47 @@ class ImageView(QWidget):
 
     def mousePressEvent(self, event):
         pixel = self.pixel_at(event.position())
-        if pixel is not None and event.button() == Qt.MouseButton.LeftButton:
+        if self.pickable and pixel is not None and event.button() == Qt.MouseButton.LeftButton:
+            self.set_picked(pixel)
+            self.pixel_clicked.emit(*pixel)
+            self.pixel_chosen.emit(*pixel)
+
+    def _arrow_step(self, event) -> tuple[int, int] | None:
+        """The move ``event`` (a key) asks of the picked pixel, or None when it is not an arrow
+        or Shift+arrow for this view (no image shown, or not pickable)."""
+        if not self.pickable or self._image is None or event.key() not in ARROWS:
+            return None
+        modifiers = event.modifiers() & ~Qt.KeyboardModifier.KeypadModifier
+        if modifiers not in (Qt.KeyboardModifier.NoModifier, Qt.KeyboardModifier.ShiftModifier):
+            return None
+        n = SHIFT_STEP if modifiers == Qt.KeyboardModifier.ShiftModifier else 1
+        dx, dy = ARROWS[event.key()]
+        return dx * n, dy * n
+
+    def event(self, event):
+        # The arrow keys are also the window's shortcuts (they orbit the observer): Qt asks the
+        # focused widget first whether it wants the key; a focused picture keeps them.
+        if event.type() == QEvent.Type.ShortcutOverride and self._arrow_step(event) is not None:
+            event.accept()
+            return True
+        return super().event(event)
+
+    def keyPressEvent(self, event):
+        step = self._arrow_step(event)
+        if step is None:
+            if (self.pickable and self._image is not None and self.picked is not None
+                    and event.key() in (Qt.Key.Key_Return, Qt.Key.Key_Enter)):
+                self.pixel_chosen.emit(*self.picked)
+            event.ignore()  # on to the parents: Enter checks an exercise's answer
+            return
+        w, h = self._image.width(), self._image.height()
+        if self.picked is None:
+            pixel = (w // 2, h // 2)  # the first arrow picks the centre
+        else:
+            x, y = self.picked[0] + step[0], self.picked[1] + step[1]
+            pixel = (min(max(x, 0), w - 1), min(max(y, 0), h - 1))  # kept inside the image
+        event.accept()
+        if pixel != self.picked:  # at the border, a press further out does nothing
             self.set_picked(pixel)
             self.pixel_clicked.emit(*pixel)
 
@@ -243,6 +315,12 @@ class ImageView(QWidget):
             for colour, w in ((QColor(0, 0, 0, 200), 4.0), (QColor(EDGE_COLOR), 2.0)):
                 painter.setPen(QPen(colour, w))
                 painter.drawPolygon(points)
+        if self.hasFocus() and self._margin:
+            # In the room kept around the image, so it covers no pixel; the palette's focus colour.
+            painter.setPen(QPen(self.palette().color(QPalette.ColorRole.Highlight), 2))
+            painter.setBrush(Qt.BrushStyle.NoBrush)
+            painter.drawRect(rect.adjusted(-self._margin + 1, -self._margin + 1,
+                                           self._margin - 1, self._margin - 1))
         if self.picked is not None:
             sx = rect.width() / self._image.width()
             sy = rect.height() / self._image.height()

@@ -239,8 +239,8 @@ class HardCasesPanel(QWidget):
         self._methods: tuple[str, str, str] = ("", "", "")  # the methods' descriptions, in METHODS' order
         self._arrangement: tuple | None = None  # (stacked, text size) the table was laid out for
 
-        self.naive_image = ImageView(placeholder="")
-        self.robust_image = ImageView(placeholder="")
+        self.naive_image = ImageView(placeholder="", pickable=False)  # only looked at: no pixel readout
+        self.robust_image = ImageView(placeholder="", pickable=False)
         self.naive_image.setAccessibleName("Picture of the textbook method")  # also its File → Export entry
         self.robust_image.setAccessibleName("Picture of the robust method")
         self.naive_caption, self.robust_caption = QLabel(), QLabel()

@@ -3,6 +3,7 @@ scene takes the step's words away; a stale vertex path goes; an opened lesson's 
 
 import json
 
+from PySide6.QtCore import Qt
 from PySide6.QtWidgets import QMessageBox
 from window_helpers import RENDER_TIMEOUT_MS
 
@@ -137,7 +138,8 @@ def test_exercises_follow_the_lesson_a_click_answers_and_progress_shows_in_the_l
     qtbot.waitUntil(lambda: window.model.ray_pixel is not None, timeout=RENDER_TIMEOUT_MS)
     assert panel.step_index() == (k, 1)
     pixel = window.model.ray_pixel
-    window.tab("image order").widget.image.pixel_clicked.emit(*pixel)  # the student clicks it
+    image = window.tab("image order").widget.image
+    qtbot.mouseClick(image, Qt.MouseButton.LeftButton, pos=image.widget_pos(*pixel).toPoint())  # the student
     qtbot.waitUntil(lambda: exercises.feedback.text().startswith("Right"), timeout=RENDER_TIMEOUT_MS)
     assert "1/2 done, 1 right at first try" in panel.list.item(k).text()
 
