@@ -1,4 +1,4 @@
-"""The scene editor: the Scene dock, the Edit menu and one undo stack for every edit.
+"""The scene editor: the Editor dock, the Edit menu and one undo stack for every edit.
 
 :class:`SceneEditor` connects the dock's tree and fields
 (:class:`views.panels.scene_tree_panel.SceneTreePanel`) to the model: each change
@@ -52,7 +52,7 @@ class SceneEditor(QObject):
         self.window, self.model = window, window.model
         self.stack = QUndoStack(self)
         self.panel = SceneTreePanel(self.model)
-        self.dock = tabbed_dock(window, "Edit scene", "scene editor", self.panel, window.lesson_dock)
+        self.dock = tabbed_dock(window, "Editor", "scene editor", self.panel, window.lesson_dock)
         window.lesson_dock.raise_()
         self._mesh_reader = Renderer(self)
         self._mesh_reader.finished.connect(self._mesh_read)
@@ -158,7 +158,7 @@ class SceneEditor(QObject):
             return
         if self.window.lessons.step is not None and in_front(self.window.lesson_dock):
             self.window.statusBar().showMessage(
-                "Selected; its fields are in the Edit scene tab, beside Lessons", 6000)
+                "Selected; its fields are in the Editor tab, beside Lessons", 6000)
         else:
             self.dock.raise_()
 

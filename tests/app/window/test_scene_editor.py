@@ -687,7 +687,7 @@ def test_clicking_an_object_during_a_lesson_keeps_the_lesson_in_front(qtbot, win
     qtbot.mouseClick(view.plotter, Qt.MouseButton.LeftButton, pos=at.toPoint())
     assert model.selection == ("object", 0)
     assert in_front(window.lesson_dock) and not in_front(window.editor.dock)
-    assert "Edit scene" in window.statusBar().currentMessage()
+    assert "Editor tab" in window.statusBar().currentMessage()
 
 
 def test_dragging_the_handle_moves_the_object_in_one_undo_step(qtbot, window):

@@ -212,7 +212,7 @@ def test_the_dock_titles_and_tool_icons_follow_the_text_scale_and_close_their_do
     window.presentation.set_scale(2.0)
     icons = [titles["Lessons"].close_button, *scrubber.findChildren(QToolButton)]
     assert len(icons) == 6 and all(b.iconSize().height() >= 2 * 0.9 * line for b in icons)
-    for name in ("The scene: observer, frustum, screen", "Lessons", "Exercises", "Edit scene"):
+    for name in ("The scene: observer, frustum, screen", "Lessons", "Exercises", "Editor"):
         label = titles[name].label
         assert label.text() == name
         assert label.font().pointSizeF() == pytest.approx(2 * normal), name
