@@ -4,19 +4,27 @@ are covered.
 An exercise asks the student to predict what the pipelines find; the window's readouts state just
 that (the picked pixel's history and ray tree, the worked math, the polygon drawn, a face's side), and
 for a lesson step that picks the pixel the question names they stated the answer beside the question.
-While the Exercises tab is in front and its exercise is not yet answered right or revealed, the
-readouts :func:`core.lessons.exercises.withheld` names are covered with an opaque sheet saying why
-(:mod:`views.panels.pane_cover`); the pictures stay, the student reasons from them.  Back on the
-Lessons tab, or once answered, everything shows again.
+While the Exercises tab is in front, the window shows a step of the lesson (the scene the exercise
+asks about) and its exercise is not yet answered right or revealed, the readouts
+:func:`core.lessons.exercises.withheld` names are covered with an opaque sheet saying why
+(:mod:`views.panels.pane_cover`), the 3D pane leaves out the overlays that draw results
+(:data:`RESULT_OVERLAYS`) and the status bar drops the step's "Look at ..." (which may name the
+answer); the pictures stay, the student reasons from them.  Back on the Lessons tab, once answered,
+or on another scene, everything shows again.
 """
 
 from __future__ import annotations
 
+import shiboken6
 from PySide6.QtWidgets import QLabel
 
 from app.lessons.runner import FACE_SIDE_OVERLAY
 from core.lessons.exercises import PICTURES, RESULTS, withheld
 from views.panels.pane_cover import ANSWER, cover, uncover
+
+RESULT_OVERLAYS = ("ray-tree", "walk", "polygon", "clipped", FACE_SIDE_OVERLAY)
+"""The 3D pane's overlays that draw what the pipelines found: the picked pixel's rays and the grid
+cells they walk, the polygon drawn at the step and its clipped pieces, a face's side."""
 
 
 class WithheldAnswers:
@@ -28,15 +36,18 @@ class WithheldAnswers:
         self._asking = False  # the Exercises tab in front
         window.exercise_panel.waiting.connect(self.update)
         window.exercise_dock.visibilityChanged.connect(self._seen)
+        window.lesson_panel.step_selected.connect(self.update)  # after the step is shown: its "Look at"
 
     def _seen(self, seen: bool) -> None:
         self._asking = seen
-        self.update()
+        if shiboken6.isValid(self.window):  # the docks hide as the closed window goes
+            self.update()
 
     def hidden(self) -> tuple[str, ...]:
         """What is withheld now: :data:`core.lessons.exercises.RESULTS`, ``PICTURES``, or nothing."""
         ex = self.window.exercise_panel.waiting_for
-        return withheld(ex) if ex is not None and self._asking else ()
+        asked = ex is not None and self._asking and self.window.lessons.step is not None  # on its scene
+        return withheld(ex) if asked else ()
 
     def panes(self, what: str) -> list:
         """The widgets that show ``what``."""
@@ -48,8 +59,8 @@ class WithheldAnswers:
                 w.tab("compare").widget.pixel_box, object_order.step_caption]
 
     def overlays(self) -> tuple[str, ...]:
-        """The 3D pane's overlays that state a result, shown unless withheld (:meth:`hidden`)."""
-        return () if RESULTS in self.hidden() else (FACE_SIDE_OVERLAY,)
+        """The 3D pane's overlays withheld now (:data:`RESULT_OVERLAYS`, or none)."""
+        return RESULT_OVERLAYS if RESULTS in self.hidden() else ()
 
     def update(self, *_) -> None:
         hidden = self.hidden()
@@ -63,4 +74,7 @@ class WithheldAnswers:
                 else:  # a label is one line: the step drawn
                     cover(pane, f"Hidden until exercise {n} is answered" if isinstance(pane, QLabel)
                           else why, ANSWER)
+        status = self.window.statusBar()
+        if RESULTS in hidden and status.currentMessage().startswith("Look at "):
+            status.clearMessage()  # the step's pointer may name the answer ("Look at object 'object 5'")
         self.window.show_overlays()

@@ -36,7 +36,7 @@ from app.export.export_menu import ExportMenu
 from app.lessons.exercise_jobs import ExerciseJobs
 from app.lessons.fact_check import LessonFactCheck
 from app.lessons.recorder import LessonRecorder
-from app.lessons.runner import LESSON_OVERLAY, LessonRunner
+from app.lessons.runner import FACE_SIDE_OVERLAY, LESSON_OVERLAY, LessonRunner
 from app.lessons.withheld_answers import WithheldAnswers
 from app.process.lock_turns import hand_over_often
 from app.process.long_lived import set_aside_once_loaded
@@ -259,8 +259,9 @@ class MainWindow(QMainWindow):
         shows the exercise's step (and pixel); progress shows in the lesson list."""
         panel, exercises = self.lesson_panel, self.exercise_panel
         panel.step_selected.connect(lambda _step: exercises.set_lesson(panel.current_lesson()))
-        for tab in ("image order", "object order"):
-            self.tab(tab).widget.image.pixel_chosen.connect(exercises.click)  # a click, or Enter
+        object_order = self.tab("object order").widget
+        for image in (self.tab("image order").widget.image, object_order.image, object_order.depth.image):
+            image.pixel_chosen.connect(exercises.click)  # a click, or Enter
 
         def show_me(step: int, pixel) -> None:
             panel.select(panel.step_index()[0], step)
@@ -481,6 +482,7 @@ class MainWindow(QMainWindow):
         """Another scene replaced the step's: its words give way to ``why`` and its marks go."""
         self.lesson_panel.leave_step(why)
         self.lessons.leave()
+        self.withheld_answers.update()  # the scene shown is no longer the one the exercises ask about
 
     # ------------------------------------------------------------ render
     @property
@@ -499,8 +501,9 @@ class MainWindow(QMainWindow):
     def show_overlays(self) -> None:
         """Show the 3D overlays of the visible tab, of the scene and of the lesson step (less what an
         exercise waiting for its answer withholds)."""
-        self.scene_view.show_overlays_only((*self.current.overlays, *SCENE_OVERLAYS, LESSON_OVERLAY,
-                                            *self.withheld_answers.overlays()))
+        withheld = self.withheld_answers.overlays()
+        shown = (*self.current.overlays, *SCENE_OVERLAYS, LESSON_OVERLAY, FACE_SIDE_OVERLAY)
+        self.scene_view.show_overlays_only([name for name in shown if name not in withheld])
 
     def _tab_shown(self, *_) -> None:
         tab = self.current

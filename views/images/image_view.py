@@ -127,8 +127,9 @@ class ImageView(QWidget):
     Signals
     -------
     pixel_clicked(int x, int y) : column and row of the pixel picked by a click or an arrow key.
-    pixel_chosen(int x, int y) : the pixel given as an answer: clicked, or picked when Enter was
-        pressed (arrow keys walk through pixels on the way and only show them).
+    pixel_chosen(int x, int y) : the pixel given as an answer: clicked, or picked by the user (a
+        click, the arrow keys) when Enter was pressed; the arrow keys walk through pixels on the way
+        and only show them, and a pixel the owner picked (:meth:`set_picked`) is not the user's.
     """
 
     pixel_clicked = Signal(int, int)
@@ -150,6 +151,7 @@ class ImageView(QWidget):
         self.rgb: np.ndarray | None = None
         self.note = ""
         self.picked: tuple[int, int] | None = None
+        self._users = False  # the picked pixel was picked by the user (a click, an arrow), not set
         self.edges: np.ndarray | None = None  # (N, 2) polygon corners in pixel coordinates, or None
         self._placeholder = placeholder
         self.setMinimumSize(120, 90)
@@ -190,9 +192,18 @@ class ImageView(QWidget):
         return self._image is not None and rect.width() / self._image.width() >= GRID_CELL_PX
 
     def set_picked(self, pixel: tuple[int, int] | None) -> None:
-        """Outline one pixel ``(x, y)``; ``None`` clears it."""
-        self.picked = pixel
+        """Outline one pixel ``(x, y)``; ``None`` clears it.  Picked so, by the view's owner (a lesson
+        step's pixel, another picture's), it is not the user's: Enter does not give it as an answer
+        (the user's own pick, echoed back by the owner, stays the user's)."""
+        if pixel != self.picked:
+            self.picked, self._users = pixel, False
         self.update()
+
+    def _pick(self, pixel: tuple[int, int]) -> None:
+        """The user picks ``pixel`` (a click or an arrow key)."""
+        self.set_picked(pixel)
+        self._users = True
+        self.pixel_clicked.emit(*pixel)
 
     def image_rect(self) -> QRectF:
         """Where the image is drawn inside the widget (aspect kept, centred)."""
@@ -221,8 +232,7 @@ class ImageView(QWidget):
     def mousePressEvent(self, event):
         pixel = self.pixel_at(event.position())
         if self.pickable and pixel is not None and event.button() == Qt.MouseButton.LeftButton:
-            self.set_picked(pixel)
-            self.pixel_clicked.emit(*pixel)
+            self._pick(pixel)
             self.pixel_chosen.emit(*pixel)
 
     def _arrow_step(self, event) -> tuple[int, int] | None:
@@ -248,7 +258,7 @@ class ImageView(QWidget):
     def keyPressEvent(self, event):
         step = self._arrow_step(event)
         if step is None:
-            if (self.pickable and self._image is not None and self.picked is not None
+            if (self.pickable and self._image is not None and self.picked is not None and self._users
                     and event.key() in (Qt.Key.Key_Return, Qt.Key.Key_Enter)):
                 self.pixel_chosen.emit(*self.picked)
             event.ignore()  # on to the parents: Enter checks an exercise's answer
@@ -261,8 +271,7 @@ class ImageView(QWidget):
             pixel = (min(max(x, 0), w - 1), min(max(y, 0), h - 1))  # kept inside the image
         event.accept()
         if pixel != self.picked:  # at the border, a press further out does nothing
-            self.set_picked(pixel)
-            self.pixel_clicked.emit(*pixel)
+            self._pick(pixel)
 
     def _paint_grid(self, painter: QPainter, rect: QRectF) -> None:
         """The pixel squares' borders and a dot at each pixel's centre, where fragments are sampled."""

@@ -135,6 +135,7 @@ class ExercisePanel(QWidget):
         self.lesson = None
         self.index = 0
         self.tries = 0
+        self.helped = False
         self.room = False
         self.waiting_for: Exercise | None = None  # the exercise asked and not yet answered right or revealed
         self._pipelines: dict[int, StepPipelines] = {}
@@ -227,6 +228,7 @@ class ExercisePanel(QWidget):
         count = len(self.lesson.exercises) if self.lesson is not None else 0
         self.index = max(0, min(index, count - 1)) if count else 0
         self.tries = 0
+        self.helped = False  # Show me gave a right pixel: a right answer is not one at the first try
         self.feedback.clear()
         self._fill()
         self._wait_for(self.exercise())
@@ -388,7 +390,7 @@ class ExercisePanel(QWidget):
             return  # the student moved on meanwhile
         self.tries += 1
         if verdict.right:
-            self._record(FIRST_TRY if self.tries == 1 else LATER)
+            self._record(FIRST_TRY if self.tries == 1 and not self.helped else LATER)
             self._say(verdict.sentence, True)
             self._wait_for(None)
         elif self.tries == 1:
@@ -440,6 +442,7 @@ class ExercisePanel(QWidget):
             self.show_me.emit(ex.step, named_pixel(ex))
             return
         p = self._p(ex)
+        self.helped = True  # the pixel shown is a right one
         self._run(lambda: a_right_pixel(ex, p), lambda pixel: self.show_me.emit(ex.step, pixel))
 
     def _record(self, outcome: str) -> None:

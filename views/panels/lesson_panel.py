@@ -47,6 +47,7 @@ from PySide6.QtWidgets import (
 
 from core.files.lesson_file import Lesson, LessonFileError, LessonStep, load_lesson, shipped_lessons
 from views.file_dialogs import ask_open
+from views.images.image_view import ARROWS, ImageView
 from views.keyboard_focus import follow_focus
 from views.text.math_view import MathView
 
@@ -373,7 +374,8 @@ class ClickerKeys(QObject):
     Installed on whichever widget has the keyboard focus (:mod:`views.keyboard_focus`),
     it takes these two keys before that widget or any shortcut sees them, so they
     mean "next" and "previous" everywhere and nothing else.  With ``arrows`` on
-    (presentation mode) the arrow keys do the same.
+    (presentation mode) the arrow keys do the same, except in a focused picture that
+    picks pixels, which keeps them to move its picked pixel (Tab or a click gave it the focus).
     """
 
     def __init__(self, panel: LessonPanel, parent: QObject | None = None):
@@ -402,6 +404,8 @@ class ClickerKeys(QObject):
         forward, back = self._keys()
         key = event.key()
         if key not in forward and key not in back:
+            return False
+        if key in ARROWS and isinstance(watched, ImageView) and watched.pickable:
             return False
         if event.type() == QEvent.Type.ShortcutOverride:
             event.accept()  # no shortcut may take the key: it arrives as a key press, here

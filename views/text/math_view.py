@@ -29,7 +29,7 @@ from functools import lru_cache
 import numpy as np
 import shiboken6
 from PySide6.QtCore import QObject, QRectF, QRunnable, QSize, Qt, QThreadPool, QTimer, Signal, Slot
-from PySide6.QtGui import QColor, QFont, QFontMetricsF, QImage, QPainter, QPen, QPixmap
+from PySide6.QtGui import QColor, QFont, QFontMetricsF, QImage, QPainter, QPalette, QPen, QPixmap
 from PySide6.QtWidgets import QLabel, QSizePolicy, QWidget
 
 from core.shown_numbers import shown_number
@@ -248,6 +248,12 @@ class _TypesetJob(QRunnable):
             self.notice.done.emit(self.wanted, self.request)
 
 
+def _ink(widget: QWidget) -> QColor:
+    """``widget``'s text colour in the palette's active group: a formula typeset while its pane was
+    disabled (covered by an exercise) kept the disabled grey once the pane came back."""
+    return widget.palette().color(QPalette.ColorGroup.Active, widget.foregroundRole())
+
+
 class MathView(QLabel):
     """A label showing one mathtext formula, typeset.
 
@@ -460,7 +466,7 @@ class MathView(QLabel):
         return max(1.0, self.devicePixelRatioF())
 
     def _color_name(self) -> str:
-        return (self._color or self.palette().color(self.foregroundRole())).name()
+        return (self._color or _ink(self)).name()
 
     def _dpi(self) -> float:
         return 96.0 * self._ratio()
@@ -594,8 +600,7 @@ class MatrixView(QWidget):
         metrics, widths, gap, row_h, pad = self._geometry()
         painter = QPainter(self)
         painter.setFont(self._font())
-        color = self.palette().color(self.foregroundRole())
-        painter.setPen(QPen(color, max(1.0, self._scale)))
+        painter.setPen(QPen(_ink(self), max(1.0, self._scale)))
         h = row_h * len(self._cells) + 2
         w = self.sizeHint().width() - 2
         tick = pad * 0.8

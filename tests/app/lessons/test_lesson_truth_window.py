@@ -141,7 +141,8 @@ def test_exercises_follow_the_lesson_a_click_answers_and_progress_shows_in_the_l
     image = window.tab("image order").widget.image
     qtbot.mouseClick(image, Qt.MouseButton.LeftButton, pos=image.widget_pos(*pixel).toPoint())  # the student
     qtbot.waitUntil(lambda: exercises.feedback.text().startswith("Right"), timeout=RENDER_TIMEOUT_MS)
-    assert "1/2 done, 1 right at first try" in panel.list.item(k).text()
+    # Right, but not at the first try: Show me gave a right pixel.
+    assert "1/2 done, 0 right at first try" in panel.list.item(k).text()
 
 
 def test_add_this_view_as_a_step_round_trips_the_window_state(window, qtbot, tmp_path):

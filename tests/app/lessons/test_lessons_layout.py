@@ -122,6 +122,7 @@ def test_frustum_lessons_keep_their_labels_inside_the_3d_pane_and_off_its_lines_
     window.presentation.set_presenting(True)
     window.presentation.set_scale(scale)
     qtbot.waitUntil(lambda: window.scene_view.view.line_scale == scale)
+    qtbot.waitUntil(window.presentation.settled)  # the panes' new sizes, before the labels are placed
     _check_frustum_lessons(qtbot, window)
     window.presentation.set_presenting(False)
 

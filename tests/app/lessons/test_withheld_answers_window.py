@@ -105,3 +105,31 @@ def test_the_face_sides_words_leave_the_3d_pane_while_the_back_face_question_is_
     assert FACE_SIDE_OVERLAY not in view.overlay_names() and "lesson" in view.overlay_names()
     assert _choose(qtbot, exercises, "yes").startswith("Right")
     assert FACE_SIDE_OVERLAY in view.overlay_names()
+
+
+def test_the_picked_pixels_rays_leave_the_3d_pane_and_the_steps_pointer_the_status_bar(qtbot, window):
+    """The observer lesson's second exercise asks which object lies outside observer B's frustum; its
+    step points at the answer: "Look at object 'object 5'".  The shadow step's 3D pane draws the picked
+    pixel's shadow ray ending at the cone, which the second exercise there asks about."""
+    window.lesson_panel.select(LESSONS["observer"], 1)
+    assert window.statusBar().currentMessage() == "Look at object 'object 5'"
+    _ask(qtbot, window, "observer", 1, 1)
+    assert window.statusBar().currentMessage() == ""
+    view = window.scene_view
+    window.lesson_panel.select(LESSONS["ray_casting"], 1)
+    window.lesson_dock.raise_()
+    qtbot.waitUntil(lambda: "ray-tree" in view.overlay_names(), timeout=RENDER_TIMEOUT_MS)
+    _ask(qtbot, window, "ray_casting", 1, 1)
+    assert "ray-tree" not in view.overlay_names() and "lesson" in view.overlay_names()
+    window.lesson_dock.raise_()
+    qtbot.waitUntil(lambda: "ray-tree" in view.overlay_names())
+
+
+def test_on_another_scene_nothing_is_covered(qtbot, window):
+    """File → Lecture scene while an exercise is asked: the readouts are of a scene the exercise does
+    not ask about."""
+    _ask(qtbot, window, "two_orders", 0, 0)
+    details = window.tab("object order").widget.details
+    assert covered_with(details, ANSWER) is not None
+    window.load_preset("lecture", lambda: window.model.scene)
+    assert covered_with(details, ANSWER) is None

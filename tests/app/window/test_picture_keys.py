@@ -3,7 +3,7 @@ arrows move the pick (not the observer, whose keys they are elsewhere) and the r
 Enter answers a click-a-pixel exercise with the pixel picked."""
 
 from PySide6.QtCore import Qt
-from PySide6.QtWidgets import QApplication
+from PySide6.QtWidgets import QApplication, QCheckBox
 from window_helpers import RENDER_TIMEOUT_MS
 
 from app.window.window_layout import in_front
@@ -45,26 +45,59 @@ def test_the_arrows_move_the_traced_pixel_and_its_ray_tree_follows(qtbot, window
 
 
 def test_a_click_a_pixel_exercise_is_answered_from_the_keyboard(qtbot, window):
-    """Show me picks a pixel in the cone's shadow; the student walks off it and back with the arrows
-    (which answer nothing: the shadow's readout is what they look at) and answers with Enter."""
+    """The shadow step picks pixel (230, 155), in the cone's shadow: Enter on that pick, the step's
+    and not the student's, answers nothing.  The student walks off it and back with the arrows (which
+    answer nothing either: the pixel's readout is what they look at) and answers with Enter."""
     lessons, exercises = window.lesson_panel, window.exercise_panel
     k = LESSONS["ray_casting"]
-    lessons.select(k, 0)
+    lessons.select(k, 1)
     assert exercises.question.text() == "Click a pixel in the cone's shadow."
     window.exercise_dock.raise_()
     qtbot.waitUntil(lambda: in_front(window.exercise_dock))
-    with qtbot.waitSignal(lessons.step_selected):
-        exercises.show_button.click()
-    qtbot.waitUntil(lambda: window.model.ray_pixel is not None, timeout=RENDER_TIMEOUT_MS)
-    x, y = window.model.ray_pixel
     image = window.tab("image order").widget.image
-    assert window.current is window.tab("image order") and image.picked == (x, y)
+    qtbot.waitUntil(lambda: image.picked == (230, 155), timeout=RENDER_TIMEOUT_MS)
     _tab_to(qtbot, window, image)
+    qtbot.keyClick(image, Qt.Key.Key_Return)
+    assert exercises.pixel_edit.text() == "" and exercises.feedback.text() == ""  # the step's pick
     qtbot.keyClick(image, Qt.Key.Key_Left)
     qtbot.keyClick(image, Qt.Key.Key_Right)
-    assert window.model.ray_pixel == (x, y)
+    assert window.model.ray_pixel == (230, 155)
     assert exercises.pixel_edit.text() == "" and exercises.feedback.text() == ""  # nothing answered yet
     qtbot.keyClick(image, Qt.Key.Key_Return)
-    assert exercises.pixel_edit.text() == f"{x}, {y}"
+    assert exercises.pixel_edit.text() == "230, 155"
     qtbot.waitUntil(lambda: exercises.feedback.text().startswith("Right"), timeout=RENDER_TIMEOUT_MS)
     assert "1/2 done, 1 right at first try" in lessons.list.item(k).text()
+
+
+def test_the_z_buffer_picture_answers_a_click_a_pixel_exercise_too(qtbot, window):
+    lessons, exercises = window.lesson_panel, window.exercise_panel
+    lessons.select(LESSONS["observer"], 0)
+    window.exercise_dock.raise_()
+    qtbot.waitUntil(lambda: in_front(window.exercise_dock))
+    exercises.go(2)
+    window.show_tab("Object order")
+    depth = window.tab("object order").widget.depth.image
+    qtbot.waitUntil(lambda: depth.qimage is not None and depth.isVisible(), timeout=RENDER_TIMEOUT_MS)
+    qtbot.mouseClick(depth, Qt.MouseButton.LeftButton, pos=depth.widget_pos(0, 0).toPoint())
+    assert exercises.pixel_edit.text() == "0, 0"
+    qtbot.waitUntil(lambda: exercises.feedback.text().startswith("Not there"), timeout=RENDER_TIMEOUT_MS)
+
+
+def test_presenting_a_focused_picture_keeps_the_arrow_keys_which_step_through_the_lesson_elsewhere(
+        qtbot, window):
+    lessons = window.lesson_panel
+    lessons.select(LESSONS["ray_casting"], 1)
+    window.presentation.set_presenting(True)
+    qtbot.waitUntil(window.presentation.settled)
+    image = window.tab("image order").widget.image
+    qtbot.waitUntil(lambda: image.picked == (230, 155), timeout=RENDER_TIMEOUT_MS)
+    _tab_to(qtbot, window, image)
+    qtbot.keyClick(image, Qt.Key.Key_Right)
+    qtbot.keyClick(image, Qt.Key.Key_Right)
+    assert window.model.ray_pixel == (232, 155) and lessons.step_index() == (LESSONS["ray_casting"], 1)
+    button = window.tab("image order").widget.findChild(QCheckBox)  # elsewhere the arrows are the clicker's
+    button.setFocus()
+    qtbot.waitUntil(button.hasFocus)
+    qtbot.keyClick(button, Qt.Key.Key_Right)
+    assert lessons.step_index() != (LESSONS["ray_casting"], 1)  # the next step
+    window.presentation.set_presenting(False)

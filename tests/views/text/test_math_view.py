@@ -318,3 +318,19 @@ def test_a_formula_typeset_just_before_a_new_text_size_is_never_typeset_on_the_g
     view._typeset_done(view._request)  # ... and the typesetter's notice of the old one arrives first
     qtbot.waitUntil(lambda: not view.pending and view.pixmap().height() > 1.5 * small)
     assert parsed_on_gui_thread and not any(parsed_on_gui_thread)  # typeset at both sizes, off it
+
+
+def test_a_formula_typeset_in_a_disabled_pane_is_inked_as_in_an_enabled_one(qtbot):
+    """A pane covered while an exercise waits is disabled; the formulas typeset then kept the
+    disabled grey once it came back."""
+    from PySide6.QtGui import QPalette
+
+    from views.text.math_view import MathView
+
+    view = MathView("x = 1")
+    qtbot.addWidget(view)
+    enabled = view._color_name()
+    view.setEnabled(False)
+    assert view.palette().color(view.foregroundRole()).name() != enabled  # Qt's disabled grey
+    assert view._color_name() == enabled == view.palette().color(QPalette.ColorGroup.Active,
+                                                                 QPalette.ColorRole.WindowText).name()
