@@ -211,6 +211,10 @@ class RenderSchedule(QObject):
             return  # this scene's full render is under way, or its preview, after which the full one starts
         elif self._full_shown.get(tab.title) is not scene or force:
             self._submit(tab, preview=False)
+        elif self._status[tab.title][1] == f"{tab.title}: not rendered yet":
+            # Its full picture of this scene is shown; a render cancelled as another tab came to the
+            # front had said otherwise.
+            self._set_status(tab, 100, f"{tab.title}: done")
 
     def _submit(self, tab, preview: bool) -> None:
         scene = self.model.scene

@@ -334,10 +334,17 @@ class SceneTreePanel(QWidget):
         item, scene = leaf.data(0, ITEM_ROLE), self.model.scene
         if column == 0 and item is not None and leaf.text(0) != checked_edits.name_of(scene, item):
             self.field_edited.emit(item, "name", leaf.text(0))
-            if self.model.scene is scene:  # refused: the tree shows the name it has
-                self.tree.blockSignals(True)
-                leaf.setText(0, checked_edits.name_of(scene, item))
-                self.tree.blockSignals(False)
+            if self.model.scene is scene:  # refused: the tree shows the name it has, once its editor
+                # has let go of the item (set here, inside the editor's commit, the text crashed Qt)
+                QTimer.singleShot(0, self.tree, lambda: self._show_name(item))
+
+    def _show_name(self, item) -> None:
+        """The tree's leaf of ``item`` reads its name in the scene."""
+        leaf, scene = self.items.get(item), self.model.scene
+        if leaf is not None and (item[1] < len(scene.objects if item[0] == "object" else scene.lights)):
+            self.tree.blockSignals(True)
+            leaf.setText(0, checked_edits.name_of(scene, item))
+            self.tree.blockSignals(False)
 
     # ------------------------------------------------------------- form
     def _show_selection(self) -> None:

@@ -65,3 +65,17 @@ def test_steps_taken_faster_than_the_pane_follows_leave_it_showing_the_last(qtbo
     drawn = {id(window.scene_view.actor_of(("object", k))) for k in range(len(objects))}
     shown = {id(actor) for name, actor in view.plotter.renderer.actors.items() if name.startswith("object:")}
     assert drawn == shown and len(shown) == len(objects)  # its objects, none of the other steps'
+
+
+def test_back_on_a_step_whose_picture_is_current_the_bar_says_done(qtbot, window):
+    """From the shadow step (Image order) to the z-buffer steps and back: the Object order tab showed
+    its full picture of the step's scene under a bar reading "Object order: not rendered yet" (its
+    redundant render, cancelled as another tab came to the front, set that)."""
+    from window_helpers import RENDER_TIMEOUT_MS
+
+    for lesson, step in (("ray_casting", 1), ("zbuffer", 2), ("ray_casting", 1), ("zbuffer", 3)):
+        window.lesson_panel.select(LESSONS[lesson], step)
+        qtbot.waitUntil(lambda: window.showing_full(window.current.title.lower()), timeout=RENDER_TIMEOUT_MS)
+    qtbot.waitUntil(lambda: window.renders.status(window.current)[1] == "Object order: done",
+                    timeout=RENDER_TIMEOUT_MS)
+    assert window.current.title == "Object order" and window.renders.status(window.current)[0] == 100
