@@ -468,7 +468,8 @@ def judge(ex: Exercise, p: StepPipelines, given) -> Verdict:
     if ex.kind == "pick_picture":
         if given == ex.args["view"]:
             return Verdict(True, f"Right: that is the {_view_words(given)}.{why}")
-        return Verdict(False, f"Not that one: that is the {_view_words(given)}.")
+        # Not which view it is: the next question on the same pictures may ask for that one.
+        return Verdict(False, f"Not that one: it is not the {_view_words(ex.args['view'])}.")
     order = right_order(ex, p)
     if list(given) == order:
         return Verdict(True, f"Right: {' → '.join(order)}.{why}")
