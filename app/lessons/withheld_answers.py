@@ -34,6 +34,7 @@ class WithheldAnswers:
     def __init__(self, window):
         self.window = window
         self._asking = False  # the Exercises tab in front
+        self._overlays = ()  # the overlays the 3D pane was last told to leave out
         window.exercise_panel.waiting.connect(self.update)
         window.exercise_dock.visibilityChanged.connect(self._seen)
         window.lesson_panel.step_selected.connect(self.update)  # after the step is shown: its "Look at"
@@ -77,4 +78,6 @@ class WithheldAnswers:
         status = self.window.statusBar()
         if RESULTS in hidden and status.currentMessage().startswith("Look at "):
             status.clearMessage()  # the step's pointer may name the answer ("Look at object 'object 5'")
-        self.window.show_overlays()
+        if self.overlays() != self._overlays:  # the 3D pane is told only of a change (each step, each tab)
+            self._overlays = self.overlays()
+            self.window.show_overlays()

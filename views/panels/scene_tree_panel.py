@@ -340,10 +340,10 @@ class SceneTreePanel(QWidget):
 
     def _show_name(self, item) -> None:
         """The tree's leaf of ``item`` reads its name in the scene."""
-        leaf, scene = self.items.get(item), self.model.scene
-        if leaf is not None and (item[1] < len(scene.objects if item[0] == "object" else scene.lights)):
+        leaf = self.items.get(item)  # None if the tree was built anew for a scene without it
+        if leaf is not None:
             self.tree.blockSignals(True)
-            leaf.setText(0, checked_edits.name_of(scene, item))
+            leaf.setText(0, checked_edits.name_of(self.model.scene, item))
             self.tree.blockSignals(False)
 
     # ------------------------------------------------------------- form
