@@ -45,3 +45,16 @@ def presenting_on_1280x720(qtbot, monkeypatch, scale: float = 1.5) -> MainWindow
     window.presentation.set_scale(scale)
     qtbot.waitUntil(window.presentation.settled)
     return window
+
+
+def ask_exercise(qtbot, window: MainWindow, lesson_id: str, step: int, exercise: int):
+    """Show the shipped lesson ``lesson_id``'s step ``step`` and ask its exercise ``exercise`` with the
+    Exercises tab in front, as a student does; the exercise panel."""
+    from app.window.window_layout import in_front
+    from core.files.lesson_file import shipped_lessons
+
+    window.lesson_panel.select([lesson.id for lesson in shipped_lessons()].index(lesson_id), step)
+    window.exercise_dock.raise_()
+    qtbot.waitUntil(lambda: in_front(window.exercise_dock))
+    window.exercise_panel.go(exercise)
+    return window.exercise_panel

@@ -141,6 +141,7 @@ class LessonRunner:
         self.window = window
         self.step: LessonStep | None = None
         self.highlighted = ""
+        self.asked = None  # the question and choices of the exercise asked about the step shown
         self.projector = ProjectorLines(window.model, window.scene_view)  # A, A′ of a highlighted vertex
 
     def leave(self) -> None:
@@ -184,6 +185,48 @@ class LessonRunner:
         self._highlight(step.scene, highlight)
         w.scene_view.look_from({**step.view, "frame": step.frame})  # after the highlight it may frame
 
+    def ask(self, asked: tuple[str, tuple[str, ...]] | None) -> None:
+        """An exercise asks about the step shown (``asked``: its question and the choices it offers),
+        or nothing is asked (None): the 3D pane marks what those words name (:meth:`_mark`)."""
+        if asked != self.asked:
+            self.asked = asked
+            if self.step is not None:
+                self._mark()
+
+    def _mark(self) -> None:
+        """Mark in the 3D pane the step's highlighted object or face and write the names of the objects
+        its words name.  While an exercise is :attr:`asked`, its words take the step's place: a mark
+        stays only on an object its question names (the step that outlined "the box behind the
+        observer" answered "Which object is dropped before any pixel work?"), and the names written
+        are those of the objects the question and its choices name, each alike."""
+        step, scene = self.step, self.step.scene
+        if self.asked is None:
+            named = named_objects(scene, step.text)
+            marked = scene.objects  # every mark the step makes
+        else:
+            question, choices = self.asked
+            named = named_objects(scene, "\n".join((question, *choices)))
+            marked = named_objects(scene, question)
+        parts, side = [], []
+        if "object" in step.highlight:
+            obj = _find(scene, step.highlight["object"])
+            if any(o is obj for o in marked):
+                from views.scene3d.vtk_convert import (
+                    object_polydata,  # pyvista loads with the 3D pane, not before
+                )
+
+                parts.append((object_polydata(obj), OBJECT_STYLE))
+        if "face" in step.highlight:
+            face = step.highlight["face"]
+            mesh = _find(scene, face["object"])
+            if any(o is mesh for o in marked):
+                corners = mesh.vertices[mesh.triangles[face["triangle"]]]
+                arrow, side = _normal_parts(np.asarray(corners, dtype=float), scene.camera.eye)
+                parts += polygon_parts(corners) + arrow
+        parts += _name_parts(named, scene)
+        self.window.scene_view.set_overlay(LESSON_OVERLAY, parts)
+        self.window.scene_view.set_overlay(FACE_SIDE_OVERLAY, side)
+
     def _show_panes(self, panes) -> None:
         w = self.window
         w.scene_pane.setVisible(SCENE_PANE in panes)
@@ -201,7 +244,7 @@ class LessonRunner:
 
     def _highlight(self, scene: Scene, highlight) -> None:
         w = self.window
-        parts, side, words, vertex_point = [], [], [], None
+        words, vertex_point = [], None
         image_order = w.tab("image order").widget
         image_order.ray_kind = highlight.get("ray")
         image_order.tree.select_kind(image_order.ray_kind)
@@ -209,20 +252,10 @@ class LessonRunner:
             image_order.show_ray_tree()  # where that ray is selected
             words.append(f"the {highlight['ray']} ray")
         if "object" in highlight:
-            from views.scene3d.vtk_convert import (
-                object_polydata,  # pyvista loads with the 3D pane, not before
-            )
-
-            obj = _find(scene, highlight["object"])
-            parts.append((object_polydata(obj), OBJECT_STYLE))
-            words.append(f"object {obj.name!r}")
+            words.append(f"object {highlight['object']!r}")
         if "face" in highlight:
             face = highlight["face"]
-            mesh = _find(scene, face["object"])
-            corners = mesh.vertices[mesh.triangles[face["triangle"]]]
-            arrow, side = _normal_parts(np.asarray(corners, dtype=float), scene.camera.eye)
-            parts += polygon_parts(corners) + arrow
-            words.append(f"triangle {face['triangle']} of {mesh.name!r}")
+            words.append(f"triangle {face['triangle']} of {face['object']!r}")
         if "vertex" in highlight:
             vertex = highlight["vertex"]
             mesh = _find(scene, vertex["object"])
@@ -239,9 +272,7 @@ class LessonRunner:
             words.append(f"the polygon drawn at step {highlight['polygon_step'] + 1}")
         if "pixel" in highlight:
             words.append(f"pixel {tuple(highlight['pixel'])}")
-        parts += _name_parts(named_objects(scene, self.step.text if self.step is not None else ""), scene)
-        w.scene_view.set_overlay(LESSON_OVERLAY, parts)
-        w.scene_view.set_overlay(FACE_SIDE_OVERLAY, side)
+        self._mark()
         self.projector.show_point(vertex_point)
         self.highlighted = ", ".join(words)
         if self.highlighted:

@@ -8,7 +8,8 @@ While the Exercises tab is in front, the window shows a step of the lesson (the 
 asks about) and its exercise is not yet answered right or revealed, the readouts
 :func:`core.lessons.exercises.withheld` names are covered with an opaque sheet saying why
 (:mod:`views.panels.pane_cover`), the 3D pane leaves out the overlays that draw results
-(:data:`RESULT_OVERLAYS`) and the status bar drops the step's "Look at ..." (which may name the
+(:data:`RESULT_OVERLAYS`), marks only the objects the question names (the step's outline may be
+its answer) and the status bar drops the step's "Look at ..." (which may name the
 answer); the pictures stay, the student reasons from them.  Back on the Lessons tab, once answered,
 or on another scene, everything shows again.
 """
@@ -19,7 +20,7 @@ import shiboken6
 from PySide6.QtWidgets import QLabel
 
 from app.lessons.runner import FACE_SIDE_OVERLAY
-from core.lessons.exercises import PICTURES, RESULTS, withheld
+from core.lessons.exercises import PICTURES, RESULTS, offered, withheld
 from views.panels.pane_cover import ANSWER, cover, uncover
 
 RESULT_OVERLAYS = ("ray-tree", "walk", "polygon", "clipped", FACE_SIDE_OVERLAY)
@@ -75,6 +76,10 @@ class WithheldAnswers:
                 else:  # a label is one line: the step drawn
                     cover(pane, f"Hidden until exercise {n} is answered" if isinstance(pane, QLabel)
                           else why, ANSWER)
+        # The 3D pane marks what the question names, not what the step's words name (its outline of
+        # "the box behind the observer" answered "Which object is dropped before any pixel work?").
+        ex = self.window.exercise_panel.waiting_for
+        self.window.lessons.ask((ex.question, offered(ex)) if RESULTS in hidden else None)
         status = self.window.statusBar()
         if RESULTS in hidden and status.currentMessage().startswith("Look at "):
             status.clearMessage()  # the step's pointer may name the answer ("Look at object 'object 5'")

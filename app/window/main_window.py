@@ -33,6 +33,7 @@ from PySide6.QtWidgets import (
 )
 
 from app.export.export_menu import ExportMenu
+from app.lessons.asked_scene import AskedScene
 from app.lessons.exercise_jobs import ExerciseJobs
 from app.lessons.fact_check import LessonFactCheck
 from app.lessons.recorder import LessonRecorder
@@ -172,6 +173,7 @@ class MainWindow(QMainWindow):
         self.lesson_panel.step_selected.connect(self.apply_lesson_step)
         self._wire_exercises()
         self.withheld_answers = WithheldAnswers(self)
+        self.asked_scene = AskedScene(self)
         self.fact_check = LessonFactCheck(self)  # File → Open lesson: are the new lesson's facts true?
         self.lesson_panel.lesson_opened.connect(self.fact_check.check)
         self.presentation.presenting_changed.connect(self._presenting_changed)

@@ -297,6 +297,17 @@ def withheld(ex: Exercise) -> tuple[str, ...]:
     return (RESULTS, PICTURES) if ex.kind == "pick_picture" else (RESULTS,)
 
 
+def offered(ex: Exercise) -> tuple[str, ...]:
+    """The choices or the items ``ex`` offers, as the student reads them.
+
+    >>> ex = Exercise("choose_one", "Which object is dropped?", "", 0,
+    ...               MappingProxyType({"choices": ["cube", None]}), "exercises[0]")
+    >>> offered(ex)
+    ('cube', 'nothing (the background)')
+    """
+    return tuple(choice_label(c) for c in ex.args.get("choices", ex.args.get("items", ())))
+
+
 def named_pixel(ex: Exercise) -> tuple[int, int] | None:
     """The pixel an exercise asks about by its coordinates (its fact's, its number's or its ray tree's),
     or None (a pixel exercise asks the student for one; others name none)."""

@@ -6,9 +6,11 @@ order), or pictures to pick from, and judges the answer with :func:`core.lessons
 asks the pipelines.  Feedback comes at once: right or wrong and one sentence
 why; a wrong answer is told what is wrong with it, never the answer, and gets a second try;
 Enter checks; "Show me" asks the window to show the step (and the pixel the question names, or
-for a pixel exercise a right pixel); "Reveal" gives the answer.  Until it is answered right or
-revealed, an exercise is :attr:`ExercisePanel.waiting_for` its answer, and the window withholds the
-readouts that would give it away (:mod:`app.lessons.withheld_answers`).
+for a pixel exercise a right pixel); "Reveal" gives the answer (for a pixel exercise it picks a right
+pixel too).  Until it is answered right or revealed, an exercise is
+:attr:`ExercisePanel.waiting_for` its answer, and the window withholds the readouts that would give
+it away (:mod:`app.lessons.withheld_answers`) and says when it shows another scene than the one
+asked about (:mod:`app.lessons.asked_scene`).
 
 While presenting, :meth:`ExercisePanel.set_room` puts the question to the room:
 large, with the answers hidden until Space (or "Show answers") reveals them.
@@ -143,6 +145,9 @@ class ExercisePanel(QWidget):
         self.position = QLabel()
         self.question = QLabel()
         self.question.setWordWrap(True)
+        self.elsewhere = QLabel()  # the window shows another scene than the one asked about
+        self.elsewhere.setWordWrap(True)
+        self.elsewhere.hide()
         self.answer_area = QWidget()
         self.answer_layout = QVBoxLayout(self.answer_area)
         self.answer_layout.setContentsMargins(0, 0, 0, 0)
@@ -190,6 +195,7 @@ class ExercisePanel(QWidget):
         layout = QVBoxLayout(content)
         layout.addLayout(top)
         layout.addWidget(self.question)
+        layout.addWidget(self.elsewhere)
         layout.addWidget(self.answer_area)
         layout.addWidget(self.room_button)
         layout.addStretch(1)
@@ -236,6 +242,12 @@ class ExercisePanel(QWidget):
     def _wait_for(self, ex: Exercise | None) -> None:
         self.waiting_for = ex
         self.waiting.emit(ex)
+
+    def set_elsewhere(self, why: str) -> None:
+        """Say, in italics under the question, that the window shows another scene than the one the
+        exercise asks about (``why``; "" when it shows that one)."""
+        self.elsewhere.setText(f"<i>{why}</i>" if why else "")
+        self.elsewhere.setVisible(bool(why))
 
     def _fill(self) -> None:
         ex = self.exercise()
@@ -435,6 +447,8 @@ class ExercisePanel(QWidget):
         self._say(f"The answer: {answer}. {ex.why}".strip(), True)
         self.set_answers_hidden(False)
         self._wait_for(None)
+        if ex.kind == "click_pixel":  # the pixel named is also picked, where the student looks for it
+            self.show_me.emit(ex.step, computed)
 
     def _show_me(self) -> None:
         ex = self.exercise()

@@ -2,6 +2,7 @@
 scene takes the step's words away; a stale vertex path goes; an opened lesson's false facts are shown."""
 
 import json
+import re
 
 from PySide6.QtCore import Qt
 from PySide6.QtWidgets import QMessageBox
@@ -143,6 +144,25 @@ def test_exercises_follow_the_lesson_a_click_answers_and_progress_shows_in_the_l
     qtbot.waitUntil(lambda: exercises.feedback.text().startswith("Right"), timeout=RENDER_TIMEOUT_MS)
     # Right, but not at the first try: Show me gave a right pixel.
     assert "1/2 done, 0 right at first try" in panel.list.item(k).text()
+
+
+def test_reveal_on_a_click_a_pixel_exercise_picks_the_pixel_it_names(window, qtbot):
+    """Reveal names a pixel in the cone's shadow and picks it in the shadow step's image, where the
+    student looks for it (it only named it: the student had to find (x, y) in the picture)."""
+    panel, exercises = window.lesson_panel, window.exercise_panel
+    k = LESSONS["ray_casting"]
+    panel.select(k, 0)
+    window.exercise_dock.raise_()
+    qtbot.waitUntil(lambda: in_front(window.exercise_dock))
+    assert exercises.question.text() == "Click a pixel in the cone's shadow."
+    window.model.set_ray_pixel((0, 0))  # the student's own pick, in the sky
+    exercises.reveal_button.click()
+    qtbot.waitUntil(lambda: exercises.feedback.text().startswith("The answer:"), timeout=RENDER_TIMEOUT_MS)
+    named = re.search(r"pixel \((\d+), (\d+)\)", exercises.feedback.text())
+    assert named is not None
+    assert window.model.ray_pixel == (int(named[1]), int(named[2]))
+    assert panel.step_index() == (k, 1)  # the shadow step, whose scene the question asks about
+    assert window.current.title == "Image order"
 
 
 def test_add_this_view_as_a_step_round_trips_the_window_state(window, qtbot, tmp_path):

@@ -3,9 +3,10 @@ the pipelines found (the picked pixel's ray tree and history, the polygon drawn,
 covered with a sheet saying why, and for a pick-a-picture question the Four views too.  Answered
 right, revealed, or back on the Lessons tab, they show again."""
 
+import numpy as np
 from PySide6.QtCore import QPoint
 from PySide6.QtWidgets import QApplication
-from window_helpers import RENDER_TIMEOUT_MS
+from window_helpers import RENDER_TIMEOUT_MS, ask_exercise
 
 from app.lessons.runner import FACE_SIDE_OVERLAY
 from app.window.window_layout import in_front
@@ -13,15 +14,6 @@ from core.files.lesson_file import shipped_lessons
 from views.panels.pane_cover import ANSWER, PaneCover, covered_with
 
 LESSONS = {lesson.id: i for i, lesson in enumerate(shipped_lessons())}
-
-
-def _ask(qtbot, window, lesson: str, step: int, exercise: int):
-    """Show ``lesson``'s step ``step`` and ask its exercise ``exercise`` with the Exercises tab in front."""
-    window.lesson_panel.select(LESSONS[lesson], step)
-    window.exercise_dock.raise_()
-    qtbot.waitUntil(lambda: in_front(window.exercise_dock))
-    window.exercise_panel.go(exercise)
-    return window.exercise_panel
 
 
 def _seen_at_centre(widget):
@@ -43,7 +35,7 @@ def test_the_ray_tree_that_names_the_blocker_is_covered_until_the_question_is_an
     the very question of its second exercise.  Asked, the tree is covered; a wrong answer keeps it
     covered, the right one (the cone stands between that ground point and the light) uncovers it."""
     panel = window.tab("image order").widget
-    exercises = _ask(qtbot, window, "ray_casting", 1, 1)
+    exercises = ask_exercise(qtbot, window, "ray_casting", 1, 1)
     assert exercises.question.text() == "What blocks the shadow ray of pixel (230, 155)?"
     qtbot.waitUntil(lambda: window.showing_full("image order") and window.model.ray_pixel == (230, 155),
                     timeout=RENDER_TIMEOUT_MS)
@@ -62,7 +54,7 @@ def test_the_ray_tree_that_names_the_blocker_is_covered_until_the_question_is_an
 
 def test_reveal_or_the_lessons_tab_shows_the_readouts_again_and_every_pane_that_reads_a_pixel_is_covered(
         qtbot, window):
-    exercises = _ask(qtbot, window, "two_orders", 0, 0)  # what object order's z-buffer keeps at a pixel
+    exercises = ask_exercise(qtbot, window, "two_orders", 0, 0)  # what the z-buffer keeps at a pixel
     readouts = [window.tab("object order").widget.details, window.tab("object order").widget.step_caption,
                 window.tab("image order").widget.details, window.tab("compare").widget.pixel_box]
     assert all(covered_with(pane, ANSWER) for pane in readouts)
@@ -80,7 +72,7 @@ def test_reveal_or_the_lessons_tab_shows_the_readouts_again_and_every_pane_that_
 
 
 def test_a_pick_a_picture_question_covers_the_four_views_whose_titled_pictures_are_the_answer(qtbot, window):
-    exercises = _ask(qtbot, window, "three_views", 1, 3)
+    exercises = ask_exercise(qtbot, window, "three_views", 1, 3)
     assert exercises.question.text() == "Question 3. Which picture is the top view?"
     four_views = window.tab("four views").widget
     qtbot.waitUntil(lambda: window.current.title == "Four views" and four_views.isVisible())
@@ -100,7 +92,7 @@ def test_the_face_sides_words_leave_the_3d_pane_while_the_back_face_question_is_
     view = window.scene_view
     qtbot.waitUntil(lambda: FACE_SIDE_OVERLAY in view.overlay_names(), timeout=RENDER_TIMEOUT_MS)
     assert list(view.overlay_parts(FACE_SIDE_OVERLAY)[0].point_data["labels"]) == ["N: back face"]
-    exercises = _ask(qtbot, window, "back_faces", 0, 0)
+    exercises = ask_exercise(qtbot, window, "back_faces", 0, 0)
     assert exercises.question.text() == "Is triangle 2 of the pyramid culled as a back face?"
     assert FACE_SIDE_OVERLAY not in view.overlay_names() and "lesson" in view.overlay_names()
     assert _choose(qtbot, exercises, "yes").startswith("Right")
@@ -113,13 +105,13 @@ def test_the_picked_pixels_rays_leave_the_3d_pane_and_the_steps_pointer_the_stat
     pixel's shadow ray ending at the cone, which the second exercise there asks about."""
     window.lesson_panel.select(LESSONS["observer"], 1)
     assert window.statusBar().currentMessage() == "Look at object 'object 5'"
-    _ask(qtbot, window, "observer", 1, 1)
+    ask_exercise(qtbot, window, "observer", 1, 1)
     assert window.statusBar().currentMessage() == ""
     view = window.scene_view
     window.lesson_panel.select(LESSONS["ray_casting"], 1)
     window.lesson_dock.raise_()
     qtbot.waitUntil(lambda: "ray-tree" in view.overlay_names(), timeout=RENDER_TIMEOUT_MS)
-    _ask(qtbot, window, "ray_casting", 1, 1)
+    ask_exercise(qtbot, window, "ray_casting", 1, 1)
     assert "ray-tree" not in view.overlay_names() and "lesson" in view.overlay_names()
     window.lesson_dock.raise_()
     qtbot.waitUntil(lambda: "ray-tree" in view.overlay_names())
@@ -128,8 +120,46 @@ def test_the_picked_pixels_rays_leave_the_3d_pane_and_the_steps_pointer_the_stat
 def test_on_another_scene_nothing_is_covered(qtbot, window):
     """File → Lecture scene while an exercise is asked: the readouts are of a scene the exercise does
     not ask about."""
-    _ask(qtbot, window, "two_orders", 0, 0)
+    ask_exercise(qtbot, window, "two_orders", 0, 0)
     details = window.tab("object order").widget.details
     assert covered_with(details, ANSWER) is not None
     window.load_preset("lecture", lambda: window.model.scene)
     assert covered_with(details, ANSWER) is None
+
+
+def _outlined_and_named(view):
+    """The 3D pane's lesson marks: the bounds of each outlined part, and the names written."""
+    parts = view.overlay_parts("lesson")
+    names = [str(n) for p in parts if "labels" in p.point_data for n in p.point_data["labels"]]
+    return [tuple(round(b, 6) for b in p.bounds) for p in parts if "labels" not in p.point_data], names
+
+
+def test_the_3d_pane_marks_what_the_question_names_not_the_object_it_asks_for(qtbot, window):
+    """The frustum step outlines "the box behind the observer" in yellow, its example of an object
+    dropped before any pixel work, and its first exercise asks "Which object is dropped before any pixel
+    work?".  Asked, the outline goes and the pane writes the names of the five objects offered, each
+    alike; answered, the step's outline is back.  A question that names its object keeps the step's
+    mark on it: the back-face step's triangle 2 of the pyramid."""
+    window.lesson_panel.select(LESSONS["frustum"], 1)
+    view = window.scene_view
+    box = next(o for o in window.model.scene.objects if o.name == "box behind the observer")
+    low, high = box.vertices.min(axis=0), box.vertices.max(axis=0)
+    box_bounds = tuple(round(float(v), 6) for k in range(3) for v in (low[k], high[k]))
+    qtbot.waitUntil(lambda: "lesson" in view.overlay_names(), timeout=RENDER_TIMEOUT_MS)
+    assert _outlined_and_named(view)[0] == [box_bounds]
+    exercises = ask_exercise(qtbot, window, "frustum", 1, 0)
+    assert exercises.question.text() == "Which object is dropped before any pixel work?"
+    outlined, names = _outlined_and_named(view)
+    assert outlined == []
+    assert sorted(names) == ["box behind the observer", "cone", "cube", "ground", "sphere half outside"]
+    assert _choose(qtbot, exercises, "box behind the observer").startswith("Right")
+    assert _outlined_and_named(view)[0] == [box_bounds]
+
+    window.lesson_panel.select(LESSONS["back_faces"], 0)
+    ask_exercise(qtbot, window, "back_faces", 0, 0)  # "Is triangle 2 of the pyramid culled as a back face?"
+    pyramid = next(o for o in window.model.scene.objects if o.name == "pyramid")
+    corners = pyramid.vertices[pyramid.triangles[2]]
+    outlined, names = _outlined_and_named(view)
+    assert any(np.allclose(b[0::2], corners.min(axis=0)) and np.allclose(b[1::2], corners.max(axis=0))
+               for b in outlined)  # the triangle's outline is still drawn
+    assert names == ["pyramid"]

@@ -1,0 +1,63 @@
+"""An exercise is judged on its step's scene: when the window shows another (the observer moved by
+the arrow keys, another step, another scene), the exercise says which scene it asks about, and Show me
+brings that scene back."""
+
+from PySide6.QtCore import Qt
+from window_helpers import ask_exercise
+
+from app.window.window_layout import in_front
+from core import presets
+from core.files.lesson_file import shipped_lessons
+
+LESSONS = {lesson.id: i for i, lesson in enumerate(shipped_lessons())}
+
+
+def test_an_exercise_says_when_the_window_no_longer_shows_the_scene_it_asks_about(qtbot, window):
+    exercises = ask_exercise(qtbot, window, "observer", 1, 1)
+    assert exercises.question.text() == "From observer B, which object lies entirely outside the frustum?"
+    assert exercises.elsewhere.isHidden()  # the window shows observer B's scene
+    asked = window.model.scene
+    window.activateWindow()
+    qtbot.waitUntil(window.isActiveWindow)
+    qtbot.keyClick(window, Qt.Key.Key_Left)  # the arrow keys orbit the observer
+    qtbot.waitUntil(lambda: window.model.camera != asked.camera)
+    assert exercises.elsewhere.isVisible()
+    assert exercises.elsewhere.text() == ("<i>This question is about the scene of step 2; the window "
+                                          "shows it with the observer moved. Show me brings it back.</i>")
+    exercises.show_button.click()
+    assert window.model.scene == asked
+    assert exercises.elsewhere.isHidden()
+
+    window.lesson_panel.select(LESSONS["observer"], 0)  # observer A, while the question is about B
+    assert exercises.index == 1
+    assert "the window shows step 1's." in exercises.elsewhere.text()
+    window.load_preset("lecture", presets.lecture_scene)  # File → an example: another scene
+    assert "the window shows another scene." in exercises.elsewhere.text()
+    ask_exercise(qtbot, window, "observer", 1, 1)
+    assert exercises.elsewhere.isHidden()
+
+
+def test_once_answered_or_revealed_nothing_is_said(qtbot, window):
+    exercises = ask_exercise(qtbot, window, "observer", 1, 1)
+    window.activateWindow()
+    qtbot.waitUntil(window.isActiveWindow)
+    qtbot.keyClick(window, Qt.Key.Key_Left)
+    qtbot.waitUntil(exercises.elsewhere.isVisible)
+    exercises.reveal()
+    qtbot.waitUntil(lambda: exercises.feedback.text().startswith("The answer:"))
+    assert exercises.elsewhere.isHidden()
+
+
+def test_after_show_me_no_exercise_says_the_window_shows_another_scene(qtbot, window):
+    """Each of the shipped exercises, its step shown by Show me: the window shows the scene it asks
+    about, and nothing says otherwise (a step's own settings, camera and all, are its scene)."""
+    window.exercise_dock.raise_()
+    qtbot.waitUntil(lambda: in_front(window.exercise_dock))
+    exercises = window.exercise_panel
+    for lesson in shipped_lessons():
+        window.lesson_panel.select(LESSONS[lesson.id], 0)
+        for k in range(len(lesson.exercises)):
+            exercises.go(k)
+            exercises.show_button.click()
+            qtbot.waitUntil(lambda: window.lesson_panel.step_index()[1] == exercises.exercise().step)
+            assert exercises.elsewhere.isHidden(), (lesson.id, k, exercises.elsewhere.text())
