@@ -43,6 +43,7 @@ from app.process.lock_turns import hand_over_often
 from app.process.long_lived import set_aside_once_loaded
 from app.window import render_budget, session
 from app.window.background_compile import BackgroundCompile
+from app.window.dropped_files import DroppedFiles
 from app.window.first_frame import AfterFirstFrame
 from app.window.scene_editor import SceneEditor
 from app.window.state import SceneModel
@@ -65,6 +66,7 @@ from views.panels.camera_panel import CameraPanel
 from views.panels.exercise_panel import ExercisePanel, ExerciseProgress
 from views.panels.lesson_panel import LessonPanel
 from views.presentation import Presentation
+from views.recent_files import LESSON, SCENE, RecentFiles
 from views.scene3d.deferred_scene_view import DeferredSceneView
 from views.scene3d.observer_keys import MOUSE_GESTURES, OBSERVER_KEYS, EditorsKeepTheirKeys
 from views.scene3d.scene_overlays import SCENE_OVERLAYS, SceneOverlays
@@ -176,6 +178,8 @@ class MainWindow(QMainWindow):
         self.asked_scene = AskedScene(self)
         self.fact_check = LessonFactCheck(self)  # File → Open lesson: are the new lesson's facts true?
         self.lesson_panel.lesson_opened.connect(self.fact_check.check)
+        self.lesson_panel.lesson_opened.connect(lambda lesson: self.recent_files.add(LESSON, lesson.path))
+        self.dropped_files = DroppedFiles(self)
         self.presentation.presenting_changed.connect(self._presenting_changed)
         self.presentation.scale_changed.connect(self._scale_changed)
         self.scene_pane.visibilityChanged.connect(lambda shown: shown and self._refit())
@@ -352,6 +356,8 @@ class MainWindow(QMainWindow):
                      "Back to the lecture's cube and cone on a plane")
         self._action(file_menu, "Open &lesson…", lambda: self.lesson_panel.open_lesson_file(),
                      tip="Open a lesson JSON file and start it")
+        self.recent_files = RecentFiles(file_menu.addMenu("Open &recent"), self)
+        self.recent_files.chosen.connect(self._open_recent)
         examples = file_menu.addMenu("&Examples")
         for group in (presets.PRESETS, PRESETS_TRACE):
             for key, (title, build) in group.items():
@@ -446,8 +452,15 @@ class MainWindow(QMainWindow):
         self.model.set_scene(scene)
         self.editor.stack.clear()  # even a scene equal to the one shown starts with nothing to undo
         self.leave_lesson_step(f"The window shows {self.scene_path.name} now.")
+        self.recent_files.add(SCENE, path)
         self.explain_if_too_large(self.scene_path.name)
         return True
+
+    def _open_recent(self, kind: str, path: str) -> None:
+        if kind == LESSON:
+            self.lesson_panel.open_lesson_file(path)
+        else:
+            self.open_scene(path)
 
     def explain_if_too_large(self, name: str) -> None:
         """Say in a dialog why tabs will not render the scene just opened (from file ``name``), if so."""
@@ -623,6 +636,7 @@ def run(scene_path: str | None = None, memory_limit: int | None = None) -> int:
     else:
         window.scene_path = Path(scene_path)
         window.setWindowTitle(f"Render Explorer — {window.scene_path.name}")
+        window.recent_files.add(SCENE, scene_path)
     window.show()
     set_aside_once_loaded(window)
     hand_over_often()

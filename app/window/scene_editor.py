@@ -33,6 +33,7 @@ from core.files.mesh_files import EXTENSIONS, read_mesh
 from core.files.scene_file import SceneFileError
 from views.file_dialogs import ask_open
 from views.panels.scene_tree_panel import SceneTreePanel, label
+from views.recent_files import SCENE
 
 EDITABLE = ("object", "light")
 
@@ -321,6 +322,7 @@ class SceneEditor(QObject):
         """The scene was saved to ``path``: that is now its file, and nothing is unsaved."""
         self.window.scene_path = Path(path)
         self.window.setWindowTitle(f"Render Explorer — {Path(path).name}")
+        self.window.recent_files.add(SCENE, path)
         self.stack.setClean()
 
     def save(self) -> bool:
