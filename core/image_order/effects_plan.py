@@ -215,8 +215,31 @@ def _light_plan(scene: Scene, index: int) -> LightPlan:
             reason = reason or f"{blocker.name} may shadow {receiver.name}: shadow rays"
             shadowing.append(x)
         blockers.append(tuple(shadowing))
-    found = tuple(blockers) if every_pair else None
-    return LightPlan(index, reason is not None, reason or "nothing can block it: no shadow rays", found)
+    if not every_pair:
+        return LightPlan(index, reason is not None, reason or "nothing can block it: no shadow rays")
+    if reason is None:
+        return LightPlan(index, False, "nothing can block it: no shadow rays", tuple(blockers))
+    return LightPlan(index, True, _pairs(objects, blockers) + ": shadow rays", tuple(blockers))
+
+
+def _pairs(objects, blockers) -> str:
+    """Which objects may shadow which, in words: every pair found, the receivers' lists in turn.
+
+    >>> from core.scene import Sphere
+    >>> a, b, c = (Sphere((0.0, 0.0, 0.0), 1.0, name=n) for n in "abc")
+    >>> _pairs((a, b, c), ((1, 2), (), (2,)))
+    'b and c may shadow a; c may shadow itself (not convex)'
+    """
+    clauses = []
+    for y, found in enumerate(blockers):
+        others = [objects[x].name for x in found if x != y]
+        if others:
+            listed = others[:4] + ([f"{len(others) - 4} more"] if len(others) > 4 else [])
+            clauses.append(f"{', '.join(listed[:-1])} and {listed[-1]}" if len(listed) > 1 else listed[0])
+            clauses[-1] += f" may shadow {objects[y].name}"
+        if y in found:
+            clauses.append(f"{objects[y].name} may shadow itself (not convex)")
+    return "; ".join(clauses[:3]) + (f"; and {len(clauses) - 3} more" if len(clauses) > 3 else "")
 
 
 def _clear(blocker, receiver, light) -> bool:
