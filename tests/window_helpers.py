@@ -58,3 +58,11 @@ def ask_exercise(qtbot, window: MainWindow, lesson_id: str, step: int, exercise:
     qtbot.waitUntil(lambda: in_front(window.exercise_dock))
     window.exercise_panel.go(exercise)
     return window.exercise_panel
+
+
+def open_scene_file(qtbot, window: MainWindow, path) -> bool:
+    """File → Open scene… with ``path``, waiting until the file is read (off the GUI thread) and shown,
+    or refused; whether it is the scene shown now."""
+    with qtbot.waitSignal(window.scene_file_done, timeout=30_000) as done:
+        window.open_scene(path)
+    return done.args[1]

@@ -84,10 +84,13 @@ class MainWindow(QMainWindow):
     -------
     image_shown(str title, bool preview) : a tab showed a new image (a preview or the full one).
     full_image_shown(str title) : a tab showed the full render of the current scene.
+    scene_file_done(str path, bool opened) : :meth:`open_scene` is done with the file ``path``: it is
+        the scene shown, or not (a problem with the file, or the user kept unsaved changes).
     """
 
     image_shown = Signal(str, bool)
     full_image_shown = Signal(str)
+    scene_file_done = Signal(str, bool)
 
     def __init__(self, scene: Scene, memory_limit: int | None = None):
         super().__init__()
@@ -204,6 +207,10 @@ class MainWindow(QMainWindow):
         self._tree_renderer = Renderer(self)
         self._tree_renderer.finished.connect(self._show_ray_tree)
         self._tree_renderer.failed.connect(lambda message: self.statusBar().showMessage(message, 6000))
+        self._scene_reader = Renderer(self)  # a scene file's meshes may take seconds to read
+        self._opening = ""  # the scene file it reads last
+        self._scene_reader.finished.connect(self._scene_read)
+        self._scene_reader.failed.connect(self._scene_read_failed)
         object_order = self.tab("object order").widget
         object_order.polygon_shown.connect(self.overlays.show_polygon)
         object_order.clipped_shown.connect(self.overlays.show_clipped)
@@ -438,15 +445,32 @@ class MainWindow(QMainWindow):
         if path:
             self.open_scene(path)
 
-    def open_scene(self, path) -> bool:
-        """Load a scene file; on any problem show them all and keep the current scene."""
-        try:
-            scene = scene_file.load(path, read_mesh=read_mesh)
-        except scene_file.SceneFileError as exc:
-            QMessageBox.critical(self, "Cannot open scene", f"{Path(path).name}:\n\n{exc}")
-            return False
+    def open_scene(self, path) -> None:
+        """Read the scene file ``path`` off the GUI thread (the meshes it names may take seconds), then
+        show it; on any problem show them all and keep the current scene (``scene_file_done`` says which).
+        A file opened meanwhile takes its place."""
+        path = self._opening = str(path)
+        self.statusBar().showMessage(f"Opening {Path(path).name}…")
+
+        def job(cancelled, progress):
+            try:
+                return path, scene_file.load(path, read_mesh=read_mesh)
+            except scene_file.SceneFileError as exc:
+                return path, exc
+
+        self._scene_reader.submit(job)
+
+    def _scene_read(self, result) -> None:
+        path, scene = result
+        if self.statusBar().currentMessage().startswith("Opening "):
+            self.statusBar().clearMessage()
+        if isinstance(scene, scene_file.SceneFileError):
+            QMessageBox.critical(self, "Cannot open scene", f"{Path(path).name}:\n\n{scene}")
+            self.scene_file_done.emit(path, False)
+            return
         if not self.editor.may_replace_scene():
-            return False
+            self.scene_file_done.emit(path, False)
+            return
         self.scene_path = Path(path)
         self.setWindowTitle(f"Render Explorer — {self.scene_path.name}")
         self.model.set_scene(scene)
@@ -454,7 +478,13 @@ class MainWindow(QMainWindow):
         self.leave_lesson_step(f"The window shows {self.scene_path.name} now.")
         self.recent_files.add(SCENE, path)
         self.explain_if_too_large(self.scene_path.name)
-        return True
+        self.scene_file_done.emit(path, True)
+
+    def _scene_read_failed(self, message: str) -> None:
+        """Reading a scene file failed other than by its contents (say, memory ran out)."""
+        self.statusBar().clearMessage()
+        QMessageBox.critical(self, "Cannot open scene", f"{Path(self._opening).name}:\n\n{message}")
+        self.scene_file_done.emit(self._opening, False)
 
     def _open_recent(self, kind: str, path: str) -> None:
         if kind == LESSON:

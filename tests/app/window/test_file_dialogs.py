@@ -39,7 +39,8 @@ def test_open_and_save_start_in_documents_then_in_the_folder_last_used(qtbot, mo
     answer = str(scenes / "mine.json")
     scene_file.save(presets.zbuffer_three_polygons(), answer)
     window = _window(qtbot)
-    window.open_scene_dialog()
+    with qtbot.waitSignal(window.scene_file_done):  # read off the GUI thread
+        window.open_scene_dialog()
     assert asked[-1] in users and asked[-1] != ROOT  # a first run: the user's Documents (or home)
     assert window.scene_path == Path(answer)
     window.save_scene_dialog()

@@ -12,7 +12,7 @@ import pytest
 from PySide6.QtCore import QPoint, QPointF, Qt, QTimer
 from PySide6.QtGui import QWheelEvent
 from PySide6.QtWidgets import QApplication
-from window_helpers import RENDER_TIMEOUT_MS
+from window_helpers import RENDER_TIMEOUT_MS, open_scene_file
 
 from app.window.window_layout import in_front
 from core import presets, shapes
@@ -295,7 +295,7 @@ def test_opening_a_smaller_scene_after_picking_a_buffer_pixel_clears_the_pick(qt
     small = replace(small, camera=small.camera.replace(width=160, height=120))
     path = tmp_path / "small.json"
     scene_file.save(small, path)
-    assert window.open_scene(path)
+    assert open_scene_file(qtbot, window, path)
     assert window.model.buffer_pixel is None and panel.history.rowCount() == 0
     _wait_full(qtbot, window, "object order")
     assert panel.image.rgb.shape == (120, 160, 3) and panel.picked is None

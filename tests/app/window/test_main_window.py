@@ -6,9 +6,9 @@ import threading
 
 import numpy as np
 import pytest
-from PySide6.QtCore import Qt
+from PySide6.QtCore import Qt, QTimer
 from PySide6.QtWidgets import QApplication, QMessageBox
-from window_helpers import RENDER_TIMEOUT_MS
+from window_helpers import RENDER_TIMEOUT_MS, open_scene_file
 
 from core import presets
 from core.presets_trace import PRESETS_TRACE
@@ -105,9 +105,32 @@ def test_bad_scene_file_shows_a_dialog_and_keeps_the_scene(qtbot, window, tmp_pa
     bad = tmp_path / "bad.json"
     bad.write_text(json.dumps({"objects": [{"type": "sphere", "center": [0, 0, 0], "radius": -1}]}))
     before = window.model.scene
-    assert not window.open_scene(bad)
+    assert not open_scene_file(qtbot, window, bad)
     assert window.model.scene == before
     assert "objects[0].radius" in shown[0]
+
+
+def test_a_scene_file_is_read_while_the_window_goes_on(qtbot, window, tmp_path):
+    """A scene naming a 180,000-triangle mesh took most of a second to read on the GUI thread, the
+    window frozen meanwhile: it is read off it, the status bar says so, the old scene stays until
+    the new one is read, and the window keeps handling events."""
+    n = 300  # a grid of n x n vertices, two triangles a square
+    rows = [f"v {i / n} {j / n} 0\n" for j in range(n) for i in range(n)]
+    rows += [f"f {a} {a + 1} {a + n}\nf {a + 1} {a + n + 1} {a + n}\n"
+             for j in range(n - 1) for i in range(n - 1) for a in [j * n + i + 1]]
+    (tmp_path / "grid.obj").write_text("".join(rows))
+    path = tmp_path / "grid.json"
+    path.write_text(json.dumps({"objects": [{"type": "mesh_file", "name": "grid", "path": "grid.obj"}]}))
+    before = window.model.scene
+    turns = []
+    QTimer.singleShot(0, lambda: turns.append(window.model.scene is before))
+    with qtbot.waitSignal(window.scene_file_done, timeout=30_000) as done:
+        window.open_scene(path)
+        assert window.model.scene is before
+        assert window.statusBar().currentMessage() == "Opening grid.json…"
+    assert turns == [True]  # the event loop turned while the file was read
+    assert done.args == [str(path), True]
+    assert window.model.scene.objects[0].triangles.shape == (2 * (n - 1) ** 2, 3)
 
 
 def test_arrow_keys_walk_around_the_target(qtbot, window):

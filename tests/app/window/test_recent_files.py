@@ -6,6 +6,7 @@ import json
 from PySide6.QtCore import QMimeData, QPoint, Qt, QUrl
 from PySide6.QtGui import QDragEnterEvent, QDropEvent
 from PySide6.QtWidgets import QApplication, QMenu, QMessageBox
+from window_helpers import open_scene_file
 
 from app.window.main_window import MainWindow
 from core import presets
@@ -35,20 +36,21 @@ def test_opened_and_saved_scenes_and_opened_lessons_are_listed_most_recent_first
     first, second = tmp_path / "first.json", tmp_path / "second.json"
     scene_file.save(presets.zbuffer_three_polygons(), first)
     scene_file.save(presets.lecture_scene(), second)
-    assert window.open_scene(first) and window.open_scene(second)
+    assert open_scene_file(qtbot, window, first) and open_scene_file(qtbot, window, second)
     window.lesson_panel.open_lesson_file(FILES / "05_zbuffer.json")
     saved = tmp_path / "saved.json"
     assert window.editor.save_to(saved)
     assert _entries(window) == ["&1  saved.json", "&2  05_zbuffer.json  (lesson)", "&3  second.json",
                                 "&4  first.json", "Clear the list"]
     assert _recent_menu(window).actions()[2].toolTip() == str(second)
-    assert window.open_scene(first)  # again: back to the top, listed once
+    assert open_scene_file(qtbot, window, first)  # again: back to the top, listed once
     assert _entries(window)[:2] == ["&1  first.json", "&2  saved.json"]
 
     # Another session: the list is still there, and its entries open their files.
     later = _window(qtbot)
     assert _entries(later) == _entries(window)
-    next(a for a in _recent_menu(later).actions() if a.text() == "&4  second.json").trigger()
+    with qtbot.waitSignal(later.scene_file_done):
+        next(a for a in _recent_menu(later).actions() if a.text() == "&4  second.json").trigger()
     assert later.model.scene == presets.lecture_scene() and later.scene_path == second
     next(a for a in _recent_menu(later).actions() if "(lesson)" in a.text()).trigger()
     assert later.lesson_panel.current_lesson().path == FILES / "05_zbuffer.json"
@@ -61,7 +63,7 @@ def test_the_list_keeps_the_last_eight_and_a_file_gone_is_said_and_taken_off(qtb
     for k in range(MOST + 2):
         path = tmp_path / f"scene{k}.json"
         scene_file.save(presets.lecture_scene(), path)
-        assert window.open_scene(path)
+        assert open_scene_file(qtbot, window, path)
     names = _entries(window)[:-1]
     assert len(names) == MOST == 8
     assert names[0] == "&1  scene9.json" and names[-1] == "&8  scene2.json"
@@ -103,7 +105,8 @@ def test_a_scene_a_lesson_or_a_mesh_dropped_on_the_window_opens(qtbot, tmp_path)
     window = _window(qtbot)
     scene = tmp_path / "dropped.json"
     scene_file.save(presets.zbuffer_three_polygons(), scene)
-    _drop(window, [scene])
+    with qtbot.waitSignal(window.scene_file_done):
+        _drop(window, [scene])
     assert window.scene_path == scene and window.model.scene == presets.zbuffer_three_polygons()
     _drop(window, [FILES / "12_ray_casting.json"])
     assert window.lesson_panel.current_lesson().path == FILES / "12_ray_casting.json"
@@ -129,6 +132,7 @@ def test_a_file_that_is_neither_is_refused_in_the_status_bar_and_a_bad_scene_in_
     monkeypatch.setattr(QMessageBox, "critical", lambda *args: shown.append(args[2]))
     bad = tmp_path / "bad.json"
     bad.write_text("{\"objects\": [")
-    _drop(window, [bad])
+    with qtbot.waitSignal(window.scene_file_done):
+        _drop(window, [bad])
     assert window.model.scene == before
     assert shown and shown[0].startswith("bad.json:")

@@ -13,7 +13,7 @@ import pytest
 from PySide6.QtCore import QPointF, Qt, QTimer
 from PySide6.QtGui import QColor
 from PySide6.QtWidgets import QApplication, QColorDialog, QLineEdit, QMessageBox
-from window_helpers import RENDER_TIMEOUT_MS
+from window_helpers import RENDER_TIMEOUT_MS, open_scene_file
 
 from app.window import session
 from app.window.main_window import MainWindow, run
@@ -531,7 +531,7 @@ def test_quitting_with_ctrl_q_and_discarding_the_edits_ends_quietly(tmp_path):
 
 def test_save_from_the_question_writes_the_file_and_clears_the_star(qtbot, window, tmp_path):
     path = tmp_path / "edited.json"
-    assert window.open_scene(str(_saved_lecture(path)))
+    assert open_scene_file(qtbot, window, str(_saved_lecture(path)))
     _editor_action(window, "sphere").trigger()
     assert window.isWindowModified()
     asked = _answer_modal(qtbot, _click(QMessageBox.StandardButton.Save))
@@ -549,7 +549,7 @@ def test_undone_past_a_save_the_question_names_the_undone_edit_and_an_equal_scen
     the lecture scene loaded after Discard, equal to the one shown, kept the history: the title's star,
     Redo of the edit, and the question again at quitting."""
     path = tmp_path / "a.json"
-    assert window.open_scene(str(_saved_lecture(path)))
+    assert open_scene_file(qtbot, window, str(_saved_lecture(path)))
     _editor_action(window, "sphere").trigger()
     window.editor.save_action.trigger()
     window.editor.undo_action.trigger()  # the scene is the lecture's again, unlike a.json
@@ -595,7 +595,7 @@ def _fresh_window(qtbot):
 
 def test_saved_scene_and_observer_come_back_in_a_fresh_window(qtbot, window, tmp_path):
     path = _saved_lecture(tmp_path / "kept.json")
-    assert window.open_scene(str(path))
+    assert open_scene_file(qtbot, window, str(path))
     _editor_action(window, "pyramid").trigger()
     window.editor.save_action.trigger()  # Ctrl+S: into the scene's file
     assert not window.isWindowModified()

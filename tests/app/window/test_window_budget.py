@@ -16,7 +16,7 @@ from dataclasses import replace
 import pytest
 from checkout import ROOT
 from PySide6.QtWidgets import QMessageBox
-from window_helpers import RENDER_TIMEOUT_MS
+from window_helpers import RENDER_TIMEOUT_MS, open_scene_file
 
 from app.window import render_budget
 from core import budget, presets
@@ -100,7 +100,7 @@ def test_a_scene_over_the_budget_is_refused_in_every_tab_and_a_smaller_image_ren
     large = replace(large, camera=large.camera.replace(width=2000, height=1500))
     shown = []
     window.image_shown.connect(lambda title, preview: shown.append(title))
-    assert window.open_scene(_saved(tmp_path, large, "large.json"))
+    assert open_scene_file(qtbot, window, _saved(tmp_path, large, "large.json"))
 
     [box] = [b for b in window.findChildren(QMessageBox) if b.isVisible()]
     for fragment in ("large.json", "Image order: the 2000 × 1500 image", "the budget is 200 MB",

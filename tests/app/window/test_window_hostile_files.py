@@ -17,7 +17,9 @@ from checkout import ROOT
 
 DRIVER = """
 import json, sys
+from PySide6.QtCore import QEventLoop
 from PySide6.QtWidgets import QApplication, QMessageBox
+
 from app.window.main_window import MainWindow
 from core import presets
 
@@ -27,9 +29,20 @@ QMessageBox.critical = staticmethod(lambda parent, title, text, *rest: messages.
 window = MainWindow(presets.lecture_scene())
 window.show()
 before = window.model.scene
+
+
+def open_scene_file(path):  # File, Open scene: whether it opened, once read (off the GUI thread)
+    done, loop = [], QEventLoop()
+    window.scene_file_done.connect(lambda _path, opened: (done.append(opened), loop.quit()))
+    window.open_scene(path)
+    loop.exec()
+    window.scene_file_done.disconnect()
+    return done[0]
+
+
 for k, path in enumerate(sys.argv[1:]):
     messages.clear()
-    opened = window.open_scene(path)
+    opened = open_scene_file(path)
     fov = 41.0 + k
     window.model.set_camera(window.model.camera.replace(fov_y_deg=fov))  # still usable
     print(json.dumps({"opened": opened, "kept": window.model.scene.objects == before.objects,
