@@ -130,7 +130,7 @@ def test_exercises_follow_the_lesson_a_click_answers_and_progress_shows_in_the_l
     k = LESSONS["ray_casting"]
     panel.select(k, 0)
     assert exercises.lesson is panel.current_lesson()
-    assert exercises.question.text() == "Click a pixel in the cone's shadow."
+    assert exercises.question.text() == "Click a pixel in the cube's shadow."
     window.exercise_dock.raise_()  # the student opens the Exercises tab
     qtbot.waitUntil(lambda: in_front(window.exercise_dock))
     with qtbot.waitSignal(panel.step_selected):  # "show me": the shadow step, a pixel in the shadow
