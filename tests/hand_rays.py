@@ -101,6 +101,20 @@ def hits(scene, origin, direction, t_min=0.0):
     return sorted(hit for hit in found if math.isfinite(hit[0]))
 
 
+def shadow_blockers(scene, x, y, light=0):
+    """Pixel ``(x, y)``'s first hit and the objects between it and the light, nearest first (the
+    shadow ray p + s (l - p), 0 < s < 1): ``(name hit, [blockers])``; ``(None, [])`` on a miss."""
+    origin, direction = pixel_ray(scene.camera, x, y)
+    found = hits(scene, origin, direction)
+    if not found:
+        return None, []
+    t, name = found[0]
+    point = origin + t * direction
+    to_light = np.asarray(scene.lights[light].position) - point
+    distance = np.linalg.norm(to_light)
+    return name, [n for s, n in hits(scene, point, to_light / distance, t_min=1e-6) if s < distance]
+
+
 def image_hits(scene, camera=None):
     """Every object's nearest t at every pixel of ``camera``'s image (the scene's by default):
     ``{name: (H, W) array}``, +inf where the object's crossing is missed."""

@@ -9,7 +9,7 @@ from __future__ import annotations
 from functools import cache
 
 from core.files.lesson_file import shipped_lessons
-from core.lessons.exercises import judge
+from core.lessons.exercises import judge, variant
 from core.lessons.facts import StepPipelines
 
 
@@ -36,3 +36,8 @@ def assert_only(ex, p, answer) -> None:
     verdicts = [judge(ex, p, i).right for i in range(len(choices))]
     assert verdicts == [c == answer and type(c) is type(answer) for c in choices], (
         ex.question, answer, verdicts)
+
+
+def seed_drawing(ex, index: int, k: int) -> int:
+    """A student's seed that draws variant ``k`` of ``ex``, the lesson's exercise ``index``."""
+    return next(s for s in range(1000) if variant(ex, s, index) is ex.variants[k])

@@ -47,13 +47,22 @@ def presenting_on_1280x720(qtbot, monkeypatch, scale: float = 1.5) -> MainWindow
     return window
 
 
-def ask_exercise(qtbot, window: MainWindow, lesson_id: str, step: int, exercise: int):
+def ask_exercise(qtbot, window: MainWindow, lesson_id: str, step: int, exercise: int,
+                 drawn: int | None = None):
     """Show the shipped lesson ``lesson_id``'s step ``step`` and ask its exercise ``exercise`` with the
-    Exercises tab in front, as a student does; the exercise panel."""
+    Exercises tab in front, as a student does (its variant ``drawn``: the student's seed is set to draw
+    it); the exercise panel."""
+    from shipped_exercises import seed_drawing
+
     from app.window.window_layout import in_front
     from core.files.lesson_file import shipped_lessons
 
-    window.lesson_panel.select([lesson.id for lesson in shipped_lessons()].index(lesson_id), step)
+    lessons = shipped_lessons()
+    k = [lesson.id for lesson in lessons].index(lesson_id)
+    if drawn is not None:
+        seed = seed_drawing(lessons[k].exercises[exercise], exercise, drawn)
+        window.exercise_panel.progress.settings.setValue("exercise_seed", seed)
+    window.lesson_panel.select(k, step)
     window.exercise_dock.raise_()
     qtbot.waitUntil(lambda: in_front(window.exercise_dock))
     window.exercise_panel.go(exercise)

@@ -196,9 +196,12 @@ class LessonRunner:
     def _mark(self) -> None:
         """Mark in the 3D pane the step's highlighted object or face and write the names of the objects
         its words name.  While an exercise is :attr:`asked`, its words take the step's place: a mark
-        stays only on an object its question names (the step that outlined "the box behind the
-        observer" answered "Which object is dropped before any pixel work?"), and the names written
-        are those of the objects the question and its choices name, each alike."""
+        stays only on an object its question names and does not offer as an answer (the step that
+        outlined "the box behind the observer" answered "Which object is dropped before any pixel
+        work?"; an outline on one of the objects offered would single it out), a face's mark and its
+        normal go (a question names its own face, by its corners: the step's face would pass for it,
+        and the normal's direction answers a back-face question), and the names written are those of
+        the objects the question and its choices name, each alike."""
         step, scene = self.step, self.step.scene
         if self.asked is None:
             named = named_objects(scene, step.text)
@@ -206,7 +209,8 @@ class LessonRunner:
         else:
             question, choices = self.asked
             named = named_objects(scene, "\n".join((question, *choices)))
-            marked = named_objects(scene, question)
+            offered = named_objects(scene, "\n".join(choices))
+            marked = [o for o in named_objects(scene, question) if not any(o is c for c in offered)]
         parts, side = [], []
         if "object" in step.highlight:
             obj = _find(scene, step.highlight["object"])
@@ -216,13 +220,12 @@ class LessonRunner:
                 )
 
                 parts.append((object_polydata(obj), OBJECT_STYLE))
-        if "face" in step.highlight:
+        if "face" in step.highlight and self.asked is None:
             face = step.highlight["face"]
             mesh = _find(scene, face["object"])
-            if any(o is mesh for o in marked):
-                corners = mesh.vertices[mesh.triangles[face["triangle"]]]
-                arrow, side = _normal_parts(np.asarray(corners, dtype=float), scene.camera.eye)
-                parts += polygon_parts(corners) + arrow
+            corners = mesh.vertices[mesh.triangles[face["triangle"]]]
+            arrow, side = _normal_parts(np.asarray(corners, dtype=float), scene.camera.eye)
+            parts += polygon_parts(corners) + arrow
         parts += _name_parts(named, scene)
         self.window.scene_view.set_overlay(LESSON_OVERLAY, parts)
         self.window.scene_view.set_overlay(FACE_SIDE_OVERLAY, side)

@@ -45,14 +45,20 @@ demands that no two pictures look alike.
 Variants: an exercise may list ``"variants"`` (pixels, or any JSON values);
 ``"$at"`` in its fact or value, and ``{at}`` in its question, stand for one of
 them, and :func:`variant` draws one from a student's seed, so each student gets
-another pixel; the answer is the pipelines' for that draw.  A lesson check
-answers every variant.
+another pixel; the answer is the pipelines' for that draw.  A variant may be an
+object: ``"$at.origin"`` and ``{at.origin}`` stand for its ``origin`` (a segment,
+its sphere and radius in one variant).  Exercises that name the same ``"draw"``
+(and list as many variants) give a student the same draw, so that "What is b?"
+asks about the segment "What is a?" gave.  A lesson check answers every variant,
+and reports an exercise whose answer a step of its lesson states
+(:func:`stated_answers`): the exercise is to apply the step, not to copy it.
 """
 
 from __future__ import annotations
 
 import copy
 import random
+import re
 from dataclasses import dataclass, field
 from types import MappingProxyType
 
@@ -72,9 +78,9 @@ ORDERS = ("drawing_order", "ray_tree_colours")
 RAY_STEPS = ("reflection", "refraction")
 """What may follow ``primary`` in a ray's path (``ray_tree_colours``): the rays whose colours are gathered."""
 _FIELDS = {
-    "choose_one": (("kind", "question", "choices", "fact"), ("step", "why", "variants")),
+    "choose_one": (("kind", "question", "choices", "fact"), ("step", "why", "variants", "draw")),
     "click_pixel": (("kind", "question", "fact"), ("step", "why")),
-    "number": (("kind", "question", "value", "tolerance"), ("step", "why", "variants")),
+    "number": (("kind", "question", "value", "tolerance"), ("step", "why", "variants", "draw")),
     "order": (("kind", "question", "items", "by"), ("step", "why", "pixel")),
     "pick_picture": (("kind", "question", "view"), ("step", "why")),
 }
@@ -95,6 +101,7 @@ class Exercise:
     args : the kind's fields as read.
     path : where it was written, e.g. ``"exercises[2]"``.
     variants : the exercise drawn with each of its ``variants`` (empty when it has none).
+    draw : the name of the draw it shares with other exercises (None: its own).
     """
 
     kind: str
@@ -104,6 +111,7 @@ class Exercise:
     args: MappingProxyType
     path: str
     variants: tuple = field(default=())
+    draw: str | None = None
 
 
 def variant(ex: Exercise, seed: int, index: int = 0) -> Exercise:
@@ -111,13 +119,19 @@ def variant(ex: Exercise, seed: int, index: int = 0) -> Exercise:
     one seed does not draw the same variant everywhere); ``ex`` itself when it has none."""
     if not ex.variants:
         return ex
-    return ex.variants[random.Random(seed * 1009 + index).randrange(len(ex.variants))]
+    rng = random.Random(f"{seed}/{ex.draw}") if ex.draw else random.Random(seed * 1009 + index)
+    return ex.variants[rng.randrange(len(ex.variants))]
+
+
+_AT = re.compile(r"\{at(?:\.(\w+))?\}")
 
 
 def _put(value, at):
-    """``value`` (JSON) with every ``"$at"`` replaced by ``at``."""
+    """``value`` (JSON) with every ``"$at"`` replaced by ``at`` and every ``"$at.key"`` by ``at[key]``."""
     if value == "$at":
         return at
+    if isinstance(value, str) and value.startswith("$at.") and isinstance(at, dict) and value[4:] in at:
+        return at[value[4:]]
     if isinstance(value, dict):
         return {k: _put(v, at) for k, v in value.items()}
     if isinstance(value, list):
@@ -126,7 +140,17 @@ def _put(value, at):
 
 
 def _shown(at) -> str:
-    return "(" + ", ".join(str(v) for v in at) + ")" if isinstance(at, list) else str(at)
+    return "(" + ", ".join(_shown(v) for v in at) + ")" if isinstance(at, list) else str(at)
+
+
+def _asked_with(question: str, at) -> str:
+    """``question`` with ``{at}`` (and ``{at.key}``, for an object) written out."""
+    def one(m):
+        key = m.group(1)
+        if key is None:
+            return _shown(at)
+        return _shown(at[key]) if isinstance(at, dict) and key in at else m.group(0)
+    return _AT.sub(one, question)
 
 
 @dataclass(frozen=True)
@@ -148,7 +172,15 @@ def _substituted(template, placeholder: str, value):
 
 def read_exercises(r, value, path: str, steps) -> tuple[Exercise, ...]:
     """The lesson's ``exercises`` list; every problem goes to ``r``."""
-    return read_list(r, value, path, _read, steps)
+    read = read_list(r, value, path, _read, steps)
+    counts = {}
+    for ex in read:
+        if ex is not None and ex.draw is not None:
+            first = counts.setdefault(ex.draw, (ex.path, len(ex.variants)))
+            if first[1] != len(ex.variants):
+                r.add(join(ex.path, "variants"), f"draw {ex.draw!r}: {first[0]} lists {first[1]} variants, "
+                                                 f"this one {len(ex.variants)}; list as many")
+    return read
 
 
 def _read(r, value, path: str, steps) -> Exercise | None:
@@ -157,17 +189,20 @@ def _read(r, value, path: str, steps) -> Exercise | None:
         if not listed:
             r.add(join(path, "variants"), "give at least one variant")
             return None
-        base = {k: v for k, v in value.items() if k != "variants"}
+        base = {k: v for k, v in value.items() if k not in ("variants", "draw")}
         drawn = []
         for i, at in enumerate(listed):
             concrete = _put(base, at)
-            if isinstance(concrete.get("question"), str):
-                concrete["question"] = concrete["question"].replace("{at}", _shown(at))
+            for key in ("question", "why"):
+                if isinstance(concrete.get(key), str):
+                    concrete[key] = _asked_with(concrete[key], at)
             drawn.append(_read(r, concrete, f"{path}.variants[{i}]", steps))
         if None in drawn:
             return None
+        draw = r.string(value["draw"], join(path, "draw")) if "draw" in value else None
         first = drawn[0]
-        return Exercise(first.kind, first.question, first.why, first.step, first.args, path, tuple(drawn))
+        return Exercise(first.kind, first.question, first.why, first.step, first.args, path, tuple(drawn),
+                        draw)
     tagged = read_tagged(r, value, path, "kind", _FIELDS, "an exercise", "exercise kind")
     if tagged is None:
         return None
@@ -510,7 +545,8 @@ def _view_words(key: str) -> str:
 
 def check_exercises(lesson) -> list[str]:
     """One line per exercise the pipelines cannot answer as asked (no right choice, or several; no
-    right pixel; no number; an item not drawn)."""
+    right pixel; no number; an item not drawn), or whose answer a step of the lesson states
+    (:func:`stated_answers`: the exercise would be recall, not application)."""
     lines = []
     pipelines = {}
     for ex in (v for e in lesson.exercises for v in (e.variants or (e,))):
@@ -534,4 +570,117 @@ def check_exercises(lesson) -> list[str]:
             problem = f"pictures alike: {', '.join(alike)}" if alike else None
         if problem:
             lines.append(f"lesson {lesson.id}, {ex.path} ({ex.question}): {problem}")
+        else:
+            lines += [f"lesson {lesson.id}, {ex.path} ({ex.question}): a step states the answer: {stated}"
+                      for stated in stated_answers(lesson, ex, p)]
     return lines
+
+
+# --- answers a step states ----------------------------------------------------------------------
+
+#: A number as a step writes it: digits, a decimal point and decimals; a minus sign (ASCII or "−").
+_WRITTEN = re.compile(r"(?<![\w.])[-−]?(\d+(?:\.\d+)?)(?![\w])")
+#: Below this, an integer written without decimals is everywhere (coordinates, exponents, indices, "1 − α")
+#: and says nothing about an answer.
+TRIVIAL_INTEGER = 10
+_WRITTEN_PIXEL = re.compile(r"\((\d+),\s*(\d+)\)")
+_THIS_PIXEL = re.compile(r"\b(this|the picked) pixel\b", re.IGNORECASE)
+
+
+def written_numbers(text: str) -> list[tuple[float, int]]:
+    """The numbers ``text`` writes (a step's words or formulas): ``(magnitude, decimals)``, leaving
+    out integers below :data:`TRIVIAL_INTEGER` written without decimals."""
+    out = []
+    for m in _WRITTEN.finditer(text):
+        digits = m.group(1)
+        decimals = len(digits.partition(".")[2])
+        if decimals or int(digits) >= TRIVIAL_INTEGER:
+            out.append((float(digits), decimals))
+    return out
+
+
+def writes(n: float, decimals: int, value: float, tolerance: float) -> bool:
+    """Is ``n``, written with ``decimals`` decimals, the answer ``value`` (either sign) as a student
+    would copy it: ``value`` rounded to those decimals, and judged right typed in?"""
+    off = abs(abs(value) - n)
+    return off <= 0.5 * 10.0 ** -decimals + 1e-9 * max(1.0, n) and off <= tolerance
+
+
+def _sentences(text: str) -> list[str]:
+    return [s for s in re.split(r"(?<=[.!?])\s+", text) if s]
+
+
+def _words(step) -> list[tuple[str, str]]:
+    """What a step says to the student: (where, text) for its title, its text and each formula."""
+    return [("title", step.title), ("text", step.text)] + [
+        (f"formulas[{i}]", f) for i, f in enumerate(step.formulas)]
+
+
+def _names(sentence: str, label: str) -> bool:
+    return re.search(rf"(?<!\w){re.escape(label)}(?!\w)", sentence, re.IGNORECASE) is not None
+
+
+def _pixels_spoken_of(said: str, step) -> set[tuple[int, int]]:
+    """The pixels words of ``step`` speak of: written as ``(x, y)``, and the step's picked pixel when
+    they say "this pixel" or "the picked pixel"."""
+    pixels = {(int(x), int(y)) for x, y in _WRITTEN_PIXEL.findall(said)}
+    if step.pixel is not None and _THIS_PIXEL.search(said):
+        pixels.add(tuple(step.pixel))
+    return pixels
+
+
+def _number_stated(lesson, ex: Exercise, p: StepPipelines) -> list[str]:
+    value, tol = number(ex, p), ex.args["tolerance"]
+    places = {}
+    for k, step in enumerate(lesson.steps):
+        for where, said in _words(step):
+            for n, decimals in written_numbers(said):
+                if writes(n, decimals, value, tol):
+                    places.setdefault(n, {})[f"steps[{k}].{where}"] = None  # each place once
+    return [f"{', '.join(where)} write{'s' if len(where) == 1 else ''} {n:g}, the answer {value:.6g}"
+            for n, where in places.items()]
+
+
+def _choice_stated(lesson, ex: Exercise, p: StepPipelines) -> list[str]:
+    pixel, lines = named_pixel(ex), []
+    labels = [c if isinstance(c, str) else ("background" if c is None else None) for c in ex.args["choices"]]
+    for right in (labels[i] for i in right_choices(ex, p) if labels[i] is not None):
+        for k, step in enumerate(lesson.steps):
+            for sentence in _sentences(step.text):
+                named = [label for label in labels if label is not None and _names(sentence, label)]
+                if pixel in _pixels_spoken_of(sentence, step) and right in named and len(named) < len(labels):
+                    lines.append(f"steps[{k}].text says of pixel {pixel} the answer {right!r}: “{sentence}”")
+    return lines
+
+
+def _pixel_stated(lesson, ex: Exercise, p: StepPipelines) -> list[str]:
+    cam, lines = p.step.scene.camera, []
+    for k, step in enumerate(lesson.steps):
+        pointed = set().union(*(_pixels_spoken_of(said, step) for _, said in _words(step)))
+        for pixel in sorted(pointed):
+            if 0 <= pixel[0] < cam.width and 0 <= pixel[1] < cam.height and pixel_is_right(ex, p, pixel)[0]:
+                lines.append(f"steps[{k}] points at pixel {pixel}, a right answer")
+    return lines
+
+
+def stated_answers(lesson, ex: Exercise, p: StepPipelines) -> list[str]:
+    """Where a step of ``lesson`` states the answer of ``ex`` (one drawn exercise, a variant), one
+    line each; empty when none does.
+
+    - a ``number``: a step's title, text or a formula writes the answer, either sign, rounded to the
+      decimals written and within the tolerance (:func:`writes`), integers below
+      :data:`TRIVIAL_INTEGER` without decimals left out;
+    - a ``choose_one`` about a pixel: a sentence of a step's text that speaks of that pixel (its
+      ``(x, y)``, or "this pixel" for the step's picked pixel) names the right choice, and not every
+      choice;
+    - a ``click_pixel``: a step's words point at a pixel (written, or "this pixel") that is a right
+      answer.
+    Other questions (a yes or no, an object named without a pixel, an order, a picture) are not
+    searched: the words that give those away are not told apart from the words that teach them."""
+    if ex.kind == "number":
+        return _number_stated(lesson, ex, p)
+    if ex.kind == "choose_one" and named_pixel(ex) is not None:
+        return _choice_stated(lesson, ex, p)
+    if ex.kind == "click_pixel":
+        return _pixel_stated(lesson, ex, p)
+    return []

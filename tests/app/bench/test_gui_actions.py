@@ -91,7 +91,7 @@ def test_the_lesson_row_steps_through_every_step_the_panel_holds_and_reads_no_fi
     monkeypatch.setattr(lesson_file, "load_lesson", lambda path: read.append(path))
     steps = list(gui._lesson_steps(window))
     assert read == []
-    assert len(steps) == sum(len(lesson.steps) for lesson in window.lesson_panel.lessons()) == 34
+    assert len(steps) == sum(len(lesson.steps) for lesson in window.lesson_panel.lessons()) == 35
     start, _ = steps[-1]
     start()
     last = len(window.lesson_panel.lessons()) - 1

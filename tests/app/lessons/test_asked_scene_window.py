@@ -14,7 +14,7 @@ LESSONS = {lesson.id: i for i, lesson in enumerate(shipped_lessons())}
 
 def test_an_exercise_says_when_the_window_no_longer_shows_the_scene_it_asks_about(qtbot, window):
     exercises = ask_exercise(qtbot, window, "observer", 1, 1)
-    assert exercises.question.text() == "From observer B, which object lies entirely outside the frustum?"
+    assert exercises.question.text().startswith("From observer B, ")
     assert exercises.elsewhere.isHidden()  # the window shows observer B's scene
     asked = window.model.scene
     window.activateWindow()

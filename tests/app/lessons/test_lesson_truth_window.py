@@ -131,7 +131,7 @@ def test_exercises_follow_the_lesson_a_click_answers_and_progress_shows_in_the_l
     k = LESSONS["ray_casting"]
     panel.select(k, 0)
     assert exercises.lesson is panel.current_lesson()
-    assert exercises.question.text() == "Click a pixel in the cone's shadow."
+    assert exercises.question.text() == "Click a pixel in the cube's shadow."
     window.exercise_dock.raise_()  # the student opens the Exercises tab
     qtbot.waitUntil(lambda: in_front(window.exercise_dock))
     with qtbot.waitSignal(panel.step_selected):  # "show me": the shadow step, a pixel in the shadow
@@ -147,14 +147,14 @@ def test_exercises_follow_the_lesson_a_click_answers_and_progress_shows_in_the_l
 
 
 def test_reveal_on_a_click_a_pixel_exercise_picks_the_pixel_it_names(window, qtbot):
-    """Reveal names a pixel in the cone's shadow and picks it in the shadow step's image, where the
+    """Reveal names a pixel in the cube's shadow and picks it in the shadow step's image, where the
     student looks for it (it only named it: the student had to find (x, y) in the picture)."""
     panel, exercises = window.lesson_panel, window.exercise_panel
     k = LESSONS["ray_casting"]
     panel.select(k, 0)
     window.exercise_dock.raise_()
     qtbot.waitUntil(lambda: in_front(window.exercise_dock))
-    assert exercises.question.text() == "Click a pixel in the cone's shadow."
+    assert exercises.question.text() == "Click a pixel in the cube's shadow."
     window.model.set_ray_pixel((0, 0))  # the student's own pick, in the sky
     exercises.reveal_button.click()
     qtbot.waitUntil(lambda: exercises.feedback.text().startswith("The answer:"), timeout=RENDER_TIMEOUT_MS)

@@ -2,6 +2,7 @@
 arrows move the pick (not the observer, whose keys they are elsewhere) and the ray tree follows;
 Enter answers a click-a-pixel exercise with the pixel picked."""
 
+from hand_rays import shadow_blockers
 from PySide6.QtCore import Qt
 from PySide6.QtWidgets import QApplication, QCheckBox
 from window_helpers import RENDER_TIMEOUT_MS
@@ -45,13 +46,17 @@ def test_the_arrows_move_the_traced_pixel_and_its_ray_tree_follows(qtbot, window
 
 
 def test_a_click_a_pixel_exercise_is_answered_from_the_keyboard(qtbot, window):
-    """The shadow step picks pixel (230, 155), in the cone's shadow: Enter on that pick, the step's
-    and not the student's, answers nothing.  The student walks off it and back with the arrows (which
-    answer nothing either: the pixel's readout is what they look at) and answers with Enter."""
+    """The shadow step picks pixel (230, 155), in the cone's shadow; the exercise asks for a pixel in
+    the cube's.  Enter on the step's pick answers nothing.  The student walks to (200, 125) with
+    Shift+arrows (which answer nothing either: the pixel's readout is what they look at) and answers
+    with Enter."""
     lessons, exercises = window.lesson_panel, window.exercise_panel
     k = LESSONS["ray_casting"]
     lessons.select(k, 1)
-    assert exercises.question.text() == "Click a pixel in the cone's shadow."
+    assert exercises.question.text() == "Click a pixel in the cube's shadow."
+    scene = shipped_lessons()[k].steps[1].scene
+    assert shadow_blockers(scene, 200, 125) == ("ground", ["cube"])  # by brute force: in the cube's shadow
+    assert shadow_blockers(scene, 230, 155) == ("ground", ["cone"])
     window.exercise_dock.raise_()
     qtbot.waitUntil(lambda: in_front(window.exercise_dock))
     image = window.tab("image order").widget.image
@@ -59,12 +64,12 @@ def test_a_click_a_pixel_exercise_is_answered_from_the_keyboard(qtbot, window):
     _tab_to(qtbot, window, image)
     qtbot.keyClick(image, Qt.Key.Key_Return)
     assert exercises.pixel_edit.text() == "" and exercises.feedback.text() == ""  # the step's pick
-    qtbot.keyClick(image, Qt.Key.Key_Left)
-    qtbot.keyClick(image, Qt.Key.Key_Right)
-    assert window.model.ray_pixel == (230, 155)
+    for key in (Qt.Key.Key_Left, Qt.Key.Key_Up) * 3:
+        qtbot.keyClick(image, key, Qt.KeyboardModifier.ShiftModifier)
+    assert window.model.ray_pixel == (200, 125)
     assert exercises.pixel_edit.text() == "" and exercises.feedback.text() == ""  # nothing answered yet
     qtbot.keyClick(image, Qt.Key.Key_Return)
-    assert exercises.pixel_edit.text() == "230, 155"
+    assert exercises.pixel_edit.text() == "200, 125"
     qtbot.waitUntil(lambda: exercises.feedback.text().startswith("Right"), timeout=RENDER_TIMEOUT_MS)
     assert "1/2 done, 1 right at first try" in lessons.list.item(k).text()
 

@@ -11,7 +11,7 @@ from fractions import Fraction
 import numpy as np
 import pytest
 from brute_force import exact_triangle_solve
-from hand_rays import crossings, hits, image_hits, inner_pixel, nearest, pixel_ray, rays
+from hand_rays import crossings, hits, image_hits, inner_pixel, nearest, pixel_ray, rays, shadow_blockers
 from shipped_exercises import assert_only, exercise
 
 from core.lessons.exercises import judge, number
@@ -29,17 +29,9 @@ def test_two_orders_the_ray_meets_the_cube_first():
     assert_only(ex, p, "cube")
 
 
-def _blockers(scene, point, light=0):
-    """The objects between ``point`` and the light, nearest first (the shadow ray p + s (l - p),
-    0 < s < 1)."""
-    to_light = np.asarray(scene.lights[light].position) - point
-    distance = np.linalg.norm(to_light)
-    return [name for t, name in hits(scene, point, to_light / distance, t_min=1e-6) if t < distance]
-
-
-def test_ray_casting_a_click_where_the_cone_blocks_the_light_is_right():
-    # Every ground pixel's shadow ray is tested against the cone: the pixels where it is blocked
-    # are the cone's shadow.
+def test_ray_casting_a_click_where_the_cube_blocks_the_light_is_right():
+    # Every ground pixel's shadow ray is tested against the cube: the pixels where it is blocked
+    # are the cube's shadow.  (The step's own pixel, (230, 155), lies in the cone's: its words say so.)
     ex, p = exercise("ray_casting", 0)
     scene = _scene(p)
     cam = scene.camera
@@ -50,26 +42,32 @@ def test_ray_casting_a_click_where_the_cone_blocks_the_light_is_right():
     points = origins + t["ground"][ys, xs, None] * directions
     to_light = np.asarray(scene.lights[0].position) - points
     distance = np.linalg.norm(to_light, axis=1)
-    cone = next(o for o in scene.objects if o.name == "cone")
-    blocked = crossings(cone, points + 1e-6 * to_light, to_light / distance[:, None]) < distance
-    shadow = np.zeros_like(ground)
-    shadow[ys[blocked], xs[blocked]] = True
-    inside = inner_pixel(shadow)
+    shadows = {}
+    for name in ("cube", "cone"):
+        obj = next(o for o in scene.objects if o.name == name)
+        blocked = crossings(obj, points + 1e-6 * to_light, to_light / distance[:, None]) < distance
+        shadows[name] = np.zeros_like(ground)
+        shadows[name][ys[blocked], xs[blocked]] = True
+    inside = inner_pixel(shadows["cube"])
     assert inside is not None and judge(ex, p, inside).right
-    lit = inner_pixel(ground & ~shadow)
+    lit = inner_pixel(ground & ~shadows["cube"] & ~shadows["cone"])
     assert not judge(ex, p, lit).right
+    assert not judge(ex, p, inner_pixel(shadows["cone"] & ~shadows["cube"])).right
+    assert not judge(ex, p, (230, 155)).right
 
 
-def test_ray_casting_the_cone_blocks_the_shadow_ray_of_230_155():
-    # The ray of (230, 155) meets the ground at t ≈ 10.63; from there the light is 19.19 away and
-    # the cone stands 2.56 along the way; nothing else does.
-    ex, p = exercise("ray_casting", 1)
-    scene = _scene(p)
-    origin, direction = pixel_ray(scene.camera, 230, 155)
-    ((t, name),) = hits(scene, origin, direction)
+@pytest.mark.parametrize("variant", range(4))
+def test_ray_casting_what_blocks_each_variants_shadow_ray(variant):
+    # Each variant's ray meets the ground; from there the shadow ray towards the light meets one
+    # object before the light: the cube for the first two pixels, the cone for the last two (none
+    # of them (230, 155), whose blocker the step names).
+    ex, p = exercise("ray_casting", 1, variant)
+    pixel = ex.args["fact"]["pixel"]
+    assert tuple(pixel) != (230, 155)
+    name, blockers = shadow_blockers(_scene(p), *pixel)
     assert name == "ground"
-    assert _blockers(scene, origin + t * direction) == ["cone"]
-    assert_only(ex, p, "cone")
+    assert blockers == (["cube"] if variant < 2 else ["cone"])
+    assert_only(ex, p, blockers[0])
 
 
 def _refract(d, n, eta):
@@ -136,24 +134,42 @@ def test_acceleration_the_pyramid_is_hit_and_ball_2_at_its_distance():
     assert judge(ex, p, t + 0.009).right and not judge(ex, p, t + 0.02).right
 
 
-def test_ray_triangle_the_ray_hits_because_all_three_weights_are_positive():
-    # Exact fractions: α = 481/1558, β = 957/3116, so γ = 1 - α - β = 1197/3116 > 0, and t = 784/779 > 0.
-    ex, p = exercise("ray_triangle", 3)
-    f = ex.args["fact"]  # the lecture's decimals, read as the exact numbers they write
-    alpha, beta, gamma, t = exact_triangle_solve(
-        *([Fraction(str(x)) for x in f[key]] for key in ("origin", "direction", "a", "b", "c")))
-    assert min(alpha, beta, gamma) > 0 and t > 0
-    assert (alpha, beta, gamma, t) == (Fraction(481, 1558), Fraction(957, 3116), Fraction(1197, 3116),
-                                    Fraction(784, 779))
-    assert_only(ex, p, True)
+@pytest.mark.parametrize("variant", range(4))
+def test_ray_triangle_the_students_ray_hits_when_all_three_weights_are_positive(variant):
+    # Exact fractions (Gauss-Jordan on o + t d = αA + βB + γC).  By hand for the first variant:
+    # A = (-2, 2, 2), B = (2, -1, 3), C = (-3, 0, 3), o = (0, 0, 4), d = (-2, 0, -3): with α = 1/5,
+    # β = 2/5, γ = 2/5, αA + βB + γC = (-0.4 + 0.8 - 1.2, 0.4 - 0.4 + 0, 0.4 + 1.2 + 1.2)
+    # = (-0.8, 0, 2.8) = o + (2/5) d: t = 2/5, all weights positive, a hit.  The lecture's own ray
+    # (α ≈ 0.30873, worked in the step) is no variant.
+    ex, p = exercise("ray_triangle", 3, variant)
+    f = ex.args["fact"]
+    alpha, beta, gamma, t = exact_triangle_solve(*(f[key] for key in ("origin", "direction", "a", "b", "c")))
+    hit = min(alpha, beta, gamma) >= 0 and t >= 0
+    assert_only(ex, p, hit)
+    if variant == 0:
+        assert (alpha, beta, gamma, t) == (Fraction(1, 5), Fraction(2, 5), Fraction(2, 5), Fraction(2, 5))
+    assert list(f["origin"]) != [0.5, 0.3, 6]
 
 
-def test_ray_sphere_the_segment_stays_inside_the_sphere():
-    # |(2, 1, 2) - (6, 4, 6)|² = 16 + 9 + 16 = 41 and |(10, 6, 6) - (6, 4, 6)|² = 16 + 4 + 0 = 20, both
-    # below r² = 100: both ends are inside, and a segment between two inside points never meets the
-    # surface of a ball (it is convex).
-    ex, p = exercise("ray_sphere", 6)
+@pytest.mark.parametrize("variant", range(4))
+def test_ray_sphere_the_segment_crosses_when_an_end_lies_on_each_side(variant):
+    # A segment crosses a sphere's surface when one end lies inside (squared distance from the
+    # centre below r²) and the other outside; with both inside it never reaches the surface (a ball
+    # is convex).  With both outside it may still pass through: then a root lies in (0, 1).  First
+    # variant by hand: |(4, 3, 5) - (1, 8, 5)|² = 9 + 25 + 0 = 34 < 36 (inside) and
+    # |(3, 2, 3) - (1, 8, 5)|² = 4 + 36 + 4 = 44 > 36 (outside): it crosses.
+    ex, p = exercise("ray_sphere", 6, variant)
     f = ex.args["fact"]
     centre = np.asarray(f["center"])
-    assert [float(np.sum((np.asarray(f[k]) - centre) ** 2)) for k in ("origin", "end")] == [41, 20]
-    assert_only(ex, p, False)
+    inside = [float(np.sum((np.asarray(f[k]) - centre) ** 2)) < f["radius"] ** 2 for k in ("origin", "end")]
+    if inside[0] != inside[1]:
+        crosses = True
+    elif all(inside):
+        crosses = False
+    else:  # both outside: does the line pass within r of the centre between the ends?
+        o, e = np.asarray(f["origin"], float), np.asarray(f["end"], float)
+        s = np.clip((centre - o) @ (e - o) / ((e - o) @ (e - o)), 0, 1)
+        crosses = float(np.sum((o + s * (e - o) - centre) ** 2)) < f["radius"] ** 2
+    assert_only(ex, p, crosses)
+    if variant == 0:
+        assert inside == [True, False]

@@ -1,12 +1,15 @@
 """Exercises: every shipped one is answerable by the pipelines; answers are judged against
 independent computations, and a wrong answer is refused."""
 
+import json
 import math
 from fractions import Fraction
 
 import numpy as np
 import pytest
+from brute_force import exact_triangle_solve
 
+from core.files.lesson_file import FILES as LESSON_FILES
 from core.files.lesson_file import LessonFileError, from_dict, shipped_lessons
 from core.lessons.exercises import a_right_pixel, check_exercises, judge, number, right_choices
 from core.lessons.facts import StepPipelines
@@ -30,32 +33,97 @@ def test_every_lesson_ends_with_exercises_the_pipelines_answer():
         assert check_exercises(lesson) == [], lesson.id
 
 
-def test_question_6_every_number_of_its_solution():
-    # i, j, k = 8, 5, 4; a = 105, b = -126, c = -59, Δ = 126² + 4·105·59 = 40656 (by hand);
-    # t = (126 ∓ √40656) / 210; the ray leaves at x = 2 + 8 t2.
-    t1, t2 = (126 - math.sqrt(40656)) / 210, (126 + math.sqrt(40656)) / 210
-    expected = {"Question 6": 105, "What is b?": -126, "What is c?": -59,
-                "What is the discriminant": 40656, "What is the smaller root": t1,
-                "What is the larger root": t2, "Where does the ray leave": 2 + 8 * t2}
-    for start, value in expected.items():
-        ex, p = _exercise("ray_sphere", start)
-        assert judge(ex, p, value).right, start
-        assert not judge(ex, p, value + 10 * ex.args["tolerance"] + 1).right, start
-    ex, p = _exercise("ray_sphere", "Does the segment itself")
-    assert [ex.args["choices"][i] for i in right_choices(ex, p)] == [False]  # both ends inside
-    ex, p = _exercise("ray_sphere", "Continued as a ray")
-    assert judge(ex, p, ex.args["choices"].index("t_far")).right
-    verdict = judge(ex, p, ex.args["choices"].index("t_near"))
-    assert not verdict.right and verdict.sentence == "“t1, the smaller root” is not the answer."
+def _segment_solution(origin, end, centre, radius):
+    """Question 6's quantities for a segment, in exact arithmetic: a, b, c, Δ, t1, t2, the first
+    crossing's root and its x (Δ a perfect square, so the roots are fractions)."""
+    d = [Fraction(e) - o for e, o in zip(end, origin, strict=True)]
+    f = [Fraction(o) - c for o, c in zip(origin, centre, strict=True)]
+    a = sum(v * v for v in d)
+    b = 2 * sum(u * v for u, v in zip(f, d, strict=True))
+    c = sum(v * v for v in f) - Fraction(radius) ** 2
+    delta = b * b - 4 * a * c
+    root = math.isqrt(int(delta))
+    assert root * root == delta  # chosen so that a student can take the root by hand
+    t1, t2 = (-b - root) / (2 * a), (-b + root) / (2 * a)
+    first = t2 if c < 0 else t1  # inside (c < 0): t1 lies behind the start
+    return {"a": a, "b": b, "c": c, "Δ": delta, "t1": t1, "t2": t2, "first": first,
+            "x": origin[0] + d[0] * first}
+
+
+def test_your_segment_every_number_of_its_solution():
+    # By hand, the first segment: (4, 3, 5) to (3, 2, 3), centre (1, 8, 5), r = 6.  (i, j, k) =
+    # (-1, -1, -2), a = 1 + 1 + 4 = 6; start minus centre (3, -5, 0), b = 2(-3 + 5 + 0) = 4,
+    # c = 9 + 25 + 0 - 36 = -2; Δ = 16 + 48 = 64; t = (-4 ∓ 8) / 12 = -1, 1/3.  The start is inside
+    # (c < 0), so the ray leaves at t2 = 1/3, x = 4 - 1/3 = 11/3, and the segment crosses (t2 ≤ 1).
+    assert _segment_solution((4, 3, 5), (3, 2, 3), (1, 8, 5), 6) == {
+        "a": 6, "b": 4, "c": -2, "Δ": 64, "t1": -1, "t2": Fraction(1, 3), "first": Fraction(1, 3),
+        "x": Fraction(11, 3)}
+    lesson = BY_ID["ray_sphere"]
+    asked = ["a", "b", "c", "Δ", "t1", "t2", None, None, "x"]
+    assert len(lesson.exercises) == len(asked)
+    lecture = 0
+    for k in range(4):
+        drawn = [ex.variants[k] for ex in lesson.exercises]
+        f = drawn[6].args["fact"]
+        solved = _segment_solution(f["origin"], f["end"], f["center"], f["radius"])
+        lecture += list(f["origin"]) == [2, 1, 2]
+        p = StepPipelines(lesson.steps[drawn[0].step])
+        for ex, key in zip(drawn, asked, strict=True):
+            assert ex.question.count(_shown(f["origin"])) <= 1
+            if key is None:
+                continue
+            value = float(solved[key])
+            assert judge(ex, p, value).right, (k, key)
+            assert not judge(ex, p, value + 2 * ex.args["tolerance"] + 0.01).right, (k, key)
+        crosses = 0 <= solved["t1"] <= 1 or 0 <= solved["t2"] <= 1
+        assert [drawn[6].args["choices"][i] for i in right_choices(drawn[6], p)] == [crosses]
+        first = "t_far" if solved["c"] < 0 else "t_near"
+        assert judge(drawn[7], p, drawn[7].args["choices"].index(first)).right
+        wrong = judge(drawn[7], p, 1 - drawn[7].args["choices"].index(first))
+        assert not wrong.right and wrong.sentence.endswith("is not the answer.")
+    assert lecture == 0  # the lecture's own segment, worked in the step, is asked of no one
+
+
+def _shown(v):
+    """A point as the questions write it, e.g. ``(4, 3, 5)``."""
+    return "(" + ", ".join(f"{x:g}" for x in v) + ")"
+
+
+def test_one_draw_gives_a_student_one_segment_for_every_question():
+    from core.lessons.exercises import variant
+
+    lesson = BY_ID["ray_sphere"]
+    for seed in range(30):
+        drawn = [variant(ex, seed, i) for i, ex in enumerate(lesson.exercises)]
+        segments = {(tuple(d.args["value" if d.kind == "number" else "fact"]["origin"]),
+                     tuple(d.args["value" if d.kind == "number" else "fact"]["center"])) for d in drawn}
+        assert len(segments) == 1, seed
+        # The questions name that segment: the one asked first in full, the others by its ends.
+        origin = _shown(drawn[0].args["value"]["origin"])
+        assert all(origin in d.question for d in drawn[:8])
+    starts = {variant(lesson.exercises[0], seed, 0).question for seed in range(30)}
+    assert len(starts) >= 3  # students get different segments
+    ex = lesson.exercises[0].variants[0]  # why names the variant's own (i, j, k), not the lecture's
+    assert ex.why == "a = i² + j² + k² with (i, j, k) = (-1, -1, -2)."
 
 
 def test_the_triangle_weights_from_exact_arithmetic():
-    # Cramer's rule in fractions: α = 481/1558, β = 957/3116, t = 784/779 (see the lesson's text).
-    for start, exact in (("For the ray o + t d", Fraction(481, 1558)),
-                         ("What is β", Fraction(957, 3116)), ("What is t, in units", Fraction(784, 779))):
-        ex, p = _exercise("ray_triangle", start)
-        assert number(ex, p) == pytest.approx(float(exact), abs=1e-12)
-        assert judge(ex, p, float(exact) + 0.0005).right and not judge(ex, p, float(exact) + 0.01).right
+    # Exact fractions (brute_force.exact_triangle_solve, Gauss-Jordan); by hand for the first
+    # variant see test_image_order_answers: α = 1/5, β = 2/5, t = 2/5.
+    lesson = BY_ID["ray_triangle"]
+    for k in range(4):
+        drawn = [ex.variants[k] for ex in lesson.exercises]
+        v = drawn[0].args["value"]
+        alpha, beta, _, t = exact_triangle_solve(
+            *(v[key] for key in ("origin", "direction", "a", "b", "c")))
+        p = StepPipelines(lesson.steps[drawn[0].step])
+        for ex, exact in zip(drawn[:3], (alpha, beta, t), strict=True):
+            assert number(ex, p) == pytest.approx(float(exact), abs=1e-12)
+            assert judge(ex, p, float(exact) + 0.0005).right and not judge(ex, p, float(exact) + 0.01).right
+        assert all(_shown(v["origin"]) in ex.question for ex in drawn)
+    first = [ex.variants[0] for ex in lesson.exercises][0].args["value"]
+    assert exact_triangle_solve(*(first[key] for key in ("origin", "direction", "a", "b", "c"))) == (
+        Fraction(1, 5), Fraction(2, 5), Fraction(2, 5), Fraction(2, 5))
 
 
 def test_the_panes_sorted_far_to_near_and_a_wrong_order_refused():
@@ -66,31 +134,12 @@ def test_the_panes_sorted_far_to_near_and_a_wrong_order_refused():
     assert not judge(ex, p, ["red pane", "green pane", "blue pane"]).right
 
 
-def test_observer_a_does_not_see_object_5():
-    # Object 5's centre (-5.5, 0.7, 6.5) seen from A's eye (0, 1, 8) looking down -z lies
-    # atan(5.5 / 1.5) = 75° off the axis, far beyond half of any usual field of view.
-    assert math.degrees(math.atan2(5.5, 1.5)) > 60
-    ex, p = _exercise("observer", "From observer A")
-    assert judge(ex, p, ex.args["choices"].index("object 5")).right
-    assert not judge(ex, p, ex.args["choices"].index("object 3")).right  # inside, only hidden
-
-
-def test_the_top_left_rule_on_the_edges_centres():
-    # Pixel (11, 7)'s centre (3.5, -1.5) in world units lies on the edge from (5.5, -4.5) to (-0.5, 4.5):
-    # x = 5.5 - 6 s, y = -4.5 + 9 s at s = 1/3.  That edge is a right edge: not the triangle's.
-    assert (Fraction(11) + Fraction(1, 2) - 8, 6 - (Fraction(7) + Fraction(1, 2))) == (
-        Fraction(11, 2) - 6 * Fraction(1, 3), Fraction(-9, 2) + 9 * Fraction(1, 3))
-    ex, p = _exercise("rasterization", "The centre of pixel (11, 7)")
-    assert judge(ex, p, ex.args["choices"].index(None)).right
-    assert not judge(ex, p, ex.args["choices"].index("triangle")).right
-
-
-def test_a_click_in_the_cones_shadow_is_right_and_one_in_the_sky_is_not():
-    ex, p = _exercise("ray_casting", "Click a pixel in the cone's shadow")
+def test_a_click_in_the_cubes_shadow_is_right_and_one_in_the_sky_is_not():
+    ex, p = _exercise("ray_casting", "Click a pixel in the cube's shadow")
     shown = a_right_pixel(ex, p)  # "show me"
     assert shown is not None and judge(ex, p, shown).right
     root = p.tree(shown)
-    assert root.hit_name == "ground" and [c.hit_name for c in root.children if c.kind == "shadow"] == ["cone"]
+    assert root.hit_name == "ground" and [c.hit_name for c in root.children if c.kind == "shadow"] == ["cube"]
     wrong = judge(ex, p, (0, 0))
     assert not wrong.right and wrong.sentence.startswith("Not there: at pixel (0, 0)")
 
@@ -237,3 +286,95 @@ def test_every_shipped_exercise_has_an_independent_solution():
               "three_views": 5, "rasterization": 2, "ray_casting": 2, "ray_tracing": 3, "acceleration": 2,
               "ray_sphere": 9, "ray_triangle": 4}
     assert {lesson.id: len(lesson.exercises) for lesson in LESSONS} == solved
+
+
+def _tiny_lesson(text, exercise, formulas=()):
+    step = {"title": "one", "text": text, "formulas": list(formulas), "scene": "zbuffer_three_polygons",
+            "panes": ["object order"]}
+    return from_dict({"format": "render-explorer-lesson", "version": 1, "id": "mine", "title": "Mine",
+                      "steps": [step], "exercises": [exercise]})
+
+
+SEGMENT = {"of": "ray_sphere", "origin": [2, 1, 2], "end": [10, 6, 6], "center": [6, 4, 6], "radius": 10}
+
+
+def test_a_number_a_step_writes_is_reported_and_one_it_does_not_is_not():
+    # Question 6's a = 8² + 5² + 4² = 105 and t2 = (126 + √40656) / 210 = 1.560158...
+    ask_a = {"kind": "number", "question": "What is a?", "tolerance": 0.5, "value": {**SEGMENT, "value": "a"}}
+    ask_t2 = {"kind": "number", "question": "What is t2?", "tolerance": 0.005,
+              "value": {**SEGMENT, "value": "t_far"}}
+    (line,) = check_exercises(_tiny_lesson("Here a = 105.", ask_a))
+    assert line == ("lesson mine, exercises[0] (What is a?): a step states the answer: "
+                    "steps[0].text writes 105, the answer 105")
+    (line,) = check_exercises(_tiny_lesson("Words.", ask_t2, [r"$t_2 \approx 1.56016$"]))
+    assert line.endswith("steps[0].formulas[0] writes 1.56016, the answer 1.56016")
+    # Either sign: b = -126 is given away by "126²" as well.
+    ask_b = {**ask_a, "question": "What is b?", "value": {**SEGMENT, "value": "b"}}
+    assert check_exercises(_tiny_lesson("Words.", ask_b, [r"$\Delta = 126^2 + 4 \cdot 105 \cdot 59$"]))
+    # Not reported: the numbers the step writes are not the answer rounded (8.80079 is within a's
+    # tolerance of 9 but not 9 rounded), or are small integers, or are rounded too coarsely to be
+    # judged right (t2 ≈ 1.6, 0.04 off with a tolerance of 0.005).
+    assert check_exercises(_tiny_lesson("From (2, 1, 2) to (10, 6, 6): t2 ≈ 1.6, y = 8.80079.", ask_t2)) == []
+    ask_small = {**ask_a, "value": {"of": "ray_sphere", "origin": [0, 0, 0], "end": [2, 1, 2],
+                                    "center": [9, 9, 9], "radius": 1, "value": "a"}}  # a = 9
+    assert check_exercises(_tiny_lesson("A corner at (9, 0, 9); 9 pixels.", ask_small)) == []
+
+
+def test_a_choice_or_a_pixel_a_step_names_for_the_asked_pixel_is_reported():
+    data = json.loads((LESSON_FILES / "12_ray_casting.json").read_text(encoding="utf-8"))
+    # The shadow step picks (230, 155) and says "This pixel lies on the ground in the cone's shadow".
+    data["exercises"] = [
+        {"kind": "choose_one", "question": "What blocks the shadow ray of pixel (230, 155)?",
+         "choices": ["cube", "cone", "ground"], "step": 1,
+         "fact": {"fact": "shadow", "pixel": [230, 155], "object": "$choice"}},
+        {"kind": "click_pixel", "question": "Click a pixel in the cone's shadow.", "step": 1,
+         "fact": {"fact": "shadow", "pixel": "$pixel", "object": "cone"}},
+        {"kind": "click_pixel", "question": "Click a pixel in the cube's shadow.", "step": 1,
+         "fact": {"fact": "shadow", "pixel": "$pixel", "object": "cube"}}]
+    lines = check_exercises(from_dict(data))
+    assert lines == [
+        "lesson ray_casting, exercises[0] (What blocks the shadow ray of pixel (230, 155)?): a step states "
+        "the answer: steps[1].text says of pixel (230, 155) the answer 'cone': “This pixel lies on the "
+        "ground in the cone's shadow: its shadow ray stops at the cone.”",
+        "lesson ray_casting, exercises[1] (Click a pixel in the cone's shadow.): a step states the answer: "
+        "steps[1] points at pixel (230, 155), a right answer"]
+
+
+def test_the_lectures_worked_question_6_asked_again_is_reported():
+    # The shipped lesson keeps the lecture's solution in step 1 (a = 105, ..., t2 ≈ 1.56016, the
+    # exit (14.4813, ...)): asking those very numbers is recall, and the check says where they stand.
+    data = json.loads((LESSON_FILES / "15_ray_sphere.json").read_text(encoding="utf-8"))
+    ray = {"of": "ray_sphere", "origin": [2, 1, 2], "direction": [8, 5, 4], "center": [6, 4, 6], "radius": 10}
+    data["exercises"] = [
+        {"kind": "number", "question": "What is a?", "tolerance": 0.5, "value": {**SEGMENT, "value": "a"},
+         "step": 1},
+        {"kind": "number", "question": "What is c?", "tolerance": 0.5, "value": {**SEGMENT, "value": "c"},
+         "step": 1},
+        {"kind": "number", "question": "Give x.", "tolerance": 0.005,
+         "value": {**ray, "value": "point", "component": 0}, "step": 1}]
+    lines = check_exercises(from_dict(data))
+    assert [line.split(": a step states the answer: ")[1] for line in lines] == [
+        "steps[1].text, steps[1].formulas[0], steps[1].formulas[1] write 105, the answer 105",
+        "steps[1].formulas[0], steps[1].formulas[1] write 59, the answer -59",
+        "steps[1].text, steps[1].formulas[3] write 14.4813, the answer 14.4813"]
+
+
+def test_exercises_sharing_a_draw_must_list_as_many_variants():
+    segments = [{"origin": [0, 0, 0], "end": [4, 0, 0], "center": [9, 9, 9], "radius": 1},
+                {"origin": [1, 0, 0], "end": [1, 4, 0], "center": [9, 9, 9], "radius": 1}]
+    value = {"of": "ray_sphere", "origin": "$at.origin", "end": "$at.end", "center": "$at.center",
+             "radius": "$at.radius"}
+    ask = {"kind": "number", "question": "From {at.origin} to {at.end}: a?", "tolerance": 0.5,
+           "value": {**value, "value": "a"}, "variants": segments, "draw": "segment"}
+    lesson = _tiny_lesson("Words.", ask)
+    (ex,) = lesson.exercises
+    assert [v.question for v in ex.variants] == ["From (0, 0, 0) to (4, 0, 0): a?",
+                                                 "From (1, 0, 0) to (1, 4, 0): a?"]
+    data = {"format": "render-explorer-lesson", "version": 1, "id": "mine", "title": "Mine",
+            "steps": [{"title": "one", "text": "Words.", "scene": "zbuffer_three_polygons",
+                       "panes": ["object order"]}],
+            "exercises": [ask, {**ask, "value": {**value, "value": "b"}, "variants": segments[:1]}]}
+    with pytest.raises(LessonFileError) as info:
+        from_dict(data)
+    assert info.value.problems == ["exercises[1].variants: draw 'segment': exercises[0] lists 2 variants, "
+                                   "this one 1; list as many"]

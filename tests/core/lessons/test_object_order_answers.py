@@ -32,20 +32,43 @@ def test_two_orders_the_z_buffer_keeps_the_nearest_crossing():
     assert first == "cone"
 
 
-@pytest.mark.parametrize("index", [0, 1])
-def test_observer_object_5_is_outside_and_every_other_object_has_a_corner_inside(index):
-    # Observer A, by hand: A = (0, 1, 8) looks down -z; the left plane has slope tan 20° · 4/3 =
-    # 0.485.  Object 5's corners have x ≤ -4.9 at depths 8 - z ≤ 8 - 5.9 = 2.1, and 4.9 > 0.485 · 2.1
-    # = 1.02: every corner is beyond the left plane.  Observer B's distances are computed the same way.
-    ex, p = exercise("observer", index)
+def test_observer_a_the_right_plane_clips_object_4():
+    # Observer A: object 4 has corners on both sides of the right plane (so some polygon crosses it)
+    # and every corner inside the five other planes: only the right plane cuts it.  The step says
+    # objects 1 and 4 reach over the edges, not which edge.
+    ex, p = exercise("observer", 0)
     scene = _scene(p)
-    outside = [o.name for o in scene.objects
-               if (frustum_distances(scene.camera, o.vertices) < 0).all(axis=0).any()]
-    a_corner_in = [o.name for o in scene.objects
-                   if (frustum_distances(scene.camera, o.vertices) >= 0).all(axis=1).any()]
-    assert outside == ["object 5"]
-    assert a_corner_in == ["object 1", "object 2", "object 3", "object 4"]
-    assert_only(ex, p, "object 5")
+    corners = next(o for o in scene.objects if o.name == "object 4").vertices
+    d = frustum_distances(scene.camera, corners)
+    planes = list(ex.args["choices"])  # left, right, bottom, top, near, far: the columns' order
+    assert planes == ["left", "right", "bottom", "top", "near", "far"]
+    straddled = [plane for plane, column in zip(planes, d.T, strict=True)
+                 if (column < 0).any() and (column > 0).any()]
+    assert straddled == ["right"]
+    assert (np.delete(d, 1, axis=1) > 0).all()
+    assert_only(ex, p, "right")
+
+
+def _bounding_sphere(vertices):
+    """A sphere around the corners: the centre of their box, the farthest corner's distance."""
+    v = np.asarray(vertices, float)
+    centre = (v.min(axis=0) + v.max(axis=0)) / 2
+    return centre, float(np.linalg.norm(v - centre, axis=1).max())
+
+
+def test_observer_b_only_object_3s_bounding_sphere_lies_inside():
+    # Observer B: object 3's sphere (box centre, farthest corner) is farther than its radius inside
+    # all six planes; object 1's centre is nearer a side plane than its radius (it straddles it), and
+    # all of object 5's corners lie beyond the left plane.
+    ex, p = exercise("observer", 1)
+    scene = _scene(p)
+    objects = {o.name: o for o in scene.objects}
+    centre, radius = _bounding_sphere(objects["object 3"].vertices)
+    assert (frustum_distances(scene.camera, [centre])[0] > radius).all()
+    centre, radius = _bounding_sphere(objects["object 1"].vertices)
+    assert (np.abs(frustum_distances(scene.camera, [centre])[0][:4]) < radius).any()
+    assert (frustum_distances(scene.camera, objects["object 5"].vertices)[:, 0] < 0).all()
+    assert_only(ex, p, "object 3")
 
 
 def test_observer_a_object_2_hides_object_3_where_both_cross_the_ray_and_2_is_nearer():
@@ -96,23 +119,33 @@ def _facing(corners, eye):
     return float(np.cross(b - a, c - a) @ (np.asarray(eye) - a))
 
 
-def test_back_faces_by_the_sign_of_n_dot_e_minus_p():
-    # Pyramid triangle 2: A = (1.2, 0, -1.2), B = (-1.2, 0, -1.2), C = (0, 2.2, 0);
-    # N = (B - A) × (C - A) = (-2.4, 0, 0) × (-1.2, 2.2, 1.2) = (0, 2.88, -5.28);
-    # E - A = (2.5, 3.2, 6.5) - A = (1.3, 3.2, 7.7); N · (E - A) = 9.216 - 40.656 = -31.44 < 0: a back face.
-    ex, p = exercise("back_faces", 0)
-    corners = _scene(p).objects[0].corners[2]
-    assert corners.tolist() == [[1.2, 0, -1.2], [-1.2, 0, -1.2], [0, 2.2, 0]]
-    assert _facing(corners, _scene(p).camera.eye) == pytest.approx(-31.44)
-    assert_only(ex, p, True)
-    # Notched prism triangle 13, the notch's inner wall on z = 0.1: A = (-1.3, 0, 0.1),
-    # B = (-0.1, 0, 0.1), C = (-0.1, 1.6, 0.1); N = (1.2, 0, 0) × (1.2, 1.6, 0) = (0, 0, 1.92);
-    # E - A = (3.8, 3.2, 6.4); N · (E - A) = 1.92 · 6.4 = 12.288 > 0: a front face, not culled.
-    ex, p = exercise("back_faces", 1)
-    corners = _scene(p).objects[0].corners[13]
-    assert corners == pytest.approx(np.array([[-1.3, 0, 0.1], [-0.1, 0, 0.1], [-0.1, 1.6, 0.1]]))
-    assert _facing(corners, _scene(p).camera.eye) == pytest.approx(12.288)
-    assert_only(ex, p, False)
+def _asked_corners(question):
+    """The corners a back-face question gives: ``"... corners ((x, y, z), (x, y, z), (x, y, z)), ..."``."""
+    listed = question.split("corners ((")[1].split(")), ")[0]
+    return [[float(v) for v in corner.split(", ")] for corner in listed.split("), (")]
+
+
+def test_back_faces_the_students_faces_by_the_sign_of_n_dot_e_minus_a():
+    # Pyramid, the face with corners A = (-1.2, 0, -1.2), B = (-1.2, 0, 1.2), C = (0, 2.2, 0):
+    # B - A = (0, 0, 2.4), C - A = (1.2, 2.2, 1.2); N = (B - A) × (C - A) = (-5.28, 2.88, 0);
+    # E - A = (2.5, 3.2, 6.5) - A = (3.7, 3.2, 7.7); N · (E - A) = -19.536 + 9.216 = -10.32 < 0: culled.
+    # (The steps' own faces, pyramid triangle 2 and the notch's wall, are no variants: their words
+    # say which side they show.)
+    assert _facing([[-1.2, 0, -1.2], [-1.2, 0, 1.2], [0, 2.2, 0]], (2.5, 3.2, 6.5)) == pytest.approx(-10.32)
+    for index, name in ((0, "pyramid"), (1, "notched prism")):
+        culled = []
+        for k in range(4):
+            ex, p = exercise("back_faces", index, k)
+            scene = _scene(p)
+            assert "E = (2.5, 3.2, 6.5)" in ex.question and scene.camera.eye == pytest.approx((2.5, 3.2, 6.5))
+            asked = _asked_corners(ex.question)
+            corners = next(o for o in scene.objects if o.name == name).corners[ex.args["fact"]["triangle"]]
+            assert corners == pytest.approx(np.array(asked))  # the question's corners are the face's
+            facing = _facing(asked, (2.5, 3.2, 6.5))
+            assert abs(facing) > 0.1  # far from edge-on: no rounding decides it
+            culled.append(facing < 0)
+            assert_only(ex, p, facing < 0)
+        assert sorted(culled) == [False, False, True, True]  # two faces culled, two drawn
 
 
 def _all_face_the_eye(scene):
@@ -166,11 +199,18 @@ def test_piercing_the_nearer_of_the_two_planes_is_seen_on_each_side_of_the_cross
     assert_only(ex, p, first)
 
 
-def test_piercing_drawn_blue_first_the_same_polygon_is_seen():
-    ex, p = exercise("zbuffer_piercing", 1)
+@pytest.mark.parametrize("variant", range(4))
+def test_piercing_drawn_blue_first_green_fails_where_blue_is_nearer(variant):
+    # Blue is drawn first and fills its pixels; green comes second and its fragment fails wherever
+    # blue's crossing is nearer along the pixel's ray (asked while the picture shows blue alone).
+    ex, p = exercise("zbuffer_piercing", 1, variant)
     scene = _scene(p)
     assert [o.name for o in scene.objects] == ["blue", "green"]  # drawn blue first
-    assert_only(ex, p, hits(scene, *pixel_ray(scene.camera, 108, 65))[0][1])
+    assert p.step.zbuffer_step == 1  # the picture: blue alone
+    crossed = dict((name, t) for t, name in hits(scene, *pixel_ray(scene.camera, *ex.args["fact"]["pixel"])))
+    assert set(crossed) == {"blue", "green"}  # both cover the pixel
+    assert abs(crossed["blue"] - crossed["green"]) > 0.5  # far from the crossing line
+    assert_only(ex, p, crossed["blue"] < crossed["green"])
 
 
 def test_piercing_blue_fails_where_green_drawn_first_is_nearer():
@@ -217,15 +257,20 @@ def test_transparency_the_green_panes_c0_by_the_blending_formula():
     assert judge(ex, p, c0 + 0.009).right and not judge(ex, p, c0 + 0.02).right
 
 
-def test_transparency_drawn_nearest_first_the_green_pane_fails_behind_the_red():
-    # Unsorted, the panes are drawn in the file's order, red (z = 1.4, nearest) first; the ray of
-    # (128, 125) crosses red and green but not blue, so green's fragment is the one that fails.
-    ex, p = exercise("transparency", 2)
+@pytest.mark.parametrize("variant", range(2))
+def test_transparency_drawn_nearest_first_the_pane_behind_fails(variant):
+    # Unsorted, the panes are drawn in the file's order, red (z = 1.4, nearest) first, then green,
+    # then blue: of the two panes a pixel's ray crosses, the farther, drawn later, fails.  At
+    # (128, 125) the ray crosses red and green (green fails: the step says so, "green under red");
+    # the other variant's pixel crosses green and blue but not red.
+    ex, p = exercise("transparency", 2, variant)
     scene = _scene(p)
     assert [o.name for o in scene.objects][:3] == ["red pane", "green pane", "blue pane"]
-    crossed = [name for _, name in hits(scene, *pixel_ray(scene.camera, 128, 125))]
-    assert crossed[:2] == ["red pane", "green pane"] and "blue pane" not in crossed
-    assert_only(ex, p, "green pane")
+    crossed = [name for _, name in hits(scene, *pixel_ray(scene.camera, *ex.args["fact"]["pixel"]))]
+    panes = [name for name in crossed if name.endswith("pane")]
+    assert len(panes) == 2
+    assert_only(ex, p, panes[1])
+    assert panes == (["red pane", "green pane"] if variant == 0 else ["green pane", "blue pane"])
 
 
 def test_three_views_after_the_cubes_six_front_triangles_then_after_all():
@@ -244,17 +289,49 @@ def test_three_views_after_the_cubes_six_front_triangles_then_after_all():
     assert crossed[0] == "cone"
 
 
-def test_rasterization_a_centre_on_the_left_edge_belongs_to_the_triangle():
-    # 16 x 12 pixels over 16 x 12 units: pixel (3, 7)'s centre is (3.5 - 8, 6 - 7.5) = (-4.5, -1.5).
-    # The edge from C = (-0.5, 4.5) to A = (-6.5, -4.5), x = -0.5 - 6 s, y = 4.5 - 9 s, reaches
-    # y = -1.5 at s = 2/3, where x = -4.5: the centre is on it.  The centroid (-0.5, -1.5) lies on the
-    # same row to its right, so it is a left edge, and the top-left rule gives the pixel to the triangle.
-    ex, p = exercise("rasterization", 1)
-    a, b, c = (np.asarray(v[:2]) for v in _scene(p).objects[0].vertices.tolist())
-    assert (a.tolist(), b.tolist(), c.tolist()) == ([-6.5, -4.5], [5.5, -4.5], [-0.5, 4.5])
-    s = Fraction(2, 3)
-    centre = (Fraction(3) + Fraction(1, 2) - 8, 6 - (Fraction(7) + Fraction(1, 2)))
-    assert centre == (Fraction(-1, 2) - 6 * s, Fraction(9, 2) - 9 * s)
-    assert sum(Fraction(v[1]) for v in (a, b, c)) / 3 == centre[1]
-    assert sum(Fraction(v[0]) for v in (a, b, c)) / 3 > centre[0]
-    assert_only(ex, p, "triangle")
+def _side(a, b, q):
+    """(B − A) × (Q − A): zero when Q lies on the line AB; its sign tells the side."""
+    return (b[0] - a[0]) * (q[1] - a[1]) - (b[1] - a[1]) * (q[0] - a[0])
+
+
+def _owns(corners, centre):
+    """Does the triangle own the pixel centre?  Inside every edge, or on an edge that is a top edge
+    (horizontal, the interior below it: y grows downward) or a left edge (the interior to its
+    right): the top-left rule, written out here in exact fractions."""
+    owned = True
+    for a, b in zip(corners, corners[1:] + corners[:1], strict=True):
+        third = next(c for c in corners if c not in (a, b))
+        here = _side(a, b, centre)
+        if here * _side(a, b, third) < 0:
+            return False
+        if here == 0:
+            top = a[1] == b[1] and third[1] > a[1]
+            left = a[1] != b[1] and third[0] > a[0] + (b[0] - a[0]) * (centre[1] - a[1]) / (b[1] - a[1])
+            owned = owned and (top or left)
+    return owned
+
+
+@pytest.mark.parametrize(("index", "variant"), [(i, k) for i in (0, 1) for k in range(3)])
+def test_rasterization_the_top_left_rule_on_the_new_triangles_edges(index, variant):
+    # The last step's triangle, 16 x 12 pixels over 16 x 12 units: world (x, y) is pixel
+    # (x + 8, 6 - y); corners (-5.5, 3.5), (0.5, -4.5), (4.5, 3.5) are the centres of pixels (2, 2),
+    # (8, 10) and (12, 2).  E.g. pixel (10, 6)'s centre (10.5, 6.5): on the edge from (12.5, 2.5) to
+    # (8.5, 10.5) at s = 1/2 (x = 12.5 - 4 s, y = 2.5 + 8 s); the third corner (2.5, 2.5) lies to
+    # its left, so it is a right edge and the pixel keeps the background.  (5, 6): on the edge from
+    # (2.5, 2.5) to (8.5, 10.5) at s = 1/2, interior to its right: a left edge, the triangle's.
+    # (6, 2): on the top edge y = 2.5, interior below: the triangle's.
+    ex, p = exercise("rasterization", index, variant)
+    assert p.step.zbuffer_step == 0  # asked before it is filled: the picture shows none of it
+    world = _scene(p).objects[0].vertices.tolist()
+    corners = [(Fraction(x) + 8, 6 - Fraction(y)) for x, y, _ in world]
+    assert corners == [(Fraction(5, 2), Fraction(5, 2)), (Fraction(17, 2), Fraction(21, 2)),
+                       (Fraction(25, 2), Fraction(5, 2))]
+    x, y = ex.args["fact"]["pixel"]
+    centre = (Fraction(x) + Fraction(1, 2), Fraction(y) + Fraction(1, 2))
+    on_edge = [(a, b) for a, b in zip(corners, corners[1:] + corners[:1], strict=True)
+               if _side(a, b, centre) == 0]
+    assert len(on_edge) == 1  # the question says so: exactly on one edge, not at a corner
+    assert_only(ex, p, "triangle" if _owns(corners, centre) else None)
+    expected = {(10, 6): None, (5, 6): "triangle", (9, 8): None, (6, 2): "triangle", (11, 4): None,
+                (3, 2): "triangle"}
+    assert ("triangle" if _owns(corners, centre) else None) == expected[(x, y)]

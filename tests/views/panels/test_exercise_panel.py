@@ -2,11 +2,10 @@
 wrong, never the answer, when wrong), a second try, Enter to check, reveal, progress kept across
 restarts and reset, and the question put to the room."""
 
-import math
-
 import pytest
 from PySide6.QtCore import QSettings, Qt
 from qt_fixtures import shown_widget
+from shipped_exercises import seed_drawing
 
 from core.files.lesson_file import shipped_lessons
 from views.panels.exercise_panel import FIRST_TRY, LATER, REVEALED, ExercisePanel, ExerciseProgress
@@ -47,14 +46,18 @@ def test_the_next_exercise_shows_only_its_own_answers(panel, qtbot):
     qtbot.waitUntil(lambda: shown_choices() == [] and panel.number_edit.isVisible())
 
 
-def test_a_right_choice_is_praised_and_recorded_as_right_at_first_try(panel, settings):
-    from core.lessons.exercises import variant
+def _draw(settings, lesson, index, k):
+    """Make this student's seed draw variant ``k`` of the lesson's exercise ``index``."""
+    ex = lesson.exercises[index]
+    settings.setValue("exercise_seed", seed_drawing(ex, index, k))
+    return ex.variants[k]
 
+
+def test_a_right_choice_is_praised_and_recorded_as_right_at_first_try(panel, settings):
     lesson = BY_ID["zbuffer"]
-    seed = next(s for s in range(100) if "(87, 74)" in variant(lesson.exercises[0], s).question)
-    settings.setValue("exercise_seed", seed)  # this student draws pixel (87, 74)
+    assert "(87, 74)" in _draw(settings, lesson, 0, 0).question  # this student draws pixel (87, 74)
     panel.set_lesson(lesson)
-    assert panel.question.text().endswith("which one does the z-buffer keep at pixel (87, 74)?")
+    assert panel.question.text().endswith("which one will the z-buffer keep at pixel (87, 74)?")
     labels = [b.text() for b in panel.choices.buttons()]
     panel.choices.button(labels.index("blue")).setChecked(True)  # blue is nearest at (87, 74)
     panel.check()
@@ -62,25 +65,36 @@ def test_a_right_choice_is_praised_and_recorded_as_right_at_first_try(panel, set
     assert ExerciseProgress(settings).outcome("zbuffer", 0) == FIRST_TRY  # a fresh reader: on disk
 
 
+# The second segment of the ray-sphere exercises, worked by hand: (1, 5, 4) to (-1, 4, 6), centre
+# (1, 7, 8), r = 5.  (i, j, k) = (-2, -1, 2): a = 4 + 1 + 4 = 9; start minus centre (0, -2, -4):
+# b = 2(0 + 2 - 8) = -12, c = 0 + 4 + 16 - 25 = -5; Δ = 144 + 180 = 324, √Δ = 18;
+# t1 = (12 - 18) / 18 = -1/3, t2 = (12 + 18) / 18 = 5/3.  The start is inside (c < 0): the first
+# crossing is t2.
+SEGMENT_2 = {"a": 9, "Δ": 324, "t1": -1 / 3, "t2": 5 / 3}
+
+
 def test_a_wrong_number_gets_a_second_try_then_reveal_gives_the_pipelines_answer(panel, settings):
-    panel.set_lesson(BY_ID["ray_sphere"])
-    panel.go(3)  # the discriminant: 126² + 4·105·59 = 40656
-    panel.number_edit.setText("4065.6")
+    lesson = BY_ID["ray_sphere"]
+    _draw(settings, lesson, 0, 1)  # the exercises share one draw: every one asks this segment
+    panel.set_lesson(lesson)
+    panel.go(3)  # the discriminant, 324
+    assert panel.question.text().startswith("Your segment from (1, 5, 4) to (-1, 4, 6)")
+    panel.number_edit.setText("32.4")
     panel.check()
-    assert panel.feedback.text() == "No: 4065.6 is too low. Try once more."  # not the answer
-    panel.number_edit.setText("40000")
+    assert panel.feedback.text() == "No: 32.4 is too low. Try once more."  # not the answer
+    panel.number_edit.setText("300")
     panel.check()
-    assert panel.feedback.text() == "Not quite: 40000 is too low. Press Reveal for the answer."
+    assert panel.feedback.text() == "Not quite: 300 is too low. Press Reveal for the answer."
     panel.number_edit.setText("forty")
     panel.check()
     assert panel.feedback.text().startswith("Type a number:") and panel.tries == 2
-    panel.number_edit.setText("40656")
+    panel.number_edit.setText(str(SEGMENT_2["Δ"]))
     panel.check()
-    assert panel.feedback.text().startswith("Right: the pipelines compute 40656")
+    assert panel.feedback.text().startswith("Right: the pipelines compute 324")
     assert ExerciseProgress(settings).outcome("ray_sphere", 3) == LATER
-    panel.go(4)  # t1 = (126 - √40656) / 210
+    panel.go(4)  # t1
     panel.reveal()
-    assert float(panel.number_edit.text()) == pytest.approx((126 - math.sqrt(40656)) / 210, abs=1e-5)
+    assert float(panel.number_edit.text()) == pytest.approx(SEGMENT_2["t1"], abs=1e-5)
     assert ExerciseProgress(settings).outcome("ray_sphere", 4) == REVEALED
 
 
@@ -152,6 +166,7 @@ def test_no_wrong_answer_is_told_the_right_one(panel, settings):
     panel.set_lesson(BY_ID["perspective"])  # A′ lands at one pixel: a wrong click may not say where
     panel.click(1, 1)
     assert panel.feedback.text() == "Not there: it does not land at pixel (1, 1). Try once more."
+    _draw(settings, BY_ID["ray_sphere"], 0, 1)
     panel.set_lesson(BY_ID["ray_sphere"])
     panel.go(7)  # continued as a ray, the first crossing is the larger root: the start is inside
     labels = [b.text() for b in panel.choices.buttons()]
@@ -159,20 +174,27 @@ def test_no_wrong_answer_is_told_the_right_one(panel, settings):
     panel.choices.button(0).setChecked(True)
     panel.check()
     assert panel.feedback.text() == "“t1, the smaller root” is not the answer. Try once more."
-    panel.go(5)  # t2 = (126 + √40656) / 210 = 1.56016: no hint of it before an answer
-    assert "1.5" not in panel.number_edit.placeholderText()
+    panel.go(5)  # t2 = 5/3 = 1.667: no hint of it before an answer
+    assert "1.6" not in panel.number_edit.placeholderText()
     panel.number_edit.setText("x")
     panel.check()
-    assert "1.5" not in panel.feedback.text()
+    assert "1.6" not in panel.feedback.text()
 
 
-def test_enter_checks_a_typed_number_a_chosen_answer_and_an_order(panel, qtbot):
-    panel.set_lesson(BY_ID["ray_sphere"])  # a = 8² + 5² + 4² = 105
+def test_enter_checks_a_typed_number_a_chosen_answer_and_an_order(panel, qtbot, settings):
+    _draw(settings, BY_ID["ray_sphere"], 0, 1)
+    panel.set_lesson(BY_ID["ray_sphere"])  # a = 2² + 1² + 2² = 9
     panel.number_edit.setFocus()
-    qtbot.keyClicks(panel.number_edit, "105")
+    qtbot.keyClicks(panel.number_edit, str(SEGMENT_2["a"]))
     qtbot.keyClick(panel.number_edit, Qt.Key.Key_Return)
-    assert panel.feedback.text().startswith("Right: the pipelines compute 105") and panel.tries == 1
-    panel.set_lesson(BY_ID["rasterization"])  # (11, 7): on the right edge, so not the triangle's
+    assert panel.feedback.text().startswith("Right: the pipelines compute 9") and panel.tries == 1
+    # Why, in the drawn segment's numbers: its own (i, j, k), not the lecture's (8, 5, 4).
+    assert panel.feedback.text().endswith("a = i² + j² + k² with (i, j, k) = (-2, -1, 2).")
+    # The last step's triangle, corners on the centres of (2, 2), (12, 2), (8, 10): pixel (10, 6)'s
+    # centre (10.5, 6.5) lies halfway along the edge from (12.5, 2.5) to (8.5, 10.5), a right edge
+    # (the third corner lies to its left): the top-left rule leaves the pixel to the background.
+    assert "(10, 6)" in _draw(settings, BY_ID["rasterization"], 0, 0).question
+    panel.set_lesson(BY_ID["rasterization"])
     labels = [b.text() for b in panel.choices.buttons()]
     button = panel.choices.button(labels.index("nothing (the background)"))
     button.setFocus()
