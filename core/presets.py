@@ -141,8 +141,8 @@ def frustum_cases() -> Scene:
     base = lecture_scene()
     cube, cone, _ = base.objects
     ground = shapes.quad((0.0, 0.0, 0.0), 26.0, Material(color=(0.82, 0.82, 0.8)), "ground")
-    half_out = Sphere((4.9, 1.0, -0.5), 1.0, Material(color=(0.8, 0.3, 0.5)), "sphere half outside")
-    behind = shapes.box((7.5, 0.6, 12.0), 1.2, Material(color=(0.6, 0.6, 0.9)), "box behind the observer")
+    half_out = Sphere((4.9, 1.0, -0.5), 1.0, Material(color=(0.8, 0.3, 0.5)), "sphere")
+    behind = shapes.box((7.5, 0.6, 12.0), 1.2, Material(color=(0.6, 0.6, 0.9)), "box")
     return Scene(camera=base.camera, objects=(cube, cone, ground, half_out, behind), lights=base.lights)
 
 

@@ -197,7 +197,7 @@ class LessonRunner:
         """Mark in the 3D pane the step's highlighted object or face and write the names of the objects
         its words name.  While an exercise is :attr:`asked`, its words take the step's place: a mark
         stays only on an object its question names and does not offer as an answer (the step that
-        outlined "the box behind the observer" answered "Which object is dropped before any pixel
+        outlined the box behind the observer answered "Which object is dropped before any pixel
         work?"; an outline on one of the objects offered would single it out), a face's mark and its
         normal go (a question names its own face, by its corners: the step's face would pass for it,
         and the normal's direction answers a back-face question), and the names written are those of

@@ -77,7 +77,7 @@ class WithheldAnswers:
                     cover(pane, f"Hidden until exercise {n} is answered" if isinstance(pane, QLabel)
                           else why, ANSWER)
         # The 3D pane marks what the question names, not what the step's words name (its outline of
-        # "the box behind the observer" answered "Which object is dropped before any pixel work?").
+        # the box behind the observer answered "Which object is dropped before any pixel work?").
         ex = self.window.exercise_panel.waiting_for
         self.window.lessons.ask((ex.question, offered(ex)) if RESULTS in hidden else None)
         status = self.window.statusBar()

@@ -80,16 +80,16 @@ def test_an_opened_lesson_with_a_false_fact_shows_the_author_what_was_computed(w
     assert "Every fact" in window.statusBar().currentMessage()
 
     fact = data["steps"][1]["facts"][0]
-    assert fact == {"fact": "frustum", "object": "box behind the observer", "is": "outside", "beyond": "near"}
+    assert fact == {"fact": "frustum", "object": "box", "is": "outside", "beyond": "near"}
     fact["beyond"] = "far"  # false: the box stands behind the eye, far nearer than the end plane
     _open(window, qtbot, data, tmp_path)
     box = window.findChild(QMessageBox, "lesson_facts")
     qtbot.waitUntil(lambda: box is not None and box.isVisible())
     (line,) = window.fact_check.failures
     said, computed = line.split("): computed ")
-    assert said.endswith("steps[1].facts[0] ('box behind the observer' is outside the frustum, "
+    assert said.endswith("steps[1].facts[0] ('box' is outside the frustum, "
                          "beyond its far plane")
-    assert computed.startswith("'box behind the observer' is outside the frustum, beyond its ")
+    assert computed.startswith("'box' is outside the frustum, beyond its ")
     assert computed.endswith(" near planes") and "far" not in computed
     assert line in box.informativeText()
     box.close()

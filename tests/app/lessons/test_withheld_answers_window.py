@@ -141,7 +141,7 @@ def _outlined_and_named(view):
 
 
 def test_the_3d_pane_marks_what_the_question_names_not_the_object_it_asks_for(qtbot, window):
-    """The frustum step outlines "the box behind the observer" in yellow, its example of an object
+    """The frustum step outlines the box behind the observer in yellow, its example of an object
     dropped before any pixel work, and its first exercise asks "Which object is dropped before any pixel
     work?".  Asked, the outline goes and the pane writes the names of the five objects offered, each
     alike; answered, the step's outline is back.  The back-face step outlines triangle 2 of the pyramid
@@ -150,7 +150,7 @@ def test_the_3d_pane_marks_what_the_question_names_not_the_object_it_asks_for(qt
     pyramid, which the question names, is named."""
     window.lesson_panel.select(LESSONS["frustum"], 1)
     view = window.scene_view
-    box = next(o for o in window.model.scene.objects if o.name == "box behind the observer")
+    box = next(o for o in window.model.scene.objects if o.name == "box")
     low, high = box.vertices.min(axis=0), box.vertices.max(axis=0)
     box_bounds = tuple(round(float(v), 6) for k in range(3) for v in (low[k], high[k]))
     qtbot.waitUntil(lambda: "lesson" in view.overlay_names(), timeout=RENDER_TIMEOUT_MS)
@@ -159,8 +159,8 @@ def test_the_3d_pane_marks_what_the_question_names_not_the_object_it_asks_for(qt
     assert exercises.question.text() == "Which object is dropped before any pixel work?"
     outlined, names = _outlined_and_named(view)
     assert outlined == []
-    assert sorted(names) == ["box behind the observer", "cone", "cube", "ground", "sphere half outside"]
-    assert _choose(qtbot, exercises, "box behind the observer").startswith("Right")
+    assert sorted(names) == ["box", "cone", "cube", "ground", "sphere"]
+    assert _choose(qtbot, exercises, "box").startswith("Right")
     assert _outlined_and_named(view)[0] == [box_bounds]
 
     window.lesson_dock.raise_()  # the Lessons tab: nothing asked

@@ -36,13 +36,13 @@ def test_a_false_fact_is_reported_with_lesson_step_fact_and_what_was_computed():
     # (box - eye) . (target - eye) = 1.5 * -6 + -3.4 * -3.2 + 3 * -9 = -25.12 < 0, so it is outside.
     eye, target, box = np.array([6, 4, 9.0]), np.array([0, 0.8, 0]), np.array([7.5, 0.6, 12])
     assert np.dot(box - eye, target - eye) < 0
-    lesson = from_dict(_lesson([{"fact": "frustum", "object": "box behind the observer", "is": "inside"},
-                                {"fact": "frustum", "object": "box behind the observer", "is": "outside"}]))
+    lesson = from_dict(_lesson([{"fact": "frustum", "object": "box", "is": "inside"},
+                                {"fact": "frustum", "object": "box", "is": "outside"}]))
     (line,) = check_lesson(lesson)
     said, computed = line.split("): computed ")
-    assert said == ("lesson mine, step 1 'one', steps[0].facts[0] ('box behind the observer' is inside the "
+    assert said == ("lesson mine, step 1 'one', steps[0].facts[0] ('box' is inside the "
                     "frustum")
-    assert computed.startswith("'box behind the observer' is outside the frustum, beyond its ")
+    assert computed.startswith("'box' is outside the frustum, beyond its ")
     assert line.endswith(" near planes")  # behind the eye (below), and beyond side planes too
 
 
@@ -54,12 +54,12 @@ def test_an_object_outside_the_frustum_lies_beyond_the_plane_the_fact_names_and_
     along = np.dot(box - eye, (target - eye) / np.linalg.norm(target - eye))
     radius = 0.6 * np.sqrt(3)
     assert along + radius < 0 < along - radius + 30
-    fact = {"fact": "frustum", "object": "box behind the observer", "is": "outside"}
+    fact = {"fact": "frustum", "object": "box", "is": "outside"}
     assert check_lesson(from_dict(_lesson([{**fact, "beyond": "near"}]))) == []
     (line,) = check_lesson(from_dict(_lesson([{**fact, "beyond": "far"}])))
     said, computed = line.split("): computed ")
-    assert said.endswith("('box behind the observer' is outside the frustum, beyond its far plane")
-    assert computed.startswith("'box behind the observer' is outside the frustum, beyond its ")
+    assert said.endswith("('box' is outside the frustum, beyond its far plane")
+    assert computed.startswith("'box' is outside the frustum, beyond its ")
     assert "near" in computed and "far" not in computed
 
 
@@ -127,7 +127,7 @@ def test_bad_facts_are_refused_with_their_field_path():
              {"fact": "ray_sphere", "origin": [0, 0, 0], "center": [0, 0, 0], "radius": 1,
               "value": "a", "equals": 1},
              {"fact": "frustum", "object": "cube", "is": "inside", "beyond": "left"},
-             {"fact": "frustum", "object": "box behind the observer", "is": "outside", "beyond": "behind"}]
+             {"fact": "frustum", "object": "box", "is": "outside", "beyond": "behind"}]
     with pytest.raises(LessonFileError) as info:
         from_dict(_lesson(facts))
     problems = info.value.problems
