@@ -120,16 +120,25 @@ def test_ray_tracing_the_colours_are_computed_c_then_b_then_a():
     assert not judge(ex, p, [primary, refracted, leaving]).right
 
 
-def test_acceleration_the_pyramid_is_hit_and_ball_2_at_its_distance():
-    # Brute force over every object, no bounding sphere nor grid: (225, 122) meets only the pyramid;
-    # (150, 118) meets ball 2 first, at t ≈ 6.371 along the unit direction.
-    ex, p = exercise("acceleration", 0)
-    crossed = hits(_scene(p), *pixel_ray(_scene(p).camera, 225, 122))
-    assert [name for _, name in crossed] == ["pyramid"]
-    assert_only(ex, p, "pyramid")
-    ex, p = exercise("acceleration", 1)
-    ((t, name), *_) = hits(_scene(p), *pixel_ray(_scene(p).camera, 150, 118))
-    assert name == "ball 2"
+@pytest.mark.parametrize(("variant", "first"), list(enumerate(["ball 2", "pyramid", "slab 1", "slab 2"])))
+def test_acceleration_the_students_pixel_meets_its_first_object(variant, first):
+    # Brute force over every object, no bounding sphere nor grid, for the pixel this student draws
+    # (none of them a pixel a step picks: (225, 122) and (150, 118) are shown with their ray trees).
+    ex, p = exercise("acceleration", 0, variant)
+    x, y = ex.args["fact"]["pixel"]
+    assert (x, y) not in {(225, 122), (150, 118)}
+    crossed = hits(_scene(p), *pixel_ray(_scene(p).camera, x, y))
+    assert crossed[0][1] == first
+    assert_only(ex, p, first)
+
+
+@pytest.mark.parametrize("variant", range(4))
+def test_acceleration_the_distance_to_the_first_object(variant):
+    ex, p = exercise("acceleration", 1, variant)
+    x, y = ex.args["value"]["pixel"]
+    assert (x, y) not in {(225, 122), (150, 118)}
+    ((t, name), *_) = hits(_scene(p), *pixel_ray(_scene(p).camera, x, y))
+    assert name in {"ball 2", "pyramid", "slab 1", "slab 2"}
     assert number(ex, p) == pytest.approx(t, abs=1e-9)
     assert judge(ex, p, t + 0.009).right and not judge(ex, p, t + 0.02).right
 
