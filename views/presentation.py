@@ -35,6 +35,9 @@ SCALES = (1.0, 1.5, 2.0)
 PRESENTING_SCALE = 1.5
 #: On one screen, the share of its width the presenter window takes (at its right edge).
 PRESENTER_SHARE = 0.25
+#: What the presenter window says on one screen.
+ONE_SCREEN = ("One screen only: a projector that shows this screen shows these notes too (they may "
+              "hold the exercises' answers).")
 
 class _Blank(QWidget):
     """A black sheet over the whole window."""
@@ -282,6 +285,7 @@ class Presentation(QObject):
             self.presenter.setGeometry(others[0].availableGeometry())
         else:
             self._beside_the_window(mine.availableGeometry())
+        self.presenter.set_one_screen(not others)
         self.presenter.show()
         return self.presenter
 
@@ -331,8 +335,11 @@ class PresenterWindow(QWidget):
         self.notes.setWordWrap(True)
         self.upcoming = _enlarged(QLabel(), 1.0)
         self.upcoming.setWordWrap(True)
+        self.one_screen = QLabel(ONE_SCREEN)  # the notes may hold answers
+        self.one_screen.setWordWrap(True)
+        self.one_screen.hide()
         layout = QVBoxLayout(self)
-        for w in (self.clock, self.current, self.notes):
+        for w in (self.one_screen, self.clock, self.current, self.notes):
             layout.addWidget(w)
         layout.addStretch(1)
         layout.addWidget(_enlarged(QLabel("Next:"), 1.0))
@@ -344,6 +351,10 @@ class PresenterWindow(QWidget):
         if panel is not None:
             panel.step_selected.connect(lambda _step: self.refresh())
         self.refresh()
+
+    def set_one_screen(self, one: bool) -> None:
+        """Say (or not) that there is only one screen, which the room may see too."""
+        self.one_screen.setVisible(one)
 
     def _tick(self) -> None:
         self.clock.setText(QTime.currentTime().toString("HH:mm:ss"))

@@ -1,8 +1,8 @@
 """Presentation mode: full screen, scaled text, high contrast, blanking, clicker keys, presenter window."""
 
 import pytest
-from PySide6.QtCore import QEvent, QObject, Qt
-from PySide6.QtGui import QPalette
+from PySide6.QtCore import QEvent, QObject, QRect, Qt
+from PySide6.QtGui import QGuiApplication, QPalette
 from PySide6.QtWidgets import (
     QApplication,
     QCheckBox,
@@ -281,3 +281,25 @@ def test_entering_and_leaving_presentation_mode_show_only_their_final_look(hall,
         presentation.set_presenting(on)
         qtbot.waitUntil(lambda: presentation.settled() and bool(painted))  # noqa: B023
         assert painted == [look] * len(painted)
+
+
+def test_on_one_screen_the_presenter_window_says_the_room_may_see_it(hall, qtbot, monkeypatch):
+    """Its notes may hold the exercises' answers: on the only screen, which a projector may mirror,
+    the presenter window says so; on a second screen of its own it does not."""
+    window, panel, presentation = hall
+    presenter = presentation.show_presenter()
+    qtbot.addWidget(presenter)
+    qtbot.waitExposed(presenter)
+    assert len(QGuiApplication.screens()) == 1
+    assert presenter.one_screen.isVisible()
+    assert "a projector that shows this screen" in presenter.one_screen.text()
+    presenter.hide()
+
+    class Second:  # a second screen, beside the first
+        def availableGeometry(self):
+            return QRect(1920, 0, 1280, 720)
+
+    monkeypatch.setattr(QGuiApplication, "screens", staticmethod(lambda: [window.screen(), Second()]))
+    presentation.show_presenter()
+    qtbot.waitExposed(presenter)
+    assert not presenter.one_screen.isVisible()
