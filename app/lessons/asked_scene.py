@@ -1,11 +1,14 @@
-"""The scene an exercise asks about: when the window shows another, the exercise says so.
+"""The scene an exercise asks about: the window shows it, and says so when it shows another.
 
 An exercise is judged on the scene of its lesson step (:mod:`core.lessons.exercises`), whatever the
-window shows.  A student who moved the observer (the arrow keys orbit it), edited the scene, went to
-another step or opened another scene and then answered from the window would be told "wrong" about
-what they see.  :class:`AskedScene` compares the window's scene with the one the exercise waiting
-for its answer asks about, and while they differ the exercise panel says which it asks about, what
-the window shows instead, and that Show me brings it back.
+window shows.  When the student asks an exercise (brings the Exercises tab to the front, or goes to
+another exercise there) while the window shows another step of its lesson, :class:`AskedScene`
+shows the exercise's step: its scene and settings (a z-buffer question asked on the cleared buffers
+was otherwise asked beside the finished picture of the lesson's last step).  A student who then
+moves the observer (the arrow keys orbit it), edits the scene, goes to another step or opens another
+scene, and answers from the window, would be told "wrong" about what they see: while the window's
+scene differs from the one asked about, the exercise panel says which it asks about, what the window
+shows instead, and that Show me brings it back.
 """
 
 from __future__ import annotations
@@ -19,9 +22,32 @@ class AskedScene:
 
     def __init__(self, window):
         self.window = window
+        self._lesson = None  # the lesson whose exercises were asked last
         window.model.scene_changed.connect(self.update)
         window.model.camera_changed.connect(self.update)
-        window.exercise_panel.waiting.connect(self.update)
+        window.exercise_panel.waiting.connect(self._asked)
+        window.exercise_dock.visibilityChanged.connect(lambda seen: seen and self.show_its_step())
+
+    def _asked(self, ex) -> None:
+        """Another exercise is asked: its step is shown if the Exercises tab is in front; not when the
+        exercises change with the lesson (a step of another lesson chosen: that step stays)."""
+        lesson = self.window.exercise_panel.lesson
+        if lesson is self._lesson and self.window.exercise_dock.isVisible():
+            self.show_its_step()
+        self._lesson = lesson
+        self.update()
+
+    def show_its_step(self) -> None:
+        """While the window shows another step of the waiting exercise's lesson, show the exercise's
+        (as Show me does, without picking a pixel); another scene, or the step moved or edited, stays."""
+        w = self.window
+        ex, lesson = w.exercise_panel.waiting_for, w.exercise_panel.lesson
+        shown = w.lessons.step
+        if ex is None or lesson is None or shown is None or w.lesson_panel.current_lesson() is not lesson:
+            return
+        if shown is not lesson.steps[ex.step] and any(shown is step for step in lesson.steps) \
+                and w.model.scene == shown.scene:
+            w.lesson_panel.select(w.lesson_panel.step_index()[0], ex.step)
 
     def elsewhere(self) -> str:
         """Why the window's scene is not the one the waiting exercise asks about, in words, or ""."""

@@ -457,7 +457,11 @@ class ExercisePanel(QWidget):
             return
         p = self._p(ex)
         self.helped = True  # the pixel shown is a right one
-        self._run(lambda: a_right_pixel(ex, p), lambda pixel: self.show_me.emit(ex.step, pixel))
+        self._run(lambda: a_right_pixel(ex, p), lambda pixel: self._shown(ex, pixel))
+
+    def _shown(self, ex: Exercise, pixel) -> None:
+        if ex is self.exercise():  # not if the student went on to another exercise or lesson meanwhile
+            self.show_me.emit(ex.step, pixel)
 
     def _record(self, outcome: str) -> None:
         self.progress.record(self.lesson.id, self.index, outcome)

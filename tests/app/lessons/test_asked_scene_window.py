@@ -58,6 +58,30 @@ def test_after_show_me_no_exercise_says_the_window_shows_another_scene(qtbot, wi
         window.lesson_panel.select(LESSONS[lesson.id], 0)
         for k in range(len(lesson.exercises)):
             exercises.go(k)
-            exercises.show_button.click()
-            qtbot.waitUntil(lambda: window.lesson_panel.step_index()[1] == exercises.exercise().step)
+            window.statusBar().clearMessage()
+            exercises.show_button.click()  # a click-a-pixel exercise's pixel is found off the GUI thread
+            said = f"Exercise {k + 1}: showing"
+            qtbot.waitUntil(lambda said=said: window.statusBar().currentMessage().startswith(said))
+            assert window.lesson_panel.step_index()[1] == exercises.exercise().step
             assert exercises.elsewhere.isHidden(), (lesson.id, k, exercises.elsewhere.text())
+
+
+def test_asking_an_exercise_shows_the_step_it_asks_about(qtbot, window):
+    """The z-buffer lesson's first question is asked on the cleared buffers ("Once all three polygons
+    are drawn, which one will the z-buffer keep ...?"): asked while the window shows the finished
+    picture of the last step, the picture answered it.  Bringing the Exercises tab to the front, and
+    going to another exercise there, shows the step each asks about; a step the student picks while
+    the question waits stays, and says so if its scene differs."""
+    k = LESSONS["zbuffer"]
+    window.lesson_panel.select(k, 3)  # on the Lessons tab: the finished picture
+    exercises = window.exercise_panel
+    assert exercises.exercise().step == 0
+    window.exercise_dock.raise_()
+    qtbot.waitUntil(lambda: window.lesson_panel.step_index() == (k, 0))
+    assert window.model.step == 0  # the buffers as cleared: nothing drawn yet
+    exercises.next_button.click()  # "Green and blue are drawn; yellow comes next. ..."
+    assert window.lesson_panel.step_index() == (k, 2) and window.model.step == 2
+    window.lesson_panel.next()  # the student goes on to the last step: it stays
+    assert window.lesson_panel.step_index() == (k, 3)
+    window.lesson_panel.select(LESSONS["observer"], 1)  # another lesson: its step stays
+    assert window.lesson_panel.step_index() == (LESSONS["observer"], 1)

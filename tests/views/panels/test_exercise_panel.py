@@ -258,3 +258,26 @@ def test_in_a_short_dock_check_and_the_verdict_stay_in_view_below_the_pictures(q
     panel.check()
     qtbot.waitUntil(lambda: shown_whole(panel.feedback) and panel.feedback.height() > 0)
     assert panel.feedback.text().startswith("Not that one")
+
+
+def test_a_show_me_answered_after_the_student_moved_on_shows_nothing(qtbot, settings):
+    """Show me on a click-a-pixel exercise asks the pipelines for a right pixel, off the GUI thread;
+    if the student goes to another lesson meanwhile, the late answer must not show the old exercise's
+    step in the new lesson (it selected step 2 of a lesson of one step, and raised)."""
+    pending = []
+    panel = shown_widget(qtbot, ExercisePanel(ExerciseProgress(settings),
+                                              run=lambda work, done: pending.append((work, done))), 500, 600)
+    shown = []
+    panel.show_me.connect(lambda step, pixel: shown.append((step, pixel)))
+    panel.set_lesson(BY_ID["ray_casting"])
+    assert panel.exercise().kind == "click_pixel"
+    panel.show_button.click()
+    panel.set_lesson(BY_ID["ray_triangle"])  # the student moves on before the pixel is found
+    work, done = pending.pop()
+    done(work())
+    assert shown == []
+    panel.set_lesson(BY_ID["ray_casting"])
+    panel.show_button.click()
+    work, done = pending.pop()
+    done(work())
+    assert shown and shown[0][0] == panel.exercise().step  # in time, it shows the step
