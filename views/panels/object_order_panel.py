@@ -77,8 +77,7 @@ DEPTH_FORMAT_TIP = (
     "float64: our reference.  float32: 24 significant bits.  float32-reversed: stores 1 − depth, "
     "so the float's fine steps meet the crowded far end.  int24, int16: equal steps over [0, 1].")
 
-HISTORY_PROMPT = ("Click a pixel in either buffer to see its history: the fragments that reached it, "
-                  "each passing the z-test when it is nearer than the depth stored so far.")
+HISTORY_PROMPT = "Click a pixel in either buffer to see its history."
 DEPTH_TIP = ("Depths are distances along the viewing axis; a fragment passes when it is nearer than the "
              "depth stored so far")
 HISTORY_COLUMNS = ["step", "polygon", "depth", "stored depth", "z-test", "before", "after", "blend αs"]
@@ -195,6 +194,7 @@ class ObjectOrderPanel(QWidget):
         self.history.setEditTriggers(QTableWidget.EditTrigger.NoEditTriggers)
         for column in (2, 3, 4):  # depth, stored depth, z-test
             self.history.horizontalHeaderItem(column).setToolTip(DEPTH_TIP)
+        self.history.setToolTip(DEPTH_TIP)
         self.history_caption = WholeLinesLabel(HISTORY_PROMPT)
         self.verdict = VerdictLabel()
         history_page = QWidget()
@@ -405,7 +405,7 @@ class ObjectOrderPanel(QWidget):
                                       f"{e.blend.alpha:.2f}: c0 = αs·cs + (1 − αs)·cd")]
             for col, cell in enumerate(cells):
                 self.history.setItem(row, col, cell)
-        # One line: what a depth is and when a fragment passes, the prompt above and the tooltips say
+        # One line: what a depth is and when a fragment passes, the depth columns' tooltips say
         # (at text x2 on 1280 x 720 the sentence took two more lines from the fragments' rows).
         self.history_caption.setText(
             f"Pixel ({x}, {y}): {len(events)} fragments up to step {self.scrubber.step}.")
