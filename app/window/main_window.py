@@ -292,6 +292,9 @@ class MainWindow(QMainWindow):
 
         exercises.show_me.connect(show_me)
         self.presentation.presenting_changed.connect(exercises.set_room)
+        exercises.waiting.connect(lambda _: self._refit())  # another question, its answers shown or
+        exercises.answers_hidden.connect(lambda _: self._refit())  # hidden: the room they need
+        self.exercise_dock.visibilityChanged.connect(lambda shown: shown and self._refit())
 
         def progressed(lesson_id: str) -> None:
             for k, lesson in enumerate(panel.lessons()):

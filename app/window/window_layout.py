@@ -6,7 +6,9 @@ keeps that order at every size and text scale: the left column takes
 :data:`LEFT_SHARE` of the width (a little more at larger text, so the
 lesson's words keep a readable line length) and the 3D pane
 :data:`SCENE_SHARE` of the left column's height, less when the lesson
-step's words need the room (large text on a small screen), but never less
+step's words (or, with the exercises in front, the question and what
+follows it) need the room (large text on a small screen; without the 3D
+pane, the column widens for them), but never less
 than :data:`MIN_SCENE_SHARE` (then the column widens, up to
 :data:`MAX_LEFT_SHARE`); the window never grows beyond its screen's
 available area.  The window calls it when it is shown, resized, its text
@@ -104,11 +106,15 @@ def fit_window(window, scale: float = 1.0) -> None:
     share, short = left_share(scale), 0
     # The lesson step's words shown whole, if the 3D pane can spare the room, else if the left
     # column may widen that much (the docks take their new sizes after this call).
-    words = window.lesson_panel.isVisible() and window.scene_pane.isVisible()
+    # The exercise's question and its Show answers button, when the exercises are in front.
+    # Without the 3D pane (a lesson hid it), only a wider column gives them room.
+    panel = window.exercise_panel if in_front(window.exercise_dock) else window.lesson_panel
+    words = panel.isVisible()
+    spare = window.scene_pane.height() - least_scene if window.scene_pane.isVisible() else 0
     while words:
         wider = round(window.width() * share) - window.lesson_dock.width()
-        short = _words_short_by(window.lesson_panel, wider)
-        if window.scene_pane.height() - short >= least_scene or share >= MAX_LEFT_SHARE:
+        short = _words_short_by(panel, wider)
+        if short <= spare or share >= MAX_LEFT_SHARE:
             break
         share = min(share + 0.02, MAX_LEFT_SHARE)
     window.resizeDocks([window.lesson_dock], [round(window.width() * share)], Qt.Orientation.Horizontal)
@@ -121,8 +127,8 @@ def fit_window(window, scale: float = 1.0) -> None:
 
 
 def _words_short_by(panel, wider: int) -> int:
-    """How many pixels taller the lesson panel's words area must be to show the step whole
-    (negative: how many it has to spare) once the panel is ``wider`` pixels wider."""
+    """How many pixels taller the lesson (or exercise) panel's words area must be to show the step (the
+    question) whole (negative: how many it has to spare) once the panel is ``wider`` pixels wider."""
     viewport = panel.scroll.viewport()
     words = panel.scroll.widget()  # as tall as its lines at that width, and never below its minimum
     tall = max(words.layout().totalHeightForWidth(viewport.width() + wider), words.minimumSizeHint().height())

@@ -88,11 +88,19 @@ def draw_cost_plot(figure: Figure, rows: list[Row], indices: list[int] | None = 
     ax.set_yscale("log")
     ax.set_xlabel("render time (s, median)")
     ax.set_ylabel("mean FLIP error\nagainst the reference")  # one line was longer than a short figure
-    ax.set_title("What accuracy costs in time\n(ringed: each knob's knee)", fontsize="medium")
+    title = ax.set_title("What accuracy costs in time\n(ringed: each knob's knee)", fontsize="medium")
+    _title_from_left(title)
     ax.grid(True, which="both", alpha=0.3)
     if any(line.axes is ax for line in lines):
         ax.legend(fontsize="small", loc="upper center", bbox_to_anchor=(0.5, 0.0), ncols=2)
     return lines
+
+
+def _title_from_left(title) -> None:
+    """Start ``title`` at its axes' left edge: a plot wider than its pane (at text x2 on 1280 x 720)
+    scrolls, and a title centred on the whole figure was cut at the view's right edge."""
+    title.set_x(0.0)
+    title.set_horizontalalignment("left")
 
 
 def tidy_cost_plot(figure: Figure) -> None:
@@ -205,8 +213,8 @@ def _draw_depth_formats(ax, formats: list[tuple[int, Row]], wide: bool) -> dict:
     ax.set_xlabel("far / near ratio (near plane moved)")
     ax.set_ylabel("pixels showing\nthe wrong object (%)" if wide else "pixels showing the wrong object (%)")
     title = "z-buffer formats: z-fighting against float64\n(ringed: fewest bytes within the tolerance)"
-    ax.set_title(title if wide else "z-buffer formats:\nz-fighting against float64\n(ringed: fewest bytes\n"
-                 "within the tolerance)", fontsize="medium")
+    _title_from_left(ax.set_title(title if wide else "z-buffer formats:\nz-fighting against float64\n"
+                                  "(ringed: fewest bytes\nwithin the tolerance)", fontsize="medium"))
     ax.grid(True, which="both", alpha=0.3)
     # With no fights every curve lies on 0; the legend says so in its title, so the note can never
     # sit on the legend's entries (drawn apart, it covered them in a short panel).

@@ -17,6 +17,7 @@ from PySide6.QtWidgets import (
     QFormLayout,
     QGroupBox,
     QHBoxLayout,
+    QSizePolicy,
     QSlider,
     QVBoxLayout,
     QWidget,
@@ -24,26 +25,36 @@ from PySide6.QtWidgets import (
 
 from core.camera import PITCH_LIMIT_DEG, Camera
 from core.files.scene_file import MAX_MAGNITUDE
+from views.flow_layout import FlowLayout
 
 RESOLUTIONS = [(160, 120), (320, 240), (480, 360), (640, 480), (960, 720)]
 
 
 class _NumberBox(QDoubleSpinBox):
-    """A number box as wide as a typical value, not as its extreme ones (±1,000,000 is allowed)."""
+    """A number box as wide as a typical value, not as its extreme ones (±1,000,000 is allowed);
+    at the least as wide as the value it shows, so that at a large text size the eye's three boxes
+    share a narrow column (as wide as a typical value each, they widened the Controls past the dock,
+    which cut them at text x2 on 1280 x 720)."""
 
     TYPICAL = "-8888.88"
 
-    def _narrowed(self, hint: QSize) -> QSize:
+    def __init__(self):
+        super().__init__()
+        # Minimum, the box's policy, makes a layout take the size hint as the least size.
+        self.setSizePolicy(QSizePolicy.Policy.Preferred, self.sizePolicy().verticalPolicy())
+        self.textChanged.connect(lambda _: self.updateGeometry())  # another least width
+
+    def _narrowed(self, hint: QSize, text: str) -> QSize:
         fm = self.fontMetrics()
         widest = max(fm.horizontalAdvance(self.textFromValue(v)) for v in (self.minimum(), self.maximum()))
-        extra = widest - fm.horizontalAdvance(self.TYPICAL)
+        extra = widest - fm.horizontalAdvance(text)
         return QSize(hint.width() - max(0, extra), hint.height())
 
     def sizeHint(self) -> QSize:
-        return self._narrowed(super().sizeHint())
+        return self._narrowed(super().sizeHint(), self.TYPICAL)
 
     def minimumSizeHint(self) -> QSize:
-        return self._narrowed(super().minimumSizeHint())
+        return self._narrowed(super().minimumSizeHint(), self.text() + " ")
 
 
 def _spin(lo, hi, step, decimals, suffix="", tip=""):
@@ -113,9 +124,11 @@ class CameraPanel(QWidget):
         observer = QGroupBox("Observer")
         form = QFormLayout(observer)
         form.setRowWrapPolicy(QFormLayout.RowWrapPolicy.WrapLongRows)  # narrow at large text: label above
-        eye_row = QHBoxLayout()
+        eye_row = QWidget()  # one line, or more in a narrow column at a large text size
+        eye_flow = FlowLayout(eye_row)
+        eye_flow.setSpacing(6)
         for box in self.eye:
-            eye_row.addWidget(box)
+            eye_flow.addWidget(box)
         form.addRow("Eye x, y, z", eye_row)
         form.addRow("Yaw", self.yaw)
         form.addRow("Pitch", self.pitch)
@@ -129,11 +142,13 @@ class CameraPanel(QWidget):
         form2.addRow("Projection", self.projection)
         form2.addRow("Ortho height", self.ortho_height)
         form2.addRow("Image size", self.resolution)
-        self.frustum_labels = QCheckBox("Fill and label the near and far planes")
+        # Its name as the row's label: a narrow column puts it above the box (one line of check box
+        # text was wider than the Controls at text x2 on 1280 x 720).
+        self.frustum_labels = QCheckBox("fill and label them")
         self.frustum_labels.setToolTip("Show the frustum's front (near) and end (far) planes filled in the "
                                        "3D pane, with their distances")
         self.frustum_labels.toggled.connect(lambda on: model.set_overlay("frustum", on))
-        form2.addRow(self.frustum_labels)
+        form2.addRow("Near and far planes", self.frustum_labels)
         layout = QVBoxLayout(self)
         layout.addWidget(observer)
         layout.addWidget(lens)

@@ -114,7 +114,8 @@ class ReadoutRow(QWidget):
         self.title.setVisible(bool(title))
         self.swatch.setVisible(bool(title))
         self.setVisible(bool(title or found))
-        self.numbers.setText("" if rgb is None else "linear RGB " + " ".join(f"{c:.3f}" for c in self.rgb))
+        # The box's title says "linear RGB": with it, the numbers took two lines of a column at x2.
+        self.numbers.setText("" if rgb is None else " ".join(f"{c:.3f}" for c in self.rgb))
         self.numbers.setVisible(rgb is not None)  # empty, it kept a line's height above a hint
         if rgb is None:
             self.swatch.setStyleSheet("")
@@ -218,7 +219,7 @@ class ComparePanel(QWidget):
         rows_layout.setColumnStretch(0, 1)
         rows_layout.setColumnStretch(1, 1)
         rows_layout.setRowStretch(2, 1)
-        rows_scroll = QScrollArea()
+        rows_scroll = self.rows_scroll = QScrollArea()
         rows_scroll.setWidgetResizable(True)
         rows_scroll.setFrameShape(QFrame.Shape.NoFrame)
         rows_scroll.setHorizontalScrollBarPolicy(Qt.ScrollBarPolicy.ScrollBarAlwaysOff)
@@ -269,7 +270,7 @@ class ComparePanel(QWidget):
             return
         need = self.explanation.heightForWidth(width) + 2 * scroll.frameWidth()
         images, pixel, words = sizes = self.split.sizes()
-        total, least = sum(sizes), _needed_height(self.pixel_box)
+        total, least = sum(sizes), self._readout_height()
         # For the images: their share, or more where their captions need it (at 1280 x 720 and text
         # x1.5 the difference's units were cut to a line and a half).
         kept = max(round(IMAGE_SHARE * total), _needed_height(self.split.widget(0)))
@@ -277,6 +278,13 @@ class ComparePanel(QWidget):
         pixel = max(least, min(pixel, total - words - kept))  # a resize shares out to images and pixel
         if [total - words - pixel, pixel, words] != sizes:
             self.split.setSizes([total - words - pixel, pixel, words])
+
+    def _readout_height(self) -> int:
+        """The height the picked pixel's box needs to show its rows whole at its width (at text x2 on
+        1280 x 720 it kept the hint's two lines, and a pick's numbers showed a line and a half)."""
+        view = self.rows_scroll.viewport()
+        rows = self.rows_scroll.widget().heightForWidth(view.width())
+        return max(_needed_height(self.pixel_box), self.pixel_box.height() - view.height() + rows)
 
     def resizeEvent(self, event) -> None:  # noqa: N802 (Qt's name)
         super().resizeEvent(event)
@@ -332,7 +340,7 @@ class ComparePanel(QWidget):
         comparison = self.shown.comparison
         names = [o.name for o in comparison.a.scene.objects]
         x, y = pixel
-        self.pixel_box.setTitle(f"Picked pixel ({x}, {y})")
+        self.pixel_box.setTitle(f"Picked pixel ({x}, {y}), linear RGB")
         for row, (side, output, report) in enumerate(zip("AB", (comparison.a, comparison.b), reports,
                                                          strict=True)):
             self.readout[row].set_row(f"{side}: {output.title}", report.color, found=report.found,
@@ -344,6 +352,7 @@ class ComparePanel(QWidget):
                  else "no difference: both outputs give this pixel the same colour")
         self.readout[2].set_row("|A − B|", diff.delta[y, x], diff.colored[y, x], found,
                                 "The swatch shows the difference image's colour at this pixel")
+        QTimer.singleShot(0, self, self._make_room_for_explanation)  # once the rows have their lines
 
     def _clear_readout(self, message: str) -> None:
         self.pixel_box.setTitle("Picked pixel")

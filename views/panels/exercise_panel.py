@@ -24,7 +24,8 @@ from __future__ import annotations
 
 import random
 
-from PySide6.QtCore import QEvent, QSettings, Qt, QTimer, Signal
+from PySide6.QtCore import QEvent, QRect, QSettings, QSize, Qt, QTimer, Signal
+from PySide6.QtGui import QFont, QFontMetrics
 from PySide6.QtWidgets import (
     QApplication,
     QButtonGroup,
@@ -60,6 +61,9 @@ FIRST_TRY, LATER, REVEALED = "first try", "later", "revealed"
 RIGHT_COLOR, WRONG_COLOR = "#1b8a3a", "#c62828"
 ROOM_SCALE = 1.8
 """The question's size, put to the room, relative to the panel's font."""
+ROOM_LEAST = 0.8
+"""The least size of a long question put to the room, relative to the panel's font (presenting at x2,
+1.6 times the normal text)."""
 
 
 OPEN_A_LESSON = ("Pick a step in the Lessons tab (or press PageDown): the exercises of its lesson "
@@ -112,6 +116,29 @@ class ExerciseProgress:
         self.settings.sync()
 
 
+class _Picture(ImageView):
+    """A picture to pick: as tall as its width gives it (4:3), so that the dock's width, widened where
+    the pane the exercise covers leaves room, makes it larger (at a fixed 120 pixels high it showed
+    88 x 66 at text x2 on 1280 x 720)."""
+
+    def __init__(self):
+        super().__init__()
+        self.setMinimumSize(96, 72)
+        policy = self.sizePolicy()
+        policy.setHeightForWidth(True)
+        self.setSizePolicy(policy)
+        self.tallest = 10_000  # the panel's room for a picture: two rows in view with the rest
+
+    def hasHeightForWidth(self) -> bool:  # noqa: N802 (Qt's name)
+        return True
+
+    def heightForWidth(self, width: int) -> int:  # noqa: N802
+        return max(72, min(width * 3 // 4, self.tallest))
+
+    def sizeHint(self) -> QSize:  # noqa: N802
+        return QSize(160, 120)
+
+
 class ExercisePanel(QWidget):
     """The current lesson's exercises, one at a time.
 
@@ -122,11 +149,14 @@ class ExercisePanel(QWidget):
     progressed(str lesson_id) : an exercise of that lesson was answered or revealed.
     waiting(object exercise) : the exercise asked now waits for its answer; None once it is answered
         right or revealed (or when nothing is asked).  See :attr:`waiting_for`.
+    answers_hidden(bool) : the answers were hidden (put to the room) or shown: the panel needs another
+        height.
     """
 
     show_me = Signal(int, object)
     progressed = Signal(str)
     waiting = Signal(object)
+    answers_hidden = Signal(bool)
 
     def __init__(self, progress: ExerciseProgress, run=None, parent: QWidget | None = None):
         """``run(work, done)`` runs ``work()`` (which asks the pipelines: up to a second on a large
@@ -275,6 +305,7 @@ class ExercisePanel(QWidget):
         self.previous_button.setEnabled(self.index > 0)
         self.next_button.setEnabled(self.index < n - 1)
         self.question.setText(ex.question)
+        self._size_question()
         if ex.kind == "choose_one":
             for i, choice in enumerate(ex.args["choices"]):
                 button = QRadioButton(choice_label(choice))
@@ -332,10 +363,8 @@ class ExercisePanel(QWidget):
         keys = list(drawn)
         random.Random(self.progress.seed() + self.index).shuffle(keys)
         for i, key in enumerate(keys):
-            view = ImageView()
+            view = _Picture()
             view.set_image(drawn[key])
-            view.setMinimumSize(96, 72)
-            view.setMaximumHeight(120)  # four and the buttons below them fit a short dock
             button = QRadioButton(f"picture {i + 1}")
             view.pixel_clicked.connect(lambda _x, _y, b=button: b.setChecked(True))
             self.choices.addButton(button, i)
@@ -343,6 +372,7 @@ class ExercisePanel(QWidget):
             self.picture_layout.addWidget(button, 2 * (i // 2) + 1, i % 2)
             self.picture_views.append(view)
         self.picture_keys = keys
+        QTimer.singleShot(0, self, self._size_question)  # and the pictures' room
 
     def _p(self, ex: Exercise) -> StepPipelines:
         if ex.step not in self._pipelines:
@@ -483,15 +513,70 @@ class ExercisePanel(QWidget):
     def set_room(self, room: bool) -> None:
         """Put the question to the room: large, with its answers hidden until Space shows them."""
         self.room = room
-        size = QApplication.font().pointSizeF() * ROOM_SCALE  # the text size now (presentation's scale)
-        # A style sheet, not setFont: the window's style sheet would override a font set in code.
-        self.question.setStyleSheet(f"font-size: {size:.1f}pt; font-weight: bold;" if room else "")
-        self.question.ensurePolished()
+        self._size_question()
         self.set_answers_hidden(room)
+
+    def _size_question(self) -> None:
+        """Put to the room, the question is :data:`ROOM_SCALE` times the panel's text, or as much of
+        that as leaves the rest of the panel (Show answers, Reset progress) in view at the question's
+        width (a long question at x2 in the dock of a 1280 x 720 screen ran below the fold, Show
+        answers with it); never smaller than :data:`ROOM_LEAST` of the panel's text."""
+        style = ""
+        if self.room:
+            base = QApplication.font().pointSizeF()  # the text size now (presentation's scale)
+            scale, width = ROOM_SCALE, self.question.width()
+            content = self.scroll.widget().layout()
+            view = self.scroll.viewport()
+            room = view.height() - (content.totalHeightForWidth(view.width())
+                                    - self.question.heightForWidth(width))
+            least = ROOM_LEAST if self.room_button.isVisible() else 1.0  # alone, or over its answers
+            while scale > least and min(width, view.height()) > 0 and self._question_height(base * scale,
+                                                                                       width) > room:
+                scale = round(scale - 0.1, 1)
+            style = f"font-size: {base * scale:.1f}pt; font-weight: bold;"
+        if style != self.question.styleSheet():
+            # A style sheet, not setFont: the window's style sheet would override a font set in code.
+            self.question.setStyleSheet(style)
+            self.question.ensurePolished()
+        self._fit_pictures()
+
+    def _fit_pictures(self) -> None:
+        """Pictures to pick as large as their width makes them, or as the panel's height leaves for
+        their two rows beside the rest of it, so that all four are in view."""
+        if not self.picture_views or not self.answer_area.isVisible():
+            return
+        view = self.scroll.viewport()
+        first = self.picture_views[0]
+        rows = 2 * first.heightForWidth(first.width())
+        others = self.scroll.widget().layout().totalHeightForWidth(view.width()) - rows
+        tallest = max(72, (view.height() - others) // 2)
+        if tallest != first.tallest:
+            for picture in self.picture_views:
+                picture.tallest = tallest
+                picture.updateGeometry()
+
+    def _question_height(self, points: float, width: int) -> int:
+        font = QFont(self.question.font())
+        font.setPointSizeF(points)
+        font.setBold(True)
+        lines = QFontMetrics(font).boundingRect(QRect(0, 0, width, 100_000), Qt.TextFlag.TextWordWrap,
+                                                self.question.text())
+        return lines.height()
+
+    def resizeEvent(self, event) -> None:  # noqa: N802 (Qt's name)
+        super().resizeEvent(event)
+        QTimer.singleShot(0, self, self._size_question)  # once the question has its new width
+
+    def changeEvent(self, event) -> None:  # noqa: N802
+        super().changeEvent(event)
+        if event.type() == QEvent.Type.FontChange:  # another text scale: another size for the room
+            QTimer.singleShot(0, self, self._size_question)
 
     def set_answers_hidden(self, hidden: bool) -> None:
         self.answer_area.setVisible(not hidden)
         self.room_button.setVisible(hidden)
+        QTimer.singleShot(0, self, self._size_question)  # the question leaves the answers their room
+        self.answers_hidden.emit(hidden)
 
     def keyPressEvent(self, event) -> None:
         if event.key() == Qt.Key.Key_Space and not self.answer_area.isVisible():

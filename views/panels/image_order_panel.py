@@ -183,12 +183,13 @@ class ImageOrderPanel(QWidget):
         tl.setContentsMargins(0, 0, 0, 0)
         self.verdict = VerdictLabel()  # the tree's caption: what decided the pixel, its figures on hover
         tl.addWidget(self.verdict)
-        beside = QSplitter(Qt.Orientation.Horizontal)  # side by side: both get the page's height
-        beside.addWidget(self.tree)
-        beside.addWidget(self.explanation)
-        beside.setStretchFactor(0, 3)
-        beside.setStretchFactor(1, 2)
-        tl.addWidget(beside, 1)
+        self.beside = QSplitter(Qt.Orientation.Horizontal)  # side by side: both get the page's height
+        self.beside.addWidget(self.tree)
+        self.beside.addWidget(self.explanation)
+        self.beside.setStretchFactor(0, 3)
+        self.beside.setStretchFactor(1, 2)
+        tl.addWidget(self.beside, 1)
+        self.tree.crowded_changed.connect(self._place_second_stage)
         self.worked_math = WorkedMath()
         self.ray_kind: str | None = None  # the kind of ray to select in each new tree (a lesson's)
         self.details = QTabWidget()
@@ -249,6 +250,19 @@ class ImageOrderPanel(QWidget):
         give = min(short, image - round(IMAGE_SHARE * (image + details)))
         if give > 0:
             self.split.setSizes([image - give, details + give])
+
+    def _place_second_stage(self, crowded: bool) -> None:
+        """The second stage beside the tree, or in a tab of its own when the tree's columns need the
+        page's width (at text x2 on 1280 x 720 they were cut beside it)."""
+        if crowded and self.details.indexOf(self.explanation) < 0:
+            self.details.insertTab(1, self.explanation, "Second stage")
+        elif not crowded and self.explanation.parentWidget() is not self.beside:
+            shown = self.details.currentWidget() is self.explanation
+            self.beside.addWidget(self.explanation)  # out of the tabs
+            self.beside.setSizes([3 * self.beside.width() // 5, 2 * self.beside.width() // 5])
+            if shown:
+                self.details.setCurrentIndex(0)
+        self.tree.widen_soon()
 
     def _leave_room_as_dragged(self) -> None:
         self._room_for_tree = False

@@ -12,7 +12,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 import numpy as np
-from PySide6.QtCore import QEvent, QSize, Qt, QTimer
+from PySide6.QtCore import QEvent, QSize, Qt, QTimer, Signal
 from PySide6.QtGui import QColor
 from PySide6.QtWidgets import (
     QGridLayout,
@@ -41,6 +41,8 @@ BLOCKED_COLOR = "#8a8a8a"
 SWATCH_SIZE = (22, 8)
 """A ray kind's swatch in the legend, pixels."""
 COLUMNS = ["ray", "hit", "t", "weight", "returns colour"]
+SPARE_COLUMNS = (2, 3)
+"""The columns (t and weight) a tree too narrow for all of them leaves out, its returned colours whole."""
 MOST_OF_SPLITTER = 0.8
 """The most of a splitter's width the tree takes to show every column whole; the rest stays beside it."""
 
@@ -157,7 +159,16 @@ def _returned(c) -> str:
 
 
 class RayTreeWidget(QTreeWidget):
-    """The ray tree as an expandable list, one row per ray with its numbers."""
+    """The ray tree as an expandable list, one row per ray with its numbers.
+
+    Signals
+    -------
+    crowded_changed(bool) : whether the columns need more than :data:`MOST_OF_SPLITTER` of the
+        splitter the tree is in, so that what is beside it should go elsewhere (at text x2 on a
+        1280 x 720 screen, the tree beside the second stage cut its last columns).
+    """
+
+    crowded_changed = Signal(bool)
 
     def __init__(self, parent: QWidget | None = None):
         super().__init__(parent)
@@ -174,6 +185,7 @@ class RayTreeWidget(QTreeWidget):
         self._widen.timeout.connect(self.widen_to_columns)
         self.header().sectionResized.connect(lambda *_: self.widen_soon())
         self._around_width = 0  # the splitter's width at the last resize
+        self.crowded = False
 
     def resizeEvent(self, event) -> None:  # noqa: N802 (Qt's name)
         """A narrower splitter (the lesson dock widened as its formulas came in) gave the tree its share
@@ -196,15 +208,29 @@ class RayTreeWidget(QTreeWidget):
 
     def widen_to_columns(self) -> None:
         """In a splitter, take the width every column needs (the last one, the returned colours,
-        was cut off at large text), if that leaves the others a quarter of it (else the columns
-        scroll sideways, as on a small screen)."""
+        was cut off at large text), if that leaves the others a fifth of it; else say the tree is
+        crowded (what is beside it goes elsewhere) and, alone and still too narrow, leave out the
+        columns of :data:`SPARE_COLUMNS` (their numbers are in every row's tooltip) rather than cut
+        the returned colours."""
         splitter = self.parentWidget()
         if not isinstance(splitter, QSplitter) or splitter.orientation() != Qt.Orientation.Horizontal:
             return
-        need = self.header().length() + 2 * self.frameWidth() + self.verticalScrollBar().sizeHint().width()
+        header = self.header()
+        columns = [max(self.sizeHintForColumn(c), header.sectionSizeHint(c)) for c in range(header.count())]
+        chrome = 2 * self.frameWidth() + self.verticalScrollBar().sizeHint().width()
+        need = sum(columns) + chrome
         sizes = splitter.sizes()
         index, total = splitter.indexOf(self), sum(sizes)
-        if total <= 0 or sizes[index] >= need or need > total * MOST_OF_SPLITTER:
+        if total <= 0:
+            return
+        crowded = need > total * MOST_OF_SPLITTER
+        if crowded != self.crowded:
+            self.crowded = crowded
+            self.crowded_changed.emit(crowded)
+            return  # the splitter takes other widgets, and this runs again at the tree's new width
+        for column in SPARE_COLUMNS:
+            self.setColumnHidden(column, crowded and need > sizes[index])
+        if sizes[index] >= need or crowded:
             return
         others = [s for i, s in enumerate(sizes) if i != index]
         share = [(total - need) * s / max(sum(others), 1) for s in others]
@@ -251,7 +277,8 @@ class RayTreeWidget(QTreeWidget):
                                 _returned(node.color) if node.color is not None else ""])
         item.setForeground(0, QColor(KIND_COLORS[node.kind]).darker(130))
         item.setData(0, Qt.ItemDataRole.UserRole, node.kind)
-        tips = [node.status, f"origin {_rgb(node.origin)}", f"direction {_rgb(node.direction)}"]
+        tips = [node.status + (f" at t = {t}" if t else ""), f"weight {node.weight:.3g}",
+                f"origin {_rgb(node.origin)}", f"direction {_rgb(node.direction)}"]
         if node.color is not None:
             tips.append(f"returns colour {_rgb(node.color)}")
         if node.normal is not None:

@@ -17,6 +17,9 @@ import numpy as np
 
 GAP_PX = 4.0
 """Room between a label's box and the lines around it, pixels at text scale 1."""
+EDGE_PX = 2.0
+"""Room between a label's box and the pane's edges, pixels: the glyphs' outline reaches a pixel or two
+past the box measured (flush with the edge of a short pane at text x2, "A" lost its right leg)."""
 _DIRECTIONS = ((0, 1), (1, 1), (-1, 1), (0, -1), (1, 0), (-1, 0), (1, -1), (-1, -1))
 """Where a label may go from the point it names, (right, up), above first."""
 FIRST_SPOTS = 64
@@ -53,7 +56,7 @@ def place_label(anchor, size, segments, pane, taken=(), gap: float = GAP_PX) -> 
     drawn, ``pane`` the pane's (width, height) and ``taken`` the boxes
     ``(x0, y0, x1, y1)`` of labels already placed, all in pixels with y up.  The
     nearest clear spot wins: first beside the point, then ever farther (a leader line
-    then joins them); None if no spot is clear.
+    then joins them), :data:`EDGE_PX` inside the pane; None if no spot is clear.
     """
     w, h = size
     ax, ay = anchor
@@ -64,7 +67,8 @@ def place_label(anchor, size, segments, pane, taken=(), gap: float = GAP_PX) -> 
     cx = np.where(dx != 0, ax + dx * (w / 2 + gap + reach), ax)
     bottom = np.where(dy > 0, ay + gap + reach, np.where(dy < 0, ay - gap - h - reach, ay - h / 2))
     boxes = np.stack([cx - w / 2, bottom, cx + w / 2, bottom + h], axis=1)
-    ok = (boxes[:, 0] >= 0) & (boxes[:, 1] >= 0) & (boxes[:, 2] <= pane[0]) & (boxes[:, 3] <= pane[1])
+    ok = ((boxes[:, 0] >= EDGE_PX) & (boxes[:, 1] >= EDGE_PX) & (boxes[:, 2] <= pane[0] - EDGE_PX)
+          & (boxes[:, 3] <= pane[1] - EDGE_PX))
     for other in taken:
         ok &= ~((boxes[:, 0] < other[2] + gap) & (other[0] - gap < boxes[:, 2])
                 & (boxes[:, 1] < other[3] + gap) & (other[1] - gap < boxes[:, 3]))
@@ -78,6 +82,15 @@ def place_label(anchor, size, segments, pane, taken=(), gap: float = GAP_PX) -> 
             return float(cx[spots[0]]), float(bottom[spots[0]])
         start, size = start + size, 4 * size
     return None
+
+
+def in_pane(cx: float, bottom: float, size, pane) -> tuple[float, float]:
+    """The bottom centre ``(cx, bottom)`` of a ``size`` (w, h) label moved the least to put it whole in
+    ``pane`` (w, h), :data:`EDGE_PX` inside, pixels with y up: where a label of a point in view that
+    found no clear spot goes (centred above its point, in a short pane at text x2 it was cut)."""
+    (w, h), (width, height), e = size, pane, EDGE_PX
+    return (min(max(cx, w / 2 + e), max(width - w / 2 - e, w / 2)),
+            min(max(bottom, e), max(height - h - e, 0.0)))
 
 
 def broken(text: str) -> str:

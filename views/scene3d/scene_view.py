@@ -42,7 +42,7 @@ from core.scene import Scene, Sphere
 from views.scene3d import vtk_convert
 from views.scene3d.framing import MARGIN, fit_view, label_bounds
 from views.scene3d.image_plotter import ImagePlotter
-from views.scene3d.label_placement import GAP_PX, broken, place_label
+from views.scene3d.label_placement import GAP_PX, broken, in_pane, place_label
 from views.scene3d.projector_lines import PROJECTOR_OVERLAY
 from views.scene3d.scene_colors import FRUSTUM_COLOR, SCREEN_COLOR
 from views.scene3d.scene_overlays import label_font_file
@@ -705,6 +705,8 @@ class SceneView(QWidget):
                         measure.GetBoundingBox(text, words, box, dpi)
                         w, t = box[1] - box[0], box[3] - box[2]
                         spot = xy[k][0], xy[k][1] + GAP_PX * self.line_scale
+                        if 0 <= xy[k][0] <= width and 0 <= xy[k][1] <= height:  # its point in view: it too
+                            spot = in_pane(*spot, (w, t), (width, height))
                     cx, bottom = spot
                     shown.append(words)
                     taken.append((cx - w / 2, bottom, cx + w / 2, bottom + t))

@@ -212,3 +212,47 @@ def test_at_1280x720_the_heat_maps_colour_scale_shows_beside_the_image_without_s
         assert top >= 0 and top + scale.height() <= column.viewport().height(), (top, scale.height())
 
     qtbot.waitUntil(shown_whole)
+
+
+def _overlay_label_boxes(view, name: str) -> list[tuple[str, tuple[float, float, float, float], bool]]:
+    """Every label overlay ``name`` draws: its text, its box in widget pixels (x0, y0, x1, y1), y down,
+    and whether the point it names is in the pane."""
+    view.plotter.render()
+    ratio, measure, box, boxes = view.plotter.devicePixelRatioF(), vtkTextRenderer(), [0, 0, 0, 0], []
+    dpi, pane = view.plotter.ren_win.GetDPI(), (view.plotter.width(), view.plotter.height())
+    for _, actor, style in view._overlays.get(name, []):
+        if "label_size" not in style:
+            continue
+        mapper = actor.GetMapper()
+        drawn = pv.wrap(mapper.GetInput())
+        for k, label in enumerate(drawn.point_data["labels"]):
+            measure.GetBoundingBox(mapper.GetLabelTextProperty(), str(label), box, dpi)
+            p, named = view.widget_pos(drawn.points[k]), view.widget_pos(actor._anchors.points[k])
+            boxes.append((str(label), (p.x() + box[0] / ratio, p.y() - box[3] / ratio,
+                                       p.x() + box[1] / ratio, p.y() - box[2] / ratio),
+                          0 <= named.x() <= pane[0] and 0 <= named.y() <= pane[1]))
+    return boxes
+
+
+def test_at_1280x720_and_text_x2_the_perspective_lessons_labels_are_whole_in_the_3d_pane(qtbot, monkeypatch):
+    # The 3D pane is short there (about 480 x 125): A's label, the point projected, was placed flush with
+    # the pane's right edge and lost the right leg of its A (the glyphs' outline reaches past the box
+    # measured).  A label of a point in view is whole in the pane, clear of its edges (one of a point out
+    # of view, the far plane's, is not drawn there).
+    window = _lecture_hall_window(qtbot, monkeypatch)
+    view = window.scene_view.view
+    window.lesson_panel.select(LESSONS["perspective"], 0)
+    qtbot.waitUntil(lambda: _settled(view) and "projector" in view.overlay_names(), timeout=RENDER_TIMEOUT_MS)
+    pane = (view.plotter.width(), view.plotter.height())
+
+    def whole() -> bool:
+        labels = [b for name in view.overlay_names() for b in _overlay_label_boxes(view, name)]
+        assert {"A", "A′"} <= {text for text, _, named_in_view in labels if named_in_view}
+        for text, (x0, y0, x1, y1), named_in_view in labels:
+            if named_in_view:
+                # A pixel clear of the edges: the glyphs' outline reaches past the box measured.
+                assert x0 >= 1 and y0 >= 1 and x1 <= pane[0] - 1 and y1 <= pane[1] - 1, (text, (x0, x1), pane)
+        return True
+
+    qtbot.waitUntil(whole, timeout=5000)
+    window.presentation.set_presenting(False)

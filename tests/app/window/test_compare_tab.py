@@ -59,11 +59,11 @@ def test_a_pixel_picked_in_one_image_is_read_in_every_output(qtbot, window):
     assert _blue(a)[y, x] and _blue(b)[y, x]
 
     assert [view.picked for view in panel.views.values()] == [(x, y)] * 3
-    assert panel.pixel_box.title() == f"Picked pixel ({x}, {y})"
     np.testing.assert_allclose(panel.readout[0].rgb, a[y, x])
     np.testing.assert_allclose(panel.readout[1].rgb, b[y, x])
     np.testing.assert_allclose(panel.readout[2].rgb, np.abs(a[y, x] - b[y, x]))
-    assert panel.readout[0].numbers.text() == "linear RGB " + " ".join(f"{c:.3f}" for c in a[y, x])
+    assert panel.readout[0].numbers.text() == " ".join(f"{c:.3f}" for c in a[y, x])
+    assert panel.pixel_box.title() == f"Picked pixel ({x}, {y}), linear RGB"
     zbuffer, tracer = panel.readout[0].found.text(), panel.readout[1].found.text()
     assert "of cone is kept by the z-buffer at distance" in zbuffer and "fragment" in zbuffer
     assert tracer.startswith("The primary ray hits cone at t = ")
@@ -255,4 +255,29 @@ def test_at_1280x720_presenting_at_x2_the_difference_units_show_in_three_whole_l
             assert shown.endswith("…") and units.toolTip() == whole
 
     qtbot.waitUntil(read, timeout=5000)
+    window.presentation.set_presenting(False)
+
+
+def test_at_1280x720_presenting_at_x2_a_picked_pixels_numbers_read_whole(qtbot, monkeypatch):
+    # The picked pixel's box kept the height of the hint: A's and B's numbers showed a line and a
+    # half ("linear RGB 0.032 0.119" and half of "0.162").  Now each output's title and numbers are
+    # whole in the box, and what was found under them scrolls (the box is larger than the pane).
+    from window_helpers import presenting_on_1280x720
+
+    window = presenting_on_1280x720(qtbot, monkeypatch, 2.0)
+    panel = _compare(qtbot, window)
+    panel.pick(160, 150)
+    qtbot.waitUntil(lambda: panel.readout[2].rgb is not None, timeout=RENDER_TIMEOUT_MS)
+    labels = [label for row in panel.readout[:2] for label in (row.title, row.numbers)]
+    viewport = labels[0].parentWidget().parentWidget().parentWidget()  # row, rows, the scroll area's view
+
+    def whole() -> bool:
+        for label in labels:
+            bottom = label.mapTo(viewport, label.rect().bottomLeft()).y()
+            assert label.isVisible() and label.height() >= label.heightForWidth(label.width()), label.text()
+            assert label.heightForWidth(label.width()) < 1.5 * label.fontMetrics().lineSpacing()  # one line
+            assert bottom < viewport.height(), label.text()
+        return True
+
+    qtbot.waitUntil(whole, timeout=5000)
     window.presentation.set_presenting(False)

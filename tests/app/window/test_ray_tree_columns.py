@@ -33,10 +33,10 @@ def _whole(label) -> bool:
 
 
 def _columns_whole(tree) -> bool:
-    """Every column as wide as its widest entry and header, and all of them inside the view."""
+    """Every column shown as wide as its widest entry and header, and all of them inside the view."""
     header = tree.header()
     return (all(header.sectionSize(c) >= max(tree.sizeHintForColumn(c), header.sectionSizeHint(c))
-                for c in range(header.count()))
+                for c in range(header.count()) if not header.isSectionHidden(c))
             and header.length() <= tree.viewport().width())
 
 
@@ -82,3 +82,30 @@ def test_the_ray_tree_takes_back_its_columns_width_when_the_tab_narrows(qtbot, w
     splitter.setSizes([handle[0] - 40, handle[1] + 40])  # a drag of the handle stays as dragged
     qtbot.waitUntil(lambda: splitter.sizes()[0] == handle[0] - 40)
     assert not panel.tree._widen.isActive()
+
+
+def test_presenting_at_x2_on_1280x720_the_ray_tree_shows_every_column_whole(qtbot, monkeypatch):
+    # Beside the second stage, the tree's share of 770 pixels cut its weight and returned colours
+    # (the columns scrolled sideways).  Too narrow for both, the second stage takes a tab of its own.
+    from window_helpers import presenting_on_1280x720
+
+    window = presenting_on_1280x720(qtbot, monkeypatch, 2.0)
+    cam = window.model.camera
+    with qtbot.waitSignal(window._tree_renderer.finished, timeout=RENDER_TIMEOUT_MS):
+        window.pick_ray_tree(160, 150)  # the cone: its shadow ray reaches the light
+    panel = window.tab("image order").widget
+    qtbot.waitUntil(lambda: panel.tree.topLevelItemCount() == 1 and cam is window.model.camera)
+    qtbot.waitUntil(lambda: _columns_whole(panel.tree) and not panel.tree.horizontalScrollBar().isVisible(),
+                    timeout=5000)
+    header, primary = panel.tree.header(), panel.tree.topLevelItem(0)
+    assert [c for c in range(5) if not header.isSectionHidden(c)][:2] == [0, 1]
+    assert not header.isSectionHidden(4) and primary.text(4)  # the returned colour, whole
+    assert "at t = " in primary.toolTip(0) and "weight 1" in primary.toolTip(0)  # left out, in the tip
+    second = [panel.details.tabText(i) for i in range(panel.details.count())]
+    assert "Second stage" in second
+    panel.details.setCurrentWidget(panel.explanation)
+    qtbot.waitUntil(lambda: panel.explanation.isVisible() and "colour" in panel.explanation.toPlainText())
+    window.presentation.set_presenting(False)  # at the normal size the second stage is beside the tree again
+    window.presentation.set_scale(1.0)
+    qtbot.waitUntil(lambda: panel.explanation.parentWidget() is panel.tree.parentWidget(), timeout=5000)
+    qtbot.waitUntil(lambda: _columns_whole(panel.tree) and not any(map(header.isSectionHidden, range(5))))

@@ -74,3 +74,26 @@ def test_a_small_pane_at_double_text_draws_the_plot_at_full_text_and_scrolls_to_
     for bar, size, seen in ((area.horizontalScrollBar(), panel.canvas.width(), area.viewport().width()),
                             (area.verticalScrollBar(), panel.canvas.height(), area.viewport().height())):
         assert seen < size and bar.maximum() >= size - seen
+
+
+def test_presenting_at_x2_on_1280x720_the_cost_plots_title_is_whole_in_view(qtbot, monkeypatch):
+    # The plot keeps its size that reads (wider than the tab at x2) and scrolls; its title, centred over
+    # the whole figure, was cut at the view's right edge ("What accuracy costs ir").  It starts at the
+    # axes' left edge now, in view before any scroll.
+    from window_helpers import presenting_on_1280x720
+
+    window = presenting_on_1280x720(qtbot, monkeypatch, 2.0)
+    window.show_tab("Cost")
+    panel = window.tab("cost").widget
+    qtbot.waitUntil(lambda: panel.plot_figure is not None and panel.plot_figure.dpi > 190
+                    and not panel.canvas.pending, timeout=60_000)
+    area = panel.canvas.parentWidget().parentWidget().parentWidget()
+    assert area.horizontalScrollBar().value() == 0 and area.verticalScrollBar().value() == 0
+    ratio = panel.canvas.devicePixelRatioF()
+    renderer = panel.plot_figure.canvas.get_renderer()
+    for ax in panel.plot_figure.axes:
+        box = ax.title.get_window_extent(renderer)  # figure pixels, y upwards
+        top = (panel.plot_figure.bbox.height - box.y1) / ratio
+        assert box.x0 >= 0 and box.x1 / ratio <= area.viewport().width(), ax.get_title()
+        assert top >= 0 and (panel.plot_figure.bbox.height - box.y0) / ratio <= area.viewport().height()
+    window.presentation.set_presenting(False)

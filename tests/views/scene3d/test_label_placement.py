@@ -2,7 +2,7 @@
 
 import numpy as np
 
-from views.scene3d.label_placement import place_label, segments_meet_box
+from views.scene3d.label_placement import EDGE_PX, in_pane, place_label, segments_meet_box
 
 
 def _touches(box, p, q, half) -> bool:
@@ -87,3 +87,14 @@ def test_the_label_goes_to_the_nearest_clear_spot_however_far_it_is():
         far.append(index if expected is not None else None)
     assert max(k for k in far if k is not None) > 64 + 64  # some found only past the nearest spots ...
     assert None in far  # ... and one nowhere, every spot checked
+
+
+def test_a_label_keeps_clear_of_the_panes_edges_and_one_with_no_clear_spot_is_moved_into_the_pane():
+    # In the perspective lesson's short 3D pane at text x2, "A" was placed flush with the right edge and
+    # its glyphs' outline, a pixel or two past the box measured, was cut.
+    no_lines = (np.zeros((0, 2)), np.zeros((0, 2)), np.zeros(0))
+    pane, size = (400, 300), (20, 20)
+    x, bottom = place_label((390, 150), size, no_lines, pane)  # above it, the box would end at 400
+    assert x + size[0] / 2 <= pane[0] - EDGE_PX and x - size[0] / 2 >= EDGE_PX
+    x, bottom = in_pane(395, 295, size, pane)  # centred above a point at the corner: moved in
+    assert (x + 10, bottom + 20) == (pane[0] - EDGE_PX, pane[1] - EDGE_PX)
