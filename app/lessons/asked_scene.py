@@ -17,8 +17,9 @@ from dataclasses import replace
 
 
 class AskedScene:
-    """Keeps ``window``'s exercise panel told whether the window shows the scene its exercise asks
-    about (``window``: a :class:`app.window.main_window.MainWindow`)."""
+    """Shows the step an exercise asks about when it is asked, and keeps ``window``'s exercise panel
+    told whether the window shows that step's scene (``window``: a
+    :class:`app.window.main_window.MainWindow`)."""
 
     def __init__(self, window):
         self.window = window

@@ -181,7 +181,8 @@ class MainWindow(QMainWindow):
         self.asked_scene = AskedScene(self)
         self.fact_check = LessonFactCheck(self)  # File → Open lesson: are the new lesson's facts true?
         self.lesson_panel.lesson_opened.connect(self.fact_check.check)
-        self.lesson_panel.lesson_opened.connect(lambda lesson: self.recent_files.add(LESSON, lesson.path))
+        self.lesson_panel.lesson_opened.connect(
+            lambda lesson: lesson.path is not None and self.recent_files.add(LESSON, lesson.path))
         self.dropped_files = DroppedFiles(self)
         self.presentation.presenting_changed.connect(self._presenting_changed)
         self.presentation.scale_changed.connect(self._scale_changed)
