@@ -11,10 +11,12 @@ the file and what may be dropped.  One file at a time: of several, the first.
 from __future__ import annotations
 
 import re
+import sys
 from pathlib import Path
 
 from PySide6.QtCore import QEvent, QObject
 
+from core.files import safe_files
 from core.files.lesson_file import FORMAT as LESSON_FORMAT
 from core.files.mesh_files import EXTENSIONS as MESH_EXTENSIONS
 
@@ -34,6 +36,8 @@ def kind_of(path) -> str | None:
         return MESH
     if suffix != ".json":
         return None
+    if safe_files.input_file_problem(path, sys.maxsize) is not None:
+        return SCENE  # opening it says why it cannot be read (a FIFO would block this read for ever)
     try:
         with open(path, "rb") as f:
             head = f.read(PEEK_BYTES).decode("utf-8", "replace")

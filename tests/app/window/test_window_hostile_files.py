@@ -96,3 +96,48 @@ def test_opening_scenes_with_damaged_meshes_shows_a_dialog_and_keeps_the_scene(t
         assert result["fov_set"] is True, name
         assert len(result["messages"]) == 1 and name in result["messages"][0], (name, result)
     assert "Traceback" not in out.stderr
+
+
+DROP_DRIVER = """
+import json, sys
+from PySide6.QtCore import QEventLoop, QMimeData, QPoint, Qt, QUrl
+from PySide6.QtGui import QDragEnterEvent, QDropEvent
+from PySide6.QtWidgets import QApplication, QMessageBox
+
+from app.window.main_window import MainWindow
+from core import presets
+
+app = QApplication([])
+messages = []
+QMessageBox.critical = staticmethod(lambda parent, title, text, *rest: messages.append(text))
+window = MainWindow(presets.lecture_scene())
+window.show()
+before = window.model.scene
+mime = QMimeData()
+mime.setUrls([QUrl.fromLocalFile(sys.argv[1])])
+args = (QPoint(10, 10), Qt.DropAction.CopyAction, mime, Qt.MouseButton.NoButton,
+        Qt.KeyboardModifier.NoModifier)
+done, loop = [], QEventLoop()
+window.scene_file_done.connect(lambda _path, opened: (done.append(opened), loop.quit()))
+QApplication.sendEvent(window, QDragEnterEvent(*args))
+QApplication.sendEvent(window, QDropEvent(*args))  # a FIFO read here would never return
+loop.exec()
+print(json.dumps({"opened": done[0], "kept": window.model.scene.objects == before.objects,
+                  "messages": messages}))
+window.close()
+"""
+
+
+@pytest.mark.gui
+def test_a_named_pipe_dropped_on_the_window_is_refused_in_a_dialog_and_nothing_hangs(tmp_path):
+    """Dropping a file reads its first lines to tell a lesson from a scene: a FIFO named
+    ``scene.json`` would block that read, on the GUI thread, until something wrote to it."""
+    pipe = tmp_path / "scene.json"
+    os.mkfifo(pipe)
+    out = subprocess.run([sys.executable, "-c", DROP_DRIVER, str(pipe)], cwd=ROOT, capture_output=True,
+                         text=True, timeout=120)
+    assert out.returncode == 0, out.stderr[-3000:]
+    result = json.loads(out.stdout.strip().splitlines()[-1])
+    assert result["opened"] is False and result["kept"] is True
+    assert len(result["messages"]) == 1 and "scene.json" in result["messages"][0]
+    assert "not a regular file" in result["messages"][0]
