@@ -15,9 +15,10 @@ from pathlib import Path
 import pytest
 from checkout import ROOT
 
-DRIVER = """
+WINDOW = """
 import json, sys
-from PySide6.QtCore import QEventLoop
+from PySide6.QtCore import QEventLoop, QMimeData, QPoint, Qt, QUrl
+from PySide6.QtGui import QDragEnterEvent, QDropEvent
 from PySide6.QtWidgets import QApplication, QMessageBox
 
 from app.window.main_window import MainWindow
@@ -29,7 +30,10 @@ QMessageBox.critical = staticmethod(lambda parent, title, text, *rest: messages.
 window = MainWindow(presets.lecture_scene())
 window.show()
 before = window.model.scene
+"""
+"""The start of each driver: the real window, its dialogs' messages kept in ``messages``."""
 
+DRIVER = WINDOW + """
 
 def open_scene_file(path):  # File, Open scene: whether it opened, once read (off the GUI thread)
     done, loop = [], QEventLoop()
@@ -98,21 +102,7 @@ def test_opening_scenes_with_damaged_meshes_shows_a_dialog_and_keeps_the_scene(t
     assert "Traceback" not in out.stderr
 
 
-DROP_DRIVER = """
-import json, sys
-from PySide6.QtCore import QEventLoop, QMimeData, QPoint, Qt, QUrl
-from PySide6.QtGui import QDragEnterEvent, QDropEvent
-from PySide6.QtWidgets import QApplication, QMessageBox
-
-from app.window.main_window import MainWindow
-from core import presets
-
-app = QApplication([])
-messages = []
-QMessageBox.critical = staticmethod(lambda parent, title, text, *rest: messages.append(text))
-window = MainWindow(presets.lecture_scene())
-window.show()
-before = window.model.scene
+DROP_DRIVER = WINDOW + """
 mime = QMimeData()
 mime.setUrls([QUrl.fromLocalFile(sys.argv[1])])
 args = (QPoint(10, 10), Qt.DropAction.CopyAction, mime, Qt.MouseButton.NoButton,
