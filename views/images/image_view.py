@@ -153,6 +153,7 @@ class ImageView(QWidget):
         self.picked: tuple[int, int] | None = None
         self._users = False  # the picked pixel was picked by the user (a click, an arrow), not set
         self.edges: np.ndarray | None = None  # (N, 2) polygon corners in pixel coordinates, or None
+        self.edges_coming = False  # those of a polygon not drawn yet (dashed)
         self._placeholder = placeholder
         self.setMinimumSize(120, 90)
         self.setSizePolicy(QSizePolicy.Policy.Expanding, QSizePolicy.Policy.Expanding)
@@ -180,10 +181,12 @@ class ImageView(QWidget):
         self._highlight_color = QColor(color)
         self.update()
 
-    def set_edges(self, corners: np.ndarray | None) -> None:
+    def set_edges(self, corners: np.ndarray | None, coming: bool = False) -> None:
         """A polygon's edges to draw over the grid (when :meth:`grid_shown`): ``corners`` (N, 2) in pixel
-        coordinates (x right, y down, pixel ``(i, j)``'s centre at ``(i + 0.5, j + 0.5)``); None clears."""
+        coordinates (x right, y down, pixel ``(i, j)``'s centre at ``(i + 0.5, j + 0.5)``); None clears.
+        ``coming``: the polygon is not drawn yet, its edges dashed."""
         self.edges = None if corners is None else np.asarray(corners, dtype=float)
+        self.edges_coming = coming and corners is not None
         self.update()
 
     def grid_shown(self) -> bool:
@@ -322,7 +325,10 @@ class ImageView(QWidget):
             sy = rect.height() / self._image.height()
             points = [QPointF(rect.x() + x * sx, rect.y() + y * sy) for x, y in self.edges.tolist()]
             for colour, w in ((QColor(0, 0, 0, 200), 4.0), (QColor(EDGE_COLOR), 2.0)):
-                painter.setPen(QPen(colour, w))
+                pen = QPen(colour, w)
+                if self.edges_coming:
+                    pen.setStyle(Qt.PenStyle.DashLine)
+                painter.setPen(pen)
                 painter.drawPolygon(points)
         if self.hasFocus() and self._margin:
             # In the room kept around the image, so it covers no pixel; the palette's focus colour.

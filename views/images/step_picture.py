@@ -32,6 +32,8 @@ class StepPicture:
     caption : what happened at this step, in words.
     polygon : (N, 3) world vertices of that polygon (``None`` at step 0).
     outline : the mask's outline (:func:`views.images.image_view.mask_outline`), for both buffers.
+    coming : at step 0, (N, 3) world vertices of the first polygon, drawn next (``None`` otherwise,
+        or when there is none): its edges show over the empty grid which pixel centres it will cover.
     """
 
     step: int
@@ -42,6 +44,7 @@ class StepPicture:
     caption: str
     polygon: np.ndarray | None
     outline: np.ndarray | None = None
+    coming: np.ndarray | None = None
 
 
 def polygon_name(result: RasterResult, scene: Scene, p: int) -> str:
@@ -60,7 +63,8 @@ def step_picture(result: RasterResult, scene: Scene, k: int) -> StepPicture:
     if k == 0:
         caption = (f"Step 0 of {history.n_steps}: image memory cleared to the background, "
                    f"z-buffer cleared to the far plane ({history.far:g}).")
-        return StepPicture(k, display_image(color), depth, depth_image, None, caption, None)
+        coming = result.draw.polygons.world_vertices(0) if history.n_steps else None
+        return StepPicture(k, display_image(color), depth, depth_image, None, caption, None, coming=coming)
     p = k - 1
     cols, rows, _, passed = history.polygon_fragments(p)
     mask = np.zeros((history.height, history.width), bool)

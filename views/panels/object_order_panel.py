@@ -347,8 +347,11 @@ class ObjectOrderPanel(QWidget):
         self.polygon_shown.emit(picture.polygon if chosen else None)
         for view in (self.image, self.depth.image):
             view.set_highlight(picture.mask if chosen else None, outline=picture.outline)
-        # Its edges are drawn only where pixels are large, and only for a chosen step, as the outline.
-        self.image.set_edges(self._window_corners(picture.polygon) if chosen else None)
+        # Its edges are drawn only where pixels are large, and only for a chosen step, as the outline;
+        # over the cleared buffers, dashed, the edges of the polygon drawn next.
+        coming = picture.polygon is None and picture.coming is not None
+        corners = self._window_corners(picture.coming if coming else picture.polygon)
+        self.image.set_edges(corners if chosen else None, coming=coming)
 
     def _window_corners(self, polygon) -> np.ndarray | None:
         """The drawn polygon's corners (world) in pixel coordinates (None at step 0 or behind the eye);

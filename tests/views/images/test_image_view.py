@@ -93,6 +93,17 @@ def test_a_small_image_shows_its_pixel_grid_centres_and_a_polygons_edges(qtbot):
     half = (view.widget_pos(7, 1) + view.widget_pos(8, 1)) / 2
     colour = picture.pixelColor(half.toPoint())
     assert colour.blue() > 200 and colour.green() > 200 and colour.red() < 80
+    # A polygon still to come: the same edges dashed, gaps along the top edge where solid had none.
+    a, b = view.widget_pos(2, 1), view.widget_pos(13, 1)
+
+    def cyan_along(image):
+        return [image.pixelColor(round(a.x() + (b.x() - a.x()) * s / 200), round(a.y())).blue() > 200
+                for s in range(201)]
+
+    assert all(cyan_along(picture))
+    view.set_edges(np.array([[1.5, 1.5], [14.5, 1.5], [8.0, 10.0]]), coming=True)
+    dashed = cyan_along(view.grab().toImage())
+    assert any(dashed) and not all(dashed)
 
 
 def test_a_large_image_shows_no_grid(qtbot):
