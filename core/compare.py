@@ -32,6 +32,7 @@ from core.image_order.effects_plan import effects_plan
 from core.image_order.flat_scene import TraceSettings
 from core.image_order.ray_tracing import TraceResult, render_trace
 from core.image_order.ray_tree import RayNode, trace_pixel
+from core.in_words import listed
 from core.object_order.pipeline import RasterResult, RasterSettings, render_raster
 from core.object_order.step_history import PixelEvent
 from core.pixel_verdict import DROPPED_BY, PixelVerdict, raster_verdict, trace_verdict
@@ -232,8 +233,8 @@ def why_here(a: Output, b: Output, ra: PixelReport, rb: PixelReport) -> str:
         if a.projection != b.projection:
             why = f"the {a.projection} and {b.projection} projections put different things on this pixel"
         elif raster and traced and spheres:
-            why = (f"the z-buffer draws {_names(spheres)} as flat triangles, so the outline is a polygon "
-                   "inside the true sphere the tracer meets")
+            why = (f"the z-buffer draws {listed(spheres, most=4)} as flat triangles, so the outline is a "
+                   "polygon inside the true sphere the tracer meets")
         elif raster and raster[0].verdict in DROPPED_BY:
             why = (f"before the z-buffer, {DROPPED_BY[raster[0].verdict]} dropped what reaches this pixel; "
                    "a ray has no such stage")
@@ -263,13 +264,6 @@ def why_here(a: Output, b: Output, ra: PixelReport, rb: PixelReport) -> str:
     if not reasons:
         return f"Both show {obj.name} here, found the same way."
     return f"Both show {obj.name} here; they differ by " + "; ".join(reasons) + "."
-
-
-def _names(names: list[str]) -> str:
-    names = list(dict.fromkeys(names))
-    if len(names) > 4:
-        return ", ".join(names[:4]) + f" and {len(names) - 4} more"
-    return names[0] if len(names) == 1 else ", ".join(names[:-1]) + " and " + names[-1]
 
 
 def _depths(scene: Scene) -> list[tuple[float, str]]:
@@ -315,7 +309,7 @@ def _zbuffer_against_tracer(scene: Scene, raster: Output, tracer: Output) -> lis
         facets = len(raster.raster.meshes[spheres[0]].triangles)
         spheres = [scene.objects[i].name for i in spheres]
         sentences.append(
-            f"To the tracer {_names(spheres)} "
+            f"To the tracer {listed(spheres, most=4)} "
             f"{'is a true sphere' if len(spheres) == 1 else 'are true spheres'}"
             f" (it solves the ray-sphere equation exactly); the rasterizer draws each as "
             f"{facets:,} flat triangles, so outlines are polygons and the shading steps from "
@@ -324,7 +318,7 @@ def _zbuffer_against_tracer(scene: Scene, raster: Output, tracer: Output) -> lis
         shiny = [o.name for o in scene.objects if o.material.specular > 0]
         sentence = ("The z-buffer gives each polygon one flat colour (ambient and diffuse light at its "
                     "centre), while the tracer shades every hit point on its own")
-        sentences.append(sentence + (f", with highlights on {_names(shiny)}." if shiny else "."))
+        sentences.append(sentence + (f", with highlights on {listed(shiny, most=4)}." if shiny else "."))
         plan = effects_plan(scene, tracer.name)
         blockable = [p for p in plan.lights if p.blockable]
         if blockable:
@@ -353,7 +347,8 @@ def _tracing_sentences(scene: Scene, other: str) -> list[str]:
         one = len(mirrors) == 1
         sentences.append(
             f"Only ray tracing follows reflected rays (angle of reflection = angle of incidence), so "
-            f"{_names(mirrors)} {'shows' if one else 'show'} the scene around {'it' if one else 'them'}; "
+            f"{listed(mirrors, most=4)} {'shows' if one else 'show'} the scene around "
+            f"{'it' if one else 'them'}; "
             f"{other_title} paints {'it' if one else 'them'} in {'its' if one else 'their'} own colour.")
     if glass:
         iors = ", ".join(f"{o.material.ior:g}" for o in glass)
@@ -361,7 +356,8 @@ def _tracing_sentences(scene: Scene, other: str) -> list[str]:
                    "blends them over what lies behind with their opacity, "
                    "c0 = alpha_s cs + (1 - alpha_s) cd, without bending anything")
         sentences.append(
-            f"Ray tracing bends the rays that pass through {_names([o.name for o in glass])} (Snell's law, "
+            f"Ray tracing bends the rays that pass through {listed([o.name for o in glass], most=4)} "
+            f"(Snell's law, "
             f"refractive index {iors}) and splits the light between reflection and refraction by the "
             f"Fresnel equations; {other_title} {instead}.")
     if not sentences:

@@ -47,6 +47,7 @@ import numpy as np
 from core.image_order import flat_layout
 from core.image_order.optics import critical_angle_deg
 from core.image_order.ray_tree import LIGHT_STATUS, RayNode
+from core.in_words import listed
 from core.object_order import clipping
 from core.object_order.culling import OUTSIDE
 from core.object_order.pipeline import RasterResult
@@ -196,12 +197,6 @@ def _finite(v: float) -> float | None:
     return float(v) if np.isfinite(v) else None
 
 
-def _names(names: list[str]) -> str:
-    """``a``, ``a and b``, ``a, b and c`` (each name once, in order)."""
-    names = list(dict.fromkeys(names))
-    return names[0] if len(names) == 1 else ", ".join(names[:-1]) + " and " + names[-1]
-
-
 # --- object order -----------------------------------------------------------
 
 
@@ -343,7 +338,7 @@ def _raster_sentence(result: RasterResult, fragments, events, kept, step):
         culled = [f for f in dropped if f.fate == "culled"]
         parts = []
         if culled:
-            parts.append(f"only back faces cover this pixel ({_names([_label(f) for f in culled])}), "
+            parts.append(f"only back faces cover this pixel ({listed([_label(f) for f in culled])}), "
                          "turned away from the observer and dropped before drawing")
         for f in dropped:
             if f.fate == "frustum-culled":
@@ -373,12 +368,12 @@ def _raster_sentence(result: RasterResult, fragments, events, kept, step):
                 upto + f"{_capital(_label(winner))} was drawn last with the z-test off, so it covers the "
                 f"{len(drawn) - 1} fragment{'s' * (len(drawn) != 2)} drawn before it, near or far.")
     if failed:
-        lost = f", and {_names([_label(f) for f in failed])} failed the z-test"
+        lost = f", and {listed([_label(f) for f in failed])} failed the z-test"
     else:
         lost = ", none failed the z-test"
     overwritten = [f for f in drawn if f.fate == "overwritten"]
     if overwritten:
-        lost += f"; it replaced the farther {_names([_label(f) for f in overwritten])}"
+        lost += f"; it replaced the farther {listed([_label(f) for f in overwritten])}"
     return ("visible", winner.object,
             upto + f"{_capital(_label(winner))} is kept by the z-buffer at distance {winner.depth:.3g}: "
             f"{arrived}{lost}.")
@@ -440,13 +435,13 @@ def trace_verdict(root: RayNode, scene: Scene, mode: str, x: int, y: int) -> Pix
     parts = [f"The primary ray hits {root.hit_name} at t = {root.t:.3g}"]
     lit = [v.name for v in lights if v.lit]
     if lit:
-        parts.append(f"lit by {_names(lit)}")
+        parts.append(f"lit by {listed(lit)}")
     for blocker in dict.fromkeys(v.blocked_by for v in lights if v.blocked_by):
         parts.append(f"in the shadow of {blocker} for "
-                     f"{_names([v.name for v in lights if v.blocked_by == blocker])}")
+                     f"{listed([v.name for v in lights if v.blocked_by == blocker])}")
     behind = [v.name for v in lights if not v.lit and v.blocked_by is None]
     if behind:
-        parts.append(f"facing away from {_names(behind)}")
+        parts.append(f"facing away from {listed(behind)}")
     if not lights:
         parts.append("no light in the scene: ambient light only")
     sentence = ", ".join(parts)

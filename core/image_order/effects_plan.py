@@ -59,6 +59,7 @@ from dataclasses import asdict, dataclass
 import numpy as np
 
 from core.image_order.bounding_spheres import bounding_sphere
+from core.in_words import listed
 from core.scene import Scene, Sphere
 
 MODES = ("raycast", "raytrace")
@@ -234,9 +235,7 @@ def _pairs(objects, blockers) -> str:
     for y, found in enumerate(blockers):
         others = [objects[x].name for x in found if x != y]
         if others:
-            listed = others[:4] + ([f"{len(others) - 4} more"] if len(others) > 4 else [])
-            clauses.append(f"{', '.join(listed[:-1])} and {listed[-1]}" if len(listed) > 1 else listed[0])
-            clauses[-1] += f" may shadow {objects[y].name}"
+            clauses.append(f"{listed(others, most=4)} may shadow {objects[y].name}")
         if y in found:
             clauses.append(f"{objects[y].name} may shadow itself (not convex)")
     return "; ".join(clauses[:3]) + (f"; and {len(clauses) - 3} more" if len(clauses) > 3 else "")

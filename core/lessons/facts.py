@@ -74,6 +74,7 @@ import numpy as np
 from core.files.checked_json import is_integer, join, show
 from core.image_order.flat_layout import ACCEL_CODES, HEAT_BOUNDS_TESTS, HEAT_PRIM_TESTS
 from core.image_order.ray_tree import KINDS as RAY_KINDS
+from core.in_words import listed
 from core.object_order.clipping import PLANES
 from core.object_order.culling import CROSSING, INSIDE, OUTSIDE
 from core.scene import Mesh, Scene, Sphere
@@ -416,14 +417,9 @@ def _frustum(a, p):
     index = p.object_index(a["object"])
     state = r.objects.state[index]
     beyond = _planes_beyond(r.objects, index)
-    where = f", beyond its {_and(beyond)} plane{'s' if len(beyond) > 1 else ''}" if beyond else ""
+    where = f", beyond its {listed(beyond)} plane{'s' if len(beyond) > 1 else ''}" if beyond else ""
     holds = state == a["is"] and a.get("beyond") in (None, *beyond)
     return holds, f"{a['object']!r} is {state} the frustum{where}"
-
-
-def _and(words) -> str:
-    """``a``, ``a and b``, ``a, b and c``."""
-    return " and ".join([", ".join(words[:-1]), words[-1]] if len(words) > 1 else words)
 
 
 def _planes_beyond(culling, index: int) -> tuple[str, ...]:
