@@ -10,8 +10,9 @@ step's words (or, with the exercises in front, the question and what
 follows it) need the room (large text on a small screen; without the 3D
 pane, the column widens for them), but never less
 than :data:`MIN_SCENE_SHARE` (then the column widens, up to
-:data:`MAX_LEFT_SHARE`); the window never grows beyond its screen's
-available area.  The window calls it when it is shown, resized, its text
+:data:`MAX_LEFT_SHARE`); the column is never so narrow that the names on
+its dock tabs are cut (up to :data:`MAX_LEFT_SHARE` too); the window never
+grows beyond its screen's available area.  The window calls it when it is shown, resized, its text
 scale changes or a lesson step is shown.
 """
 
@@ -19,7 +20,7 @@ from __future__ import annotations
 
 from PySide6.QtCore import Qt
 from PySide6.QtGui import QAction, QKeySequence
-from PySide6.QtWidgets import QDockWidget
+from PySide6.QtWidgets import QDockWidget, QTabBar
 
 from views.dock_title import DockTitle
 
@@ -103,7 +104,7 @@ def fit_window(window, scale: float = 1.0) -> None:
         window.resize(min(window.width(), available.width()), min(window.height(), available.height()))
     column = window.centralWidget().height()
     least_scene = round(column * MIN_SCENE_SHARE)
-    share, short = left_share(scale), 0
+    share, short = max(left_share(scale), min(_dock_tabs_share(window), MAX_LEFT_SHARE)), 0
     # The lesson step's words shown whole, if the 3D pane can spare the room, else if the left
     # column may widen that much (the docks take their new sizes after this call).
     # The exercise's question and its Show answers button, when the exercises are in front.
@@ -124,6 +125,18 @@ def fit_window(window, scale: float = 1.0) -> None:
             scene = max(least_scene, min(scene, window.scene_pane.height() - short))
         window.resizeDocks([window.scene_pane, window.lesson_dock], [scene, column - scene],
                            Qt.Orientation.Vertical)
+
+
+def _dock_tabs_share(window) -> float:
+    """The share of ``window``'s width the left column needs to show its dock tabs' names whole
+    ("Controls", "Lessons", "Exercises", "Editor"; at x2 on a 1280 px screen they need 476 px of
+    it), 0 while the lessons' dock is not tabbed with others."""
+    for bar in window.findChildren(QTabBar, options=Qt.FindChildOption.FindDirectChildrenOnly):
+        names = [bar.tabText(i) for i in range(bar.count())]
+        if bar.isVisible() and window.lesson_dock.windowTitle() in names:
+            beyond = bar.width() - window.lesson_dock.width()  # the bar's width beyond the dock's
+            return (bar.sizeHint().width() - beyond) / max(window.width(), 1)
+    return 0.0
 
 
 def _words_short_by(panel, wider: int) -> int:

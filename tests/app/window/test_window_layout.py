@@ -3,7 +3,7 @@
 import pytest
 from PySide6.QtCore import QRect, Qt
 from PySide6.QtGui import QFont, QFontDatabase, QFontMetrics, QScreen
-from PySide6.QtWidgets import QApplication, QDockWidget, QLabel, QToolButton
+from PySide6.QtWidgets import QApplication, QDockWidget, QLabel, QTabBar, QToolButton
 from window_helpers import RENDER_TIMEOUT_MS, open_window, presenting_on_1280x720
 
 from views.panels.hard_cases_panel import HardCasesPanel
@@ -252,3 +252,26 @@ def test_a_new_text_size_is_painted_once_laid_out_with_the_room_shared_again(qtb
         final = (pytest.approx(normal * scale), window.lesson_dock.width())
         assert painted == [final] * len(painted)
     text.removeEventFilter(paints)
+
+
+def test_presenting_at_x2_on_a_small_screen_the_dock_tabs_show_their_names_whole(qtbot, monkeypatch,
+                                                                                 normal_text):
+    # A step showing the traced image alone narrowed the left column to 452 px, and its tabs read
+    # "Contr…", "Less…", "Exerci…", "Edi…" (their names need 476 px at x2).
+    window = presenting_on_1280x720(qtbot, monkeypatch, 2.0)
+    lessons = window.lesson_panel.lessons()
+    window.lesson_panel.select([lesson.id for lesson in lessons].index("ray_casting"), 0)
+    qtbot.waitUntil(lambda: window.visible_panes() == ["scene 3D", "image order"]
+                    and not window.lesson_panel.typesetting())  # the room shared for the step's words
+    bar = next(bar for bar in window.findChildren(QTabBar)
+               if bar.isVisible() and "Lessons" in [bar.tabText(i) for i in range(bar.count())])
+
+    def whole():
+        names = [bar.tabText(i) for i in range(bar.count())]
+        assert names == ["Controls", "Lessons", "Exercises", "Editor"]
+        for i, name in enumerate(names):
+            assert bar.tabRect(i).width() >= bar.tabSizeHint(i).width(), name
+        assert bar.tabRect(bar.count() - 1).right() < bar.width()
+
+    qtbot.waitUntil(whole, timeout=5000)
+    window.presentation.set_presenting(False)
