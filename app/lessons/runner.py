@@ -35,8 +35,9 @@ NORMAL_COLOR = "#ff2bd6"
 
 
 def named_objects(scene: Scene, text: str) -> list:
-    """The objects ``text`` speaks of: by their name ("the cone"), or, for objects named
-    "object N", by their number in a sentence about objects ("objects 1 and 4")."""
+    """The objects ``text`` speaks of: by their name ("the cone", "both cones"; "bounding box" names
+    no box), or, for objects named "object N", by their number in a sentence about objects
+    ("objects 1 and 4")."""
     lowered = text.lower()
     numbers = set()  # the numbers of sentences about objects, "1 to 4" counting 2 and 3 too
     for sentence in re.split(r"(?<=[.;:])\s+", lowered):
@@ -47,7 +48,10 @@ def named_objects(scene: Scene, text: str) -> list:
     named = []
     for obj in scene.objects:
         number = re.fullmatch(r"object (\d+)", obj.name.lower())
-        if obj.name.lower() in lowered or (number and int(number.group(1)) in numbers):
+        # the name as a whole word or words, "cones" too, but not the lecture's "bounding box" or
+        # "bounding sphere" (boxes around objects, not an object named "box")
+        said = re.search(rf"(?<!bounding )\b{re.escape(obj.name.lower())}s?\b", lowered)
+        if said or (number and int(number.group(1)) in numbers):
             named.append(obj)
     return named
 
