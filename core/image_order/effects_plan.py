@@ -163,19 +163,19 @@ def _derive(scene: Scene, mode: str) -> EffectsPlan:
     if not tracing:
         reasons.append("ray casting: first hits and shadow rays only, no reflection or refraction")
     elif mirrors or glass:
-        reasons.append(f"reflection rays: {_names(mirrors + glass)} reflect"
+        reasons.append(f"reflection rays: {listed(mirrors + glass, most=4)} reflect"
                        + (" (transparent ones by Fresnel's split)" if glass else ""))
     else:
         reasons.append("no reflective or transparent material: no reflection rays")
     if tracing and glass:
-        reasons.append(f"refraction rays and Fresnel terms: {_names(glass)} transparent")
+        reasons.append(f"refraction rays and Fresnel terms: {listed(glass, most=4)} transparent")
     elif tracing:
         reasons.append("no transparent material: no refraction rays, no Fresnel terms")
     lights = tuple(_light_plan(scene, i) for i in range(len(scene.lights)))
     if not lights:
         reasons.append("no light: no shadow rays, ambient light only")
     reasons += [f"light {p.index}: {p.reason}" for p in lights]
-    reasons.append(f"transparency pass in object order: {_names(translucent)} not opaque"
+    reasons.append(f"transparency pass in object order: {listed(translucent, most=4)} not opaque"
                    if translucent else "every object opaque: no transparency pass in object order")
     return EffectsPlan(
         mode=mode,
@@ -187,11 +187,6 @@ def _derive(scene: Scene, mode: str) -> EffectsPlan:
         transparency_pass=bool(translucent),
         reasons=tuple(reasons),
     )
-
-
-def _names(names: list[str]) -> str:
-    unique = list(dict.fromkeys(names))
-    return ", ".join(unique[:4]) + (f" and {len(unique) - 4} more" if len(unique) > 4 else "")
 
 
 def _light_plan(scene: Scene, index: int) -> LightPlan:

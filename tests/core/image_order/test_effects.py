@@ -22,6 +22,10 @@ def test_mirror_and_glass_needs_everything():
     plan = effects_plan(presets_trace.mirror_and_glass())
     assert plan.reflection_rays and plan.refraction_rays and plan.fresnel and plan.shadow_rays
     assert plan.transparency_pass
+    # Its reasons name the mirror and the glass ball as a sentence lists them (they read "mirror
+    # ball, glass ball reflect").
+    assert "reflection rays: mirror ball and glass ball reflect" in plan.reasons[0]
+    assert "refraction rays and Fresnel terms: glass ball transparent" in plan.reasons[1]
 
 
 def test_a_mirror_alone_needs_reflection_but_no_refraction_or_fresnel():
