@@ -5,7 +5,9 @@ saved (most recent first, at most :data:`MOST`, each file once), numbered for
 the keyboard (Alt+F, R, then 1 to 8), each with its folder in its tooltip and the
 status bar.  The list is kept in the user's settings (:mod:`views.user_settings`),
 so it outlives the session.  A file that is no longer where it was is not opened: a
-dialog says so, naming its path, and it leaves the list.
+dialog says so, naming its path, and it leaves the list.  One that is there but cannot be
+read (a folder, a named pipe, a file it may not read) goes to the window's loader, whose
+dialog says why, and stays on the list.
 """
 
 from __future__ import annotations
@@ -65,7 +67,7 @@ class RecentFiles(QObject):
 
     def open(self, kind: str, path: str) -> None:
         """Open a file of the list: ``chosen``, or, if it is gone, a dialog and off the list."""
-        if not os.path.isfile(path):
+        if not os.path.lexists(path):
             self.forget(path)
             QMessageBox.warning(self._parent, "Cannot open recent file",
                                 f"{os.path.basename(path)} is no longer there:\n{path}\n\n"

@@ -131,3 +131,42 @@ def test_a_named_pipe_dropped_on_the_window_is_refused_in_a_dialog_and_nothing_h
     assert result["opened"] is False and result["kept"] is True
     assert len(result["messages"]) == 1 and "scene.json" in result["messages"][0]
     assert "not a regular file" in result["messages"][0]
+
+
+RECENT_DRIVER = WINDOW + """
+from views.recent_files import LESSON, SCENE
+
+scene, lesson = sys.argv[1:]
+done, loop = [], QEventLoop()
+window.scene_file_done.connect(lambda _path, opened: (done.append(opened), loop.quit()))
+window.recent_files.add(SCENE, scene)
+window.recent_files.add(LESSON, lesson)
+window.recent_files.open(SCENE, scene)
+loop.exec()
+window.recent_files.open(LESSON, lesson)
+box = window.findChild(QMessageBox, "lesson_error")
+print(json.dumps({"opened": done[0], "kept": window.model.scene.objects == before.objects,
+                  "messages": messages, "lesson": box.text() + " " + box.informativeText(),
+                  "listed": [path for _kind, path in window.recent_files.entries()]}))
+box.close()
+window.close()
+"""
+
+
+@pytest.mark.gui
+def test_a_named_pipe_on_the_recent_files_list_is_said_to_be_one_and_stays_listed(tmp_path):
+    """A scene and a lesson on File → Open recent that became named pipes: they are there, so not
+    "no longer there" (it said so, and took them off the list); the loaders' dialogs say what they
+    are, without reading them."""
+    scene, lesson = tmp_path / "scene.json", tmp_path / "lesson.json"
+    os.mkfifo(scene)
+    os.mkfifo(lesson)
+    out = subprocess.run([sys.executable, "-c", RECENT_DRIVER, str(scene), str(lesson)], cwd=ROOT,
+                         capture_output=True, text=True, timeout=120)
+    assert out.returncode == 0, out.stderr[-3000:]
+    result = json.loads(out.stdout.strip().splitlines()[-1])
+    assert result["opened"] is False and result["kept"] is True
+    assert len(result["messages"]) == 1 and "scene.json" in result["messages"][0]
+    assert "not a regular file" in result["messages"][0]
+    assert "lesson.json" in result["lesson"] and "not a regular file" in result["lesson"]
+    assert result["listed"] == [str(lesson), str(scene)]
