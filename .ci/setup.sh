@@ -37,7 +37,11 @@ ensure_venv() {
     fi
     if [ ! -f "$stamp" ] || [ "$(cat "$stamp")" != "$want" ]; then
         echo "setup: installing Python packages into .venv (once per change of pyproject.toml" \
-             "or .ci/constraints.txt)"
+             "or .ci/constraints.txt; about a minute, quietly)"
+        # The package is installed editable, and setuptools then warns in a framed box that a
+        # folder named like one of its packages would shadow it: a first-time user took the box
+        # for a failure.  Python's UserWarnings of the install are not shown; errors still are.
+        export PYTHONWARNINGS=ignore::UserWarning
         "$VENV/bin/python" -m pip install -q --upgrade pip
         if ! "$VENV/bin/python" -m pip install -q -c "$CONSTRAINTS" -e ".$extras"; then
             echo "setup: the tested versions in .ci/constraints.txt do not install with this Python" \
@@ -45,6 +49,7 @@ ensure_venv() {
                  "pyproject.toml allows instead" >&2
             "$VENV/bin/python" -m pip install -q -e ".$extras"
         fi
+        unset PYTHONWARNINGS
         echo "$want" > "$stamp"
     fi
 }
