@@ -38,6 +38,27 @@ MAX_DIGITS = 100  # of a whole number in the JSON text; any longer one is out of
 MAX_PROBLEMS_SHOWN = 50  # in a message; the rest are counted
 
 
+SCENE_FORMAT, LESSON_FORMAT = "render-explorer-scene", "render-explorer-lesson"
+#: The program's kinds of JSON file by their ``format``, as a message names them.
+FILE_KINDS = {SCENE_FORMAT: "a scene file", LESSON_FORMAT: "a lesson file"}
+
+
+def other_kind(value, fmt: str) -> str | None:
+    """The one problem of a file of another of the program's kinds (:data:`FILE_KINDS`) read as a
+    ``fmt`` file, or None.  (Read field by field, a lesson opened as a scene gave seven problems,
+    the one that said what it was last.)
+
+    >>> other_kind({"format": LESSON_FORMAT, "steps": []}, SCENE_FORMAT)
+    'format: this is a lesson file ("render-explorer-lesson"), not a scene file'
+    >>> other_kind({"format": "render-explorer-scene"}, SCENE_FORMAT) is None
+    True
+    """
+    got = value.get("format") if isinstance(value, dict) else None
+    if isinstance(got, str) and got != fmt and got in FILE_KINDS:
+        return f"format: this is {FILE_KINDS[got]} ({json.dumps(got)}), not {FILE_KINDS[fmt]}"
+    return None
+
+
 class CheckedFileError(ValueError):
     """A checked file (or its parsed JSON) that cannot be loaded.
 

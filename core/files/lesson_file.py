@@ -34,7 +34,16 @@ from types import MappingProxyType
 import numpy as np
 
 from core.files import scene_file
-from core.files.checked_json import CheckedFileError, Reader, join, nesting_depth, read_json, show
+from core.files.checked_json import (
+    LESSON_FORMAT,
+    CheckedFileError,
+    Reader,
+    join,
+    nesting_depth,
+    other_kind,
+    read_json,
+    show,
+)
 from core.files.scene_file import SceneFileError
 from core.image_order.flat_scene import TraceSettings
 from core.image_order.ray_tree import KINDS
@@ -45,7 +54,7 @@ from core.presets import PRESETS
 from core.presets_trace import PRESETS_TRACE
 from core.scene import Scene
 
-FORMAT = "render-explorer-lesson"
+FORMAT = LESSON_FORMAT
 VERSION = 1
 #: The panes a step can show, by the names the window gives them.
 PANES = ("scene 3D", "image order", "object order", "four views", "compare", "hard cases", "cost")
@@ -373,6 +382,8 @@ def from_dict(d, path: Path | None = None) -> Lesson:
         Listing every problem found, each with its field path.
     """
     r = Reader()
+    if other_kind(d, FORMAT):
+        raise LessonFileError([other_kind(d, FORMAT)])
     if nesting_depth(d, MAX_NESTING) > MAX_NESTING:
         raise LessonFileError([f"top level: arrays and objects nested more than {MAX_NESTING} levels deep"])
     data = r.fields(d, "", _LESSON_FIELDS, ["format", "version", "id", "title", "steps"])

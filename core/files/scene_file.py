@@ -41,6 +41,7 @@ from core.files import safe_files
 from core.files.checked_json import (
     MAX_LISTED,
     MAX_MAGNITUDE,
+    SCENE_FORMAT,
     CheckedFileError,
     Reader,
     finite,
@@ -48,13 +49,14 @@ from core.files.checked_json import (
     is_number,
     join,
     nesting_depth,
+    other_kind,
     read_json,
     show,
     too_big,
 )
 from core.scene import Material, Mesh, PointLight, Scene, Sphere
 
-FORMAT = "render-explorer-scene"
+FORMAT = SCENE_FORMAT
 VERSION = 1
 OBJECT_TYPES = ("sphere", *shapes.PRIMITIVES, "mesh", "mesh_file")
 MAX_IMAGE_SIZE = 16384
@@ -443,6 +445,8 @@ def from_dict(d, base_dir=None, read_mesh: MeshReader | None = None) -> Scene:
         Listing every problem found.
     """
     r = _Reader()
+    if other_kind(d, FORMAT):
+        raise SceneFileError([other_kind(d, FORMAT)])
     if nesting_depth(d, MAX_NESTING) > MAX_NESTING:
         raise SceneFileError([f"top level: arrays and objects nested more than {MAX_NESTING} "
                               "levels deep (a scene needs 5)"])
