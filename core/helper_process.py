@@ -45,8 +45,8 @@ class _Helper:
                                         start_new_session=True)
         self.lock = threading.Lock()
 
-    def ask(self, function: str, args: tuple):
-        pickle.dump((function, args), self.process.stdin)
+    def ask(self, function: str, args: tuple, kwargs: dict):
+        pickle.dump((function, args, kwargs), self.process.stdin)
         self.process.stdin.flush()
         ok, answer = pickle.load(self.process.stdout)  # EOFError if the helper died
         if not ok:
@@ -69,16 +69,17 @@ def helper(module: str) -> _Helper | None:
         return _helpers[module]
 
 
-def call(module: str, function: str, *args):
-    """``module.function(*args)``, run in ``module``'s helper process; what it returns, or raises."""
+def call(module: str, function: str, *args, **kwargs):
+    """``module.function(*args, **kwargs)``, run in ``module``'s helper process; what it returns, or
+    raises."""
     runner = helper(module)
     if runner is not None:
         with runner.lock:
             try:
-                return runner.ask(function, args)
+                return runner.ask(function, args, kwargs)
             except (OSError, EOFError, pickle.UnpicklingError):  # the helper is gone: run it here
                 _helpers[module] = None
-    return getattr(importlib.import_module(module), function)(*args)
+    return getattr(importlib.import_module(module), function)(*args, **kwargs)
 
 
 def _serve(module: str, requests, answers) -> None:
@@ -86,11 +87,11 @@ def _serve(module: str, requests, answers) -> None:
     functions = importlib.import_module(module)
     while True:
         try:
-            function, args = pickle.load(requests)
+            function, args, kwargs = pickle.load(requests)
         except EOFError:  # the window's process closed its end: it has ended
             return
         try:
-            answer = (True, getattr(functions, function)(*args))
+            answer = (True, getattr(functions, function)(*args, **kwargs))
         except Exception as exc:  # raised again by the caller
             answer = (False, exc)
         try:

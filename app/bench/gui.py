@@ -45,7 +45,7 @@ import time
 
 MOVES_PER_SECOND = 25
 TICK_MS = 5
-ACTIONS = ("picks", "cost", "lessons", "edits", "export", "present", "text")
+ACTIONS = ("picks", "cost", "lessons", "edits", "export", "present", "text", "hard")
 PICKS = 12
 """Pixels picked in the traced image, and as many in the rasterized one (their fragments' history), at
 places drawn from a seeded generator."""
@@ -373,10 +373,28 @@ def _text_sizes(window):
                lambda: not window.lesson_panel.typesetting())
 
 
+def _hard_cases(window):
+    """Choose each hard case in turn, then move its slider to both ends, each until its result is shown."""
+    window.show_tab("hard cases")
+    panel = window.tab("hard cases").widget
+    shown = []
+    panel.result_shown.connect(shown.append)
+    def showing() -> bool:
+        return bool(shown) and panel.result.name == panel.case_name and panel.status.text() != "computing…"
+
+    for row in range(panel.cases.count()):
+        if row != panel.cases.currentRow():
+            yield lambda row=row: (shown.clear(), panel.cases.setCurrentRow(row)), showing
+        for end in (panel.slider.minimum(), panel.slider.maximum()):
+            if panel.slider.isVisibleTo(panel) and end != panel.slider.value():
+                yield lambda end=end: (shown.clear(), panel.slider.setValue(end)), showing
+    panel.result_shown.disconnect(shown.append)
+
+
 _ACTION_STEPS = {"picks": ("picked pixels, 2 tabs", _picks), "cost": ("Cost sweep, all knobs", _cost_sweep),
                  "lessons": ("lesson steps", _lesson_steps), "edits": ("scene edits", _scene_edits),
                  "export": ("exports", _exports), "present": ("presentation on/off", _presentation),
-                 "text": ("text size", _text_sizes)}
+                 "text": ("text size", _text_sizes), "hard": ("hard cases and sliders", _hard_cases)}
 
 
 def _print_actions(done: list[dict], title: str = "") -> None:

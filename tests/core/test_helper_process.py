@@ -109,7 +109,7 @@ ASKED_AND_KILLED = """
 import pickle, sys
 from core import helper_process
 helper = helper_process.helper("time")
-pickle.dump(("sleep", (1.0,)), helper.process.stdin)  # a call under way, as _Helper.ask makes it ...
+pickle.dump(("sleep", (1.0,), {}), helper.process.stdin)  # a call under way, as _Helper.ask makes it ...
 helper.process.stdin.flush()
 print(helper.process.pid, flush=True)
 sys.stdin.read()  # ... when this process is killed

@@ -9,8 +9,11 @@ why.  A slider sweeps the case's natural parameter (distance from the
 origin, far/near ratio, angle) to show where the textbook method starts to
 fail.
 
-Cases are computed on a :class:`~PySide6.QtCore.QThreadPool` thread
-(:class:`views.jobs.JobRun`), one request at a time; a result that arrives
+Cases are computed in a process of their own (:mod:`core.helper_process`), asked from a
+:class:`~PySide6.QtCore.QThreadPool` thread (:class:`views.jobs.JobRun`): most of a case is
+numbers worked out one by one in Python (exact rationals, one ray and triangle at a time), and on a
+thread of the window's process it held Python's lock in turns with the window's thread, which
+waited 110-180 ms at a time for it when a case was chosen.  One request at a time; a result that arrives
 after a newer request was made is dropped, so the window never waits and
 never shows a stale case.  When the panel is first shown every case is also
 computed once at its defaults, at a lower priority, so the list can mark
@@ -40,7 +43,7 @@ from PySide6.QtWidgets import (
     QWidget,
 )
 
-from core import hard_cases
+from core import hard_cases, helper_process
 from core.hard_cases.result import CaseResult, Parameter
 from core.srgb import linear_to_srgb
 from views.images.image_view import ImageView
@@ -130,8 +133,10 @@ def slider_position(parameter: Parameter) -> int:
 def _case_run(request_id: int, name: str, value, options: dict, signals: JobSignals) -> JobRun:
     """Case ``name`` at parameter ``value`` (``None``: its default) with ``options``, computed off the
     GUI thread and reported to ``signals`` as request ``request_id``."""
-    return JobRun(request_id, lambda _cancelled, _progress: hard_cases.run_case(name, value, **options),
-                  signals)
+    def run(_cancelled, _progress) -> CaseResult:
+        return helper_process.call(hard_cases.__name__, "run_case", name, value, **options)
+
+    return JobRun(request_id, run, signals)
 
 
 def _named(name: str, text: str) -> str:

@@ -114,3 +114,23 @@ def test_cold_prints_the_actions_with_an_empty_formula_cache_then_warm():
         assert rows["presentation on/off"][0] == "4" and rows["text size"][0] == "3"
         for words in rows.values():  # count, longest stall, p99 stall
             assert words[2] == "ms" and words[4] == "ms" and float(words[1]) >= float(words[3]) >= 0
+
+
+@pytest.mark.gui
+def test_the_hard_cases_row_chooses_every_case_and_moves_its_slider_to_both_ends(qapp, window, monkeypatch):
+    from core import hard_cases
+
+    monkeypatch.setattr(gui, "AFTER_S", 0.05)  # what is checked is what each step did, not its stalls
+    panel = window.tab("hard cases").widget
+    shown = _record(panel.result_shown)
+    row = gui._bench_action(qapp, window, "hard cases and sliders", gui._hard_cases(window), why=False)
+    assert window.current.title == "Hard cases"
+    assert set(shown) == set(hard_cases.CASES)  # every case on screen in turn
+    with_slider = [name for name, case in hard_cases.CASES.items() if case.parameter is not None]
+    assert 8 <= len(with_slider) < len(hard_cases.CASES)
+    # Each case chosen once (the first is on screen already), and each slider taken to both ends
+    # (where it does not start there).
+    chosen = len(hard_cases.CASES) - 1
+    assert chosen + len(with_slider) <= row["count"] <= chosen + 2 * len(with_slider)
+    assert panel.result.name == list(hard_cases.CASES)[-1]
+    assert panel.slider.value() == panel.slider.maximum()

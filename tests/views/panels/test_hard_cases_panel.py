@@ -121,3 +121,19 @@ def test_a_panel_not_yet_shown_computes_nothing_then_shows_its_first_case(qtbot)
         widget.show()
     assert widget.result.name == first
     widget.shutdown()
+
+
+def test_the_cases_are_worked_out_in_a_process_of_their_own(qtbot, panel, monkeypatch):
+    # Most of a case is Python working number by number (exact rationals, one ray and triangle at a
+    # time): on a thread of the window's process it held Python's lock in turns with the window's
+    # thread, which then waited 110-180 ms at a time when "Rays through shared edges" was chosen.
+    from core import helper_process
+
+    here = []
+    monkeypatch.setattr(hard_cases, "run_case", lambda *args, **kwargs: here.append(args))
+    _show(qtbot, panel, "shared_edges")
+    _show(qtbot, panel, "tangent")
+    assert panel.result.name == "tangent" and "passes" in panel.verdict.text()
+    assert here == []  # nothing was worked out in this process ...
+    helper = helper_process._helpers.get(hard_cases.__name__)
+    assert helper is not None and helper.process.poll() is None  # ... but in the cases' own process
