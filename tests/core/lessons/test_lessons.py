@@ -292,9 +292,12 @@ def test_the_notch_step_shows_its_highlighted_wall_and_normal_in_the_3d_pane():
 
 
 def test_top_level_text_fields_are_checked_too():
-    problems = _problems(_lesson(title="  ", id="has space", format="render-explorer-scene"))
-    assert problems == ['format: expected "render-explorer-lesson", got "render-explorer-scene"',
+    problems = _problems(_lesson(title="  ", id="has space", format="render-explorer-lessons"))
+    assert problems == ['format: expected "render-explorer-lesson", got "render-explorer-lessons"',
                         "id: use letters, digits, '_' and '-' only, got \"has space\"",
                         "title: must not be empty"]
+    # A scene's format says what the file is, and nothing more (tests/core/files/test_lesson_reader.py).
+    assert _problems(_lesson(title="  ", format="render-explorer-scene")) == [
+        'format: this is a scene file ("render-explorer-scene"), not a lesson file']
     assert _problems([1, 2]) == ["top level: expected an object {...}, got [1, 2]"]
     assert _problems(_lesson(steps=[])) == ["steps: a lesson needs at least one step"]
