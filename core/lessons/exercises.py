@@ -31,8 +31,10 @@ right when the fact holds at the clicked pixel (``$pixel``), or each fact of a l
 data), ``depth`` (the distance the z-buffer stores at ``pixel`` after ``after``
 polygons), ``hit_t`` (the distance to the first hit of ``pixel``'s ray),
 ``blend`` (channel ``channel`` of the c0 a transparent ``object`` writes at
-``pixel``).  ``order`` ``by`` ``drawing_order`` puts the named objects in the
-order object order draws them; ``ray_tree_colours`` puts rays of ``pixel``'s ray
+``pixel``), ``perspective`` (coordinate ``component``, 0 for x′ and 1 for y′, of where the
+lecture's perspective projection puts ``point``, the screen in z = 0 and the eye at z = −``d``:
+:func:`core.projection.lecture_perspective`).  ``order`` ``by`` ``drawing_order`` puts the
+named objects in the order object order draws them; ``ray_tree_colours`` puts rays of ``pixel``'s ray
 tree, named by their path from the primary ray (``"primary"``,
 ``"primary/refraction"``, ``"primary/refraction/reflection"``...), in the order
 the second stage of ray tracing computes their colours: the last hits first
@@ -67,13 +69,14 @@ import numpy as np
 from core.files.checked_json import join, show
 from core.lessons import facts as facts_mod
 from core.lessons.facts import StepPipelines, check_fact, read_fact, read_list, read_pixel, read_tagged
+from core.projection import lecture_perspective
 
 KINDS = ("choose_one", "click_pixel", "number", "order", "pick_picture")
 VIEWS = ("front", "side", "top", "observer")
 """The pictures of a ``pick_picture`` exercise: :data:`core.object_order.four_views.PANES`."""
 PICTURE_SIZE = (160, 120)
 """Width and height (pixels) of each picture to pick from."""
-NUMBERS = ("ray_sphere", "ray_triangle", "depth", "hit_t", "blend")
+NUMBERS = ("ray_sphere", "ray_triangle", "depth", "hit_t", "blend", "perspective")
 ORDERS = ("drawing_order", "ray_tree_colours")
 RAY_STEPS = ("reflection", "refraction")
 """What may follow ``primary`` in a ray's path (``ray_tree_colours``): the rays whose colours are gathered."""
@@ -352,12 +355,15 @@ def named_pixel(ex: Exercise) -> tuple[int, int] | None:
 
 def _read_number(r, value, path: str, scene):
     d = r.fields(value, path, ("of", "origin", "end", "direction", "center", "radius", "a", "b", "c",
-                               "value", "component", "pixel", "after", "object", "channel"), ("of",))
+                               "value", "component", "pixel", "after", "object", "channel", "point", "d"),
+                 ("of",))
     if d is None or d.get("of") not in NUMBERS:
         if d is not None:
             r.add(join(path, "of"), f"unknown quantity {show(d.get('of'))} (known: {', '.join(NUMBERS)})")
         return None
     of = d["of"]
+    if of == "perspective":
+        return _read_perspective(r, d, path)
     if of in ("ray_sphere", "ray_triangle"):  # read as the fact of that name, with a dummy answer
         given = {k: v for k, v in d.items() if k not in ("of", "component")}
         fact = read_fact(r, {**given, "fact": of, "equals": 0}, path, scene)
@@ -380,6 +386,25 @@ def _read_number(r, value, path: str, scene):
             r.add(join(path, "channel"), f"0 (red), 1 (green) or 2 (blue), got {channel}")
         out["channel"] = channel
     return MappingProxyType(out)
+
+
+def _read_perspective(r, d, path: str):
+    """A ``perspective`` number's ``point``, ``d`` and ``component`` (x′ or y′)."""
+    for key in ("point", "d", "component"):
+        if key not in d:
+            r.add(join(path, key), "required field is missing")
+    point = r.vector(d["point"], join(path, "point")) if "point" in d else None
+    distance = r.number(d["d"], join(path, "d"), gt=0.0) if "d" in d else None
+    component = r.integer(d["component"], join(path, "component")) if "component" in d else None
+    if component is not None and component not in (0, 1):
+        r.add(join(path, "component"), f"0 (x′) or 1 (y′), got {component}")
+    behind = point is not None and distance is not None and point[2] + distance <= 0.0
+    if behind:
+        r.add(join(path, "point"), f"must lie in front of the eye (z > -d = {-distance:g}), "
+                                   f"got z = {point[2]:g}")
+    if None in (point, distance, component) or component not in (0, 1) or behind:
+        return None
+    return MappingProxyType({"of": "perspective", "point": point, "d": distance, "component": component})
 
 
 # --- the pipelines' answers ---------------------------------------------------------------------
@@ -444,6 +469,9 @@ def number(ex: Exercise, p: StepPipelines) -> float:
         if got is None:
             return float("nan")
         return float(got[v["component"]] if v["component"] is not None else got)
+    if of == "perspective":
+        image = lecture_perspective(v["d"]) @ np.array([*v["point"], 1.0])
+        return float(image[v["component"]] / image[3])
     x, y = v["pixel"]
     if of == "hit_t":
         root = p.tree((x, y))

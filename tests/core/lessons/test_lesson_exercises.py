@@ -126,6 +126,31 @@ def test_the_triangle_weights_from_exact_arithmetic():
         Fraction(1, 5), Fraction(2, 5), Fraction(2, 5), Fraction(2, 5))
 
 
+def test_your_point_through_the_lectures_perspective_formula():
+    # By hand, the first variant: A = (6, -3, 4), the eye at z = -2.  The line from A to the eye
+    # (0, 0, -2) is (6s, -3s, -2 + 6s); it meets z = 0 at s = 1/3: (2, -1).  As the step's formula:
+    # x' = 6 · 2 / (4 + 2) = 2, y' = -3 · 2 / 6 = -1.
+    lesson = BY_ID["perspective"]
+    x_asked, y_asked = lesson.exercises[1:]
+    assert (x_asked.kind, y_asked.kind) == ("number", "number")
+    p = StepPipelines(lesson.steps[x_asked.step])
+    for k in range(4):
+        x_ex, y_ex = x_asked.variants[k], y_asked.variants[k]
+        point, d = x_ex.args["value"]["point"], x_ex.args["value"]["d"]
+        assert y_ex.args["value"]["point"] == point  # one point for both questions
+        # Where the line from A to the eye (0, 0, -d) crosses z = 0, in fractions: at s with
+        # -d + s (z + d) = 0.
+        s = Fraction(d) / (Fraction(point[2]) + Fraction(d))
+        crossing = (s * Fraction(point[0]), s * Fraction(point[1]))
+        if k == 0:
+            assert crossing == (2, -1)
+        for ex, exact in ((x_ex, crossing[0]), (y_ex, crossing[1])):
+            assert number(ex, p) == pytest.approx(float(exact), abs=1e-12)
+            assert judge(ex, p, float(exact)).right and not judge(ex, p, float(exact) + 0.1).right
+            assert _shown(point) in ex.question and f"z = -{d:g}" in ex.question
+    assert all(x_asked.variants[k].args["value"]["point"] != [4, 2, 2] for k in range(4))
+
+
 def test_the_panes_sorted_far_to_near_and_a_wrong_order_refused():
     # The panes stand at z = 1.4 (red), 0.2 (green), -1.0 (blue); the eye looks down -z: far to near
     # is blue, green, red.
@@ -169,12 +194,24 @@ def test_an_exercise_the_pipelines_cannot_answer_is_reported_and_bad_ones_refuse
         "(known: choose_one, click_pixel, number, order, pick_picture)",
         'exercises[1].fact: the fact must say "pixel": "$pixel" (the clicked pixel)',
         'exercises[2].value.of: unknown quantity "weight" '
-        "(known: ray_sphere, ray_triangle, depth, hit_t, blend)",
+        "(known: ray_sphere, ray_triangle, depth, hit_t, blend, perspective)",
         "exercises[3].step: the lesson has steps 0 to 0, got 3"]
     assert info.value.problems[4] == ('exercises[4].fact[1]: the fact must say "pixel": "$pixel" '
                                       "(the clicked pixel)")
     assert info.value.problems[5].startswith("exercises[4].fact[2].object: no object 'purple' in the scene")
     assert info.value.problems[6:] == ["exercises[5].fact: give at least one fact"]
+    lesson["exercises"] = [
+        {"kind": "number", "question": "?", "tolerance": 1,
+         "value": {"of": "perspective", "point": [1, 2, 3]}},
+        {"kind": "number", "question": "?", "tolerance": 1,
+         "value": {"of": "perspective", "point": [1, 2, -3], "d": 2, "component": 2}}]
+    with pytest.raises(LessonFileError) as info:
+        from_dict(lesson)
+    assert info.value.problems == [
+        "exercises[0].value.d: required field is missing",
+        "exercises[0].value.component: required field is missing",
+        "exercises[1].value.component: 0 (x′) or 1 (y′), got 2",
+        "exercises[1].value.point: must lie in front of the eye (z > -d = -2), got z = -3"]
 
 
 def test_variants_draw_other_pixels_by_seed_and_each_is_judged_by_its_own_answer():
@@ -282,7 +319,7 @@ def test_every_shipped_exercise_has_an_independent_solution():
     # test_object_order_answers, test_image_order_answers, test_view_answers).  A lesson that gains
     # an exercise fails here until a test works its answer out independently.
     solved = {"two_orders": 2, "observer": 3, "frustum": 2, "back_faces": 2, "zbuffer": 3,
-              "zbuffer_piercing": 3, "transparency": 3, "perspective": 1, "orthographic": 1,
+              "zbuffer_piercing": 3, "transparency": 3, "perspective": 3, "orthographic": 1,
               "three_views": 5, "rasterization": 2, "ray_casting": 2, "ray_tracing": 3, "acceleration": 2,
               "ray_sphere": 9, "ray_triangle": 4}
     assert {lesson.id: len(lesson.exercises) for lesson in LESSONS} == solved
