@@ -239,6 +239,12 @@ class CostPanel(QWidget):
         self.progress = QProgressBar()
         self.progress.setRange(0, 1000)
         self.progress.setTextVisible(False)
+        # Shown once a sweep starts: empty, before any, it read as a text field to type into.  Its room
+        # is kept, so that the status beside it stays where it is.
+        keep_room = self.progress.sizePolicy()
+        keep_room.setRetainSizeWhenHidden(True)
+        self.progress.setSizePolicy(keep_room)
+        self.progress.hide()
         self.status = QLabel("Set a scene, pick a knob and press Run.")
         self.status.setWordWrap(True)
         self._keep_two_status_lines()
@@ -482,6 +488,7 @@ class CostPanel(QWidget):
         self._update_buttons()
 
     def _update_buttons(self) -> None:
+        self.progress.setVisible(self.running or bool(self._points))
         self.run_button.setEnabled(self._scene is not None and not self.running)
         resumable = self.sweep is not None and not self.finished and bool(self._points)
         self.run_button.setText("Resume" if resumable else "Run")

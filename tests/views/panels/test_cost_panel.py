@@ -41,8 +41,13 @@ def _images_drawn(qtbot, panel):
 
 def test_sweep_fills_the_plot_and_a_click_shows_the_point(qtbot, panel):
     _pick(panel, "depth")
+    # No progress bar before a sweep (empty, it read as a field to type into), and the status keeps its
+    # place when it comes.
+    assert not panel.progress.isVisible() and panel.status.isVisible()
+    left = panel.status.mapTo(panel, panel.status.rect().topLeft()).x()
     qtbot.mouseClick(panel.run_button, Qt.MouseButton.LeftButton)
-    assert panel.running
+    assert panel.running and panel.progress.isVisible()
+    assert panel.status.mapTo(panel, panel.status.rect().topLeft()).x() == left
     with qtbot.waitSignal(panel.sweep_finished, timeout=TIMEOUT_MS) as finished:
         pass
     assert finished.args == [True]
