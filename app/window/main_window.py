@@ -145,6 +145,7 @@ class MainWindow(QMainWindow):
         self.setCentralWidget(right)
 
         dock = self.controls_dock = QDockWidget("Controls", self)
+        dock.setObjectName("controls")
         dock.setFeatures(QDockWidget.DockWidgetFeature.DockWidgetMovable)
         dock.setTitleBarWidget(QWidget())  # the group boxes carry the titles
         self._controls = QScrollArea()

@@ -42,6 +42,16 @@ def test_start_shows_the_lecture_scene_and_its_image(window):
     assert "rays" in window.status_caption.text()
 
 
+def test_every_dock_has_a_name_of_its_own_for_scripts_and_saved_layouts(window):
+    # A GUI-driven test or a script finds a dock by its object name, and QMainWindow.saveState needs
+    # one; the Controls dock had none.
+    from PySide6.QtWidgets import QDockWidget
+
+    names = {dock.windowTitle(): dock.objectName() for dock in window.findChildren(QDockWidget)}
+    assert names["Controls"] == "controls"
+    assert all(names.values()) and len(set(names.values())) == len(names)
+
+
 def test_the_status_line_gives_a_traced_images_total_first_then_the_stages_that_took_time(window):
     caption = window.status_caption.text()
     found = re.fullmatch(r"(\d+) × (\d+) pixels · ([\d,]+) rays · total (\d+) ms(?: \((.*) ms\))?", caption)
