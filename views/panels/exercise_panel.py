@@ -298,6 +298,7 @@ class ExercisePanel(QWidget):
         if ex is None:
             self.position.setText("No exercises in this lesson" if self.lesson else "No lesson open")
             self.question.setText("" if self.lesson else OPEN_A_LESSON)
+            self.room_button.hide()  # no answers to show
             return
         n = len(self.lesson.exercises)
         done = self.progress.outcome(self.lesson.id, self.index)
@@ -574,7 +575,7 @@ class ExercisePanel(QWidget):
 
     def set_answers_hidden(self, hidden: bool) -> None:
         self.answer_area.setVisible(not hidden)
-        self.room_button.setVisible(hidden)
+        self.room_button.setVisible(hidden and self.lesson is not None and bool(self.lesson.exercises))
         QTimer.singleShot(0, self, self._size_question)  # the question leaves the answers their room
         self.answers_hidden.emit(hidden)
 

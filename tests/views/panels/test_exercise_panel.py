@@ -28,6 +28,9 @@ def test_before_a_lesson_is_open_the_panel_says_how_to_open_one(panel):
     assert panel.position.text() == "No lesson open"
     assert "Lessons tab" in panel.question.text() and "PageDown" in panel.question.text()
     assert not panel.check_button.isEnabled()
+    assert not panel.room_button.isVisible()  # "Show answers (Space)" with nothing to show ...
+    panel.set_room(True)
+    assert not panel.room_button.isVisible()  # ... presenting too
 
 
 def test_the_next_exercise_shows_only_its_own_answers(panel, qtbot):
