@@ -105,7 +105,7 @@ class ExportMenu(QObject):
     def __init__(self, window, file_menu):
         super().__init__(window)
         self.window = window
-        self.menu = file_menu.addMenu("&Export")
+        self.menu = file_menu.addMenu("E&xport")
         self.menu.setToolTipsVisible(True)
         self.menu.aboutToShow.connect(self.refresh)
         self.actions = {}

@@ -362,11 +362,11 @@ class MainWindow(QMainWindow):
         file_menu = self.menuBar().addMenu("&File")
         self._action(file_menu, "&Open scene…", self.open_scene_dialog, QKeySequence.StandardKey.Open,
                      "Open a scene JSON file")
-        self._action(file_menu, "&Save scene as…", self.save_scene_dialog,
+        self._action(file_menu, "Save scene &as…", self.save_scene_dialog,
                      QKeySequence.StandardKey.SaveAs, "Save the scene and observer as JSON")
         self._action(file_menu, "&Lecture scene", self.reset_scene, "Ctrl+L",
                      "Back to the lecture's cube and cone on a plane")
-        self._action(file_menu, "Open &lesson…", lambda: self.lesson_panel.open_lesson_file(),
+        self._action(file_menu, "Open lesso&n…", lambda: self.lesson_panel.open_lesson_file(),
                      tip="Open a lesson JSON file and start it")
         self.recent_files = RecentFiles(file_menu.addMenu("Open &recent"), self)
         self.recent_files.chosen.connect(self._open_recent)
@@ -393,9 +393,12 @@ class MainWindow(QMainWindow):
         self._action(view, "Show all panes", self.show_all_panes,
                      tip="Every tab and the 3D pane again, after a lesson showed only some")
         view.addSeparator()
-        lessons = dock_action(self.lesson_dock, "Lessons", "Ctrl+Shift+L")
-        view.addAction(lessons)
-        self._keyed_actions.append(lessons)
+        # The exercises' dock may be closed by its title's button: this brings it back.
+        for dock, text, key in ((self.lesson_dock, "Lessons", "Ctrl+Shift+L"),
+                                (self.exercise_dock, "Exercises", "Ctrl+Shift+X")):
+            shown = dock_action(dock, text, key)
+            view.addAction(shown)
+            self._keyed_actions.append(shown)
         acts = self.presentation.actions
         for key in ("present", "leave", "blank", "contrast", "presenter"):
             view.addAction(acts[key])

@@ -139,7 +139,8 @@ class SceneEditor(QObject):
         bar = w.menuBar().actions()
         w.menuBar().insertMenu(bar[1] if len(bar) > 1 else None, menu)  # after File
         file_actions = bar[0].menu().actions() if bar else []
-        save_as = next((a for a in file_actions if a.text().startswith("&Save scene as")), None)
+        save_as = next((a for a in file_actions if a.text().replace("&", "").startswith("Save scene as")),
+                       None)
         if save_as is not None:
             bar[0].menu().insertAction(save_as, self.save_action)
 

@@ -274,6 +274,18 @@ def test_ctrl_shift_l_and_e_bring_their_dock_forward_from_behind_another_tab(qtb
     assert not editor.dock.isVisible() and not editor_key.isChecked()
 
 
+def test_a_closed_exercises_dock_comes_back_with_ctrl_shift_x(qtbot, window):
+    # Its title's button closes it, and nothing brought it back.
+    exercises = next(a for a in window.findChildren(QAction)
+                     if a.text() == "Exercises" and a.shortcut().toString() == "Ctrl+Shift+X")
+    assert "Ctrl+Shift+X" in window.keys_text() and "Exercises" in window.keys_text()
+    window.exercise_dock.close()
+    qtbot.waitUntil(lambda: not window.exercise_dock.isVisible())
+    exercises.trigger()
+    qtbot.waitUntil(lambda: in_front(window.exercise_dock))
+    assert exercises.isChecked()
+
+
 def test_a_picked_buffer_pixel_follows_its_polygons_nearest_corner_to_the_screen(qtbot, window):
     window.show_tab("object order")
     qtbot.waitUntil(lambda: window.showing_full("object order"), timeout=RENDER_TIMEOUT_MS)

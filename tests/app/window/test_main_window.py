@@ -52,6 +52,27 @@ def test_every_dock_has_a_name_of_its_own_for_scripts_and_saved_layouts(window):
     assert all(names.values()) and len(set(names.values())) == len(names)
 
 
+def test_each_menus_alt_letters_are_its_own(window):
+    # Alt+F then S chose between "Save scene" and "Save scene as…", L between "Lecture scene" and
+    # "Open lesson…", E between "Examples" and "Export": Qt cycles through entries sharing a letter
+    # instead of opening one.
+    def letters(menu):
+        found = []
+        for action in menu.actions():
+            text = action.text().replace("&&", "")
+            if "&" in text:
+                found.append(text[text.index("&") + 1].lower())
+            if action.menu() is not None:
+                letters(action.menu())
+        assert len(found) == len(set(found)), (menu.title(), found)
+
+    for top in window.menuBar().actions():
+        letters(top.menu())
+    file_menu = window.menuBar().actions()[0].menu()
+    assert [a.text() for a in file_menu.actions() if "&" in a.text()][:3] == [
+        "&Open scene…", "&Save scene", "Save scene &as…"]
+
+
 def test_the_status_line_gives_a_traced_images_total_first_then_the_stages_that_took_time(window):
     caption = window.status_caption.text()
     found = re.fullmatch(r"(\d+) × (\d+) pixels · ([\d,]+) rays · total (\d+) ms(?: \((.*) ms\))?", caption)
