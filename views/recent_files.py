@@ -67,7 +67,7 @@ class RecentFiles(QObject):
 
     def open(self, kind: str, path: str) -> None:
         """Open a file of the list: ``chosen``, or, if it is gone, a dialog and off the list."""
-        if not os.path.lexists(path):
+        if not os.path.exists(path):
             self.forget(path)
             QMessageBox.warning(self._parent, "Cannot open recent file",
                                 f"{os.path.basename(path)} is no longer there:\n{path}\n\n"

@@ -13,7 +13,7 @@ Cases are computed in a process of their own (:mod:`core.helper_process`), asked
 :class:`~PySide6.QtCore.QThreadPool` thread (:class:`views.jobs.JobRun`): most of a case is
 numbers worked out one by one in Python (exact rationals, one ray and triangle at a time), and on a
 thread of the window's process it held Python's lock in turns with the window's thread, which
-waited 110-180 ms at a time for it when a case was chosen.  One request at a time; a result that arrives
+waited 110-280 ms at a time for it when a case was chosen.  One request at a time; a result that arrives
 after a newer request was made is dropped, so the window never waits and
 never shows a stale case.  When the panel is first shown every case is also
 computed once at its defaults, at a lower priority, so the list can mark

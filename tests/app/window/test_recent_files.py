@@ -136,3 +136,17 @@ def test_a_file_that_is_neither_is_refused_in_the_status_bar_and_a_bad_scene_in_
         _drop(window, [bad])
     assert window.model.scene == before
     assert shown and shown[0].startswith("bad.json:")
+
+
+def test_a_link_whose_file_is_gone_is_said_to_be_no_longer_there(qtbot, tmp_path, monkeypatch):
+    from views.recent_files import SCENE
+
+    window = _window(qtbot)
+    link = tmp_path / "scene.json"
+    link.symlink_to(tmp_path / "moved away.json")
+    window.recent_files.add(SCENE, link)
+    said = []
+    monkeypatch.setattr(QMessageBox, "warning", lambda parent, title, text: said.append(text))
+    window.recent_files.open(SCENE, str(link))
+    assert said and said[0].startswith("scene.json is no longer there")
+    assert window.recent_files.entries() == []
