@@ -379,6 +379,7 @@ def _hard_cases(window):
     panel = window.tab("hard cases").widget
     shown = []
     panel.result_shown.connect(shown.append)
+
     def showing() -> bool:
         return bool(shown) and panel.result.name == panel.case_name and panel.status.text() != "computing…"
 

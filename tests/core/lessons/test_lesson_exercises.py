@@ -3,6 +3,7 @@ independent computations, and a wrong answer is refused."""
 
 import json
 import math
+import re
 from fractions import Fraction
 
 import numpy as np
@@ -148,6 +149,12 @@ def test_your_point_through_the_lectures_perspective_formula():
             assert number(ex, p) == pytest.approx(float(exact), abs=1e-12)
             assert judge(ex, p, float(exact)).right and not judge(ex, p, float(exact) + 0.1).right
             assert _shown(point) in ex.question and f"z = -{d:g}" in ex.question
+            # Its why works the formula with the point's own numbers, to the same answer:
+            # "x′ = x d / (z + d) = 6 · 2 / (4 + 2) = 2: ...".
+            worked = re.search(r"= (−?\d+) · (\d+) / \((\d+) \+ (\d+)\) = (−?\d+):", ex.why)
+            a, b, c, e, answer = (int(g.replace("−", "-")) for g in worked.groups())
+            coordinate = point[0] if ex is x_ex else point[1]
+            assert (a, b, c, e) == (coordinate, d, point[2], d) and answer == exact
     assert all(x_asked.variants[k].args["value"]["point"] != [4, 2, 2] for k in range(4))
 
 
