@@ -52,6 +52,7 @@ from core.object_order import clipping
 from core.object_order.culling import OUTSIDE
 from core.object_order.pipeline import RasterResult
 from core.scene import Scene
+from core.shown_numbers import shown_number
 
 RASTER_VERDICTS = ("background", "visible", "blended", "culled", "frustum-culled", "clipped")
 TRACE_VERDICTS = ("miss", "hit")
@@ -432,7 +433,7 @@ def trace_verdict(root: RayNode, scene: Scene, mode: str, x: int, y: int) -> Pix
                             "pixel shows the background colour.", lights=(), rays=rays,
                             total_internal_reflection=())
     lights = _lights(root, scene)
-    parts = [f"The primary ray hits {root.hit_name} at t = {root.t:.3g}"]
+    parts = [f"The primary ray hits {root.hit_name} at t = {shown_number(root.t)}"]
     lit = [v.name for v in lights if v.lit]
     if lit:
         parts.append(f"lit by {listed(lit)}")

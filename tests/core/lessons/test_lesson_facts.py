@@ -2,6 +2,7 @@
 
 import copy
 import json
+import re
 import subprocess
 import sys
 
@@ -213,3 +214,28 @@ def test_only_steps_showing_an_image_order_pane_speak_of_shadows():
         for step in lesson.steps:
             if "shadow" in step.text.lower():
                 assert "image order" in step.panes, (lesson.id, step.title)
+
+
+def test_a_step_whose_words_give_t_gives_the_t_its_picked_pixels_ray_shows():
+    """The ray tree, the Worked math and the verdict above them show a step's picked pixel's ray, which
+    runs along a direction of length 1; a step that works a crossing with another direction (the
+    lecture's d = (−0.5, −0.3, −6)) and wrote only that t (1.00642) told the student a t the window did
+    not show (6.06696). Every step that writes t for its picked pixel also writes the window's, and the
+    verdict writes it with the same digits (it wrote "t = 16" where the step wrote 15.9869)."""
+    from core.image_order.ray_tree import trace_pixel
+    from core.lessons.exercises import writes, written_numbers
+    from core.pixel_verdict import trace_verdict
+
+    checked = []
+    for lesson in LESSONS:
+        for k, step in enumerate(lesson.steps):
+            said = re.findall(r"\bt ≈ ([-−]?\d+\.\d+)", step.text)
+            if step.pixel is None or not said:
+                continue
+            root = trace_pixel(step.scene, *step.pixel, step.image_order)
+            assert any(writes(n, places, root.t, 0.5 * 10.0 ** -places)
+                       for n, places in written_numbers(" ".join(said))), (lesson.id, k, said, root.t)
+            verdict = trace_verdict(root, step.scene, step.image_order.mode, *step.pixel).sentence
+            assert re.search(r"at t = ([\d.]+)", verdict).group(1) in said, (lesson.id, k, verdict, said)
+            checked.append(lesson.id)
+    assert checked == ["ray_sphere", "ray_triangle"]
