@@ -5,16 +5,15 @@ Examples::
     python -m app lesson check core/lessons/files/*.json
     python -m app lesson check my_lesson.json
 
-Each file is loaded (every problem with its field path, as File → Open lesson
-shows them) and every step's scene is run through the pipelines to decide its
-facts (:mod:`core.lessons.facts`) and answer its exercises
-(:mod:`core.lessons.exercises`: exactly one right choice, some right pixel, a
-number).  It prints one line per fact that does not hold (lesson, step, fact,
-what was computed), exercise the pipelines cannot answer, or exercise whose answer a
-step's words state (:func:`core.lessons.exercises.stated_answers`: it would be recall),
-and exits 1; 0 when every fact of every file holds; 2 when a file cannot be read or is
-not a valid lesson (the other files are still checked).  Only :mod:`core` is imported, so it answers
-without Qt.
+Each file is loaded (every problem with its field path, as File → Open lesson shows them) and every
+step's scene is run through the pipelines to decide its facts (:mod:`core.lessons.facts`) and answer
+its exercises (:mod:`core.lessons.exercises`: exactly one right choice, some right pixel, a number).
+It prints one line per fact that does not hold (lesson, step, fact, what was computed), highlight
+its step's words do not name (:func:`core.lessons.naming.unnamed_highlights`), exercise the
+pipelines cannot answer, or exercise whose answer a step's words state
+(:func:`core.lessons.exercises.stated_answers`: it would be recall), and exits 1; 0 when every fact
+of every file holds; 2 when a file cannot be read or is not a valid lesson (the other files are
+still checked). Only :mod:`core` is imported, so it answers without Qt.
 """
 
 from __future__ import annotations
@@ -58,6 +57,6 @@ def run_check(args) -> int:
         if failures and status == 0:
             status = 1
     if status == 0:
-        print(f"{len(args.files)} lesson file(s): all {facts} facts hold; "
+        print(f"{len(args.files)} lesson file(s): all {facts} facts hold, every highlight is named; "
               f"the pipelines answer all {exercises} exercises")
     return status

@@ -9,12 +9,12 @@ user had made the same choices by hand.
 
 from __future__ import annotations
 
-import re
 from dataclasses import replace
 
 import numpy as np
 
 from core.files.lesson_file import LessonStep
+from core.lessons.naming import named_objects, step_words
 from core.scene import Mesh, Scene
 from views.scene3d.projector_lines import ProjectorLines
 from views.scene3d.scene_overlays import polygon_parts
@@ -32,28 +32,6 @@ MODEL_OVERLAYS = {"bounding spheres": "spheres", "grid cells": "grid", "frustum"
 OBJECT_STYLE = {"color": "#ffd400", "style": "wireframe", "line_width": 3}
 NORMAL_COLOR = "#ff2bd6"
 """The highlighted face's outward normal, drawn as an arrow (the colour of its outline)."""
-
-
-def named_objects(scene: Scene, text: str) -> list:
-    """The objects ``text`` speaks of: by their name ("the cone", "both cones"; "bounding box" names
-    no box), or, for objects named "object N", by their number in a sentence about objects
-    ("objects 1 and 4")."""
-    lowered = text.lower()
-    numbers = set()  # the numbers of sentences about objects, "1 to 4" counting 2 and 3 too
-    for sentence in re.split(r"(?<=[.;:])\s+", lowered):
-        if re.search(r"\bobjects?\b", sentence):
-            numbers |= {int(n) for n in re.findall(r"\b\d+\b", sentence)}
-            for a, b in re.findall(r"\b(\d+) to (\d+)\b", sentence):
-                numbers |= set(range(int(a), int(b) + 1))
-    named = []
-    for obj in scene.objects:
-        number = re.fullmatch(r"object (\d+)", obj.name.lower())
-        # the name as a whole word or words, "cones" too, but not the lecture's "bounding box" or
-        # "bounding sphere" (boxes around objects, not an object named "box")
-        said = re.search(rf"(?<!bounding )\b{re.escape(obj.name.lower())}s?\b", lowered)
-        if said or (number and int(number.group(1)) in numbers):
-            named.append(obj)
-    return named
 
 
 def _bounds(obj) -> tuple[np.ndarray, np.ndarray]:
@@ -208,7 +186,7 @@ class LessonRunner:
         the objects the question and its choices name, each alike."""
         step, scene = self.step, self.step.scene
         if self.asked is None:
-            named = named_objects(scene, step.text)
+            named = named_objects(scene, step_words(step))
             marked = scene.objects  # every mark the step makes
         else:
             question, choices = self.asked

@@ -69,6 +69,7 @@ import numpy as np
 from core.files.checked_json import join, show
 from core.lessons import facts as facts_mod
 from core.lessons.facts import StepPipelines, check_fact, read_fact, read_list, read_pixel, read_tagged
+from core.lessons.naming import says
 from core.projection import lecture_perspective
 
 KINDS = ("choose_one", "click_pixel", "number", "order", "pick_picture")
@@ -644,10 +645,6 @@ def _words(step) -> list[tuple[str, str]]:
         (f"formulas[{i}]", f) for i, f in enumerate(step.formulas)]
 
 
-def _names(sentence: str, label: str) -> bool:
-    return re.search(rf"(?<!\w){re.escape(label)}(?!\w)", sentence, re.IGNORECASE) is not None
-
-
 def _pixels_spoken_of(said: str, step) -> set[tuple[int, int]]:
     """The pixels words of ``step`` speak of: written as ``(x, y)``, and the step's picked pixel when
     they say "this pixel" or "the picked pixel"."""
@@ -675,7 +672,7 @@ def _choice_stated(lesson, ex: Exercise, p: StepPipelines) -> list[str]:
     for right in (labels[i] for i in right_choices(ex, p) if labels[i] is not None):
         for k, step in enumerate(lesson.steps):
             for sentence in _sentences(step.text):
-                named = [label for label in labels if label is not None and _names(sentence, label)]
+                named = [label for label in labels if label is not None and says(sentence, label)]
                 if pixel in _pixels_spoken_of(sentence, step) and right in named and len(named) < len(labels):
                     lines.append(f"steps[{k}].text says of pixel {pixel} the answer {right!r}: “{sentence}”")
     return lines

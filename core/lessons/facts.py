@@ -75,6 +75,7 @@ from core.files.checked_json import is_integer, join, show
 from core.image_order.flat_layout import ACCEL_CODES, HEAT_BOUNDS_TESTS, HEAT_PRIM_TESTS
 from core.image_order.ray_tree import KINDS as RAY_KINDS
 from core.in_words import listed
+from core.lessons.naming import unnamed_highlights
 from core.object_order.clipping import PLANES
 from core.object_order.culling import CROSSING, INSIDE, OUTSIDE
 from core.scene import Mesh, Scene, Sphere
@@ -666,10 +667,11 @@ _CHECKS = {
 
 
 def check_lesson(lesson) -> list[str]:
-    """One line per fact of ``lesson`` that does not hold: lesson, step, fact and what was computed."""
+    """One line per fact of ``lesson`` that does not hold (lesson, step, fact and what was computed) and
+    per highlight its step's words do not name (:func:`core.lessons.naming.unnamed_highlights`)."""
     lines = []
     for k, step in enumerate(lesson.steps):
         for fact, computed in check_step(step):
             lines.append(f"lesson {lesson.id}, step {k + 1} {step.title!r}, {fact.path} "
                          f"({fact.describe()}): computed {computed}")
-    return lines
+    return lines + unnamed_highlights(lesson)

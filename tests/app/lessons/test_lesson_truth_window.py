@@ -106,7 +106,9 @@ def test_the_objects_the_text_names_are_labelled_in_the_3d_pane(window, qtbot):
     window.lesson_panel.select(LESSONS["observer"], 1)  # "Object 5 is now outside ... objects 1 to 4"
     labels = _lesson_labels(window)
     assert {"object 1", "object 2", "object 3", "object 4", "object 5"} <= set(labels)
-    window.lesson_panel.select(LESSONS["perspective"], 0)  # names no object
+    window.lesson_panel.select(LESSONS["perspective"], 0)  # "here a corner of the cube"
+    assert _lesson_labels(window) == ["cube"]
+    window.lesson_panel.select(LESSONS["frustum"], 0)  # a pyramid, the eye and the screen: no object
     assert _lesson_labels(window) == []
 
 
@@ -175,7 +177,7 @@ def test_add_this_view_as_a_step_round_trips_the_window_state(window, qtbot, tmp
     path = tmp_path / "my lesson.json"
     facts = '[{"fact": "zbuffer_keeps", "pixel": [87, 74], "object": "blue"}]'
     assert window.recorder.record(path, "Blue wins", "Blue is nearest here.", facts)
-    assert window.recorder.record(path, "Again", "The same view twice.")
+    assert window.recorder.record(path, "Again", "The same view twice: blue wins again.")  # names the mark
     window.reset_scene()  # something else in the window
     lesson = panel.open_lesson_file(path)  # the file loads, and its first step is shown
     assert [s.title for s in lesson.steps] == ["Blue wins", "Again"] and lesson.id == "my_lesson"

@@ -1,9 +1,10 @@
-"""Where a lesson writes an object's name in the 3D pane: above it, or on it when it is flat."""
+"""Where a lesson writes an object's name in the 3D pane: above it, or on it when it is flat (which names
+its words name: tests/core/lessons/test_naming.py)."""
 
 import numpy as np
 import pytest
 
-from app.lessons.runner import _label_point, _top, named_objects
+from app.lessons.runner import _label_point, _top
 from core import presets
 
 
@@ -30,22 +31,3 @@ def test_an_object_that_is_not_flat_keeps_its_name_above_it():
     assert np.array_equal(_label_point(cube, [cone, ground]), _top(cube))
     top = _top(cube)
     assert top[1] > np.asarray(cube.vertices)[:, 1].max()  # above the cube's top
-
-
-def test_a_lesson_names_an_object_by_its_whole_name_and_not_inside_another_word():
-    # The frustum example's objects are "sphere" and "box": a sentence about a bounding box or a
-    # bounding sphere does not speak of them, nor does "sandbox"; "the cones" speaks of the cone.
-    scene = presets.frustum_cases()
-    names = [obj.name for obj in scene.objects]
-    assert "sphere" in names and "box" in names
-
-    def named(text):
-        return [obj.name for obj in named_objects(scene, text)]
-
-    assert named("The bounding box of the sphere lies outside.") == ["sphere"]
-    assert named("Its bounding sphere straddles the plane; the box is behind the observer.") == ["box"]
-    assert named("A sandbox of spheres.") == ["sphere"]
-    assert named("Nothing here.") == []
-    lecture = presets.lecture_scene()
-    assert [obj.name for obj in named_objects(lecture, "Both cones and the cube's bounding box.")] == [
-        "cube", "cone"]
