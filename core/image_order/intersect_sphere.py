@@ -239,6 +239,20 @@ class SphereIntersection:
         return self.end is not None
 
     @property
+    def offset_squared(self) -> float:
+        """``f·f``, the start point's squared distance from the centre (``c + r^2``)."""
+        return float(self.offset @ self.offset)
+
+    @property
+    def radius_squared(self) -> float:
+        return self.radius * self.radius
+
+    @property
+    def sqrt_discriminant(self) -> float | None:
+        """``√Δ``, which the roots ``(-b ∓ √Δ) / 2a`` use; None when the line misses (``Δ < 0``)."""
+        return math.sqrt(self.discriminant) if self.discriminant >= 0 else None
+
+    @property
     def front_face(self) -> bool:
         """The ray arrives from outside the sphere (it hit the entry crossing)."""
         return self.hit and self.chosen == "t_near"

@@ -70,6 +70,7 @@ from core.files.checked_json import join, show
 from core.lessons import facts as facts_mod
 from core.lessons.facts import StepPipelines, check_fact, read_fact, read_list, read_pixel, read_tagged
 from core.lessons.naming import says
+from core.lessons.numbers_said import writes, written_numbers
 from core.projection import lecture_perspective
 
 KINDS = ("choose_one", "click_pixel", "number", "order", "pick_picture")
@@ -607,32 +608,8 @@ def check_exercises(lesson) -> list[str]:
 
 # --- answers a step states ----------------------------------------------------------------------
 
-#: A number as a step writes it: digits, a decimal point and decimals; a minus sign (ASCII or "−").
-_WRITTEN = re.compile(r"(?<![\w.])[-−]?(\d+(?:\.\d+)?)(?![\w])")
-#: Below this, an integer written without decimals is everywhere (coordinates, exponents, indices, "1 − α")
-#: and says nothing about an answer.
-TRIVIAL_INTEGER = 10
 _WRITTEN_PIXEL = re.compile(r"\((\d+),\s*(\d+)\)")
 _THIS_PIXEL = re.compile(r"\b(this|the picked) pixel\b", re.IGNORECASE)
-
-
-def written_numbers(text: str) -> list[tuple[float, int]]:
-    """The numbers ``text`` writes (a step's words or formulas): ``(magnitude, decimals)``, leaving
-    out integers below :data:`TRIVIAL_INTEGER` written without decimals."""
-    out = []
-    for m in _WRITTEN.finditer(text):
-        digits = m.group(1)
-        decimals = len(digits.partition(".")[2])
-        if decimals or int(digits) >= TRIVIAL_INTEGER:
-            out.append((float(digits), decimals))
-    return out
-
-
-def writes(n: float, decimals: int, value: float, tolerance: float) -> bool:
-    """Is ``n``, written with ``decimals`` decimals, the answer ``value`` (either sign) as a student
-    would copy it: ``value`` rounded to those decimals, and judged right typed in?"""
-    off = abs(abs(value) - n)
-    return off <= 0.5 * 10.0 ** -decimals + 1e-9 * max(1.0, n) and off <= tolerance
 
 
 def _sentences(text: str) -> list[str]:

@@ -51,16 +51,16 @@ primary ray's hit), optionally on a named ``object``.  ``rays`` counts the
 rays of a kind that were traced.  ``tests_per_pixel`` compares two acceleration
 methods by the mean intersection tests a pixel's rays cost (all of them, as the image-order
 heat map counts them; ``tests`` is ``"primitive tests"``, the default, or ``"box and sphere
-tests"``): it holds when the whole image traced with ``accel`` (and the step's other
-image-order settings) costs fewer a pixel than with ``fewer_than``.  ``ray_sphere`` takes the
-lecture's segment (``end``) or a ray (``direction``); its values are those of
-:class:`core.image_order.intersect_sphere.SphereIntersection` (``a``, ``b``,
-``c``, ``discriminant``, ``t_near``, ``t_far``, ``t``, ``ray_hit_t``, ``hit``,
-``point``, ...), ``ray_triangle``'s those of
-:class:`core.image_order.intersect_triangle.TriangleIntersection` (``t``,
-``alpha``, ``beta``, ``gamma``, ``hit``, ``point``).  ``equals`` is a number,
-three numbers (a point) or true/false; ``tolerance`` (default ``1e-9``) is
-absolute.  The README's "Lesson files" section shows the same list.
+tests"``): it holds when the whole image traced with ``accel`` (and the step's other image-order
+settings) costs fewer a pixel than with ``fewer_than``. ``ray_sphere`` takes the lecture's segment
+(``end``) or a ray (``direction``); its values are those of
+:class:`core.image_order.intersect_sphere.SphereIntersection` (``a``, ``b``, ``c``,
+``discriminant``, ``sqrt_discriminant``, ``offset_squared``, ``radius_squared``, ``t_near``,
+``t_far``, ``t``, ``ray_hit_t``, ``hit``, ``point``, ...), ``ray_triangle``'s those of
+:class:`core.image_order.intersect_triangle.TriangleIntersection` (``t``, ``alpha``, ``beta``,
+``gamma``, ``hit``, ``point``). ``equals`` is a number, three numbers (a point) or true/false;
+``tolerance`` (default ``1e-9``) is absolute. The README's "Lesson files" section shows the same
+list.
 """
 
 from __future__ import annotations
@@ -76,14 +76,16 @@ from core.image_order.flat_layout import ACCEL_CODES, HEAT_BOUNDS_TESTS, HEAT_PR
 from core.image_order.ray_tree import KINDS as RAY_KINDS
 from core.in_words import listed
 from core.lessons.naming import unnamed_highlights
+from core.lessons.numbers_said import unchecked_numbers
 from core.object_order.clipping import PLANES
 from core.object_order.culling import CROSSING, INSIDE, OUTSIDE
 from core.scene import Mesh, Scene, Sphere
 
 FRUSTUM_STATES = (INSIDE, CROSSING, OUTSIDE)
 EVENTS = ("reflect", "refract", "total_reflection")
-SPHERE_VALUES = ("a", "b", "c", "half_b", "discriminant", "line_distance", "t_near", "t_far", "t",
-                 "ray_hit_t", "hit", "origin_inside", "point", "classification", "chosen")
+SPHERE_VALUES = ("a", "b", "c", "half_b", "discriminant", "sqrt_discriminant", "line_distance", "t_near",
+                 "t_far", "t", "ray_hit_t", "hit", "origin_inside", "offset_squared", "radius_squared",
+                 "point", "classification", "chosen")
 TRIANGLE_VALUES = ("t", "alpha", "beta", "gamma", "hit", "point", "determinant")
 DEFAULT_TOLERANCE = 1e-9
 #: The counts an image-order heat map shows, by name, and where the tracer keeps each per pixel.
@@ -674,4 +676,4 @@ def check_lesson(lesson) -> list[str]:
         for fact, computed in check_step(step):
             lines.append(f"lesson {lesson.id}, step {k + 1} {step.title!r}, {fact.path} "
                          f"({fact.describe()}): computed {computed}")
-    return lines + unnamed_highlights(lesson)
+    return lines + unnamed_highlights(lesson) + unchecked_numbers(lesson)

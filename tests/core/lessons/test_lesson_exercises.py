@@ -398,7 +398,8 @@ def test_the_lectures_worked_question_6_asked_again_is_reported():
          "value": {**ray, "value": "point", "component": 0}, "step": 1}]
     lines = check_exercises(from_dict(data))
     assert [line.split(": a step states the answer: ")[1] for line in lines] == [
-        "steps[1].text, steps[1].formulas[0], steps[1].formulas[1] write 105, the answer 105",
+        "steps[1].text, steps[1].formulas[0], steps[1].formulas[1], steps[1].formulas[2] write 105, "
+        "the answer 105",
         "steps[1].formulas[0], steps[1].formulas[1] write 59, the answer -59",
         "steps[1].text, steps[1].formulas[3] write 14.4813, the answer 14.4813"]
 

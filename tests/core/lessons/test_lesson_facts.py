@@ -223,7 +223,7 @@ def test_a_step_whose_words_give_t_gives_the_t_its_picked_pixels_ray_shows():
     not show (6.06696). Every step that writes t for its picked pixel also writes the window's, and the
     verdict writes it with the same digits (it wrote "t = 16" where the step wrote 15.9869)."""
     from core.image_order.ray_tree import trace_pixel
-    from core.lessons.exercises import writes, written_numbers
+    from core.lessons.numbers_said import writes, written_numbers
     from core.pixel_verdict import trace_verdict
 
     checked = []

@@ -1,0 +1,52 @@
+"""Every number a lesson step writes is stated by one of its facts, so the pipelines decide it."""
+
+import mpmath
+
+from core.files.lesson_file import from_dict
+from core.lessons.facts import check_lesson, solve_intersection
+from core.lessons.numbers_said import unchecked_numbers
+
+SEGMENT = {"origin": [2, 1, 2], "end": [10, 6, 6], "center": [6, 4, 6], "radius": 10}
+
+
+def _lesson(text, facts=(), formulas=()):
+    step = {"title": "Crossing", "text": text, "scene": "lecture", "panes": ["image order"],
+            "formulas": list(formulas), "facts": list(facts)}
+    return from_dict({"format": "render-explorer-lesson", "version": 1, "id": "mine", "title": "Mine",
+                      "steps": [step]})
+
+
+def _fact(value, equals, **more):
+    return {"fact": "ray_sphere", **SEGMENT, "value": value, "equals": equals, **more}
+
+
+def test_a_number_no_fact_states_is_reported_with_lesson_step_and_number():
+    lesson = _lesson("The start lies 41 from the centre, squared; the root is t ≈ 1.56016.")
+    assert unchecked_numbers(lesson) == [
+        "lesson mine, step 1 'Crossing': no fact states 41, 1.56016 (add a fact that does, or leave the "
+        "number out)"]
+    assert check_lesson(lesson) == unchecked_numbers(lesson)  # lesson check and File → Open lesson say it
+    stated = _lesson("The start lies 41 from the centre, squared; the root is t ≈ 1.56016.",
+                     [_fact("offset_squared", 41), _fact("ray_hit_t", 1.56016, tolerance=5e-6)])
+    assert unchecked_numbers(stated) == [] and check_lesson(stated) == []
+
+
+def test_a_number_is_stated_to_the_decimals_written_and_small_integers_are_left_out():
+    facts = [_fact("ray_hit_t", 1.56016, tolerance=5e-6)]
+    assert unchecked_numbers(_lesson("t ≈ 1.56, about 1.6", facts)) == []  # 1.56016 rounded as written
+    assert unchecked_numbers(_lesson("t ≈ 1.57", facts)) != []
+    assert unchecked_numbers(_lesson("three equations, 2 unknowns, step 9", facts)) == []
+    # a fact's inputs are stated too (the segment's end), and formulas are words as well
+    assert unchecked_numbers(_lesson("to (10, 6, 6)", facts)) == []
+    assert unchecked_numbers(_lesson("The roots:", facts, formulas=["$t = 126 / 210$"])) != []
+
+
+def test_the_lectures_segment_gives_the_squares_and_the_root_of_the_discriminant():
+    # By hand: f = o - centre = (-4, -3, -4), f.f = 16 + 9 + 16 = 41; from the end (4, 2, 0): 20;
+    # r^2 = 100; Δ = 126^2 + 4 * 105 * 59 = 40656, whose root mpmath gives to 30 digits.
+    crossing = solve_intersection("ray_sphere", SEGMENT)
+    back = solve_intersection("ray_sphere", {**SEGMENT, "origin": SEGMENT["end"], "end": SEGMENT["origin"]})
+    assert (crossing.offset_squared, back.offset_squared, crossing.radius_squared) == (41, 20, 100)
+    assert abs(crossing.sqrt_discriminant - float(mpmath.sqrt(40656))) < 1e-12
+    missed = solve_intersection("ray_sphere", {**SEGMENT, "origin": [30, 0, 0], "end": [30, 1, 0]})
+    assert missed.discriminant < 0 and missed.sqrt_discriminant is None
