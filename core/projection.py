@@ -135,6 +135,32 @@ def lecture_perspective(d: float) -> np.ndarray:
     return m
 
 
+def lecture_screen_point(view_point, near: float, projection: str = "perspective"):
+    """A camera-space point in the lecture's coordinates (Fig. VII.6 and VII.7) and its image.
+
+    The lecture puts the screen in the plane z = 0 and, for perspective, the eye at z = -d, with z
+    pointing into the scene; the window's screen is the near plane, at ``d = near`` in front of the
+    eye, which looks down camera space's -z.  So ``A = (x, y, -z_view - d)``; perspective takes it to
+    ``A' = (x d / (z + d), y d / (z + d))`` (:func:`lecture_perspective`), orthographic projection
+    keeps ``x`` and ``y`` (Fig. VII.7).  Returns ``(A, A')``; ``A'`` is ``None`` for a point at or
+    behind the eye, which perspective cannot take to the screen.
+
+    >>> a, image = lecture_screen_point([1.0, 0.5, -4.0], near=2.0)
+    >>> a.tolist(), image.tolist()
+    ([1.0, 0.5, 2.0], [0.5, 0.25])
+    >>> lecture_screen_point([1.0, 0.5, -4.0], near=2.0, projection="orthographic")[1].tolist()
+    [1.0, 0.5]
+    """
+    x, y, z = (float(c) for c in view_point)
+    a = np.array([x, y, -z - near])
+    if projection == "orthographic":
+        return a, a[:2].copy()
+    if -z <= 0.0:
+        return a, None
+    p = lecture_perspective(near) @ np.append(a, 1.0)
+    return a, p[:2] / p[3]
+
+
 def pixel_from_ndc(ndc_xy: np.ndarray, width: int, height: int) -> np.ndarray:
     """Viewport mapping: NDC ``[-1, 1]^2`` to pixel coordinates (y down)."""
     ndc_xy = np.asarray(ndc_xy, dtype=float)

@@ -11,7 +11,9 @@
 
 and for a picked vertex its path through the object-order stages, world,
 camera, clip, NDC and pixel, with the matrix of each map
-(:func:`core.projection.project_point`).  Every number comes from those core
+(:func:`core.projection.project_point`), and the point and its image in the lecture's
+coordinates, the screen at z = 0 (:func:`core.projection.lecture_screen_point`), the form
+the perspective and orthographic lessons work.  Every number comes from those core
 functions, the ones ``python -m app intersect`` prints, at the same 6
 significant digits.  The formulas are typeset off the GUI thread (``MathView``'s
 ``later``) and show once typeset; :meth:`WorkedMath.typesetting` says whether
@@ -33,7 +35,7 @@ from core.image_order.intersect_sphere import SphereIntersection, intersect_sphe
 from core.image_order.intersect_triangle import TriangleIntersection, cramer_solve
 from core.image_order.mesh_hit import first_triangle_hit
 from core.image_order.ray_tree import RayNode
-from core.projection import ProjectedPoint, project_point
+from core.projection import ProjectedPoint, lecture_screen_point, project_point
 from core.scene import Scene, Sphere
 from core.shown_numbers import shown_number as _g
 from views.text.math_view import MathView, MatrixView
@@ -281,6 +283,23 @@ class WorkedMath(QScrollArea):
 
     # --- object order -------------------------------------------------------
 
+    def _lecture_rows(self, view_point, camera: Camera) -> None:
+        """The point ``A`` as the lecture writes it, the screen (the near plane) at z = 0, z into the
+        scene and, for perspective, the eye at z = -d (Fig. VII.6; Fig. VII.7 for parallel rays), and
+        its image ``A'``: the formula the perspective and orthographic lessons work, with this point's
+        numbers.  The row's label names the figure."""
+        a, image = lecture_screen_point(view_point, camera.near, camera.projection)
+        if camera.projection == "orthographic":
+            self._row("Fig. VII.7", rf"$A = {_v(a)}$")
+            self._row("A′", rf"$A' = (x,\ y) = {_v(image)}$")
+            return
+        self._row("Fig. VII.6", rf"$A = {_v(a)},\ \ d = n = {_g(camera.near)}$")
+        if image is None:
+            self._row("A′", text="z + d ≤ 0: the point is at or behind the eye and has no image.")
+            return
+        formula = r"A' = \left(\dfrac{x\,d}{z + d},\ \dfrac{y\,d}{z + d}\right)"
+        self._row("A′", rf"${formula} = {_v(image)}$")
+
     def follow_camera(self, camera: Camera) -> None:
         """Work a shown vertex's path again for ``camera`` (the observer moved, or a lesson changed
         the projection), so the matrices shown are always the ones in use."""
@@ -298,6 +317,7 @@ class WorkedMath(QScrollArea):
         self._row("world", rf"$\mathbf{{p}}_{{world}} = {_v(p.world)}$")
         self._row("view ← world", matrix=view_from_world)
         self._row("camera", rf"$\mathbf{{p}}_{{view}} = {_v(p.view)},\ \ \mathrm{{depth}} = {_g(p.depth)}$")
+        self._lecture_rows(p.view, camera)
         self._row("clip ← view", matrix=clip_from_view)
         self._row("clip", rf"$(x_c, y_c, z_c, w) = {_v(p.clip)}$")
         if p.ndc is None:

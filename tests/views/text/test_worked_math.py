@@ -135,6 +135,38 @@ def test_a_picked_vertex_shows_its_path_to_the_pixel(math_pane):
     assert len(math_pane.findChildren(MatrixView)) == 2  # view <- world and clip <- view
 
 
+def _numbers(text: str) -> list[float]:
+    return [float(x) for x in re.findall(r"-?\d+(?:\.\d+)?(?:e[-+]?\d+)?", text)]
+
+
+@pytest.mark.parametrize("lesson", ["perspective", "orthographic"])
+def test_a_picked_vertex_is_also_worked_in_the_lectures_coordinates_with_the_screen_at_z_0(math_pane, lesson):
+    # The perspective step works x' = x d / (z + d) with the screen at z = 0 and the eye at z = -d; the
+    # pane showed only the window's matrices.  Its rows "Fig. VII.6" (A) and "A′" now work the step's
+    # formula with the picked corner's numbers (Fig. VII.7 for the orthographic step).  By hand, in world
+    # space: the screen is the near plane, n in front of the eye along the viewing axis; A' is where the
+    # line from the corner to the eye crosses it (similar triangles), or, for parallel rays, the corner
+    # moved along the axis onto it.
+    step = LESSONS[lesson].steps[0]
+    cam = step.scene.camera
+    cube = next(o for o in step.scene.objects if o.name == "cube")
+    point = cube.vertices[step.highlight["vertex"]["index"]]
+    math_pane.show_vertex(point, cam, "vertex 6 of 'cube'")
+    eye = np.asarray(cam.eye)
+    forward = (np.asarray(cam.target) - eye) / np.linalg.norm(np.asarray(cam.target) - eye)
+    right = np.cross(forward, cam.up) / np.linalg.norm(np.cross(forward, cam.up))
+    up = np.cross(right, forward)
+    rel = point - eye
+    z = rel @ forward - cam.near  # the corner's distance beyond the screen: the lecture's z
+    crossing = rel * (cam.near / (rel @ forward)) if cam.projection == "perspective" else rel
+    image = [crossing @ right, crossing @ up]
+    corner = (rel @ right, rel @ up, z)
+    figure = "Fig. VII.6" if lesson == "perspective" else "Fig. VII.7"
+    assert _numbers(math_pane.value(figure).partition("A = ")[2])[:3] == [
+        pytest.approx(v, rel=1e-5) for v in corner]
+    assert _numbers(math_pane.value("A′"))[-2:] == [pytest.approx(v, rel=1e-5) for v in image]
+
+
 def test_formulas_grow_with_the_scale(math_pane, qtbot):
     math_pane.show_sphere(intersect_sphere_segment((2, 1, 2), (10, 6, 6), (6, 4, 6), 10))
     view = math_pane.findChildren(MathView)[0]
