@@ -113,18 +113,23 @@ def test_a_picked_ray_into_glass_shows_snells_law_and_fresnel(math_pane):
     assert np.allclose(reflected, d - 2 * (d @ root.normal) * root.normal, atol=1e-5)
 
 
-def test_a_picked_vertex_shows_its_path_to_the_pixel(math_pane):
-    step = LESSONS["perspective"].steps[0]
-    cube = next(o for o in step.scene.objects if o.name == "cube")
+def _shown_corner(math_pane, lesson: str):
+    """Show the vertex path of the cube's corner that ``lesson``'s step follows; its camera, the
+    corner's offset from the eye and the camera's own axes (forward, right, up), built by hand."""
+    step = LESSONS[lesson].steps[0]
     cam = step.scene.camera
+    cube = next(o for o in step.scene.objects if o.name == "cube")
     point = cube.vertices[step.highlight["vertex"]["index"]]
-    math_pane.show_vertex(point, cam, "cube vertex")
-    # pixel of the point from the camera's own axes and the viewing angle, no matrices
+    math_pane.show_vertex(point, cam, "vertex 6 of 'cube'")
     eye = np.asarray(cam.eye)
     forward = (np.asarray(cam.target) - eye) / np.linalg.norm(np.asarray(cam.target) - eye)
     right = np.cross(forward, cam.up) / np.linalg.norm(np.cross(forward, cam.up))
-    up = np.cross(right, forward)
-    rel = point - eye
+    return cam, point - eye, (forward, right, np.cross(right, forward))
+
+
+def test_a_picked_vertex_shows_its_path_to_the_pixel(math_pane):
+    cam, rel, (forward, right, up) = _shown_corner(math_pane, "perspective")
+    # pixel of the point from the camera's own axes and the viewing angle, no matrices
     half_h = math.tan(math.radians(cam.fov_y_deg) / 2)
     sx = (rel @ right) / (rel @ forward) / (half_h * cam.width / cam.height)
     sy = (rel @ up) / (rel @ forward) / half_h
@@ -147,16 +152,7 @@ def test_a_picked_vertex_is_also_worked_in_the_lectures_coordinates_with_the_scr
     # space: the screen is the near plane, n in front of the eye along the viewing axis; A' is where the
     # line from the corner to the eye crosses it (similar triangles), or, for parallel rays, the corner
     # moved along the axis onto it.
-    step = LESSONS[lesson].steps[0]
-    cam = step.scene.camera
-    cube = next(o for o in step.scene.objects if o.name == "cube")
-    point = cube.vertices[step.highlight["vertex"]["index"]]
-    math_pane.show_vertex(point, cam, "vertex 6 of 'cube'")
-    eye = np.asarray(cam.eye)
-    forward = (np.asarray(cam.target) - eye) / np.linalg.norm(np.asarray(cam.target) - eye)
-    right = np.cross(forward, cam.up) / np.linalg.norm(np.cross(forward, cam.up))
-    up = np.cross(right, forward)
-    rel = point - eye
+    cam, rel, (forward, right, up) = _shown_corner(math_pane, lesson)
     z = rel @ forward - cam.near  # the corner's distance beyond the screen: the lecture's z
     crossing = rel * (cam.near / (rel @ forward)) if cam.projection == "perspective" else rel
     image = [crossing @ right, crossing @ up]
