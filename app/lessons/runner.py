@@ -27,7 +27,8 @@ FACE_SIDE_OVERLAY = "lesson: face side"
 """The words on a highlighted face's normal, "N: front face" or "N: back face": the culling test's
 result, kept apart from :data:`LESSON_OVERLAY` so that the window can withhold them while an exercise
 asks for that result."""
-MODEL_OVERLAYS = {"bounding spheres": "spheres", "grid cells": "grid", "frustum": "frustum"}
+MODEL_OVERLAYS = {"bounding spheres": "spheres", "grid cells": "grid", "cells the ray walks": "walk",
+                  "frustum": "frustum"}
 """Lesson overlay names and the model's names for them."""
 OBJECT_STYLE = {"color": "#ffd400", "style": "wireframe", "line_width": 3}
 NORMAL_COLOR = "#ff2bd6"

@@ -59,7 +59,7 @@ VERSION = 1
 #: The panes a step can show, by the names the window gives them.
 PANES = ("scene 3D", "image order", "object order", "four views", "compare", "hard cases", "cost")
 #: The 3D overlays a step can switch on.
-OVERLAYS = ("frustum", "bounding spheres", "grid cells")
+OVERLAYS = ("frustum", "bounding spheres", "grid cells", "cells the ray walks")
 #: The image-order heat maps a step can lay over the traced image: none, or a count of each pixel's tests.
 HEAT_MAPS = ("off", *facts.HEAT_TESTS)
 #: What the 3D pane keeps in view: the scene, observer and frustum; or the highlight, eye and screen.

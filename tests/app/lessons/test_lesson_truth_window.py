@@ -196,3 +196,43 @@ def test_add_this_view_as_a_step_round_trips_the_window_state(window, qtbot, tmp
     assert "steps[2].facts[0].object: no object 'purple' in the scene" in box.informativeText()
     box.close()
     assert len(json.loads(path.read_text(encoding="utf-8"))["steps"]) == 2  # nothing written
+
+
+def test_the_grid_step_outlines_the_cells_its_picked_ray_walks_as_its_words_say(window, qtbot):
+    # "A ray walks only through the cells it crosses, outlined here for the picked pixel's ray": the step
+    # showed the grid's occupied cells only.  Every cell of the grid that the segment from the eye to the
+    # hit crosses (a slab test of each cell, by brute force, cells only touched at a corner or edge left
+    # to either side) is outlined, and only those.
+    import numpy as np
+
+    from core.image_order.flat_scene import trace_scene
+
+    panel = window.lesson_panel
+    k = LESSONS["acceleration"]
+    panel.select(k, 1)
+    step = panel.current_step()
+    assert "cells the ray walks" in step.overlays and "walk" in window.model.overlays
+    assert window.tab("image order").widget.show_walk.isChecked()
+    qtbot.waitUntil(lambda: window.ray_tree is not None and window.ray_tree[:2] == tuple(step.pixel),
+                    timeout=RENDER_TIMEOUT_MS)
+    qtbot.waitUntil(lambda: len(window.scene_view.overlay_parts("walk")) > 0, timeout=RENDER_TIMEOUT_MS)
+    (outlines,) = window.scene_view.overlay_parts("walk")
+    shown = {tuple(np.round(low, 9)) for low in outlines.points.reshape(-1, 8, 3)[:, 0]}  # boxes' low corners
+    root = window.ray_tree[2]
+    grid = trace_scene(step.scene).geometry.accel("grid")[0]
+    nx, ny, nz = grid.resolution
+    every = np.array([(i, j, kk) for kk in range(nz) for j in range(ny) for i in range(nx)])
+    boxes = grid.cell_boxes(every)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        t0 = (boxes[:, 0] - root.origin) / root.direction
+        t1 = (boxes[:, 1] - root.origin) / root.direction
+    enter = np.nanmax(np.minimum(t0, t1), axis=1)
+    leave = np.nanmin(np.maximum(t0, t1), axis=1)
+    tolerance = 1e-9 * root.t
+    surely = (enter < leave - tolerance) & (leave > tolerance) & (enter < root.t - tolerance)
+    maybe = (enter <= leave + tolerance) & (leave >= -tolerance) & (enter <= root.t + tolerance)
+    crossed = {tuple(np.round(b[0], 9)) for b in boxes[surely]}
+    touched = {tuple(np.round(b[0], 9)) for b in boxes[maybe]}
+    assert len(crossed) >= 3 and crossed <= shown <= touched
+    panel.select(k, 2)  # the next step shows the grid and the spheres, not the walk
+    assert "walk" not in window.model.overlays
