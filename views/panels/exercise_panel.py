@@ -182,16 +182,16 @@ class ExercisePanel(QWidget):
         self.answer_layout = QVBoxLayout(self.answer_area)
         self.answer_layout.setContentsMargins(0, 0, 0, 0)
         self.choices = QButtonGroup(self)
-        self.number_edit = QLineEdit()
+        self.number_edit = QLineEdit(self.answer_area)
         self.number_edit.setPlaceholderText("a number; Enter checks it")
-        self.pixel_edit = QLineEdit()
+        self.pixel_edit = QLineEdit(self.answer_area)
         self.pixel_edit.setPlaceholderText("x, y — or click the pixel in the image")
-        self.order_list = QListWidget()
+        self.order_list = QListWidget(self.answer_area)
         self.order_list.setDragDropMode(QListWidget.DragDropMode.InternalMove)
         self.order_list.setToolTip("Drag the items into order, or move the selected one with Alt+Up and "
                                    "Alt+Down")
         self.order_list.installEventFilter(self)
-        self.picture_grid = QWidget()  # pick_picture: the pictures, each with its radio button
+        self.picture_grid = QWidget(self.answer_area)  # pick_picture: each picture, its radio button
         self.picture_layout = QGridLayout(self.picture_grid)
         self.picture_views: list[ImageView] = []
         self.picture_keys: list[str] = []
@@ -282,7 +282,10 @@ class ExercisePanel(QWidget):
     def _fill(self) -> None:
         ex = self.exercise()
         for w in (self.number_edit, self.pixel_edit, self.order_list, self.picture_grid):
-            w.setParent(None)
+            # Out of the layout but kept in the panel, hidden explicitly: taken out with setParent(None)
+            # in the turn it went in, the show Qt queued then made it a window of its own.
+            self.answer_layout.removeWidget(w)
+            w.hide()
         while self.picture_layout.count():
             widget = self.picture_layout.takeAt(0).widget()
             widget.hide()  # gone at once, not when the event loop comes round to deleting it
@@ -314,18 +317,23 @@ class ExercisePanel(QWidget):
                 self.answer_layout.addWidget(button)
         elif ex.kind == "number":
             self.number_edit.clear()
-            self.answer_layout.addWidget(self.number_edit)
+            self._answer_with(self.number_edit)
         elif ex.kind == "click_pixel":
             self.pixel_edit.clear()
-            self.answer_layout.addWidget(self.pixel_edit)
+            self._answer_with(self.pixel_edit)
         elif ex.kind == "pick_picture":
-            self.answer_layout.addWidget(self.picture_grid)
+            self._answer_with(self.picture_grid)
             p = self._p(ex)
             self._run(lambda: pictures(ex, p), lambda drawn: self._show_pictures(ex, drawn))
         else:
             self._set_order(list(ex.args["items"]))
-            self.answer_layout.addWidget(self.order_list)
+            self._answer_with(self.order_list)
         self.set_answers_hidden(self.room)
+
+    def _answer_with(self, field: QWidget) -> None:
+        """Put ``field`` under the question, shown (the fields are hidden explicitly between questions)."""
+        self.answer_layout.addWidget(field)
+        field.show()
 
     def _set_order(self, items: list[str]) -> None:
         """The items to put in order, the list as tall as they are (no scrolling, no empty rows)."""

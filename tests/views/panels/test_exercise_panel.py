@@ -4,6 +4,7 @@ restarts and reset, and the question put to the room."""
 
 import pytest
 from PySide6.QtCore import QSettings, Qt
+from PySide6.QtWidgets import QApplication
 from qt_fixtures import shown_widget
 from shipped_exercises import seed_drawing
 
@@ -284,3 +285,26 @@ def test_a_show_me_answered_after_the_student_moved_on_shows_nothing(qtbot, sett
     work, done = pending.pop()
     done(work())
     assert shown and shown[0][0] == panel.exercise().step  # in time, it shows the step
+
+
+def test_the_last_exercises_answer_field_never_becomes_a_window_of_its_own(panel, qtbot):
+    # A number question, then a choice in the same turn (a script, a GUI test, a lesson opened and
+    # an exercise chosen at once): the number field, taken out of the panel, was shown a moment later
+    # as a window of its own, by the show Qt had queued when the field went into the panel.
+    kinds = {}
+    for lesson in (BY_ID["ray_sphere"], BY_ID["transparency"], BY_ID["three_views"], BY_ID["ray_casting"]):
+        for i, ex in enumerate(lesson.exercises):
+            kinds.setdefault(ex.kind, (lesson, i))
+    assert set(kinds) == {"number", "click_pixel", "choose_one", "order", "pick_picture"}
+    fields = (panel.number_edit, panel.pixel_edit, panel.order_list, panel.picture_grid)
+    for first, then in ((a, b) for a in kinds.values() for b in kinds.values() if a is not b):
+        panel.set_lesson(first[0])
+        panel.go(first[1])
+        panel.set_lesson(then[0])
+        panel.go(then[1])
+        QApplication.sendPostedEvents()
+        QApplication.processEvents()
+        assert not [w for w in QApplication.topLevelWidgets() if w.isVisible() and w is not panel]
+        assert not any(field.isWindow() for field in fields)
+        shown = [field for field in fields if field.isVisible()]
+        assert len(shown) == (panel.exercise().kind != "choose_one"), panel.exercise().kind
