@@ -145,7 +145,7 @@ def test_exercises_follow_the_lesson_a_click_answers_and_progress_shows_in_the_l
     qtbot.mouseClick(image, Qt.MouseButton.LeftButton, pos=image.widget_pos(*pixel).toPoint())  # the student
     qtbot.waitUntil(lambda: exercises.feedback.text().startswith("Right"), timeout=RENDER_TIMEOUT_MS)
     # Right, but not at the first try: Show me gave a right pixel.
-    assert "1/2 done, 0 right at first try" in panel.list.item(k).text()
+    assert "1/3 done, 0 right at first try" in panel.list.item(k).text()
 
 
 def test_reveal_on_a_click_a_pixel_exercise_picks_the_pixel_it_names(window, qtbot):

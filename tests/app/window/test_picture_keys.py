@@ -71,7 +71,7 @@ def test_a_click_a_pixel_exercise_is_answered_from_the_keyboard(qtbot, window):
     qtbot.keyClick(image, Qt.Key.Key_Return)
     assert exercises.pixel_edit.text() == "200, 125"
     qtbot.waitUntil(lambda: exercises.feedback.text().startswith("Right"), timeout=RENDER_TIMEOUT_MS)
-    assert "1/2 done, 1 right at first try" in lessons.list.item(k).text()
+    assert "1/3 done, 1 right at first try" in lessons.list.item(k).text()
 
 
 def test_the_z_buffer_picture_answers_a_click_a_pixel_exercise_too(qtbot, window):

@@ -56,6 +56,35 @@ def test_ray_casting_a_click_where_the_cube_blocks_the_light_is_right():
     assert not judge(ex, p, (230, 155)).right
 
 
+def test_ray_casting_a_click_where_the_cube_is_met_first_is_right():
+    # Every object crossed along each pixel's ray, brute force: where the cube's crossing is the
+    # nearest the pixel shows the cube; where the cone's is nearer, in front of the cube, it does not.
+    ex, p = exercise("ray_casting", 2)
+    t = image_hits(_scene(p))
+    first = nearest(t)
+    assert judge(ex, p, inner_pixel(first == "cube")).right
+    assert not judge(ex, p, inner_pixel((first == "cone") & np.isfinite(t["cube"]))).right
+    assert not judge(ex, p, inner_pixel(first == "ground")).right
+
+
+@pytest.mark.parametrize("variant", range(3))
+def test_ray_sphere_the_line_misses_touches_or_crosses_by_its_distance_from_the_centre(variant):
+    # In exact fractions: the centre's squared distance from the line, |c - o|² - ((c - o)·d)² / d·d,
+    # against r²: larger, the line misses; equal, it touches; smaller, it crosses.  (The first two
+    # variants: c - o = (2, -2, 1) is perpendicular to d = (1, 2, 2), 9 from the line, r² = 9 and 16;
+    # the third: (2, -2, -1) perpendicular to (2, 1, 2), 9 against 4.)
+    ex, p = exercise("ray_sphere", 9, variant)
+    fact = ex.args["fact"]
+    o, d, c = ([Fraction(v) for v in fact[key]] for key in ("origin", "direction", "center"))
+    f = [ci - oi for ci, oi in zip(c, o, strict=True)]
+    along = sum(fi * di for fi, di in zip(f, d, strict=True))
+    squared = sum(fi * fi for fi in f) - along * along / sum(di * di for di in d)
+    r2 = Fraction(fact["radius"]) ** 2
+    answer = "misses" if squared > r2 else "tangent" if squared == r2 else "crosses"
+    assert answer == ("tangent", "crosses", "misses")[variant]
+    assert_only(ex, p, answer)
+
+
 @pytest.mark.parametrize("variant", range(4))
 def test_ray_casting_what_blocks_each_variants_shadow_ray(variant):
     # Each variant's ray meets the ground; from there the shadow ray towards the light meets one

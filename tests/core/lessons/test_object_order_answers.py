@@ -114,6 +114,24 @@ def test_frustum_only_the_right_plane_cuts_the_sphere():
     assert_only(ex, p, "right")
 
 
+def test_frustum_only_the_sphere_reaches_across_a_side_of_the_pyramid():
+    # Each object's bounding sphere (box centre, farthest corner; a sphere is its own) against the
+    # six planes: the cube's and the cone's lie more than their radius inside all of them, the box's
+    # wholly beyond the near plane, and the sphere's centre is nearer the right plane than its radius.
+    ex, p = exercise("frustum", 2)
+    scene = _scene(p)
+    objects = {o.name: o for o in scene.objects}
+    for name in ("cube", "cone"):
+        centre, radius = _bounding_sphere(objects[name].vertices)
+        assert (frustum_distances(scene.camera, [centre])[0] > radius).all(), name
+    centre, radius = _bounding_sphere(objects["box"].vertices)
+    assert frustum_distances(scene.camera, [centre])[0][4] < -radius  # beyond the near plane
+    sphere = objects["sphere"]
+    distances = frustum_distances(scene.camera, [sphere.center])[0]
+    assert (np.abs(distances) < sphere.radius).sum() == 1 and (distances > -sphere.radius).all()
+    assert_only(ex, p, "sphere")
+
+
 def _facing(corners, eye):
     a, b, c = np.asarray(corners)
     return float(np.cross(b - a, c - a) @ (np.asarray(eye) - a))
@@ -213,13 +231,19 @@ def test_piercing_drawn_blue_first_green_fails_where_blue_is_nearer(variant):
     assert_only(ex, p, crossed["blue"] < crossed["green"])
 
 
-def test_piercing_blue_fails_where_green_drawn_first_is_nearer():
-    ex, p = exercise("zbuffer_piercing", 2)
+@pytest.mark.parametrize(("index", "first", "second"), [(2, "green", "blue"), (3, "blue", "green")])
+def test_piercing_the_polygon_drawn_second_fails_where_the_first_is_nearer(index, first, second):
+    # Green first (the first step) or blue first (the last step, both drawn): the second polygon's
+    # fragment fails where the first's crossing is nearer along the pixel's ray, and passes where its
+    # own is nearer or where the first does not cover the pixel.
+    ex, p = exercise("zbuffer_piercing", index)
     scene = _scene(p)
-    assert [o.name for o in scene.objects] == ["green", "blue"]
+    assert [o.name for o in scene.objects] == [first, second]
     t = image_hits(scene)
-    assert judge(ex, p, inner_pixel(t["green"] < t["blue"])).right
-    assert not judge(ex, p, inner_pixel((t["blue"] < t["green"]) & np.isfinite(t["green"]))).right
+    assert judge(ex, p, inner_pixel(t[first] < t[second])).right
+    assert not judge(ex, p, inner_pixel((t[second] < t[first]) & np.isfinite(t[first]))).right
+    alone = inner_pixel(np.isfinite(t[second]) & ~np.isfinite(t[first]))
+    assert alone is None or not judge(ex, p, alone).right
 
 
 def _flat_colour(scene, obj, triangle):
