@@ -29,8 +29,9 @@ from PySide6.QtWidgets import QSizePolicy, QWidget
 
 from core.srgb import to_srgb8
 
-GRID_CELL_PX = 14
-"""On-screen size (px) of one pixel from which its square's border and its centre are drawn."""
+GRID_CELL_PX = 10
+"""On-screen size (px) of one pixel from which its square's border and its centre are drawn: the
+rasterization lesson's 16 x 12 pixels get 11-12 px each presenting on a 1280 x 720 projector."""
 EDGE_COLOR = "#00e5ff"
 """A polygon's edges drawn over the image (cyan: apart from the magenta fragment outline)."""
 FOCUS_MARGIN = 3
@@ -342,6 +343,7 @@ class ImageView(QWidget):
             x, y = self.picked
             cell = QRectF(rect.x() + x * sx, rect.y() + y * sy, sx, sy)
             pad = max(3.0, sx)
+            painter.setBrush(Qt.BrushStyle.NoBrush)  # an outline: the highlight's fill hid the pixel
             painter.setPen(QPen(QColor("#ffffff"), 2))
             painter.drawRect(cell.adjusted(-pad, -pad, pad, pad))
             painter.setPen(QPen(QColor("#000000"), 1))

@@ -113,3 +113,30 @@ def test_a_large_image_shows_no_grid(qtbot):
     assert not view.grid_shown()
     row = [picture.pixelColor(view.widget_pos(x, 100).toPoint()).lightness() for x in range(100, 140)]
     assert max(row) < 30  # no centre dots
+
+
+def test_the_picked_pixel_is_outlined_not_covered_by_the_highlights_colour(qtbot):
+    # With a polygon's fragments outlined and the pixels too small for the grid, the picked pixel's
+    # box took the outline's magenta as its fill and hid the pixel and its neighbours (presenting the
+    # rasterization lesson on a 1280 x 720 projector).
+    blue = (0.1, 0.2, 0.9)
+    image = np.zeros((60, 80, 3))
+    image[10:50, 10:70] = blue
+    mask = np.zeros((60, 80), bool)
+    mask[10:50, 10:70] = True
+    view = ImageView()
+    qtbot.addWidget(view)
+    _shown(view, qtbot, image, (240, 180))  # 3 px a pixel: no grid
+    assert not view.grid_shown()
+    view.set_highlight(mask)
+    view.set_picked((30, 30))
+    shot = view.grab().toImage()
+    centre = shot.pixelColor(view.widget_pos(30, 30).toPoint())
+    assert (centre.red(), centre.green(), centre.blue()) == tuple(to_srgb8(np.array(blue)).tolist())
+
+
+def test_the_rasterization_lessons_pixels_show_their_grid_at_11_px_each(qtbot):
+    view = ImageView()
+    qtbot.addWidget(view)
+    _shown(view, qtbot, np.zeros((12, 16, 3)), (16 * 11 + 8, 12 * 11 + 8))
+    assert view.grid_shown()
