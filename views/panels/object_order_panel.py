@@ -411,7 +411,8 @@ class ObjectOrderPanel(QWidget):
         # One line: what a depth is and when a fragment passes, the depth columns' tooltips say
         # (at text x2 on 1280 x 720 the sentence took two more lines from the fragments' rows).
         self.history_caption.setText(
-            f"Pixel ({x}, {y}): {len(events)} fragments up to step {self.scrubber.step}.")
+            f"Pixel ({x}, {y}): {len(events)} fragment{'' if len(events) == 1 else 's'} up to step "
+            f"{self.scrubber.step}.")
         self.numbers.setPlainText(self._numbers_text(events))
         visible = [e for e in events if e.passed]
         if visible:

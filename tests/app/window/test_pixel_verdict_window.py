@@ -32,6 +32,7 @@ def test_object_order_pane_says_what_decided_the_picked_pixel(qtbot, window):
     assert panel.verdict.shown.verdict == "culled"
     assert "Culled: only back faces cover this pixel (triangle 1 of ground)" in panel.verdict.text()
     assert panel.history.rowCount() == 0  # nothing was drawn there: the table is empty, the sentence says why
+    assert panel.history_caption.text() == "Pixel (22, 14): 0 fragments up to step 0."  # none drawn
 
     panel = _raster_pick(qtbot, window, vs.before_near_plane())
     assert (panel.verdict.shown.verdict, panel.verdict.shown.fragments[0].plane) == ("clipped", "near")
@@ -48,7 +49,22 @@ def test_object_order_pane_says_what_decided_the_picked_pixel(qtbot, window):
     assert sorted((f.object, f.fate) for f in verdict.fragments) == [
         ("box", "culled"), ("box", "kept"), ("pane", "blended")]
     assert panel.history.rowCount() == 2  # the drawn ones: the box's top face and the pane
+    assert panel.history_caption.text().startswith("Pixel (22, 14): 2 fragments up to step ")
     assert "Why pixel (22, 14):" in panel.verdict.text() and "Blended" in panel.verdict.text()
+
+
+def test_one_fragment_is_one_fragment(qtbot, window):
+    # The rasterization lesson's picked pixel (3, 7): the triangle's one fragment ("1 fragments" before).
+    from core.files.lesson_file import shipped_lessons
+
+    k = [lesson.id for lesson in shipped_lessons()].index("rasterization")
+    window.lesson_panel.select(k, 0)
+    panel = window.tab("object order").widget
+    qtbot.waitUntil(lambda: window.showing_full("object order"), timeout=RENDER_TIMEOUT_MS)
+    caption = panel.history_caption
+    qtbot.waitUntil(lambda: caption.text().startswith("Pixel (3, 7)"), timeout=RENDER_TIMEOUT_MS)
+    assert panel.history_caption.text() == "Pixel (3, 7): 1 fragment up to step 1."
+    assert panel.history.rowCount() == 1
 
 
 def test_object_order_verdict_follows_the_step_scrubber(qtbot, window):
