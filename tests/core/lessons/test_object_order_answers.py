@@ -7,6 +7,7 @@ opaque objects before transparent ones, and keeps, at a pixel, the front face ne
 pixel's ray (depth grows along a ray, so the nearest crossing is the smallest depth).
 """
 
+from dataclasses import replace
 from fractions import Fraction
 
 import numpy as np
@@ -204,6 +205,22 @@ def test_zbuffer_stores_the_nearest_crossings_distance_along_the_viewing_axis(va
     depth = t * (direction @ frame(scene.camera)[2])
     assert number(ex, p) == pytest.approx(depth, abs=1e-6)
     assert judge(ex, p, depth + 0.009).right and not judge(ex, p, depth + 0.02).right
+
+
+@pytest.mark.parametrize("variant", range(3))
+def test_zbuffer_after_green_alone_stores_greens_distance_or_the_far_planes(variant):
+    # Only green drawn: where its crossing lies on the pixel's ray the entry holds its distance along
+    # the viewing axis (blue and yellow, nearer there, come later); elsewhere the cleared value, the
+    # far plane's 12.  By brute force, green alone: (87, 74) and (77, 86) cross it, (104, 57) does not.
+    ex, p = exercise("zbuffer", 3, variant)
+    scene = _scene(p)
+    green = replace(scene, objects=tuple(o for o in scene.objects if o.name == "green"))
+    origin, direction = pixel_ray(scene.camera, *ex.args["value"]["pixel"])
+    crossed = hits(green, origin, direction)
+    depth = crossed[0][0] * (direction @ frame(scene.camera)[2]) if crossed else scene.camera.far
+    assert bool(crossed) == (variant < 2)
+    assert number(ex, p) == pytest.approx(depth, abs=1e-6)
+    assert judge(ex, p, depth - 0.009).right and not judge(ex, p, depth - 0.02).right
 
 
 @pytest.mark.parametrize("variant", range(2))
