@@ -27,6 +27,7 @@ Every fact is one JSON object whose ``"fact"`` names its kind (pixels are
     {"fact": "ray_event", "pixel": [205, 132], "hit": 1, "event": "refract"}
     {"fact": "rays", "pixel": [205, 132], "kind": "shadow", "count": 3}
     {"fact": "tests_per_pixel", "accel": "bvh", "fewer_than": "grid", "tests": "primitive tests"}
+    {"fact": "changes_picture", "stage": "z_test", "is": false}
     {"fact": "ray_sphere", "origin": [2, 1, 2], "end": [10, 6, 6], "center": [6, 4, 6],
      "radius": 10, "value": "a", "equals": 105, "tolerance": 1e-9}
     {"fact": "ray_triangle", "origin": [0, 0, 0], "direction": [1, 1, 1], "a": [3, 0, 0],
@@ -52,7 +53,11 @@ rays of a kind that were traced.  ``tests_per_pixel`` compares two acceleration
 methods by the mean intersection tests a pixel's rays cost (all of them, as the image-order
 heat map counts them; ``tests`` is ``"primitive tests"``, the default, or ``"box and sphere
 tests"``): it holds when the whole image traced with ``accel`` (and the step's other image-order
-settings) costs fewer a pixel than with ``fewer_than``. ``ray_sphere`` takes the lecture's segment
+settings) costs fewer a pixel than with ``fewer_than``. ``changes_picture`` switches one
+object-order ``stage`` (``back_face_culling``, ``frustum_culling``, ``clipping``, ``sort_transparent``,
+``z_test``) the other way from the step's settings and holds when some pixel of the finished image
+changes ("for a convex solid this test alone gives the right picture": switching the z-test off
+changes none). ``ray_sphere`` takes the lecture's segment
 (``end``) or a ray (``direction``); its values are those of
 :class:`core.image_order.intersect_sphere.SphereIntersection` (``a``, ``b``, ``c``,
 ``discriminant``, ``sqrt_discriminant``, ``offset_squared``, ``radius_squared``, ``t_near``,
@@ -83,6 +88,8 @@ from core.scene import Mesh, Scene, Sphere
 
 FRUSTUM_STATES = (INSIDE, CROSSING, OUTSIDE)
 EVENTS = ("reflect", "refract", "total_reflection")
+#: The object-order stages a ``changes_picture`` fact switches (fields of ``RasterSettings``).
+STAGES = ("back_face_culling", "frustum_culling", "clipping", "sort_transparent", "z_test")
 SPHERE_VALUES = ("a", "b", "c", "half_b", "discriminant", "sqrt_discriminant", "line_distance", "t_near",
                  "t_far", "t", "ray_hit_t", "hit", "origin_inside", "offset_squared", "radius_squared",
                  "point", "classification", "chosen")
@@ -106,6 +113,7 @@ KINDS = MappingProxyType({
     "ray_event": (("pixel", "hit", "event"), ("object", "is")),
     "rays": (("pixel", "kind", "count"), ()),
     "tests_per_pixel": (("accel", "fewer_than"), ("tests", "is")),
+    "changes_picture": (("stage",), ("is",)),
     "ray_sphere": (("origin", "center", "radius", "value", "equals"), ("end", "direction", "tolerance")),
     "ray_triangle": (("origin", "direction", "a", "b", "c", "value", "equals"), ("tolerance",)),
 })
@@ -165,6 +173,8 @@ class Fact:
         if self.kind == "tests_per_pixel":
             return f"{a['accel']} {'costs' if yes else 'does not cost'} fewer {a.get('tests', _TESTS)} " \
                    f"a pixel than {a['fewer_than']}"
+        if self.kind == "changes_picture":
+            return f"switching {a['stage']} {'changes' if yes else 'does not change'} the object-order image"
         tolerance = a.get("tolerance", DEFAULT_TOLERANCE)
         return f"{self.kind} {a['value']} = {show(a['equals'])} (within {tolerance:g})"
 
@@ -274,6 +284,8 @@ def _read_arg(r, kind: str, key: str, v, path: str, scene: Scene | None, d: dict
         return r.choice(v, path, tuple(ACCEL_CODES), "acceleration method")
     if key == "tests":
         return r.choice(v, path, tuple(HEAT_TESTS), "count")
+    if key == "stage":
+        return r.choice(v, path, STAGES, "stage")
     if key == "front_face":
         if not isinstance(v, bool):
             r.add(path, f"expected true or false, got {show(v)}")
@@ -622,6 +634,19 @@ def _tests_per_pixel(a, p):
         f" {tests} a pixel"
 
 
+def _changes_picture(a, p):
+    from dataclasses import replace
+
+    from core.object_order.pipeline import render_raster
+
+    settings = p.step.object_order
+    switched = replace(settings, **{a["stage"]: not getattr(settings, a["stage"])})
+    other = render_raster(p.step.scene, switched).color
+    differ = int(np.count_nonzero(np.any(other != p.raster.color, axis=-1)))
+    state = "off" if getattr(settings, a["stage"]) else "on"
+    return (differ > 0) == a.get("is", True), f"switched {state}, {differ} pixel(s) differ"
+
+
 def _value(a, result):
     got = getattr(result, a["value"])
     want = a["equals"]
@@ -663,7 +688,7 @@ _CHECKS = {
     "frustum": _frustum, "back_face": _back_face, "clipped": _clipped, "zbuffer_keeps": _zbuffer_keeps,
     "ztest_fails": _ztest_fails, "seen": _seen, "blend": _blend, "projects_to": _projects_to,
     "first_hit": _first_hit, "shadow": _shadow, "ray_event": _ray_event, "rays": _rays,
-    "tests_per_pixel": _tests_per_pixel,
+    "tests_per_pixel": _tests_per_pixel, "changes_picture": _changes_picture,
     "ray_sphere": _ray_sphere, "ray_triangle": _ray_triangle,
 }
 

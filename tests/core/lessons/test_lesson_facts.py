@@ -143,6 +143,23 @@ def test_bad_facts_are_refused_with_their_field_path():
     assert len(problems) == 8
 
 
+def test_a_stage_that_changes_no_pixel_and_one_that_does():
+    # A convex solid's front faces never overlap on the screen, so with back faces culled the z-test
+    # decides nothing (Fig. VII.4a); the L-shaped prism's arm hides part of its notch's wall, so
+    # without the z-test the wall, drawn later, shows through (Fig. VII.4b).
+    no_z = {"fact": "changes_picture", "stage": "z_test", "is": False}
+    convex = from_dict(_lesson([no_z, {**no_z, "stage": "back_face_culling"}], scene="culling_pyramid"))
+    assert check_lesson(convex) == []
+    (line,) = check_lesson(from_dict(_lesson([no_z], scene="culling_notched")))
+    assert "steps[0].facts[0] (switching z_test does not change the object-order image): computed switched " \
+           "off, " in line and line.endswith(" pixel(s) differ")
+    assert check_lesson(from_dict(_lesson([{"fact": "changes_picture", "stage": "z_test"}],
+                                          scene="culling_notched"))) == []
+    with pytest.raises(LessonFileError) as info:
+        from_dict(_lesson([{"fact": "changes_picture", "stage": "painter"}]))
+    assert info.value.problems[0].startswith("steps[0].facts[0].stage: unknown stage 'painter'")
+
+
 def _run_check(*files) -> subprocess.CompletedProcess:
     return subprocess.run([sys.executable, "-m", "app", "lesson", "check", *map(str, files)],
                           cwd=ROOT, capture_output=True, text=True, encoding="utf-8", timeout=600)
