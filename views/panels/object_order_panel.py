@@ -17,7 +17,7 @@ even while the panel was hidden: a hidden panel now makes it once it is shown.
 from __future__ import annotations
 
 import numpy as np
-from PySide6.QtCore import Qt, Signal
+from PySide6.QtCore import QEvent, Qt, Signal
 from PySide6.QtGui import QColor, QFont
 from PySide6.QtWidgets import (
     QCheckBox,
@@ -51,7 +51,7 @@ from views.panels.side_column import SideColumn
 from views.panels.step_scrubber import StepScrubber
 from views.text.verdict_label import VerdictLabel
 from views.text.worked_math import WorkedMath
-from views.whole_rows import WholeLinesLabel, WholeRowsTable
+from views.whole_rows import ROWS_SHOWN, WholeLinesLabel, WholeRowsTable
 
 STAGES = [
     ("back_face_culling", "Back-face culling",
@@ -197,6 +197,7 @@ class ObjectOrderPanel(QWidget):
         self.history.setToolTip(DEPTH_TIP)
         self.history_caption = WholeLinesLabel(HISTORY_PROMPT)
         self.verdict = VerdictLabel()
+        self.history.viewport().installEventFilter(self)  # its height shared with the verdict
         history_page = QWidget()
         hl = QVBoxLayout(history_page)
         hl.addWidget(self.verdict)
@@ -233,6 +234,20 @@ class ObjectOrderPanel(QWidget):
         model.step_changed.connect(self._step_changed)
         model.buffer_pixel_changed.connect(self._show_pixel)
         self.show_settings(model.raster_settings)
+
+    def _fit_verdict(self) -> None:
+        """Give the verdict above the pixel's history the lines its fragments' rows do not need (up to
+        :data:`~views.whole_rows.ROWS_SHOWN` of them): presenting on a 1280 x 720 projector a pixel
+        of one fragment left two rows' room empty under a verdict cut short with "…"."""
+        rows = min(self.history.rowCount(), ROWS_SHOWN)
+        need = sum(self.history.rowHeight(r) for r in range(rows)) or self.history.fontMetrics().lineSpacing()
+        shared = self.history.viewport().height() + (0 if self.verdict.isHidden() else self.verdict.height())
+        self.verdict.set_max_lines((shared - need) // self.verdict.fontMetrics().lineSpacing())
+
+    def eventFilter(self, watched, event) -> bool:
+        if event.type() == QEvent.Type.Resize and watched is self.history.viewport():
+            self._fit_verdict()
+        return super().eventFilter(watched, event)
 
     @property
     def picked(self) -> tuple[int, int] | None:
@@ -414,6 +429,7 @@ class ObjectOrderPanel(QWidget):
             f"Pixel ({x}, {y}): {len(events)} fragment{'' if len(events) == 1 else 's'} up to step "
             f"{self.scrubber.step}.")
         self.numbers.setPlainText(self._numbers_text(events))
+        self._fit_verdict()
         visible = [e for e in events if e.passed]
         if visible:
             self._show_vertex_path(visible[-1].polygon, x, y)

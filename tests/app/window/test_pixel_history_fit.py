@@ -25,3 +25,29 @@ def test_presenting_at_x2_on_1280x720_a_picked_pixels_history_shows_its_rows_who
 
     qtbot.waitUntil(whole, timeout=5000)
     window.presentation.set_presenting(False)
+
+
+def test_presenting_at_x1_5_on_1280x720_a_one_fragment_pixels_verdict_takes_the_rows_room(qtbot, monkeypatch):
+    # The rasterization lesson's pixel (3, 7) has one fragment: its verdict was cut short with "…" on
+    # one line above a table with two empty rows' room.  It takes the lines the rows do not need, and
+    # the fragment's row stays whole in view.
+    from core.files.lesson_file import shipped_lessons
+
+    window = presenting_on_1280x720(qtbot, monkeypatch, 1.5)
+    k = [lesson.id for lesson in shipped_lessons()].index("rasterization")
+    window.lesson_panel.select(k, 0)
+    panel = window.tab("object order").widget
+    qtbot.waitUntil(lambda: window.showing_full("object order"), timeout=RENDER_TIMEOUT_MS)
+    table, verdict = panel.history, panel.verdict
+    qtbot.waitUntil(lambda: table.rowCount() == 1 and verdict.shown is not None, timeout=RENDER_TIMEOUT_MS)
+    full = f"Why pixel (3, 7): {verdict.shown.sentence}"
+
+    def whole() -> bool:
+        assert window.frameGeometry().height() <= 720
+        lines = verdict.shown_lines()
+        assert len(lines) > 1 and " ".join(lines) == full, lines
+        assert table.viewport().rect().contains(table.visualRect(table.model().index(0, 0)))
+        return True
+
+    qtbot.waitUntil(whole, timeout=5000)
+    window.presentation.set_presenting(False)
