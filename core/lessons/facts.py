@@ -694,8 +694,10 @@ _CHECKS = {
 
 
 def check_lesson(lesson) -> list[str]:
-    """One line per fact of ``lesson`` that does not hold (lesson, step, fact and what was computed) and
-    per highlight its step's words do not name (:func:`core.lessons.naming.unnamed_highlights`)."""
+    """One line per fact of ``lesson`` that does not hold (lesson, step, fact and what was computed),
+    per highlight its step's words do not name (:func:`core.lessons.naming.unnamed_highlights`) and
+    per step that writes a number none of its facts states
+    (:func:`core.lessons.numbers_said.unchecked_numbers`)."""
     lines = []
     for k, step in enumerate(lesson.steps):
         for fact, computed in check_step(step):

@@ -3,8 +3,8 @@
 The window marks what a step highlights (an object, a face, a vertex, one ray of the picked pixel's
 tree, the polygon drawn at a step) and writes the names of the objects its words name
 (:mod:`app.lessons.runner`).  A mark the words do not speak of shows the student something the words
-do not explain: the ray-tracing step about colours summed from the leaves up selected the reflected
-ray, which its words never mention.  :func:`unnamed_highlights` finds such steps, for
+do not explain: the frustum step outlined the box behind the eye while its words spoke only of
+"objects entirely outside it".  :func:`unnamed_highlights` finds such steps, for
 ``python -m app lesson check`` and File → Open lesson (:func:`core.lessons.facts.check_lesson`).
 """
 

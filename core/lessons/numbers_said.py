@@ -16,6 +16,8 @@ from __future__ import annotations
 
 import re
 
+from core.lessons.naming import step_words
+
 #: A number as a step writes it: digits, a decimal point and decimals; a minus sign (ASCII or "−").
 _WRITTEN = re.compile(r"(?<![\w.])[-−]?(\d+(?:\.\d+)?)(?![\w])")
 #: Below this, an integer written without decimals is everywhere (coordinates, exponents, indices, "1 − α")
@@ -64,7 +66,7 @@ def unchecked_numbers(lesson) -> list[str]:
     lines = []
     for k, step in enumerate(lesson.steps):
         stated = [x for fact in step.facts for x in _stated(fact.args)]
-        said = "\n".join((step.title, step.text, *step.formulas))
+        said = step_words(step)
         loose = [(n, places) for n, places in written_numbers(said)
                  if not any(writes(n, places, x, float("inf")) for x in stated)]
         if loose:
