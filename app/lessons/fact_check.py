@@ -4,8 +4,8 @@
 pipelines; for a lesson of many steps that takes seconds, so
 :class:`LessonFactCheck` runs it as a job (:class:`app.window.workers.Renderer`, the
 newest lesson opened wins), reports progress in the status bar and, when a
-fact does not hold or a highlight is not named by its step's words, opens a
-dialog listing every failure in the words of ``python -m app lesson check``.
+fact does not hold, a highlight is not named by its step's words or a number is no
+fact's, opens a dialog listing every failure in the words of ``python -m app lesson check``.
 """
 
 from __future__ import annotations
@@ -41,8 +41,8 @@ class LessonFactCheck(QObject):
         return self._renderer.busy
 
     def check(self, lesson) -> None:
-        """Check every fact and highlight of ``lesson`` in the background; a dialog lists those that do
-        not hold."""
+        """Check every fact, highlight and number of ``lesson`` in the background
+        (:func:`core.lessons.facts.check_lesson`); a dialog lists what does not hold."""
         self._lesson = lesson
         facts = sum(len(step.facts) for step in lesson.steps)
         self.window.statusBar().showMessage(f"Checking the {facts} facts of lesson {lesson.title!r}…")
@@ -56,13 +56,15 @@ class LessonFactCheck(QObject):
         self.failures = list(failures)
         lesson = self._lesson
         if not failures:
-            self.window.statusBar().showMessage(f"Every fact of lesson {lesson.title!r} holds", 8000)
+            self.window.statusBar().showMessage(
+                f"Every fact of lesson {lesson.title!r} holds, every number it writes is a fact's and every "
+                "highlight is named", 8000)
             return
         self.window.statusBar().showMessage(
-            f"{len(failures)} fact(s) or highlight(s) of lesson {lesson.title!r} do not hold", 15000)
-        box = QMessageBox(QMessageBox.Icon.Warning, "Facts and highlights that do not hold",
-                          f"{len(failures)} fact(s) of {lesson.title!r} are not what the pipelines compute, "
-                          "or highlight(s) are not named by their step's words:",
+            f"{len(failures)} problem(s) in what lesson {lesson.title!r} says", 15000)
+        box = QMessageBox(QMessageBox.Icon.Warning, "What the lesson says that does not hold",
+                          f"{len(failures)} problem(s) in {lesson.title!r}: a fact the pipelines do not "
+                          "compute, a highlight its step's words do not name, or a number no fact states:",
                           QMessageBox.StandardButton.Ok, self.window)
         box.setInformativeText("\n".join(failures[:8]) + (
             f"\n... and {len(failures) - 8} more" if len(failures) > 8 else ""))
