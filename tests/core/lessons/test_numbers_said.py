@@ -50,3 +50,10 @@ def test_the_lectures_segment_gives_the_squares_and_the_root_of_the_discriminant
     assert abs(crossing.sqrt_discriminant - float(mpmath.sqrt(40656))) < 1e-12
     missed = solve_intersection("ray_sphere", {**SEGMENT, "origin": [30, 0, 0], "end": [30, 1, 0]})
     assert missed.discriminant < 0 and missed.sqrt_discriminant is None
+
+
+def test_the_observers_own_numbers_need_no_fact():
+    # The window labels the frustum with them ("far plane, f = 30"); the lecture scene's observer
+    # has a 320 x 240 image and a 40 degree viewing angle.
+    assert unchecked_numbers(_lesson("A 320 x 240 image, a 40 degree angle, the far plane at 30.")) == []
+    assert unchecked_numbers(_lesson("The far plane at 31.")) != []
