@@ -1,12 +1,12 @@
 """The numbers a lesson step's words write, and whether its facts state them.
 
-A number in a step's words is a claim ("their squared distances from the centre are 41 and 20",
-"its corners sit on the centres of pixels (2, 2), (12, 2) and (8, 10)"), and the pipelines decide
-a claim only when a fact states it (:mod:`core.lessons.facts`: ``"equals": 41``, ``"pixel": [12,
-2]``), or the step's observer holds it (its image's width and height, its near and far planes, its
-viewing angle, eye and target: the numbers the window labels the frustum with, "far plane, f = 16").
-:func:`unchecked_numbers` lists each number of a step's title, text and formulas that neither states,
-for ``python -m app lesson check`` and File → Open lesson
+A number in a step's words is a claim ("their squared distances from the centre are 41 and 20", "its
+corners sit on the centres of pixels (2, 2), (12, 2) and (8, 10)"), and the pipelines decide a claim
+only when a fact states it (:mod:`core.lessons.facts`: ``"equals": 41``, ``"pixel": [12, 2]``), or
+the step's observer holds it (its image's width and height, its near and far planes, its viewing
+angle, eye and target: the numbers the window labels the frustum with, "far plane, f = 16").
+:func:`unchecked_numbers` lists each number of a step's title, text, formulas and presenter's notes
+that neither states, for ``python -m app lesson check`` and File → Open lesson
 (:func:`core.lessons.facts.check_lesson`); the exercises use :func:`written_numbers` and
 :func:`writes` to find a step that states an exercise's answer.
 
@@ -62,15 +62,15 @@ def _stated(value) -> list[float]:
 
 
 def unchecked_numbers(lesson) -> list[str]:
-    """One line per step of ``lesson`` whose title, text or formulas write a number that none of that
-    step's facts states and its observer does not hold (as written: to its decimals, either sign);
-    empty when every number is one of those."""
+    """One line per step of ``lesson`` whose title, text, formulas or presenter's notes write a
+    number that none of that step's facts states and its observer does not hold (as written: to its
+    decimals, either sign); empty when every number is one of those."""
     lines = []
     for k, step in enumerate(lesson.steps):
         cam = step.scene.camera
         observer = [cam.width, cam.height, cam.near, cam.far, cam.fov_y_deg, *cam.eye, *cam.target]
         stated = [x for fact in step.facts for x in _stated(fact.args)] + [float(x) for x in observer]
-        said = step_words(step)
+        said = f"{step_words(step)}\n{step.notes}"  # the presenter's notes are read to the room too
         loose = [(n, places) for n, places in written_numbers(said)
                  if not any(writes(n, places, x, float("inf")) for x in stated)]
         if loose:

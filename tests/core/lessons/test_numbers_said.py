@@ -57,3 +57,11 @@ def test_the_observers_own_numbers_need_no_fact():
     # has a 320 x 240 image and a 40 degree viewing angle.
     assert unchecked_numbers(_lesson("A 320 x 240 image, a 40 degree angle, the far plane at 30.")) == []
     assert unchecked_numbers(_lesson("The far plane at 31.")) != []
+
+
+def test_the_presenters_notes_are_held_to_the_same_rule():
+    lesson = from_dict({"format": "render-explorer-lesson", "version": 1, "id": "mine", "title": "Mine",
+                        "steps": [{"title": "Crossing", "text": "The ray.", "scene": "lecture",
+                                   "panes": ["image order"], "notes": "Tell them t is 1.56016."}]})
+    (line,) = unchecked_numbers(lesson)
+    assert "no fact states 1.56016" in line
