@@ -193,6 +193,29 @@ def test_lesson_check_passes_on_the_shipped_lessons_fails_on_a_false_fact_and_re
     assert out.stdout == ""
 
 
+def test_lesson_check_in_a_process_reports_an_unnamed_highlight_and_an_unstated_number_and_a_bad_stage(
+        tmp_path):
+    # The frustum lesson with the words that hid its marked box (and a number no fact states): exit 1,
+    # one line each; a changes_picture fact naming no stage: exit 2, the field's path, no traceback.
+    data = json.loads((FILES / "03_frustum.json").read_text(encoding="utf-8"))
+    step = data["steps"][1]
+    step["text"] = step["text"].replace("like the one marked on the eye's side of the front plane, ", "")
+    step["text"] += " The end plane lies 16.5 units away."
+    words = tmp_path / "words.json"
+    words.write_text(json.dumps(data), encoding="utf-8")
+    out = _run_check(words)
+    assert out.returncode == 1 and "Traceback" not in out.stderr
+    lines = out.stdout.splitlines()
+    assert len(lines) == 2
+    assert "highlight.object: its words do not name 'box'" in lines[0]
+    assert lines[1].endswith("no fact states 16.5 (add a fact that does, or leave the number out)")
+    step["facts"].append({"fact": "changes_picture", "stage": "painter"})
+    words.write_text(json.dumps(data), encoding="utf-8")
+    out = _run_check(words)
+    assert out.returncode == 2 and out.stdout == "" and "Traceback" not in out.stderr
+    assert "steps[1].facts[8].stage: unknown stage 'painter'" in out.stderr
+
+
 def test_no_bounding_sphere_shown_by_a_lesson_swamps_the_scene():
     """A step that shows bounding spheres keeps each well inside the scene's extent (a ground
     plane's sphere, as wide as the ground, once filled the 3D pane)."""
