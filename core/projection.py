@@ -135,13 +135,24 @@ def lecture_perspective(d: float) -> np.ndarray:
     return m
 
 
+def lecture_image(point, d: float) -> np.ndarray:
+    """Where the lecture's perspective (:func:`lecture_perspective`) puts ``point`` = (x, y, z) on the
+    screen, ``(x', y')``: the matrix, then the division by the last coordinate.
+
+    >>> lecture_image([4.0, 2.0, 2.0], 2.0).tolist()
+    [2.0, 1.0]
+    """
+    p = lecture_perspective(d) @ np.append(np.asarray(point, dtype=float), 1.0)
+    return p[:2] / p[3]
+
+
 def lecture_screen_point(view_point, near: float, projection: str = "perspective"):
     """A camera-space point in the lecture's coordinates (Fig. VII.6 and VII.7) and its image.
 
     The lecture puts the screen in the plane z = 0 and, for perspective, the eye at z = -d, with z
     pointing into the scene; the window's screen is the near plane, at ``d = near`` in front of the
     eye, which looks down camera space's -z.  So ``A = (x, y, -z_view - d)``; perspective takes it to
-    ``A' = (x d / (z + d), y d / (z + d))`` (:func:`lecture_perspective`), orthographic projection
+    ``A' = (x d / (z + d), y d / (z + d))`` (:func:`lecture_image`), orthographic projection
     keeps ``x`` and ``y`` (Fig. VII.7).  Returns ``(A, A')``; ``A'`` is ``None`` for a point at or
     behind the eye, which perspective cannot take to the screen.
 
@@ -157,8 +168,7 @@ def lecture_screen_point(view_point, near: float, projection: str = "perspective
         return a, a[:2].copy()
     if -z <= 0.0:
         return a, None
-    p = lecture_perspective(near) @ np.append(a, 1.0)
-    return a, p[:2] / p[3]
+    return a, lecture_image(a, near)
 
 
 def pixel_from_ndc(ndc_xy: np.ndarray, width: int, height: int) -> np.ndarray:

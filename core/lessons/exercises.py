@@ -33,7 +33,7 @@ polygons), ``hit_t`` (the distance to the first hit of ``pixel``'s ray),
 ``blend`` (channel ``channel`` of the c0 a transparent ``object`` writes at
 ``pixel``), ``perspective`` (coordinate ``component``, 0 for x′ and 1 for y′, of where the
 lecture's perspective projection puts ``point``, the screen in z = 0 and the eye at z = −``d``:
-:func:`core.projection.lecture_perspective`).  ``order`` ``by`` ``drawing_order`` puts the
+:func:`core.projection.lecture_image`).  ``order`` ``by`` ``drawing_order`` puts the
 named objects in the order object order draws them; ``ray_tree_colours`` puts rays of ``pixel``'s ray
 tree, named by their path from the primary ray (``"primary"``,
 ``"primary/refraction"``, ``"primary/refraction/reflection"``...), in the order
@@ -71,7 +71,7 @@ from core.lessons import facts as facts_mod
 from core.lessons.facts import StepPipelines, check_fact, read_fact, read_list, read_pixel, read_tagged
 from core.lessons.naming import says
 from core.lessons.numbers_said import writes, written_numbers
-from core.projection import lecture_perspective
+from core.projection import lecture_image
 
 KINDS = ("choose_one", "click_pixel", "number", "order", "pick_picture")
 VIEWS = ("front", "side", "top", "observer")
@@ -472,8 +472,7 @@ def number(ex: Exercise, p: StepPipelines) -> float:
             return float("nan")
         return float(got[v["component"]] if v["component"] is not None else got)
     if of == "perspective":
-        image = lecture_perspective(v["d"]) @ np.array([*v["point"], 1.0])
-        return float(image[v["component"]] / image[3])
+        return float(lecture_image(v["point"], v["d"])[v["component"]])
     x, y = v["pixel"]
     if of == "hit_t":
         root = p.tree((x, y))
@@ -671,7 +670,7 @@ def stated_answers(lesson, ex: Exercise, p: StepPipelines) -> list[str]:
 
     - a ``number``: a step's title, text or a formula writes the answer, either sign, rounded to the
       decimals written and within the tolerance (:func:`writes`), integers below
-      :data:`TRIVIAL_INTEGER` without decimals left out;
+      :data:`core.lessons.numbers_said.TRIVIAL_INTEGER` without decimals left out;
     - a ``choose_one`` about a pixel: a sentence of a step's text that speaks of that pixel (its
       ``(x, y)``, or "this pixel" for the step's picked pixel) names the right choice, and not every
       choice;

@@ -36,30 +36,26 @@ Every fact is one JSON object whose ``"fact"`` names its kind (pixels are
 ``frustum`` decides where the object's bounding sphere lies (object order's frustum culling); an
 object ``outside`` may add the plane it lies wholly ``beyond`` (``left``, ``right``, ``bottom``,
 ``top``, ``near``, ``far``), as words such as "off to the observer's left" or "behind the eye" say.
-``after`` (z-buffer facts) is the number of polygons drawn so far; left out it
-is the step's ``zbuffer_step``, or every polygon; they and ``seen`` (some pixel
-of the finished object-order image shows the object) may narrow the object to
-one ``triangle`` of its mesh.  ``blend`` holds when a fragment of a
-transparent object passes at the pixel and the image memory after it is the
-lecture's ``c0 = alpha_s c_s + (1 - alpha_s) c_d`` of the colours before it (and
-equals ``equals``, when given).  ``is`` defaults to true
-(``"is": false`` states the opposite).  ``first_hit`` with ``"object": null``
-says the ray hits nothing; it may add the hit's ``"t"`` (distance along the unit
-direction) or ``"point"``, with a ``"tolerance"``, and ``"front_face"``.
-``ray_event``'s events are ``reflect``, ``refract`` and ``total_reflection``
-at the ``hit``-th surface along some path of the pixel's ray tree (1 = the
-primary ray's hit), optionally on a named ``object``.  ``rays`` counts the
-rays of a kind that were traced.  ``tests_per_pixel`` compares two acceleration
-methods by the mean intersection tests a pixel's rays cost (all of them, as the image-order
-heat map counts them; ``tests`` is ``"primitive tests"``, the default, or ``"box and sphere
-tests"``): it holds when the whole image traced with ``accel`` (and the step's other image-order
-settings) costs fewer a pixel than with ``fewer_than``. ``changes_picture`` switches one
-object-order ``stage`` (``back_face_culling``, ``frustum_culling``, ``clipping``, ``sort_transparent``,
-``z_test``) the other way from the step's settings and holds when some pixel of the finished image
-changes ("for a convex solid this test alone gives the right picture": switching the z-test off
-changes none). ``ray_sphere`` takes the lecture's segment
-(``end``) or a ray (``direction``); its values are those of
-:class:`core.image_order.intersect_sphere.SphereIntersection` (``a``, ``b``, ``c``,
+``after`` (z-buffer facts) is the number of polygons drawn so far; left out it is the step's
+``zbuffer_step``, or every polygon; they and ``seen`` (some pixel of the finished object-order image
+shows the object) may narrow the object to one ``triangle`` of its mesh. ``blend`` holds when a
+fragment of a transparent object passes at the pixel and the image memory after it is the lecture's
+``c0 = alpha_s c_s + (1 - alpha_s) c_d`` of the colours before it (and equals ``equals``, when
+given). ``is`` defaults to true (``"is": false`` states the opposite). ``first_hit`` with
+``"object": null`` says the ray hits nothing; it may add the hit's ``"t"`` (distance along the unit
+direction) or ``"point"``, with a ``"tolerance"``, and ``"front_face"``. ``ray_event``'s events are
+``reflect``, ``refract`` and ``total_reflection`` at the ``hit``-th surface along some path of the
+pixel's ray tree (1 = the primary ray's hit), optionally on a named ``object``. ``rays`` counts the
+rays of a kind that were traced. ``tests_per_pixel`` compares two acceleration methods by the mean
+intersection tests a pixel's rays cost (all of them, as the image-order heat map counts them;
+``tests`` is ``"primitive tests"``, the default, or ``"box and sphere tests"``): it holds when the
+whole image traced with ``accel`` (and the step's other image-order settings) costs fewer a pixel
+than with ``fewer_than``. ``changes_picture`` switches one object-order ``stage``
+(``back_face_culling``, ``frustum_culling``, ``clipping``, ``sort_transparent``, ``z_test``) the
+other way from the step's settings and holds when some pixel of the finished image changes ("for a
+convex solid this test alone gives the right picture": switching the z-test off changes none).
+``ray_sphere`` takes the lecture's segment (``end``) or a ray (``direction``); its values are those
+of :class:`core.image_order.intersect_sphere.SphereIntersection` (``a``, ``b``, ``c``,
 ``discriminant``, ``sqrt_discriminant``, ``offset_squared``, ``radius_squared``, ``t_near``,
 ``t_far``, ``t``, ``ray_hit_t``, ``hit``, ``point``, ...), ``ray_triangle``'s those of
 :class:`core.image_order.intersect_triangle.TriangleIntersection` (``t``, ``alpha``, ``beta``,
@@ -80,7 +76,7 @@ from core.files.checked_json import is_integer, join, show
 from core.image_order.flat_layout import ACCEL_CODES, HEAT_BOUNDS_TESTS, HEAT_PRIM_TESTS
 from core.image_order.ray_tree import KINDS as RAY_KINDS
 from core.in_words import listed
-from core.lessons.naming import unnamed_highlights
+from core.lessons.naming import step_unnamed
 from core.lessons.numbers_said import unchecked_numbers
 from core.object_order.clipping import PLANES
 from core.object_order.culling import CROSSING, INSIDE, OUTSIDE
@@ -695,12 +691,14 @@ _CHECKS = {
 
 def check_lesson(lesson) -> list[str]:
     """One line per fact of ``lesson`` that does not hold (lesson, step, fact and what was computed),
-    per highlight its step's words do not name (:func:`core.lessons.naming.unnamed_highlights`) and
+    per highlight its step's words do not name (:func:`core.lessons.naming.step_unnamed`) and
     per step that writes a number none of its facts states
     (:func:`core.lessons.numbers_said.unchecked_numbers`)."""
     lines = []
     for k, step in enumerate(lesson.steps):
-        for fact, computed in check_step(step):
+        pipelines = StepPipelines(step)
+        for fact, computed in check_step(step, pipelines):
             lines.append(f"lesson {lesson.id}, step {k + 1} {step.title!r}, {fact.path} "
                          f"({fact.describe()}): computed {computed}")
-    return lines + unnamed_highlights(lesson) + unchecked_numbers(lesson)
+        lines += step_unnamed(lesson, k, lambda p=pipelines: p.raster)  # the render its facts used
+    return lines + unchecked_numbers(lesson)

@@ -4,7 +4,7 @@ The window marks what a step highlights (an object, a face, a vertex, one ray of
 tree, the polygon drawn at a step) and writes the names of the objects its words name
 (:mod:`app.lessons.runner`).  A mark the words do not speak of shows the student something the words
 do not explain: the frustum step outlined the box behind the eye while its words spoke only of
-"objects entirely outside it".  :func:`unnamed_highlights` finds such steps, for
+"objects entirely outside it".  :func:`step_unnamed` finds such steps, for
 ``python -m app lesson check`` and File → Open lesson (:func:`core.lessons.facts.check_lesson`).
 """
 
@@ -59,18 +59,9 @@ def step_words(step) -> str:
     return "\n".join((step.title, step.text, *step.formulas))
 
 
-def _polygon_object(step, polygon: int) -> str:
-    """The name of the object whose polygon object order draws at step ``polygon`` of ``step``."""
-    from dataclasses import replace
-
-    from core.object_order.pipeline import render_raster
-
-    result = render_raster(step.scene, replace(step.object_order, record_steps=True))
-    return step.scene.objects[result.draw.object_index[polygon]].name
-
-
-def _unnamed(step, kind: str, value) -> str | None:
-    """Why the words of ``step`` do not name its highlight ``kind`` (``value``), or None when they do."""
+def _unnamed(step, kind: str, value, raster) -> str | None:
+    """Why the words of ``step`` do not name its highlight ``kind`` (``value``), or None when they do;
+    ``raster()`` gives the step's recorded object-order render (a polygon is named by its object)."""
     words = step_words(step)
     if POINTED_AT.search(words):
         return None
@@ -83,18 +74,18 @@ def _unnamed(step, kind: str, value) -> str | None:
         return f"its words speak of no face of {value['object']!r}"
     if kind == "vertex" and not re.search(VERTEX_WORDS, words):
         return f"its words speak of no vertex of {value['object']!r}"
-    if kind == "polygon_step" and (drawn := _polygon_object(step, value)) not in names:
+    if kind == "polygon_step" and (
+            drawn := step.scene.objects[raster().draw.object_index[value]].name) not in names:
         return f"its words do not name {drawn!r}, whose polygon is drawn at step {value + 1}"
     return None
 
 
-def unnamed_highlights(lesson) -> list[str]:
-    """One line per highlight of ``lesson`` that its step's words (title, text, formulas) neither name
-    nor point at ("marked", "outlined", "highlighted"); empty when every one is named."""
-    lines = []
-    for k, step in enumerate(lesson.steps):
-        for kind, value in step.highlight.items():
-            if kind != "pixel" and (why := _unnamed(step, kind, value)):
-                lines.append(f"lesson {lesson.id}, step {k + 1} {step.title!r}, highlight.{kind}: {why} "
-                             "(name it, or say that it is marked)")
-    return lines
+def step_unnamed(lesson, k: int, raster) -> list[str]:
+    """One line per highlight of step ``k`` of ``lesson`` that its words (title, text, formulas) neither
+    name nor point at ("marked", "outlined", "highlighted"); ``raster()`` gives the step's recorded
+    object-order render (:func:`core.lessons.facts.check_lesson` passes the one its facts used)."""
+    step = lesson.steps[k]
+    return [f"lesson {lesson.id}, step {k + 1} {step.title!r}, highlight.{kind}: {why} "
+            "(name it, or say that it is marked)"
+            for kind, value in step.highlight.items()
+            if kind != "pixel" and (why := _unnamed(step, kind, value, raster))]

@@ -271,8 +271,7 @@ class ImageOrderPanel(QWidget):
         """Give the verdict over the tree the lines the tree can spare above ``TREE_ROWS`` rows:
         whole where there is room (at x2 on 1920x1080), on fewer lines ending in "…" where not."""
         row = max(self.tree.sizeHintForRow(0), self.tree.fontMetrics().lineSpacing() + 6)
-        shared = self.tree.viewport().height() + (self.verdict.height() if self.verdict.isVisible() else 0)
-        self.verdict.set_max_lines((shared - TREE_ROWS * row) // self.verdict.fontMetrics().lineSpacing())
+        self.verdict.share_room(self.tree, TREE_ROWS * row)
 
     def eventFilter(self, watched, event) -> bool:
         if event.type() == QEvent.Type.Resize and watched is self.tree.viewport():

@@ -241,8 +241,7 @@ class ObjectOrderPanel(QWidget):
         of one fragment left two rows' room empty under a verdict cut short with "…"."""
         rows = min(self.history.rowCount(), ROWS_SHOWN)
         need = sum(self.history.rowHeight(r) for r in range(rows)) or self.history.fontMetrics().lineSpacing()
-        shared = self.history.viewport().height() + (0 if self.verdict.isHidden() else self.verdict.height())
-        self.verdict.set_max_lines((shared - need) // self.verdict.fontMetrics().lineSpacing())
+        self.verdict.share_room(self.history, need)
 
     def eventFilter(self, watched, event) -> bool:
         if event.type() == QEvent.Type.Resize and watched is self.history.viewport():

@@ -32,6 +32,12 @@ class VerdictLabel(ElidedLabel):
         self.setFont(font)
         self.hide()
 
+    def share_room(self, table, need: int) -> None:
+        """Take the lines ``table`` (the evidence under the verdict) can spare: the height the two share,
+        less the ``need`` pixels of rows the table must keep in view."""
+        shared = table.viewport().height() + (0 if self.isHidden() else self.height())
+        self.set_max_lines((shared - need) // self.fontMetrics().lineSpacing())
+
     def show_verdict(self, verdict: PixelVerdict | None, detail: str = "") -> None:
         """Show ``verdict`` (``None``: nothing picked, the label hides), with ``detail`` in its tooltip."""
         self.shown = verdict

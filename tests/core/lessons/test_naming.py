@@ -4,7 +4,7 @@ and the whole-word names it and the window's name labels read."""
 from core import presets
 from core.files.lesson_file import from_dict
 from core.lessons.facts import check_lesson
-from core.lessons.naming import named_objects, unnamed_highlights
+from core.lessons.naming import named_objects
 
 
 def _lesson(text, highlight, scene="frustum_cases", **step):
@@ -17,35 +17,34 @@ def test_a_highlighted_object_its_words_do_not_name_is_reported_with_lesson_step
     # The frustum step outlined the box behind the eye while its words spoke only of "objects
     # entirely outside it".
     lesson = _lesson("Objects entirely outside the frustum are dropped.", {"object": "box"})
-    assert unnamed_highlights(lesson) == [
+    assert check_lesson(lesson) == [  # as lesson check and File → Open lesson say it
         "lesson mine, step 1 'Outside', highlight.object: its words do not name 'box' "
         "(name it, or say that it is marked)"]
-    assert check_lesson(lesson) == unnamed_highlights(lesson)  # lesson check and File → Open lesson say it
-    assert unnamed_highlights(_lesson("The box lies outside the frustum.", {"object": "box"})) == []
-    assert unnamed_highlights(_lesson("The object marked lies outside.", {"object": "box"})) == []
+    assert check_lesson(_lesson("The box lies outside the frustum.", {"object": "box"})) == []
+    assert check_lesson(_lesson("The object marked lies outside.", {"object": "box"})) == []
     # the bounding box of an object is no object named "box"
-    assert unnamed_highlights(_lesson("Its bounding box lies outside.", {"object": "box"})) != []
+    assert check_lesson(_lesson("Its bounding box lies outside.", {"object": "box"})) != []
 
 
 def test_a_highlighted_ray_face_vertex_or_polygon_is_named_by_its_kind_or_its_object():
     rays = {"text": "A ray from the eye.", "scene": "lecture", "pixel": [230, 155]}
-    (line,) = unnamed_highlights(_lesson(highlight={"ray": "shadow"}, **rays))
+    (line,) = check_lesson(_lesson(highlight={"ray": "shadow"}, **rays))
     assert line.endswith("highlight.ray: its words do not speak of the shadow ray "
                          "(name it, or say that it is marked)")
-    assert unnamed_highlights(_lesson(highlight={"ray": "primary"}, **rays)) == []
+    assert check_lesson(_lesson(highlight={"ray": "primary"}, **rays)) == []
     rays["text"] += " Its shadow ray stops at the cone."
-    assert unnamed_highlights(_lesson(highlight={"ray": "shadow"}, **rays)) == []
+    assert check_lesson(_lesson(highlight={"ray": "shadow"}, **rays)) == []
     face = {"face": {"object": "pyramid", "triangle": 2}}
-    assert unnamed_highlights(_lesson("Skipped.", face, scene="culling_pyramid")) != []
-    assert unnamed_highlights(_lesson("This face is skipped.", face, scene="culling_pyramid")) == []
+    assert check_lesson(_lesson("Skipped.", face, scene="culling_pyramid")) != []
+    assert check_lesson(_lesson("This face is skipped.", face, scene="culling_pyramid")) == []
     vertex = {"vertex": {"object": "cube", "index": 6}}
-    assert unnamed_highlights(_lesson("Parallel rays.", vertex, scene="lecture")) != []
-    assert unnamed_highlights(_lesson("Its corner A goes to A′.", vertex, scene="lecture")) == []
+    assert check_lesson(_lesson("Parallel rays.", vertex, scene="lecture")) != []
+    assert check_lesson(_lesson("Its corner A goes to A′.", vertex, scene="lecture")) == []
     # The z-buffer example draws green, then blue, then yellow (tests/core/lessons/test_lessons.py).
     second = {"highlight": {"polygon_step": 1}, "scene": "zbuffer_three_polygons"}
-    (line,) = unnamed_highlights(_lesson("The second polygon comes.", **second))
+    (line,) = check_lesson(_lesson("The second polygon comes.", **second))
     assert "its words do not name 'blue', whose polygon is drawn at step 2" in line
-    assert unnamed_highlights(_lesson("Blue comes second.", **second)) == []
+    assert check_lesson(_lesson("Blue comes second.", **second)) == []
 
 
 def test_a_step_names_an_object_by_its_whole_name_and_not_inside_another_word():
