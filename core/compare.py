@@ -300,8 +300,8 @@ def _zbuffer_against_tracer(scene: Scene, raster: Output, tracer: Output) -> lis
     sentences = [
         f"The z-buffer removes hidden surfaces by drawing {polygons} and "
         f"keeping at each pixel the nearest fragment ({stats['fragments_failed']:,} of "
-        f"{stats['fragments_generated']:,} fragments failed the z-test); the tracer stops each primary "
-        "ray at its first hit instead, so " + (
+        f"{stats['fragments_generated']:,} fragments failed the z-test); the tracer keeps the first hit "
+        "along each primary ray instead, so " + (
             "both find the same visible surfaces and part only along edges." if same else
             "with one projection they would find the same visible surfaces.")]
     spheres = [i for i, o in enumerate(scene.objects) if isinstance(o, Sphere)]

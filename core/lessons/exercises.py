@@ -29,7 +29,8 @@ lesson check demands exactly one right choice.  A ``click_pixel`` answer is
 right when the fact holds at the clicked pixel (``$pixel``), or each fact of a list.  A ``number``'s
 ``value`` is computed: ``ray_sphere`` / ``ray_triangle`` values (the lecture's
 data), ``depth`` (the distance the z-buffer stores at ``pixel`` after ``after``
-polygons), ``hit_t`` (the distance to the first hit of ``pixel``'s ray),
+polygons), ``hit_t`` (the distance to the first hit of ``pixel``'s ray), ``primitive_tests`` (the
+triangles and spheres that ray is tested against, :mod:`core.lessons.facts`),
 ``blend`` (channel ``channel`` of the c0 a transparent ``object`` writes at
 ``pixel``), ``perspective`` (coordinate ``component``, 0 for x′ and 1 for y′, of where the
 lecture's perspective projection puts ``point``, the screen in z = 0 and the eye at z = −``d``:
@@ -78,7 +79,7 @@ VIEWS = ("front", "side", "top", "observer")
 """The pictures of a ``pick_picture`` exercise: :data:`core.object_order.four_views.PANES`."""
 PICTURE_SIZE = (160, 120)
 """Width and height (pixels) of each picture to pick from."""
-NUMBERS = ("ray_sphere", "ray_triangle", "depth", "hit_t", "blend", "perspective")
+NUMBERS = ("ray_sphere", "ray_triangle", "depth", "hit_t", "primitive_tests", "blend", "perspective")
 ORDERS = ("drawing_order", "ray_tree_colours")
 RAY_STEPS = ("reflection", "refraction")
 """What may follow ``primary`` in a ray's path (``ray_tree_colours``): the rays whose colours are gathered."""
@@ -307,7 +308,8 @@ def choice_label(choice) -> str:
 _PIPELINE_OF = MappingProxyType({
     "zbuffer_keeps": "object order", "ztest_fails": "object order", "blend": "object order",
     "depth": "object order", "first_hit": "image order", "shadow": "image order",
-    "ray_event": "image order", "hit_t": "image order", "ray_tree_colours": "image order"})
+    "ray_event": "image order", "hit_t": "image order", "primitive_tests": "image order",
+    "ray_tree_colours": "image order"})
 
 
 def _asked(ex: Exercise):
@@ -373,7 +375,8 @@ def _read_number(r, value, path: str, scene):
         if component is not None and component not in (0, 1, 2):
             r.add(join(path, "component"), f"0 (x), 1 (y) or 2 (z), got {component}")
         return None if fact is None else MappingProxyType({"of": of, "component": component, **fact.args})
-    needs = {"depth": ("pixel",), "hit_t": ("pixel",), "blend": ("pixel", "object", "channel")}[of]
+    needs = {"depth": ("pixel",), "hit_t": ("pixel",), "primitive_tests": ("pixel",),
+             "blend": ("pixel", "object", "channel")}[of]
     for key in needs:
         if key not in d:
             r.add(join(path, key), "required field is missing")
@@ -477,6 +480,8 @@ def number(ex: Exercise, p: StepPipelines) -> float:
     if of == "hit_t":
         root = p.tree((x, y))
         return float("nan") if root.t is None else float(root.t)
+    if of == "primitive_tests":
+        return float(p.tree((x, y)).tests)
     events = facts_mod.events_before(p, v["pixel"], v.get("after"))
     if of == "depth":
         kept = [e for e in events if e.passed]

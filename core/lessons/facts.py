@@ -26,6 +26,7 @@ Every fact is one JSON object whose ``"fact"`` names its kind (pixels are
     {"fact": "shadow", "pixel": [230, 155], "object": "cone", "light": 0}
     {"fact": "ray_event", "pixel": [205, 132], "hit": 1, "event": "refract"}
     {"fact": "rays", "pixel": [205, 132], "kind": "shadow", "count": 3}
+    {"fact": "primitive_tests", "pixel": [132, 93], "count": 110}
     {"fact": "tests_per_pixel", "accel": "bvh", "fewer_than": "grid", "tests": "primitive tests"}
     {"fact": "changes_picture", "stage": "z_test", "is": false}
     {"fact": "ray_sphere", "origin": [2, 1, 2], "end": [10, 6, 6], "center": [6, 4, 6],
@@ -46,14 +47,16 @@ given). ``is`` defaults to true (``"is": false`` states the opposite). ``first_h
 direction) or ``"point"``, with a ``"tolerance"``, and ``"front_face"``. ``ray_event``'s events are
 ``reflect``, ``refract`` and ``total_reflection`` at the ``hit``-th surface along some path of the
 pixel's ray tree (1 = the primary ray's hit), optionally on a named ``object``. ``rays`` counts the
-rays of a kind that were traced. ``tests_per_pixel`` compares two acceleration methods by the mean
-intersection tests a pixel's rays cost (all of them, as the image-order heat map counts them;
-``tests`` is ``"primitive tests"``, the default, or ``"box and sphere tests"``): it holds when the
-whole image traced with ``accel`` (and the step's other image-order settings) costs fewer a pixel
-than with ``fewer_than``. ``changes_picture`` switches one object-order ``stage``
-(``back_face_culling``, ``frustum_culling``, ``clipping``, ``sort_transparent``, ``z_test``) the
-other way from the step's settings and holds when some pixel of the finished image changes ("for a
-convex solid this test alone gives the right picture": switching the z-test off changes none).
+rays of a kind that were traced; ``primitive_tests`` the triangles and spheres the pixel's primary
+ray is tested against in its search for the first hit (with no acceleration, every one).
+``tests_per_pixel`` compares two acceleration methods by the mean intersection tests a pixel's rays
+cost (all of them, as the image-order heat map counts them; ``tests`` is ``"primitive tests"``, the
+default, or ``"box and sphere tests"``): it holds when the whole image traced with ``accel`` (and the
+step's other image-order settings) costs fewer a pixel than with ``fewer_than``. ``changes_picture``
+switches one object-order ``stage`` (``back_face_culling``, ``frustum_culling``, ``clipping``,
+``sort_transparent``, ``z_test``) the other way from the step's settings and holds when some pixel of
+the finished image changes ("for a convex solid this test alone gives the right picture": switching
+the z-test off changes none).
 ``ray_sphere`` takes the lecture's segment (``end``) or a ray (``direction``); its values are those
 of :class:`core.image_order.intersect_sphere.SphereIntersection` (``a``, ``b``, ``c``,
 ``discriminant``, ``sqrt_discriminant``, ``offset_squared``, ``radius_squared``, ``t_near``,
@@ -108,6 +111,7 @@ KINDS = MappingProxyType({
     "shadow": (("pixel", "object"), ("light", "is")),
     "ray_event": (("pixel", "hit", "event"), ("object", "is")),
     "rays": (("pixel", "kind", "count"), ()),
+    "primitive_tests": (("pixel", "count"), ()),
     "tests_per_pixel": (("accel", "fewer_than"), ("tests", "is")),
     "changes_picture": (("stage",), ("is",)),
     "ray_sphere": (("origin", "center", "radius", "value", "equals"), ("end", "direction", "tolerance")),
@@ -166,6 +170,8 @@ class Fact:
             return f"a ray of pixel {a['pixel']} does {neg}{event} at hit {a['hit']}{on}"
         if self.kind == "rays":
             return f"pixel {a['pixel']} traces {a['count']} {a['kind']} ray(s)"
+        if self.kind == "primitive_tests":
+            return f"the ray through pixel {a['pixel']} makes {a['count']} primitive test(s)"
         if self.kind == "tests_per_pixel":
             return f"{a['accel']} {'costs' if yes else 'does not cost'} fewer {a.get('tests', _TESTS)} " \
                    f"a pixel than {a['fewer_than']}"
@@ -621,6 +627,11 @@ def _rays(a, p):
     return count == a["count"], f"{count} {a['kind']} ray(s) traced"
 
 
+def _primitive_tests(a, p):
+    tests = p.tree(a["pixel"]).tests
+    return tests == a["count"], f"{tests} primitive test(s)"
+
+
 def _tests_per_pixel(a, p):
     tests = a.get("tests", _TESTS)
     methods = (a["accel"], a["fewer_than"])
@@ -684,8 +695,8 @@ _CHECKS = {
     "frustum": _frustum, "back_face": _back_face, "clipped": _clipped, "zbuffer_keeps": _zbuffer_keeps,
     "ztest_fails": _ztest_fails, "seen": _seen, "blend": _blend, "projects_to": _projects_to,
     "first_hit": _first_hit, "shadow": _shadow, "ray_event": _ray_event, "rays": _rays,
-    "tests_per_pixel": _tests_per_pixel, "changes_picture": _changes_picture,
-    "ray_sphere": _ray_sphere, "ray_triangle": _ray_triangle,
+    "primitive_tests": _primitive_tests, "tests_per_pixel": _tests_per_pixel,
+    "changes_picture": _changes_picture, "ray_sphere": _ray_sphere, "ray_triangle": _ray_triangle,
 }
 
 

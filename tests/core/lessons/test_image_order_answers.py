@@ -29,6 +29,23 @@ def test_two_orders_the_ray_meets_the_cube_first():
     assert_only(ex, p, "cube")
 
 
+def test_two_orders_without_acceleration_every_ray_is_tested_against_every_triangle():
+    # The scene's meshes hold 12 + 96 + 2 = 110 triangles (and no sphere); with no acceleration a
+    # ray must try them all to know which crossing comes first: the one hitting the cube, the one
+    # hitting the ground and the one hitting nothing alike.
+    ex, p = exercise("two_orders", 2)
+    scene = _scene(p)
+    assert p.step.image_order.accel == "none"
+    every = sum(len(o.triangles) for o in scene.objects)
+    assert every == 110 and "110 triangles" in ex.question
+    met = [[name for _, name in hits(scene, *pixel_ray(scene.camera, *v.args["value"]["pixel"]))][:1]
+           for v in ex.variants]
+    assert met == [["cube"], ["ground"], []]
+    for v in ex.variants:
+        assert number(v, p) == every
+        assert judge(v, p, every).right and not judge(v, p, 12).right
+
+
 def test_ray_casting_a_click_where_the_cube_blocks_the_light_is_right():
     # Every ground pixel's shadow ray is tested against the cube: the pixels where it is blocked
     # are the cube's shadow.  (The step's own pixel, (230, 155), lies in the cone's: its words say so.)

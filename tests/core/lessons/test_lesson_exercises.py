@@ -209,7 +209,7 @@ def test_an_exercise_the_pipelines_cannot_answer_is_reported_and_bad_ones_refuse
         "(known: choose_one, click_pixel, number, order, pick_picture)",
         'exercises[1].fact: the fact must say "pixel": "$pixel" (the clicked pixel)',
         'exercises[2].value.of: unknown quantity "weight" '
-        "(known: ray_sphere, ray_triangle, depth, hit_t, blend, perspective)",
+        "(known: ray_sphere, ray_triangle, depth, hit_t, primitive_tests, blend, perspective)",
         "exercises[3].step: the lesson has steps 0 to 0, got 3"]
     assert info.value.problems[4] == ('exercises[4].fact[1]: the fact must say "pixel": "$pixel" '
                                       "(the clicked pixel)")
@@ -333,7 +333,7 @@ def test_every_shipped_exercise_has_an_independent_solution():
     # How many exercises of each lesson the tests solve without the pipelines (this file,
     # test_object_order_answers, test_image_order_answers, test_view_answers).  A lesson that gains
     # an exercise fails here until a test works its answer out independently.
-    solved = {"two_orders": 2, "observer": 3, "frustum": 3, "back_faces": 2, "zbuffer": 4,
+    solved = {"two_orders": 3, "observer": 3, "frustum": 3, "back_faces": 2, "zbuffer": 4,
               "zbuffer_piercing": 4, "transparency": 3, "perspective": 3, "orthographic": 1,
               "three_views": 5, "rasterization": 2, "ray_casting": 3, "ray_tracing": 3, "acceleration": 2,
               "ray_sphere": 10, "ray_triangle": 4}

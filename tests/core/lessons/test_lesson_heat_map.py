@@ -1,4 +1,5 @@
-"""The heat map in lessons: a step turns it on, and its facts compare the tests a pixel costs."""
+"""The heat map in lessons: a step turns it on, and its facts compare the tests a pixel costs, or
+count one ray's."""
 
 import pytest
 from verdict_scenes import _down
@@ -48,6 +49,25 @@ def test_tests_per_pixel_holds_when_fewer_and_reports_the_means_when_not():
               "tests": "box and sphere tests"}]
     (line,) = check_lesson(from_dict(_box_lesson(wrong)))
     assert "computed grid " in line and line.endswith(", none 0 box and sphere tests a pixel")
+
+
+def test_primitive_tests_counts_every_triangle_with_no_acceleration_and_none_where_the_sphere_says_miss():
+    # The box is 12 triangles.  The camera looks straight down: the middle pixel's ray meets the
+    # box, the corner's passes about 3 units from its centre, outside its sphere (radius sqrt(3)).
+    scene = from_dict(_box_lesson([])).steps[0].scene
+    (box_mesh,) = scene.objects
+    every = len(box_mesh.triangles)
+    middle, corner = [scene.camera.width // 2, scene.camera.height // 2], [0, 0]
+    none = [{"fact": "primitive_tests", "pixel": pixel, "count": every} for pixel in (middle, corner)]
+    assert check_lesson(from_dict(_box_lesson(none, image_order={"mode": "raycast", "accel": "none"}))) == []
+    spheres = [{"fact": "primitive_tests", "pixel": corner, "count": 0},
+               {"fact": "primitive_tests", "pixel": middle, "count": every}]
+    culled = {"mode": "raycast", "accel": "spheres"}
+    assert check_lesson(from_dict(_box_lesson(spheres, image_order=culled))) == []
+    wrong = [{"fact": "primitive_tests", "pixel": corner, "count": 1}]
+    (line,) = check_lesson(from_dict(_box_lesson(wrong, image_order={"mode": "raycast", "accel": "none"})))
+    assert line.endswith(f"(the ray through pixel (0, 0) makes 1 primitive test(s)): computed {every} "
+                         "primitive test(s)")
 
 
 def test_a_steps_heat_map_carries_to_the_next_step_and_is_off_unless_given():
