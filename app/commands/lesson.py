@@ -9,9 +9,9 @@ Each file is loaded (every problem with its field path, as File → Open lesson 
 step's scene is run through the pipelines to decide its facts (:mod:`core.lessons.facts`) and answer
 its exercises (:mod:`core.lessons.exercises`: exactly one right choice, some right pixel, a number).
 It prints one line per fact that does not hold (lesson, step, fact, what was computed), highlight
-its step's words do not name (:func:`core.lessons.naming.step_unnamed`), step that writes a number
-no fact states (:func:`core.lessons.numbers_said.unchecked_numbers`), exercise the pipelines cannot
-answer, or exercise whose answer a step's words state
+its step's words do not name (:func:`core.lessons.naming.step_unnamed`), step or exercise that
+writes a number no fact states (:func:`core.lessons.numbers_said.unchecked_numbers`), exercise the
+pipelines cannot answer, or exercise whose answer a step's words state
 (:func:`core.lessons.exercises.stated_answers`: it would be recall), and exits 1; 0 when all of it
 holds in every file; 2 when a file cannot be read or is not a valid lesson (the other files are
 still checked). Only :mod:`core` is imported, so it answers without Qt.

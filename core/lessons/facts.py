@@ -703,7 +703,7 @@ _CHECKS = {
 def check_lesson(lesson) -> list[str]:
     """One line per fact of ``lesson`` that does not hold (lesson, step, fact and what was computed),
     per highlight its step's words do not name (:func:`core.lessons.naming.step_unnamed`) and
-    per step that writes a number none of its facts states
+    per step or exercise that writes a number none of its facts states
     (:func:`core.lessons.numbers_said.unchecked_numbers`)."""
     lines = []
     for k, step in enumerate(lesson.steps):

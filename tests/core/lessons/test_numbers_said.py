@@ -1,4 +1,4 @@
-"""Every number a lesson step writes is stated by one of its facts, so the pipelines decide it."""
+"""Every number a lesson step or exercise writes is stated by one of its facts, so the pipelines decide it."""
 
 import mpmath
 
@@ -65,3 +65,47 @@ def test_the_presenters_notes_are_held_to_the_same_rule():
                                    "panes": ["image order"], "notes": "Tell them t is 1.56016."}]})
     (line,) = unchecked_numbers(lesson)
     assert "no fact states 1.56016" in line
+
+
+def _asking(question, facts=(), why="", variants=None):
+    """A lesson over the lecture scene with one number exercise asking ``question``."""
+    ex = {"kind": "number", "question": question, "value": {"of": "hit_t", "pixel": "$at" if variants else
+                                                             [132, 93]}, "tolerance": 0.01, "why": why}
+    if variants:
+        ex["variants"] = variants
+    step = {"title": "Rays", "text": "A ray.", "scene": "lecture", "panes": ["image order"],
+            "facts": list(facts)}
+    return from_dict({"format": "render-explorer-lesson", "version": 1, "id": "mine", "title": "Mine",
+                      "steps": [step], "exercises": [ex]})
+
+
+def test_an_exercises_question_and_explanation_are_held_to_the_same_rule():
+    told = "The scene has 110 triangles. How far along its ray does pixel (132, 93) meet the cube?"
+    (line,) = unchecked_numbers(_asking(told))
+    assert line.startswith("lesson mine, exercises[0] (The scene has 110 triangles.") and \
+        "no fact states 110 (" in line
+    counted = [{"fact": "primitive_tests", "pixel": [20, 10], "count": 110}]
+    assert unchecked_numbers(_asking(told, counted)) == []  # its step's fact states it
+    (line,) = unchecked_numbers(_asking("How far? Within 0.25 of 12.15.", why="About 12.15."))
+    assert "no fact states 0.25, 12.15 (" in line  # the question's and the explanation's, each once
+    # The pixel asked about is the exercise's own input, in each variant drawn.
+    assert unchecked_numbers(_asking("How far along its ray does pixel {at} meet the cube?",
+                                     variants=[[132, 93], [140, 95]])) == []
+
+
+def test_the_scenes_own_numbers_need_no_fact():
+    # The Editor lists the lecture scene's vertices and its light: a point written whole, each
+    # coordinate as the scene holds it, needs no fact.  The same numbers loose, or a point the scene
+    # does not hold, still do (the cone's 96 triangles hold many coordinates: one alone proves little).
+    from core.presets import lecture_scene
+
+    scene = lecture_scene()
+    cube = next(o for o in scene.objects if o.name == "cube")
+    corner = ", ".join(f"{c:g}" for c in cube.vertices[0])
+    light = ", ".join(f"{c:g}" for c in scene.lights[0].position)
+    assert unchecked_numbers(_lesson(f"A corner at ({corner}); the light at ({light}).")) == []
+    assert unchecked_numbers(_lesson("A corner at (123.25, 0, 0).")) != []
+    assert unchecked_numbers(_lesson(f"A corner at ({corner.replace('2.5', '2.6')}).")) != []
+    assert unchecked_numbers(_lesson("The light is 12 above the ground.")) != []
+    assert {o.material.ior for o in scene.objects} == {1.5}  # the default, which the Editor shows
+    assert unchecked_numbers(_lesson("Glass would bend it with n = 1.5.")) == []
