@@ -297,8 +297,9 @@ class ObjectOrderTab:
         scene, raster, picture = result
         self.widget.show_result(raster, scene, picture)
         s = raster.stats
-        return (f"{len(raster.draw)} polygons drawn · {s.get('fragments_generated', 0):,} fragments · "
-                f"total {_ms(sum(s['times'].values()))}")
+        drawn, fragments = len(raster.draw), s.get("fragments_generated", 0)
+        return (f"{drawn} polygon{'' if drawn == 1 else 's'} drawn · {fragments:,} "
+                f"fragment{'' if fragments == 1 else 's'} · total {_ms(sum(s['times'].values()))}")
 
 
 class FourViewsTab:

@@ -65,6 +65,9 @@ def test_one_fragment_is_one_fragment(qtbot, window):
     qtbot.waitUntil(lambda: caption.text().startswith("Pixel (3, 7)"), timeout=RENDER_TIMEOUT_MS)
     assert panel.history_caption.text() == "Pixel (3, 7): 1 fragment up to step 1."
     assert panel.history.rowCount() == 1
+    # and the tab's status line: one triangle drawn ("1 polygons drawn" before)
+    status = window.renders.status(window.tab("object order"))[2]
+    assert status.startswith("1 polygon drawn · ") and " fragments · total " in status
 
 
 def test_object_order_verdict_follows_the_step_scrubber(qtbot, window):

@@ -347,7 +347,7 @@ def _owns(corners, centre):
             return False
         if here == 0:
             top = a[1] == b[1] and third[1] > a[1]
-            left = a[1] != b[1] and third[0] > a[0] + (b[0] - a[0]) * (centre[1] - a[1]) / (b[1] - a[1])
+            left = a[1] != b[1] and third[0] > a[0] + (b[0] - a[0]) * (third[1] - a[1]) / (b[1] - a[1])
             owned = owned and (top or left)
     return owned
 
@@ -376,3 +376,22 @@ def test_rasterization_the_top_left_rule_on_the_new_triangles_edges(index, varia
     expected = {(10, 6): None, (5, 6): "triangle", (9, 8): None, (6, 2): "triangle", (11, 4): None,
                 (3, 2): "triangle"}
     assert ("triangle" if _owns(corners, centre) else None) == expected[(x, y)]
+
+
+@pytest.mark.parametrize("variant", range(3))
+def test_rasterization_the_top_left_rule_at_the_new_triangles_corners(variant):
+    # A corner's centre lies on two edges, and the pixel is the triangle's only when both are top or
+    # left edges: (2, 2) joins the top edge and the left edge, so it is filled; (12, 2) joins the top
+    # edge and the right edge, and (8, 10) the left and the right edge, so they keep the background.
+    ex, p = exercise("rasterization", 2, variant)
+    assert p.step.zbuffer_step == 0
+    corners = [(Fraction(x) + 8, 6 - Fraction(y)) for x, y, _ in _scene(p).objects[0].vertices.tolist()]
+    x, y = ex.args["fact"]["pixel"]
+    centre = (Fraction(x) + Fraction(1, 2), Fraction(y) + Fraction(1, 2))
+    assert centre in corners
+    on_edge = [(a, b) for a, b in zip(corners, corners[1:] + corners[:1], strict=True)
+               if _side(a, b, centre) == 0]
+    assert len(on_edge) == 2
+    owned = "triangle" if _owns(corners, centre) else None
+    assert owned == {(2, 2): "triangle", (12, 2): None, (8, 10): None}[(x, y)]
+    assert_only(ex, p, owned)
