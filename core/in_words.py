@@ -1,5 +1,6 @@
-"""Lists written as a sentence writes them: the names in the explanations the window and the
-command line give ("cube, cone and ground may shadow ...", "lit by light 0 and light 1")."""
+"""Lists and counts written as a sentence writes them: the names in the explanations the window and
+the command line give ("cube, cone and ground may shadow ...", "lit by light 0 and light 1"), and
+how many of a thing ("1 fragment", "12,500 fragments")."""
 
 from __future__ import annotations
 
@@ -17,3 +18,12 @@ def listed(names, most: int | None = None) -> str:
     if most is not None and len(names) > most:
         names = names[:most] + [f"{len(names) - most} more"]
     return names[0] if len(names) == 1 else ", ".join(names[:-1]) + " and " + names[-1]
+
+
+def counted(n: int, noun: str) -> str:
+    """``n`` and ``noun``, plural unless ``n`` is one, with thousands separated.
+
+    >>> counted(1, "fragment"), counted(12500, "fragment"), counted(0, "ray")
+    ('1 fragment', '12,500 fragments', '0 rays')
+    """
+    return f"{n:,} {noun}" if n == 1 else f"{n:,} {noun}s"

@@ -51,6 +51,7 @@ from core.compare import compare
 from core.first_look import first_look
 from core.image_order import ray_tracing
 from core.image_order.ray_tracing import TraceSettings, merge_band_stats, render_trace
+from core.in_words import counted
 from core.object_order import four_views, pipeline
 from core.object_order.pipeline import RasterSettings, render_raster
 from core.scene import Mesh, Scene
@@ -297,9 +298,9 @@ class ObjectOrderTab:
         scene, raster, picture = result
         self.widget.show_result(raster, scene, picture)
         s = raster.stats
-        drawn, fragments = len(raster.draw), s.get("fragments_generated", 0)
-        return (f"{drawn} polygon{'' if drawn == 1 else 's'} drawn · {fragments:,} "
-                f"fragment{'' if fragments == 1 else 's'} · total {_ms(sum(s['times'].values()))}")
+        return (f"{counted(len(raster.draw), 'polygon')} drawn · "
+                f"{counted(s.get('fragments_generated', 0), 'fragment')} · "
+                f"total {_ms(sum(s['times'].values()))}")
 
 
 class FourViewsTab:

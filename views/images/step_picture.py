@@ -11,6 +11,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from core.in_words import counted
 from core.object_order import zbuffer
 from core.object_order.pipeline import RasterResult
 from core.scene import Scene
@@ -72,7 +73,7 @@ def step_picture(result: RasterResult, scene: Scene, k: int) -> StepPicture:
     draw = result.draw
     kind = "transparent, blended" if draw.transparent[p] else "opaque"
     caption = (f"Step {k} of {history.n_steps}: polygon {p} — {polygon_name(result, scene, p)} ({kind}): "
-               f"{len(cols)} fragments, {int(passed.sum())} passed the z-test, "
+               f"{counted(len(cols), 'fragment')}, {int(passed.sum())} passed the z-test, "
                f"{int((~passed).sum())} failed.")
     return StepPicture(k, display_image(color), depth, depth_image, mask, caption,
                        draw.polygons.world_vertices(p), mask_outline(mask))

@@ -36,6 +36,7 @@ from core.accuracy.supersampling import AdaptiveImage
 from core.image_order.flat_layout import HEAT_BOUNDS_TESTS, HEAT_PRIM_TESTS
 from core.image_order.ray_tracing import TraceSettings
 from core.image_order.ray_tree import RayNode
+from core.in_words import counted
 from core.pixel_verdict import trace_verdict
 from core.scene import Scene
 from views.images.color_scale import ColorScale, heat_over
@@ -393,7 +394,7 @@ class ImageOrderPanel(QWidget):
         self.image.set_picked((x, y))
         n = sum(1 for node in root.walk() if node.traced)
         self.verdict.show_verdict(trace_verdict(root, scene, self.model.trace_settings.mode, x, y),
-                                  f"Ray tree of pixel ({x}, {y}): {n} rays traced; pixel colour "
+                                  f"Ray tree of pixel ({x}, {y}): {counted(n, 'ray')} traced; pixel colour "
                                   f"({', '.join(f'{c:.3f}' for c in root.pixel_color)})")
         self.tree.set_tree(root)
         self.worked_math.show_ray(scene, root)

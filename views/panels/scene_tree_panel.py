@@ -46,6 +46,7 @@ from PySide6.QtWidgets import (
 )
 
 from core import checked_edits, shapes
+from core.in_words import counted
 from core.scene import Mesh
 from core.srgb import linear_to_srgb, srgb_to_linear
 
@@ -428,7 +429,7 @@ def _mesh_note(obj) -> str:
     if not isinstance(obj, Mesh):
         return ""
     path = (obj.source or {}).get("path")
-    return f", {len(obj.triangles):,} triangles" + (f" from {path}" if path else "")
+    return f", {counted(len(obj.triangles), 'triangle')}" + (f" from {path}" if path else "")
 
 
 def _specs(scene, item) -> list[tuple[str, str, str]]:

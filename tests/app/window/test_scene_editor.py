@@ -730,3 +730,15 @@ def test_clicking_a_light_in_the_3d_pane_selects_it(qtbot, window):
     assert window.editor.picker.handle_center is not None
     # The handle floats above the light's marker, which is what was clicked.
     assert window.editor.picker.handle_center[1] > light[1]
+
+
+def test_a_mesh_of_one_triangle_says_one_triangle(qtbot, window):
+    # The cube's 12 triangles, then its first alone: "1 triangles" before.
+    model, panel = window.model, window.editor.panel
+    cube, *others = model.scene.objects
+    model.set_selection(("object", 0))
+    assert panel.title.text().endswith(", 12 triangles")
+    single = replace(cube, triangles=cube.triangles[:1])
+    model.set_scene(replace(model.scene, objects=(single, *others)), edit=True)
+    model.set_selection(("object", 0))
+    assert panel.title.text().endswith(", 1 triangle")
