@@ -225,7 +225,7 @@ class HardCasesPanel(QWidget):
         self._debounce = QTimer(self, singleShot=True, interval=DEBOUNCE_MS)
         self._debounce.timeout.connect(self._compute_current)
         self.slider.valueChanged.connect(self._on_slider)
-        self.option.currentIndexChanged.connect(lambda _: self._debounce.start())
+        self.option.currentIndexChanged.connect(lambda _: self._changed())
         sweep = QHBoxLayout()
         sweep.addWidget(self.slider, 1)
         sweep.addWidget(self.slider_value)
@@ -346,6 +346,13 @@ class HardCasesPanel(QWidget):
         if self._parameter is None:
             return
         self.slider_value.setText(f"{slider_value(self._parameter, position):g}")
+        self._changed()
+
+    def _changed(self) -> None:
+        """The user moved the slider or picked an option: compute anew once they pause.  What is
+        computing now is for the old setting and is not shown: its result arriving in the pause moved
+        the slider back under the user's hand."""
+        self._request += 1
         self._debounce.start()
 
     def _compute_current(self) -> None:

@@ -1,8 +1,10 @@
 """The Hard cases panel: selecting each case shows its numbers, verdict, pictures and explanation."""
 
 import html
+import threading
 
 import pytest
+from PySide6.QtCore import QThreadPool
 from qt_fixtures import shown_widget
 
 from core import hard_cases
@@ -78,6 +80,33 @@ def test_list_marks_each_case_once_its_robust_method_passed(qtbot, panel):
 
     qtbot.waitUntil(all_marked, timeout=TIMEOUT)
     assert panel.cases.item(0).text() == "✓ " + hard_cases.run_case("tangent").title
+
+
+def test_a_result_for_the_old_slider_position_never_moves_the_slider_back(qtbot):
+    # The user drags on while the last position computes.  Its result came in the pause before the
+    # new position's computation started, was shown, and put the slider back under the user's hand.
+    # The panel's one thread is held here until the drag has moved on, so that result comes then.
+    pool = QThreadPool()
+    pool.setMaxThreadCount(1)
+    panel = shown_widget(qtbot, HardCasesPanel(pool=pool), 1280, 720)
+    gate = threading.Event()
+    try:
+        _show(qtbot, panel, "far_sphere")
+        pool.waitForDone()  # the first computation of every case is done
+        pool.start(lambda: gate.wait(TIMEOUT / 1000))
+        top = panel.slider.maximum()
+        panel.slider.setValue(top - 1)
+        qtbot.waitUntil(lambda: panel.status.text() == "computing…")  # waits behind the held thread
+        panel.slider.setValue(top)
+        shown = []
+        panel.result_shown.connect(
+            lambda _: shown.append((panel.result.parameter.value, panel.slider.value())))
+        gate.set()  # the old position's result comes now, in the pause
+        qtbot.waitUntil(lambda: bool(shown), timeout=TIMEOUT)
+        assert shown == [(pytest.approx(1e9), top)]
+    finally:
+        gate.set()
+        panel.shutdown()
 
 
 def test_moving_the_slider_recomputes_at_the_new_value(qtbot, panel):
