@@ -19,11 +19,13 @@ Signals are queued onto the GUI thread, so receivers may touch widgets and VTK.
 
 from __future__ import annotations
 
+import itertools
 import threading
 import time
 from collections.abc import Callable
 
-from PySide6.QtCore import QObject, QRunnable, QThreadPool, Signal
+import shiboken6
+from PySide6.QtCore import QCoreApplication, QObject, QRunnable, Qt, QThreadPool, Signal, Slot
 
 from core import stopping
 
@@ -58,22 +60,39 @@ class JobRun(QRunnable):
         self._interval = 1.0 / progress_per_second if progress_per_second else 0.0
         self._prepare = prepare
         self._last_progress = -float("inf")
+        self._started = False
+        self._key = next(_keys)
+        _held[self._key] = [job, signals, prepare]
+        global _reaper
+        if _reaper is None or not shiboken6.isValid(_reaper):  # made here, on the GUI thread
+            _reaper = _Reaper()
 
     def run(self):
-        if self.cancelled.is_set():  # superseded while it waited for a thread: nothing to do
-            return
-        if self._prepare is not None:
-            self._prepare()
+        self._started = True
+        result = None
         try:
-            with stopping.stopped_by(self.cancelled):
-                result = self.job(self.cancelled, self._progress)
-        except stopping.StoppedError:  # cancelled in a kernel: nothing to deliver
-            return
-        except Exception as exc:  # shown to the user by whoever listens to `failed`
-            self._emit("failed", self.job_id, f"{type(exc).__name__}: {exc}")
-            return
-        if result is not None:
-            self._emit("finished", self.job_id, result)
+            if self.cancelled.is_set():  # superseded while it waited for a thread: nothing to do
+                return
+            if self._prepare is not None:
+                self._prepare()
+            try:
+                with stopping.stopped_by(self.cancelled):
+                    result = self.job(self.cancelled, self._progress)
+            except stopping.StoppedError:  # cancelled in a kernel: nothing to deliver
+                return
+            except Exception as exc:  # shown to the user by whoever listens to `failed`
+                self._emit("failed", self.job_id, f"{type(exc).__name__}: {exc}")
+                return
+            if result is not None:
+                self._emit("finished", self.job_id, result)
+        finally:
+            _held[self._key].append(result)  # kept by the GUI thread until it lets go
+            self.job = self.signals = self._prepare = result = None
+            _let_go_on_gui_thread(self._key)
+
+    def __del__(self):
+        if not getattr(self, "_started", True):  # never run (superseded before it started)
+            _held.pop(self._key, None)
 
     def _progress(self, percent: int, partial: object) -> None:
         now = time.perf_counter()
@@ -89,6 +108,44 @@ class JobRun(QRunnable):
             getattr(self.signals, name).emit(*args)
         except RuntimeError:  # the signals' owner was deleted while this job ran: nobody to tell
             self.cancelled.set()
+
+
+_held: dict[int, list] = {}
+"""What each run's job holds (its function, signals and result), by run: the GUI thread lets go of it.
+
+A pool's thread that dropped the last reference to one of them destroyed it there, and a widget or an
+object whose signals the GUI thread receives, destroyed off the GUI thread, crashed the process (a
+job whose function held the last reference to a parentless widget, its runner gone, did so within a
+few hundred runs).  So the run keeps them here too and drops its own references first; then the GUI
+thread, told the run has ended, lets go of them (:class:`_Reaper`).  Once the application is gone,
+the pool's thread lets go of them itself."""
+_keys = itertools.count()
+
+
+class _Reaper(QObject):
+    """Lets go of what a finished run's job held (:data:`_held`), on the GUI thread."""
+
+    ended = Signal(int)
+
+    def __init__(self):
+        super().__init__(QCoreApplication.instance())  # goes with the application
+        self.ended.connect(self._let_go, Qt.ConnectionType.QueuedConnection)
+
+    @Slot(int)
+    def _let_go(self, key: int) -> None:
+        _held.pop(key, None)
+
+
+_reaper: _Reaper | None = None
+
+
+def _let_go_on_gui_thread(key: int) -> None:
+    """Tell the GUI thread that run ``key`` has ended, so it lets go of what its job held."""
+    reaper = _reaper
+    if reaper is not None and shiboken6.isValid(reaper):
+        reaper.ended.emit(key)
+    else:
+        _held.pop(key, None)
 
 
 def own_thread(parent: QObject) -> QThreadPool:
