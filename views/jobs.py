@@ -14,7 +14,9 @@ each piece.  A compiled kernel it runs stops within a pixel or a triangle once
   the running one, and what a superseded or cancelled job reports is never
   delivered.
 
-Signals are queued onto the GUI thread, so receivers may touch widgets and VTK.
+Signals are queued onto the GUI thread, so receivers may touch widgets and VTK.  What a job held
+(its function and what that holds, its signals, its result) is let go of on the GUI thread too, so a
+widget or a signals object is never destroyed on a pool's thread (:data:`_held`).
 """
 
 from __future__ import annotations
