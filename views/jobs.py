@@ -187,7 +187,7 @@ class JobRunner(QObject):
         self._progress_per_second, self._prepare = progress_per_second, prepare
         self._latest = 0
         self._cancel: stopping.StopRequest | None = None
-        self._signals = JobSignals()
+        self._signals = JobSignals(self)
         self._signals.progress.connect(self._on_progress)
         self._signals.finished.connect(self._on_finished)
         self._signals.failed.connect(self._on_failed)

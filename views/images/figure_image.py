@@ -15,32 +15,14 @@ while it uses matplotlib, and returns a :class:`views.images.agg_figure.Drawn`.
 
 from __future__ import annotations
 
-import contextlib
 from collections.abc import Callable
 
-from PySide6.QtCore import QObject, QPointF, QRectF, QRunnable, QThreadPool, Signal
+from PySide6.QtCore import QPointF, QRectF, QThreadPool, Signal
 from PySide6.QtGui import QImage, QPainter
 from PySide6.QtWidgets import QWidget
 
 from views.images.agg_figure import Drawn
-
-
-class _Signals(QObject):
-    drawn = Signal(int, object)  # request id, Drawn | str (the error)
-
-
-class _Draw(QRunnable):
-    def __init__(self, request: int, draw: Callable[[], Drawn], signals: _Signals):
-        super().__init__()
-        self.request, self.draw, self.signals = request, draw, signals
-
-    def run(self):
-        try:
-            result = self.draw()
-        except Exception as exc:  # shown by the widget instead of a picture
-            result = f"{type(exc).__name__}: {exc}"
-        with contextlib.suppress(RuntimeError):  # the widget was deleted meanwhile
-            self.signals.drawn.emit(self.request, result)
+from views.jobs import JobRun, JobSignals
 
 
 class FigureImage(QWidget):
@@ -65,8 +47,9 @@ class FigureImage(QWidget):
         self._image: QImage | None = None
         self._pool = QThreadPool(self)
         self._pool.setMaxThreadCount(1)
-        self._signals = _Signals()
-        self._signals.drawn.connect(self._on_drawn)
+        self._signals = JobSignals(self)
+        self._signals.finished.connect(self._on_drawn)
+        self._signals.failed.connect(self._on_drawn)  # the message, shown instead of a picture
         self._request = 0  # the newest request's id
         self._busy = False  # a request is being drawn
         self._waiting: Callable[[], Drawn] | None = None
@@ -94,7 +77,7 @@ class FigureImage(QWidget):
             return
         self._busy = True
         draw, self._waiting = self._waiting, None
-        self._pool.start(_Draw(self._request, draw, self._signals))
+        self._pool.start(JobRun(self._request, lambda _cancelled, _progress: draw(), self._signals))
 
     def _on_drawn(self, request: int, result) -> None:
         self._busy = False
