@@ -214,6 +214,48 @@ def test_ctrl_c_during_a_render_stops_cleanly_and_writes_nothing(tmp_path):
     assert not out.exists() and _leftovers(tmp_path) == []
 
 
+CTRL_C_IN_A_CALLBACK = """
+import signal, sys, weakref
+from app.process.ctrl_c import stop_kernels_on_ctrl_c
+
+stop_kernels_on_ctrl_c()
+
+
+def pressed_meanwhile(_):
+    signal.raise_signal(signal.SIGINT)
+    for _ in range(10_000):  # Python looks for signals here: Ctrl+C lands in this callback
+        pass
+
+
+class Thing:
+    pass
+
+
+thing = Thing()
+ref = weakref.ref(thing, pressed_meanwhile)
+try:
+    del thing
+    for _ in range(30_000_000):  # the work Ctrl+C is to stop
+        pass
+except KeyboardInterrupt:
+    print("interrupted")
+    sys.exit(130)
+print("ran to the end")
+"""
+
+
+def test_ctrl_c_landing_in_a_weakref_callback_still_stops_the_command_and_prints_no_traceback(tmp_path):
+    # Once in a fresh clone's first test run (its imports slow, compiled from source): Ctrl+C came while
+    # the import system's module-lock callback ran, and Python printed "Exception ignored in ...
+    # Traceback ... KeyboardInterrupt" there and went on.  The command then stopped only because the
+    # kernels saw Ctrl+C too; Python code would have run on to the end.
+    result = subprocess.run([sys.executable, "-c", CTRL_C_IN_A_CALLBACK], cwd=tmp_path, capture_output=True,
+                            text=True, timeout=120, env={**ENV, "PYTHONPATH": str(ROOT)},
+                            preexec_fn=ctrl_c_reaches)
+    assert result.returncode == 130 and result.stdout.split() == ["interrupted"], result.stderr
+    assert result.stderr == ""
+
+
 # --- memory ---------------------------------------------------------------------
 
 
