@@ -83,12 +83,11 @@ from core.lessons.naming import step_unnamed
 from core.lessons.numbers_said import unchecked_numbers
 from core.object_order.clipping import PLANES
 from core.object_order.culling import CROSSING, INSIDE, OUTSIDE
+from core.object_order.pipeline import STAGES
 from core.scene import Mesh, Scene, Sphere
 
 FRUSTUM_STATES = (INSIDE, CROSSING, OUTSIDE)
 EVENTS = ("reflect", "refract", "total_reflection")
-#: The object-order stages a ``changes_picture`` fact switches (fields of ``RasterSettings``).
-STAGES = ("back_face_culling", "frustum_culling", "clipping", "sort_transparent", "z_test")
 SPHERE_VALUES = ("a", "b", "c", "half_b", "discriminant", "sqrt_discriminant", "line_distance", "t_near",
                  "t_far", "t", "ray_hit_t", "hit", "origin_inside", "offset_squared", "radius_squared",
                  "point", "classification", "chosen")

@@ -3,7 +3,7 @@
 A number in a step's words is a claim ("their squared distances from the centre are 41 and 20", "its
 corners sit on the centres of pixels (2, 2), (12, 2) and (8, 10)"), and the pipelines decide a claim
 only when a fact states it (:mod:`core.lessons.facts`: ``"equals": 41``, ``"pixel": [12, 2]``), or
-the window shows it of the step's scene (:func:`shown_numbers`: the observer's image size, planes,
+the window shows it of the step's scene (:func:`scene_numbers`: the observer's image size, planes,
 angle, eye and target, which label the frustum, "far plane, f = 16"; the vertices, centres, radii,
 materials and lights the Editor lists).  An exercise's question and explanation are words too ("The
 scene has 110 triangles"): its own fields state its inputs (the pixel asked about, the segment), and
@@ -72,19 +72,19 @@ _POINT = re.compile(r"\(\s*([^(),]+),\s*([^(),]+),\s*([^(),]+)\)")
 _OPTICS = ("opacity", "reflectivity", "transparency", "ior")
 
 
-def shown_numbers(scene) -> list[float]:
+def scene_numbers(scene) -> list[float]:
     """The numbers the window shows of ``scene`` itself, which no fact needs to state: its observer's
     (image width and height, near and far planes, viewing angle, eye and target: what the window
     labels the frustum with, "far plane, f = 16") and its materials' opacity, reflectivity,
     transparency and index of refraction (what the Editor lists).  Its points are
-    :func:`shown_points`."""
+    :func:`scene_points`."""
     cam = scene.camera
     observer = [cam.width, cam.height, cam.near, cam.far, cam.fov_y_deg, *cam.eye, *cam.target]
     return [float(x) for x in observer] + [float(getattr(o.material, key)) for o in scene.objects
                                            for key in _OPTICS]
 
 
-def shown_points(scene) -> np.ndarray:
+def scene_points(scene) -> np.ndarray:
     """``(N, 3)``: the points the Editor lists of ``scene``: every vertex, sphere centre and light."""
     points = [np.asarray(o.vertices, float) if hasattr(o, "vertices") else np.asarray([o.center], float)
               for o in scene.objects] + [np.asarray([light.position], float) for light in scene.lights]
@@ -115,23 +115,23 @@ def _loose(said: str, stated: list[float], points: np.ndarray) -> str:
 
 def unchecked_numbers(lesson) -> list[str]:
     """One line per step of ``lesson`` whose title, text, formulas or presenter's notes write a
-    number that none of that step's facts states and its scene does not show (:func:`shown_numbers`;
+    number that none of that step's facts states and its scene does not show (:func:`scene_numbers`;
     as written: to its decimals, either sign), and per exercise whose question or explanation writes
     one that neither its own fields (its pixels, segment, variants) nor its step's facts and scene
     state; empty when every number is one of those."""
     lines = []
     stated = []
     for k, step in enumerate(lesson.steps):
-        stated.append([x for fact in step.facts for x in _stated(fact.args)] + shown_numbers(step.scene))
+        stated.append([x for fact in step.facts for x in _stated(fact.args)] + scene_numbers(step.scene))
         said = f"{step_words(step)}\n{step.notes}"  # the presenter's notes are read to the room too
-        if loose := _loose(said, stated[k], shown_points(step.scene)):
+        if loose := _loose(said, stated[k], scene_points(step.scene)):
             lines.append(f"lesson {lesson.id}, step {k + 1} {step.title!r}: no fact states {loose} "
                          "(add a fact that does, or leave the number out)")
     for ex in lesson.exercises:
         drawn = ex.variants or (ex,)
         own = [x for v in drawn for x in _stated(v.args)]
         said = "\n".join(dict.fromkeys(text for v in drawn for text in (v.question, v.why)))
-        if loose := _loose(said, stated[ex.step] + own, shown_points(lesson.steps[ex.step].scene)):
+        if loose := _loose(said, stated[ex.step] + own, scene_points(lesson.steps[ex.step].scene)):
             lines.append(f"lesson {lesson.id}, {ex.path} ({ex.question}): no fact states {loose} "
                          "(add a fact to its step that does, or leave the number out)")
     return lines

@@ -94,6 +94,10 @@ class RasterSettings:
         depth_formats.format_code(self.depth_format)
 
 
+STAGES = ("back_face_culling", "frustum_culling", "clipping", "sort_transparent", "z_test")
+"""The stages a :class:`RasterSettings` switches on and off, in the order the pipeline runs them."""
+
+
 @dataclass(frozen=True, eq=False)
 class DrawList:
     """The polygons in the order they were drawn, and what each one did.

@@ -35,8 +35,9 @@ from PySide6.QtWidgets import (
     QWidget,
 )
 
+from core.in_words import counted
 from core.object_order.depth_formats import BYTES_PER_PIXEL, DEPTH_FORMATS
-from core.object_order.pipeline import RasterResult, RasterSettings
+from core.object_order.pipeline import STAGES, RasterResult, RasterSettings
 from core.pixel_verdict import dropped_fragments, raster_verdict
 from core.projection import project_point
 from core.scene import Scene
@@ -53,22 +54,26 @@ from views.text.verdict_label import VerdictLabel
 from views.text.worked_math import WorkedMath
 from views.whole_rows import ROWS_SHOWN, WholeLinesLabel, WholeRowsTable
 
-STAGES = [
-    ("back_face_culling", "Back-face culling",
-     "Skip faces whose normal points away from the eye (the sign of Nz).\n"
-     "Off: every face is rasterized; the z-buffer still hides the back ones, at a cost."),
-    ("frustum_culling", "Frustum culling",
-     "Skip whole objects whose bounding sphere lies outside the viewing pyramid."),
-    ("clipping", "Clipping",
-     "Cut polygons at the six frustum planes before the perspective divide.\n"
-     "Off: polygons reaching behind the eye are dropped whole, so geometry near the observer vanishes."),
-    ("sort_transparent", "Sort transparent\nfar → near",
-     "Blend transparent polygons from the farthest to the nearest, after all opaque ones.\n"
-     "Off: they are blended in scene order, and the colours come out wrong."),
-    ("z_test", "z-test",
-     "Keep a fragment only if it is nearer than the depth already stored at its pixel.\n"
-     "Off: every fragment overwrites the pixel, so the polygon drawn last wins, near or far."),
-]
+#: Each stage's check box: its text and tooltip, by :data:`core.object_order.pipeline.STAGES`.
+STAGE_WORDS = {
+    "back_face_culling": ("Back-face culling",
+                          "Skip faces whose normal points away from the eye (the sign of Nz).\n"
+                          "Off: every face is rasterized; the z-buffer still hides the back ones, "
+                          "at a cost."),
+    "frustum_culling": ("Frustum culling",
+                        "Skip whole objects whose bounding sphere lies outside the viewing pyramid."),
+    "clipping": ("Clipping",
+                 "Cut polygons at the six frustum planes before the perspective divide.\n"
+                 "Off: polygons reaching behind the eye are dropped whole, so geometry near the observer "
+                 "vanishes."),
+    "sort_transparent": ("Sort transparent\nfar → near",
+                         "Blend transparent polygons from the farthest to the nearest, after all "
+                         "opaque ones.\n"
+                         "Off: they are blended in scene order, and the colours come out wrong."),
+    "z_test": ("z-test",
+               "Keep a fragment only if it is nearer than the depth already stored at its pixel.\n"
+               "Off: every fragment overwrites the pixel, so the polygon drawn last wins, near or far."),
+}
 
 DEPTH_FORMAT_TIP = (
     "The z-buffer's number format.  Window depth crowds toward the far plane, so two surfaces "
@@ -147,7 +152,8 @@ class ObjectOrderPanel(QWidget):
         switches = QVBoxLayout(stages)
         switches.setContentsMargins(0, 0, 0, 0)
         switches.addWidget(QLabel("<b>Stages</b>"))
-        for key, text, tip in STAGES:
+        for key in STAGES:
+            text, tip = STAGE_WORDS[key]
             box = QCheckBox(text)
             box.setChecked(True)
             box.setToolTip(tip)
@@ -425,8 +431,7 @@ class ObjectOrderPanel(QWidget):
         # One line: what a depth is and when a fragment passes, the depth columns' tooltips say
         # (at text x2 on 1280 x 720 the sentence took two more lines from the fragments' rows).
         self.history_caption.setText(
-            f"Pixel ({x}, {y}): {len(events)} fragment{'' if len(events) == 1 else 's'} up to step "
-            f"{self.scrubber.step}.")
+            f"Pixel ({x}, {y}): {counted(len(events), 'fragment')} up to step {self.scrubber.step}.")
         self.numbers.setPlainText(self._numbers_text(events))
         self._fit_verdict()
         visible = [e for e in events if e.passed]
