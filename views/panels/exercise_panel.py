@@ -24,7 +24,7 @@ from __future__ import annotations
 
 import random
 
-from PySide6.QtCore import QEvent, QRect, QSettings, QSize, Qt, QTimer, Signal
+from PySide6.QtCore import QCoreApplication, QEvent, QRect, QSettings, QSize, Qt, QTimer, Signal
 from PySide6.QtGui import QFont, QFontMetrics
 from PySide6.QtWidgets import (
     QApplication,
@@ -64,6 +64,8 @@ ROOM_SCALE = 1.8
 ROOM_LEAST = 0.8
 """The least size of a long question put to the room, relative to the panel's font (presenting at x2,
 1.6 times the normal text)."""
+PICTURE_LEAST = 108
+"""The height a long question put to the room leaves each picture to pick (as its width allows)."""
 
 
 OPEN_A_LESSON = ("Pick a step in the Lessons tab (or press PageDown): the exercises of its lesson "
@@ -121,9 +123,12 @@ class _Picture(ImageView):
     the pane the exercise covers leaves room, makes it larger (at a fixed 120 pixels high it showed
     88 x 66 at text x2 on 1280 x 720)."""
 
+    LEAST = 72
+    """The least height of a picture to pick."""
+
     def __init__(self):
         super().__init__()
-        self.setMinimumSize(96, 72)
+        self.setMinimumSize(96, self.LEAST)
         policy = self.sizePolicy()
         policy.setHeightForWidth(True)
         self.setSizePolicy(policy)
@@ -133,7 +138,7 @@ class _Picture(ImageView):
         return True
 
     def heightForWidth(self, width: int) -> int:  # noqa: N802
-        return max(72, min(width * 3 // 4, self.tallest))
+        return max(self.LEAST, min(width * 3 // 4, self.tallest))
 
     def sizeHint(self) -> QSize:  # noqa: N802
         return QSize(160, 120)
@@ -234,6 +239,8 @@ class ExercisePanel(QWidget):
         scroll.setWidgetResizable(True)
         scroll.setFrameShape(QFrame.Shape.NoFrame)
         scroll.setWidget(content)
+        # The words under it (the verdict) take its room without resizing the panel: refit then too.
+        scroll.viewport().installEventFilter(self)
         outer = QVBoxLayout(self)
         outer.setContentsMargins(0, 0, 0, 0)
         outer.addWidget(scroll, 1)
@@ -363,6 +370,8 @@ class ExercisePanel(QWidget):
             return True
         if watched is self.order_list and event.type() == QEvent.Type.FontChange:
             QTimer.singleShot(0, self, self._fit_order)  # a new text size: rows of another height
+        if watched is not self.order_list and event.type() == QEvent.Type.Resize:  # the scroll's viewport
+            QTimer.singleShot(0, self, self._size_question)
         return super().eventFilter(watched, event)
 
     def _show_pictures(self, ex: Exercise, drawn: dict) -> None:
@@ -527,17 +536,23 @@ class ExercisePanel(QWidget):
 
     def _size_question(self) -> None:
         """Put to the room, the question is :data:`ROOM_SCALE` times the panel's text, or as much of
-        that as leaves the rest of the panel (Show answers, Reset progress) in view at the question's
-        width (a long question at x2 in the dock of a 1280 x 720 screen ran below the fold, Show
-        answers with it); never smaller than :data:`ROOM_LEAST` of the panel's text."""
+        that as leaves the rest of the panel (Show answers, Reset progress, pictures to pick at
+        :data:`PICTURE_LEAST` high) in view at the question's width (a long question at x2 in the
+        dock of a 1280 x 720 screen ran below the fold, Show answers with it); never smaller than
+        :data:`ROOM_LEAST` of the panel's text.  The pictures then take the room left
+        (:meth:`_fit_pictures`).
+
+        Both sizes are reckoned from the room the rest takes, the question and the pictures left
+        out: reckoned each from the other's last size, they settled at sizes that hung on the order
+        in which resizes came (pictures 87 to 135 high on one screen)."""
         style = ""
         if self.room:
             base = QApplication.font().pointSizeF()  # the text size now (presentation's scale)
             scale, width = ROOM_SCALE, self.question.width()
-            content = self.scroll.widget().layout()
             view = self.scroll.viewport()
-            room = view.height() - (content.totalHeightForWidth(view.width())
-                                    - self.question.heightForWidth(width))
+            first = self._fitted_picture()
+            pictures = 0 if first is None else 2 * min(PICTURE_LEAST, first.width() * 3 // 4)
+            room = view.height() - self._rest_height() - pictures
             least = ROOM_LEAST if self.room_button.isVisible() else 1.0  # alone, or over its answers
             while scale > least and min(width, view.height()) > 0 and self._question_height(base * scale,
                                                                                        width) > room:
@@ -549,20 +564,37 @@ class ExercisePanel(QWidget):
             self.question.ensurePolished()
         self._fit_pictures()
 
+    def _fitted_picture(self):
+        """The first picture to pick, when the pictures are in the panel and fitted to its room."""
+        return self.picture_views[0] if self.picture_views and self.answer_area.isVisible() else None
+
+    def _rest_height(self) -> int:
+        """The height the panel's content takes at the scroll area's width, but for the question and
+        the pictures' two rows: measured with the pictures at their least height, which their width
+        does not change (the layout's own widths for them are not yet theirs when they come)."""
+        first = self._fitted_picture()
+        if first is not None:
+            self._set_tallest(_Picture.LEAST)
+        # The layouts inside keep their last sizes until told: tell them now.
+        QCoreApplication.sendPostedEvents(None, QEvent.Type.LayoutRequest)
+        layout = self.scroll.widget().layout()
+        total = layout.totalHeightForWidth(self.scroll.viewport().width())
+        rows = 0 if first is None else 2 * _Picture.LEAST
+        return total - self.question.heightForWidth(self.question.width()) - rows
+
+    def _set_tallest(self, tallest: int) -> None:
+        for picture in self.picture_views:
+            picture.tallest = tallest
+            picture.updateGeometry()
+
     def _fit_pictures(self) -> None:
         """Pictures to pick as large as their width makes them, or as the panel's height leaves for
         their two rows beside the rest of it, so that all four are in view."""
-        if not self.picture_views or not self.answer_area.isVisible():
+        if self._fitted_picture() is None:
             return
-        view = self.scroll.viewport()
-        first = self.picture_views[0]
-        rows = 2 * first.heightForWidth(first.width())
-        others = self.scroll.widget().layout().totalHeightForWidth(view.width()) - rows
-        tallest = max(72, (view.height() - others) // 2)
-        if tallest != first.tallest:
-            for picture in self.picture_views:
-                picture.tallest = tallest
-                picture.updateGeometry()
+        rest = self._rest_height()
+        room = self.scroll.viewport().height() - rest - self.question.heightForWidth(self.question.width())
+        self._set_tallest(max(_Picture.LEAST, room // 2))
 
     def _question_height(self, points: float, width: int) -> int:
         font = QFont(self.question.font())
