@@ -8,10 +8,11 @@ While the Exercises tab is in front, the window shows a step of the lesson (the 
 asks about) and its exercise is not yet answered right or revealed, the readouts
 :func:`core.lessons.exercises.withheld` names are covered with an opaque sheet saying why
 (:mod:`views.panels.pane_cover`), the 3D pane leaves out the overlays that draw results
-(:data:`RESULT_OVERLAYS`), marks only the objects the question names (the step's outline may be
-its answer) and the status bar drops the step's "Look at ..." (which may name the
-answer); the pictures stay, the student reasons from them.  Back on the Lessons tab, once answered,
-or on another scene, everything shows again.
+(:data:`RESULT_OVERLAYS`) and marks only the objects the question names (the step's outline may be
+its answer), the image-order pane leaves out its heat map when the question is what the map shows,
+and the status bar drops the step's "Look at ..." (which may name the answer); the pictures stay,
+the student reasons from them.  Back on the Lessons tab, once answered, or on another scene,
+everything shows again.
 """
 
 from __future__ import annotations
@@ -20,7 +21,7 @@ import shiboken6
 from PySide6.QtWidgets import QLabel
 
 from app.lessons.runner import FACE_SIDE_OVERLAY
-from core.lessons.exercises import PICTURES, RESULTS, offered, withheld
+from core.lessons.exercises import HEAT_MAP, PICTURES, RESULTS, offered, withheld
 from views.panels.pane_cover import ANSWER, cover, uncover
 
 RESULT_OVERLAYS = ("ray-tree", "walk", "polygon", "clipped", FACE_SIDE_OVERLAY)
@@ -76,6 +77,9 @@ class WithheldAnswers:
                 else:  # a label is one line: the step drawn
                     cover(pane, f"Hidden until exercise {n} is answered" if isinstance(pane, QLabel)
                           else why, ANSWER)
+        self.window.tab("image order").widget.withhold_heat(
+            f"Heat map hidden until exercise {n} is answered: it would give the answer away."
+            if HEAT_MAP in hidden else "")
         # The 3D pane marks what the question names, not what the step's words name (its outline of
         # the box behind the observer answered "Which object is dropped before any pixel work?").
         ex = self.window.exercise_panel.waiting_for

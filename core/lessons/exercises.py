@@ -326,7 +326,7 @@ def named_pane(ex: Exercise) -> str | None:
     return None if asked is None else _PIPELINE_OF.get(asked.get("fact", asked.get("of", asked.get("by"))))
 
 
-RESULTS, PICTURES = "results", "pictures"
+RESULTS, PICTURES, HEAT_MAP = "results", "pictures", "heat map"
 """What the window withholds while an exercise waits for its answer (:func:`withheld`)."""
 
 
@@ -334,9 +334,21 @@ def withheld(ex: Exercise) -> tuple[str, ...]:
     """What the window must not show while ``ex`` waits for its answer: always :data:`RESULTS`, the
     readouts that state what the pipelines found in words and numbers (a picked pixel's history, ray
     tree and worked math, the step drawn, a face's side): every exercise asks the student to predict
-    one of those; and for a ``pick_picture`` exercise also :data:`PICTURES`, the Four views, which
-    are the pictures offered, titled.  The pictures of the scene stay: the student reasons from them."""
-    return (RESULTS, PICTURES) if ex.kind == "pick_picture" else (RESULTS,)
+    one of those; for a ``pick_picture`` exercise also :data:`PICTURES`, the Four views, which are
+    the pictures offered, titled; and for one that asks what intersection tests cost, also
+    :data:`HEAT_MAP`, the image-order heat map, which colours each pixel by them.  The pictures of
+    the scene stay: the student reasons from them."""
+    return (RESULTS, *((PICTURES,) if ex.kind == "pick_picture" else ()),
+            *((HEAT_MAP,) if _counts_tests(ex) else ()))
+
+
+_TESTS_COUNTED = ("primitive_tests", "tests_per_pixel")
+"""The facts and number values that count intersection tests."""
+
+
+def _counts_tests(ex: Exercise) -> bool:
+    asked = (*ex.args.get("facts", ()), ex.args.get("fact") or {}, ex.args.get("value") or {})
+    return any(a.get("fact", a.get("of")) in _TESTS_COUNTED for a in asked)
 
 
 def offered(ex: Exercise) -> tuple[str, ...]:

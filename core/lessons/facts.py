@@ -48,7 +48,8 @@ direction) or ``"point"``, with a ``"tolerance"``, and ``"front_face"``. ``ray_e
 ``reflect``, ``refract`` and ``total_reflection`` at the ``hit``-th surface along some path of the
 pixel's ray tree (1 = the primary ray's hit), optionally on a named ``object``. ``rays`` counts the
 rays of a kind that were traced; ``primitive_tests`` the triangles and spheres the pixel's primary
-ray is tested against in its search for the first hit (with no acceleration, every one).
+ray is tested against in its search for the first hit (with no acceleration, every one; ``"is":
+false``: another number of them).
 ``tests_per_pixel`` compares two acceleration methods by the mean intersection tests a pixel's rays
 cost (all of them, as the image-order heat map counts them; ``tests`` is ``"primitive tests"``, the
 default, or ``"box and sphere tests"``): it holds when the whole image traced with ``accel`` (and the
@@ -110,7 +111,7 @@ KINDS = MappingProxyType({
     "shadow": (("pixel", "object"), ("light", "is")),
     "ray_event": (("pixel", "hit", "event"), ("object", "is")),
     "rays": (("pixel", "kind", "count"), ()),
-    "primitive_tests": (("pixel", "count"), ()),
+    "primitive_tests": (("pixel", "count"), ("is",)),
     "tests_per_pixel": (("accel", "fewer_than"), ("tests", "is")),
     "changes_picture": (("stage",), ("is",)),
     "ray_sphere": (("origin", "center", "radius", "value", "equals"), ("end", "direction", "tolerance")),
@@ -170,7 +171,8 @@ class Fact:
         if self.kind == "rays":
             return f"pixel {a['pixel']} traces {a['count']} {a['kind']} ray(s)"
         if self.kind == "primitive_tests":
-            return f"the ray through pixel {a['pixel']} makes {a['count']} primitive test(s)"
+            return f"the ray through pixel {a['pixel']} makes {'' if yes else 'other than '}{a['count']} " \
+                   "primitive test(s)"
         if self.kind == "tests_per_pixel":
             return f"{a['accel']} {'costs' if yes else 'does not cost'} fewer {a.get('tests', _TESTS)} " \
                    f"a pixel than {a['fewer_than']}"
@@ -628,7 +630,7 @@ def _rays(a, p):
 
 def _primitive_tests(a, p):
     tests = p.tree(a["pixel"]).tests
-    return tests == a["count"], f"{tests} primitive test(s)"
+    return (tests == a["count"]) == a.get("is", True), f"{tests} primitive test(s)"
 
 
 def _tests_per_pixel(a, p):

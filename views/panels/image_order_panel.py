@@ -9,7 +9,8 @@ decided the pixel (:mod:`core.pixel_verdict`).
 
 A chosen heat map is coloured and laid over the traced image on a worker thread
 (a lesson step that turns it on held the window for a quarter of a second doing
-it on the GUI thread); the window only paints it.
+it on the GUI thread); the window only paints it.  While an exercise asks what the map would
+show, the traced image is shown without it (:meth:`ImageOrderPanel.withhold_heat`).
 """
 
 from __future__ import annotations
@@ -134,6 +135,9 @@ class ImageOrderPanel(QWidget):
         self.heat_scale = ColorScale("Heat map colour scale: the map's darkest colour means no test, its "
                                      "brightest the most any pixel of this image took")
         self.heat_scale.hide()
+        self.heat_withheld = QLabel()  # says why the heat map chosen is not shown (withhold_heat)
+        self.heat_withheld.setWordWrap(True)
+        self.heat_withheld.hide()
         self._traced: DisplayImage | None = None  # the traced image, under the heat map
         self._heats = JobRunner(self, own_thread(self))  # lays the heat map over it off the GUI thread
         self._heats.finished.connect(self._paint_heat)
@@ -159,6 +163,7 @@ class ImageOrderPanel(QWidget):
                               ("Heat map", self.heat)]:
             form.addRow(label, widget)
         form.addRow(self.heat_scale)  # under its choice: in view at 1280 x 720, where the column scrolls
+        form.addRow(self.heat_withheld)
         form.addRow(QLabel("Show in 3D:"))
         for box in (self.show_spheres, self.show_grid, self.show_walk):
             form.addRow(box)
@@ -360,9 +365,17 @@ class ImageOrderPanel(QWidget):
         """The chosen heat map is being laid over the traced image on a worker."""
         return self._heats.busy
 
+    def withhold_heat(self, why: str) -> None:
+        """Show the traced image without the heat map chosen, and ``why`` in its place (an exercise
+        waiting for its answer asks what the map would show); ``""``: show the map again."""
+        self.heat_withheld.setText(why)
+        self._show_heat()
+
     def _show_heat(self) -> None:
         kind = self.heat.currentData()
-        counts = self._heat_counts(kind)
+        withheld = bool(self.heat_withheld.text()) and kind != "off"
+        self.heat_withheld.setVisible(withheld)
+        counts = None if withheld else self._heat_counts(kind)
         if self._traced is None or counts is None:
             self._heats.cancel()
             self.heat_scale.setVisible(False)
@@ -375,6 +388,8 @@ class ImageOrderPanel(QWidget):
 
     def _paint_heat(self, shown: tuple) -> None:
         kind, over = shown
+        if kind != self.heat.currentData() or self.heat_withheld.text():
+            return  # laid over before another map was chosen, or the map was withheld
         heat = over.heat
         self.image.set_image(over.image)
         if kind == SAMPLES_HEAT[0]:

@@ -28,3 +28,34 @@ def test_the_acceleration_lessons_heat_map_step_shows_primitive_tests_over_the_g
 
     window.lesson_panel.select(k, 0)  # an earlier step: no heat map
     assert panel.heat.currentText() == "Off" and not panel.heat_scale.isVisible()
+
+
+def test_a_question_on_where_the_tests_go_shows_the_traced_image_without_its_heat_map_until_answered(
+        window, qtbot):
+    # "Before the heat map shows it: click a pixel whose primary ray hits nothing, yet is tested..."
+    # The heat map colours exactly those pixels: shown, it would be the answer.
+    from window_helpers import ask_exercise
+
+    lesson = next(lesson for lesson in LESSONS if lesson.id == "acceleration")
+    k = next(i for i, e in enumerate(lesson.exercises) if e.question.startswith("Before the heat map"))
+    panel = window.tab("image order").widget
+    exercises = ask_exercise(qtbot, window, "acceleration", lesson.exercises[k].step, k)
+    assert panel.heat.currentText() == "Primitive tests"  # the step's choice stays
+    qtbot.waitUntil(lambda: window.showing_full("image order") and isinstance(window.last_result, tuple),
+                    timeout=RENDER_TIMEOUT_MS)
+    image = window.last_result[0]
+
+    def traced_alone():
+        assert panel.heat_withheld.isVisible() and not panel.heat_scale.isVisible()
+        assert panel.heat_withheld.text() == (f"Heat map hidden until exercise {k + 1} is answered: it "
+                                              "would give the answer away.")
+        assert np.array_equal(panel.image.rgb, image.rgb)
+
+    qtbot.waitUntil(traced_alone)
+    exercises.reveal()
+
+    def heat_map_over_it():
+        assert panel.heat_scale.isVisible() and not panel.heat_withheld.isVisible()
+        assert not np.array_equal(panel.image.rgb, image.rgb)
+
+    qtbot.waitUntil(heat_map_over_it, timeout=RENDER_TIMEOUT_MS)

@@ -230,9 +230,10 @@ def test_ray_sphere_the_segment_crosses_when_an_end_lies_on_each_side(variant):
         assert inside == [True, False]
 
 
-def _cells_listed_along(boxes, listed, origins, directions, ends):
+def _cells_listed_along(boxes, listed, origins, directions, ends, slack=1e-9):
     """For each segment ``origins + t directions``, 0 <= t <= ``ends``: the primitives listed in every
-    cell box it meets (touching counts), each cell's list counted in full; (N,)."""
+    cell box it meets (touching, within ``slack``, counts; a negative ``slack`` counts only the boxes
+    it passes that far inside), each cell's list counted in full; (N,)."""
     total = np.zeros(len(origins))
     for start in range(0, len(origins), 4096):
         o, d = origins[start:start + 4096, None, :], directions[start:start + 4096, None, :]
@@ -240,9 +241,29 @@ def _cells_listed_along(boxes, listed, origins, directions, ends):
             t0, t1 = (boxes[None, :, 0] - o) / d, (boxes[None, :, 1] - o) / d
         enter = np.nanmax(np.minimum(t0, t1), axis=2)
         leave = np.nanmin(np.maximum(t0, t1), axis=2)
-        met = (enter <= leave + 1e-9) & (leave >= -1e-9) & (enter <= ends[start:start + 4096, None] + 1e-9)
+        met = ((enter <= leave + slack) & (leave >= -slack)
+               & (enter <= ends[start:start + 4096, None] + slack))
         total[start:start + 4096] = met.astype(float) @ listed
     return total
+
+
+def _grid_cells(scene):
+    """The boxes of the grid's cells (C, 2, 3) and how many primitives each lists (C,)."""
+    from core.image_order.flat_scene import trace_scene
+
+    grid = trace_scene(scene).geometry.accel("grid")[0]
+    nx, ny, nz = grid.resolution
+    cells = np.array([(i, j, k) for k in range(nz) for j in range(ny) for i in range(nx)])
+    return grid.cell_boxes(cells), np.array([len(grid.prims_in_cell(*c)) for c in cells], float)
+
+
+def _every_pixels_ray(scene):
+    """Every pixel's ray, row by row: origins and unit directions (N, 3), and the t of its first hit
+    among all the objects, brute force (+inf: none) (N,)."""
+    cam = scene.camera
+    ys, xs = np.mgrid[0:cam.height, 0:cam.width]
+    origins, directions = rays(cam, xs.ravel(), ys.ravel())
+    return origins, directions, np.stack([t.ravel() for t in image_hits(scene).values()]).min(axis=0)
 
 
 def test_acceleration_the_grid_costs_a_pixel_fewer_primitive_tests_than_the_spheres_alone():
@@ -252,7 +273,6 @@ def test_acceleration_the_grid_costs_a_pixel_fewer_primitive_tests_than_the_sphe
     # a primitive met in one cell is tested again in the next), up to its first hit; a pixel's rays are
     # its primary ray and at most one shadow ray, to the one light (no material reflects or refracts).
     # That bound, brute force over every pixel and every cell, comes to about 1.6 a pixel.
-    from core.image_order.flat_scene import trace_scene
     from core.scene import Sphere
 
     ex, p = exercise("acceleration", 2)
@@ -260,15 +280,8 @@ def test_acceleration_the_grid_costs_a_pixel_fewer_primitive_tests_than_the_sphe
     assert p.step.image_order.accel == "grid" and len(scene.lights) == 1
     assert all(o.material.reflectivity == 0 and o.material.transparency == 0 for o in scene.objects)
     assert sum(isinstance(o, Sphere) for o in scene.objects) == 3
-    grid = trace_scene(scene).geometry.accel("grid")[0]
-    nx, ny, nz = grid.resolution
-    cells = np.array([(i, j, k) for k in range(nz) for j in range(ny) for i in range(nx)])
-    boxes = grid.cell_boxes(cells)
-    listed = np.array([len(grid.prims_in_cell(*c)) for c in cells], float)
-    cam = scene.camera
-    ys, xs = np.mgrid[0:cam.height, 0:cam.width]
-    origins, directions = rays(cam, xs.ravel(), ys.ravel())
-    first = np.stack([t.ravel() for t in image_hits(scene).values()]).min(axis=0)
+    boxes, listed = _grid_cells(scene)
+    origins, directions, first = _every_pixels_ray(scene)
     primary = _cells_listed_along(boxes, listed, origins, directions, first)
     hit = np.isfinite(first)
     points = origins[hit] + first[hit, None] * directions[hit]
@@ -277,3 +290,28 @@ def test_acceleration_the_grid_costs_a_pixel_fewer_primitive_tests_than_the_sphe
     grid_bound = (primary.sum() + shadow.sum()) / len(primary)
     assert grid_bound < 3, grid_bound
     assert_only(ex, p, True)
+
+
+def test_acceleration_a_click_on_a_ray_that_misses_yet_is_tested_on_its_way_through_the_grid():
+    # A ray with no hit walks every cell it crosses, to the grid's far side, and tests what each
+    # lists: it makes some test exactly when some cell it crosses lists a primitive.  Brute force:
+    # the misses by testing every object, the cells crossed by slab tests against every cell's box.
+    # Pixels whose ray grazes a cell's side (counted as met within 1e-9 of it and not 1e-9 inside)
+    # are left out.  The pixels right to click ring the objects, where a cell they reach into is
+    # crossed; the rest of the sky is crossed through empty cells or none.
+    ex, p = exercise("acceleration", 3)
+    scene = _scene(p)
+    assert p.step.image_order.accel == "grid"
+    boxes, listed = _grid_cells(scene)
+    origins, directions, first = _every_pixels_ray(scene)
+    miss = ~np.isfinite(first)
+    touching = _cells_listed_along(boxes, listed, origins, directions, first)
+    inside = _cells_listed_along(boxes, listed, origins, directions, first, slack=-1e-9)
+    width = scene.camera.width
+    kinds = {"right": miss & (inside > 0), "untested miss": miss & (touching == 0), "hit": ~miss}
+    assert kinds["right"].sum() > 1000 and kinds["untested miss"].sum() > 1000
+    rng = np.random.default_rng(5)
+    for kind, where in kinds.items():
+        for k in rng.choice(np.flatnonzero(where), 15, replace=False):
+            pixel = (int(k % width), int(k // width))
+            assert judge(ex, p, pixel).right == (kind == "right"), (kind, pixel)

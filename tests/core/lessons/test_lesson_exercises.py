@@ -12,7 +12,17 @@ from brute_force import exact_triangle_solve
 
 from core.files.lesson_file import FILES as LESSON_FILES
 from core.files.lesson_file import LessonFileError, from_dict, shipped_lessons
-from core.lessons.exercises import a_right_pixel, check_exercises, judge, number, right_choices
+from core.lessons.exercises import (
+    HEAT_MAP,
+    PICTURES,
+    RESULTS,
+    a_right_pixel,
+    check_exercises,
+    judge,
+    number,
+    right_choices,
+    withheld,
+)
 from core.lessons.facts import StepPipelines
 
 LESSONS = shipped_lessons()
@@ -329,13 +339,28 @@ def test_a_ray_tree_order_off_one_branch_or_not_traced_is_reported_and_bad_paths
         "(primary, then reflection or refraction), got 'refraction/primary'"]
 
 
+def test_the_heat_map_is_withheld_while_a_question_counts_intersection_tests_and_only_then():
+    # The heat map colours each pixel by its tests: it answers "how many tests", "which pixels are
+    # tested", "which method costs fewer", and nothing else an exercise asks.
+    counting = set()
+    for lesson in LESSONS:
+        for k, ex in enumerate(lesson.exercises):
+            hidden = withheld(ex)
+            assert hidden[0] == RESULTS and (PICTURES in hidden) == (ex.kind == "pick_picture")
+            if HEAT_MAP in hidden:
+                counting.add((lesson.id, k))
+    asked = {(lesson.id, k) for lesson in LESSONS for k, ex in enumerate(lesson.exercises)
+             if re.search(r"primitive tests|tested against", ex.question)}
+    assert counting == asked and len(asked) == 3, (counting, asked)
+
+
 def test_every_shipped_exercise_has_an_independent_solution():
     # How many exercises of each lesson the tests solve without the pipelines (this file,
     # test_object_order_answers, test_image_order_answers, test_view_answers).  A lesson that gains
     # an exercise fails here until a test works its answer out independently.
     solved = {"two_orders": 3, "observer": 3, "frustum": 3, "back_faces": 2, "zbuffer": 4,
               "zbuffer_piercing": 4, "transparency": 3, "perspective": 3, "orthographic": 1,
-              "three_views": 5, "rasterization": 3, "ray_casting": 3, "ray_tracing": 3, "acceleration": 3,
+              "three_views": 5, "rasterization": 3, "ray_casting": 3, "ray_tracing": 3, "acceleration": 4,
               "ray_sphere": 10, "ray_triangle": 4}
     assert {lesson.id: len(lesson.exercises) for lesson in LESSONS} == solved
 
