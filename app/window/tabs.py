@@ -367,13 +367,17 @@ class CompareTab:
     def cost(self, scene: Scene, preview: bool) -> budget.Estimate:
         modes = {"orthographic": "raster", "perspective": "raster", "raycast": "raycast",
                  "raytrace": "raytrace"}
-        settings = preview_trace_settings(self.model.trace_settings)
+        settings = self._settings(preview)
         runs = [(modes[key], settings.accel, settings.max_depth) for key in self.widget.pair()]
         return _cost(scene, preview, runs, 3)  # A, B and their difference
 
+    def _settings(self, preview: bool) -> TraceSettings:
+        """The tracer's settings; a preview's with an acceleration, whose time no caption shows."""
+        return preview_trace_settings(self.model.trace_settings) if preview else self.model.trace_settings
+
     def job(self, scene: Scene, preview: bool):
         a, b = self.widget.pair()
-        settings = preview_trace_settings(self.model.trace_settings)  # acceleration leaves the image alone
+        settings = self._settings(preview)
         cam = scene.camera
         picked = self.widget.picked
         inside = picked is not None and picked[0] < cam.width and picked[1] < cam.height

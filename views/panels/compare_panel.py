@@ -35,6 +35,7 @@ from core.compare import DIFFERENCE_UNITS, OUTPUTS, Comparison, Output, PixelRep
 from core.srgb import linear_to_srgb
 from views.images.color_scale import ColorScale
 from views.images.image_view import DisplayImage, ImageView
+from views.panels.image_order_panel import accel_words
 
 PANES = ("a", "b", "difference")
 DEFAULT_PAIR = ("perspective", "raytrace")
@@ -78,7 +79,8 @@ def cost(output: Output) -> str:
         drawn = stats["polygons_drawn"]
         return f"z-buffer: {drawn:,} polygon{'s' * (drawn != 1)}, {_ms(sum(stats['times'].values()))}"
     stats = output.trace.stats
-    return f"{stats['rays']['total']:,} rays, {_ms(stats['times']['total'])}"
+    return f"{stats['rays']['total']:,} rays, {accel_words(stats['accel']['method'])}, " \
+           f"{_ms(stats['times']['total'])}"
 
 
 class ReadoutRow(QWidget):

@@ -62,6 +62,13 @@ ACCELS = [("bvh", "BVH"), ("grid+spheres", "Grid + spheres"), ("grid", "Grid of 
           ("spheres", "Bounding spheres"), ("none", "None")]
 
 
+def accel_words(method: str) -> str:
+    """An acceleration method as a caption says it: "BVH", "grid of cuboids", "no acceleration"."""
+    if method == "none":
+        return "no acceleration"
+    return "BVH" if method == "bvh" else dict(ACCELS)[method].lower()
+
+
 def _combo(items, tip):
     box = QComboBox()
     for key, text in items:

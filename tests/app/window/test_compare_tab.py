@@ -124,6 +124,29 @@ def test_the_explanation_names_the_effects_only_the_tracer_computes(qtbot, windo
     assert "z-test" in text and "first hit" in text
 
 
+def test_the_tracer_is_timed_with_the_acceleration_chosen_and_its_caption_says_which(qtbot, window):
+    # The first lesson's "Where the work goes" traces with no acceleration ("each ray is tested
+    # against every triangle of the scene") and points at Compare's times: Compare traced with the
+    # BVH whatever was chosen, and its caption showed the BVH's time.  The lecture scene's meshes hold
+    # 110 triangles: without acceleration each primary ray tests all of them.
+    from dataclasses import replace
+
+    panel = _compare(qtbot, window)
+    assert panel.pair() == ("perspective", "raytrace")
+    assert sum(len(o.triangles) for o in window.model.scene.objects) == 110
+    for accel, words in (("none", "no acceleration"), ("bvh", "BVH")):
+        window.model.set_trace_settings(replace(window.model.trace_settings, accel=accel))
+        qtbot.waitUntil(lambda accel=accel: window.showing_full("compare") and not panel.shown.preview
+                        and panel.shown.comparison.b.settings.accel == accel, timeout=RENDER_TIMEOUT_MS)
+        stats = panel.shown.comparison.b.trace.stats
+        assert f"rays, {words}, " in panel.captions["b"].text()
+        primary = window.model.scene.camera.width * window.model.scene.camera.height
+        if accel == "none":
+            assert stats["accel"]["prim_tests"] >= 110 * primary
+        else:
+            assert stats["accel"]["prim_tests"] < 10 * primary
+
+
 def test_changing_the_pair_renders_again_and_reads_the_picked_pixel_in_the_new_output(qtbot, window):
     panel = _compare(qtbot, window)
     tab = window.tab("compare")
