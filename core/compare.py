@@ -32,7 +32,7 @@ from core.image_order.effects_plan import effects_plan
 from core.image_order.flat_scene import TraceSettings
 from core.image_order.ray_tracing import TraceResult, render_trace
 from core.image_order.ray_tree import RayNode, trace_pixel
-from core.in_words import listed
+from core.in_words import counted, listed
 from core.object_order.pipeline import RasterResult, RasterSettings, render_raster
 from core.object_order.step_history import PixelEvent
 from core.pixel_verdict import DROPPED_BY, PixelVerdict, raster_verdict, trace_verdict
@@ -81,6 +81,31 @@ class Output:
     @property
     def projection(self) -> str:
         return self.scene.camera.projection
+
+    @property
+    def depth(self) -> np.ndarray:
+        """(H, W) the view depth of the surface each pixel shows, +inf where it shows the background."""
+        return self.raster.depth if self.raster is not None else self.trace.depth
+
+
+SAME_DEPTH = 1e-9
+"""Two renders show the same surface at a pixel when their view depths there differ by at most this
+part of the larger (float64 rounding parts them by a few 1e-15 on the lecture's scene), or when both
+show the background."""
+
+
+def surfaces_part(depth_a: np.ndarray, depth_b: np.ndarray) -> np.ndarray:
+    """(H, W) bool: the pixels where two renders' depth images (:attr:`Output.depth`) show different
+    surfaces: one the background and the other not, or depths that differ by more than
+    :data:`SAME_DEPTH`.
+
+    >>> surfaces_part(np.array([[2.0, np.inf, 3.0]]), np.array([[2.0, np.inf, np.inf]])).tolist()
+    [[False, False, True]]
+    """
+    far_a, far_b = ~np.isfinite(depth_a), ~np.isfinite(depth_b)
+    both = ~far_a & ~far_b
+    a, b = np.where(both, depth_a, 0.0), np.where(both, depth_b, 0.0)
+    return (far_a != far_b) | (both & (np.abs(a - b) > SAME_DEPTH * np.maximum(np.abs(a), np.abs(b))))
 
 
 def output_projection(scene: Scene, name: str) -> str:
@@ -292,6 +317,13 @@ def _projection_sentences(scene: Scene, pa: str, pb: str) -> list[str]:
     return [sentence + "."]
 
 
+def _surfaces_found(raster: Output, tracer: Output) -> str:
+    parted = int(np.count_nonzero(surfaces_part(raster.depth, tracer.depth)))
+    if parted == 0:
+        return "both find the same surface at every pixel, at the same depth."
+    return f"both find the same surface at the same depth at every pixel but {counted(parted, 'pixel')}."
+
+
 def _zbuffer_against_tracer(scene: Scene, raster: Output, tracer: Output) -> list[str]:
     stats = raster.raster.stats
     same = raster.projection == tracer.projection
@@ -302,7 +334,7 @@ def _zbuffer_against_tracer(scene: Scene, raster: Output, tracer: Output) -> lis
         f"keeping at each pixel the nearest fragment ({stats['fragments_failed']:,} of "
         f"{stats['fragments_generated']:,} fragments failed the z-test); the tracer keeps the first hit "
         "along each primary ray instead, so " + (
-            "both find the same visible surfaces and part only along edges." if same else
+            _surfaces_found(raster, tracer) if same else
             "with one projection they would find the same visible surfaces.")]
     spheres = [i for i, o in enumerate(scene.objects) if isinstance(o, Sphere)]
     if spheres:

@@ -29,6 +29,7 @@ Every fact is one JSON object whose ``"fact"`` names its kind (pixels are
     {"fact": "primitive_tests", "pixel": [132, 93], "count": 110}
     {"fact": "tests_per_pixel", "accel": "bvh", "fewer_than": "grid", "tests": "primitive tests"}
     {"fact": "changes_picture", "stage": "z_test", "is": false}
+    {"fact": "same_surfaces"}
     {"fact": "ray_sphere", "origin": [2, 1, 2], "end": [10, 6, 6], "center": [6, 4, 6],
      "radius": 10, "value": "a", "equals": 105, "tolerance": 1e-9}
     {"fact": "ray_triangle", "origin": [0, 0, 0], "direction": [1, 1, 1], "a": [3, 0, 0],
@@ -57,7 +58,9 @@ step's other image-order settings) costs fewer a pixel than with ``fewer_than``.
 switches one object-order ``stage`` (``back_face_culling``, ``frustum_culling``, ``clipping``,
 ``sort_transparent``, ``z_test``) the other way from the step's settings and holds when some pixel of
 the finished image changes ("for a convex solid this test alone gives the right picture": switching
-the z-test off changes none).
+the z-test off changes none). ``same_surfaces`` holds when object order's z-buffer and image order's
+first hits find the same surface at every pixel of the step's image: the same view depth (within
+:data:`core.compare.SAME_DEPTH`), or the background in both.
 ``ray_sphere`` takes the lecture's segment (``end``) or a ray (``direction``); its values are those
 of :class:`core.image_order.intersect_sphere.SphereIntersection` (``a``, ``b``, ``c``,
 ``discriminant``, ``sqrt_discriminant``, ``offset_squared``, ``radius_squared``, ``t_near``,
@@ -114,6 +117,7 @@ KINDS = MappingProxyType({
     "primitive_tests": (("pixel", "count"), ("is",)),
     "tests_per_pixel": (("accel", "fewer_than"), ("tests", "is")),
     "changes_picture": (("stage",), ("is",)),
+    "same_surfaces": ((), ("is",)),
     "ray_sphere": (("origin", "center", "radius", "value", "equals"), ("end", "direction", "tolerance")),
     "ray_triangle": (("origin", "direction", "a", "b", "c", "value", "equals"), ("tolerance",)),
 })
@@ -178,6 +182,9 @@ class Fact:
                    f"a pixel than {a['fewer_than']}"
         if self.kind == "changes_picture":
             return f"switching {a['stage']} {'changes' if yes else 'does not change'} the object-order image"
+        if self.kind == "same_surfaces":
+            return f"object order and image order {'' if yes else 'do not '}find the same surface at " \
+                   "every pixel"
         tolerance = a.get("tolerance", DEFAULT_TOLERANCE)
         return f"{self.kind} {a['value']} = {show(a['equals'])} (within {tolerance:g})"
 
@@ -375,7 +382,7 @@ class StepPipelines:
         self.step = step
         self._raster = None
         self._trees: dict[tuple[int, int], object] = {}
-        self._heat: dict[str, np.ndarray] = {}
+        self._traced: dict[str, object] = {}
 
     @property
     def raster(self):
@@ -396,17 +403,23 @@ class StepPipelines:
             self._trees[pixel] = trace_pixel(self.step.scene, *pixel, self.step.image_order)
         return self._trees[pixel]
 
-    def heat(self, accel: str) -> np.ndarray:
-        """Each pixel's intersection tests (H, W, HEAT_SIZE), the whole image traced with the step's
-        image-order settings and the acceleration method ``accel``."""
-        if accel not in self._heat:
+    def traced(self, accel: str | None = None):
+        """The whole image traced with the step's image-order settings and the acceleration method
+        ``accel`` (the step's by default), each pixel's intersection tests counted."""
+        accel = accel or self.step.image_order.accel
+        if accel not in self._traced:
             from dataclasses import replace
 
             from core.image_order.ray_tracing import render_trace
 
             settings = replace(self.step.image_order, accel=accel)
-            self._heat[accel] = render_trace(self.step.scene, settings, heat=True).heat
-        return self._heat[accel]
+            self._traced[accel] = render_trace(self.step.scene, settings, heat=True)
+        return self._traced[accel]
+
+    def heat(self, accel: str) -> np.ndarray:
+        """Each pixel's intersection tests (H, W, HEAT_SIZE), the whole image traced with the step's
+        image-order settings and the acceleration method ``accel``."""
+        return self.traced(accel).heat
 
     def object_index(self, name: str) -> int:
         return [o.name for o in self.step.scene.objects].index(name)
@@ -655,6 +668,13 @@ def _changes_picture(a, p):
     return (differ > 0) == a.get("is", True), f"switched {state}, {differ} pixel(s) differ"
 
 
+def _same_surfaces(a, p):
+    from core.compare import surfaces_part
+
+    parted = int(np.count_nonzero(surfaces_part(p.raster.depth, p.traced().depth)))
+    return (parted == 0) == a.get("is", True), f"they find different surfaces at {parted} pixel(s)"
+
+
 def _value(a, result):
     got = getattr(result, a["value"])
     want = a["equals"]
@@ -696,7 +716,7 @@ _CHECKS = {
     "frustum": _frustum, "back_face": _back_face, "clipped": _clipped, "zbuffer_keeps": _zbuffer_keeps,
     "ztest_fails": _ztest_fails, "seen": _seen, "blend": _blend, "projects_to": _projects_to,
     "first_hit": _first_hit, "shadow": _shadow, "ray_event": _ray_event, "rays": _rays,
-    "primitive_tests": _primitive_tests, "tests_per_pixel": _tests_per_pixel,
+    "primitive_tests": _primitive_tests, "tests_per_pixel": _tests_per_pixel, "same_surfaces": _same_surfaces,
     "changes_picture": _changes_picture, "ray_sphere": _ray_sphere, "ray_triangle": _ray_triangle,
 }
 

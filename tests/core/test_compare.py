@@ -4,6 +4,7 @@ from dataclasses import replace
 
 import numpy as np
 import pytest
+from hand_rays import frame, image_hits, rays
 from matplotlib import colormaps
 
 from core.compare import OUTPUTS, compare, difference, explain, probe, render_output
@@ -114,6 +115,33 @@ def test_a_light_nothing_can_block_is_said_to_cast_no_shadows():
     text = _text(_small(lone_sphere()), "perspective", "raycast")
     assert "no shadow rays" in text
     assert "Only the tracer casts shadows" not in text
+
+
+@pytest.mark.parametrize("make", [lecture_scene, lone_sphere])
+def test_the_sentence_on_visible_surfaces_counts_the_pixels_where_they_part(make):
+    # It said "both find the same visible surfaces and part only along edges" whatever the scene.  The
+    # reference: each pixel's first hit by brute force (every triangle, the analytic sphere), its view
+    # depth t (d . forward) for a unit d, against the z-buffer's depth; they part where one sees the
+    # background and the other not, or the depths differ by more than 1e-9 of the larger.  The
+    # lecture scene's faces are flat: the same plane, the same depth, at every pixel; the lone
+    # sphere is drawn as facets inscribed in it: nearer than the true sphere wherever it shows.
+    scene = _small(make())
+    cam = scene.camera
+    hits = np.stack(list(image_hits(scene).values())).min(axis=0)
+    _, directions = rays(cam, *np.mgrid[0:cam.height, 0:cam.width][::-1].reshape(2, -1))
+    depth = hits * (directions @ frame(cam)[2]).reshape(hits.shape)
+    z_buffer = render_raster(scene).depth
+    far_a, far_b = ~np.isfinite(depth), ~np.isfinite(z_buffer)
+    with np.errstate(invalid="ignore"):
+        apart = np.abs(depth - z_buffer) > 1e-9 * np.maximum(depth, z_buffer)
+    parted = int(np.count_nonzero((far_a != far_b) | (~far_a & ~far_b & apart)))
+    text = _text(scene, "perspective", "raycast")
+    if make is lecture_scene:
+        assert parted == 0 and "the same surface at every pixel, at the same depth" in text
+    else:
+        assert parted > 0.9 * np.count_nonzero(np.isfinite(depth))
+        assert f"at every pixel but {parted:,} pixels" in text
+    assert "along edges" not in text
 
 
 def test_the_projection_sentence_appears_only_when_the_projections_differ():

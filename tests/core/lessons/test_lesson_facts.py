@@ -279,3 +279,15 @@ def test_a_step_whose_words_give_t_gives_the_t_its_picked_pixels_ray_shows():
             assert re.search(r"at t = ([\d.]+)", verdict).group(1) in said, (lesson.id, k, verdict, said)
             checked.append(lesson.id)
     assert checked == ["ray_sphere", "ray_triangle"]
+
+
+def test_the_two_orders_find_the_same_surfaces_on_flat_faces_and_not_on_a_true_sphere():
+    # The lecture scene is all flat faces: the z-buffer and the first hit find the same plane, so
+    # the same depth, at every pixel (tests/core/test_compare.py works that out by brute force).  A
+    # sphere is drawn as facets inscribed in it: where it shows, the z-buffer's depth is nearer.
+    same = {"fact": "same_surfaces"}
+    assert check_lesson(from_dict(_lesson([same], scene="lecture"))) == []
+    assert check_lesson(from_dict(_lesson([{**same, "is": False}], scene="lone_sphere"))) == []
+    (line,) = check_lesson(from_dict(_lesson([same], scene="lone_sphere")))
+    assert "(object order and image order find the same surface at every pixel): computed they find " \
+           "different surfaces at " in line
