@@ -1,4 +1,7 @@
-"""Why each knob's curve has its shape, in a sentence or two of our own words."""
+"""Why each knob's curve has its shape, in a sentence or two of our own words.
+
+Their claims that a computation can decide are worked out in tests/core/accuracy/test_explanations.py.
+"""
 
 from __future__ import annotations
 
@@ -40,8 +43,9 @@ EXPLANATIONS: dict[str, str] = {
     ),
     "depth-format": (
         "Window depth is hyperbolic in distance, so it crowds near 1 for everything far from the "
-        "near plane, and moving the near plane closer crowds it more.  At 1:1000, 50 units away, a "
-        "tenth of a unit in depth is only about a quarter of one of 16-bit depth's 65536 steps, so "
+        "near plane, and moving the near plane closer crowds it more.  With the far plane 100 units "
+        "away and the near plane at 0.1 (1:1000), a tenth of a unit in depth 50 units away is only "
+        "about a quarter of one of 16-bit depth's 65536 steps, so "
         "two surfaces that close share a stored depth and fight pixel by pixel; 24 bits and floats "
         "have the steps to spare, and reversed-Z puts the float's finest steps where depth crowds.  "
         "A scene whose surfaces are never close in depth shows no fighting at all: the formats then "
