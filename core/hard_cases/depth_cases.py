@@ -22,6 +22,7 @@ import numpy as np
 
 from core.camera import Camera
 from core.hard_cases.result import CaseImage, CaseResult, Parameter, Row
+from core.in_words import listed
 from core.object_order import rasterization
 from core.object_order.depth_formats import DEPTH_FORMATS, depth_keys
 from core.object_order.zbuffer import depth_test
@@ -93,6 +94,28 @@ def _picture(far_depth, near_depth, fmt) -> np.ndarray:
 NAIVE_FORMAT, ROBUST_FORMAT = "float32", "float32-reversed"
 
 
+def _fought(ratio: float, wrong: dict[str, int]) -> str:
+    """What the formats did at ``ratio``, from the pixels each got wrong."""
+    lost = [fmt for fmt in DEPTH_FORMATS if wrong[fmt]]
+    kept = [fmt for fmt in DEPTH_FORMATS if not wrong[fmt]]
+    if not lost:
+        return (f"At far/near {ratio:,.0f} every format still tells the floors apart; slide the ratio up to "
+                "see them fight.")
+    one = len(lost) == 1
+    return (f"At far/near {ratio:,.0f}, {listed(lost)} {'stores' if one else 'store'} both floors as the "
+            f"same number at some pixels, and there the red one, drawn first, stays; {listed(kept)} still "
+            f"{'tell' if len(kept) > 1 else 'tells'} them apart.")
+
+
+def _ordinal(n: int) -> str:
+    """``n`` as an ordinal in digits.
+
+    >>> [_ordinal(n) for n in (1, 2, 3, 4, 11, 12, 21)]
+    ['1st', '2nd', '3rd', '4th', '11th', '12th', '21st']
+    """
+    return f"{n}{'th' if 10 <= n % 100 <= 20 else {1: 'st', 2: 'nd', 3: 'rd'}.get(n % 10, 'th')}"
+
+
 def z_fighting(ratio: float = 1e6) -> CaseResult:
     """Two floors ``GAP`` apart seen with ``far / near = ratio``; wrongly hidden pixels per depth format.
 
@@ -108,7 +131,10 @@ def z_fighting(ratio: float = 1e6) -> CaseResult:
     wrong = {fmt: int(_second_hidden(lower, upper, fmt).sum()) for fmt in DEPTH_FORMATS}
     speckle = {fmt: int((~_second_hidden(lower, same_plane, fmt) & ~np.isnan(lower)).sum())
                for fmt in (NAIVE_FORMAT, ROBUST_FORMAT, "float64")}
-    both = int((~np.isnan(lower) & ~np.isnan(upper)).sum())
+    covered = ~np.isnan(lower) & ~np.isnan(upper)
+    both = int(covered.sum())
+    smallest = float(np.min((lower - upper)[covered]))  # the floors' window depths, nearest together
+    digit = int(np.ceil(-np.log10(smallest)))
     rows = [
         Row(f"blue floor wrongly hidden (pixels of {both})", wrong[NAIVE_FORMAT], wrong[ROBUST_FORMAT], 0),
         *[Row(f"  in {fmt}", wrong[fmt], None, 0) for fmt in DEPTH_FORMATS],
@@ -127,11 +153,11 @@ def z_fighting(ratio: float = 1e6) -> CaseResult:
                           f"{GAP / EYE_HEIGHT:g}, far above float32's relative step 6e-8"),
         explanation=(
             "Window depth is 1 - near/distance up to a constant, so far away it crowds against 1 and "
-            "the gap between the floors becomes a difference in the 8th digit or beyond, shrinking with "
-            "the near plane: float32 and the integer formats store both floors as the same number and "
-            "the red one, drawn first, stays. Reversed depth stores 1 - z, a small number that float32 "
-            "keeps with 7 significant digits, so the relative gap survives at any near plane. Exactly "
-            "coplanar polygons are a tie no format can break: use drawing order or a depth offset."
+            f"the gap between the floors shrinks with the near plane: here to as little as {smallest:.0e}, "
+            f"a difference in the {_ordinal(digit)} digit. {_fought(ratio, wrong)} Reversed depth "
+            "stores 1 - z, a small number that float32 keeps with 7 significant digits, so the relative "
+            "gap survives at any near plane. Exactly coplanar polygons are a tie no format can break: use "
+            "drawing order or a depth offset."
         ),
         images=(CaseImage(f"red floor drawn first, blue floor {GAP:g} above it drawn second",
                           _picture(lower, upper, NAIVE_FORMAT), _picture(lower, upper, ROBUST_FORMAT)),),

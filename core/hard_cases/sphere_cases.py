@@ -111,9 +111,10 @@ def tangent_rays(offset: float = 3e-11) -> CaseResult:
     d = TANGENT_DIRECTION
     side = _unit(np.cross(d, (0.0, 0.0, 1.0)))
     rows, verdicts, wrong_naive, wrong_robust = [], ([], [], []), 0, 0
+    apart = 0.0  # the largest |Δ| of the two rays off the tangent one, exactly
     for name, s in (("outside by offset", 1.0), ("tangent", 0.0), ("inside by offset", -1.0)):
         o = center - TANGENT_BACK * d + r * (1.0 + s * offset) * side
-        naive_disc, *_ = textbook_discriminant(o, d, center, r)
+        naive_disc, _, b, _ = textbook_discriminant(o, d, center, r)
         robust = intersect_sphere(o, d, center, r)
         truth = exact_classify(o, d, center, r)
         naive_verdict = textbook_classify(naive_disc)
@@ -121,9 +122,22 @@ def tangent_rays(offset: float = 3e-11) -> CaseResult:
         wrong_robust += robust.classification != truth
         for column, verdict in zip(verdicts, (naive_verdict, robust.classification, truth), strict=True):
             column.append(verdict)
+        exact = float(exact_discriminant(o, d, center, r))
+        apart = max(apart, abs(exact)) if s else apart
         rows += [Row(f"ray {name}: verdict", naive_verdict, robust.classification, truth),
-                 Row(f"ray {name}: Δ", float(naive_disc), robust.discriminant,
-                     float(exact_discriminant(o, d, center, r)))]
+                 Row(f"ray {name}: Δ", float(naive_disc), robust.discriminant, exact)]
+    square = float(b * b)
+    rounding = float(np.spacing(square))  # one unit of rounding of b² (and of 4ac, as large)
+    called = ", ".join(verdicts[0])
+    if set(verdicts[2]) == {"tangent"}:
+        told = (f"their Δ is at most {apart:.1g}, so close that the exact reference calls all three tangent "
+                f"too (within the rounding of |v|), and b² - 4ac calls them {called}")
+    elif apart < rounding:
+        told = (f"their Δ, at most {apart:.1g}, is smaller than that: what b² - 4ac keeps is rounding, not "
+                f"Δ, and here it calls them {called}, {wrong_naive} of 3 wrong")
+    else:
+        told = (f"their Δ, about {apart:.1g}, is larger than that, so at this offset b² - 4ac still tells "
+                f"them apart; slide the offset below about {rounding / 8:.0e} radii to see it fail")
     return CaseResult(
         name="tangent", title="1. Tangent ray: misses, touches or crosses?",
         parameter=Parameter("offset", "offset of the other two rays from the tangent one (radii)",
@@ -135,10 +149,9 @@ def tangent_rays(offset: float = 3e-11) -> CaseResult:
         naive_error=float(wrong_naive), robust_error=float(wrong_robust),
         error_unit=VERDICT, tolerance=0.0, tolerance_reason="a verdict is right or wrong",
         explanation=(
-            "Seen from 1234.5 radii away, b² and 4ac are both about 6 million and the rounding of "
-            "each is about a billionth, while their difference for these rays is smaller than that: "
-            "b² - 4ac cannot tell the three rays apart and calls them all tangent (or, by chance, "
-            "misses or crosses). The robust test compares the distance |v| "
+            f"Seen from {TANGENT_BACK:g} radii away, b² and 4ac are both about {square:.2g} and each is "
+            f"rounded in steps of {rounding:.1g}, while the two rays {offset:.1g} radii off the tangent one "
+            f"change Δ by about 8 times that offset: {told}. The robust test compares the distance |v| "
             "from the centre to the line with r directly, so nothing large cancels, and it calls a ray "
             "tangent only within the rounding error of |v|."
         ),
@@ -276,7 +289,7 @@ def far_sphere(distance: float = 1e8) -> CaseResult:
         explanation=(
             "b² and 4ac both grow like the squared distance (here about "
             f"{4 * distance**2:.1g}) while their difference stays about 3, so b² - 4ac keeps only "
-            "the digits the square did not use up: none at all in float32 beyond a few hundred units, "
+            "the digits the square did not use up: none at all in float32 beyond a few thousand units, "
             "none in float64 beyond about 10^8. The robust form subtracts lengths instead of squares, "
             "r - |v| with |v| the distance from the centre to the line, and loses only the digits of "
             "the distance itself."

@@ -62,6 +62,27 @@ def test_tangent_rays_textbook_fails_only_below_its_rounding():
     assert sphere_cases.tangent_rays(3e-11).naive_error >= 1
 
 
+@pytest.mark.parametrize("offset", [1e-13, 3e-11, 1e-10, 3e-10, 1e-6])
+def test_tangent_rays_words_follow_the_slider(offset):
+    # They said "b² - 4ac cannot tell the three rays apart and calls them all tangent" at every offset,
+    # beside a table that at 1e-6 shows it right three times of three.  b² ≈ 4 · 1234.5² ≈ 6.1e6 is
+    # rounded in steps of 2^-30 ≈ 9.3e-10 (6.1e6 lies between 2^22 and 2^23); Δ ≈ 8 · offset
+    # (4 (r² - (r (1 ± offset))²) with r = 1): below the step at 1e-13 to 1e-10, above it from 3e-10.
+    result = sphere_cases.tangent_rays(offset)
+    text = result.explanation
+    verdicts = result.rows[0]
+    assert "b² and 4ac are both about 6.1e+06 and each is rounded in steps of 9e-10" in text
+    if 8 * offset < 2.0**-30:
+        assert "is smaller than that" in text or "the exact reference calls all three tangent" in text
+        assert f"calls them {verdicts.naive}" in text
+        if "smaller" in text:
+            assert f"{int(result.naive_error)} of 3 wrong" in text and result.naive_error >= 1
+    else:
+        assert "is larger than that, so at this offset b² - 4ac still tells them apart" in text
+        assert result.naive_error == 0 and verdicts.naive == "misses, tangent, crosses"
+    assert "cannot tell the three rays apart" not in text
+
+
 def test_textbook_discriminant_rounds_each_step_as_written():
     # Plain Python floats round every product and sum in the order written, with no fused
     # multiply-add: the lab's textbook numbers must be those on every machine (BLAS's dot is not).
@@ -82,6 +103,22 @@ def test_far_sphere_textbook_loses_every_digit_at_1e9():
     # At 10^9, b² ≈ 4e18 is rounded to multiples of 512, and Δ is about 3.
     r = sphere_cases.far_sphere(1e9)
     assert r.naive_error >= 0.1 and r.robust_error < 1e-6
+
+
+def test_far_sphere_textbook_digits_run_out_where_its_words_say():
+    # "none at all in float32 beyond a few thousand units, none in float64 beyond about 10^8": the
+    # digits correct against the exact discriminant.  It said "a few hundred", where float32 still
+    # keeps one or two.
+    def digits(distance, of):
+        rows = {row.label: row for row in sphere_cases.far_sphere(distance).rows}
+        return rows[f"digits correct of {of}"].naive
+
+    assert "none at all in float32 beyond a few thousand units, none in float64 beyond about 10^8" in \
+        sphere_cases.far_sphere(1e4).explanation
+    assert digits(300, "7 (float32)") >= 1 and digits(500, "7 (float32)") >= 1
+    assert digits(3e3, "7 (float32)") == 0 and digits(1e4, "7 (float32)") == 0
+    assert digits(1e7, "16 (float64)") >= 5
+    assert digits(1e8, "16 (float64)") == 0 and digits(1e9, "16 (float64)") == 0
 
 
 def test_far_sphere_exact_discriminant_matches_the_distance_to_the_line():
@@ -162,6 +199,33 @@ def test_float32_depth_fights_only_when_the_near_plane_comes_close():
     r = depth_cases.z_fighting(1e7)
     both = int(r.rows[0].label.split("of ")[1].rstrip(")"))
     assert r.naive_error > 0.5 * both
+
+
+@pytest.mark.parametrize("ratio", [1e2, 1e3, 1e6])
+def test_z_fighting_words_follow_the_slider(ratio):
+    # They said "float32 and the integer formats store both floors as the same number" at every
+    # ratio, beside a table where at far/near 100 no format loses a pixel.  The smallest gap: along a
+    # pixel's ray the upper floor lies at (h - g) / h of the lower one's depth z, so their window depths
+    # (f / (f - n)) (1 - n / z) differ by (f / (f - n)) (n / z) g / (h - g), least at the floor's far
+    # corners, z = (4 + 92 · 30) / √904 ≈ 91.93 along the view axis: 5.47e-5 at far/near 100, then
+    # ten times less for each factor of ten (pixel centres lie a little nearer: a little more).
+    r = depth_cases.z_fighting(ratio)
+    text = r.explanation
+    f, g, h = 100.0, 0.01, 2.0
+    n = f / ratio
+    least = (f / (f - n)) * (n / ((4 + 92 * 30) / math.sqrt(904))) * g / (h - g)
+    stated = float(text.split("as little as ")[1].split(",")[0])
+    assert least <= stated * 1.06 and stated <= least * 1.25, (least, stated)
+    assert f"a difference in the {math.ceil(-math.log10(stated))}th digit" in text
+    wrong = {row.label.strip()[3:]: row.naive for row in r.rows[1:6]}
+    lost = [fmt for fmt, pixels in wrong.items() if pixels]
+    if ratio == 1e2:
+        assert lost == [] and "every format still tells the floors apart" in text
+    else:
+        said = {1e3: "At far/near 1,000, int16 stores both floors as the same number",
+                1e6: "At far/near 1,000,000, float32, int24 and int16 store both floors as the same number"}
+        assert lost == (["int16"] if ratio == 1e3 else ["float32", "int24", "int16"])
+        assert said[ratio] in text
 
 
 @pytest.mark.parametrize("behind", [0.05, 0.5, 2.0, 10.0, 50.0])
