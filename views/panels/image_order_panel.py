@@ -281,10 +281,12 @@ class ImageOrderPanel(QWidget):
         self._room_for_tree = False
 
     def _fit_verdict(self) -> None:
-        """Give the verdict over the tree the lines the tree can spare above ``TREE_ROWS`` rows:
-        whole where there is room (at x2 on 1920x1080), on fewer lines ending in "…" where not."""
+        """Give the verdict over the tree the lines the tree can spare above its rays' rows, up to
+        ``TREE_ROWS`` of them: whole where there is room (at x2 on 1920x1080), on fewer lines ending in
+        "…" where not (presenting on a 1280 x 720 projector, a ray cast with one shadow ray left two
+        rows' room empty under a verdict cut to one line)."""
         row = max(self.tree.sizeHintForRow(0), self.tree.fontMetrics().lineSpacing() + 6)
-        self.verdict.share_room(self.tree, TREE_ROWS * row)
+        self.verdict.share_room(self.tree, max(1, min(self.tree.row_count(), TREE_ROWS)) * row)
 
     def eventFilter(self, watched, event) -> bool:
         if event.type() == QEvent.Type.Resize and watched is self.tree.viewport():
@@ -419,6 +421,7 @@ class ImageOrderPanel(QWidget):
                                   f"Ray tree of pixel ({x}, {y}): {counted(n, 'ray')} traced; pixel colour "
                                   f"({', '.join(f'{c:.3f}' for c in root.pixel_color)})")
         self.tree.set_tree(root)
+        self._fit_verdict()  # the lines its rows leave
         self.worked_math.show_ray(scene, root)
         self.tree.select_kind(self.ray_kind)
         self.explanation.setPlainText(

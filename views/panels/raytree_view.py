@@ -202,6 +202,10 @@ class RayTreeWidget(QTreeWidget):
         self.addTopLevelItem(self._item(root))
         self.expandAll()
 
+    def row_count(self) -> int:
+        """The rays shown, one row each (the tree is shown whole)."""
+        return sum(1 for _ in self._items())
+
     def widen_soon(self) -> None:
         """:meth:`widen_to_columns` once the layouts around took the sizes given them now."""
         self._widen.start()

@@ -1,5 +1,6 @@
 """Object order's pixel history reads whole presenting at x2 on a 1280 x 720 screen: its caption's
-lines and every fragment's row (up to three) inside the table's view, unscrolled."""
+lines and every fragment's row (up to three) inside the table's view, unscrolled; and the verdict over
+a pixel's evidence (its fragments, its ray tree) takes the lines the evidence's rows do not need."""
 
 from window_helpers import RENDER_TIMEOUT_MS, presenting_on_1280x720
 
@@ -47,6 +48,33 @@ def test_presenting_at_x1_5_on_1280x720_a_one_fragment_pixels_verdict_takes_the_
         lines = verdict.shown_lines()
         assert len(lines) > 1 and " ".join(lines) == full, lines
         assert table.viewport().rect().contains(table.visualRect(table.model().index(0, 0)))
+        return True
+
+    qtbot.waitUntil(whole, timeout=5000)
+    window.presentation.set_presenting(False)
+
+
+def test_presenting_at_x2_on_1280x720_a_short_ray_trees_verdict_takes_the_rows_room(qtbot, monkeypatch):
+    # The shadow-ray step's pixel (230, 155) has a ray tree of two rays, the primary and its shadow
+    # ray: its verdict kept one line, "Why pixel (230, 155): The primary ray hits ground …", above a
+    # tree with two empty rows' room, the room kept for four rays.  It takes the lines the rays do not
+    # need, and both rays' rows stay whole in view.
+    from core.files.lesson_file import shipped_lessons
+
+    window = presenting_on_1280x720(qtbot, monkeypatch, 2.0)
+    k = [lesson.id for lesson in shipped_lessons()].index("ray_casting")
+    window.lesson_panel.select(k, 1)
+    panel = window.tab("image order").widget
+    tree, verdict = panel.tree, panel.verdict
+    qtbot.waitUntil(lambda: tree.row_count() == 2 and verdict.shown is not None, timeout=RENDER_TIMEOUT_MS)
+    full = f"Why pixel (230, 155): {verdict.shown.sentence}"
+
+    def whole() -> bool:
+        assert window.frameGeometry().height() <= 720
+        lines = verdict.shown_lines()
+        assert len(lines) > 1 and " ".join(lines) == full, lines
+        shadow = tree.topLevelItem(0).child(0)
+        assert tree.viewport().rect().contains(tree.visualItemRect(shadow))
         return True
 
     qtbot.waitUntil(whole, timeout=5000)
