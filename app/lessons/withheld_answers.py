@@ -77,9 +77,8 @@ class WithheldAnswers:
                 else:  # a label is one line: the step drawn
                     cover(pane, f"Hidden until exercise {n} is answered" if isinstance(pane, QLabel)
                           else why, ANSWER)
-        self.window.tab("image order").widget.withhold_heat(
-            f"Heat map hidden until exercise {n} is answered: it would give the answer away."
-            if HEAT_MAP in hidden else "")
+        self.window.tab("image order").widget.withhold_heat(  # under the map's choice: one short line
+            f"Heat map hidden until exercise {n} is answered" if HEAT_MAP in hidden else "")
         # The 3D pane marks what the question names, not what the step's words name (its outline of
         # the box behind the observer answered "Which object is dropped before any pixel work?").
         ex = self.window.exercise_panel.waiting_for

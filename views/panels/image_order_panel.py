@@ -16,7 +16,7 @@ show, the traced image is shown without it (:meth:`ImageOrderPanel.withhold_heat
 from __future__ import annotations
 
 import numpy as np
-from PySide6.QtCore import QEvent, Qt, Signal
+from PySide6.QtCore import QEvent, Qt, QTimer, Signal
 from PySide6.QtGui import QFont
 from PySide6.QtWidgets import (
     QCheckBox,
@@ -145,6 +145,7 @@ class ImageOrderPanel(QWidget):
         self.heat_withheld = QLabel()  # says why the heat map chosen is not shown (withhold_heat)
         self.heat_withheld.setWordWrap(True)
         self.heat_withheld.hide()
+        self.heat_withheld.installEventFilter(self)
         self._traced: DisplayImage | None = None  # the traced image, under the heat map
         self._heats = JobRunner(self, own_thread(self))  # lays the heat map over it off the GUI thread
         self._heats.finished.connect(self._paint_heat)
@@ -215,8 +216,9 @@ class ImageOrderPanel(QWidget):
         top_layout = QHBoxLayout(top)
         top_layout.setContentsMargins(0, 0, 0, 0)
         top_layout.addWidget(self.image, 1)
-        top_layout.addWidget(SideColumn([form_box, self.rays, QLabel("<b>Ray colours</b>"),
-                                         RayKindLegend(per_line=3)]))
+        self.column = SideColumn([form_box, self.rays, QLabel("<b>Ray colours</b>"),
+                                  RayKindLegend(per_line=3)])
+        top_layout.addWidget(self.column)
         self.split = pictures_over_details(self, top, self.details)
         self._room_for_tree = False  # asked by a lesson, kept until the user drags the divider
         self.split.splitterMoved.connect(self._leave_room_as_dragged)
@@ -289,6 +291,9 @@ class ImageOrderPanel(QWidget):
         self.verdict.share_room(self.tree, max(1, min(self.tree.row_count(), TREE_ROWS)) * row)
 
     def eventFilter(self, watched, event) -> bool:
+        if watched is self.heat_withheld and event.type() in (QEvent.Type.Show, QEvent.Type.Resize):
+            # Shown, and laid out: into the column's view (at x2 it came where the view ends).
+            QTimer.singleShot(0, self, lambda: self.column.ensureWidgetVisible(self.heat_withheld, 0, 0))
         if event.type() == QEvent.Type.Resize and watched is self.tree.viewport():
             if self._room_for_tree:
                 self._make_room_for_tree()
@@ -376,7 +381,8 @@ class ImageOrderPanel(QWidget):
 
     def withhold_heat(self, why: str) -> None:
         """Show the traced image without the heat map chosen, and ``why`` in its place (an exercise
-        waiting for its answer asks what the map would show); ``""``: show the map again."""
+        waiting for its answer asks what the map would show), scrolled into the settings' view;
+        ``""``: show the map again."""
         self.heat_withheld.setText(why)
         self._show_heat()
 

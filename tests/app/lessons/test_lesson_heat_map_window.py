@@ -47,8 +47,7 @@ def test_a_question_on_where_the_tests_go_shows_the_traced_image_without_its_hea
 
     def traced_alone():
         assert panel.heat_withheld.isVisible() and not panel.heat_scale.isVisible()
-        assert panel.heat_withheld.text() == (f"Heat map hidden until exercise {k + 1} is answered: it "
-                                              "would give the answer away.")
+        assert panel.heat_withheld.text() == f"Heat map hidden until exercise {k + 1} is answered"
         assert np.array_equal(panel.image.rgb, image.rgb)
 
     qtbot.waitUntil(traced_alone)
@@ -59,3 +58,27 @@ def test_a_question_on_where_the_tests_go_shows_the_traced_image_without_its_hea
         assert not np.array_equal(panel.image.rgb, image.rgb)
 
     qtbot.waitUntil(heat_map_over_it, timeout=RENDER_TIMEOUT_MS)
+
+
+def test_presenting_at_x2_the_heat_maps_withheld_note_is_scrolled_into_the_settings_view(
+        qtbot, monkeypatch):
+    # Presenting at x2 the settings column is taller than its view, and the note under the heat map's
+    # choice came where the view ends, cut after its first line.
+    from window_helpers import ask_exercise, presenting_on_1280x720
+
+    window = presenting_on_1280x720(qtbot, monkeypatch, 2.0)
+    lesson = next(lesson for lesson in LESSONS if lesson.id == "acceleration")
+    k = next(i for i, e in enumerate(lesson.exercises) if e.question.startswith("Before the heat map"))
+    panel = window.tab("image order").widget
+    ask_exercise(qtbot, window, "acceleration", lesson.exercises[k].step, k)
+    note, view = panel.heat_withheld, panel.column.viewport()
+
+    def in_view():
+        assert note.isVisible() and note.height() >= note.heightForWidth(note.width())
+        top = note.mapTo(view, note.rect().topLeft()).y()
+        assert top >= 0 and top + note.height() <= view.height(), (top, note.height(), view.height())
+        return True
+
+    qtbot.waitUntil(in_view, timeout=RENDER_TIMEOUT_MS)
+    window.editor.stack.setClean()
+    window.presentation.set_presenting(False)
