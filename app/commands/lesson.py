@@ -23,6 +23,7 @@ import argparse
 import sys
 
 from core.files.lesson_file import LessonFileError, load_lesson
+from core.in_words import counted
 from core.lessons.exercises import check_exercises
 from core.lessons.facts import check_lesson
 
@@ -58,6 +59,6 @@ def run_check(args) -> int:
         if failures and status == 0:
             status = 1
     if status == 0:
-        print(f"{len(args.files)} lesson file(s): all {facts} facts hold, every number written is a "
-              f"fact's, every highlight is named; the pipelines answer all {exercises} exercises")
+        print(f"{counted(len(args.files), 'lesson file')}: all {facts} facts hold, every number written is "
+              f"a fact's, every highlight is named; the pipelines answer all {exercises} exercises")
     return status

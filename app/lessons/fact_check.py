@@ -14,6 +14,7 @@ from PySide6.QtCore import QObject
 from PySide6.QtWidgets import QMessageBox, QWidget
 
 from app.window.workers import Renderer
+from core.in_words import counted
 from core.lessons.facts import check_lesson
 
 
@@ -60,11 +61,11 @@ class LessonFactCheck(QObject):
                 f"Every fact of lesson {lesson.title!r} holds, every number it writes is a fact's and every "
                 "highlight is named", 8000)
             return
-        self.window.statusBar().showMessage(
-            f"{len(failures)} problem(s) in what lesson {lesson.title!r} says", 15000)
+        problems = counted(len(failures), "problem")
+        self.window.statusBar().showMessage(f"{problems} in what lesson {lesson.title!r} says", 15000)
         box = QMessageBox(QMessageBox.Icon.Warning, "What the lesson says that does not hold",
-                          f"{len(failures)} problem(s) in {lesson.title!r}: a fact the pipelines do not "
-                          "compute, a highlight its step's words do not name, or a number no fact states:",
+                          f"{problems} in {lesson.title!r}: a fact the pipelines do not compute, a highlight "
+                          "its step's words do not name, or a number no fact states:",
                           QMessageBox.StandardButton.Ok, self.window)
         box.setInformativeText("\n".join(failures[:8]) + (
             f"\n... and {len(failures) - 8} more" if len(failures) > 8 else ""))

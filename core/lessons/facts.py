@@ -82,7 +82,7 @@ import numpy as np
 from core.files.checked_json import is_integer, join, show
 from core.image_order.flat_layout import ACCEL_CODES, HEAT_BOUNDS_TESTS, HEAT_PRIM_TESTS
 from core.image_order.ray_tree import KINDS as RAY_KINDS
-from core.in_words import listed
+from core.in_words import counted, listed
 from core.lessons.naming import step_unnamed
 from core.lessons.numbers_said import unchecked_numbers
 from core.object_order.clipping import PLANES
@@ -173,10 +173,10 @@ class Fact:
             event = a["event"].replace("_", " ")
             return f"a ray of pixel {a['pixel']} does {neg}{event} at hit {a['hit']}{on}"
         if self.kind == "rays":
-            return f"pixel {a['pixel']} traces {a['count']} {a['kind']} ray(s)"
+            return f"pixel {a['pixel']} traces {counted(a['count'], a['kind'] + ' ray')}"
         if self.kind == "primitive_tests":
-            return f"the ray through pixel {a['pixel']} makes {'' if yes else 'other than '}{a['count']} " \
-                   "primitive test(s)"
+            return f"the ray through pixel {a['pixel']} makes {'' if yes else 'other than '}" \
+                   f"{counted(a['count'], 'primitive test')}"
         if self.kind == "tests_per_pixel":
             return f"{a['accel']} {'costs' if yes else 'does not cost'} fewer {a.get('tests', _TESTS)} " \
                    f"a pixel than {a['fewer_than']}"
@@ -277,7 +277,7 @@ def _read_arg(r, kind: str, key: str, v, path: str, scene: Scene | None, d: dict
         if got is not None and got < low:
             r.add(path, f"must be >= {low}, got {got}")
         if key == "light" and got is not None and scene is not None and got >= len(scene.lights):
-            r.add(path, f"the scene has {len(scene.lights)} light(s), numbered from 0; got {got}")
+            r.add(path, f"the scene has {counted(len(scene.lights), 'light')}, numbered from 0; got {got}")
         return got
     if key == "plane":
         return r.choice(v, path, PLANES, "plane")
@@ -489,7 +489,8 @@ def _clip_planes(p, obj_index: int) -> set[str]:
 
 def _clipped(a, p):
     planes = _clip_planes(p, p.object_index(a["object"]))
-    computed = f"clipped by the {', '.join(sorted(planes))} plane(s)" if planes else "not clipped"
+    computed = (f"clipped by the {listed(sorted(planes))} plane{'s' * (len(planes) > 1)}" if planes
+                else "not clipped")
     return (a["plane"] in planes) == a.get("is", True), computed
 
 
@@ -559,7 +560,8 @@ def _seen(a, p):
     if a.get("triangle") is not None:
         mine &= h.triangle_index[shown] == a["triangle"]
     count = int(np.count_nonzero(mine))
-    return (count > 0) == a.get("is", True), f"{count} pixel(s) show {_part(a)}"
+    shows = "shows" if count == 1 else "show"
+    return (count > 0) == a.get("is", True), f"{counted(count, 'pixel')} {shows} {_part(a)}"
 
 
 def _blend(a, p):
@@ -638,12 +640,12 @@ def _ray_event(a, p):
 
 def _rays(a, p):
     count = sum(1 for n in p.tree(a["pixel"]).walk() if n.kind == a["kind"] and n.traced)
-    return count == a["count"], f"{count} {a['kind']} ray(s) traced"
+    return count == a["count"], f"{counted(count, a['kind'] + ' ray')} traced"
 
 
 def _primitive_tests(a, p):
     tests = p.tree(a["pixel"]).tests
-    return (tests == a["count"]) == a.get("is", True), f"{tests} primitive test(s)"
+    return (tests == a["count"]) == a.get("is", True), counted(tests, "primitive test")
 
 
 def _tests_per_pixel(a, p):
@@ -665,14 +667,15 @@ def _changes_picture(a, p):
     other = render_raster(p.step.scene, switched).color
     differ = int(np.count_nonzero(np.any(other != p.raster.color, axis=-1)))
     state = "off" if getattr(settings, a["stage"]) else "on"
-    return (differ > 0) == a.get("is", True), f"switched {state}, {differ} pixel(s) differ"
+    return (differ > 0) == a.get("is", True), \
+        f"switched {state}, {counted(differ, 'pixel')} {'differs' if differ == 1 else 'differ'}"
 
 
 def _same_surfaces(a, p):
     from core.compare import surfaces_part
 
     parted = int(np.count_nonzero(surfaces_part(p.raster.depth, p.traced().depth)))
-    return (parted == 0) == a.get("is", True), f"they find different surfaces at {parted} pixel(s)"
+    return (parted == 0) == a.get("is", True), f"they find different surfaces at {counted(parted, 'pixel')}"
 
 
 def _value(a, result):

@@ -92,7 +92,7 @@ def test_an_opened_lesson_with_a_false_fact_shows_the_author_what_was_computed(w
     assert computed.startswith("'box' is outside the frustum, beyond its ")
     assert computed.endswith(" near planes") and "far" not in computed
     assert line in box.informativeText()
-    assert box.text().startswith("1 problem(s) in 'The viewing pyramid and the frustum': a fact the ")
+    assert box.text().startswith("1 problem in 'The viewing pyramid and the frustum': a fact the ")
     box.close()
 
 

@@ -315,3 +315,6 @@ def test_acceleration_a_click_on_a_ray_that_misses_yet_is_tested_on_its_way_thro
         for k in rng.choice(np.flatnonzero(where), 15, replace=False):
             pixel = (int(k % width), int(k // width))
             assert judge(ex, p, pixel).right == (kind == "right"), (kind, pixel)
+    # A wrong click is told what its ray cost, in words a student reads ("0 primitive test(s)" before).
+    told = judge(ex, p, (10, 10)).sentence
+    assert "0 primitive tests" in told and "(s)" not in told, told

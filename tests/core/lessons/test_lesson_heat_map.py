@@ -66,8 +66,8 @@ def test_primitive_tests_counts_every_triangle_with_no_acceleration_and_none_whe
     assert check_lesson(from_dict(_box_lesson(spheres, image_order=culled))) == []
     wrong = [{"fact": "primitive_tests", "pixel": corner, "count": 1}]
     (line,) = check_lesson(from_dict(_box_lesson(wrong, image_order={"mode": "raycast", "accel": "none"})))
-    assert line.endswith(f"(the ray through pixel (0, 0) makes 1 primitive test(s)): computed {every} "
-                         "primitive test(s)")
+    assert line.endswith(f"(the ray through pixel (0, 0) makes 1 primitive test): computed {every} "
+                         "primitive tests")
 
 
 def test_a_steps_heat_map_carries_to_the_next_step_and_is_off_unless_given():
