@@ -47,7 +47,7 @@ import numpy as np
 from core.image_order import flat_layout
 from core.image_order.optics import critical_angle_deg
 from core.image_order.ray_tree import LIGHT_STATUS, RayNode
-from core.in_words import listed
+from core.in_words import counted, listed
 from core.object_order import clipping
 from core.object_order.culling import OUTSIDE
 from core.object_order.pipeline import RasterResult
@@ -330,7 +330,7 @@ def _label(f: Fragment) -> str:
 def _raster_sentence(result: RasterResult, fragments, events, kept, step):
     drawn = [f for f in fragments if f.step is not None]
     dropped = [f for f in fragments if f.step is None]
-    upto = "" if step >= result.history.n_steps else f"After {step} polygons: "
+    upto = "" if step >= result.history.n_steps else f"After {counted(step, 'polygon')}: "
     if not drawn:
         if not dropped:
             return ("background", None,

@@ -127,10 +127,13 @@ def run(args) -> int:
         problem = steps_problem(scene, extension, limit)
         if problem:
             raise UsageError(f"--what zbuffer-steps: {problem}")
+    from core.in_words import counted
+
     cam = scene.camera
     judge_cost(args, export_cost(scene, args, extension), limit, budget_limit(args)[1],
                what=f"--what {args.what} at {cam.width} × {cam.height}",
-               summary=f"{args.what}: {cam.width}x{cam.height} pixels, {len(scene.objects)} objects",
+               summary=f"{args.what}: {cam.width}x{cam.height} pixels, "
+                       f"{counted(len(scene.objects), 'object')}",
                reduce="use a smaller image (--width/--height), fewer frames or objects, MP4 rather "
                       "than GIF, or --memory-limit")
     if args.dry_run:

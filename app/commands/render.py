@@ -118,12 +118,14 @@ def budget_limit(args) -> tuple[int, str]:
 def check_cost(scene, args, limit: int, limit_source: str) -> None:
     """Refuse a render over the memory budget; say so when it will be slow (or asked to)."""
     from core import budget
+    from core.in_words import counted
 
     cost = budget.estimate(scene, args.mode, args.accel, args.max_depth)
     cam = scene.camera
+    objects = counted(len(scene.objects), "object")
     judge_cost(args, cost, limit, limit_source,
-               what=f"{cam.width} × {cam.height} {args.mode} of {len(scene.objects)} objects",
-               summary=f"{args.mode}: {cam.width}x{cam.height} pixels, {len(scene.objects)} objects",
+               what=f"{cam.width} × {cam.height} {args.mode} of {objects}",
+               summary=f"{args.mode}: {cam.width}x{cam.height} pixels, {objects}",
                reduce="use a smaller image (--width/--height), fewer objects or triangles, or --memory-limit")
 
 

@@ -61,8 +61,9 @@ def steps_problem(scene, extension: str, limit: int) -> str | None:
     polygons = polygons_at_most(scene)
     spheres, _ = budget.count_primitives(scene)
     if polygons + 1 > MAX_FRAMES:
-        tessellated = (f", each of its {spheres} spheres tessellated into "
-                       f"{budget.SPHERE_TRIANGLES_RASTER:,} triangles" if spheres else "")
+        each = "its sphere" if spheres == 1 else f"each of its {spheres} spheres"
+        tessellated = (f", {each} tessellated into {budget.SPHERE_TRIANGLES_RASTER:,} triangles" if spheres
+                       else "")
         return (f"the scene has {polygons:,} triangles{tessellated}, hence up to {polygons:,} steps; "
                 f"an animation shows at most {MAX_FRAMES - 1:,}; use a scene with fewer objects "
                 "or triangles")

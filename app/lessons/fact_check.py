@@ -46,7 +46,8 @@ class LessonFactCheck(QObject):
         (:func:`core.lessons.facts.check_lesson`); a dialog lists what does not hold."""
         self._lesson = lesson
         facts = sum(len(step.facts) for step in lesson.steps)
-        self.window.statusBar().showMessage(f"Checking the {facts} facts of lesson {lesson.title!r}…")
+        self.window.statusBar().showMessage(f"Checking the {counted(facts, 'fact')} of lesson "
+                                            f"{lesson.title!r}…")
 
         def job(cancelled, progress):
             return None if cancelled.is_set() else check_lesson(lesson)

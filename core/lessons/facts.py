@@ -150,7 +150,7 @@ class Fact:
             return f"triangle {a['triangle']} of {a['object']!r} is {neg}a back face"
         if self.kind == "clipped":
             return f"{a['object']!r} is {neg}clipped by the {a['plane']} plane"
-        after = f" after {a['after']} polygons" if a.get("after") is not None else ""
+        after = f" after {counted(a['after'], 'polygon')}" if a.get("after") is not None else ""
         if self.kind == "zbuffer_keeps":
             kept = _part(a) if a["object"] else "the background"
             return f"at pixel {a['pixel']} the z-buffer keeps {kept}{after}"
@@ -528,10 +528,10 @@ def _zbuffer_keeps(a, p):
     events, after = _events(a, p)
     kept = [e for e in events if e.passed]
     if not kept:
-        return a["object"] is None, f"after {after} polygons it keeps the background"
+        return a["object"] is None, f"after {counted(after, 'polygon')} it keeps the background"
     e = kept[-1]
     holds = a["object"] is not None and _is_part(a, p, e.object_index, e.triangle_index)
-    return holds, f"after {after} polygons it keeps triangle {e.triangle_index} of " \
+    return holds, f"after {counted(after, 'polygon')} it keeps triangle {e.triangle_index} of " \
                   f"{_object_name(p, e.object_index)!r}"
 
 
@@ -540,7 +540,7 @@ def _ztest_fails(a, p):
     mine = [e for e in events if _is_part(a, p, e.object_index, e.triangle_index)]
     failed = [e for e in mine if not e.passed]
     if not mine:
-        computed = f"no fragment of {_part(a)} reaches the pixel in the first {after} polygons"
+        computed = f"no fragment of {_part(a)} reaches the pixel in the first {counted(after, 'polygon')}"
     else:
         computed = ", ".join(f"depth {e.distance:.4g} vs stored {e.stored_distance:.4g}: "
                              f"{'passed' if e.passed else 'failed'}" for e in mine)
@@ -568,7 +568,8 @@ def _blend(a, p):
     events, after = _events(a, p)
     blends = [e for e in events if e.blend is not None and _is_part(a, p, e.object_index, e.triangle_index)]
     if not blends:
-        return False, f"no fragment of {a['object']!r} is blended at the pixel in the first {after} polygons"
+        return False, f"no fragment of {a['object']!r} is blended at the pixel in the first " \
+                      f"{counted(after, 'polygon')}"
     e = blends[-1]
     b = e.blend
     c0 = b.alpha * np.asarray(b.source) + (1 - b.alpha) * np.asarray(b.destination)

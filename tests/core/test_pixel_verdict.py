@@ -62,6 +62,8 @@ def test_step_limits_the_verdict_to_the_polygons_drawn_so_far():
     v = raster_verdict(result, *vs.PIXEL, step=2)
     assert (v.verdict, v.object) == ("visible", "far")
     assert v.sentence.startswith("After 2 polygons")
+    one = raster_verdict(result, *vs.PIXEL, step=1)  # not "After 1 polygons"
+    assert one.sentence.startswith("After 1 polygon: "), one.sentence
 
 
 def test_a_quad_nearer_than_the_near_plane_is_clipped_there():
