@@ -370,7 +370,8 @@ class ExercisePanel(QWidget):
             return True
         if watched is self.order_list and event.type() == QEvent.Type.FontChange:
             QTimer.singleShot(0, self, self._fit_order)  # a new text size: rows of another height
-        if watched is not self.order_list and event.type() == QEvent.Type.Resize:  # the scroll's viewport
+        if watched is not self.order_list and watched is self.scroll.viewport() \
+                and event.type() == QEvent.Type.Resize:
             QTimer.singleShot(0, self, self._size_question)
         return super().eventFilter(watched, event)
 

@@ -382,7 +382,10 @@ class ImageOrderPanel(QWidget):
     def withhold_heat(self, why: str) -> None:
         """Show the traced image without the heat map chosen, and ``why`` in its place (an exercise
         waiting for its answer asks what the map would show), scrolled into the settings' view;
-        ``""``: show the map again."""
+        ``""``: show the map again.  Told again what it was told (each step, each tab brought
+        forward), it changes nothing: the map is not laid over the image a second time."""
+        if why == self.heat_withheld.text():
+            return
         self.heat_withheld.setText(why)
         self._show_heat()
 
