@@ -216,6 +216,24 @@ def test_lesson_check_in_a_process_reports_an_unnamed_highlight_and_an_unstated_
     assert "steps[1].facts[8].stage: unknown stage 'painter'" in out.stderr
 
 
+def test_lesson_check_in_a_process_refuses_the_new_facts_fields_written_wrong_and_names_them(tmp_path):
+    # The first lesson with its same_surfaces fact given "is": "maybe" and its primitive_tests fact a
+    # count of -1: exit 2, each field's path, no traceback, nothing on standard output.
+    data = json.loads((FILES / "01_two_orders.json").read_text(encoding="utf-8"))
+    facts = data["steps"][0]["facts"]
+    k = next(i for i, f in enumerate(facts) if f["fact"] == "same_surfaces")
+    facts[k]["is"] = "maybe"
+    tests = data["steps"][1]["facts"]
+    j = next(i for i, f in enumerate(tests) if f["fact"] == "primitive_tests")
+    tests[j]["count"] = -1
+    bad = tmp_path / "bad.json"
+    bad.write_text(json.dumps(data), encoding="utf-8")
+    out = _run_check(bad)
+    assert out.returncode == 2 and out.stdout == "" and "Traceback" not in out.stderr
+    assert f"steps[0].facts[{k}].is: expected true or false, got \"maybe\"" in out.stderr
+    assert f"steps[1].facts[{j}].count: must be >= 0, got -1" in out.stderr
+
+
 def test_no_bounding_sphere_shown_by_a_lesson_swamps_the_scene():
     """A step that shows bounding spheres keeps each well inside the scene's extent (a ground
     plane's sphere, as wide as the ground, once filled the 3D pane)."""
