@@ -85,6 +85,7 @@ from core.image_order.kernels.bvh_traverse import (
     hit_record,
     near_and_far_rows,
     nearest_child,
+    prefetch_child,
     stack_entry,
     test_leaf,
 )
@@ -329,6 +330,9 @@ def packet_closest(n, rays, axes, bvh, n_spheres, stack, stack_t, counters):
                                          oz, ax, ay, az, bx, by, bz, t_low, t_high)
                 boxes += WIDTH
                 near, near_t, top = nearest_child(entries, refs, at, stack, stack_t, top, node * WIDTH)
+                for c in range(WIDTH):
+                    if c != near and entries[c] < math.inf:
+                        prefetch_child(wide, refs, groups, at, c)
                 if near_t < math.inf:
                     node, enter, slot = load_at(refs, at + WIDE_REFS + near), near_t, node * WIDTH + near
                     continue
@@ -633,6 +637,7 @@ def packet_occluded(n, rays, axes, bvh, n_spheres, stack, stack_rays, counters):
                 for c in range(WIDTH - 1, -1, -1):  # pushed so that they come out in slot order
                     entered = children[c]
                     if entered != 0:
+                        prefetch_child(wide, refs, groups, at, c)
                         if near >= 0:
                             store_at(stack, top, stack_entry(load_at(refs, at + WIDE_REFS + near),
                                                              node * WIDTH + near))

@@ -9,12 +9,14 @@ faster, in six alternating processes; an isolated traversal loop, 4 to 10 %).  :
 :func:`store_at` address element ``index`` of a C-contiguous array as if it
 were flat, and trust the caller that ``0 <= index < array.size``: as with
 numba's own indexing (bounds checks are off), nothing checks the end.
+:func:`prefetch_at` asks for an element ahead of its read, at no risk.
 """
 
 from __future__ import annotations
 
+from llvmlite import ir
 from numba import types
-from numba.core import errors
+from numba.core import cgutils, errors
 from numba.extending import intrinsic
 
 
@@ -46,6 +48,26 @@ def store_at(typingctx, array, index, value):
         data = context.make_array(sig.args[0])(context, builder, args[0]).data
         converted = context.cast(builder, args[2], sig.args[2], sig.args[0].dtype)
         builder.store(converted, builder.gep(data, [args[1]]))
+        return context.get_dummy_value()
+
+    return signature, codegen
+
+
+@intrinsic
+def prefetch_at(typingctx, array, index):
+    """Ask the caches for the line that holds ``array.flat[index]``, to be read soon (LLVM's
+    ``llvm.prefetch``: a hint, which reads nothing and never faults)."""
+    _contiguous(array)
+    signature = types.none(array, index)
+
+    def codegen(context, builder, sig, args):
+        data = context.make_array(sig.args[0])(context, builder, args[0]).data
+        pointer = builder.bitcast(builder.gep(data, [args[1]]), ir.IntType(8).as_pointer())
+        i32 = ir.IntType(32)
+        prefetch = cgutils.get_or_insert_function(
+            builder.module, ir.FunctionType(ir.VoidType(), [pointer.type, i32, i32, i32]), "llvm.prefetch.p0")
+        # a read (0), to be kept in every level of cache (3), of data (1)
+        builder.call(prefetch, [pointer, ir.Constant(i32, 0), ir.Constant(i32, 3), ir.Constant(i32, 1)])
         return context.get_dummy_value()
 
     return signature, codegen
