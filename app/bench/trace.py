@@ -27,7 +27,11 @@ Figures, each the median of several runs after a warm-up run:
    rays where they share a walk, each finding the blocker it finds alone
    (:mod:`core.image_order.kernels.shadow_rays`), Embree's with
    ``rtcOccluded16`` -- both the very same rays, rounded to float32, and
-   the runs back to back, as shading traces them (both run on numba's threads);
+   the runs back to back, as shading traces them (both run on numba's threads).
+   The rays are listed with their pixels row by row, or with
+   ``--shadow-order tiles`` in tiles of 4 x 4, as the primary rays' packets
+   take them: both tracers' packets then hold neighbouring pixels in both
+   directions, and go through fewer nodes of the tree together;
 4. a full Whitted render (all rays counted) of the lecture scene and of the
    mirror-and-glass scene at 640 x 480 with depth 5, the two in turns, frame
    after frame with no pause, as at 60 frames a second.
@@ -77,6 +81,10 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--repeats", type=int, default=7, help="timed runs per figure (default 7)")
     parser.add_argument("--threads", type=int, default=os.cpu_count() or 1,
                         help="Python threads for Embree (default: one per core)")
+    parser.add_argument("--shadow-order", choices=("rows", "tiles"), default="rows",
+                        help="the order of the shadow rays, the same for both tracers, whose packets take "
+                             "16 consecutive rays: their pixels row by row (default), or in tiles of 4 x 4 "
+                             "as the primary rays' packets take them")
     parser.add_argument("--cpu-time", action="store_true",
                         help="time the CPU time of one numba thread instead of the wall clock, so that "
                              "waiting for a core on a shared machine is not counted (embreex is left out)")
@@ -115,6 +123,7 @@ def run(args) -> int:
     from core import presets, presets_trace
     from core.image_order.flat_scene import TraceSettings
     from core.image_order.ray_tracing import ensure_compiled, render_trace
+    from core.in_words import counted
 
     size = (args.width, args.height)
     if args.cpu_time:
@@ -124,8 +133,8 @@ def run(args) -> int:
     clock = {time.perf_counter: "wall clock,", time.thread_time: "CPU time of the calling thread,",
              time.process_time: "CPU time of the process,"}[args.clock]
     print(f"bench trace: {args.width} x {args.height} = {args.width * args.height} rays per frame, "
-          f"{clock} {numba.get_num_threads()} numba threads, median of {args.repeats} runs after a warm-up "
-          "(lowest-highest in brackets)")
+          f"{clock} {counted(numba.get_num_threads(), 'numba thread')}, median of "
+          f"{counted(args.repeats, 'run')} after a warm-up (lowest-highest in brackets)")
     print(f"compile (or load from cache) the kernels: {compile_s:.2f} s (not counted below)")
 
     # 1. and 2. Our BVH and Embree's on meshes of growing size.
@@ -316,7 +325,8 @@ def _scene_rays(label: str, mesh, camera, light, args, library) -> dict:
         row["primary"].update(_ratios(runs, seconds, tuple(p for p in ("embreex", "packets") if p in runs)))
 
     # Shadow rays: from every lit hit of ours towards the light, the same rays for both tracers.
-    so, sd, s_min, s_max = _shadow_rays(mesh, scene.lights[0].position, o, d, prims, ts)
+    pixels = _tile_order(args.height, args.width) if args.shadow_order == "tiles" else None
+    so, sd, s_min, s_max = _shadow_rays(mesh, scene.lights[0].position, o, d, prims, ts, pixels)
     n_shadow = len(so)
     blockers, blocker_t = np.empty(n_shadow, np.int64), np.empty(n_shadow)
     shadow_counters = []
@@ -340,7 +350,9 @@ def _scene_rays(label: str, mesh, camera, light, args, library) -> dict:
     runs = _interleaved_runs(runners, args.repeats, args.clock, pause=0.0)
     seconds = {name: statistics.median(times) for name, times in runs.items()}
     per_ray = shadow_counters[0] / max(n_shadow, 1)
-    print(f"  shadow rays ({n_shadow:,}: every lit hit towards the light), ours (any hit, packets of 16 "
+    listed = "row by row" if pixels is None else "in tiles of 4 x 4"
+    print(f"  shadow rays ({n_shadow:,}: every lit hit towards the light, pixels {listed}), ours (any hit, "
+          "packets of 16 "
           f"rays): {_spread(runs['ours'])}  {n_shadow / seconds['ours'] / 1e6:6.2f} Mrays/s  "
           f"({(blockers >= 0).mean():.0%} blocked; per ray {per_ray[BOUNDS_TESTS]:.1f} box and "
           f"{per_ray[PRIM_TESTS]:.1f} triangle tests)")
@@ -396,11 +408,12 @@ def _primary_rays(camera):
     return origins, directions, camera.near / along, camera.far / along
 
 
-def _shadow_rays(mesh, light, origins, directions, prims, ts):
+def _shadow_rays(mesh, light, origins, directions, prims, ts, pixels=None):
     """Rays from every hit of ``prims, ts`` on the lit side of its triangle towards ``light``.
 
-    ``origins, directions``: the primary rays, ``(N, 3)``; only hits on a triangle's front (seen
-    from the camera) are kept.
+    ``origins, directions``: the primary rays, ``(N, 3)``, one a pixel; only hits on a triangle's
+    front (seen from the camera) are kept, listed in the order of their pixels in ``pixels``
+    (pixel indices, as :func:`_tile_order` gives them), row by row without.
     Each shadow ray starts at its hit point moved off the triangle towards the light by
     ``_FLOAT32_SLACK`` rounding steps of float32 (Embree works in float32, so our float64 offset
     would let it find the triangle the ray starts on), and ends at the light (``t_max``, the unit
@@ -416,9 +429,13 @@ def _shadow_rays(mesh, light, origins, directions, prims, ts):
     to_light = light - p
     lit = np.einsum("ij,ij->i", normals, to_light) > 0.0
     facing_camera = np.einsum("ij,ij->i", normals, directions[hit]) < 0.0
-    keep = lit & facing_camera
+    kept = np.flatnonzero(lit & facing_camera)  # among the hits
+    if pixels is not None:
+        rank = np.empty_like(pixels)
+        rank[pixels] = np.arange(len(pixels))
+        kept = kept[np.argsort(rank[np.flatnonzero(hit)[kept]])]
     magnitude = np.abs(mesh.corners).max()
-    start = p[keep] + _FLOAT32_SLACK * 2.0**-24 * magnitude * normals[keep]
+    start = p[kept] + _FLOAT32_SLACK * 2.0**-24 * magnitude * normals[kept]
     to_light = light - start
     distance = np.linalg.norm(to_light, axis=1)
     rounded = [np.asarray(a, np.float32).astype(float)

@@ -10,8 +10,9 @@ import sys
 import numpy as np
 from checkout import ROOT
 
-from app.bench.trace import _interleaved_runs, _tile_order, hit_agreement
+from app.bench.trace import _interleaved_runs, _shadow_rays, _tile_order, hit_agreement
 from core.presets_trace import bumpy_ball
+from core.scene import Mesh
 
 # Two triangles making the unit square in the plane z = 0, split along its diagonal x = y:
 # triangle 0 below the diagonal (x > y), triangle 1 above it.
@@ -81,6 +82,36 @@ def _bench_without_embree(*options):
     return done
 
 
+def test_shadow_rays_in_tiles_are_the_same_rays_their_pixels_taken_four_by_four():
+    # 8 x 8 pixels looking straight down on the square, each hitting it at t = 2 in its middle
+    # ((column + 0.5) / 8, (row + 0.5) / 8), the light high above: every hit is lit.  Pixel 9
+    # (row 1, column 1) misses.
+    columns, rows = np.meshgrid(np.arange(8), np.arange(8))
+    points = np.column_stack([(columns.ravel() + 0.5) / 8, (rows.ravel() + 0.5) / 8])
+    origins, directions = _down_from(points)
+    prims = np.where(points[:, 0] > points[:, 1], 0, 1)
+    prims[9] = -1
+    ts = np.full(64, 2.0)
+    square = Mesh(SQUARE.reshape(-1, 3), np.arange(6).reshape(2, 3))
+    light = (0.5, 0.5, 10.0)
+    by_rows = _shadow_rays(square, light, origins, directions, prims, ts)
+    in_tiles = _shadow_rays(square, light, origins, directions, prims, ts, _tile_order(8, 8))
+    assert len(by_rows[0]) == len(in_tiles[0]) == 63
+    # Row by row: the pixels in order, 9 left out.  In tiles: the first tile's 15 hits (columns
+    # and rows 0-3), its pixels row by row, then the second tile's (columns 4-7).
+    pixel_of = {(float(x), float(y)): k for k, (x, y) in enumerate(np.float32(points).astype(float))}
+    listed_rows = [pixel_of[tuple(o[:2])] for o in by_rows[0]]
+    listed_tiles = [pixel_of[tuple(o[:2])] for o in in_tiles[0]]
+    assert listed_rows == [k for k in range(64) if k != 9]
+    assert listed_tiles[:15] == [0, 1, 2, 3, 8, 10, 11, 16, 17, 18, 19, 24, 25, 26, 27]
+    assert listed_tiles[15:31] == [4, 5, 6, 7, 12, 13, 14, 15, 20, 21, 22, 23, 28, 29, 30, 31]
+    # the same rays, ray for ray
+    at = {k: r for r, k in enumerate(listed_rows)}
+    for r, k in enumerate(listed_tiles):
+        for rows_part, tiles_part in zip(by_rows, in_tiles, strict=True):
+            assert np.array_equal(rows_part[at[k]], tiles_part[r])
+
+
 def test_without_embree_the_bench_says_so_in_one_line_and_times_ours():
     done = _bench_without_embree("--triangles", "200,800")
     missing = [line for line in done.stdout.splitlines() if line.startswith("Embree: not measured")]
@@ -132,12 +163,24 @@ def test_runs_follow_each_other_back_to_back_or_after_the_pause_asked_for():
 
 
 def test_cpu_time_times_one_thread_and_says_so():
-    done = _bench_without_embree("--cpu-time", "--triangles", "200")
+    done = _bench_without_embree("--cpu-time", "--triangles", "200", "--shadow-order", "tiles")
     header = done.stdout.splitlines()[0]
-    assert "CPU time of the calling thread, 1 numba threads" in header
+    assert "CPU time of the calling thread, 1 numba thread," in header
     for kind in ("primary", "shadow"):
         assert sum(f"triangles, {kind:>7} rays: ours" in line for line in done.stdout.splitlines()) == 1
+    # the shadow rays as asked, each time they are timed: the mesh's and the lecture scene's
+    listed = [line for line in done.stdout.splitlines() if line.startswith("  shadow rays (")]
+    assert len(listed) == 2 and all("pixels in tiles of 4 x 4)" in line for line in listed), listed
     assert "Whitted frame, mirror and glass" in done.stdout
+
+
+def test_a_shadow_order_it_does_not_know_is_refused_with_the_ones_it_does():
+    done = subprocess.run([sys.executable, "-m", "app", "bench", "trace", "--shadow-order", "diagonal"],
+                          cwd=ROOT, capture_output=True, text=True, timeout=120)
+    assert done.returncode == 2
+    assert "--shadow-order" in done.stderr and "'diagonal'" in done.stderr
+    assert "'rows'" in done.stderr and "'tiles'" in done.stderr
+    assert "Traceback" not in done.stderr
 
 
 def test_each_whitted_frame_says_its_cpu_time_per_thread_which_its_wall_clock_time_never_falls_below():
