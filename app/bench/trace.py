@@ -352,8 +352,7 @@ def _scene_rays(label: str, mesh, camera, light, args, library) -> dict:
     per_ray = shadow_counters[0] / max(n_shadow, 1)
     listed = "row by row" if pixels is None else "in tiles of 4 x 4"
     print(f"  shadow rays ({n_shadow:,}: every lit hit towards the light, pixels {listed}), ours (any hit, "
-          "packets of 16 "
-          f"rays): {_spread(runs['ours'])}  {n_shadow / seconds['ours'] / 1e6:6.2f} Mrays/s  "
+          f"packets of 16 rays): {_spread(runs['ours'])}  {n_shadow / seconds['ours'] / 1e6:6.2f} Mrays/s  "
           f"({(blockers >= 0).mean():.0%} blocked; per ray {per_ray[BOUNDS_TESTS]:.1f} box and "
           f"{per_ray[PRIM_TESTS]:.1f} triangle tests)")
     row["shadow"]["ours"] = seconds["ours"] * 1e3
