@@ -5,7 +5,7 @@ from PySide6.QtCore import QRect, Qt
 from PySide6.QtWidgets import QLabel
 from window_helpers import RENDER_TIMEOUT_MS
 
-from core.compare import OUTPUTS
+from core.compare import DIFFERENCE_UNITS, OUTPUTS
 from views.panels.compare_panel import IMAGE_SHARE, PICK_HINT
 
 
@@ -198,7 +198,8 @@ def test_presenting_at_x2_on_1920x1080_the_sentences_read_whole_and_the_images_k
 
 def test_at_1280x720_presenting_the_captions_the_units_and_the_pick_hint_read_whole(qtbot, monkeypatch):
     # The images kept 35 % of the height whatever their captions needed: at text x1.5 the difference's
-    # units ("max(|ΔR|, |ΔG|, |ΔB|), linear RGB units (1 = black against white)") showed a line and a half.
+    # units (then "max(|ΔR|, |ΔG|, |ΔB|), linear RGB units (1 = black against white)") showed a line
+    # and a half.
     # Under empty A and B rows, "Click a pixel in any image to read it in both outputs." showed a line
     # and a half too.
     from window_helpers import presenting_on_1280x720
@@ -258,24 +259,25 @@ def _fits(label) -> bool:
     return drawn.height() <= label.height()
 
 
-def test_at_1280x720_presenting_at_x2_the_difference_units_show_in_three_whole_lines_at_most(
+def test_at_1280x720_presenting_at_x2_the_difference_units_read_whole_in_three_lines_at_most(
         qtbot, monkeypatch):
     # At x2 the units took four lines, more than the difference image above them, and the room
-    # there was, so they were cut at their top and bottom ("max(|ΔR|, |" half hidden).
+    # there was, so they were cut at their top and bottom ("max(|ΔR|, |" half hidden); then, held
+    # to three lines, they ended in "units (1 = black …" with the rest in the tooltip.  Now they say
+    # it in fewer words, all of it on the label.
     from window_helpers import presenting_on_1280x720
 
     window = presenting_on_1280x720(qtbot, monkeypatch, 2.0)
     panel = _compare(qtbot, window)
     units = panel.scale.units
-    whole = "max(|ΔR|, |ΔG|, |ΔB|), linear RGB units (1 = black against white)"
 
     def read() -> None:
         shown = _shown(units)
         assert units.isVisible() and _fits(units), (shown, units.height())
         assert len(shown.splitlines()) <= 3, shown
-        assert shown.startswith("max(|ΔR|, |ΔG|,")  # from its first word
-        if shown.replace("\n", " ") != whole:  # shortened: it says so, and tells the rest on hovering
-            assert shown.endswith("…") and units.toolTip() == whole
+        words = shown.replace("\n", " ")
+        assert words == DIFFERENCE_UNITS, shown  # whole, not shortened with "…"
+        assert words.startswith("max(|ΔR|, |ΔG|, |ΔB|)") and "linear RGB" in words and "white" in words
 
     qtbot.waitUntil(read, timeout=5000)
     window.presentation.set_presenting(False)
