@@ -73,6 +73,7 @@ class DeferredSceneView(QWidget):
         self._line_scale = 1.0  # set_line_scale before the view exists
         self._painted = False
         self._importing = False
+        self._closed = False  # closed with its window: nothing more is built
         self._imported = _Imported(self)
         self._imported.done.connect(self._build_in_turns)
         self._plotter = None  # VTK's widget, made a turn before the view around it
@@ -91,7 +92,7 @@ class DeferredSceneView(QWidget):
 
     def build_soon(self, *_) -> None:
         """Import pyvista on a thread, then build the view on the GUI thread (once)."""
-        if self.view is None and not self._importing:
+        if self.view is None and not self._importing and not self._closed:
             self._importing = True
             threading.Thread(target=_import_pyvista, args=(self._imported,), name="import pyvista",
                              daemon=True).start()
@@ -101,7 +102,7 @@ class DeferredSceneView(QWidget):
         libraries, some 45 ms), VTK's widget around it in the next (OpenGL and an empty first frame,
         some 35 ms), the view around that (the scene's actors, the observer, the axes) in the third:
         built in one go, it held the window 110-120 ms."""
-        if self.view is not None or self._plotter is not None:
+        if self.view is not None or self._plotter is not None or self._closed:
             return
         from vtkmodules.vtkRenderingCore import vtkRenderWindow
 
@@ -109,7 +110,7 @@ class DeferredSceneView(QWidget):
         QTimer.singleShot(0, self, lambda: self._make_plotter(render_window))
 
     def _make_plotter(self, render_window) -> None:
-        if self.view is not None or self._plotter is not None:
+        if self.view is not None or self._plotter is not None or self._closed:
             return
         from views.scene3d.image_plotter import ImagePlotter
 
@@ -181,8 +182,15 @@ class DeferredSceneView(QWidget):
         return [poly for poly, _ in self._overlays.get(name, [])]
 
     def close(self) -> bool:
+        """Close the view, or VTK's widget made for it, and build nothing after: a window closed while
+        its pane was being built went on to build it, and pyvista's list of plotters kept its VTK
+        render window, its OpenGL context open, until the process ended."""
+        self._closed = True
         if self.view is not None:
             self.view.close()
+        elif self._plotter is not None:
+            self._plotter.close()
+            self._plotter = None
         return super().close()
 
     def __getattr__(self, name: str):

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 from checkout import ROOT, TYPESETTING
 from PySide6.QtCore import Qt
-from PySide6.QtWidgets import QLabel
+from PySide6.QtWidgets import QApplication, QLabel
 from window_helpers import RENDER_TIMEOUT_MS
 
 from app.bench.startup import watched_start
@@ -192,6 +192,45 @@ def test_the_3d_pane_is_built_in_three_turns_render_window_then_vtks_widget_then
     assert view is None and render_window is not None and before == seen  # a turn later, in that window
     plotter = pane.view.plotter
     assert isinstance(plotter, ImagePlotter) and plotter.ren_win is render_window  # the view shows them
+
+
+def test_a_window_closed_while_its_3d_pane_loads_builds_no_pane_after(qtbot, monkeypatch):
+    # It went on to build the pane: VTK's render window and its OpenGL context, which nothing then
+    # closed, for Python's garbage collector to destroy on whichever thread ran it.
+    from views.scene3d.image_plotter import ImagePlotter
+
+    made = []
+    init = ImagePlotter.__init__
+    monkeypatch.setattr(ImagePlotter, "__init__", lambda plotter, *a: made.append(1) or init(plotter, *a))
+    win = MainWindow(presets.lecture_scene())
+    qtbot.addWidget(win)
+    pane = win.scene_view
+    loaded = []
+    pane._imported.done.connect(lambda: loaded.append(1))
+    win.show()
+    pane.build_soon()  # pyvista is imported on a thread ...
+    win.close()  # ... and the window closes meanwhile
+    qtbot.waitUntil(lambda: loaded == [1], timeout=RENDER_TIMEOUT_MS)
+    QApplication.processEvents()  # the turn the render window would have been made in, and the next
+    QApplication.processEvents()
+    assert made == [] and pane.view is None and pane.findChild(ImagePlotter) is None
+
+
+def test_a_window_closed_between_vtks_widget_and_the_view_closes_vtks_widget(qtbot, monkeypatch):
+    from views.scene3d.image_plotter import ImagePlotter
+
+    monkeypatch.setattr(deferred_scene_view, "BUILD_AFTER_MS", 100)
+    monkeypatch.setattr(deferred_scene_view.DeferredSceneView, "build", lambda pane: None)  # the third turn
+    win = MainWindow(presets.lecture_scene())
+    qtbot.addWidget(win)
+    win.show()
+    pane = win.scene_view
+    qtbot.waitUntil(lambda: pane.findChild(ImagePlotter) is not None, timeout=RENDER_TIMEOUT_MS)
+    plotter = pane.findChild(ImagePlotter)
+    assert plotter.ren_win.GetGenericContext() is not None  # VTK's widget has its OpenGL context
+    win.close()
+    assert plotter.ren_win is None and plotter.iren is None  # closed (pyvista's close): the window finalized
+    assert pane.view is None
 
 
 def test_the_first_render_starts_once_the_window_is_painted(qtbot):
