@@ -59,6 +59,18 @@ def _without_base_plotter_init():
         BasePlotter.__init__ = init
 
 
+@contextlib.contextmanager
+def _without_native_window(cls):
+    """VTK's widget asks Qt for its native window (``winId``) to hand VTK, which draws off screen
+    here and needs none: meanwhile the widget is told it has none (0), and no window of the window
+    system is made for it (see :meth:`ImagePlotter._stay_plain`)."""
+    cls.winId = lambda self: 0
+    try:
+        yield
+    finally:
+        del cls.winId
+
+
 class ImagePlotter(QVTKRenderWindowInteractor, BasePlotter):
     """A pyvista plotter and the Qt widget that shows what it drew.
 
@@ -73,12 +85,10 @@ class ImagePlotter(QVTKRenderWindowInteractor, BasePlotter):
         window = render_window if render_window is not None else vtkRenderWindow()
         window.SetOffScreenRendering(True)
         window.SetMultiSamples(0)  # anti-aliasing is FXAA, and only when the pane rests
-        with _without_base_plotter_init():
-            QVTKRenderWindowInteractor.__init__(self, parent, rw=window)
-        window.SetWindowInfo("0")  # VTK's widget hands VTK its native window; VTK needs none of ours
+        with _without_base_plotter_init(), _without_native_window(ImagePlotter):
+            QVTKRenderWindowInteractor.__init__(self, None, rw=window)  # (no parent: see _stay_plain)
+        self._stay_plain(parent)
         BasePlotter.__init__(self)
-        # VTK's widget would have VTK paint on screen; this one paints the picture itself.
-        self.setAttribute(Qt.WidgetAttribute.WA_PaintOnScreen, False)
         self.picture: QImage | None = None
         self._resized = False  # drawn the turn after the next paint, at the size the pane has then
         # The draw after a new size waits for the turn after the paint that asked for it: a new text
@@ -102,6 +112,19 @@ class ImagePlotter(QVTKRenderWindowInteractor, BasePlotter):
         self.iren.initialize()
         self.enable_trackball_style()
         self._first_time = False  # BasePlotter draws only after its first show(); this one is shown
+
+    def _stay_plain(self, parent: QWidget | None) -> None:
+        """Undo what VTK's widget asked of Qt for drawing on screen, then take ``parent``: to be
+        painted on screen, and a window of the window system of its own (``MSWindowsOwnDC``, which
+        on X11 asks for one, and made in a parent on screen, makes one at once for every widget
+        around it).  Such a window it was, and so were its parents, their siblings and the window's
+        docks, menu and status bars (19 in all), whose sizes and places then went through the X
+        server and came back later.  This widget paints the picture itself, a plain widget inside
+        the window's own (``setParent`` resets the window flags)."""
+        self.setAttribute(Qt.WidgetAttribute.WA_PaintOnScreen, False)
+        self.setAttribute(Qt.WidgetAttribute.WA_NativeWindow, False)
+        if parent is not None:
+            self.setParent(parent)
 
     def set_background(self, color, top=None, **kwargs) -> None:
         """As pyvista's; a vertical gradient (``top`` given) is painted by the widget, under the

@@ -52,6 +52,31 @@ def test_the_drawn_picture_is_on_screen_and_the_window_stays_a_raster_surface(qt
     assert window.windowHandle().surfaceType() == QSurface.SurfaceType.RasterSurface
 
 
+def test_the_plotter_and_the_widgets_around_it_stay_inside_the_windows_own_window(qtbot):
+    # VTK's widget asked for a window of the window system of its own (made in a parent on screen,
+    # at once), and it, its parent, their siblings and the window's other panes each became one: 19
+    # in the main window, whose sizes and places went through the X server and came back later.
+    window = QWidget()
+    layout = QVBoxLayout(window)
+    pane, beside = QWidget(), QWidget()
+    layout.addWidget(pane)
+    layout.addWidget(beside)
+    QVBoxLayout(pane)
+    qtbot.addWidget(window)
+    window.resize(300, 400)
+    window.show()
+    qtbot.waitExposed(window)
+    plotter = ImagePlotter(pane)  # as the 3D pane makes it: in a parent already on screen
+    pane.layout().addWidget(plotter)
+    plotter.show()
+    plotter.add_mesh(pv.Plane(), color="red", lighting=False)
+    plotter.render()
+    qtbot.waitUntil(lambda: plotter.picture is not None and plotter.picture.size() == plotter.size())
+    assert window.internalWinId()  # the one window of the window system
+    assert [w for w in (plotter, pane, beside) if w.internalWinId()] == []
+    plotter.close()
+
+
 def _pixels(image):
     """A QImage as (H, W, 3) uint8."""
     image = image.convertToFormat(image.Format.Format_RGB888)
