@@ -176,7 +176,7 @@ class Presentation(QObject):
         if self._stages or not self.window.updatesEnabled():
             return
         self.window.setUpdatesEnabled(False)
-        self._stages = [_layouts, lambda: self.window.setUpdatesEnabled(True)]
+        self._stages = [_layouts, self._paint_now]
         self._stage_timer.start()
 
     def _apply_font(self) -> None:
@@ -225,7 +225,7 @@ class Presentation(QObject):
         # done with the next stage, the font's layouts and the colours took one turn 44-68 ms long.
         self._stages = [_layouts, lambda: self.set_high_contrast(on), _layouts,
                         self._enter_screen if on else self._leave_screen,
-                        lambda: self.window.setUpdatesEnabled(True), lambda: self.presenting_changed.emit(on)]
+                        self._paint_now, lambda: self.presenting_changed.emit(on)]
         self._stage_timer.start()
 
     def settled(self) -> bool:
@@ -239,6 +239,18 @@ class Presentation(QObject):
         finally:  # the stages after one that failed still run: the window is painted again
             if self._stages:
                 self._stage_timer.start()
+
+    def _paint_now(self) -> None:
+        """Paint the window again, in this turn: its updates were held while it was laid out.
+
+        Re-enabled, updates are asked for (Qt's ``update``), but where a request came while they were
+        held, Qt kept the parts to paint marked and asked for no new one: nothing was painted until
+        the window system sent an expose.  While the 3D pane made the window's panes windows of the
+        window system of their own, their exposes came at once; without them, a new text size was
+        not painted within 30 s in about half the runs of a test.  ``repaint`` paints those parts now.
+        """
+        self.window.setUpdatesEnabled(True)
+        self.window.repaint()
 
     def _enter_screen(self) -> None:
         # The whole screen even where no window manager honours "full screen" (a bare X server).
