@@ -12,7 +12,8 @@ the picture to the window through OpenGL (8 ms of a 20 ms draw in llvmpipe).
 Here VTK draws into its own off-screen framebuffer; :meth:`render` reads the
 picture back (about a millisecond) and the widget paints it like any other
 image.  The Qt window stays a plain raster surface (a repaint costs about a
-millisecond), and a paint makes VTK draw only after a change of size, once
+millisecond) and one window of the window system (:meth:`ImagePlotter._stay_plain`),
+and a paint makes VTK draw only after a change of size, once
 however often the size changed since (a new text size or full screen resizes
 the pane four or five times in one turn of the event loop, each draw 8-30 ms),
 and in the turn after that paint.
