@@ -39,6 +39,7 @@ from app.lessons.fact_check import LessonFactCheck
 from app.lessons.recorder import LessonRecorder
 from app.lessons.runner import FACE_SIDE_OVERLAY, LESSON_OVERLAY, LessonRunner
 from app.lessons.withheld_answers import WithheldAnswers
+from app.process import gui_thread_collection
 from app.process.lock_turns import hand_over_often
 from app.process.long_lived import set_aside_once_loaded
 from app.window import render_budget, session
@@ -94,6 +95,7 @@ class MainWindow(QMainWindow):
 
     def __init__(self, scene: Scene, memory_limit: int | None = None):
         super().__init__()
+        self._collector = gui_thread_collection.collect_on_gui_thread(self)  # before any thread starts
         self.setWindowTitle("Render Explorer")
         self.model = SceneModel(scene, self, memory_limit)
         self.scene_path: Path | None = None
@@ -644,6 +646,7 @@ class MainWindow(QMainWindow):
             getattr(tab, "shutdown", lambda: None)()
         self._tree_renderer.cancel()
         self.scene_view.close()
+        gui_thread_collection.window_closed(self, self._collector)
         super().closeEvent(event)
 
 

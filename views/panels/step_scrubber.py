@@ -33,9 +33,8 @@ class StepScrubber(QWidget):
         self._timer.timeout.connect(self._advance)
         layout = QHBoxLayout(self)
         layout.setContentsMargins(0, 0, 0, 0)
-        icon = self.style().standardIcon
-        self._play_icon = icon(QStyle.StandardPixmap.SP_MediaPlay)
-        self._pause_icon = icon(QStyle.StandardPixmap.SP_MediaPause)
+        icon = self.style().standardIcon  # no icon kept here: one freed off the GUI thread (panes left in
+        # a cycle, collected by a render's thread) touches pixmaps, the GUI thread's only
         buttons = [
             (QStyle.StandardPixmap.SP_MediaSkipBackward, "First step: the cleared buffers", self.first),
             (QStyle.StandardPixmap.SP_MediaSeekBackward, "Previous polygon",
@@ -86,12 +85,12 @@ class StepScrubber(QWidget):
     def toggle_play(self) -> None:
         if self.playing:
             self._timer.stop()
-            self.play_button.setIcon(self._play_icon)
+            self.play_button.setIcon(self.style().standardIcon(QStyle.StandardPixmap.SP_MediaPlay))
         else:
             if self.step >= self.slider.maximum():
                 self.first()
             self._timer.start()
-            self.play_button.setIcon(self._pause_icon)
+            self.play_button.setIcon(self.style().standardIcon(QStyle.StandardPixmap.SP_MediaPause))
 
     def _advance(self) -> None:
         if self.step >= self.slider.maximum():
