@@ -176,6 +176,9 @@ class ExercisePanel(QWidget):
         self.room = False
         self.waiting_for: Exercise | None = None  # the exercise asked and not yet answered right or revealed
         self._pipelines: dict[int, StepPipelines] = {}
+        # The question is sized once a turn, whatever asked (a resize, a new text size, the answers
+        # shown): entering presentation mode asked ten times, each laying out the window's layouts.
+        self._sizing = QTimer(self, singleShot=True, interval=0, timeout=self._size_question)
 
         self.position = QLabel()
         self.question = QLabel()
@@ -372,7 +375,7 @@ class ExercisePanel(QWidget):
             QTimer.singleShot(0, self, self._fit_order)  # a new text size: rows of another height
         if watched is not self.order_list and watched is self.scroll.viewport() \
                 and event.type() == QEvent.Type.Resize:
-            QTimer.singleShot(0, self, self._size_question)
+            self._sizing.start()
         return super().eventFilter(watched, event)
 
     def _show_pictures(self, ex: Exercise, drawn: dict) -> None:
@@ -391,7 +394,7 @@ class ExercisePanel(QWidget):
             self.picture_layout.addWidget(button, 2 * (i // 2) + 1, i % 2)
             self.picture_views.append(view)
         self.picture_keys = keys
-        QTimer.singleShot(0, self, self._size_question)  # and the pictures' room
+        self._sizing.start()  # and the pictures' room
 
     def _p(self, ex: Exercise) -> StepPipelines:
         if ex.step not in self._pipelines:
@@ -607,17 +610,17 @@ class ExercisePanel(QWidget):
 
     def resizeEvent(self, event) -> None:  # noqa: N802 (Qt's name)
         super().resizeEvent(event)
-        QTimer.singleShot(0, self, self._size_question)  # once the question has its new width
+        self._sizing.start()  # once the question has its new width
 
     def changeEvent(self, event) -> None:  # noqa: N802
         super().changeEvent(event)
         if event.type() == QEvent.Type.FontChange:  # another text scale: another size for the room
-            QTimer.singleShot(0, self, self._size_question)
+            self._sizing.start()
 
     def set_answers_hidden(self, hidden: bool) -> None:
         self.answer_area.setVisible(not hidden)
         self.room_button.setVisible(hidden and self.lesson is not None and bool(self.lesson.exercises))
-        QTimer.singleShot(0, self, self._size_question)  # the question leaves the answers their room
+        self._sizing.start()  # the question leaves the answers their room
         self.answers_hidden.emit(hidden)
 
     def keyPressEvent(self, event) -> None:

@@ -143,6 +143,25 @@ def test_put_to_the_room_the_question_is_large_and_the_answers_wait_for_space(pa
     assert not panel.answer_area.isVisible()
 
 
+def test_resizes_and_a_new_text_size_in_one_turn_lay_the_question_out_once(panel, monkeypatch):
+    # Entering presentation mode resizes the panel and its scroll area and sets a new text size, all in
+    # one turn; each sizing of the question put to the room lays out the window's layouts first.
+    panel.set_lesson(BY_ID["zbuffer"])
+    panel.set_room(True)
+    QApplication.processEvents()
+    laid_out = []
+    rest_height = panel._rest_height
+    monkeypatch.setattr(panel, "_rest_height", lambda: laid_out.append(1) or rest_height())
+    font = panel.font()
+    font.setPointSizeF(1.5 * font.pointSizeF())
+    panel.resize(520, 640)
+    panel.setFont(font)
+    panel.resize(560, 700)
+    QApplication.processEvents()
+    assert len(laid_out) == 1
+    assert panel.question.font().pointSizeF() > font.pointSizeF()  # sized for the new text size
+
+
 def test_a_picture_is_picked_by_clicking_it_and_judged(panel, qtbot):
     lesson = BY_ID["three_views"]
     panel.set_lesson(lesson)
