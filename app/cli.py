@@ -97,10 +97,12 @@ def main(argv: list[str] | None = None) -> int:
             interrupted()
         print(INTERRUPTED, file=sys.stderr)
         return 130
-    except SystemError as exc:
+    except (SystemError, ImportError) as exc:
         # Ctrl+C that reaches the main thread inside a compiled kernel can come out of numba's
-        # dispatcher as "returned a result with an exception set", the interrupt at the root of
-        # its causes.
+        # dispatcher as "returned a result with an exception set", and inside the initialisation of
+        # an extension module a command imports when it needs it (matplotlib's ft2font, in the Cost
+        # sweep's first 0.3 s) as "ImportError: initialization failed": the interrupt at the root of
+        # their causes.
         cause = exc
         while cause is not None and not isinstance(cause, KeyboardInterrupt):
             cause = cause.__cause__

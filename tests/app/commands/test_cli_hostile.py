@@ -20,6 +20,7 @@ import pytest
 from checkout import ROOT
 from interrupts import ctrl_c_reaches
 
+from app.cli import INTERRUPTED
 from core import presets
 from core.camera import Camera
 from core.files import scene_file
@@ -254,6 +255,35 @@ def test_ctrl_c_landing_in_a_weakref_callback_still_stops_the_command_and_prints
                             preexec_fn=ctrl_c_reaches)
     assert result.returncode == 130 and result.stdout.split() == ["interrupted"], result.stderr
     assert result.stderr == ""
+
+
+CTRL_C_IN_AN_EXTENSION_IMPORT = """
+import sys
+from app import cli
+from app.commands import cost
+
+
+def run(args):  # the sweep imports matplotlib, whose ft2font module is initialised as Ctrl+C comes
+    try:
+        raise KeyboardInterrupt
+    except KeyboardInterrupt as pressed:
+        raise ImportError("initialization failed") from pressed  # what the extension's import raised
+
+
+cost.run = run
+sys.exit(cli.main(["cost", "scene.json", "--knob", "accel", "--out", "sweep"]))
+"""
+
+
+def test_ctrl_c_inside_an_extension_modules_import_stops_the_command_and_prints_no_traceback(tmp_path):
+    # Once in a loop of whole test runs: Ctrl+C 0.30 s into a Cost sweep came while matplotlib's ft2font
+    # (a compiled module the sweep imports when it starts) was initialised, and the import raised
+    # "ImportError: initialization failed" from it: a traceback and status 1 instead of 130.
+    result = subprocess.run([sys.executable, "-c", CTRL_C_IN_AN_EXTENSION_IMPORT], cwd=tmp_path,
+                            capture_output=True, text=True, timeout=120, env={**ENV, "PYTHONPATH": str(ROOT)})
+    assert result.returncode == 130, result.stderr
+    assert "Traceback" not in result.stderr and "ImportError" not in result.stderr
+    assert result.stderr.strip().splitlines() == [INTERRUPTED]
 
 
 # --- memory ---------------------------------------------------------------------
