@@ -33,8 +33,7 @@ class StepScrubber(QWidget):
         self._timer.timeout.connect(self._advance)
         layout = QHBoxLayout(self)
         layout.setContentsMargins(0, 0, 0, 0)
-        icon = self.style().standardIcon  # no icon kept here: one freed off the GUI thread (panes left in
-        # a cycle, collected by a render's thread) touches pixmaps, the GUI thread's only
+        icon = self.style().standardIcon
         buttons = [
             (QStyle.StandardPixmap.SP_MediaSkipBackward, "First step: the cleared buffers", self.first),
             (QStyle.StandardPixmap.SP_MediaSeekBackward, "Previous polygon",
@@ -83,6 +82,8 @@ class StepScrubber(QWidget):
         self.set_step(self.slider.maximum())
 
     def toggle_play(self) -> None:
+        # The icons are asked for each time, not kept: a kept icon outlived its scrubber in a cycle,
+        # which a render's thread could free, and an icon's pixmaps are the GUI thread's only.
         if self.playing:
             self._timer.stop()
             self.play_button.setIcon(self.style().standardIcon(QStyle.StandardPixmap.SP_MediaPlay))
