@@ -107,6 +107,19 @@ def application_font_restored():
         QApplication.instance().setProperty(NORMAL_TEXT_PT, normal)
 
 
+@pytest.fixture(autouse=True)
+def closed_widgets_deleted():
+    """The widgets a test closed (qtbot closes and deletes the ones it was given) are deleted as the test
+    ends, not in the next test's first event loop: a window's garbage waits for its deletion to be
+    collected on the GUI thread (:mod:`app.process.gui_thread_collection`), as in the program, where
+    no other window ever opens."""
+    yield
+    from PySide6.QtCore import QCoreApplication, QEvent
+
+    if QCoreApplication.instance() is not None:
+        QCoreApplication.sendPostedEvents(None, QEvent.Type.DeferredDelete)
+
+
 def shown_widget(qtbot, widget, width: int, height: int):
     """``widget`` at ``width`` x ``height`` pixels, shown and exposed on screen, and closed after the
     test; returns it."""

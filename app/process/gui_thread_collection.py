@@ -1,4 +1,4 @@
-"""While a window is open, Python's garbage is collected on the GUI thread, never on a thread beside it.
+"""While a window exists, Python's garbage is collected on the GUI thread, never on a thread beside it.
 
 Python's cycle collector runs in whichever thread's allocations pass its threshold: with a window open,
 mostly a render, typesetting or export thread.  What it frees there includes the Qt objects left in
@@ -10,18 +10,26 @@ QColors.  Destroying those off their thread is the kind of fault that corrupts t
 later elsewhere: a test worker died once of a corrupted heap, found by glibc on the GUI thread while it
 measured a text ("malloc_consolidate(): unaligned fastbin chunk detected").
 
-:func:`collect_on_gui_thread` turns Python's automatic collection off while a window is open and
-collects on the GUI thread instead, from a timer, by Python's rule: the oldest generation whose count
-passed its threshold, if every younger one's did too.  Once the last window closes the automatic
-collection is back on: a process's later work without a window (the tests of the algorithms, some
-1,300) grew from 0.78 to 1.27 GB with none.  The window's stalls stay as they were: ``bench gui``, four
-runs each way, interleaved, the longest stall while opening 69-78 ms (74-98 before), on the first tab
-40-46 (38-66), entering and leaving presentation mode 45-69 (40-77), lesson steps 58-77 (67-77).
+:func:`collect_on_gui_thread` turns Python's automatic collection off while a window exists and collects
+on the GUI thread instead, from a timer, by Python's rule: the oldest generation whose count passed its
+threshold, if every younger one's did too.  A closed window exists until it is deleted, and so does its
+garbage: with the automatic collection back at its closing, threads of Qt's pool collected closed
+windows' objects between two tests (in one run of tests/app/window and tests/app/lessons, five windows'
+own Python objects, with the Qt objects they held; in tests/app and tests/views, listeners of their
+models' signals, which PySide disconnects from the thread that frees them: a script that freed such a
+listener on another thread while its signal's object lived crashed within seconds).  So only once the
+last window is deleted does the GUI thread collect what is left and turn the automatic collection back
+on: a process's later work without a window (the tests of the algorithms, some 1,300) grew from 0.78 to
+1.27 GB with none.  The window's stalls stay as they were: ``bench gui``, four runs each way,
+interleaved, the longest stall while opening 69-78 ms (74-98 before), on the first tab 40-46 (38-66),
+entering and leaving presentation mode 45-69 (40-77), lesson steps 58-77 (67-77).
 """
 
 from __future__ import annotations
 
+import functools
 import gc
+import itertools
 
 from PySide6.QtCore import QTimer
 from PySide6.QtWidgets import QWidget
@@ -29,25 +37,29 @@ from PySide6.QtWidgets import QWidget
 COLLECT_EVERY_MS = 100
 """How often the GUI thread collects what is due."""
 
-_open: set[int] = set()
-"""The windows that asked (ids), until they close."""
+_windows = itertools.count()
+_existing: set[int] = set()
+"""The windows that asked (numbered), until they are deleted."""
 
 
-def collect_on_gui_thread(window: QWidget) -> QTimer:
-    """From now until :func:`window_closed` for ``window`` (and every other window that asked), Python
-    collects garbage only on this thread, the GUI thread; returns the timer that collects."""
-    _open.add(id(window))
+def collect_on_gui_thread(window: QWidget) -> None:
+    """From now until ``window`` (and every other window that asked) is deleted, Python collects garbage
+    only on this thread, the GUI thread (from a timer of the window's)."""
+    number = next(_windows)
+    _existing.add(number)
     gc.disable()
-    timer = QTimer(window, interval=COLLECT_EVERY_MS, timeout=collect_due)
-    timer.start()
-    return timer
+    # A plain callable, not a method: PySide ties a method's connection to its object's life, and that
+    # object could die on another thread.
+    window.destroyed.connect(functools.partial(_deleted, number))
+    QTimer(window, interval=COLLECT_EVERY_MS, timeout=collect_due).start()
 
 
-def window_closed(window: QWidget, timer: QTimer) -> None:
-    """``window`` closed: its timer stops, and with the last window the automatic collection is back."""
-    timer.stop()
-    _open.discard(id(window))
-    if not _open:
+def _deleted(number: int) -> None:
+    """Window ``number`` is deleted: with the last one, what the windows left is collected here, and the
+    automatic collection is back."""
+    _existing.discard(number)
+    if not _existing:
+        gc.collect()
         gc.enable()
 
 

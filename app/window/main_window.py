@@ -95,7 +95,7 @@ class MainWindow(QMainWindow):
 
     def __init__(self, scene: Scene, memory_limit: int | None = None):
         super().__init__()
-        self._collector = gui_thread_collection.collect_on_gui_thread(self)  # before any thread starts
+        gui_thread_collection.collect_on_gui_thread(self)  # before any thread starts
         self.setWindowTitle("Render Explorer")
         self.model = SceneModel(scene, self, memory_limit)
         self.scene_path: Path | None = None
@@ -646,7 +646,6 @@ class MainWindow(QMainWindow):
             getattr(tab, "shutdown", lambda: None)()
         self._tree_renderer.cancel()
         self.scene_view.close()
-        gui_thread_collection.window_closed(self, self._collector)
         super().closeEvent(event)
 
 

@@ -4,7 +4,13 @@ from dataclasses import replace
 
 import pytest
 from PySide6.QtWidgets import QMainWindow
-from qt_fixtures import application_font_restored, private_settings, require_display, shown_widget  # noqa: F401
+from qt_fixtures import (  # noqa: F401
+    application_font_restored,
+    closed_widgets_deleted,
+    private_settings,
+    require_display,
+    shown_widget,
+)
 
 from core.presets_trace import mirror_and_glass
 from views.panels.cost_panel import CostPanel
