@@ -107,6 +107,10 @@ def application_font_restored():
         QApplication.instance().setProperty(NORMAL_TEXT_PT, normal)
 
 
+JOBS_END_MS = 30_000
+"""How long a test's end waits for the jobs its widgets started (cancelled ones stop within milliseconds)."""
+
+
 @pytest.fixture(autouse=True)
 def closed_widgets_deleted():
     """The widgets a test closed (qtbot closes and deletes the ones it was given) are deleted as the test
@@ -126,10 +130,6 @@ def closed_widgets_deleted():
     for pool in pools:
         pool.waitForDone(JOBS_END_MS)
     QCoreApplication.sendPostedEvents(None, QEvent.Type.DeferredDelete)
-
-
-JOBS_END_MS = 30_000
-"""How long a test's end waits for the jobs its widgets started (cancelled ones stop within milliseconds)."""
 
 
 def shown_widget(qtbot, widget, width: int, height: int):
