@@ -107,10 +107,6 @@ def application_font_restored():
         QApplication.instance().setProperty(NORMAL_TEXT_PT, normal)
 
 
-JOBS_END_MS = 30_000
-"""How long a test's end waits for the jobs its widgets started (cancelled ones stop within milliseconds)."""
-
-
 @pytest.fixture(autouse=True)
 def closed_widgets_deleted():
     """The widgets a test closed (qtbot closes and deletes the ones it was given) are deleted as the test
@@ -118,18 +114,10 @@ def closed_widgets_deleted():
     collected on the GUI thread (:mod:`app.process.gui_thread_collection`), as in the program, where
     no other window ever opens."""
     yield
-    from PySide6.QtCore import QCoreApplication, QEvent, QThreadPool
-    from PySide6.QtWidgets import QApplication
+    from PySide6.QtCore import QCoreApplication, QEvent
 
-    if QCoreApplication.instance() is None:
-        return
-    # A job still running reports to signals its widget owns: a worker died emitting "finished" from a
-    # pool's thread as the closed window was deleted under it.  So the jobs end first.
-    pools = [QThreadPool.globalInstance()]
-    pools += [pool for widget in QApplication.topLevelWidgets() for pool in widget.findChildren(QThreadPool)]
-    for pool in pools:
-        pool.waitForDone(JOBS_END_MS)
-    QCoreApplication.sendPostedEvents(None, QEvent.Type.DeferredDelete)
+    if QCoreApplication.instance() is not None:
+        QCoreApplication.sendPostedEvents(None, QEvent.Type.DeferredDelete)
 
 
 def shown_widget(qtbot, widget, width: int, height: int):

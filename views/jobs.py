@@ -21,6 +21,7 @@ widget or a signals object is never destroyed on a pool's thread (:data:`_held`)
 
 from __future__ import annotations
 
+import functools
 import itertools
 import threading
 import time
@@ -35,11 +36,23 @@ Job = Callable[[threading.Event, Callable[[int, object], None]], object]
 
 
 class JobSignals(QObject):
-    """What jobs report, each with the id of the job it is from."""
+    """What jobs report, each with the id of the job it is from, to ``owner``'s receivers.
+
+    It has no Qt parent: Qt must not destroy an object while another thread emits its signal (a
+    runner deleted while its job reported crashed the process within a few runs), so the runs that
+    report to it keep it (:data:`_held`) until they end, and ``owner``'s deletion only stops their
+    reports (``owner_gone``).
+    """
 
     progress = Signal(int, int, object)  # job id, percent done, partial result
     finished = Signal(int, object)  # job id, result
     failed = Signal(int, str)  # job id, message
+
+    def __init__(self, owner: QObject | None = None):
+        super().__init__()
+        self.owner_gone = threading.Event()
+        if owner is not None:  # a plain callable: PySide ties a method's connection to its object
+            owner.destroyed.connect(functools.partial(threading.Event.set, self.owner_gone))
 
 
 class JobRun(QRunnable):
@@ -104,12 +117,10 @@ class JobRun(QRunnable):
 
     def _emit(self, name: str, *args) -> None:
         """Report to the GUI thread, unless the job was cancelled or whoever listened is gone."""
-        if self.cancelled.is_set():
-            return
-        try:
-            getattr(self.signals, name).emit(*args)
-        except RuntimeError:  # the signals' owner was deleted while this job ran: nobody to tell
+        if self.signals.owner_gone.is_set():  # nobody to tell: the job may stop
             self.cancelled.set()
+        if not self.cancelled.is_set():
+            getattr(self.signals, name).emit(*args)
 
 
 _held: dict[int, list] = {}
