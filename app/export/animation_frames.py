@@ -107,7 +107,7 @@ def zbuffer_steps(scene, settings) -> tuple[int, Iterator[np.ndarray]]:
                 for image in (color, depth):
                     _outline(image, cols[passed], rows[passed], PASSED_TINT)
                     _outline(image, cols[~passed], rows[~passed], FAILED_TINT)
-                text = (f"polygon {p} of {names[history.object_index[p]]} (triangle "
+                text = (f"polygon {k} of {names[history.object_index[p]]} (triangle "
                         f"{history.triangle_index[p]}): {int(passed.sum()):,} fragments passed the "
                         f"z-test (outlined magenta), {int((~passed).sum()):,} failed (cyan)")
             yield compose(_step_panels(color, depth, cam.near, cam.far), 2,

@@ -237,3 +237,25 @@ def test_the_grid_step_outlines_the_cells_its_picked_ray_walks_as_its_words_say(
     assert len(crossed) >= 3 and crossed <= shown <= touched
     panel.select(k, 2)  # the next step shows the grid and the spheres, not the walk
     assert "walk" not in window.model.overlays
+
+
+def test_a_polygon_the_lesson_numbers_is_the_one_the_window_numbers_so(window, qtbot):
+    # "Polygon 1: green" stood over a caption "Step 1 of 3: polygon 0 — green": the lesson counts the
+    # polygons drawn from one, as the z-buffer's steps, its pixel history and the status bar's pointer
+    # do.  Every step that points at a drawn polygon: the caption, the pointer and the words agree.
+    panel, oo = window.lesson_panel, window.tab("object order").widget
+    pointed = [(k, s) for k, lesson in enumerate(panel.lessons()) for s, step in enumerate(lesson.steps)
+               if "polygon_step" in step.highlight]
+    assert len(pointed) >= 3
+    for k, s in pointed:
+        panel.select(k, s)
+        step = panel.current_step()
+        n = step.highlight["polygon_step"] + 1  # drawn at step n, counted from one
+        qtbot.waitUntil(lambda n=n: window.showing_full("object order") and oo.scene is window.model.scene
+                        and oo.scrubber.step == n, timeout=RENDER_TIMEOUT_MS)
+        caption = re.match(r"Step (\d+) of \d+: polygon (\d+) — (\w+)", oo.step_caption.text())
+        drawn = step.scene.objects[oo.result.draw.object_index[n - 1]].name
+        assert caption.groups() == (str(n), str(n), drawn)
+        assert f"the polygon drawn at step {n}" in window.statusBar().currentMessage()
+        for written in re.findall(r"[Pp]olygon (\d+)", f"{step.title} {step.text}"):
+            assert int(written) == n, (step.title, oo.step_caption.text())

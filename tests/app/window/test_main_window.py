@@ -212,7 +212,7 @@ def test_a_new_scene_and_step_at_once_show_that_step_and_leave_the_old_render_al
     qtbot.waitUntil(lambda: window.showing_full("object order"), timeout=RENDER_TIMEOUT_MS)
     panel = window.tab("object order").widget
     assert panel.scrubber.step == 2
-    assert panel.step_caption.text().startswith(f"Step 2 of {panel.result.history.n_steps}: polygon 1 ")
+    assert panel.step_caption.text().startswith(f"Step 2 of {panel.result.history.n_steps}: polygon 2 ")
     color, _ = panel.result.history.buffers(2)  # the image memory after two polygons
     assert np.allclose(panel.image.rgb, color)
     assert "polygon" in window.scene_view.overlay_names()
