@@ -164,6 +164,11 @@ class ObjectOrderPanel(QWidget):
         for name in DEPTH_FORMATS:
             self.depth_format.addItem(f"{name} ({BYTES_PER_PIXEL[name]} bytes)", name)
         self.depth_format.setToolTip(DEPTH_FORMAT_TIP)
+        # As wide as the stage switches above it, a longer choice cut short (its list shows it whole):
+        # as wide as its longest ("float32-reversed (4 bytes)"), the column took so much of a small
+        # screen, presenting, that the dock tabs beside the pane lost their names' ends.
+        self.depth_format.setSizeAdjustPolicy(QComboBox.SizeAdjustPolicy.AdjustToMinimumContentsLengthWithIcon)
+        self.depth_format.setMinimumContentsLength(12)
         self.depth_format.currentIndexChanged.connect(self._settings_edited)
         depth_label = QLabel("z-buffer format")
         depth_label.setToolTip(DEPTH_FORMAT_TIP)

@@ -280,6 +280,21 @@ def test_a_new_text_size_is_painted_though_qt_asked_for_a_paint_while_it_was_hel
     text.removeEventFilter(paints)
 
 
+def test_presenting_at_x2_the_z_buffer_format_choice_does_not_widen_the_stage_switches(qtbot, monkeypatch,
+                                                                                     normal_text):
+    # At its longest choice's width ("float32-reversed (4 bytes)", 341 px at x2 against 278 for the
+    # widest switch) it widened the object-order pane's side column, and on a 1280x720 screen that
+    # narrowed the left column to 463 px: the dock tabs beside it read "Contr…", "Lesso…".
+    window = presenting_on_1280x720(qtbot, monkeypatch, 2.0)
+    window.show_tab("object order")
+    panel = window.tab("object order").widget
+    qtbot.waitUntil(panel.depth_format.isVisible)
+    widest_switch = max(box.sizeHint().width() for box in [*panel.switches.values(), panel.overdraw])
+    assert panel.depth_format.minimumSizeHint().width() <= widest_switch
+    assert panel.depth_format.sizeHint().width() <= widest_switch
+    window.presentation.set_presenting(False)
+
+
 def test_presenting_at_x2_on_a_small_screen_the_dock_tabs_show_their_names_whole(qtbot, monkeypatch,
                                                                                  normal_text):
     # A step showing the traced image alone narrowed the left column to 452 px, and its tabs read
