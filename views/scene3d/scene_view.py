@@ -27,6 +27,7 @@ from __future__ import annotations
 
 import contextlib
 import functools
+import itertools
 import time
 
 import numpy as np
@@ -646,8 +647,8 @@ class SceneView(QWidget):
 
     def _place_labels(self, *_) -> None:
         """Before each draw: move every shown label beside the point it names, clear of its
-        overlay's lines, the observer's frustum and the labels placed before it; a thin
-        leader line joins a label set farther off to its point."""
+        overlay's lines, the observer's frustum and the labels placed before it (the widest
+        first); a thin leader line joins a label set farther off to its point."""
         names = [name for name in self.overlay_names()
                  if any("label_size" in style for _, _, style in self._overlays[name])]
         width, height = self.plotter.ren_win.GetSize()
@@ -661,6 +662,18 @@ class SceneView(QWidget):
         if key == self._labels_placed_for:
             return
         self._labels_placed_for = key
+        label_actors = [actor for n in names for _, actor, style in self._overlays[n]
+                        if "label_size" in style]
+        for scale in dict.fromkeys((label_scale(self.line_scale), 1.0)):
+            for actor in label_actors:
+                actor.GetMapper().GetLabelTextProperty().SetFontSize(round(actor._unscaled[1] * scale))
+            if self._placed_apart(names, width, height, matrix):
+                return  # else, presenting in a pane too small for them, smaller labels: as at text x1
+
+    def _placed_apart(self, names: list[str], width: int, height: int, matrix) -> bool:
+        """Place the labels of overlays ``names`` (:meth:`_place_labels`) in a pane ``width`` x ``height``
+        seen through ``matrix``; whether every label of a point in view found a spot clear of the others."""
+        apart = True
         to_pixels = np.array([width / 2, height / 2])
 
         def project(points):
@@ -669,9 +682,15 @@ class SceneView(QWidget):
 
         own = [(self._frustum_edges, 2.0), (self._screen_edges, 3.0)]
         measure, box, dpi = vtkTextRenderer(), [0, 0, 0, 0], self.plotter.ren_win.GetDPI()
+
+        def measured(text, words) -> tuple[float, float, list]:
+            measure.GetBoundingBox(text, words, box, dpi)
+            return box[1] - box[0], box[3] - box[2], list(box)
+
         side = _axes_side(self.line_scale) * np.array([width, height])
         square = side.min()  # the axes marker: a square, centred in its corner's viewport
         taken = [(*(side - square) / 2, *(side + square) / 2)]
+        actors, wanted = [], []  # each label actor with its points; each label to place
         for name in names:
             parts = self._overlays[name]
             ends, halves = [], []
@@ -687,42 +706,54 @@ class SceneView(QWidget):
             for _, actor, style in parts:
                 if "label_size" not in style:
                     continue
-                anchors, placed = actor._anchors, actor._placed
+                h, xy = project(actor._anchors.points)
+                shown = [str(label) for label in actor._anchors.point_data["labels"]]
+                actors.append((actor, h, xy, np.array(h), shown))
                 text = actor.GetMapper().GetLabelTextProperty()
-                h, xy = project(anchors.points)
-                spots = np.array(h)
-                shown = []
-                for k, label in enumerate(anchors.point_data["labels"]):
-                    for words in dict.fromkeys((str(label), broken(str(label)))):  # one line first
-                        measure.GetBoundingBox(text, words, box, dpi)
-                        w, t = box[1] - box[0], box[3] - box[2]
-                        spot = place_label(xy[k], (w, t), segments, (width, height), taken,
-                                           GAP_PX * self.line_scale)
-                        if spot is not None:
-                            break
-                    if spot is None:  # nowhere clear: on one line, centred above the point
-                        words = str(label)
-                        measure.GetBoundingBox(text, words, box, dpi)
-                        w, t = box[1] - box[0], box[3] - box[2]
-                        spot = xy[k][0], xy[k][1] + GAP_PX * self.line_scale
-                        if 0 <= xy[k][0] <= width and 0 <= xy[k][1] <= height:  # its point in view: it too
-                            spot = in_pane(*spot, (w, t), (width, height))
-                    cx, bottom = spot
-                    shown.append(words)
-                    taken.append((cx - w / 2, bottom, cx + w / 2, bottom + t))
-                    at = np.array([cx - (box[0] + box[1]) / 2, bottom - box[2]])
-                    spots[k, :2] = (at / to_pixels - 1) * h[k, 3]  # same depth, moved on the pane
-                world = spots @ np.linalg.inv(matrix).T
-                placed.points = world[:, :3] / world[:, 3:]
-                vtk_convert.set_labels(placed, shown)
-                far = np.hypot(*(project(placed.points)[1] - xy).T) > 3 * GAP_PX * self.line_scale
-                actor._leader.copy_from(_leaders(anchors.points[far], placed.points[far]))
+                wanted += [(measured(text, label)[0], len(actors) - 1, k, segments, text)
+                           for k, label in enumerate(shown)]
+        # The widest first, while the pane has room for it; each clear of the lines and the labels
+        # placed before it, one line first; in a pane too small for that (presenting on a small
+        # screen), clear of the labels only, across a line.
+        for _, a, k, segments, text in sorted(wanted, key=lambda item: -item[0]):
+            actor, h, xy, spots, shown = actors[a]
+            label = shown[k]
+            one_line_first = dict.fromkeys((label, broken(label)))
+            for lines, words in itertools.product((segments, _NO_LINES), one_line_first):
+                w, t, edges = measured(text, words)
+                spot = place_label(xy[k], (w, t), lines, (width, height), taken, GAP_PX * self.line_scale)
+                if spot is not None:
+                    break
+            if spot is None:  # nowhere clear: on one line, centred above the point
+                words = label
+                w, t, edges = measured(text, words)
+                spot = xy[k][0], xy[k][1] + GAP_PX * self.line_scale
+                if 0 <= xy[k][0] <= width and 0 <= xy[k][1] <= height:  # its point in view: it too
+                    spot = in_pane(*spot, (w, t), (width, height))
+                    apart = False
+            cx, bottom = spot
+            shown[k] = words
+            taken.append((cx - w / 2, bottom, cx + w / 2, bottom + t))
+            at = np.array([cx - (edges[0] + edges[1]) / 2, bottom - edges[2]])
+            spots[k, :2] = (at / to_pixels - 1) * h[k, 3]  # same depth, moved on the pane
+        for actor, _, xy, spots, shown in actors:
+            anchors, placed = actor._anchors, actor._placed
+            world = spots @ np.linalg.inv(matrix).T
+            placed.points = world[:, :3] / world[:, 3:]
+            vtk_convert.set_labels(placed, shown)
+            far = np.hypot(*(project(placed.points)[1] - xy).T) > 3 * GAP_PX * self.line_scale
+            actor._leader.copy_from(_leaders(anchors.points[far], placed.points[far]))
+        return apart
 
     def close(self) -> bool:
         self._render_timer.stop()
         self._smooth_timer.stop()
         self.plotter.close()
         return super().close()
+
+
+_NO_LINES = (np.empty((0, 2)), np.empty((0, 2)), np.empty(0))
+"""No lines for a label to keep clear of (:func:`views.scene3d.label_placement.place_label`'s segments)."""
 
 
 def label_scale(line_scale: float) -> float:
