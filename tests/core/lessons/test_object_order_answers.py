@@ -13,7 +13,7 @@ from fractions import Fraction
 import numpy as np
 import pytest
 from brute_force import hit_triangle
-from hand_rays import frame, frustum_distances, hits, image_hits, inner_pixel, nearest, pixel_ray
+from hand_rays import frame, frustum_distances, hits, image_hits, inner_pixel, nearest, pixel_ray, rays
 from shipped_exercises import assert_only, exercise
 
 from core.lessons.exercises import judge, number
@@ -395,3 +395,33 @@ def test_rasterization_the_top_left_rule_at_the_new_triangles_corners(variant):
     owned = "triangle" if _owns(corners, centre) else None
     assert owned == {(2, 2): "triangle", (12, 2): None, (8, 10): None}[(x, y)]
     assert_only(ex, p, owned)
+
+
+def test_rasterization_the_other_half_of_the_third_triangles_face_fills_the_pixels_it_covers():
+    # Object order draws the scene's objects in order, the cube first, and its triangles in order,
+    # skipping the back faces: the cube's front faces (the eye on the side its corners turn
+    # counter-clockwise to) are triangles 2, 3, 4, 5, 8, 9 here, so the third drawn is triangle 4 and the
+    # fifth triangle 8, which shares an edge of triangle 4 and its plane: the same face's other half.  It
+    # fills the pixels whose rays cross it (brute force); by step 5 nothing else covers them: the
+    # triangles drawn before it are front faces of the same convex cube, beside it, not in front.
+    ex, p = exercise("rasterization", 3)
+    assert p.step.zbuffer_step == 3  # asked with the third triangle drawn, the fifth not yet
+    scene = _scene(p)
+    cube = scene.objects[0]
+    assert cube.name == "cube"
+    front = [k for k, corners in enumerate(cube.corners) if _facing(corners, scene.camera.eye) > 0]
+    assert front == [2, 3, 4, 5, 8, 9]
+    third, fifth = (cube.corners[k] for k in (front[2], front[4]))
+    assert sum(any(np.array_equal(a, b) for b in third) for a in fifth) == 2  # an edge shared
+    normal = np.cross(third[1] - third[0], third[2] - third[0])
+    assert np.allclose((fifth - third[0]) @ normal, 0)  # in the same plane
+    ys, xs = np.mgrid[0:scene.camera.height, 0:scene.camera.width]
+    o, d = rays(scene.camera, xs.ravel(), ys.ravel())
+    shape = (scene.camera.height, scene.camera.width)
+    crossed = {k: np.isfinite(hit_triangle(o, d, *cube.corners[k])).reshape(shape) for k in front[:5]}
+    assert crossed[8].sum() > 100
+    assert judge(ex, p, inner_pixel(crossed[8])).right
+    for k in front[:4]:  # the triangles drawn before it, the half outlined among them, and the background
+        elsewhere = inner_pixel(crossed[k] & ~crossed[8])
+        assert elsewhere is not None and not judge(ex, p, elsewhere).right, k
+    assert not judge(ex, p, (0, 0)).right
