@@ -104,7 +104,8 @@ def fit_window(window, scale: float = 1.0) -> None:
         window.resize(min(window.width(), available.width()), min(window.height(), available.height()))
     column = window.centralWidget().height()
     least_scene = round(column * MIN_SCENE_SHARE)
-    share, short = max(left_share(scale), min(_dock_tabs_share(window), MAX_LEFT_SHARE)), 0
+    docks = _left_docks(window)
+    share, short = max(left_share(scale), min(_dock_tabs_share(window, docks), MAX_LEFT_SHARE)), 0
     # The lesson step's words shown whole, if the 3D pane can spare the room, else if the left
     # column may widen that much (the docks take their new sizes after this call).
     # The exercise's question and its Show answers button, when the exercises are in front.
@@ -113,28 +114,37 @@ def fit_window(window, scale: float = 1.0) -> None:
     words = panel.isVisible()
     spare = window.scene_pane.height() - least_scene if window.scene_pane.isVisible() else 0
     while words:
-        wider = round(window.width() * share) - window.lesson_dock.width()
+        wider = round(window.width() * share) - docks.width()
         short = _words_short_by(panel, wider)
         if short <= spare or share >= MAX_LEFT_SHARE:
             break
         share = min(share + 0.02, MAX_LEFT_SHARE)
-    window.resizeDocks([window.lesson_dock], [round(window.width() * share)], Qt.Orientation.Horizontal)
+    window.resizeDocks([docks], [round(window.width() * share)], Qt.Orientation.Horizontal)
     if window.scene_pane.isVisible():
         scene = round(column * SCENE_SHARE)
         if words:
             scene = max(least_scene, min(scene, window.scene_pane.height() - short))
-        window.resizeDocks([window.scene_pane, window.lesson_dock], [scene, column - scene],
+        window.resizeDocks([window.scene_pane, docks], [scene, column - scene],
                            Qt.Orientation.Vertical)
 
 
-def _dock_tabs_share(window) -> float:
+def _left_docks(window) -> QDockWidget:
+    """The dock in front among the lessons' and the docks tabbed with it (the lessons' if none is):
+    the one whose width is the left column's.  A dock behind another tab keeps the width it had when
+    it was last in front (the lessons' kept 388 px while the exercises, in front, had 434)."""
+    lessons = window.lesson_dock
+    tabbed = [lessons, *window.tabifiedDockWidgets(lessons)]
+    return next((dock for dock in tabbed if in_front(dock)), lessons)
+
+
+def _dock_tabs_share(window, docks: QDockWidget) -> float:
     """The share of ``window``'s width the left column needs to show its dock tabs' names whole
     ("Controls", "Lessons", "Exercises", "Editor"; at x2 on a 1280 px screen they need 476 px of
-    it), 0 while the lessons' dock is not tabbed with others."""
+    it), 0 while the lessons' dock is not tabbed with others; ``docks`` is the one in front."""
     for bar in window.findChildren(QTabBar, options=Qt.FindChildOption.FindDirectChildrenOnly):
         names = [bar.tabText(i) for i in range(bar.count())]
         if bar.isVisible() and window.lesson_dock.windowTitle() in names:
-            beyond = bar.width() - window.lesson_dock.width()  # the bar's width beyond the dock's
+            beyond = bar.width() - docks.width()  # the bar's width beyond the dock's
             return (bar.sizeHint().width() - beyond) / max(window.width(), 1)
     return 0.0
 
