@@ -24,11 +24,16 @@ from __future__ import annotations
 
 import contextlib
 import threading
+import weakref
+from functools import lru_cache
 
-from PySide6.QtCore import QObject, Qt, QTimer, Signal
+import shiboken6
+from PySide6.QtCore import QObject, Qt, QTimer, Signal, Slot
 from PySide6.QtWidgets import QLabel, QVBoxLayout, QWidget
 
 PLACEHOLDER = "Loading the 3D view…"
+IMPORT_WAIT_S = 10.0
+"""How long closing the pane waits for pyvista's import to end (it takes a second or two)."""
 BUILD_AFTER_MS = 5000
 """The view is built this long after the pane was first painted if no one asked before: a first
 render that compiles the kernels takes minutes, one from numba's cache well under a second (a few
@@ -36,17 +41,35 @@ seconds on a busy machine, where loading pyvista beside it would only slow it do
 
 
 class _Imported(QObject):
-    done = Signal()
+    """Tells a pane, on the GUI thread, that its import thread is done (one for all panes, never
+    deleted: a pane's own, deleted with the pane while its thread emitted, crashed a script within
+    the first few panes)."""
+
+    done = Signal(object)  # a weak reference to the pane
+
+    def __init__(self):
+        super().__init__()
+        self.done.connect(self._deliver)  # queued onto the GUI thread, where this object lives
+
+    @Slot(object)
+    def _deliver(self, pane: weakref.ref) -> None:
+        pane = pane()
+        if pane is not None and shiboken6.isValid(pane):
+            pane._build_in_turns()
 
 
-def _import_pyvista(imported: _Imported) -> None:
+@lru_cache(maxsize=1)
+def _imported() -> _Imported:
+    return _Imported()  # made by the first pane that imports, on the GUI thread
+
+
+def _import_pyvista(pane: weakref.ref) -> None:
     try:
         import pyvista  # noqa: F401
 
         import views.scene3d.scene_picking  # noqa: F401  (the pane, VTK's Qt widget and OpenGL; clicks in the pane)
     finally:
-        with contextlib.suppress(RuntimeError):  # RuntimeError: the pane was deleted meanwhile
-            imported.done.emit()  # queued: the view is built on the GUI thread
+        _imported().done.emit(pane)  # queued: the view is built on the GUI thread
 
 
 class DeferredSceneView(QWidget):
@@ -72,10 +95,8 @@ class DeferredSceneView(QWidget):
         self._look: tuple[bool, object] = (False, None)  # (asked, view) of look_from
         self._line_scale = 1.0  # set_line_scale before the view exists
         self._painted = False
-        self._importing = False
+        self._importer: threading.Thread | None = None  # importing pyvista, once started
         self._closed = False  # closed with its window: nothing more is built
-        self._imported = _Imported(self)
-        self._imported.done.connect(self._build_in_turns)
         self._plotter = None  # VTK's widget, made a turn before the view around it
         self._placeholder = QLabel(PLACEHOLDER)
         self._placeholder.setAlignment(Qt.AlignmentFlag.AlignCenter)
@@ -92,10 +113,11 @@ class DeferredSceneView(QWidget):
 
     def build_soon(self, *_) -> None:
         """Import pyvista on a thread, then build the view on the GUI thread (once)."""
-        if self.view is None and not self._importing and not self._closed:
-            self._importing = True
-            threading.Thread(target=_import_pyvista, args=(self._imported,), name="import pyvista",
-                             daemon=True).start()
+        if self.view is None and self._importer is None and not self._closed:
+            _imported()  # here, on the GUI thread
+            self._importer = threading.Thread(target=_import_pyvista, args=(weakref.ref(self),),
+                                              name="import pyvista", daemon=True)
+            self._importer.start()
 
     def _build_in_turns(self) -> None:
         """VTK's render window in this turn of the event loop (the first one loads the OpenGL
@@ -184,8 +206,12 @@ class DeferredSceneView(QWidget):
     def close(self) -> bool:
         """Close the view, or VTK's widget made for it, and build nothing after: a window closed while
         its pane was being built went on to build it, and pyvista's list of plotters kept its VTK
-        render window, its OpenGL context open, until the process ended."""
+        render window, its OpenGL context open, until the process ended.  An import under way is
+        waited for (it takes a second or two): the process may end next, and an import on a thread while it
+        ends may crash it."""
         self._closed = True
+        if self._importer is not None:
+            self._importer.join(IMPORT_WAIT_S)
         if self.view is not None:
             self.view.close()
         elif self._plotter is not None:

@@ -176,8 +176,9 @@ def test_the_3d_pane_is_built_in_three_turns_render_window_then_vtks_widget_then
     win = MainWindow(presets.lecture_scene())
     qtbot.addWidget(win)
     pane = win.scene_view
-    seen, made = [], []  # seen: connected after the pane's own slot, what the first turn left
-    pane._imported.done.connect(lambda: seen.append((pane.view, pane.findChild(ImagePlotter))))
+    seen, made = [], []  # seen: connected after the panes' own slot, what the first turn left
+    imported = deferred_scene_view._imported().done
+    imported.connect(note := lambda _pane: seen.append((pane.view, pane.findChild(ImagePlotter))))
     init = ImagePlotter.__init__
 
     def noted(plotter, parent=None, render_window=None):
@@ -187,6 +188,7 @@ def test_the_3d_pane_is_built_in_three_turns_render_window_then_vtks_widget_then
     monkeypatch.setattr(ImagePlotter, "__init__", noted)
     win.show()
     qtbot.waitUntil(lambda: pane.view is not None, timeout=RENDER_TIMEOUT_MS)
+    imported.disconnect(note)
     assert seen == [(None, None)]  # the first turn made neither VTK's widget nor the view
     [(view, render_window, before)] = made
     assert view is None and render_window is not None and before == seen  # a turn later, in that window
@@ -206,11 +208,13 @@ def test_a_window_closed_while_its_3d_pane_loads_builds_no_pane_after(qtbot, mon
     qtbot.addWidget(win)
     pane = win.scene_view
     loaded = []
-    pane._imported.done.connect(lambda: loaded.append(1))
+    imported = deferred_scene_view._imported().done
+    imported.connect(note := lambda told: told() is pane and loaded.append(1))
     win.show()
     pane.build_soon()  # pyvista is imported on a thread ...
     win.close()  # ... and the window closes meanwhile
     qtbot.waitUntil(lambda: loaded == [1], timeout=RENDER_TIMEOUT_MS)
+    imported.disconnect(note)
     QApplication.processEvents()  # the turn the render window would have been made in, and the next
     QApplication.processEvents()
     assert made == [] and pane.view is None and pane.findChild(ImagePlotter) is None
@@ -254,7 +258,7 @@ app = QApplication(sys.argv[:1])
 from app.window.main_window import MainWindow
 from core import presets
 window = MainWindow(presets.lecture_scene())
-deferred_scene_view._import_pyvista(deferred_scene_view._Imported())  # what the import thread runs
+deferred_scene_view._import_pyvista(lambda: None)  # what the import thread runs (for no pane)
 before = set(sys.modules)
 window.scene_view.build()  # on the GUI thread
 assert window.scene_view.view is not None
