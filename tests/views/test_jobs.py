@@ -3,14 +3,11 @@ a cancelled or superseded job delivers nothing, a failure is told, reports carry
 what a job held is let go of on the GUI thread."""
 
 import functools
-import os
-import subprocess
-import sys
 import threading
 
 import shiboken6
-from checkout import ROOT
 from PySide6.QtCore import QThreadPool
+from turns_in_a_process import ran_to_the_end
 
 from core import stopping
 from views.jobs import JobRun, JobRunner, JobSignals
@@ -124,46 +121,14 @@ def test_what_a_job_held_is_let_go_on_the_gui_thread(qtbot):
     assert on_gui_thread == [True, True]
 
 
-RUNS = """
-import sys, threading
-import shiboken6
-from PySide6.QtCore import QThreadPool, QTimer
-from PySide6.QtWidgets import QApplication, QWidget
-from views.jobs import JobRunner
-
-app = QApplication(sys.argv)
-count = [0]
-
-def one_more():
-{run}
-    count[0] += 1
-    if count[0] == 300:
-        app.quit()
-
-timer = QTimer()
-timer.timeout.connect(one_more)
-timer.start(1)
-app.exec()
-QThreadPool.globalInstance().waitForDone()
-print("ran", count[0])
-"""
-
-
-def _ran_300_times(run: str, folder) -> None:
-    """``run`` (the body of a function, indented) ran 300 times, one per turn of a Qt event loop, in a
-    process of its own, which ended well."""
-    env = {**os.environ, "QT_QPA_PLATFORM": "offscreen", "PYTHONPATH": str(ROOT)}
-    out = subprocess.run([sys.executable, "-c", RUNS.format(run=run)], env=env, cwd=folder,
-                         capture_output=True, text=True, timeout=120)
-    assert out.returncode == 0, out.stderr[-2000:]
-    assert out.stdout.split() == ["ran", "300"]
+JOBS = "from views.jobs import JobRunner"
 
 
 def test_a_widget_a_job_held_last_does_not_crash_the_process(tmp_path):
     # It was destroyed on the pool's thread when the run ended: a segmentation fault within a few
     # hundred runs (a test worker died so once in about nine full runs, though which job it was is
     # not known).
-    _ran_300_times("""
+    ran_to_the_end("""
     gate = threading.Event()
 
     def job(cancelled, progress, widget=QWidget()):  # a parentless widget: the job's to keep
@@ -173,13 +138,13 @@ def test_a_widget_a_job_held_last_does_not_crash_the_process(tmp_path):
     runner.submit(job)
     del job, runner  # the run holds the only reference to the widget now
     gate.set()
-""", tmp_path)
+""", tmp_path, JOBS)
 
 
 def test_a_runner_deleted_while_its_job_reports_does_not_crash_the_process(tmp_path):
     # Its signals object, then a child of the runner, was destroyed while a pool's thread emitted
     # one of its signals: a segmentation fault within the first few runs, three times in three.
-    _ran_300_times("""
+    ran_to_the_end("""
     started = threading.Event()
 
     def job(cancelled, progress):  # reports as fast as it can until it is stopped
@@ -195,7 +160,7 @@ def test_a_runner_deleted_while_its_job_reports_does_not_crash_the_process(tmp_p
     runner.submit(job)
     started.wait(5)
     shiboken6.delete(runner)  # its owner goes while the job reports
-""", tmp_path)
+""", tmp_path, JOBS)
 
 
 def test_a_job_whose_runner_is_deleted_stops_at_its_next_report(qtbot):

@@ -2,52 +2,23 @@
 while its import thread tells it pyvista is in does not crash the process, and one closed waits for
 its import to end."""
 
-import os
-import subprocess
-import sys
 import threading
 import time
 
-from checkout import ROOT
-
-DELETED_PANES = """
-import sys, threading
-import shiboken6
-from PySide6.QtCore import QTimer
-from PySide6.QtWidgets import QApplication
-import pyvista  # imported once: each pane's import thread then tells it at once
-from views.scene3d.deferred_scene_view import DeferredSceneView
-
-app = QApplication(sys.argv)
-count = [0]
-
-def one_more():
-    pane = DeferredSceneView(None)  # never built: deleted before its thread's word arrives
-    pane.build_soon()
-    shiboken6.delete(pane)  # while its thread tells it
-    count[0] += 1
-    if count[0] == 300:
-        app.quit()
-
-timer = QTimer()
-timer.timeout.connect(one_more)
-timer.start(0)
-app.exec()
-for thread in threading.enumerate():
-    if thread.name == "import pyvista":
-        thread.join()
-print("ran", count[0])
-"""
+from turns_in_a_process import ran_to_the_end
 
 
 def test_a_pane_deleted_while_its_import_thread_tells_it_does_not_crash_the_process(tmp_path):
     # The thread emitted a signal of an object the pane owned, deleted with it: a segmentation fault
     # in three runs of four of this script.
-    env = {**os.environ, "QT_QPA_PLATFORM": "offscreen", "PYTHONPATH": str(ROOT)}
-    out = subprocess.run([sys.executable, "-c", DELETED_PANES], env=env, cwd=tmp_path, capture_output=True,
-                         text=True, timeout=120)
-    assert out.returncode == 0, out.stderr[-2000:]
-    assert out.stdout.split() == ["ran", "300"]
+    ran_to_the_end("""
+    pane = DeferredSceneView(None)  # never built: deleted before its thread's word arrives
+    pane.build_soon()
+    shiboken6.delete(pane)  # while its thread tells it
+""", tmp_path, """
+import pyvista  # imported once: each pane's import thread then tells it at once
+from views.scene3d.deferred_scene_view import DeferredSceneView
+""")
 
 
 def test_closing_the_pane_waits_for_its_import_to_end(qtbot, monkeypatch):
