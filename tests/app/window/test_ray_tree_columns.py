@@ -1,5 +1,7 @@
 """The ray tree's columns and the verdict over them are seen whole, presenting at x2 and in a narrower tab."""
 
+import re
+
 import pytest
 from PySide6.QtCore import Qt
 from PySide6.QtWidgets import QDockWidget
@@ -109,3 +111,8 @@ def test_presenting_at_x2_on_1280x720_the_ray_tree_shows_every_column_whole(qtbo
     window.presentation.set_scale(1.0)
     qtbot.waitUntil(lambda: panel.explanation.parentWidget() is panel.tree.parentWidget(), timeout=5000)
     qtbot.waitUntil(lambda: _columns_whole(panel.tree) and not any(map(header.isSectionHidden, range(5))))
+    # So a lesson that speaks of the second stage says nothing of where it sits: the ray tracing
+    # lesson's "The Second stage pane beside the tree" stood over its tab, presenting.
+    said = [step.text for lesson in shipped_lessons() for step in lesson.steps if "Second stage" in step.text]
+    placed = re.compile(r"Second stage[^.]*\b(beside|next to|right of)")
+    assert said and not [text for text in said if placed.search(text)]
