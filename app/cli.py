@@ -73,6 +73,18 @@ def interrupted() -> None:
     os._exit(130)
 
 
+def _pressed_ctrl_c(exc: BaseException) -> bool:
+    """Whether a ``KeyboardInterrupt`` is among the causes of ``exc`` (raised from it, or while
+    handling it)."""
+    seen = set()
+    while exc is not None and id(exc) not in seen:
+        if isinstance(exc, KeyboardInterrupt):
+            return True
+        seen.add(id(exc))
+        exc = exc.__cause__ or exc.__context__
+    return False
+
+
 def main(argv: list[str] | None = None) -> int:
     argv = list(sys.argv[1:] if argv is None else argv)
     if not argv or argv[0] not in COMMANDS:
@@ -97,19 +109,17 @@ def main(argv: list[str] | None = None) -> int:
             interrupted()
         print(INTERRUPTED, file=sys.stderr)
         return 130
-    except (SystemError, ImportError) as exc:
-        # Ctrl+C that reaches the main thread inside a compiled kernel can come out of numba's
-        # dispatcher as "returned a result with an exception set", and inside the initialisation of
-        # an extension module a command imports when it needs it (matplotlib's ft2font, in the Cost
-        # sweep's first 0.3 s) as "ImportError: initialization failed": the interrupt at the root of
-        # their causes.
-        cause = exc
-        while cause is not None and not isinstance(cause, KeyboardInterrupt):
-            cause = cause.__cause__
-        if cause is None:
-            raise
-        interrupted()
     except MemoryError:
         print(f"{parser.prog}: error: out of memory; use a smaller image (--width/--height), "
               "fewer objects, or a lower --memory-limit", file=sys.stderr)
         return 2
+    except Exception as exc:
+        # Ctrl+C that reaches the main thread inside a compiled kernel can come out of numba's
+        # dispatcher as "SystemError: ... returned a result with an exception set"; inside the
+        # initialisation of an extension module a command imports when it needs it (matplotlib's
+        # ft2font, in the Cost sweep's first 0.3 s) as "ImportError: initialization failed"; inside a
+        # class being made as a module loads (matplotlib's Axis) as "RuntimeError: Error calling
+        # __set_name__": the interrupt is among their causes.
+        if not _pressed_ctrl_c(exc):
+            raise
+        interrupted()
