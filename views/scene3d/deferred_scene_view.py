@@ -8,9 +8,9 @@ real view in its place when told to (:meth:`build_soon`: the window does so
 once its first image is shown) or at the latest :data:`BUILD_AFTER_MS` after
 it was first painted.  Not earlier: the imports hold the GIL, so they would
 slow the first render by as much as they take.  pyvista, VTK's Qt widget and
-every VTK module the view loads are imported on a thread, so the window keeps
-answering meanwhile; the view is then built, in three turns of the event loop, and
-VTK draws its first frame, on the GUI thread.
+every VTK module the view loads are imported on a thread, and VTK's render window made there, so
+the window keeps answering meanwhile; the view is then built around it, in two turns of the event
+loop, and VTK draws its first frame, on the GUI thread.
 
 Until then it keeps what the window asks of the 3D pane (overlays, which of
 them are shown, the overview camera) and hands it to the view when it is
@@ -25,11 +25,11 @@ from __future__ import annotations
 import contextlib
 import threading
 import weakref
-from functools import lru_cache
 
-import shiboken6
-from PySide6.QtCore import QObject, Qt, QTimer, Signal, Slot
+from PySide6.QtCore import Qt, QTimer, Signal
 from PySide6.QtWidgets import QLabel, QVBoxLayout, QWidget
+
+from views.gui_thread import messenger, tell
 
 PLACEHOLDER = "Loading the 3D view…"
 IMPORT_WAIT_S = 10.0
@@ -40,36 +40,21 @@ render that compiles the kernels takes minutes, one from numba's cache well unde
 seconds on a busy machine, where loading pyvista beside it would only slow it down)."""
 
 
-class _Imported(QObject):
-    """Tells a pane, on the GUI thread, that its import thread is done (one for all panes, never
-    deleted: a pane's own, deleted with the pane while its thread emitted, crashed a script within
-    the first few panes)."""
-
-    done = Signal(object)  # a weak reference to the pane
-
-    def __init__(self):
-        super().__init__()
-        self.done.connect(self._deliver)  # queued onto the GUI thread, where this object lives
-
-    @Slot(object)
-    def _deliver(self, pane: weakref.ref) -> None:
-        pane = pane()
-        if pane is not None and shiboken6.isValid(pane):
-            pane._build_in_turns()
-
-
-@lru_cache(maxsize=1)
-def _imported() -> _Imported:
-    return _Imported()  # made by the first pane that imports, on the GUI thread
-
-
 def _import_pyvista(pane: weakref.ref) -> None:
+    """Import what the view needs and make VTK's render window for it.  Making one asks which of
+    OpenGL's ways to a picture works here: the first time in a process, VTK tries a window of the X
+    server with the OpenGL libraries loaded for it (some 50-75 ms), and it did that on the GUI
+    thread; the window it returns holds no OpenGL context, which the GUI thread makes later."""
+    render_window = None
     try:
         import pyvista  # noqa: F401
+        from vtkmodules.vtkRenderingCore import vtkRenderWindow
 
         import views.scene3d.scene_picking  # noqa: F401  (the pane, VTK's Qt widget and OpenGL; clicks in the pane)
+
+        render_window = vtkRenderWindow()
     finally:
-        _imported().done.emit(pane)  # queued: the view is built on the GUI thread
+        tell(pane, lambda view: view._build_in_turns(render_window))  # built on the GUI thread
 
 
 class DeferredSceneView(QWidget):
@@ -114,24 +99,16 @@ class DeferredSceneView(QWidget):
     def build_soon(self, *_) -> None:
         """Import pyvista on a thread, then build the view on the GUI thread (once)."""
         if self.view is None and self._importer is None and not self._closed:
-            _imported()  # here, on the GUI thread
+            messenger()  # here, on the GUI thread
             self._importer = threading.Thread(target=_import_pyvista, args=(weakref.ref(self),),
                                               name="import pyvista", daemon=True)
             self._importer.start()
 
-    def _build_in_turns(self) -> None:
-        """VTK's render window in this turn of the event loop (the first one loads the OpenGL
-        libraries, some 45 ms), VTK's widget around it in the next (OpenGL and an empty first frame,
-        some 35 ms), the view around that (the scene's actors, the observer, the axes) in the third:
-        built in one go, it held the window 110-120 ms."""
-        if self.view is not None or self._plotter is not None or self._closed:
-            return
-        from vtkmodules.vtkRenderingCore import vtkRenderWindow
-
-        render_window = vtkRenderWindow()
-        QTimer.singleShot(0, self, lambda: self._make_plotter(render_window))
-
-    def _make_plotter(self, render_window) -> None:
+    def _build_in_turns(self, render_window) -> None:
+        """VTK's widget around ``render_window`` (made on the import thread; ``None`` if that failed,
+        and one is made here) in this turn of the event loop (OpenGL and an empty first frame, some 35
+        ms), the view around that (the scene's actors, the observer, the axes) in the next: built in
+        one go with the render window, it held the window 110-120 ms."""
         if self.view is not None or self._plotter is not None or self._closed:
             return
         from views.scene3d.image_plotter import ImagePlotter

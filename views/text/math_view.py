@@ -27,12 +27,12 @@ import weakref
 from functools import lru_cache, partial
 
 import numpy as np
-import shiboken6
-from PySide6.QtCore import QObject, QRectF, QRunnable, QSize, Qt, QThreadPool, QTimer, Signal, Slot
+from PySide6.QtCore import QRectF, QRunnable, QSize, Qt, QThreadPool, QTimer
 from PySide6.QtGui import QColor, QFont, QFontMetricsF, QImage, QPainter, QPalette, QPen, QPixmap
 from PySide6.QtWidgets import QLabel, QSizePolicy, QWidget
 
 from core.shown_numbers import shown_number
+from views.gui_thread import messenger, tell
 from views.text import formula_cache, typesetting_process
 
 
@@ -207,27 +207,6 @@ class _Wanted:
         self.newest = -1
 
 
-class _Typeset(QObject):
-    """Tells a view, on the GUI thread, that its request is typeset (one for all views, never deleted)."""
-
-    done = Signal(object, int)  # the view's wants, the request's number
-
-    def __init__(self):
-        super().__init__()
-        self.done.connect(self._deliver)  # queued onto the GUI thread, where this object lives
-
-    @Slot(object, int)
-    def _deliver(self, wanted: _Wanted, request: int) -> None:
-        view = wanted.view()
-        if view is not None and shiboken6.isValid(view):
-            view._typeset_done(request)
-
-
-@lru_cache(maxsize=1)
-def _notice() -> _Typeset:
-    return _Typeset()  # made by the first view's request, on the GUI thread
-
-
 class _TypesetJob(QRunnable):
     """Typesets ``(text, size_pt)`` pairs in ``color`` at ``dpi`` into :func:`_typeset`'s memory (and the
     disk cache), then says so; a text that is not mathtext is left to the view to report."""
@@ -236,7 +215,7 @@ class _TypesetJob(QRunnable):
                  wanted: _Wanted):
         super().__init__()
         self.request, self.texts, self.color, self.dpi, self.wanted = request, texts, color, dpi, wanted
-        self.notice = _notice()
+        messenger()  # made on the GUI thread
 
     def run(self):
         for text, size_pt in self.texts:
@@ -245,7 +224,7 @@ class _TypesetJob(QRunnable):
             with contextlib.suppress(ValueError):
                 _typeset(text, size_pt, self.color, self.dpi, True)
         if not _stopping.is_set():
-            self.notice.done.emit(self.wanted, self.request)
+            tell(self.wanted.view, partial(MathView._typeset_done, request=self.request))
 
 
 def _ink(widget: QWidget) -> QColor:
