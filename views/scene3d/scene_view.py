@@ -140,6 +140,8 @@ class SceneView(QWidget):
         self._framed_at = None  # the overview camera _frame chose, until the user moves it
         self._eye = None  # where the observer's eye was drawn last (world space)
         self._labels_placed_for = None  # the camera, pane and labels _place_labels placed for
+        self._framings = 0  # how many times _frame has framed the scene
+        self._labels_small_for = None  # the framing, pane and labels the labels shrank for (_place_labels)
         self._view: dict | None = None  # the overview camera look_from was given, if any
         self._holding = 0  # held() blocks entered and not left
         self._waiting: list[tuple] = []  # (change, its arguments) held, in the order asked
@@ -588,6 +590,9 @@ class SceneView(QWidget):
         objects, and the frustum with its labels when that overlay is shown;
         the rest of the frustum may leave the view.
         """
+        for _, actor, style in itertools.chain(*self._overlays.values()):
+            if "label_size" in style:  # framed for the labels at full size (the last frame may have
+                self._scale_actor(actor)  # drawn them smaller, _place_labels)
         view = self._view or {}
         framed = [name for name in FRAMED_OVERLAYS if name in self.overlay_names()]
         subject = [poly for poly, _, _ in self._overlays.get(HIGHLIGHT_OVERLAY, [])]
@@ -632,6 +637,7 @@ class SceneView(QWidget):
                 points, direction, up, 30.0, aspect, bounds)]
         self.plotter.reset_camera_clipping_range()
         self._framed_at = self.plotter.camera_position
+        self._framings += 1
 
     def _label_bounds(self, poly: pv.PolyData, actor) -> list:
         """Where each label of ``poly`` (drawn by ``actor``) may be anchored, whole in the pane."""
@@ -664,11 +670,16 @@ class SceneView(QWidget):
         self._labels_placed_for = key
         label_actors = [actor for n in names for _, actor, style in self._overlays[n]
                         if "label_size" in style]
-        for scale in dict.fromkeys((label_scale(self.line_scale), 1.0)):
+        # Presenting in a pane too small for the labels at their size, they are drawn smaller, as at
+        # text x1.  While the camera is turned by hand from the same framing they stay so: turning
+        # it, they grew and shrank by turns, and each frame placed them twice.
+        framing, full = (self._framings, *key[1:]), label_scale(self.line_scale)
+        for scale in dict.fromkeys((1.0,) if framing == self._labels_small_for else (full, 1.0)):
             for actor in label_actors:
                 actor.GetMapper().GetLabelTextProperty().SetFontSize(round(actor._unscaled[1] * scale))
             if self._placed_apart(names, width, height, matrix):
-                return  # else, presenting in a pane too small for them, smaller labels: as at text x1
+                break
+        self._labels_small_for = framing if scale < full else None
 
     def _placed_apart(self, names: list[str], width: int, height: int, matrix) -> bool:
         """Place the labels of overlays ``names`` (:meth:`_place_labels`) in a pane ``width`` x ``height``

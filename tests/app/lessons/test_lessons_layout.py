@@ -279,3 +279,36 @@ def test_at_1280x720_and_text_x2_the_3d_panes_labels_do_not_cover_one_another(qt
             overlap = min(a[2], b[2]) - max(a[0], b[0]), min(a[3], b[3]) - max(a[1], b[1])
             assert min(overlap) <= 0, (lesson, step, one, other)
     window.presentation.set_presenting(False)
+
+
+def test_at_1280x720_and_text_x2_the_3d_panes_labels_keep_their_size_while_the_view_turns(qtbot, monkeypatch):
+    # Where the labels at their presenting size find no room clear of one another, they are drawn as
+    # at text x1.  Turning the view by hand, they shrank and grew by turns (four times in 180 degrees
+    # here), each frame placing them at both sizes.  Now they shrink once and stay so until the
+    # next framing (a lesson step's), which asks again which size fits.
+    window = _lecture_hall_window(qtbot, monkeypatch)
+    view = window.scene_view.view
+
+    def framed():
+        window.lesson_panel.select(LESSONS["observer"], 0)
+        qtbot.waitUntil(lambda: _settled(view), timeout=RENDER_TIMEOUT_MS)
+        return [actor for name in view.overlay_names() for _, actor, style in view._overlays[name]
+                if "label_size" in style]
+
+    def sizes(actors):
+        return tuple(actor.GetMapper().GetLabelTextProperty().GetFontSize() for actor in actors)
+
+    actors = framed()
+    full, small = sizes(actors), tuple(actor._unscaled[1] for actor in actors)
+    assert actors and full > small  # framed, they fit at their presenting size
+    seen = [full]
+    for _ in range(90):  # turned by hand, 2 degrees a frame
+        view.plotter.camera.Azimuth(2)
+        view.plotter.render()
+        seen.append(sizes(actors))
+    assert small in seen  # somewhere they found no room at full size
+    assert seen == [full] * seen.index(small) + [small] * (len(seen) - seen.index(small))
+    window.lesson_panel.select(LESSONS["observer"], 1)
+    actors = framed()
+    assert sizes(actors) == full  # framed again: at their presenting size
+    window.presentation.set_presenting(False)
