@@ -315,16 +315,24 @@ def test_presenting_at_x2_on_a_small_screen_the_dock_tabs_show_their_names_whole
         qtbot, monkeypatch, normal_text):
     # With the exercises in front the column was measured by the lessons' dock, behind them, which
     # kept the width it had: in the window (maximized by openbox) 434 px, "Contr…", "Less…",
-    # "Exerci…", "Ed…" under the question.  (Here, unmaximized, the lessons' dock was left wider.)
+    # "Exerci…", "Ed…" under the question.  Unmaximized, the fitting left the lessons' dock wider and
+    # this test passed before the fix too: here the lessons' dock is first made narrower.
     window = presenting_on_1280x720(qtbot, monkeypatch, 2.0)
     lessons = window.lesson_panel.lessons()
     k = [lesson.id for lesson in lessons].index("rasterization")
     window.lesson_panel.select(k, 1)
+    bar = next(bar for bar in window.findChildren(QTabBar)
+               if bar.isVisible() and "Lessons" in [bar.tabText(i) for i in range(bar.count())])
+    qtbot.waitUntil(lambda: _names_whole(bar), timeout=5000)  # the lessons in front: fitted
+
+    def narrowed() -> bool:  # as a drag of the column's edge would (the fitting may come after one)
+        window.resizeDocks([window.lesson_dock], [380], Qt.Orientation.Horizontal)
+        return window.lesson_dock.width() < 400
+
+    qtbot.waitUntil(narrowed)
     window.exercise_dock.raise_()
     qtbot.waitUntil(lambda: in_front(window.exercise_dock))
     window.exercise_panel.go(len(lessons[k].exercises) - 1)
-    bar = next(bar for bar in window.findChildren(QTabBar)
-               if bar.isVisible() and "Lessons" in [bar.tabText(i) for i in range(bar.count())])
     qtbot.waitUntil(lambda: _names_whole(bar), timeout=5000)
     window.presentation.set_presenting(False)
 
