@@ -128,3 +128,22 @@ def shown_widget(qtbot, widget, width: int, height: int):
     widget.show()
     qtbot.waitExposed(widget)
     return widget
+
+
+def in_a_window_with_a_shortcut(qtbot, widget, key: str) -> tuple:
+    """``widget`` in a main window, shown and active, whose action has the shortcut ``key``; returns
+    the window and a list that gets an item each time that action is triggered."""
+    from PySide6.QtGui import QAction, QKeySequence
+    from PySide6.QtWidgets import QMainWindow
+
+    window = QMainWindow()
+    window.setCentralWidget(widget)
+    triggered = []
+    action = QAction(f"The window's {key}", window)
+    action.setShortcut(QKeySequence(key))
+    action.triggered.connect(lambda: triggered.append(1))
+    window.addAction(action)
+    shown_widget(qtbot, window, 400, 300)
+    window.activateWindow()
+    qtbot.waitUntil(window.isActiveWindow)
+    return window, triggered

@@ -60,7 +60,7 @@ from core.presets_trace import PRESETS_TRACE
 from core.scene import Scene
 from views.dock_title import DockTitle
 from views.file_dialogs import ask_open, ask_save
-from views.images.image_view import PICTURE_KEYS
+from views.images.image_view import PICTURE_GESTURES, PICTURE_KEYS
 from views.keyboard_focus import follow_focus
 from views.on_screen import KeepWindowsOnScreen
 from views.panels.camera_panel import CameraPanel
@@ -428,6 +428,8 @@ class MainWindow(QMainWindow):
                   *(f"  {keys:<24} {what}" for keys, what in PICTURE_KEYS),
                   "", "Mouse in the 3D pane:"]
         lines += [f"  {gesture}: {what}" for gesture, what in MOUSE_GESTURES]
+        lines += ["", "Mouse over a picture:"]
+        lines += [f"  {gesture}: {what}" for gesture, what in PICTURE_GESTURES]
         return "\n".join(lines)
 
     def show_keys(self) -> QDialog:

@@ -9,7 +9,9 @@ colour true.  When each pixel is shown large (a small image), the pixel grid and
 every pixel's centre are drawn too: a fragment is made where a triangle covers a centre.
 A picture that picks pixels is reached with Tab too: focused, it wears a frame,
 the arrow keys move the picked pixel and Enter chooses it, as a click does
-(:data:`PICTURE_KEYS`).
+(:data:`PICTURE_KEYS`).  Any picture zooms in and out with the mouse wheel, around the
+pointer, and a zoomed one moves with the right or middle button held (:mod:`views.images.zoom`);
+pictures of the same pixels shown side by side zoom together (:func:`zoom_together`).
 
 Renderers produce *linear* RGB; :func:`core.srgb.to_srgb8` encodes it for
 the screen.  That conversion, and the QImage, can be made off the GUI thread
@@ -28,6 +30,7 @@ from PySide6.QtGui import QColor, QImage, QPainter, QPalette, QPen
 from PySide6.QtWidgets import QSizePolicy, QWidget
 
 from core.srgb import to_srgb8
+from views.images import zoom
 
 GRID_CELL_PX = 10
 """On-screen size (px) of one pixel from which its square's border and its centre are drawn: the
@@ -36,15 +39,28 @@ EDGE_COLOR = "#00e5ff"
 """A polygon's edges drawn over the image (cyan: apart from the magenta fragment outline)."""
 FOCUS_MARGIN = 3
 """Room (px) kept around a pickable image for its focus frame, which so never covers a pixel."""
+PICKED_PAD_PX = 12.0
+"""The picked pixel's frame is drawn this far around it at most (zoomed in, a pixel is larger)."""
 SHIFT_STEP = 10
 """Pixels a Shift+arrow moves the pick by (an arrow alone: one)."""
 ARROWS = {Qt.Key.Key_Left: (-1, 0), Qt.Key.Key_Right: (1, 0), Qt.Key.Key_Up: (0, -1), Qt.Key.Key_Down: (0, 1)}
+ZOOM_KEYS = {Qt.Key.Key_Plus: zoom.STEP, Qt.Key.Key_Equal: zoom.STEP, Qt.Key.Key_Minus: 1 / zoom.STEP,
+             Qt.Key.Key_0: 0.0}
+"""The keys that zoom a focused picture, and by what factor (0: whole again)."""
 PICTURE_KEYS = [
     ("Arrow keys", "Move the picked pixel of a focused picture (Tab or click to focus it)"),
     ("Shift+arrows", f"Move it by {SHIFT_STEP} pixels"),
     ("Enter", "Answer a click-a-pixel exercise with the pixel picked in a focused picture"),
+    ("+ / -", "Zoom a focused picture in or out, around its picked pixel"),
+    ("0", "Show a focused picture whole again"),
 ]
 """(keys, description) of the keys of a focused picture, for Help → Keys."""
+PICTURE_GESTURES = [
+    ("Click a pixel", "trace it (image order) or list its fragments (object order)"),
+    ("Scroll", "zoom in or out around the pointer (pictures of the same pixels side by side zoom together)"),
+    ("Drag with the right or middle button", "move a zoomed picture"),
+]
+"""(gesture, what it does) with the mouse over a picture, for Help → Keys."""
 
 
 @dataclass(frozen=True)
@@ -135,6 +151,7 @@ class ImageView(QWidget):
 
     pixel_clicked = Signal(int, int)
     pixel_chosen = Signal(int, int)
+    zoomed = Signal(float, object)  # the user zoomed or moved the picture: zoom, focus (zoom.py)
 
     def __init__(self, parent: QWidget | None = None, placeholder: str = "rendering…",
                  pickable: bool = True):
@@ -144,7 +161,11 @@ class ImageView(QWidget):
         if pickable:
             self.setFocusPolicy(Qt.FocusPolicy.StrongFocus)
             self.setAccessibleDescription(f"Click a pixel to pick it; arrow keys move the picked pixel, "
-                                          f"Shift+arrows by {SHIFT_STEP}")
+                                          f"Shift+arrows by {SHIFT_STEP}; + and - zoom, 0 shows it whole")
+        self.setToolTip("Scroll to zoom; drag with the right or middle button to move a zoomed picture")
+        self.zoom = 1.0  # 1: the picture whole (views.images.zoom)
+        self.focus: tuple[float, float] | None = None  # the picture's point at the pane's centre
+        self._panning: tuple[QPointF, tuple[float, float]] | None = None  # (press position, focus then)
         self._image: QImage | None = None
         self._highlight: np.ndarray | None = None
         self._highlight_shape: tuple[int, int] | None = None
@@ -163,8 +184,40 @@ class ImageView(QWidget):
         """Show ``image``: a :class:`DisplayImage`, or an (H, W, 3) linear RGB array in [0, 1]."""
         if not isinstance(image, DisplayImage):
             image = display_image(image)
+        if self._image is None or self._image.size() != image.qimage.size():
+            self.zoom, self.focus = 1.0, None  # other pixels: shown whole
         self.rgb, self._image, self.note = image.rgb, image.qimage, image.note
         self.update()
+
+    def set_zoom(self, zoom_: float, focus: tuple[float, float] | None) -> None:
+        """Show the picture at ``zoom_`` around ``focus`` (kept where the picture covers the pane)."""
+        if self._image is not None:
+            focus = zoom.kept_focus(self._room_size(), self._picture_size(), zoom_, focus)
+        self.zoom, self.focus = zoom_, focus
+        self.update()
+
+    def _zoom_by(self, factor: float, anchor: QPointF) -> None:
+        """The user zooms by ``factor`` (0: whole again) about the widget position ``anchor``."""
+        room = self._room()
+        if factor == 0:
+            new, focus = 1.0, None
+        else:
+            new, focus = zoom.zoomed_about(self._room_size(), self._picture_size(), self.zoom, self.focus,
+                                           factor, (anchor - room.topLeft()).toTuple())
+        if (new, focus) != (self.zoom, self.focus):
+            self.set_zoom(new, focus)
+            self.zoomed.emit(self.zoom, self.focus)
+
+    def _picture_size(self) -> tuple[float, float]:
+        return float(self._image.width()), float(self._image.height())
+
+    def _room_size(self) -> tuple[float, float]:
+        room = self._room()
+        return max(1.0, room.width()), max(1.0, room.height())
+
+    def _room(self) -> QRectF:
+        """The part of the widget pixels are drawn in (inside the focus frame's margin)."""
+        return QRectF(self.rect()).adjusted(self._margin, self._margin, -self._margin, -self._margin)
 
     @property
     def qimage(self) -> QImage | None:
@@ -210,18 +263,17 @@ class ImageView(QWidget):
         self.pixel_clicked.emit(*pixel)
 
     def image_rect(self) -> QRectF:
-        """Where the image is drawn inside the widget (aspect kept, centred)."""
+        """Where the whole image is drawn in the widget (aspect kept; zoomed in, beyond the widget)."""
         if self._image is None:
             return QRectF()
-        room_w, room_h = max(1, self.width() - 2 * self._margin), max(1, self.height() - 2 * self._margin)
-        scale = min(room_w / self._image.width(), room_h / self._image.height())
-        w, h = self._image.width() * scale, self._image.height() * scale
-        return QRectF((self.width() - w) / 2, (self.height() - h) / 2, w, h)
+        room = self._room()
+        x, y, w, h = zoom.shown_rect(self._room_size(), self._picture_size(), self.zoom, self.focus)
+        return QRectF(room.x() + x, room.y() + y, w, h)
 
     def pixel_at(self, pos: QPointF) -> tuple[int, int] | None:
-        """The image pixel ``(x, y)`` under a widget position, or ``None`` outside the image."""
+        """The image pixel ``(x, y)`` under a widget position, or ``None`` where no pixel is shown."""
         rect = self.image_rect()
-        if self._image is None or not rect.contains(pos):
+        if self._image is None or not rect.intersected(self._room()).contains(pos):
             return None
         x = int((pos.x() - rect.x()) / rect.width() * self._image.width())
         y = int((pos.y() - rect.y()) / rect.height() * self._image.height())
@@ -238,6 +290,45 @@ class ImageView(QWidget):
         if self.pickable and pixel is not None and event.button() == Qt.MouseButton.LeftButton:
             self._pick(pixel)
             self.pixel_chosen.emit(*pixel)
+        elif self._image is not None and event.button() in (Qt.MouseButton.RightButton,
+                                                               Qt.MouseButton.MiddleButton):
+            self._panning = event.position(), zoom.kept_focus(self._room_size(),
+                                                              self._picture_size(), self.zoom, self.focus)
+            self.setCursor(Qt.CursorShape.ClosedHandCursor)
+
+    def mouseMoveEvent(self, event):
+        if self._panning is None or self._image is None:
+            return super().mouseMoveEvent(event)
+        start, (fx, fy) = self._panning
+        scale = self.image_rect().width() / self._image.width()
+        moved = (event.position() - start) / scale
+        focus = zoom.kept_focus(self._room_size(), self._picture_size(), self.zoom,
+                                (fx - moved.x(), fy - moved.y()))
+        if focus != self.focus:
+            self.set_zoom(self.zoom, focus)
+            self.zoomed.emit(self.zoom, self.focus)
+
+    def mouseReleaseEvent(self, event):
+        if self._panning is not None and not event.buttons() & (Qt.MouseButton.RightButton
+                                                                  | Qt.MouseButton.MiddleButton):
+            self._panning = None
+            self.unsetCursor()
+        super().mouseReleaseEvent(event)
+
+    def wheelEvent(self, event):
+        notches = event.angleDelta().y() / 120
+        if self._image is None or not notches:
+            return super().wheelEvent(event)
+        self._zoom_by(zoom.STEP ** notches, event.position())
+        event.accept()
+
+    def _zoom_key(self, event) -> float | None:
+        """The factor a key asks of this focused view's zoom (:data:`ZOOM_KEYS`), or None."""
+        ignored = Qt.KeyboardModifier.KeypadModifier | Qt.KeyboardModifier.ShiftModifier  # + takes Shift
+        modifiers = event.modifiers() & ~ignored
+        if self._image is None or modifiers != Qt.KeyboardModifier.NoModifier:
+            return None
+        return ZOOM_KEYS.get(event.key())
 
     def _arrow_step(self, event) -> tuple[int, int] | None:
         """The move ``event`` (a key) asks of the picked pixel, or None when it is not an arrow
@@ -254,12 +345,19 @@ class ImageView(QWidget):
     def event(self, event):
         # The arrow keys are also the window's shortcuts (they orbit the observer): Qt asks the
         # focused widget first whether it wants the key; a focused picture keeps them.
-        if event.type() == QEvent.Type.ShortcutOverride and self._arrow_step(event) is not None:
+        if event.type() == QEvent.Type.ShortcutOverride and (self._arrow_step(event) is not None
+                                                             or self._zoom_key(event) is not None):
             event.accept()
             return True
         return super().event(event)
 
     def keyPressEvent(self, event):
+        factor = self._zoom_key(event)
+        if factor is not None:  # about the picked pixel, or the pane's centre
+            anchor = self.widget_pos(*self.picked) if self.picked is not None else self._room().center()
+            self._zoom_by(factor, anchor if self._room().contains(anchor) else self._room().center())
+            event.accept()
+            return
         step = self._arrow_step(event)
         if step is None:
             if (self.pickable and self._image is not None and self.picked is not None and self._users
@@ -276,21 +374,28 @@ class ImageView(QWidget):
         event.accept()
         if pixel != self.picked:  # at the border, a press further out does nothing
             self._pick(pixel)
+            if not self._room().contains(self.widget_pos(*pixel)):  # zoomed in: the view follows it
+                self.set_zoom(self.zoom, (pixel[0] + 0.5, pixel[1] + 0.5))
+                self.zoomed.emit(self.zoom, self.focus)
 
     def _paint_grid(self, painter: QPainter, rect: QRectF) -> None:
-        """The pixel squares' borders and a dot at each pixel's centre, where fragments are sampled."""
+        """The pixel squares' borders and a dot at each pixel's centre, where fragments are sampled
+        (of the pixels in view: zoomed into a large picture, the others are many)."""
         w, h = self._image.width(), self._image.height()
         sx, sy = rect.width() / w, rect.height() / h
+        room = self._room()
+        i0, i1 = max(0, int((room.left() - rect.x()) / sx)), min(w, int((room.right() - rect.x()) / sx) + 1)
+        j0, j1 = max(0, int((room.top() - rect.y()) / sy)), min(h, int((room.bottom() - rect.y()) / sy) + 1)
         painter.setPen(QPen(QColor(0, 0, 0, 90), 1))
-        for i in range(w + 1):
+        for i in range(i0, i1 + 1):
             painter.drawLine(QPointF(rect.x() + i * sx, rect.y()), QPointF(rect.x() + i * sx, rect.bottom()))
-        for j in range(h + 1):
+        for j in range(j0, j1 + 1):
             painter.drawLine(QPointF(rect.x(), rect.y() + j * sy), QPointF(rect.right(), rect.y() + j * sy))
         radius = max(1.5, min(sx, sy) / 12)
         painter.setPen(QPen(QColor(0, 0, 0, 200), 1))
         painter.setBrush(QColor("#ffffff"))
-        for j in range(h):
-            for i in range(w):
+        for j in range(j0, j1):
+            for i in range(i0, i1):
                 centre = QPointF(rect.x() + (i + 0.5) * sx, rect.y() + (j + 0.5) * sy)
                 painter.drawEllipse(centre, radius, radius)
         painter.setBrush(Qt.BrushStyle.NoBrush)
@@ -304,6 +409,8 @@ class ImageView(QWidget):
             painter.end()
             return
         rect = self.image_rect()
+        shown = rect.intersected(self._room())  # all of the picture in view, or the part zoomed into
+        painter.setClipRect(shown)
         painter.setRenderHint(QPainter.RenderHint.SmoothPixmapTransform, False)
         painter.drawImage(rect, self._image)
         if self._highlight is not None and self._highlight_shape == (self._image.height(),
@@ -311,7 +418,7 @@ class ImageView(QWidget):
             sx = rect.width() / self._image.width()
             sy = rect.height() / self._image.height()
             seg = self._highlight * (sx, sy, sx, sy) + (rect.x(), rect.y(), rect.x(), rect.y())
-            width = max(2.0, 0.25 * min(sx, sy))
+            width = max(2.0, min(0.25 * min(sx, sy), 6.0))  # (zoomed in, a line, not a band)
             # Each segment is axis-aligned: filled as a thin rectangle, far quicker than a wide stroke.
             painter.setPen(Qt.PenStyle.NoPen)
             for colour, w in ((QColor(0, 0, 0, 170), width + 2), (self._highlight_color, width)):
@@ -331,18 +438,19 @@ class ImageView(QWidget):
                     pen.setStyle(Qt.PenStyle.DashLine)
                 painter.setPen(pen)
                 painter.drawPolygon(points)
+        painter.setClipping(False)
         if self.hasFocus() and self._margin:
             # In the room kept around the image, so it covers no pixel; the palette's focus colour.
             painter.setPen(QPen(self.palette().color(QPalette.ColorRole.Highlight), 2))
             painter.setBrush(Qt.BrushStyle.NoBrush)
-            painter.drawRect(rect.adjusted(-self._margin + 1, -self._margin + 1,
-                                           self._margin - 1, self._margin - 1))
-        if self.picked is not None:
+            painter.drawRect(shown.adjusted(-self._margin + 1, -self._margin + 1,
+                                            self._margin - 1, self._margin - 1))
+        if self.picked is not None and shown.contains(self.widget_pos(*self.picked)):
             sx = rect.width() / self._image.width()
             sy = rect.height() / self._image.height()
             x, y = self.picked
             cell = QRectF(rect.x() + x * sx, rect.y() + y * sy, sx, sy)
-            pad = max(3.0, sx)
+            pad = min(max(3.0, sx), PICKED_PAD_PX)
             painter.setBrush(Qt.BrushStyle.NoBrush)  # an outline: the highlight's fill hid the pixel
             painter.setPen(QPen(QColor("#ffffff"), 2))
             painter.drawRect(cell.adjusted(-pad, -pad, pad, pad))
@@ -351,9 +459,21 @@ class ImageView(QWidget):
         if self.note:
             painter.setOpacity(0.8)
             label = painter.fontMetrics().boundingRect(self.note).adjusted(-6, -3, 6, 3)
-            label.moveTopLeft(rect.topLeft().toPoint() + QPointF(6, 6).toPoint())
+            label.moveTopLeft(shown.topLeft().toPoint() + QPointF(6, 6).toPoint())
             painter.fillRect(label, QColor("#15181f"))
             painter.setOpacity(1.0)
             painter.setPen(QColor("#ffd34d"))
             painter.drawText(label, Qt.AlignmentFlag.AlignCenter, self.note)
         painter.end()
+
+
+def zoom_together(views: list[ImageView]) -> None:
+    """``views`` (pictures of the same pixels, side by side) zoom and move together: as one is zoomed
+    or moved, the others show the same part of their pictures (those of the same size)."""
+    for view in views:
+        for other in views:
+            if other is not view:
+                view.zoomed.connect(lambda zoom_, focus, other=other, view=view:
+                                    other.qimage is not None and view.qimage is not None
+                                    and other.qimage.size() == view.qimage.size()
+                                    and other.set_zoom(zoom_, focus))

@@ -34,7 +34,7 @@ from PySide6.QtWidgets import (
 from core.compare import DIFFERENCE_UNITS, OUTPUTS, Comparison, Output, PixelReport, why_here
 from core.srgb import linear_to_srgb
 from views.images.color_scale import ColorScale
-from views.images.image_view import DisplayImage, ImageView
+from views.images.image_view import DisplayImage, ImageView, zoom_together
 from views.panels.image_order_panel import accel_words
 
 PANES = ("a", "b", "difference")
@@ -191,7 +191,8 @@ class ComparePanel(QWidget):
             layout = QVBoxLayout(box)
             layout.setContentsMargins(4, 4, 4, 4)
             view = self.views[key] = ImageView(placeholder="rendering…")
-            view.setToolTip("Click a pixel: it is marked in all three images and read in both outputs")
+            view.setToolTip("Click a pixel: it is marked in all three images and read in both outputs; "
+                            "scroll to zoom all three together")
             view.pixel_clicked.connect(self.pick)
             layout.addWidget(view, 1)
             if key == "difference":
@@ -207,6 +208,7 @@ class ComparePanel(QWidget):
                 layout.addWidget(caption)
             self.boxes[key] = box
             grid.addWidget(box, 0, i)
+        zoom_together(list(self.views.values()))
         self.boxes["difference"].setTitle("Difference |A − B|")
         self.readout = [ReadoutRow() for _ in range(3)]
         self.pixel_box = QGroupBox("Picked pixel")

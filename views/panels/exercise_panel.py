@@ -55,7 +55,7 @@ from core.lessons.exercises import (
     variant,
 )
 from core.lessons.facts import StepPipelines
-from views.images.image_view import ImageView
+from views.images.image_view import ImageView, zoom_together
 
 FIRST_TRY, LATER, REVEALED = "first try", "later", "revealed"
 RIGHT_COLOR, WRONG_COLOR = "#1b8a3a", "#c62828"
@@ -393,6 +393,7 @@ class ExercisePanel(QWidget):
             self.picture_layout.addWidget(view, 2 * (i // 2), i % 2)
             self.picture_layout.addWidget(button, 2 * (i // 2) + 1, i % 2)
             self.picture_views.append(view)
+        zoom_together(self.picture_views)
         self.picture_keys = keys
         self._sizing.start()  # and the pictures' room
 

@@ -46,7 +46,7 @@ from PySide6.QtWidgets import (
 from core import hard_cases, helper_process
 from core.hard_cases.result import CaseResult, Parameter
 from core.srgb import linear_to_srgb
-from views.images.image_view import ImageView
+from views.images.image_view import ImageView, zoom_together
 from views.jobs import JobRun, JobSignals
 from views.text.text_scale import scaled_style
 
@@ -246,6 +246,7 @@ class HardCasesPanel(QWidget):
 
         self.naive_image = ImageView(placeholder="", pickable=False)  # only looked at: no pixel readout
         self.robust_image = ImageView(placeholder="", pickable=False)
+        zoom_together([self.naive_image, self.robust_image])
         self.naive_image.setAccessibleName("Picture of the textbook method")  # also its File → Export entry
         self.robust_image.setAccessibleName("Picture of the robust method")
         self.naive_caption, self.robust_caption = QLabel(), QLabel()

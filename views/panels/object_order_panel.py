@@ -44,7 +44,7 @@ from core.scene import Scene
 from core.srgb import linear_to_srgb
 from views.images.color_scale import ColorScale, heat_over
 from views.images.depth_view import DepthView
-from views.images.image_view import ImageView
+from views.images.image_view import ImageView, zoom_together
 from views.images.step_picture import StepPicture, polygon_name, step_picture
 from views.jobs import JobRunner, own_thread
 from views.panels.panel_layout import pictures_over_details
@@ -187,6 +187,7 @@ class ObjectOrderPanel(QWidget):
         self.scrubber = StepScrubber()
         self.image = ImageView(placeholder="image memory")
         self.depth = DepthView()
+        zoom_together([self.image, self.depth.image])
         buffers = QSplitter(Qt.Orientation.Horizontal)
         for title, widget in (("Image memory", self.image), ("z-buffer", self.depth)):
             box = QGroupBox(title)

@@ -94,7 +94,6 @@ MOUSE_GESTURES = [
     ("Drag elsewhere in the 3D pane", "turn the overview (not the observer)"),
     ("Click an object in the 3D pane", "select it in the scene editor"),
     ("Drag the handle above the selection", "move it (one undo step)"),
-    ("Click a pixel", "trace it (image order) or list its fragments (object order)"),
 ]
 
 EDITORS = (QAbstractSpinBox, QLineEdit, QAbstractSlider, QComboBox, QTextEdit, QPlainTextEdit)

@@ -106,3 +106,22 @@ def test_presenting_a_focused_picture_keeps_the_arrow_keys_which_step_through_th
     qtbot.keyClick(button, Qt.Key.Key_Right)
     assert lessons.step_index() != (LESSONS["ray_casting"], 1)  # the next step
     window.presentation.set_presenting(False)
+
+
+def test_the_object_order_buffers_zoom_together_and_the_keys_zoom_not_the_observer(qtbot, window):
+    """The image memory and the z-buffer show the same pixels: zoomed in one (here with +, which moves
+    the observer closer when no picture has the focus), the other shows the same part; 0 shows both
+    whole again.  Help → Keys says so."""
+    window.tab_widget.setCurrentIndex(window.tabs.index(window.tab("object order")))
+    panel = window.tab("object order").widget
+    qtbot.waitUntil(lambda: window.showing_full("object order"), timeout=RENDER_TIMEOUT_MS)
+    image, depth = panel.image, panel.depth.image
+    camera = window.model.camera
+    _tab_to(qtbot, window, image)
+    qtbot.keyClick(image, Qt.Key.Key_Plus, Qt.KeyboardModifier.ShiftModifier)
+    qtbot.keyClick(image, Qt.Key.Key_Plus, Qt.KeyboardModifier.ShiftModifier)
+    assert image.zoom > 1 and depth.zoom == image.zoom and depth.focus == image.focus
+    assert window.model.camera == camera  # the observer did not step closer
+    qtbot.keyClick(image, Qt.Key.Key_0)
+    assert image.zoom == depth.zoom == 1.0
+    assert "Scroll" in window.keys_text() and "zoom" in window.keys_text()

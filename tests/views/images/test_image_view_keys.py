@@ -2,9 +2,9 @@
 
 import numpy as np
 from PySide6.QtCore import Qt
-from PySide6.QtGui import QAction, QKeySequence, QPalette
-from PySide6.QtWidgets import QApplication, QLineEdit, QMainWindow, QPushButton, QVBoxLayout, QWidget
-from qt_fixtures import shown_widget
+from PySide6.QtGui import QPalette
+from PySide6.QtWidgets import QApplication, QLineEdit, QPushButton, QVBoxLayout, QWidget
+from qt_fixtures import in_a_window_with_a_shortcut, shown_widget
 
 from views.images.image_view import FOCUS_MARGIN, SHIFT_STEP, ImageView
 
@@ -136,18 +136,9 @@ def test_enter_goes_on_to_the_parent_and_chooses_the_picked_pixel(qtbot):
 
 
 def test_a_focused_picture_keeps_the_arrows_a_window_shortcut_also_has(qtbot):
-    window = QMainWindow()
     view = ImageView()
     view.set_image(np.zeros((H, W, 3)))
-    window.setCentralWidget(view)
-    orbits = []
-    orbit = QAction("Orbit left", window)
-    orbit.setShortcut(QKeySequence("Left"))
-    orbit.triggered.connect(lambda: orbits.append(1))
-    window.addAction(orbit)
-    shown_widget(qtbot, window, 400, 300)
-    window.activateWindow()
-    qtbot.waitUntil(window.isActiveWindow)
+    window, orbits = in_a_window_with_a_shortcut(qtbot, view, "Left")
     _focus(qtbot, view)
     qtbot.keyClick(view, Qt.Key.Key_Left)
     qtbot.keyClick(view, Qt.Key.Key_Left)
