@@ -418,7 +418,7 @@ class MainWindow(QMainWindow):
 
     def keys_text(self) -> str:
         """Every keyboard shortcut and mouse gesture, one a line."""
-        lines = ["Keys (a focused number box or picture keeps the arrow keys for itself):"]
+        lines = ["Keys (a focused number box or picture keeps the arrow keys, a picture + - 0 too):"]
         native = QKeySequence.SequenceFormat.NativeText
         lines += [f"  {' or '.join(k.toString(native) for k in a.shortcuts()):<24} "
                   f"{a.text().replace('&', '')}" for a in self._keyed_actions]
