@@ -39,6 +39,8 @@ EDGE_COLOR = "#00e5ff"
 """A polygon's edges drawn over the image (cyan: apart from the magenta fragment outline)."""
 FOCUS_MARGIN = 3
 """Room (px) kept around a pickable image for its focus frame, which so never covers a pixel."""
+NOTE_COLOR = "#ffd34d"
+"""The colour of the words a picture writes over itself ("preview", its zoom)."""
 PICKED_PAD_PX = 12.0
 """The picked pixel's frame is drawn this far around it at most (zoomed in, a pixel is larger)."""
 SHIFT_STEP = 10
@@ -162,7 +164,8 @@ class ImageView(QWidget):
             self.setFocusPolicy(Qt.FocusPolicy.StrongFocus)
             self.setAccessibleDescription(f"Click a pixel to pick it; arrow keys move the picked pixel, "
                                           f"Shift+arrows by {SHIFT_STEP}; + and - zoom, 0 shows it whole")
-        self.setToolTip("Scroll to zoom; drag with the right or middle button to move a zoomed picture")
+        self.setToolTip("Scroll to zoom in or out; drag with the right or middle button to move a zoomed "
+                        "picture")
         self.zoom = 1.0  # 1: the picture whole (views.images.zoom)
         self.focus: tuple[float, float] | None = None  # the picture's point at the pane's centre
         self._panning: tuple[QPointF, tuple[float, float]] | None = None  # (press position, focus then)
@@ -457,14 +460,29 @@ class ImageView(QWidget):
             painter.setPen(QPen(QColor("#000000"), 1))
             painter.drawRect(cell.adjusted(-pad - 2, -pad - 2, pad + 2, pad + 2))
         if self.note:
-            painter.setOpacity(0.8)
-            label = painter.fontMetrics().boundingRect(self.note).adjusted(-6, -3, 6, 3)
-            label.moveTopLeft(shown.topLeft().toPoint() + QPointF(6, 6).toPoint())
-            painter.fillRect(label, QColor("#15181f"))
-            painter.setOpacity(1.0)
-            painter.setPen(QColor("#ffd34d"))
-            painter.drawText(label, Qt.AlignmentFlag.AlignCenter, self.note)
+            self._paint_note(painter, self.note, shown, Qt.Corner.TopLeftCorner)
+        if self.zoom > 1:  # part of the picture is hidden: say so, and how to see it whole
+            self._paint_note(painter, self.zoom_note(), shown, Qt.Corner.BottomRightCorner)
         painter.end()
+
+    def zoom_note(self) -> str:
+        """What the picture says in its corner while zoomed in (``""`` when shown whole): its zoom, in
+        few words (presenting, the picture may be small; its tooltip and Help → Keys say the rest)."""
+        return f"×{self.zoom:.3g}" if self.zoom > 1 else ""
+
+    @staticmethod
+    def _paint_note(painter: QPainter, text: str, shown: QRectF, corner: Qt.Corner) -> None:
+        """``text`` in a dark box in ``corner`` of the part of the picture shown."""
+        painter.setOpacity(0.8)
+        label = QRectF(painter.fontMetrics().boundingRect(text).adjusted(-6, -3, 6, 3))
+        if corner == Qt.Corner.TopLeftCorner:
+            label.moveTopLeft(shown.topLeft() + QPointF(6, 6))
+        else:
+            label.moveBottomRight(shown.bottomRight() - QPointF(6, 6))
+        painter.fillRect(label, QColor("#15181f"))
+        painter.setOpacity(1.0)
+        painter.setPen(QColor(NOTE_COLOR))
+        painter.drawText(label, Qt.AlignmentFlag.AlignCenter, text)
 
 
 def zoom_together(views: list[ImageView]) -> None:

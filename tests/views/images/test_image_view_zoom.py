@@ -6,12 +6,19 @@ is drawn where, and the pixel a click picks must be the one drawn under the clic
 import numpy as np
 import pytest
 from PySide6.QtCore import QPoint, QPointF, Qt
-from PySide6.QtGui import QWheelEvent
+from PySide6.QtGui import QColor, QWheelEvent
 from PySide6.QtWidgets import QApplication, QHBoxLayout, QWidget
 from qt_fixtures import in_a_window_with_a_shortcut, shown_widget
 
 from views.images import image_view, zoom
-from views.images.image_view import GRID_CELL_PX, DisplayImage, ImageView, to_qimage, zoom_together
+from views.images.image_view import (
+    GRID_CELL_PX,
+    NOTE_COLOR,
+    DisplayImage,
+    ImageView,
+    to_qimage,
+    zoom_together,
+)
 
 W, H = 40, 30
 BACKGROUND = (0x15, 0x18, 0x1F)  # what the view paints where no pixel is
@@ -55,6 +62,14 @@ def _wheel(view: ImageView, pos: QPointF, notches: int) -> None:
     QApplication.sendEvent(view, event)
 
 
+def _zoom_said(view: ImageView) -> bool:
+    """Whether words in the note's colour are painted in the view's lower right corner."""
+    shot = view.grab().toImage()
+    note = QColor(NOTE_COLOR).rgb()
+    return any(shot.pixel(x, y) == note for x in range(view.width() - 160, view.width())
+               for y in range(view.height() - 50, view.height()))
+
+
 def _cell(view: ImageView) -> float:
     """One pixel's width on screen."""
     return view.image_rect().width() / view.qimage.width()
@@ -65,12 +80,13 @@ def test_the_wheel_zooms_about_the_pointer_and_a_click_then_picks_the_pixel_draw
     picks = []
     view.pixel_clicked.connect(lambda x, y: picks.append((x, y)))
     pointer = view.widget_pos(12, 7) + QPointF(0.3 * _cell(view), -0.2 * _cell(view))  # off its centre
-    assert _drawn_at(view, pointer) == (12, 7)
+    assert _drawn_at(view, pointer) == (12, 7) and not _zoom_said(view)
     whole = _cell(view)
     _wheel(view, pointer, 3)
     assert _cell(view) == pytest.approx(whole * zoom.STEP ** 3)
+    assert view.zoom_note() == "×1.95" and _zoom_said(view)  # part of it is hidden
     assert _drawn_at(view, pointer) == (12, 7)  # the pixel under the pointer stays under it
-    for dx, dy in ((-110, -70), (0, 0), (95, 60), (150, -60), (-40, 100), (260, 200)):  # in the pane
+    for dx, dy in ((-110, -70), (0, 0), (95, 60), (150, -60), (-40, 100), (260, 150)):  # (not the note)
         at = QPointF((pointer + QPointF(dx, dy)).toPoint())
         view.set_picked(None)  # (its frame, drawn over the pixels around it)
         drawn = _drawn_at(view, at)
@@ -78,7 +94,7 @@ def test_the_wheel_zooms_about_the_pointer_and_a_click_then_picks_the_pixel_draw
         qtbot.mouseClick(view, Qt.MouseButton.LeftButton, pos=at.toPoint())
         assert picks == ([drawn] if drawn is not None else [])
     _wheel(view, pointer, -10)  # out again, past the whole picture
-    assert _cell(view) == pytest.approx(whole) and view.zoom == 1.0
+    assert _cell(view) == pytest.approx(whole) and view.zoom == 1.0 and not _zoom_said(view)
 
 
 def test_zoomed_or_moved_the_picture_still_covers_the_pane(qtbot):
@@ -135,7 +151,7 @@ def test_pictures_of_the_same_pixels_zoom_and_move_together(qtbot):
     shown_widget(qtbot, pair, 900, 300)
     _wheel(left, QPointF(left.widget_pos(30, 20)), 4)
     assert left.zoom > 1 and right.zoom == left.zoom and other.zoom == 1.0  # (other: not the same pixels)
-    for probe in (QPointF(50, 60), QPointF(left.width() - 30, left.height() - 20)):
+    for probe in (QPointF(50, 60), QPointF(left.width() - 30, 40)):
         assert _drawn_at(right, probe) == _drawn_at(left, probe)
     start = right.rect().center()
     qtbot.mousePress(right, Qt.MouseButton.MiddleButton, pos=start)
