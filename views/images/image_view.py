@@ -60,6 +60,7 @@ PICTURE_KEYS = [
 PICTURE_GESTURES = [
     ("Click a pixel", "trace it (image order) or list its fragments (object order)"),
     ("Scroll", "zoom in or out around the pointer (pictures of the same pixels side by side zoom together)"),
+    ("Ctrl+scroll", "the same over an exercise's pictures (the plain wheel scrolls the exercise)"),
     ("Drag with the right or middle button", "move a zoomed picture"),
 ]
 """(gesture, what it does) with the mouse over a picture, for Help → Keys."""
@@ -167,6 +168,9 @@ class ImageView(QWidget):
         self.setToolTip("Scroll to zoom in or out; drag with the right or middle button to move a zoomed "
                         "picture")
         self.zoom = 1.0  # 1: the picture whole (views.images.zoom)
+        # What the wheel needs held to zoom: a picture in a panel that scrolls (an exercise's) leaves
+        # the plain wheel to the panel.
+        self.zoom_modifier = Qt.KeyboardModifier.NoModifier
         self.focus: tuple[float, float] | None = None  # the picture's point at the pane's centre
         self._panning: tuple[QPointF, tuple[float, float]] | None = None  # (press position, focus then)
         self._image: QImage | None = None
@@ -320,7 +324,9 @@ class ImageView(QWidget):
 
     def wheelEvent(self, event):
         notches = event.angleDelta().y() / 120
-        if self._image is None or not notches:
+        held = event.modifiers() & ~Qt.KeyboardModifier.KeypadModifier
+        if (self._image is None or not notches or held != self.zoom_modifier
+                or (notches < 0 and self.zoom <= 1)):  # nothing to do: a panel around it may scroll
             return super().wheelEvent(event)
         self._zoom_by(zoom.STEP ** notches, event.position())
         event.accept()

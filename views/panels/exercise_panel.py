@@ -133,6 +133,9 @@ class _Picture(ImageView):
         policy.setHeightForWidth(True)
         self.setSizePolicy(policy)
         self.tallest = 10_000  # the panel's room for a picture: two rows in view with the rest
+        self.zoom_modifier = Qt.KeyboardModifier.ControlModifier  # the plain wheel scrolls the panel
+        self.setToolTip("Ctrl+scroll to zoom in or out; drag with the right or middle button to move a "
+                        "zoomed picture")
 
     def hasHeightForWidth(self) -> bool:  # noqa: N802 (Qt's name)
         return True

@@ -327,3 +327,31 @@ def test_the_last_exercises_answer_field_never_becomes_a_window_of_its_own(panel
         assert not any(field.isWindow() for field in fields)
         shown = [field for field in fields if field.isVisible()]
         assert len(shown) == (panel.exercise().kind != "choose_one"), panel.exercise().kind
+
+
+def test_over_an_exercises_pictures_the_wheel_is_left_to_the_panel_and_ctrl_wheel_zooms_them(panel, qtbot):
+    # The pictures zoom with the wheel elsewhere; here four of them may not fit the panel, which scrolls,
+    # and the wheel over a picture would no longer scroll it.  A wheel event a picture leaves (does not
+    # accept) goes on to the scroll area around it (Qt passes on only the real ones: so it is checked
+    # here that the picture leaves it).
+    from PySide6.QtCore import QPoint, QPointF
+    from PySide6.QtGui import QWheelEvent
+
+    lesson = BY_ID["three_views"]
+    panel.set_lesson(lesson)
+    panel.go(next(i for i, e in enumerate(lesson.exercises) if e.question.endswith("top view?")))
+    qtbot.waitUntil(lambda: len(panel.picture_views) == 4)
+    first = panel.picture_views[0]
+    at = QPointF(first.rect().center())
+
+    def wheel(notches: int, modifiers) -> bool:
+        event = QWheelEvent(at, first.mapToGlobal(at), QPoint(0, 0), QPoint(0, 120 * notches),
+                            Qt.MouseButton.NoButton, modifiers, Qt.ScrollPhase.NoScrollPhase, False)
+        QApplication.sendEvent(first, event)
+        return event.isAccepted()
+
+    assert not wheel(-1, Qt.KeyboardModifier.NoModifier) and not wheel(1, Qt.KeyboardModifier.NoModifier)
+    assert first.zoom == 1.0  # left to the panel, to scroll it
+    assert not wheel(-1, Qt.KeyboardModifier.ControlModifier)  # out: whole already, left too
+    assert wheel(1, Qt.KeyboardModifier.ControlModifier) and first.zoom > 1
+    assert all(view.zoom == first.zoom for view in panel.picture_views)  # together
