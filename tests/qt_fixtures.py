@@ -147,3 +147,19 @@ def in_a_window_with_a_shortcut(qtbot, widget, key: str) -> tuple:
     window.activateWindow()
     qtbot.waitUntil(window.isActiveWindow)
     return window, triggered
+
+
+def wheel_over(widget, pos, notches: int, modifiers=None) -> bool:
+    """Turn the mouse wheel ``notches`` notches (up: positive) over ``pos`` of ``widget``, with
+    ``modifiers`` held; whether the widget took the event (one it leaves goes on to its parents when a
+    user turns the wheel: Qt does not pass on one sent by a test)."""
+    from PySide6.QtCore import QPoint, QPointF, Qt
+    from PySide6.QtGui import QWheelEvent
+    from PySide6.QtWidgets import QApplication
+
+    pos = QPointF(pos)
+    event = QWheelEvent(pos, widget.mapToGlobal(pos), QPoint(0, 0), QPoint(0, 120 * notches),
+                        Qt.MouseButton.NoButton, modifiers or Qt.KeyboardModifier.NoModifier,
+                        Qt.ScrollPhase.NoScrollPhase, False)
+    QApplication.sendEvent(widget, event)
+    return event.isAccepted()

@@ -60,7 +60,7 @@ PICTURE_KEYS = [
 PICTURE_GESTURES = [
     ("Click a pixel", "trace it (image order) or list its fragments (object order)"),
     ("Scroll", "zoom in or out around the pointer (pictures of the same pixels side by side zoom together)"),
-    ("Ctrl+scroll", "the same over an exercise's pictures (the plain wheel scrolls the exercise)"),
+    ("Ctrl+scroll", "the same over an exercise's or a hard case's pictures (the wheel scrolls their panel)"),
     ("Drag with the right or middle button", "move a zoomed picture"),
 ]
 """(gesture, what it does) with the mouse over a picture, for Help → Keys."""
@@ -168,9 +168,7 @@ class ImageView(QWidget):
         self.setToolTip("Scroll to zoom in or out; drag with the right or middle button to move a zoomed "
                         "picture")
         self.zoom = 1.0  # 1: the picture whole (views.images.zoom)
-        # What the wheel needs held to zoom: a picture in a panel that scrolls (an exercise's) leaves
-        # the plain wheel to the panel.
-        self.zoom_modifier = Qt.KeyboardModifier.NoModifier
+        self.zoom_modifier = Qt.KeyboardModifier.NoModifier  # what the wheel needs held to zoom
         self.focus: tuple[float, float] | None = None  # the picture's point at the pane's centre
         self._panning: tuple[QPointF, tuple[float, float]] | None = None  # (press position, focus then)
         self._image: QImage | None = None
@@ -214,6 +212,13 @@ class ImageView(QWidget):
         if (new, focus) != (self.zoom, self.focus):
             self.set_zoom(new, focus)
             self.zoomed.emit(self.zoom, self.focus)
+
+    def zoom_with_ctrl(self) -> None:
+        """Zoom with Ctrl+wheel, leaving the plain wheel to a panel around the picture that scrolls (an
+        exercise's, the hard cases')."""
+        self.zoom_modifier = Qt.KeyboardModifier.ControlModifier
+        self.setToolTip("Ctrl+scroll to zoom in or out; drag with the right or middle button to move a "
+                        "zoomed picture")
 
     def _picture_size(self) -> tuple[float, float]:
         return float(self._image.width()), float(self._image.height())

@@ -133,9 +133,7 @@ class _Picture(ImageView):
         policy.setHeightForWidth(True)
         self.setSizePolicy(policy)
         self.tallest = 10_000  # the panel's room for a picture: two rows in view with the rest
-        self.zoom_modifier = Qt.KeyboardModifier.ControlModifier  # the plain wheel scrolls the panel
-        self.setToolTip("Ctrl+scroll to zoom in or out; drag with the right or middle button to move a "
-                        "zoomed picture")
+        self.zoom_with_ctrl()  # the plain wheel scrolls the panel
 
     def hasHeightForWidth(self) -> bool:  # noqa: N802 (Qt's name)
         return True

@@ -247,6 +247,8 @@ class HardCasesPanel(QWidget):
         self.naive_image = ImageView(placeholder="", pickable=False)  # only looked at: no pixel readout
         self.robust_image = ImageView(placeholder="", pickable=False)
         zoom_together([self.naive_image, self.robust_image])
+        for view in (self.naive_image, self.robust_image):
+            view.zoom_with_ctrl()  # the plain wheel scrolls the case's details
         self.naive_image.setAccessibleName("Picture of the textbook method")  # also its File → Export entry
         self.robust_image.setAccessibleName("Picture of the robust method")
         self.naive_caption, self.robust_caption = QLabel(), QLabel()

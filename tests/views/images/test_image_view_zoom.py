@@ -6,9 +6,9 @@ is drawn where, and the pixel a click picks must be the one drawn under the clic
 import numpy as np
 import pytest
 from PySide6.QtCore import QPoint, QPointF, Qt
-from PySide6.QtGui import QColor, QWheelEvent
-from PySide6.QtWidgets import QApplication, QHBoxLayout, QWidget
-from qt_fixtures import in_a_window_with_a_shortcut, shown_widget
+from PySide6.QtGui import QColor
+from PySide6.QtWidgets import QHBoxLayout, QWidget
+from qt_fixtures import in_a_window_with_a_shortcut, shown_widget, wheel_over
 
 from views.images import image_view, zoom
 from views.images.image_view import (
@@ -55,13 +55,6 @@ def _drawn_at(view: ImageView, pos: QPointF):
     return (rgb[0] - 10) // 4, (rgb[1] - 10) // 4
 
 
-def _wheel(view: ImageView, pos: QPointF, notches: int) -> None:
-    event = QWheelEvent(pos, view.mapToGlobal(pos), QPoint(0, 0), QPoint(0, 120 * notches),
-                        Qt.MouseButton.NoButton, Qt.KeyboardModifier.NoModifier, Qt.ScrollPhase.NoScrollPhase,
-                        False)
-    QApplication.sendEvent(view, event)
-
-
 def _zoom_said(view: ImageView) -> bool:
     """Whether words in the note's colour are painted in the view's lower right corner."""
     shot = view.grab().toImage()
@@ -82,7 +75,7 @@ def test_the_wheel_zooms_about_the_pointer_and_a_click_then_picks_the_pixel_draw
     pointer = view.widget_pos(12, 7) + QPointF(0.3 * _cell(view), -0.2 * _cell(view))  # off its centre
     assert _drawn_at(view, pointer) == (12, 7) and not _zoom_said(view)
     whole = _cell(view)
-    _wheel(view, pointer, 3)
+    wheel_over(view, pointer, 3)
     assert _cell(view) == pytest.approx(whole * zoom.STEP ** 3)
     assert view.zoom_note() == "×1.95" and _zoom_said(view)  # part of it is hidden
     assert _drawn_at(view, pointer) == (12, 7)  # the pixel under the pointer stays under it
@@ -93,7 +86,7 @@ def test_the_wheel_zooms_about_the_pointer_and_a_click_then_picks_the_pixel_draw
         picks.clear()
         qtbot.mouseClick(view, Qt.MouseButton.LeftButton, pos=at.toPoint())
         assert picks == ([drawn] if drawn is not None else [])
-    _wheel(view, pointer, -10)  # out again, past the whole picture
+    wheel_over(view, pointer, -10)  # out again, past the whole picture
     assert _cell(view) == pytest.approx(whole) and view.zoom == 1.0 and not _zoom_said(view)
 
 
@@ -103,7 +96,7 @@ def test_zoomed_or_moved_the_picture_still_covers_the_pane(qtbot):
     view = _view(qtbot)
     room = view.rect().adjusted(4, 4, -4, -4)
     corners = [QPointF(room.left(), room.top()), QPointF(room.right(), room.bottom())]
-    _wheel(view, QPointF(view.width() - 10, view.height() - 10), 5)  # about the lower right corner
+    wheel_over(view, QPointF(view.width() - 10, view.height() - 10), 5)  # about the lower right corner
     assert _drawn_at(view, corners[1]) == (W - 1, H - 1)
     start = view.rect().center()
     qtbot.mousePress(view, Qt.MouseButton.RightButton, pos=start)
@@ -115,7 +108,7 @@ def test_zoomed_or_moved_the_picture_still_covers_the_pane(qtbot):
 
 def test_dragging_with_the_right_button_moves_the_zoomed_picture_with_the_mouse(qtbot):
     view = _view(qtbot)
-    _wheel(view, QPointF(view.rect().center()), 4)
+    wheel_over(view, QPointF(view.rect().center()), 4)
     start = view.rect().center()
     before = _drawn_at(view, QPointF(start))
     qtbot.mousePress(view, Qt.MouseButton.RightButton, pos=start)
@@ -132,7 +125,7 @@ def test_zoomed_in_far_enough_a_large_picture_shows_its_pixel_grid_squares_and_c
     view.set_image(_coded(320, 240))
     shown_widget(qtbot, view, 226, 166)
     assert not view.grid_shown()
-    _wheel(view, QPointF(view.rect().center()), 14)
+    wheel_over(view, QPointF(view.rect().center()), 14)
     assert _cell(view) >= GRID_CELL_PX and view.grid_shown()
     centre = view.widget_pos(*view.pixel_at(QPointF(view.rect().center())))
     shot = view.grab().toImage()
@@ -149,7 +142,7 @@ def test_pictures_of_the_same_pixels_zoom_and_move_together(qtbot):
         layout.addWidget(view)
     zoom_together([left, right, other])
     shown_widget(qtbot, pair, 900, 300)
-    _wheel(left, QPointF(left.widget_pos(30, 20)), 4)
+    wheel_over(left, QPointF(left.widget_pos(30, 20)), 4)
     assert left.zoom > 1 and right.zoom == left.zoom and other.zoom == 1.0  # (other: not the same pixels)
     for probe in (QPointF(50, 60), QPointF(left.width() - 30, 40)):
         assert _drawn_at(right, probe) == _drawn_at(left, probe)
@@ -162,7 +155,7 @@ def test_pictures_of_the_same_pixels_zoom_and_move_together(qtbot):
 
 def test_a_new_picture_of_other_pixels_is_shown_whole_one_of_the_same_keeps_the_zoom(qtbot):
     view = _view(qtbot)
-    _wheel(view, QPointF(view.widget_pos(5, 5)), 3)
+    wheel_over(view, QPointF(view.widget_pos(5, 5)), 3)
     zoomed = view.image_rect()
     view.set_image(_coded())  # the next step of the same render
     assert view.image_rect() == zoomed
@@ -191,7 +184,7 @@ def test_plus_minus_and_0_zoom_a_focused_picture_about_its_picked_pixel_not_the_
 def test_zoomed_in_the_picture_follows_the_pixel_the_arrow_keys_pick(qtbot):
     view = _view(qtbot)
     qtbot.mouseClick(view, Qt.MouseButton.LeftButton, pos=view.widget_pos(2, 2).toPoint())
-    _wheel(view, QPointF(view.widget_pos(2, 2)), 8)
+    wheel_over(view, QPointF(view.widget_pos(2, 2)), 8)
     for _ in range(30):  # far out of the part first in view
         qtbot.keyClick(view, Qt.Key.Key_Right)
     assert view.picked == (32, 2)

@@ -5,7 +5,7 @@ restarts and reset, and the question put to the room."""
 import pytest
 from PySide6.QtCore import QSettings, Qt
 from PySide6.QtWidgets import QApplication
-from qt_fixtures import shown_widget
+from qt_fixtures import shown_widget, wheel_over
 from shipped_exercises import seed_drawing
 
 from core.files.lesson_file import shipped_lessons
@@ -334,21 +334,15 @@ def test_over_an_exercises_pictures_the_wheel_is_left_to_the_panel_and_ctrl_whee
     # and the wheel over a picture would no longer scroll it.  A wheel event a picture leaves (does not
     # accept) goes on to the scroll area around it (Qt passes on only the real ones: so it is checked
     # here that the picture leaves it).
-    from PySide6.QtCore import QPoint, QPointF
-    from PySide6.QtGui import QWheelEvent
-
     lesson = BY_ID["three_views"]
     panel.set_lesson(lesson)
     panel.go(next(i for i, e in enumerate(lesson.exercises) if e.question.endswith("top view?")))
     qtbot.waitUntil(lambda: len(panel.picture_views) == 4)
     first = panel.picture_views[0]
-    at = QPointF(first.rect().center())
+    at = first.rect().center()
 
     def wheel(notches: int, modifiers) -> bool:
-        event = QWheelEvent(at, first.mapToGlobal(at), QPoint(0, 0), QPoint(0, 120 * notches),
-                            Qt.MouseButton.NoButton, modifiers, Qt.ScrollPhase.NoScrollPhase, False)
-        QApplication.sendEvent(first, event)
-        return event.isAccepted()
+        return wheel_over(first, at, notches, modifiers)
 
     assert not wheel(-1, Qt.KeyboardModifier.NoModifier) and not wheel(1, Qt.KeyboardModifier.NoModifier)
     assert first.zoom == 1.0  # left to the panel, to scroll it

@@ -4,8 +4,8 @@ import html
 import threading
 
 import pytest
-from PySide6.QtCore import QThreadPool
-from qt_fixtures import shown_widget
+from PySide6.QtCore import Qt, QThreadPool
+from qt_fixtures import shown_widget, wheel_over
 
 from core import hard_cases
 from views.panels.hard_cases_panel import (
@@ -166,3 +166,13 @@ def test_the_cases_are_worked_out_in_a_process_of_their_own(qtbot, panel, monkey
     assert here == []  # nothing was worked out in this process ...
     helper = helper_process._helpers.get(hard_cases.__name__)
     assert helper is not None and helper.process.poll() is None  # ... but in the cases' own process
+
+
+def test_the_two_pictures_leave_the_wheel_to_the_details_scrolling_and_zoom_together_with_ctrl(qtbot, panel):
+    _show(qtbot, panel, "shadow_acne")
+    naive, robust = panel.naive_image, panel.robust_image
+    qtbot.waitUntil(lambda: naive.qimage is not None and robust.qimage is not None)
+    at = naive.rect().center()
+    assert not wheel_over(naive, at, 1) and naive.zoom == 1.0  # left to the details, which scroll
+    assert wheel_over(naive, at, 2, Qt.KeyboardModifier.ControlModifier)
+    assert naive.zoom > 1 and robust.zoom == naive.zoom and robust.focus == naive.focus
