@@ -15,7 +15,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from views.images.matplotlib_lock import MATPLOTLIB
+from views.matplotlib_lock import MATPLOTLIB
 
 #: Sheet layout, in pixels: the gap around panels, a panel title's row, a line of text.
 MARGIN, TITLE_ROW, TEXT_ROW = 8, 20, 16

@@ -14,7 +14,7 @@ from typing import TYPE_CHECKING
 
 from core.accuracy.sweep import CSV_COLUMNS, Row
 from core.files.safe_files import write_atomic
-from views.images.matplotlib_lock import MATPLOTLIB
+from views.matplotlib_lock import MATPLOTLIB
 
 if TYPE_CHECKING:  # matplotlib loads with the first figure, not with this module
     from matplotlib.figure import Figure

@@ -22,7 +22,7 @@ from core import helper_process
 from views.images import plot_theme
 from views.images.agg_figure import Drawn, agg_figure, pixels
 from views.images.cost_plot import draw_cost_plot, point_position, tidy_cost_plot
-from views.images.matplotlib_lock import MATPLOTLIB
+from views.matplotlib_lock import MATPLOTLIB
 
 TEXT_SHARES = (1.0, 0.85, 0.7, 0.6, 0.5)
 """The shares of its text size the plot tries, largest first, until the curves get :data:`ROOM`."""

@@ -9,7 +9,7 @@ The widget paints those pixels scaled to its size.  A newer request supersedes
 an older one: a request made while another is drawn waits, replacing any
 waiting before it, and the picture of a superseded request is not shown.
 
-A drawing function holds :data:`views.images.matplotlib_lock.MATPLOTLIB`
+A drawing function holds :data:`views.matplotlib_lock.MATPLOTLIB`
 while it uses matplotlib, and returns a :class:`views.images.agg_figure.Drawn`.
 """
 

@@ -21,7 +21,7 @@ from core.srgb import to_srgb8
 from views.images import plot_theme
 from views.images.agg_figure import Drawn, agg_figure, pixels
 from views.images.cost_plot import boxes_overlap
-from views.images.matplotlib_lock import MATPLOTLIB
+from views.matplotlib_lock import MATPLOTLIB
 
 
 def _panels(point, reference) -> list:

@@ -28,7 +28,7 @@ def ink(text: str, size_pt: float, color: str, dpi: float):
     from matplotlib.colors import to_rgb
     from matplotlib.font_manager import FontProperties
 
-    from views.images.matplotlib_lock import MATPLOTLIB
+    from views.matplotlib_lock import MATPLOTLIB
 
     with MATPLOTLIB:  # in the window's process, the parser and its fonts are shared with the plots
         alpha = np.asarray(_parser().parse(text, dpi=dpi, prop=FontProperties(size=size_pt)).image)

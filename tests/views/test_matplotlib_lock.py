@@ -8,7 +8,7 @@ import threading
 import numpy as np
 
 from app.export.picture_sheet import Panel, compose
-from views.images.matplotlib_lock import MATPLOTLIB
+from views.matplotlib_lock import MATPLOTLIB
 from views.text import math_view, typesetting_process
 
 
