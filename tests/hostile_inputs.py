@@ -298,7 +298,7 @@ def lesson_cases(draw):
 #: Loads a lesson file as the window's File > Open lesson does; a refusal is one message, exit 2.
 _LOAD_LESSON = """
 import sys
-from core.files.lesson_file import LessonFileError, load_lesson
+from core.lessons.lesson_file import LessonFileError, load_lesson
 try:
     load_lesson(sys.argv[1])
 except LessonFileError as exc:

@@ -8,9 +8,9 @@ from __future__ import annotations
 
 from functools import cache
 
-from core.files.lesson_file import shipped_lessons
 from core.lessons.exercises import judge, variant
 from core.lessons.facts import StepPipelines
+from core.lessons.lesson_file import shipped_lessons
 
 
 @cache

@@ -55,7 +55,7 @@ def ask_exercise(qtbot, window: MainWindow, lesson_id: str, step: int, exercise:
     from shipped_exercises import seed_drawing
 
     from app.window.window_layout import in_front
-    from core.files.lesson_file import shipped_lessons
+    from core.lessons.lesson_file import shipped_lessons
 
     lessons = shipped_lessons()
     k = [lesson.id for lesson in lessons].index(lesson_id)

@@ -22,10 +22,10 @@ from __future__ import annotations
 import argparse
 import sys
 
-from core.files.lesson_file import LessonFileError, load_lesson
 from core.in_words import counted
 from core.lessons.exercises import check_exercises
 from core.lessons.facts import check_lesson
+from core.lessons.lesson_file import LessonFileError, load_lesson
 
 
 def add_parser(sub) -> argparse.ArgumentParser:

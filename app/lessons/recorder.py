@@ -24,9 +24,9 @@ from PySide6.QtWidgets import (
     QPlainTextEdit,
 )
 
-from core.files.lesson_file import LessonFileError
 from core.files.safe_files import OutputError
 from core.lessons.authoring import add_step, step_record
+from core.lessons.lesson_file import LessonFileError
 
 
 class StepForm(QDialog):

@@ -1,6 +1,6 @@
 """Applying a lesson step to the window: its scene, panes, settings, view and highlight.
 
-A :class:`core.files.lesson_file.LessonStep` says what the room should see; the
+A :class:`core.lessons.lesson_file.LessonStep` says what the room should see; the
 :class:`LessonRunner` makes the window show it.  Everything it changes goes
 through the window's one model (scene, settings, step, picks, overlays) or
 through the panes' own setters, so afterwards the window behaves as if the
@@ -13,7 +13,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from core.files.lesson_file import LessonStep
+from core.lessons.lesson_file import LessonStep
 from core.lessons.naming import named_objects, step_words
 from core.scene import Mesh, Scene
 from views.scene3d.projector_lines import ProjectorLines

@@ -17,8 +17,8 @@ from pathlib import Path
 from PySide6.QtCore import QEvent, QObject
 
 from core.files import safe_files
-from core.files.lesson_file import FORMAT as LESSON_FORMAT
 from core.files.mesh_files import EXTENSIONS as MESH_EXTENSIONS
+from core.lessons.lesson_file import FORMAT as LESSON_FORMAT
 
 SCENE, LESSON, MESH = "scene", "lesson", "mesh"
 PEEK_BYTES = 65_536

@@ -266,7 +266,7 @@ class MainWindow(QMainWindow):
 
     # --------------------------------------------------------------- lessons
     def apply_lesson_step(self, step) -> None:
-        """Show a :class:`core.files.lesson_file.LessonStep`; see :mod:`app.lessons.runner`."""
+        """Show a :class:`core.lessons.lesson_file.LessonStep`; see :mod:`app.lessons.runner`."""
         if self.editor.may_replace_scene():
             self.lessons.apply(step)
             self._refit()  # the step's words may need another share of the left column

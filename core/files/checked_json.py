@@ -1,7 +1,7 @@
 """Checked JSON: read a JSON file guardedly and its values field by field, collecting every problem.
 
 The scene files (:mod:`core.files.scene_file`) and the lesson files
-(:mod:`core.files.lesson_file`) are JSON objects read the same way:
+(:mod:`core.lessons.lesson_file`) are JSON objects read the same way:
 
 * :func:`read_json` parses a file as guardedly as a hostile one deserves: only a
   regular file under a size limit (never a FIFO or a device, see

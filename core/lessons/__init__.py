@@ -1,6 +1,6 @@
 """Lessons: the lecture told figure by figure, as checked data.
 
-A lesson file (:mod:`core.files.lesson_file` reads it; the shipped ones are in
+A lesson file (:mod:`core.lessons.lesson_file` reads it; the shipped ones are in
 ``core/lessons/files``) is a sequence of steps, each naming a scene, the panes
 to show and a few sentences of explanation.  What a step's words claim about
 the window is written as facts the pipelines decide (:mod:`core.lessons.facts`),

@@ -7,7 +7,7 @@ words typed into a form into one step of the lesson-file format, and
 :func:`add_step` appends it to a lesson file (a new lesson when the file does
 not exist yet), with the exercise the author typed for it (asked about the new
 step's scene: its ``"step"`` is set to the new step), checks that the file still loads (a
-:class:`core.files.lesson_file.LessonFileError` names the field path of anything wrong, and
+:class:`core.lessons.lesson_file.LessonFileError` names the field path of anything wrong, and
 nothing is written), and writes it atomically.  Loading the file and applying
 the step shows the same window state again.
 """
@@ -24,8 +24,8 @@ from pathlib import Path
 import numpy as np
 
 from core.files import scene_file
-from core.files.lesson_file import FORMAT, VERSION, Lesson, LessonFileError, from_dict
 from core.files.safe_files import write_atomic
+from core.lessons.lesson_file import FORMAT, VERSION, Lesson, LessonFileError, from_dict
 
 
 def step_record(*, title: str, text: str, scene, panes, image_order, object_order,

@@ -375,7 +375,7 @@ class StepPipelines:
 
     Attributes
     ----------
-    step : the :class:`core.files.lesson_file.LessonStep`.
+    step : the :class:`core.lessons.lesson_file.LessonStep`.
     """
 
     def __init__(self, step):

@@ -56,7 +56,7 @@ def test_the_wheel_runs_from_another_folder_and_writes_nothing_into_its_package(
     image = imread(elsewhere / "traced.png")
     assert image.shape[:2] == (48, 64) and np.ptp(image) > 0  # the scene, not a blank picture
     assert json.loads((elsewhere / "stats.json").read_text())["rays"]["total"] > 64 * 48
-    count = "from core.files.lesson_file import shipped_lessons; print(len(shipped_lessons()))"
+    count = "from core.lessons.lesson_file import shipped_lessons; print(len(shipped_lessons()))"
     lessons = _run([str(python), "-c", count], cwd=elsewhere).stdout.split()
     assert int(lessons[-1]) >= 10  # the lesson files travel as package data
 

@@ -1,6 +1,6 @@
 """The lesson panel: the lecture's lessons in order, the current step's text and formulas.
 
-:class:`LessonPanel` lists the lessons (:func:`core.files.lesson_file.shipped_lessons`
+:class:`LessonPanel` lists the lessons (:func:`core.lessons.lesson_file.shipped_lessons`
 plus any opened from a file), shows the current step's title, text and typeset
 formulas, and moves through steps and lessons.  Whenever a step becomes
 current it emits ``step_selected(LessonStep)``; applying the step (scene,
@@ -21,7 +21,7 @@ where ``apply_lesson_step(step)`` loads ``step.scene``, shows ``step.panes``
 (the first in front) and hides the others, applies ``step.image_order`` /
 ``step.object_order``, ``step.view``, ``step.overlays``, sets the scrubber to
 ``step.zbuffer_step`` and picks ``step.pixel`` when they are not None, and
-marks ``step.highlight``; see :class:`core.files.lesson_file.LessonStep`.
+marks ``step.highlight``; see :class:`core.lessons.lesson_file.LessonStep`.
 """
 
 from __future__ import annotations
@@ -45,7 +45,7 @@ from PySide6.QtWidgets import (
     QWidget,
 )
 
-from core.files.lesson_file import Lesson, LessonFileError, LessonStep, load_lesson, shipped_lessons
+from core.lessons.lesson_file import Lesson, LessonFileError, LessonStep, load_lesson, shipped_lessons
 from views.file_dialogs import ask_open
 from views.images.image_view import ARROWS, ImageView
 from views.keyboard_focus import follow_focus

@@ -85,7 +85,7 @@ def test_the_picks_row_picks_pixels_in_both_pipelines_each_shown_in_turn(qapp, w
 def test_the_lesson_row_steps_through_every_step_the_panel_holds_and_reads_no_file_meanwhile(window,
                                                                                         monkeypatch):
     # Reading the 16 lesson files on the GUI thread, inside the row's clock, was charged to the window.
-    from core.files import lesson_file
+    from core.lessons import lesson_file
 
     read = []
     monkeypatch.setattr(lesson_file, "load_lesson", lambda path: read.append(path))

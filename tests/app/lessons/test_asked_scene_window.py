@@ -7,7 +7,7 @@ from window_helpers import ask_exercise
 
 from app.window.window_layout import in_front
 from core import presets
-from core.files.lesson_file import shipped_lessons
+from core.lessons.lesson_file import shipped_lessons
 
 LESSONS = {lesson.id: i for i, lesson in enumerate(shipped_lessons())}
 

@@ -7,7 +7,7 @@ from PySide6.QtGui import QAction, QKeySequence
 from window_helpers import RENDER_TIMEOUT_MS
 
 from app.lessons.runner import FACE_SIDE_OVERLAY
-from core.files.lesson_file import shipped_lessons
+from core.lessons.lesson_file import shipped_lessons
 
 LESSONS = shipped_lessons()
 

@@ -4,7 +4,7 @@ nothing of it (and follows none that does) turns it off."""
 import numpy as np
 from window_helpers import RENDER_TIMEOUT_MS
 
-from core.files.lesson_file import shipped_lessons
+from core.lessons.lesson_file import shipped_lessons
 
 LESSONS = shipped_lessons()
 

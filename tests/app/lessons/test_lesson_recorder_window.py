@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 from PySide6.QtWidgets import QMessageBox
 
-from core.files.lesson_file import shipped_lessons
+from core.lessons.lesson_file import shipped_lessons
 
 LESSONS = {lesson.id: i for i, lesson in enumerate(shipped_lessons())}
 

@@ -4,7 +4,7 @@ between the two; anything that asks the 3D pane meanwhile gets the step's answer
 import numpy as np
 from PySide6.QtWidgets import QApplication
 
-from core.files.lesson_file import shipped_lessons
+from core.lessons.lesson_file import shipped_lessons
 
 LESSONS = {lesson.id: i for i, lesson in enumerate(shipped_lessons())}
 

@@ -10,7 +10,7 @@ from window_helpers import RENDER_TIMEOUT_MS
 
 from app.lessons.runner import FACE_SIDE_OVERLAY
 from app.window.window_layout import in_front
-from core.files.lesson_file import FILES, shipped_lessons
+from core.lessons.lesson_file import FILES, shipped_lessons
 
 LESSONS = {lesson.id: i for i, lesson in enumerate(shipped_lessons())}
 

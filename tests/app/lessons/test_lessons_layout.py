@@ -8,7 +8,7 @@ import pyvista as pv
 from vtkmodules.vtkRenderingCore import vtkTextRenderer
 from window_helpers import RENDER_TIMEOUT_MS, presenting_on_1280x720
 
-from core.files.lesson_file import shipped_lessons
+from core.lessons.lesson_file import shipped_lessons
 from views.panels.image_order_panel import IMAGE_SHARE, TREE_ROWS
 from views.panels.raytree_view import RayKindLegend
 from views.panels.side_column import SideColumn

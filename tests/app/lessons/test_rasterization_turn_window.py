@@ -5,7 +5,7 @@ top-left rule gives them; scrubbed to the step that draws it, the edges are draw
 import numpy as np
 from window_helpers import RENDER_TIMEOUT_MS
 
-from core.files.lesson_file import shipped_lessons
+from core.lessons.lesson_file import shipped_lessons
 
 LESSONS = shipped_lessons()
 

@@ -6,7 +6,7 @@ from PySide6.QtCore import Qt
 from window_helpers import presenting_on_1280x720
 
 from app.window.window_layout import in_front
-from core.files.lesson_file import shipped_lessons
+from core.lessons.lesson_file import shipped_lessons
 from views.panels.exercise_panel import ROOM_LEAST
 
 

@@ -13,7 +13,7 @@ from window_helpers import RENDER_TIMEOUT_MS
 
 from app.window.window_layout import in_front
 from core import presets
-from core.files.lesson_file import shipped_lessons
+from core.lessons.lesson_file import shipped_lessons
 from core.object_order.depth_formats import DEPTH_FORMATS
 from core.scene import Mesh, Sphere
 from views.panels.cost_panel import CostPanel

@@ -8,7 +8,7 @@ from PySide6.QtWidgets import QApplication, QCheckBox
 from window_helpers import RENDER_TIMEOUT_MS
 
 from app.window.window_layout import in_front
-from core.files.lesson_file import shipped_lessons
+from core.lessons.lesson_file import shipped_lessons
 
 LESSONS = {lesson.id: i for i, lesson in enumerate(shipped_lessons())}
 

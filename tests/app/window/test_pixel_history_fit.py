@@ -47,7 +47,7 @@ def _verdict_takes_the_rows_room(qtbot, window, verdict, last_row) -> None:
 
 
 def _step(window, lesson_id: str, step: int) -> None:
-    from core.files.lesson_file import shipped_lessons
+    from core.lessons.lesson_file import shipped_lessons
 
     window.lesson_panel.select([lesson.id for lesson in shipped_lessons()].index(lesson_id), step)
 

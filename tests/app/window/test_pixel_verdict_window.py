@@ -55,7 +55,7 @@ def test_object_order_pane_says_what_decided_the_picked_pixel(qtbot, window):
 
 def test_one_fragment_is_one_fragment(qtbot, window):
     # The rasterization lesson's picked pixel (3, 7): the triangle's one fragment ("1 fragments" before).
-    from core.files.lesson_file import shipped_lessons
+    from core.lessons.lesson_file import shipped_lessons
 
     k = [lesson.id for lesson in shipped_lessons()].index("rasterization")
     window.lesson_panel.select(k, 0)

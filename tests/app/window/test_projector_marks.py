@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 from window_helpers import RENDER_TIMEOUT_MS
 
-from core.files.lesson_file import shipped_lessons
+from core.lessons.lesson_file import shipped_lessons
 from views.scene3d.projector_lines import PROJECTOR_OVERLAY
 
 LESSONS = {lesson.id: i for i, lesson in enumerate(shipped_lessons())}

@@ -7,7 +7,7 @@ from PySide6.QtCore import Qt
 from PySide6.QtWidgets import QDockWidget
 from window_helpers import RENDER_TIMEOUT_MS
 
-from core.files.lesson_file import shipped_lessons
+from core.lessons.lesson_file import shipped_lessons
 from core.presets_trace import mirror_and_glass
 
 

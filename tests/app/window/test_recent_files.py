@@ -11,7 +11,7 @@ from window_helpers import open_scene_file
 from app.window.main_window import MainWindow
 from core import presets
 from core.files import scene_file
-from core.files.lesson_file import FILES
+from core.lessons.lesson_file import FILES
 from views.recent_files import MOST
 
 

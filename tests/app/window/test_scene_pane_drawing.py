@@ -8,7 +8,7 @@ from PySide6.QtGui import QImage, QSurface
 from window_helpers import RENDER_TIMEOUT_MS
 
 from core import presets
-from core.files.lesson_file import shipped_lessons
+from core.lessons.lesson_file import shipped_lessons
 
 
 def _drawn(view):

@@ -3,7 +3,7 @@
 import numpy as np
 from window_helpers import RENDER_TIMEOUT_MS
 
-from core.files.lesson_file import shipped_lessons
+from core.lessons.lesson_file import shipped_lessons
 from views.panels.raytree_view import ray_tree_parts
 from views.scene3d.scene_view import ENCLOSING_OPACITY
 

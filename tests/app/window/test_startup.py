@@ -15,7 +15,7 @@ from window_helpers import RENDER_TIMEOUT_MS
 from app.bench.startup import watched_start
 from app.window.main_window import MainWindow
 from core import presets
-from core.files.lesson_file import shipped_lessons
+from core.lessons.lesson_file import shipped_lessons
 from views import gui_thread
 from views.scene3d import deferred_scene_view
 from views.scene3d.deferred_scene_view import PLACEHOLDER

@@ -30,7 +30,7 @@ from core import presets, presets_trace
 from core.image_order import ray_tracing
 from core.image_order.flat_scene import TraceSettings
 from core.image_order.flat_layout import ACCEL_CODES
-from core.files.lesson_file import shipped_lessons
+from core.lessons.lesson_file import shipped_lessons
 from core.object_order import pipeline
 from core.object_order.depth_formats import DEPTH_FORMATS
 from core.object_order.pipeline import RasterSettings, render_raster

@@ -16,8 +16,8 @@ from core.files.checked_json import (
     read_json,
     show,
 )
-from core.files.lesson_file import LessonFileError
 from core.files.scene_file import SceneFileError
+from core.lessons.lesson_file import LessonFileError
 
 
 def test_one_error_class_names_the_kind_of_file_and_lists_its_problems():

@@ -5,11 +5,11 @@ from types import MappingProxyType
 import numpy as np
 import pytest
 
-from core.files.lesson_file import LessonFileError, load_lesson
 from core.image_order.flat_scene import TraceSettings
 from core.lessons.authoring import add_step, step_record
 from core.lessons.exercises import right_choices
 from core.lessons.facts import StepPipelines
+from core.lessons.lesson_file import LessonFileError, load_lesson
 from core.object_order.pipeline import RasterSettings
 from core.presets import culling_pyramid
 

@@ -10,8 +10,6 @@ import numpy as np
 import pytest
 from brute_force import exact_triangle_solve
 
-from core.files.lesson_file import FILES as LESSON_FILES
-from core.files.lesson_file import LessonFileError, from_dict, shipped_lessons
 from core.lessons.exercises import (
     HEAT_MAP,
     PICTURES,
@@ -24,6 +22,8 @@ from core.lessons.exercises import (
     withheld,
 )
 from core.lessons.facts import StepPipelines
+from core.lessons.lesson_file import FILES as LESSON_FILES
+from core.lessons.lesson_file import LessonFileError, from_dict, shipped_lessons
 
 LESSONS = shipped_lessons()
 BY_ID = {lesson.id: lesson for lesson in LESSONS}

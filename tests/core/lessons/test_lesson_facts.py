@@ -10,8 +10,8 @@ import numpy as np
 import pytest
 from checkout import ROOT
 
-from core.files.lesson_file import FILES, LessonFileError, from_dict, load_lesson, shipped_lessons
 from core.lessons.facts import check_lesson
+from core.lessons.lesson_file import FILES, LessonFileError, from_dict, load_lesson, shipped_lessons
 
 LESSONS = shipped_lessons()
 BY_ID = {lesson.id: lesson for lesson in LESSONS}

@@ -5,8 +5,8 @@ import pytest
 from verdict_scenes import _down
 
 from core.files import scene_file
-from core.files.lesson_file import LessonFileError, from_dict, shipped_lessons
 from core.lessons.facts import check_lesson
+from core.lessons.lesson_file import LessonFileError, from_dict, shipped_lessons
 from core.scene import Scene
 from core.shapes import box
 

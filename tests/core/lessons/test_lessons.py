@@ -10,7 +10,10 @@ import pytest
 from brute_force import hit_triangle
 
 from core import presets
-from core.files.lesson_file import (
+from core.image_order.flat_scene import TraceSettings
+from core.image_order.ray_tracing import render_trace
+from core.image_order.ray_tree import trace_pixel
+from core.lessons.lesson_file import (
     OVERLAYS,
     PANES,
     Lesson,
@@ -20,9 +23,6 @@ from core.files.lesson_file import (
     load_lesson,
     shipped_lessons,
 )
-from core.image_order.flat_scene import TraceSettings
-from core.image_order.ray_tracing import render_trace
-from core.image_order.ray_tree import trace_pixel
 from core.object_order.pipeline import render_raster
 from core.presets_trace import PRESETS_TRACE
 from core.scene import Material, Scene

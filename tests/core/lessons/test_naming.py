@@ -2,8 +2,8 @@
 and the whole-word names it and the window's name labels read."""
 
 from core import presets
-from core.files.lesson_file import from_dict
 from core.lessons.facts import check_lesson
+from core.lessons.lesson_file import from_dict
 from core.lessons.naming import named_objects
 
 

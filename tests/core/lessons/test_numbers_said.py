@@ -2,8 +2,8 @@
 
 import mpmath
 
-from core.files.lesson_file import from_dict
 from core.lessons.facts import check_lesson, solve_intersection
+from core.lessons.lesson_file import from_dict
 from core.lessons.numbers_said import unchecked_numbers
 
 SEGMENT = {"origin": [2, 1, 2], "end": [10, 6, 6], "center": [6, 4, 6], "radius": 10}

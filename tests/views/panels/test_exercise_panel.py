@@ -8,7 +8,7 @@ from PySide6.QtWidgets import QApplication
 from qt_fixtures import shown_widget, wheel_over
 from shipped_exercises import seed_drawing
 
-from core.files.lesson_file import shipped_lessons
+from core.lessons.lesson_file import shipped_lessons
 from views.panels.exercise_panel import FIRST_TRY, LATER, REVEALED, ExercisePanel, ExerciseProgress
 
 BY_ID = {lesson.id: lesson for lesson in shipped_lessons()}

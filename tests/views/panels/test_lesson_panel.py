@@ -8,7 +8,7 @@ from PySide6.QtCore import Qt
 from PySide6.QtWidgets import QMessageBox, QSpinBox, QVBoxLayout, QWidget
 from qt_fixtures import shown_widget
 
-from core.files.lesson_file import LessonStep, shipped_lessons
+from core.lessons.lesson_file import LessonStep, shipped_lessons
 from views.panels.lesson_panel import ClickerKeys, LessonPanel, lesson_label
 from views.text import formula_cache
 from views.text.math_view import MathView, _typeset

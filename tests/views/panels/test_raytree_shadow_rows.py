@@ -2,8 +2,8 @@
 
 import numpy as np
 
-from core.files.lesson_file import shipped_lessons
 from core.image_order.ray_tree import trace_pixel
+from core.lessons.lesson_file import shipped_lessons
 from views.panels.raytree_view import RayTreeWidget
 
 BY_ID = {lesson.id: lesson for lesson in shipped_lessons()}

@@ -4,7 +4,7 @@ import pytest
 from PySide6.QtGui import QFont
 from PySide6.QtWidgets import QApplication
 
-from core.files.lesson_file import shipped_lessons
+from core.lessons.lesson_file import shipped_lessons
 from views.panels.lesson_panel import LessonPanel
 from views.text.math_view import MIN_SHRINK, MathView, join_parts, split_formula
 

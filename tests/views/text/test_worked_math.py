@@ -14,10 +14,10 @@ import pytest
 from qt_fixtures import shown_widget
 
 from core import presets
-from core.files.lesson_file import shipped_lessons
 from core.image_order.intersect_sphere import intersect_sphere_segment
 from core.image_order.intersect_triangle import intersect_triangle
 from core.image_order.ray_tree import trace_pixel
+from core.lessons.lesson_file import shipped_lessons
 from views.text.math_view import MathView, MatrixView
 from views.text.worked_math import WorkedMath
 

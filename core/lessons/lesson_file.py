@@ -70,7 +70,7 @@ HIGHLIGHTS = ("polygon_step", "pixel", "face", "vertex", "ray", "object")
 FIGURE = re.compile(r"^VII\.(1[0-4]|[1-9])[a-d]?$")
 QUESTIONS = range(1, 7)
 #: The folder of the lessons that come with the program.
-FILES = Path(__file__).parent.parent / "lessons" / "files"
+FILES = Path(__file__).parent / "files"
 MAX_FILE_BYTES = 10_000_000  # room for inline scenes; a lesson's own text is far smaller
 MAX_NESTING = 40  # levels of JSON arrays and objects: a lesson's own few, and an inline scene's
 #: The longest text each field may hold, in characters: enough for a page, short enough to lay out.

@@ -12,7 +12,7 @@ import pytest
 
 from core import presets
 from core.files import scene_file
-from core.files.lesson_file import FILES, MAX_CHARS, MAX_NESTING, LessonFileError, load_lesson
+from core.lessons.lesson_file import FILES, MAX_CHARS, MAX_NESTING, LessonFileError, load_lesson
 
 SHIPPED = json.loads((FILES / "02_observer.json").read_text())
 
