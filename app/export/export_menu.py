@@ -13,7 +13,7 @@
 
 The sheets and frames are those of ``python -m app export``
 (:mod:`app.export.picture_sheet`, :mod:`app.export.animation_frames`).  Animations render
-off the GUI thread (:class:`app.window.workers.Renderer`) behind a progress dialog
+off the GUI thread (:class:`app.renders.Renderer`) behind a progress dialog
 with Cancel.  A picture is taken on the GUI thread (the 3D pane's from VTK, which
 lives there) and encoded and written off it; :meth:`ExportMenu.writing` lists the
 files on their way, the status bar says when each is written.  Every file is
@@ -36,6 +36,7 @@ from PySide6.QtCore import QObject, Qt, QThreadPool, QTimer, Signal
 from PySide6.QtGui import QAction
 from PySide6.QtWidgets import QApplication, QInputDialog, QMenu, QMessageBox, QProgressDialog
 
+from app import render_budget
 from app.export.animation_frames import MAX_FRAMES, orbit_frames, steps_problem, zbuffer_steps
 from app.export.image_files import (
     ANIMATION_EXTENSIONS,
@@ -48,8 +49,7 @@ from app.export.image_files import (
 from app.export.pane_pictures import PanePicture, tab_pictures
 from app.export.picture_sheet import four_views
 from app.export.ray_tree_json import ray_tree_json
-from app.window import render_budget
-from app.window.workers import Renderer
+from app.renders import Renderer
 from core import budget
 from core.files.safe_files import write_atomic
 from core.srgb import srgb_to_linear

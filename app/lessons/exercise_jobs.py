@@ -3,7 +3,7 @@
 Judging an answer, revealing it or finding a pixel to "show me" runs the step's
 scene through a pipeline (up to a second on the lecture scene, more for a pixel
 search), so :class:`views.panels.exercise_panel.ExercisePanel` hands the work to this
-runner, which does it on the thread pool (:class:`app.window.workers.Renderer`, the
+runner, which does it on the thread pool (:class:`app.renders.Renderer`, the
 newest request wins) and calls back on the GUI thread.
 """
 
@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from PySide6.QtCore import QObject
 
-from app.window.workers import Renderer
+from app.renders import Renderer
 
 
 class ExerciseJobs(QObject):

@@ -2,7 +2,7 @@
 
 :func:`core.lessons.facts.check_step` runs each step's scene through the
 pipelines; for a lesson of many steps that takes seconds, so
-:class:`LessonFactCheck` runs it as a job (:class:`app.window.workers.Renderer`, the
+:class:`LessonFactCheck` runs it as a job (:class:`app.renders.Renderer`, the
 newest lesson opened wins), reports progress in the status bar and, when a
 fact does not hold, a highlight is not named by its step's words or a number is no
 fact's, opens a dialog listing every failure in the words of ``python -m app lesson check``.
@@ -13,7 +13,7 @@ from __future__ import annotations
 from PySide6.QtCore import QObject
 from PySide6.QtWidgets import QMessageBox, QWidget
 
-from app.window.workers import Renderer
+from app.renders import Renderer
 from core.in_words import counted
 from core.lessons.facts import check_lesson
 

@@ -1,1 +1,1 @@
-"""The main window's wiring: its model, tabs, workers, layout, scene editor and session."""
+"""The main window's wiring: its model, tabs, layout, scene editor and session (its renders: app.renders)."""

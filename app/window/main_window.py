@@ -3,7 +3,7 @@
 No algorithms and no drawing live here.  The model (:class:`app.window.state.SceneModel`)
 holds the window's state; panels write to it and views follow its signals.
 When each tab renders (only the visible one; previews while the observer
-moves) is decided by :class:`app.window.workers.RenderSchedule`.
+moves) is decided by :class:`app.renders.RenderSchedule`.
 
 Tabs are registered in :data:`app.window.tabs.TABS` and found by name,
 ``window.tab("image order")``.
@@ -32,6 +32,7 @@ from PySide6.QtWidgets import (
     QWidget,
 )
 
+from app import render_budget
 from app.export.export_menu import ExportMenu
 from app.lessons.asked_scene import AskedScene
 from app.lessons.exercise_jobs import ExerciseJobs
@@ -42,7 +43,8 @@ from app.lessons.withheld_answers import WithheldAnswers
 from app.process import gui_thread_collection
 from app.process.lock_turns import hand_over_often
 from app.process.long_lived import set_aside_once_loaded
-from app.window import render_budget, session
+from app.renders import Renderer, RenderSchedule
+from app.window import session
 from app.window.background_compile import BackgroundCompile
 from app.window.dropped_files import DroppedFiles
 from app.window.first_frame import AfterFirstFrame
@@ -50,7 +52,6 @@ from app.window.scene_editor import SceneEditor
 from app.window.state import SceneModel
 from app.window.tabs import TABS
 from app.window.window_layout import LEFT_SHARE, dock_action, fit_window, keys_only_in_front, tabbed_dock
-from app.window.workers import Renderer, RenderSchedule
 from core import presets
 from core.files import scene_file
 from core.files.mesh_files import read_mesh

@@ -24,9 +24,9 @@ from PySide6.QtCore import QObject
 from PySide6.QtGui import QAction, QKeySequence, QUndoStack
 from PySide6.QtWidgets import QMenu, QMessageBox
 
+from app.renders import Renderer
 from app.window.undo_commands import SceneEdit
 from app.window.window_layout import dock_action, in_front, tabbed_dock
-from app.window.workers import Renderer
 from core import checked_edits
 from core.files import scene_file
 from core.files.mesh_files import EXTENSIONS, read_mesh

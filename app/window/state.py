@@ -57,7 +57,7 @@ class SceneModel(QObject):
     Attributes
     ----------
     memory_limit : renders estimated to need more memory than this many bytes
-        are refused (:mod:`app.window.render_budget`); ``None``: half of the memory
+        are refused (:mod:`app.render_budget`); ``None``: half of the memory
         available when each would start.
     """
 

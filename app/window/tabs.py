@@ -9,7 +9,7 @@ A tab is any object with
 - ``widget`` : the QWidget shown under the tab;
 - ``overlays`` : names of the 3D-pane overlays that belong to it (shown only
   while it is visible; see :mod:`views.scene3d.scene_overlays`);
-- ``job(scene, preview)`` : a job for :class:`app.window.workers.Renderer` that
+- ``job(scene, preview)`` : a job for :class:`app.renders.Renderer` that
   renders ``scene`` for this tab, or ``None`` if the tab has nothing to
   render (a panel that computes on its own, like Hard cases: then its ``idle``
   text says where the work happens, in the progress bar).  With
@@ -26,7 +26,7 @@ A tab is any object with
   every image pane of ``widget`` (see :mod:`app.export.pane_pictures`).
 - optionally ``cost(scene, preview)`` : what ``job(scene, preview)`` will cost, a
   :class:`core.budget.Estimate`; a job over the memory budget never starts
-  (see :mod:`app.window.render_budget`).
+  (see :mod:`app.render_budget`).
 
 Adding a tab is one line: append its class to :data:`TABS` (it is built as
 ``cls(model)`` with the window's :class:`app.window.state.SceneModel`).
@@ -42,7 +42,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from app.export.compare_pictures import comparison_pictures
-from app.window.workers import Renderer, Waiting
+from app.renders import Renderer, Waiting
 from core import budget
 from core.accuracy.supersampling import trace_adaptive
 from core.accuracy.sweep import ADAPTIVE_N

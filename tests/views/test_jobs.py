@@ -180,7 +180,7 @@ def test_a_job_whose_runner_is_deleted_stops_at_its_next_report(qtbot):
 
 
 def test_a_run_never_started_lets_go_of_its_job(qtbot):
-    # A render superseded in the turn it was asked for never starts (app.window.workers): what its
+    # A render superseded in the turn it was asked for never starts (app.renders): what its
     # job held must not be kept for it.
     freed = []
 

@@ -4,7 +4,8 @@ import pytest
 from checkout import ROOT
 from window_helpers import RENDER_TIMEOUT_MS
 
-from app.window import background_compile, main_window, tabs, workers
+from app import renders
+from app.window import background_compile, main_window, tabs
 from app.window.main_window import MainWindow
 from core import presets
 from core.image_order import ray_tracing
@@ -51,7 +52,7 @@ def test_an_image_that_ends_a_wait_is_never_shown_beside_it(qtbot, monkeypatch):
     # appear while the bar still says the kernels compile.  Here every partial result but a job's
     # first is dropped, so each render ends that way.
     monkeypatch.setattr(ray_tracing, "compiled_for", lambda accel: False)
-    monkeypatch.setattr(workers, "PROGRESS_PER_SECOND", 1e-6)
+    monkeypatch.setattr(renders, "PROGRESS_PER_SECOND", 1e-6)
     win, seen = _open(qtbot)
     first_look = [k for k, (_, note) in enumerate(seen) if note == tabs.FIRST_LOOK]
     assert first_look and "compiling the tracer's kernels" in seen[first_look[0]][0]

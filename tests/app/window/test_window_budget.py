@@ -18,7 +18,7 @@ from checkout import ROOT
 from PySide6.QtWidgets import QMessageBox
 from window_helpers import RENDER_TIMEOUT_MS, open_scene_file
 
-from app.window import render_budget
+from app import render_budget
 from core import budget, presets
 from core.files import scene_file
 from core.scene import PointLight

@@ -13,7 +13,7 @@ from dataclasses import dataclass
 
 from PySide6.QtCore import QObject, QThreadPool, QTimer, Signal
 
-from app.window import render_budget
+from app import render_budget
 from core import give_way
 from views.jobs import JobRun, JobRunner
 from views.panels.pane_cover import cover, uncover
@@ -71,7 +71,7 @@ class RenderSchedule(QObject):
       camera, never a queue; once the observer rests, the full render starts.
     - A newer camera supersedes a running full render at its next band, and a
       full result is shown only for the scene it was rendered from.
-    - A job over the memory budget never starts (:mod:`app.window.render_budget`): the
+    - A job over the memory budget never starts (:mod:`app.render_budget`): the
       tab's status says why and what to reduce.
 
     Tabs are those of :mod:`app.window.tabs` (``title``, ``job(scene, preview)``,

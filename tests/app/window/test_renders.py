@@ -5,7 +5,7 @@ import os
 import threading
 import time
 
-from app.window.workers import PROGRESS_PER_SECOND, Renderer
+from app.renders import PROGRESS_PER_SECOND, Renderer
 from core.give_way import NICE
 
 

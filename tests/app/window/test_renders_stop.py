@@ -1,13 +1,13 @@
 """Cancel in the window stops a compiled render that would run for hours (issue 35).
 
 The job traces 90,000 triangles without acceleration at 800 x 600 (hours).  Once it is inside
-the render, Cancel (:meth:`app.window.workers.Renderer.cancel`) raises the kernel's stop flag and the
+the render, Cancel (:meth:`app.renders.Renderer.cancel`) raises the kernel's stop flag and the
 pool thread is free again: no result and no failure are delivered.
 """
 
 import threading
 
-from app.window.workers import Renderer
+from app.renders import Renderer
 from core.camera import Camera
 from core.image_order.ray_tracing import TraceSettings, render_trace
 from core.scene import PointLight, Scene
