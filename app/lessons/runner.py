@@ -147,6 +147,7 @@ class LessonRunner:
     def _apply(self, step: LessonStep) -> None:
         w, model = self.window, self.window.model
         self.step = step
+        w.show_pictures_whole()  # (also where the scene is the last step's)
         w.scene_path = None
         w.setWindowTitle(f"Render Explorer — lesson: {step.title}")
         model.set_trace_settings(step.image_order)

@@ -61,7 +61,7 @@ from core.presets_trace import PRESETS_TRACE
 from core.scene import Scene
 from views.dock_title import DockTitle
 from views.file_dialogs import ask_open, ask_save
-from views.images.image_view import PICTURE_GESTURES, PICTURE_KEYS
+from views.images.image_view import PICTURE_GESTURES, PICTURE_KEYS, ImageView
 from views.keyboard_focus import follow_focus
 from views.on_screen import KeepWindowsOnScreen
 from views.panels.camera_panel import CameraPanel
@@ -207,6 +207,7 @@ class MainWindow(QMainWindow):
         self.renders.refused.connect(lambda refusal: self.statusBar().showMessage(refusal, 10000))
         self.renders.rested.connect(self._observer_rested)
         self.model.ray_pixel_changed.connect(self._ray_pixel_changed)
+        self.model.scene_changed.connect(lambda _: self.model.scene_was_edited or self.show_pictures_whole())
         self.tab_widget.currentChanged.connect(self._tab_shown)
         self.ray_tree = None
         self._tree_renderer = Renderer(self)
@@ -340,6 +341,12 @@ class MainWindow(QMainWindow):
     def current(self):
         """The visible tab."""
         return self.tabs[self.tab_widget.currentIndex()]
+
+    def show_pictures_whole(self) -> None:
+        """Every picture shown whole, not zoomed in: a new scene (a file, an example) or a lesson step,
+        whose pictures may have the pixel count of the last ones and keep their zoom otherwise."""
+        for view in self.findChildren(ImageView):
+            view.set_zoom(1.0, None)
 
     def showing_full(self, name: str) -> bool:
         """Whether tab ``name`` shows the full render of the current scene and settings, and the

@@ -5,6 +5,7 @@ Enter answers a click-a-pixel exercise with the pixel picked."""
 from hand_rays import shadow_blockers
 from PySide6.QtCore import Qt
 from PySide6.QtWidgets import QApplication, QCheckBox
+from qt_fixtures import wheel_over
 from window_helpers import RENDER_TIMEOUT_MS
 
 from app.window.window_layout import in_front
@@ -125,3 +126,29 @@ def test_the_object_order_buffers_zoom_together_and_the_keys_zoom_not_the_observ
     qtbot.keyClick(image, Qt.Key.Key_0)
     assert image.zoom == depth.zoom == 1.0
     assert "Scroll" in window.keys_text() and "zoom" in window.keys_text()
+
+
+def test_a_lesson_step_or_a_new_scene_shows_the_pictures_whole_the_observer_moving_keeps_the_zoom(
+        qtbot, window):
+    """Zoomed into the lecture scene's pixels, the next lesson step (here one of other pixels at the same
+    count) would have shown its picture zoomed into wherever that was."""
+    lessons = window.lesson_panel
+    k = LESSONS["rasterization"]
+    lessons.select(k, 1)  # the lecture scene, 320 x 240
+    panel = window.tab("object order").widget
+    qtbot.waitUntil(lambda: panel.image.qimage is not None, timeout=RENDER_TIMEOUT_MS)
+    assert wheel_over(panel.image, panel.image.rect().center(), 4)
+    assert panel.image.zoom > 1 and panel.depth.image.zoom > 1
+    window.model.set_camera(window.model.camera.replace(eye=(0.5, 1.6, 6.2)))  # the observer moves
+    assert panel.image.zoom > 1
+    size = (window.model.camera.width, window.model.camera.height)
+    other = next((i, j) for i, lesson in enumerate(shipped_lessons()) for j, step in enumerate(lesson.steps)
+                 if (i, j) != (k, 1) and "object order" in step.panes
+                 and (step.scene.camera.width, step.scene.camera.height) == size)
+    lessons.select(*other)  # another step, pictures of as many pixels
+    assert panel.image.zoom == panel.depth.image.zoom == 1.0
+    assert wheel_over(panel.image, panel.image.rect().center(), 4)
+    opened = next(step.scene for lesson in shipped_lessons() for step in lesson.steps
+                  if step.scene != window.model.scene)
+    window.model.set_scene(opened)  # another scene, as from a file
+    assert panel.image.zoom == panel.depth.image.zoom == 1.0
