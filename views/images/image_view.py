@@ -198,8 +198,9 @@ class ImageView(QWidget):
         """Show the picture at ``zoom_`` around ``focus`` (kept where the picture covers the pane)."""
         if self._image is not None:
             focus = zoom.kept_focus(self._room_size(), self._picture_size(), zoom_, focus)
-        self.zoom, self.focus = zoom_, focus
-        self.update()
+        if (zoom_, focus) != (self.zoom, self.focus):  # (a lesson step sets every picture whole)
+            self.zoom, self.focus = zoom_, focus
+            self.update()
 
     def _zoom_by(self, factor: float, anchor: QPointF) -> None:
         """The user zooms by ``factor`` (0: whole again) about the widget position ``anchor``."""
