@@ -59,13 +59,9 @@ from core.image_order.kernels.intrinsics.bands import BAND_ROWS, take_band
 from core.image_order.kernels.intrinsics.stop_flag import flag_raised
 from core.image_order.kernels.jit import jit, jit_allocating, jit_inline, jit_parallel
 from core.image_order.kernels.shade import shade_hit
+from core.image_order.kernels.shared_work import shared_work, work_done
 from core.image_order.ray_casting import pixel_on_image_plane, primary_ray_through, view_depth
 
-#: Each thread's counters lie 256 bytes after the previous thread's.  Every ray adds to them, so
-#: two threads must never share (or prefetch) one cache line of them: numpy aligns the array to
-#: 16 bytes only, and with rows of one 64-byte line (the stride was 8) the two threads' rows
-#: straddled a shared line; the adds then took about a sixth of a lecture frame's samples (perf).
-_COUNTER_STRIDE = 32
 PRIMARY_STAGE, SHADE_STAGE, SECONDARY_STAGE = range(3)
 
 
@@ -396,9 +392,8 @@ def render_pass(stage, cam, xs, ys, hits, depth, objects, color, children, spawn
     -------
     (N_COUNTERS,) int64, rays by kind and work done.
     """
-    queue = np.zeros(1, np.int64)
-    counters = np.zeros((n_workers, _COUNTER_STRIDE), np.int64)
+    queue, counters = shared_work(n_workers)
     for w in prange(n_workers):
         _worker(stage, queue, cam, xs, ys, hits, depth, objects, color, children, spawned, materials, lights,
                 opts, geo, grid, bvh, bvh_depth, counters[w], heat)
-    return counters.sum(axis=0)[:flat_layout.N_COUNTERS]
+    return work_done(counters)

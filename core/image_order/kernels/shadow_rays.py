@@ -37,10 +37,10 @@ from core.image_order.kernels.bvh_packet import (
 from core.image_order.kernels.bvh_traverse import bvh_closest
 from core.image_order.kernels.intrinsics.bands import take_band
 from core.image_order.kernels.jit import jit_allocating, jit_parallel
+from core.image_order.kernels.shared_work import shared_work, work_done
 
 #: Rays per chunk a thread takes: neighbouring rays share the nodes they visit in the core's cache.
 CHUNK_RAYS = 16 * PACKET_SIZE
-_COUNTER_STRIDE = 32  # each thread's counters on cache lines of their own, as in kernels.render
 
 
 @jit_allocating
@@ -90,9 +90,8 @@ def trace_shadow_rays(origins, directions, t_min, t_max, bvh, n_spheres, bvh_dep
     -------
     (N_COUNTERS,) int64, shadow rays traced and the box and primitive tests.
     """
-    queue = np.zeros(1, np.int64)
-    counters = np.zeros((n_workers, _COUNTER_STRIDE), np.int64)
+    queue, counters = shared_work(n_workers)
     for w in prange(n_workers):
         _worker(queue, origins, directions, t_min, t_max, bvh, n_spheres, bvh_depth, blockers, blocker_t,
                 counters[w])
-    return counters.sum(axis=0)[:flat_layout.N_COUNTERS]
+    return work_done(counters)
