@@ -416,8 +416,9 @@ def _shadow_rays(mesh, light, origins, directions, prims, ts, pixels=None):
     Each shadow ray starts at its hit point moved off the triangle towards the light by
     ``_FLOAT32_SLACK`` rounding steps of float32 (Embree works in float32, so our float64 offset
     would let it find the triangle the ray starts on), and ends at the light (``t_max``, the unit
-    direction's length to it).  All numbers are rounded to float32, so that both tracers trace
-    exactly the same rays.  Returns ``(origins, directions, t_min, t_max)``, float64.
+    direction's length to it).  Returns ``(origins, directions, t_min, t_max)``, float32: both
+    tracers read these very arrays, Embree's numbers as they are, ours each widened to float64
+    (exactly), so that both trace exactly the same rays from the same bytes.
     """
     import numpy as np
 
@@ -437,9 +438,8 @@ def _shadow_rays(mesh, light, origins, directions, prims, ts, pixels=None):
     start = p[kept] + _FLOAT32_SLACK * 2.0**-24 * magnitude * normals[kept]
     to_light = light - start
     distance = np.linalg.norm(to_light, axis=1)
-    rounded = [np.asarray(a, np.float32).astype(float)
-               for a in (start, to_light / distance[:, None], distance)]
-    return rounded[0], rounded[1], np.zeros(len(distance)), rounded[2]
+    rounded = [np.ascontiguousarray(a, np.float32) for a in (start, to_light / distance[:, None], distance)]
+    return rounded[0], rounded[1], np.zeros(len(distance), np.float32), rounded[2]
 
 
 #: How many rounding steps of float32 (of the scene's largest coordinate) two tracers' hits may

@@ -293,9 +293,9 @@ def _warm_up_shadow_rays() -> None:
     flat = trace_scene(scene)
     structure, _, _ = flat.geometry.accel("bvh")
     k = kernel_inputs(scene, TraceSettings(accel="bvh"), effects_plan(scene), flat, structure)
-    origins, directions = np.zeros((2, 3)), np.ones((2, 3))
-    trace_shadow_rays(origins, directions, np.zeros(2), np.ones(2), k.bvh, k.geo[flat_layout.GEO_N_SPHERES],
-                      k.bvh_depth, 1, np.empty(2, np.int64), np.empty(2))
+    origins, directions = np.zeros((2, 3), np.float32), np.ones((2, 3), np.float32)
+    trace_shadow_rays(origins, directions, np.zeros(2, np.float32), np.ones(2, np.float32), k.bvh,
+                      k.geo[flat_layout.GEO_N_SPHERES], k.bvh_depth, 1, np.empty(2, np.int64), np.empty(2))
 
 
 compile_shadow_rays = WarmUp(_warm_up_shadow_rays, _KERNELS, "trace", "shadow rays")

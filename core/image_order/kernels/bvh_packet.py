@@ -168,7 +168,8 @@ def _derive(rays, axes, r, o, d):
 @jit_inline
 def set_rays(rays, axes, origins, directions, t_min, t_max, start, n):
     """Make rays ``0 .. n-1`` of the packet rays ``start .. start + n - 1`` of the arrays
-    (:func:`set_ray`; ``origins`` and ``directions`` (N, 3)).
+    (:func:`set_ray`; ``origins`` and ``directions`` (N, 3), ``t_min`` and ``t_max`` (N,), all
+    float32, each number widened to float64).
 
     Their numbers are copied in first (a whole packet's coordinates three rows at once,
     :func:`~core.image_order.kernels.intrinsics.rows.deinterleave3`); then what follows from

@@ -72,8 +72,8 @@ class Query:
 
     def __call__(self, o, d, t_max=math.inf, any_hit=False):
         k = self.k
-        return closest_hit(k.method, tuple(map(float, o)), tuple(map(float, d)), 0.0, t_max, any_hit, k.geo,
-                           k.grid, k.bvh, self.scratch, self.counters)
+        return closest_hit(k.method, tuple(map(float, o)), tuple(map(float, d)), 0.0, float(t_max), any_hit,
+                           k.geo, k.grid, k.bvh, self.scratch, self.counters)
 
 
 @pytest.fixture(scope="module")
@@ -110,13 +110,15 @@ def test_every_method_agrees_on_shadow_rays(scene):
 
 def test_a_batch_of_shadow_rays_on_all_cores_is_blocked_where_brute_force_is_blocked(scene):
     """The bench's shadow-ray kernel: each ray blocked exactly where brute force finds a crossing,
-    with the blocker and ``t`` of the BVH's any-hit walk for that ray alone."""
+    with the blocker and ``t`` of the BVH's any-hit walk for that ray alone.  The kernel takes the
+    rays' numbers in float32, as the bench makes them."""
     rng = np.random.default_rng(5)
     origins, directions = random_rays(rng, 800)
     lengths = rng.uniform(0.5, 12.0, size=len(origins))
+    origins, directions, lengths = (a.astype(np.float32) for a in (origins, directions, lengths))
     bvh, brute = Query(scene, "bvh"), Query(scene, "none")
     blockers, blocker_t = np.empty(len(origins), np.int64), np.empty(len(origins))
-    counters = trace_shadow_rays(origins, directions, np.zeros(len(origins)), lengths, bvh.k.bvh,
+    counters = trace_shadow_rays(origins, directions, np.zeros(len(origins), np.float32), lengths, bvh.k.bvh,
                                  bvh.k.geo[GEO_N_SPHERES], bvh.k.bvh_depth, 2, blockers, blocker_t)
     for r, (o, d, length) in enumerate(zip(origins, directions, lengths, strict=True)):
         assert (blockers[r] >= 0) == (brute(o, d, length)[0] >= 0), r
@@ -167,9 +169,10 @@ def test_shadow_rays_of_neighbouring_hits_in_packets_find_the_blocker_each_finds
         t_max = np.full(n, math.inf)
     elif light == "every other ray without an end":  # a packet's far ends, some infinitely far
         t_max[1::2] = math.inf
+    origins, directions, t_max = (a.astype(np.float32) for a in (origins, directions, t_max))
     bvh, brute = Query(scene, "bvh"), Query(scene, "none")
     blockers, blocker_t = np.empty(n, np.int64), np.empty(n)
-    counters = trace_shadow_rays(origins, directions, np.zeros(n), t_max, bvh.k.bvh,
+    counters = trace_shadow_rays(origins, directions, np.zeros(n, np.float32), t_max, bvh.k.bvh,
                                  bvh.k.geo[GEO_N_SPHERES], bvh.k.bvh_depth, 2, blockers, blocker_t)
     spheres_blocking = 0
     for r in range(n):

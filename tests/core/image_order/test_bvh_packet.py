@@ -313,18 +313,24 @@ def test_sixteen_rays_against_one_box_enter_where_each_alone_enters_bit_for_bit(
 @njit
 def _cone_and_rays(node, near, far, origins, directions, t_max):
     """The packet's cone's boxes (bits), whether the cone serves, and each ray's own mask
-    (slab_mask4, its lone walk's test: entering anywhere in ``[0, t_max]``)."""
+    (slab_mask4, its lone walk's test: entering anywhere in ``[0, t_max]``).  The rays come in
+    float32, as the batch's do; each ray's own test takes its numbers widened, as the packet does."""
     n = origins.shape[0]
     # The lanes past the packet's rays hold what an earlier packet left there: huge numbers here.
     rays, axes = np.full(RAY_FIELDS * PACKET_SIZE, -1e300), np.empty(AXIS_FIELDS * PACKET_SIZE, np.int64)
-    set_rays(rays, axes, origins, directions, np.zeros(n), t_max, 0, n)
+    set_rays(rays, axes, origins, directions, np.zeros(n, np.float32), t_max, 0, n)
     cone = _cone(rays, n)
     own = np.empty(n, np.int64)
     for r in range(n):
-        inverse = 1.0 / directions[r, 0], 1.0 / directions[r, 1], 1.0 / directions[r, 2]
-        own[r] = slab_mask4(node, near[0], near[1], near[2], far[0], far[1], far[2], origins[r, 0],
-                            origins[r, 1], origins[r, 2], inverse[0], inverse[1], inverse[2], 0.0, t_max[r])
+        o, d = origins[r].astype(np.float64), directions[r].astype(np.float64)
+        own[r] = slab_mask4(node, near[0], near[1], near[2], far[0], far[1], far[2], o[0], o[1], o[2],
+                            1.0 / d[0], 1.0 / d[1], 1.0 / d[2], 0.0, np.float64(t_max[r]))
     return _cone_may_enter(node, 0, cone), cone[-1], own
+
+
+def _narrow(*arrays):
+    """The arrays in float32, as the batch of shadow rays takes them."""
+    return tuple(np.asarray(a, np.float32) for a in arrays)
 
 
 @settings(max_examples=300, deadline=None)
@@ -342,6 +348,7 @@ def test_the_cone_of_shadow_rays_to_one_light_leaves_every_box_a_ray_enters(seed
     # fewer rays than sixteen (``n``).
     rng = np.random.default_rng(seed)
     node, origins, _, near, far = _node_and_packet(rng, 0.0, RAYS, origin_spread)
+    origins = origins.astype(np.float32).astype(float)  # the batch's numbers are float32's
     distance = rng.choice([1.0, 10.0, 1000.0])
     light = origins[0] + rng.normal(size=3) * distance
     to_light = light + rng.normal(scale=light_size * np.abs(light).max(), size=(RAYS, 3)) - origins
@@ -360,7 +367,7 @@ def test_the_cone_of_shadow_rays_to_one_light_leaves_every_box_a_ray_enters(seed
     sides = node.reshape(6, 4)
     sides[:3, 0] = np.nextafter((point - half).astype(np.float32), np.float32(-np.inf))
     sides[3:, 0] = np.nextafter((point + half).astype(np.float32), np.float32(np.inf))
-    may, serves, own = _cone_and_rays(node, near, far, origins, directions, t_max)
+    may, serves, own = _cone_and_rays(node, near, far, *_narrow(origins, directions, t_max))
     assert serves
     assert own[r] & 1  # the ray enters the tiny box
     entered = np.bitwise_or.reduce(own)
@@ -380,7 +387,7 @@ def test_the_cone_leaves_boxes_out_and_does_not_serve_rays_to_two_lights():
         ends = np.array(lights)[np.arange(RAYS) % len(lights)]
         directions = ends - origins
         near, far = np.array([0, 4, 8]), np.array([12, 16, 20])
-        may, ok, own = _cone_and_rays(node, near, far, origins, directions, np.ones(RAYS))
+        may, ok, own = _cone_and_rays(node, near, far, *_narrow(origins, directions, np.ones(RAYS)))
         assert ok == serves
         if serves:
             assert np.bitwise_or.reduce(own) == 0b1001 and may == 0b1001
@@ -403,13 +410,17 @@ def _packet_rows(origins, directions, t_min, t_max, start, n):
 @pytest.mark.parametrize("start, n", [(0, RAYS), (37, RAYS), (100 - RAYS, RAYS), (40, 7), (99, 1)])
 def test_a_packet_of_shadow_rays_holds_the_batchs_rays_from_its_start(start, n):
     # A whole packet's coordinates are copied three rows at once (rows.deinterleave3), a short
-    # one's one by one: either way ray r of the packet is ray start + r of the batch, exactly.
+    # one's one by one: either way ray r of the packet is ray start + r of the batch, exactly, its
+    # float32 numbers widened to float64 (tiny, huge and subnormal ones among them).
     rng = np.random.default_rng(start)
     origins, directions = rng.normal(size=(100, 3)), rng.normal(size=(100, 3))
+    origins[::7, 0], directions[3::11, 1], origins[5::13, 2] = 1e-44, 3e38, -1e-30
     t_min, t_max = rng.uniform(0.0, 1.0, 100), rng.uniform(1.0, 2.0, 100)
-    back = _packet_rows(origins, directions, t_min, t_max, start, n)
-    expected = np.hstack([origins, directions, t_min[:, None], t_max[:, None]])[start:start + n]
-    assert np.array_equal(back, expected)
+    narrow = [a.astype(np.float32) for a in (origins, directions, t_min, t_max)]
+    back = _packet_rows(*narrow, start, n)
+    expected = np.hstack([narrow[0], narrow[1], narrow[2][:, None], narrow[3][:, None]])[start:start + n]
+    assert back.dtype == np.float64 and np.array_equal(back, expected.astype(np.float64))
+    assert (back[:, :6] != np.hstack([origins, directions])[start:start + n]).any()  # rounded: float32's
 
 
 def test_a_packet_is_as_many_rays_as_a_row_of_copied_coordinates():

@@ -17,7 +17,8 @@ from numba.core import cgutils
 LANES = 4
 F64 = ir.DoubleType()
 I32 = ir.IntType(32)
-FOUR_F32 = ir.VectorType(ir.FloatType(), LANES)
+F32 = ir.FloatType()
+FOUR_F32 = ir.VectorType(F32, LANES)
 FOUR_F64 = ir.VectorType(F64, LANES)
 
 
@@ -37,7 +38,7 @@ def constant(value: float, width=LANES):
 def load(builder, data, index, vector_type):
     """The numbers at ``data[index]`` onwards as one vector of ``vector_type`` (aligned as one number)."""
     pointer = builder.bitcast(builder.gep(data, [index]), vector_type.as_pointer())
-    return builder.load(pointer, align=4 if vector_type is FOUR_F32 else 8)
+    return builder.load(pointer, align=4 if vector_type.element == F32 else 8)
 
 
 def fabs(builder, vector):
