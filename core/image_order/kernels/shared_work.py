@@ -34,8 +34,14 @@ COUNTER_STRIDE = 32
 @jit_allocating
 def shared_work(n_workers):
     """``(queue, counters)``: the threads' shared counter of work taken, (1,) int64 at 0, and
-    their counters, ``(n_workers, COUNTER_STRIDE)`` int64 zeros (row ``w`` is thread ``w``'s)."""
-    return np.zeros(1, np.int64), np.zeros((n_workers, COUNTER_STRIDE), np.int64)
+    their counters, ``(n_workers, COUNTER_STRIDE)`` int64 zeros (row ``w`` is thread ``w``'s).
+
+    Both are rows of one array, the queue first, so that it too has cache lines of its own: every
+    take of work writes it, and where it shared a line with a thread's counters, each take would
+    take that line from the thread adding to them.
+    """
+    rows = np.zeros((n_workers + 1, COUNTER_STRIDE), np.int64)
+    return rows[0, :1], rows[1:]
 
 
 @jit_allocating
