@@ -348,6 +348,17 @@ class MainWindow(QMainWindow):
         for view in self.findChildren(ImageView):
             view.set_zoom(1.0, None)
 
+    def frame_pictures(self) -> None:
+        """Zoom every picture in view onto what it singles out: a step's highlighted polygon, else
+        the picked pixel (:meth:`ImageView.frame_singled_out`), large enough for a lecture hall.
+        Pressed again, nothing having moved, they are shown whole."""
+        views = [view for view in self.findChildren(ImageView) if view.isVisible()]
+        before = [(view.zoom, view.focus) for view in views]
+        framed = [view.frame_singled_out() for view in views]
+        if any(framed) and [(view.zoom, view.focus) for view in views] == before:
+            for view in views:
+                view.set_zoom(1.0, None)
+
     def showing_full(self, name: str) -> bool:
         """Whether tab ``name`` shows the full render of the current scene and settings, and the
         pictures its panel makes of that render on a worker (the object-order step's) are painted."""
@@ -398,6 +409,9 @@ class MainWindow(QMainWindow):
         self._action(view, "Smaller text", lambda: self.scale_text(0.8),
                      QKeySequence.StandardKey.ZoomOut)
         self._action(view, "Re-render", self.rerender, "F5")
+        self._action(view, "Zoom the pictures to the highlight", self.frame_pictures, "Z",
+                     "Every picture in view zoomed onto its highlighted polygon, or its picked pixel; "
+                     "again: whole")
         for i, tab in enumerate(self.tabs):
             self._action(view, tab.title, lambda _=False, t=tab.title: self.show_tab(t), f"Ctrl+{i + 1}")
         self._action(view, "Show all panes", self.show_all_panes,

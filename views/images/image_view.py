@@ -11,7 +11,9 @@ A picture that picks pixels is reached with Tab too: focused, it wears a frame,
 the arrow keys move the picked pixel and Enter chooses it, as a click does
 (:data:`PICTURE_KEYS`).  Any picture zooms in and out with the mouse wheel, around the
 pointer, and a zoomed one moves with the right or middle button held (:mod:`views.images.zoom`);
-pictures of the same pixels shown side by side zoom together (:func:`zoom_together`).
+pictures of the same pixels shown side by side zoom together (:func:`zoom_together`).  Zoomed onto
+what it singles out (:meth:`ImageView.frame_singled_out`: a polygon's highlighted pixels, else the
+picked pixel), a small triangle fills the picture for a lecture hall.
 
 Renderers produce *linear* RGB; :func:`core.srgb.to_srgb8` encodes it for
 the screen.  That conversion, and the QImage, can be made off the GUI thread
@@ -45,6 +47,8 @@ PICKED_PAD_PX = 12.0
 """The picked pixel's frame is drawn this far around it at most (zoomed in, a pixel is larger)."""
 SHIFT_STEP = 10
 """Pixels a Shift+arrow moves the pick by (an arrow alone: one)."""
+PICKED_CONTEXT = 4
+"""Framed on a picked pixel (:meth:`ImageView.frame_singled_out`), this many pixels around it show too."""
 ARROWS = {Qt.Key.Key_Left: (-1, 0), Qt.Key.Key_Right: (1, 0), Qt.Key.Key_Up: (0, -1), Qt.Key.Key_Down: (0, 1)}
 ZOOM_KEYS = {Qt.Key.Key_Plus: zoom.STEP, Qt.Key.Key_Equal: zoom.STEP, Qt.Key.Key_Minus: 1 / zoom.STEP,
              Qt.Key.Key_0: 0.0}
@@ -166,7 +170,7 @@ class ImageView(QWidget):
             self.setAccessibleDescription(f"Click a pixel to pick it; arrow keys move the picked pixel, "
                                           f"Shift+arrows by {SHIFT_STEP}; + and - zoom, 0 shows it whole")
         self.setToolTip("Scroll to zoom in or out; drag with the right or middle button to move a zoomed "
-                        "picture")
+                        "picture; Z zooms the pictures onto the highlight")
         self.zoom = 1.0  # 1: the picture whole (views.images.zoom)
         self.zoom_modifier = Qt.KeyboardModifier.NoModifier  # what the wheel needs held to zoom
         self.focus: tuple[float, float] | None = None  # the picture's point at the pane's centre
@@ -219,7 +223,7 @@ class ImageView(QWidget):
         exercise's, the hard cases')."""
         self.zoom_modifier = Qt.KeyboardModifier.ControlModifier
         self.setToolTip("Ctrl+scroll to zoom in or out; drag with the right or middle button to move a "
-                        "zoomed picture")
+                        "zoomed picture; Z zooms the pictures onto the highlight")
 
     def _picture_size(self) -> tuple[float, float]:
         return float(self._image.width()), float(self._image.height())
@@ -247,6 +251,29 @@ class ImageView(QWidget):
         self._highlight_shape = None if mask is None else mask.shape
         self._highlight_color = QColor(color)
         self.update()
+
+    def singled_out(self) -> tuple[float, float, float, float] | None:
+        """The box around what the picture singles out, ``(x0, y0, x1, y1)`` in picture pixels
+        (corners): its highlighted pixels, else its picked pixel and :data:`PICKED_CONTEXT` pixels
+        around; None where it singles out nothing."""
+        if self._image is None:
+            return None
+        if (self._highlight is not None and len(self._highlight)
+                and self._highlight_shape == (self._image.height(), self._image.width())):
+            xs, ys = self._highlight[:, [0, 2]], self._highlight[:, [1, 3]]
+            return float(xs.min()), float(ys.min()), float(xs.max()), float(ys.max())
+        if self.picked is not None:
+            x, y = self.picked
+            return x - PICKED_CONTEXT, y - PICKED_CONTEXT, x + 1 + PICKED_CONTEXT, y + 1 + PICKED_CONTEXT
+        return None
+
+    def frame_singled_out(self) -> bool:
+        """Zoom onto what the picture singles out (:meth:`singled_out`, :func:`zoom.framing`);
+        whether it singles out anything."""
+        box = self.singled_out()
+        if box is not None:
+            self.set_zoom(*zoom.framing(self._room_size(), self._picture_size(), box))
+        return box is not None
 
     def set_edges(self, corners: np.ndarray | None, coming: bool = False) -> None:
         """A polygon's edges to draw over the grid (when :meth:`grid_shown`): ``corners`` (N, 2) in pixel

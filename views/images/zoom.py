@@ -24,6 +24,9 @@ STEP = 1.25
 """How much one notch of the mouse wheel (or one + key) zooms in."""
 MAX_CELL_PX = 96.0
 """Zoomed in until one pixel of the picture is this large on screen, and no further."""
+FRAMED_SHARE = 0.6
+"""Framed (:func:`framing`), a box of pixels takes this share of the room's width or height, the
+rest shows what lies around it."""
 
 Size = tuple[float, float]
 
@@ -77,3 +80,20 @@ def zoomed_about(room: Size, picture: Size, zoom: float, focus: tuple[float, flo
     scale = fitted_scale(room, picture) * new
     wanted = (point[0] - (anchor[0] - room[0] / 2) / scale, point[1] - (anchor[1] - room[1] / 2) / scale)
     return new, kept_focus(room, picture, new, wanted)
+
+
+def framing(room: Size, picture: Size,
+            box: tuple[float, float, float, float]) -> tuple[float, tuple[float, float]]:
+    """``(zoom, focus)`` that show ``box`` (``(x0, y0, x1, y1)``, picture pixels, corners) as large as
+    takes :data:`FRAMED_SHARE` of the room along its longer side, about its centre; the zoom kept
+    within 1 and :func:`max_zoom` (so a box as large as the picture shows it whole).
+
+    >>> framing((100, 100), (100, 100), (40.0, 40.0, 50.0, 50.0))  # 10 pixels in 60 screen pixels
+    (6.0, (45.0, 45.0))
+    >>> framing((100, 100), (10, 10), (0.0, 0.0, 10.0, 10.0))  # all the picture's pixels: whole
+    (1.0, (5.0, 5.0))
+    """
+    x0, y0, x1, y1 = box
+    wanted = FRAMED_SHARE * min(room[0] / max(x1 - x0, 1.0), room[1] / max(y1 - y0, 1.0))
+    new = min(max(wanted / fitted_scale(room, picture), 1.0), max_zoom(room, picture))
+    return new, kept_focus(room, picture, new, ((x0 + x1) / 2, (y0 + y1) / 2))

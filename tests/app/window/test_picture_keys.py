@@ -152,3 +152,67 @@ def test_a_lesson_step_or_a_new_scene_shows_the_pictures_whole_the_observer_movi
                   if step.scene != window.model.scene)
     window.model.set_scene(opened)  # another scene, as from a file
     assert panel.image.zoom == panel.depth.image.zoom == 1.0
+
+
+def _outline_extent(view) -> tuple[float, float, float, float] | None:
+    """Where the highlight's outline (its own magenta) is painted in ``view`` (a screenshot): its
+    bounding box's centre and size, as shares of the room the picture is drawn in (None: nowhere)."""
+    shot = view.grab().toImage()
+    xs, ys = [], []
+    for y in range(0, shot.height()):
+        for x in range(0, shot.width()):
+            colour = shot.pixelColor(x, y)
+            if (colour.red(), colour.green(), colour.blue()) == (0xFF, 0x2B, 0xD6):
+                xs.append(x)
+                ys.append(y)
+    if not xs:
+        return None
+    room = view.rect().adjusted(3, 3, -3, -3)  # image_view.FOCUS_MARGIN
+    return ((min(xs) + max(xs)) / 2 / view.width(), (min(ys) + max(ys)) / 2 / view.height(),
+            (max(xs) - min(xs)) / room.width(), (max(ys) - min(ys)) / room.height())
+
+
+def test_z_zooms_the_buffers_onto_the_highlighted_face_for_the_hall_and_again_shows_them_whole(qtbot, window):
+    """Presenting at x2 on a 1280 x 720 projector, the rasterization step's highlighted face of the cube
+    is a few screen pixels tall in the buffers.  View → Zoom the pictures to the highlight (Z) zooms
+    both onto it: its outline then spans 60% of each pane along one side and no more along the other,
+    in the middle; Z again shows them whole."""
+    window.presentation.set_presenting(True)
+    window.presentation.set_scale(2.0)
+    qtbot.waitUntil(window.presentation.settled)
+    try:
+        window.lesson_panel.select(LESSONS["rasterization"], 1)
+        panel = window.tab("object order").widget
+        image, depth = panel.image, panel.depth.image
+        qtbot.waitUntil(lambda: window.showing_full("object order") and _outline_extent(image) is not None,
+                        timeout=RENDER_TIMEOUT_MS)
+        whole = _outline_extent(image)
+        assert max(whole[2:]) < 0.35  # small before
+        window.activateWindow()
+        qtbot.waitUntil(window.isActiveWindow)
+        qtbot.keyClick(window, Qt.Key.Key_Z)
+        assert image.zoom > 2 and depth.zoom > 2  # each framed in its own pane
+        for view in (image, depth):
+            x, y, w, h = _outline_extent(view)
+            assert abs(max(w, h) - 0.6) < 0.05 and min(w, h) < 0.65, (w, h)
+            assert abs(x - 0.5) < 0.05 and abs(y - 0.5) < 0.05, (x, y)
+        qtbot.keyClick(window, Qt.Key.Key_Z)
+        assert image.zoom == depth.zoom == 1.0
+        assert _outline_extent(image) == whole
+        assert "Zoom the pictures to the highlight" in window.keys_text()
+    finally:
+        window.presentation.set_presenting(False)
+
+
+def test_z_zooms_the_traced_picture_onto_its_picked_pixel(qtbot, window):
+    """With no highlight, a picture is framed on its picked pixel (the shadow step's, here) and the
+    few pixels around it: the picked pixel is drawn in the middle of the pane, large."""
+    window.lesson_panel.select(LESSONS["ray_casting"], 1)
+    image = window.tab("image order").widget.image
+    qtbot.waitUntil(lambda: image.picked == (230, 155), timeout=RENDER_TIMEOUT_MS)
+    window.activateWindow()
+    qtbot.waitUntil(window.isActiveWindow)
+    qtbot.keyClick(window, Qt.Key.Key_Z)
+    assert image.zoom > 4
+    centre, picked = image.rect().center(), image.widget_pos(230, 155)
+    assert abs(picked.x() - centre.x()) <= image.zoom and abs(picked.y() - centre.y()) <= image.zoom

@@ -190,3 +190,54 @@ def test_zoomed_in_the_picture_follows_the_pixel_the_arrow_keys_pick(qtbot):
     assert view.picked == (32, 2)
     assert _drawn_at(view, view.widget_pos(32, 2)) == (32, 2)
     assert view.rect().contains(view.widget_pos(32, 2).toPoint())
+
+
+def _span(view: ImageView, horizontal: bool, pixels: range) -> int:
+    """Screen pixels of the line through the middle of the pane, across (``horizontal``) or down,
+    where the picture's columns (or rows) ``pixels`` are painted (a screenshot; marks over them, the
+    highlight's outline, not counted)."""
+    shot = view.grab().toImage()
+    room = view.rect().adjusted(3, 3, -3, -3)  # image_view.FOCUS_MARGIN
+    centre = room.center()
+    line = range(room.left(), room.right() + 1) if horizontal else range(room.top(), room.bottom() + 1)
+    count = 0
+    for p in line:
+        colour = shot.pixelColor(p, centre.y()) if horizontal else shot.pixelColor(centre.x(), p)
+        if colour.blue() == 200:  # a pixel of the picture
+            count += ((colour.red() if horizontal else colour.green()) - 10) // 4 in pixels
+    return count
+
+
+def test_framed_the_highlighted_pixels_take_three_fifths_of_the_pane_in_its_middle(qtbot):
+    view = _view(qtbot)  # 40 x 30 pixels in 400 x 300
+    mask = np.zeros((H, W), bool)
+    mask[5:8, 10:18] = True  # 8 x 3 pixels: the width decides
+    view.set_highlight(mask)
+    assert view.frame_singled_out()
+    room = view.rect().adjusted(3, 3, -3, -3)
+    assert _drawn_at(view, QPointF(room.center())) in {(13, 6), (14, 6)}  # its middle in the middle
+    across, down = _span(view, True, range(10, 18)), _span(view, False, range(5, 8))
+    # (the outline, painted just inside the pixels' border on either side, hides up to 12 screen pixels)
+    assert abs(across - zoom.FRAMED_SHARE * room.width()) <= 12, across
+    assert abs(down - across * 3 / 8) <= 12, (down, across)
+
+
+def test_framed_with_no_highlight_the_picked_pixel_and_a_few_around_it_fill_three_fifths(qtbot):
+    view = _view(qtbot)
+    view.set_picked((20, 15))
+    assert view.frame_singled_out()
+    room = view.rect().adjusted(3, 3, -3, -3)
+    assert _drawn_at(view, QPointF(room.center())) == (20, 15)
+    context = image_view.PICKED_CONTEXT
+    down = _span(view, False, range(15 - context, 16 + context))  # 9 rows of 30: the height decides
+    assert abs(down - zoom.FRAMED_SHARE * room.height()) <= 10, down  # less the picked pixel's frame
+
+
+def test_a_picture_that_singles_out_nothing_or_all_its_pixels_stays_whole(qtbot):
+    view = _view(qtbot)
+    assert not view.frame_singled_out() and view.zoom == 1.0
+    view.set_highlight(np.ones((H, W), bool))
+    assert view.frame_singled_out() and view.zoom == 1.0
+    room = view.rect().adjusted(3, 3, -3, -3)
+    assert _drawn_at(view, QPointF(room.left() + 5, room.top() + 5)) == (0, 0)
+    assert _drawn_at(view, QPointF(room.right() - 5, room.bottom() - 5)) == (W - 1, H - 1)
