@@ -355,7 +355,9 @@ class MainWindow(QMainWindow):
         views = [view for view in self.findChildren(ImageView) if view.isVisible()]
         before = [(view.zoom, view.focus) for view in views]
         framed = [view.frame_singled_out() for view in views]
-        if any(framed) and [(view.zoom, view.focus) for view in views] == before:
+        if not any(framed):
+            self.statusBar().showMessage("Nothing to zoom onto: no highlighted polygon or picked pixel", 8000)
+        elif [(view.zoom, view.focus) for view in views] == before:
             for view in views:
                 view.set_zoom(1.0, None)
 

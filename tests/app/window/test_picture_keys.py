@@ -216,3 +216,15 @@ def test_z_zooms_the_traced_picture_onto_its_picked_pixel(qtbot, window):
     assert image.zoom > 4
     centre, picked = image.rect().center(), image.widget_pos(230, 155)
     assert abs(picked.x() - centre.x()) <= image.zoom and abs(picked.y() - centre.y()) <= image.zoom
+
+
+def test_z_with_nothing_singled_out_says_so_and_changes_no_zoom(qtbot, window):
+    window.tab_widget.setCurrentIndex(window.tabs.index(window.tab("object order")))
+    panel = window.tab("object order").widget
+    qtbot.waitUntil(lambda: window.showing_full("object order"), timeout=RENDER_TIMEOUT_MS)
+    assert window.model.step is None and panel.image.picked is None  # the whole picture, no pixel picked
+    window.activateWindow()
+    qtbot.waitUntil(window.isActiveWindow)
+    qtbot.keyClick(window, Qt.Key.Key_Z)
+    assert panel.image.zoom == panel.depth.image.zoom == 1.0
+    assert window.statusBar().currentMessage().startswith("Nothing to zoom onto")
