@@ -163,3 +163,12 @@ def wheel_over(widget, pos, notches: int, modifiers=None) -> bool:
                         Qt.ScrollPhase.NoScrollPhase, False)
     QApplication.sendEvent(widget, event)
     return event.isAccepted()
+
+
+def rgb_pixels(image):
+    """A QImage (a screenshot, a plotter's picture) as an (H, W, 3) uint8 array, a copy."""
+    import numpy as np
+
+    image = image.convertToFormat(image.Format.Format_RGB888)
+    rows = np.frombuffer(image.constBits(), np.uint8).reshape(image.height(), image.bytesPerLine())
+    return rows[:, :3 * image.width()].reshape(image.height(), image.width(), 3).copy()  # before image goes

@@ -2,10 +2,11 @@
 arrows move the pick (not the observer, whose keys they are elsewhere) and the ray tree follows;
 Enter answers a click-a-pixel exercise with the pixel picked."""
 
+import numpy as np
 from hand_rays import shadow_blockers
 from PySide6.QtCore import Qt
 from PySide6.QtWidgets import QApplication, QCheckBox
-from qt_fixtures import wheel_over
+from qt_fixtures import rgb_pixels, wheel_over
 from window_helpers import RENDER_TIMEOUT_MS
 
 from app.window.window_layout import in_front
@@ -157,15 +158,8 @@ def test_a_lesson_step_or_a_new_scene_shows_the_pictures_whole_the_observer_movi
 def _outline_extent(view) -> tuple[float, float, float, float] | None:
     """Where the highlight's outline (its own magenta) is painted in ``view`` (a screenshot): its
     bounding box's centre and size, as shares of the room the picture is drawn in (None: nowhere)."""
-    shot = view.grab().toImage()
-    xs, ys = [], []
-    for y in range(0, shot.height()):
-        for x in range(0, shot.width()):
-            colour = shot.pixelColor(x, y)
-            if (colour.red(), colour.green(), colour.blue()) == (0xFF, 0x2B, 0xD6):
-                xs.append(x)
-                ys.append(y)
-    if not xs:
+    ys, xs = np.nonzero((rgb_pixels(view.grab().toImage()) == (0xFF, 0x2B, 0xD6)).all(axis=2))
+    if not len(xs):
         return None
     room = view.rect().adjusted(3, 3, -3, -3)  # image_view.FOCUS_MARGIN
     return ((min(xs) + max(xs)) / 2 / view.width(), (min(ys) + max(ys)) / 2 / view.height(),

@@ -4,7 +4,8 @@ from dataclasses import replace
 
 import numpy as np
 import pytest
-from PySide6.QtGui import QImage, QSurface
+from PySide6.QtGui import QSurface
+from qt_fixtures import rgb_pixels
 from window_helpers import RENDER_TIMEOUT_MS
 
 from core import presets
@@ -41,10 +42,7 @@ def test_the_pane_shows_what_vtk_draws_background_and_all(qtbot, window):
     view = window.scene_view
     qtbot.waitUntil(view.plotter.renderer.GetUseFXAA)  # at rest: anti-aliased, frustum faces drawn
     view.plotter.render()
-    shown = view.plotter.grab().toImage().convertToFormat(QImage.Format.Format_RGB888)
-    h, w = shown.height(), shown.width()
-    rows = np.frombuffer(shown.constBits(), np.uint8).reshape(h, shown.bytesPerLine())
-    painted = rows[:, :3 * w].reshape(h, w, 3).astype(int)
+    painted = rgb_pixels(view.plotter.grab().toImage()).astype(int)
     drawn_by_vtk = _drawn(view)[..., :3]  # VTK draws the gradient background itself here
     levels = np.abs(painted - drawn_by_vtk).max(axis=2)
     assert np.mean(levels <= 2) >= 0.95  # all but the anti-aliased edges against the background

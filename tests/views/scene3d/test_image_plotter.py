@@ -10,6 +10,7 @@ import pyvista as pv
 from checkout import ROOT
 from PySide6.QtGui import QSurface
 from PySide6.QtWidgets import QApplication, QVBoxLayout, QWidget
+from qt_fixtures import rgb_pixels
 
 from views.scene3d.image_plotter import ImagePlotter
 
@@ -39,7 +40,7 @@ def shown(qtbot):
 def _on_screen(widget):
     """What the screen shows where ``widget`` is, as (H, W, 3) uint8."""
     corner = widget.mapToGlobal(widget.rect().topLeft())
-    return _pixels(QApplication.primaryScreen().grabWindow(0, corner.x(), corner.y(), widget.width(),
+    return rgb_pixels(QApplication.primaryScreen().grabWindow(0, corner.x(), corner.y(), widget.width(),
                                                            widget.height()).toImage())
 
 
@@ -77,18 +78,11 @@ def test_the_plotter_and_the_widgets_around_it_stay_inside_the_windows_own_windo
     plotter.close()
 
 
-def _pixels(image):
-    """A QImage as (H, W, 3) uint8."""
-    image = image.convertToFormat(image.Format.Format_RGB888)
-    rows = np.frombuffer(image.constBits(), np.uint8).reshape(image.height(), image.bytesPerLine())
-    return rows[:, :3 * image.width()].reshape(image.height(), image.width(), 3).copy()  # before image goes
-
-
 def test_the_picture_is_upright(shown):
     _, plotter, _ = shown
     plotter.add_mesh(pv.Plane(center=(0, 4, 0.1), i_size=10, j_size=2), color="blue", lighting=False)
     plotter.render()  # a blue band across the top of the red square
-    picture = _pixels(plotter.picture)
+    picture = rgb_pixels(plotter.picture)
     h, w, _ = picture.shape
     assert picture[int(0.22 * h), w // 2, 2] > 200 and picture[int(0.7 * h), w // 2, 0] > 200
     assert np.array_equal(picture, plotter.screenshot(None, return_img=True)[..., :3])  # as VTK reads it
@@ -101,7 +95,7 @@ def test_a_gradient_background_is_painted_as_vtk_draws_it(qtbot, shown):
     plotter.add_mesh(pv.Plane(i_size=6, j_size=3), color="cyan", opacity=0.4)  # translucent, over both
     plotter.set_background("#1d2230", top="#3a4358")
     plotter.render()
-    painted = _pixels(plotter.grab().toImage()).astype(int)
+    painted = rgb_pixels(plotter.grab().toImage()).astype(int)
     drawn_by_vtk = plotter.screenshot(None, return_img=True)[..., :3].astype(int)
     assert painted.shape == drawn_by_vtk.shape
     assert np.abs(painted - drawn_by_vtk).max() <= 2  # 8-bit levels
@@ -150,7 +144,7 @@ def test_sizes_changed_in_one_turn_are_drawn_once_at_the_last(qtbot, shown):
     qtbot.waitUntil(lambda: plotter.picture is not None and plotter.picture.width() == plotter.width())
     assert plotter.picture.height() == plotter.height() and draws
     assert set(sizes) == {(260, 180)}  # no draw at a size the pane had in between
-    middle = _pixels(plotter.grab().toImage())[plotter.height() // 2, plotter.width() // 2]
+    middle = rgb_pixels(plotter.grab().toImage())[plotter.height() // 2, plotter.width() // 2]
     assert middle[0] > 200 and middle[1] < 60  # the red square, drawn, not stretched from the old size
 
 
