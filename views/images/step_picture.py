@@ -73,7 +73,7 @@ def step_picture(result: RasterResult, scene: Scene, k: int) -> StepPicture:
     draw = result.draw
     kind = "transparent, blended" if draw.transparent[p] else "opaque"
     caption = (f"Step {k} of {history.n_steps}: polygon {k} — {polygon_name(result, scene, p)} ({kind}): "
-               f"{counted(len(cols), 'fragment')}, {int(passed.sum())} passed the z-test, "
-               f"{int((~passed).sum())} failed.")
+               f"{counted(len(cols), 'fragment')}, {int(passed.sum()):,} passed the z-test, "
+               f"{int((~passed).sum()):,} failed.")
     return StepPicture(k, display_image(color), depth, depth_image, mask, caption,
                        draw.polygons.world_vertices(p), mask_outline(mask))

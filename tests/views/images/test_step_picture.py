@@ -45,3 +45,18 @@ def test_a_step_outlines_the_fragments_of_the_polygon_drawn_then():
     assert after.mask is not None and after.mask.any()
     assert not (changed & ~after.mask).any()  # only the polygon's own pixels can change
     assert len(after.polygon) >= 3
+
+
+def test_a_steps_caption_writes_its_counts_of_fragments_alike_with_thousands_separated():
+    """A large polygon: fragments, passed and failed all read as "2,617", not "2617" beside "2,617"."""
+    scene = presets.lecture_scene()
+    scene = replace(scene, camera=scene.camera.replace(width=320, height=240))
+    result = render_raster(scene, RasterSettings(record_steps=True))
+    history = result.history
+    big = max(range(history.n_steps), key=lambda p: int(history.polygon_fragments(p)[3].sum()))
+    _, _, _, passed = history.polygon_fragments(big)
+    assert passed.sum() >= 1000  # the case the test is about
+    caption = step_picture(result, scene, big + 1).caption
+    n_passed, n_failed = int(passed.sum()), int((~passed).sum())
+    assert f"{passed.size:,} fragments, {n_passed:,} passed the z-test, {n_failed:,} failed" in caption
+    assert f" {int(passed.sum())} passed" not in caption
