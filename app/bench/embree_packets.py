@@ -16,7 +16,9 @@ structure of arrays, each field 16 floats (or unsigned ints), aligned to 64
 bytes -- ray ``org_x, org_y, org_z, tnear, dir_x, dir_y, dir_z, time, tfar,
 mask, id, flags``, then hit ``Ng_x, Ng_y, Ng_z, u, v, primID, geomID,
 instID``.  ``rtcOccluded16`` takes the ray part alone and sets ``tfar`` to
-``-inf`` for every ray that is blocked.
+``-inf`` for every ray that is blocked; the kernel then writes 0 for those rays only into
+the results (filled with -1, none, before), as our shadow-ray kernel writes only the blocked
+rays' answers.
 
 The kernel calls foreign functions at fixed addresses, so numba cannot cache
 it: it is compiled once per run, at the first call (:attr:`EmbreePackets.compile_seconds`).
@@ -128,7 +130,8 @@ def _kernels(lib):
             if any_hit:
                 occluded16(valid.ctypes.data, scene, words.ctypes.data, 0)
                 for r in range(count):
-                    prims[first + r] = 0 if words[_TFAR + r] == -math.inf else -1
+                    if words[_TFAR + r] == -math.inf:
+                        prims[first + r] = 0
             else:
                 intersect16(valid.ctypes.data, scene, words.ctypes.data, 0)
                 for r in range(count):

@@ -328,7 +328,7 @@ def _scene_rays(label: str, mesh, camera, light, args, library) -> dict:
     pixels = _tile_order(args.height, args.width) if args.shadow_order == "tiles" else None
     so, sd, s_min, s_max = _shadow_rays(mesh, scene.lights[0].position, o, d, prims, ts, pixels)
     n_shadow = len(so)
-    blockers, blocker_t = np.empty(n_shadow, np.int64), np.empty(n_shadow)
+    blockers, blocker_t = np.full(n_shadow, -1, np.int64), np.full(n_shadow, np.inf)  # none, until blocked
     shadow_counters = []
 
     def ours_shadow():

@@ -295,7 +295,8 @@ def _warm_up_shadow_rays() -> None:
     k = kernel_inputs(scene, TraceSettings(accel="bvh"), effects_plan(scene), flat, structure)
     origins, directions = np.zeros((2, 3), np.float32), np.ones((2, 3), np.float32)
     trace_shadow_rays(origins, directions, np.zeros(2, np.float32), np.ones(2, np.float32), k.bvh,
-                      k.geo[flat_layout.GEO_N_SPHERES], k.bvh_depth, 1, np.empty(2, np.int64), np.empty(2))
+                      k.geo[flat_layout.GEO_N_SPHERES], k.bvh_depth, 1, np.full(2, -1, np.int64),
+                      np.full(2, np.inf))
 
 
 compile_shadow_rays = WarmUp(_warm_up_shadow_rays, _KERNELS, "trace", "shadow rays")

@@ -24,6 +24,12 @@ as float64 arrays, the rays were twice the bytes, and on the lecture scene's
 rays (few tests each) the memory's time shows: a loop doing nothing but read
 its 172,145 rays and write an answer each took 0.80 ms as float64 and 0.53 as
 float32 (two threads, warm caches), where the whole kernel takes 1.3-2.1.
+
+Only a blocked ray's answer is written (its blocker and ``t``); the caller fills both arrays
+first (-1 and ``inf``, none), as Embree's ``rtcOccluded16`` sets ``tfar`` only where a ray is
+blocked.  On the lecture scene's rays, 2% of them blocked, writing every ray's two numbers (16
+bytes a ray, 2.75 MB) took a ninth of the kernel's time: 1.42 ms against 1.24 (two threads,
+warm, the two ways alternating in one process 201 times).
 """
 
 from __future__ import annotations
@@ -66,16 +72,19 @@ def _worker(queue, origins, directions, t_min, t_max, bvh, n_spheres, bvh_depth,
             size = min(PACKET_SIZE, n - start)
             set_rays(rays, axes, origins, directions, t_min, t_max, start, size)
             count[flat_layout.SHADOW] += size
-            if bvh[0].shape[0] > 0 and can_share_walk(rays, size, False):
+            shared = bvh[0].shape[0] > 0 and can_share_walk(rays, size, False)
+            if shared:
                 packet_occluded(size, rays, axes, bvh, n_spheres, stack, stack_rays, count)
-                for r in range(size):
-                    blockers[start + r], blocker_t[start + r] = packet_blocker(rays, axes, r, bvh)
-            else:
-                for r in range(size):
+            for r in range(size):
+                if shared:
+                    blocker, t = packet_blocker(rays, axes, r, bvh)
+                else:
                     o, d, shear, ray_t_min, ray_t_max = ray_of(rays, axes, r)
                     h = bvh_closest(o, d, shear, ray_t_min, ray_t_max, True, bvh, n_spheres, stack, stack_t,
                                     count)
-                    blockers[start + r], blocker_t[start + r] = h[flat_layout.HIT_PRIM], h[flat_layout.HIT_T]
+                    blocker, t = h[flat_layout.HIT_PRIM], h[flat_layout.HIT_T]
+                if blocker >= 0:  # an unblocked ray's answer stays the caller's: none
+                    blockers[start + r], blocker_t[start + r] = blocker, t
 
 
 @jit_parallel
@@ -90,9 +99,10 @@ def trace_shadow_rays(origins, directions, t_min, t_max, bvh, n_spheres, bvh_dep
     bvh : tuple of :meth:`core.image_order.bvh.Bvh.kernel_tuple`; ``bvh_depth`` its depth.
     n_spheres : int, primitives below this index are spheres.
     n_workers : int, threads (``numba.get_num_threads()``, asked by the caller).
-    blockers : (N,) int64, out: a primitive that blocks each ray, -1 where none does (any
-        blocker, not necessarily the nearest), and ``blocker_t`` (N,) float64, out: where the ray
-        crosses it (``inf`` where none does).
+    blockers : (N,) int64, filled with -1 by the caller: a primitive that blocks each blocked ray
+        is written in (any blocker, not necessarily the nearest), and into ``blocker_t`` (N,)
+        float64, filled with ``inf``, where the ray crosses it; an unblocked ray's two numbers
+        are left as they are.
 
     Returns
     -------

@@ -117,7 +117,7 @@ def test_a_batch_of_shadow_rays_on_all_cores_is_blocked_where_brute_force_is_blo
     lengths = rng.uniform(0.5, 12.0, size=len(origins))
     origins, directions, lengths = (a.astype(np.float32) for a in (origins, directions, lengths))
     bvh, brute = Query(scene, "bvh"), Query(scene, "none")
-    blockers, blocker_t = np.empty(len(origins), np.int64), np.empty(len(origins))
+    blockers, blocker_t = np.full(len(origins), -1, np.int64), np.full(len(origins), np.inf)
     counters = trace_shadow_rays(origins, directions, np.zeros(len(origins), np.float32), lengths, bvh.k.bvh,
                                  bvh.k.geo[GEO_N_SPHERES], bvh.k.bvh_depth, 2, blockers, blocker_t)
     for r, (o, d, length) in enumerate(zip(origins, directions, lengths, strict=True)):
@@ -127,6 +127,28 @@ def test_a_batch_of_shadow_rays_on_all_cores_is_blocked_where_brute_force_is_blo
     assert counters[SHADOW] == len(origins)
     assert 200 < (blockers >= 0).sum() < 700
 
+
+
+def test_a_batch_of_shadow_rays_writes_the_answers_of_the_blocked_rays_only(scene):
+    """The caller fills the answers first (the bench: -1 and ``inf``, none); the kernel writes each
+    blocked ray's blocker and ``t`` and leaves an unblocked ray's two numbers as they were, as
+    Embree's ``rtcOccluded16`` sets ``tfar`` only where a ray is blocked."""
+    rng = np.random.default_rng(11)
+    origins, directions = random_rays(rng, 400)
+    lengths = rng.uniform(0.5, 12.0, size=len(origins))
+    origins, directions, lengths = (a.astype(np.float32) for a in (origins, directions, lengths))
+    bvh, brute = Query(scene, "bvh"), Query(scene, "none")
+    blockers, blocker_t = np.full(len(origins), -7, np.int64), np.full(len(origins), 123.0)
+    trace_shadow_rays(origins, directions, np.zeros(len(origins), np.float32), lengths, bvh.k.bvh,
+                      bvh.k.geo[GEO_N_SPHERES], bvh.k.bvh_depth, 2, blockers, blocker_t)
+    blocked = 0
+    for r, (o, d, length) in enumerate(zip(origins, directions, lengths, strict=True)):
+        if brute(o, d, length)[0] >= 0:
+            blocked += 1
+            assert (blockers[r], blocker_t[r]) == bvh(o, d, length, any_hit=True)[:2], r
+        else:
+            assert (blockers[r], blocker_t[r]) == (-7, 123.0), r
+    assert 50 < blocked < len(origins) - 50
 
 def _shadow_rays_of_the_view(scene, light, width, height):
     """From every hit of a 4 x 4-pixel tile's rays (tile after tile, as the bench orders them)
@@ -171,7 +193,7 @@ def test_shadow_rays_of_neighbouring_hits_in_packets_find_the_blocker_each_finds
         t_max[1::2] = math.inf
     origins, directions, t_max = (a.astype(np.float32) for a in (origins, directions, t_max))
     bvh, brute = Query(scene, "bvh"), Query(scene, "none")
-    blockers, blocker_t = np.empty(n, np.int64), np.empty(n)
+    blockers, blocker_t = np.full(n, -1, np.int64), np.full(n, np.inf)
     counters = trace_shadow_rays(origins, directions, np.zeros(n, np.float32), t_max, bvh.k.bvh,
                                  bvh.k.geo[GEO_N_SPHERES], bvh.k.bvh_depth, 2, blockers, blocker_t)
     spheres_blocking = 0
