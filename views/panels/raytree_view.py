@@ -26,6 +26,7 @@ from PySide6.QtWidgets import (
 )
 
 from core.image_order.ray_tree import RayNode
+from core.in_words import counted
 
 if TYPE_CHECKING:
     import pyvista as pv
@@ -292,7 +293,8 @@ class RayTreeWidget(QTreeWidget):
         if node.fresnel is not None:
             tips.append(f"Fresnel R = {node.fresnel[0]:.3f}, T = {node.fresnel[1]:.3f}"
                         + (" (total internal reflection)" if node.total_internal_reflection else ""))
-        tips.append(f"{node.tests} intersection tests, {node.bounds_tests} box and sphere tests")
+        tips.append(f"{counted(node.tests, 'intersection test')}, "
+                    f"{counted(node.bounds_tests, 'box and sphere test')}")
         for col in range(len(COLUMNS)):
             item.setToolTip(col, "\n".join(tips))
         if node.color is not None:

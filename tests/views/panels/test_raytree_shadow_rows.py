@@ -39,3 +39,17 @@ def test_a_shadow_ray_to_a_light_behind_the_surface_reads_unlit(qtbot):
     tree.set_tree(root)
     texts = [r.text(1) for r in _rows(tree.topLevelItem(0), []) if r.text(0).startswith("shadow")]
     assert "unlit: light behind" in texts and "not traced" not in texts
+
+
+def test_a_rays_tooltip_counts_its_tests_in_words(qtbot):
+    """The lone triangle's primary ray makes one intersection test: "1 intersection test", not
+    "1 intersection tests"."""
+    step = BY_ID["ray_triangle"].steps[0]
+    root = trace_pixel(step.scene, *step.pixel, step.image_order)
+    assert root.tests == 1  # one triangle, tested once
+    boxes = root.bounds_tests
+    tree = RayTreeWidget()
+    qtbot.addWidget(tree)
+    tree.set_tree(root)
+    tip = tree.topLevelItem(0).toolTip(0)
+    assert f"1 intersection test, {boxes} box and sphere test{'s' * (boxes != 1)}" in tip.splitlines()
