@@ -172,3 +172,9 @@ def rgb_pixels(image):
     image = image.convertToFormat(image.Format.Format_RGB888)
     rows = np.frombuffer(image.constBits(), np.uint8).reshape(image.height(), image.bytesPerLine())
     return rows[:, :3 * image.width()].reshape(image.height(), image.width(), 3).copy()  # before image goes
+
+
+def keys_listed(window) -> str:
+    """Help → Keys of ``window`` as text: each heading, then a line ``"  keys what they do"`` a row."""
+    return "\n".join(f"{heading}\n" + "\n".join(f"  {keys} {what}" for keys, what in rows)
+                     for heading, rows in window.keys_sections())

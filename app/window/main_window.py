@@ -75,7 +75,7 @@ from views.scene3d.scene_overlays import SCENE_OVERLAYS, SceneOverlays
 from views.text import math_view
 from views.text.elided_label import ElidedLabel, ElidedProgressBar
 from views.text.tab_titles import TitlesThatFit
-from views.text.text_dialog import text_dialog
+from views.text.table_dialog import Section, table_dialog
 from views.user_settings import user_settings
 
 
@@ -440,25 +440,23 @@ class MainWindow(QMainWindow):
         help_menu = self.menuBar().addMenu("&Help")
         self._action(help_menu, "&Keys and mouse", self.show_keys, tip="Every key and mouse gesture")
 
-    def keys_text(self) -> str:
-        """Every keyboard shortcut and mouse gesture, one a line."""
-        lines = ["Keys (a focused number box or picture keeps the arrow keys, a picture + - 0 too):"]
+    def keys_sections(self) -> list[Section]:
+        """Every keyboard shortcut and mouse gesture, in sections of ``(keys, what they do)``."""
         native = QKeySequence.SequenceFormat.NativeText
-        lines += [f"  {' or '.join(k.toString(native) for k in a.shortcuts()):<24} "
-                  f"{a.text().replace('&', '')}" for a in self._keyed_actions]
-        lines += [f"  {'PageDown':<24} Next lesson step (from anywhere)",
-                  f"  {'PageUp':<24} Previous lesson step (from anywhere)",
-                  f"  {'Esc':<24} Cancel the render in progress (while presenting: leave full screen)",
-                  *(f"  {keys:<24} {what}" for keys, what in PICTURE_KEYS),
-                  "", "Mouse in the 3D pane:"]
-        lines += [f"  {gesture}: {what}" for gesture, what in MOUSE_GESTURES]
-        lines += ["", "Mouse over a picture:"]
-        lines += [f"  {gesture}: {what}" for gesture, what in PICTURE_GESTURES]
-        return "\n".join(lines)
+        keys = [(" or ".join(k.toString(native) for k in a.shortcuts()), a.text().replace("&", ""))
+                for a in self._keyed_actions]
+        keys += [("PageDown", "Next lesson step (from anywhere)"),
+                 ("PageUp", "Previous lesson step (from anywhere)"),
+                 ("Esc", "Cancel the render in progress (while presenting: leave full screen)"),
+                 *PICTURE_KEYS]
+        return [("Keys (a focused number box or picture keeps the arrow keys, a focused picture also +, - "
+                 "and 0):", keys),
+                ("Mouse in the 3D pane:", list(MOUSE_GESTURES)),
+                ("Mouse over a picture:", list(PICTURE_GESTURES))]
 
     def show_keys(self) -> QDialog:
         """Show every key and mouse gesture (scrolled on a small screen); returns the dialog."""
-        dialog = text_dialog(self, "Keys and mouse", self.keys_text())
+        dialog = table_dialog(self, "Keys and mouse", self.keys_sections())
         dialog.setAttribute(Qt.WidgetAttribute.WA_DeleteOnClose)
         dialog.show()
         return dialog

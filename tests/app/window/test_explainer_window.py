@@ -9,6 +9,7 @@ import pytest
 from PySide6.QtCore import Qt
 from PySide6.QtGui import QAction
 from PySide6.QtWidgets import QApplication
+from qt_fixtures import keys_listed
 from window_helpers import RENDER_TIMEOUT_MS
 
 from app.window.window_layout import in_front
@@ -278,7 +279,7 @@ def test_a_closed_exercises_dock_comes_back_with_ctrl_shift_x(qtbot, window):
     # Its title's button closes it, and nothing brought it back.
     exercises = next(a for a in window.findChildren(QAction)
                      if a.text() == "Exercises" and a.shortcut().toString() == "Ctrl+Shift+X")
-    assert "Ctrl+Shift+X" in window.keys_text() and "Exercises" in window.keys_text()
+    assert "Ctrl+Shift+X" in keys_listed(window) and "Exercises" in keys_listed(window)
     window.exercise_dock.close()
     qtbot.waitUntil(lambda: not window.exercise_dock.isVisible())
     exercises.trigger()

@@ -12,6 +12,7 @@ import pytest
 from PySide6.QtCore import QPoint, QPointF, Qt, QTimer
 from PySide6.QtGui import QWheelEvent
 from PySide6.QtWidgets import QApplication
+from qt_fixtures import keys_listed
 from window_helpers import RENDER_TIMEOUT_MS, open_scene_file
 
 from app.window.window_layout import in_front
@@ -232,7 +233,7 @@ def test_eye_boxes_take_the_whole_range_a_scene_file_allows(qtbot, window):
 
 
 def test_help_lists_every_key(window):
-    text = window.keys_text()
+    text = keys_listed(window)
     for key in ("W", "A", "S", "D", "Q", "E", "Left", "Right", "Up", "Down", "P", "F5", "Esc"):
         assert f"  {key} " in text, key
     assert "Drag the camera glyph" in text

@@ -3,7 +3,7 @@
 import pytest
 from PySide6.QtCore import QRect
 from PySide6.QtGui import QScreen
-from PySide6.QtWidgets import QDialogButtonBox, QWidget
+from PySide6.QtWidgets import QAbstractScrollArea, QDialogButtonBox, QWidget
 
 from app.window.main_window import MainWindow
 from core import presets
@@ -76,6 +76,32 @@ def test_the_keys_dialog_and_its_ok_button_are_on_screen(qtbot, monkeypatch, fra
     qtbot.waitUntil(on_screen, timeout=5000)
     dialog.close()
 
+
+
+def test_presenting_at_x2_on_1280x720_the_keys_need_no_sideways_scroll(qtbot, monkeypatch, framed):
+    # The keys were plain text in a fixed-pitch font, one unbroken line each: at x2 on a
+    # 1280 x 720 screen the dialog showed their first half and a horizontal scroll bar.  The
+    # descriptions now wrap to the dialog's width; every key and every description is in it.
+    screen = _small_screen(monkeypatch, 1280, 720)
+    window = _open(qtbot)
+    normal = window.font().pointSizeF()
+    window.presentation.set_scale(2.0)
+    dialog = window.show_keys()
+    qtbot.waitExposed(dialog)
+    view = dialog.findChild(QAbstractScrollArea)
+
+    def fits():
+        assert screen.contains(dialog.frameGeometry()), dialog.frameGeometry()
+        assert view.horizontalScrollBar().maximum() == 0
+        assert view.font().pointSizeF() >= 1.9 * normal  # the x2 text
+
+    qtbot.waitUntil(fits, timeout=5000)
+    shown = " ".join(view.toPlainText().split())
+    for heading, rows in window.keys_sections():
+        assert heading in shown
+        for keys, what in rows:
+            assert keys in shown and " ".join(what.split()) in shown, (keys, what)
+    dialog.close()
 
 def test_on_one_screen_the_presenter_window_sits_beside_the_main_window(qtbot, monkeypatch, framed):
     # With one screen the presenter window opened over the main window and hid it.

@@ -6,7 +6,7 @@ import numpy as np
 from hand_rays import shadow_blockers
 from PySide6.QtCore import Qt
 from PySide6.QtWidgets import QApplication, QCheckBox
-from qt_fixtures import rgb_pixels, wheel_over
+from qt_fixtures import keys_listed, rgb_pixels, wheel_over
 from window_helpers import RENDER_TIMEOUT_MS
 
 from app.window.window_layout import in_front
@@ -44,7 +44,7 @@ def test_the_arrows_move_the_traced_pixel_and_its_ray_tree_follows(qtbot, window
     qtbot.keyClick(image, Qt.Key.Key_Down, Qt.KeyboardModifier.ShiftModifier)
     qtbot.waitUntil(lambda: panel.verdict.text().startswith(f"Why pixel ({x + 1}, {y + 10}):"),
                     timeout=RENDER_TIMEOUT_MS)
-    assert "Enter" in window.keys_text() and "Shift+arrows" in window.keys_text()
+    assert "Enter" in keys_listed(window) and "Shift+arrows" in keys_listed(window)
 
 
 def test_a_click_a_pixel_exercise_is_answered_from_the_keyboard(qtbot, window):
@@ -126,7 +126,7 @@ def test_the_object_order_buffers_zoom_together_and_the_keys_zoom_not_the_observ
     assert window.model.camera == camera  # the observer did not step closer
     qtbot.keyClick(image, Qt.Key.Key_0)
     assert image.zoom == depth.zoom == 1.0
-    assert "Scroll" in window.keys_text() and "zoom" in window.keys_text()
+    assert "Scroll" in keys_listed(window) and "zoom" in keys_listed(window)
 
 
 def test_a_lesson_step_or_a_new_scene_shows_the_pictures_whole_the_observer_moving_keeps_the_zoom(
@@ -193,7 +193,7 @@ def test_z_zooms_the_buffers_onto_the_highlighted_face_for_the_hall_and_again_sh
         qtbot.keyClick(window, Qt.Key.Key_Z)
         assert image.zoom == depth.zoom == 1.0
         assert _outline_extent(image) == whole
-        assert "Zoom the pictures to the highlight" in window.keys_text()
+        assert "Zoom the pictures to the highlight" in keys_listed(window)
     finally:
         window.presentation.set_presenting(False)
 
