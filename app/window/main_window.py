@@ -499,7 +499,9 @@ class MainWindow(QMainWindow):
         if self.statusBar().currentMessage().startswith("Opening "):
             self.statusBar().clearMessage()
         if isinstance(scene, scene_file.SceneFileError):
-            QMessageBox.critical(self, "Cannot open scene", f"{Path(path).name}:\n\n{scene}")
+            # The file's name once, with its problems; then its folder (a full path wraps badly).
+            QMessageBox.critical(self, "Cannot open scene",
+                                 f"{scene.headed(Path(path).name)}\n\nin {Path(path).resolve().parent}")
             self.scene_file_done.emit(path, False)
             return
         if not self.editor.may_replace_scene():

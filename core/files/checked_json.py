@@ -77,11 +77,14 @@ class CheckedFileError(ValueError):
     def __init__(self, problems: list[str], where: str | None = None):
         self.problems = list(problems)
         self.where = where
-        head = f"{self.thing} file {where}" if where else self.thing
+        super().__init__(self.headed(f"{self.thing} file {where}" if where else self.thing))
+
+    def headed(self, head: str) -> str:
+        """The problems after ``head`` (what is wrong, say the file's name): ``"head: problem"``, or
+        their number and then one a line."""
         if len(self.problems) == 1:
-            super().__init__(f"{head}: {self.problems[0]}")
-        else:
-            super().__init__(f"{head}: {len(self.problems)} problems:\n{problem_lines(self.problems)}")
+            return f"{head}: {self.problems[0]}"
+        return f"{head}: {len(self.problems)} problems:\n{problem_lines(self.problems)}"
 
 
 def problem_lines(problems: list[str]) -> str:

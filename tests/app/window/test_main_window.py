@@ -131,15 +131,22 @@ def test_near_beyond_far_is_refused_and_the_panel_restored(qtbot, window):
 
 
 def test_bad_scene_file_shows_a_dialog_and_keeps_the_scene(qtbot, window, tmp_path, monkeypatch):
+    """The dialog names the file once, then its problems, then its folder: it read "bad.json:" and
+    below it "scene file /tmp/.../bad.json: 2 problems: ...", the full path broken in the middle
+    by the narrow message box."""
     shown = []
-    monkeypatch.setattr(QMessageBox, "critical", lambda *args: shown.append(args[2]))
+    monkeypatch.setattr(QMessageBox, "critical", lambda *args: shown.append(args[1:3]))
     bad = tmp_path / "bad.json"
-    bad.write_text(json.dumps({"objects": [{"type": "sphere", "center": [0, 0, 0], "radius": -1}]}))
+    bad.write_text(json.dumps({"objects": [{"type": "sphere", "center": [0, 0, 0], "radius": -1}],
+                               "lights": [{"position": [1, 2, "three"]}]}))
     before = window.model.scene
     assert not open_scene_file(qtbot, window, bad)
     assert window.model.scene == before
-    assert "objects[0].radius" in shown[0]
-
+    ((title, text),) = shown
+    assert title == "Cannot open scene" and text.count("bad.json") == 1
+    first, *problems, blank, folder = text.splitlines()
+    assert first == "bad.json: 2 problems:" and blank == "" and folder == f"in {tmp_path.resolve()}"
+    assert sorted(p.strip().split(":")[0] for p in problems) == ["lights[0].position", "objects[0].radius"]
 
 def test_a_scene_file_is_read_while_the_window_goes_on(qtbot, window, tmp_path):
     """A scene naming a 180,000-triangle mesh took most of a second to read on the GUI thread, the
@@ -385,3 +392,4 @@ def test_the_whole_window_fits_a_1280_by_720_laptop_screen_also_with_larger_text
         assert hint.width() <= 1280 and hint.height() <= 720, (larger, hint)
     available = window.screen().availableGeometry()
     assert window.width() <= available.width() and window.height() <= available.height()
+
