@@ -37,7 +37,9 @@ def _html(sections: list[Section]) -> str:
 
 def _unwrapped_width(view: QWidget, sections: list[Section]) -> int:
     """The width ``sections`` take with nothing wrapped, in ``view``'s font: the widest heading (bold) or
-    table (each section's widest first column, then its widest second one, each cell padded)."""
+    table (each section's widest first column, then its widest second one, each cell padded on both
+    sides, and a pixel a column for the rounding of its text's width to whole pixels; the tables
+    have no border, spacing or margin)."""
     metrics = view.fontMetrics()
     bold = QFont(view.font())
     bold.setBold(True)
@@ -45,7 +47,7 @@ def _unwrapped_width(view: QWidget, sections: list[Section]) -> int:
     for _, rows in sections:
         if rows:
             widths.append(max(metrics.horizontalAdvance(keys) for keys, _ in rows)
-                          + max(metrics.horizontalAdvance(what) for _, what in rows) + 4 * _PADDING + 2)
+                          + max(metrics.horizontalAdvance(what) for _, what in rows) + 2 * (2 * _PADDING + 1))
     return max(widths, default=0)
 
 
