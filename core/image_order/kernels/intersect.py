@@ -40,12 +40,18 @@ def sphere_roots(ox, oy, oz, dx, dy, dz, cx, cy, cz, r):
     return t_near, t_far
 
 
-@jit
+@jit_inline
 def sphere_hit(ox, oy, oz, dx, dy, dz, cx, cy, cz, r, t_min, t_max):
     """The first crossing with ``t_min <= t < t_max`` of a ray with a sphere, ``inf`` if none.
 
     A ray that starts outside the sphere and moves away from its centre has both crossings
     behind it: those rays are answered before the roots (:func:`_behind`).
+
+    Inlined into its callers (a sphere's leaf, a shadow ray from inside its sphere): as a call,
+    with four of its twelve numbers on the stack and its answer through memory, it was the one
+    function of the render that the compiler left on its own, a tenth of the samples of a mirror
+    and glass frame (perf); inlined, that frame took 0.95-0.97 of its time (one thread,
+    alternating in one process), the lecture's (no spheres) the same.
     """
     if _behind(ox, oy, oz, dx, dy, dz, cx, cy, cz, r, t_min):
         return math.inf
