@@ -43,7 +43,7 @@ from core.scene import Scene, Sphere
 from views.scene3d import vtk_convert
 from views.scene3d.framing import MARGIN, fit_view, label_bounds
 from views.scene3d.image_plotter import ImagePlotter
-from views.scene3d.label_placement import GAP_PX, broken, in_pane, place_label
+from views.scene3d.label_placement import GAP_PX, broken, in_pane, place_nearest
 from views.scene3d.projector_lines import PROJECTOR_OVERLAY
 from views.scene3d.scene_colors import FRUSTUM_COLOR, SCREEN_COLOR
 from views.scene3d.scene_overlays import label_font_file
@@ -729,13 +729,16 @@ class SceneView(QWidget):
         for _, a, k, segments, text in sorted(wanted, key=lambda item: -item[0]):
             actor, h, xy, spots, shown = actors[a]
             label = shown[k]
-            one_line_first = dict.fromkeys((label, broken(label)))
-            for lines, words in itertools.product((segments, _NO_LINES), one_line_first):
-                w, t, edges = measured(text, words)
-                spot = place_label(xy[k], (w, t), lines, (width, height), taken, GAP_PX * self.line_scale)
-                if spot is not None:
+            ways = list(dict.fromkeys((label, broken(label))))  # one line first
+            sizes = [measured(text, words) for words in ways]
+            for lines in (segments, _NO_LINES):
+                found = place_nearest(xy[k], [size[:2] for size in sizes], lines, (width, height), taken,
+                                      GAP_PX * self.line_scale)
+                if found is not None:
                     break
-            if spot is None:  # nowhere clear: on one line, centred above the point
+            if found is not None:
+                spot, words, (w, t, edges) = found[1], ways[found[0]], sizes[found[0]]
+            else:  # nowhere clear: on one line, centred above the point
                 words = label
                 w, t, edges = measured(text, words)
                 spot = xy[k][0], xy[k][1] + GAP_PX * self.line_scale

@@ -118,6 +118,37 @@ def test_frustum_lessons_show_their_subject_and_labels_clear_of_the_lines_in_the
     _check_frustum_lessons(qtbot, window)
 
 
+def _box_distance(box, point) -> float:
+    (x0, y0, x1, y1), (x, y) = box, (point.x(), point.y())
+    return float(np.hypot(max(x0 - x, 0.0, x - x1), max(y0 - y, 0.0, y - y1)))
+
+
+@pytest.mark.parametrize("size", [(1280, 720), (1920, 1080)])
+def test_the_frustums_two_labels_each_lie_nearer_their_own_plane_than_the_other(qtbot, window, size):
+    # At 1280x720 the observer lesson's overview carried the near plane's label (one long line, no room
+    # beside the pyramid's apex) across the drawing to beyond the far plane, and the far plane's label
+    # down to the apex: each beside the other's plane, joined to its own by a leader 186 px long.
+    window.resize(*size)
+    qtbot.waitUntil(lambda: window.size().width() == size[0])
+    view = window.scene_view.view
+    pane = (view.plotter.width(), view.plotter.height())
+    checked = []
+    for lesson_id in FRUSTUM_LESSONS:
+        for k in range(len(shipped_lessons()[LESSONS[lesson_id]].steps)):
+            window.lesson_panel.select(LESSONS[lesson_id], k)
+            qtbot.waitUntil(lambda: _settled(view))  # noqa: B023 (waited for at once)
+            (near, near_box), (far, far_box) = _label_boxes(view)
+            actor = next(actor for poly, actor, _ in view._overlays["frustum"]
+                         if poly is view.overlay_parts("frustum")[3])
+            near_at, far_at = (view.widget_pos(point) for point in actor._anchors.points)
+            if all(0 <= p.x() <= pane[0] and 0 <= p.y() <= pane[1] for p in (near_at, far_at)):
+                where = (lesson_id, k)
+                assert _box_distance(near_box, near_at) < _box_distance(near_box, far_at), (where, near)
+                assert _box_distance(far_box, far_at) < _box_distance(far_box, near_at), (where, far)
+                checked.append((lesson_id, k))
+    assert ("observer", 0) in checked and len(checked) >= 3  # steps with both planes in view
+
+
 @pytest.mark.parametrize("scale", [1.5, 2.0])
 def test_frustum_lessons_keep_their_labels_inside_the_3d_pane_and_off_its_lines_while_presenting(
         qtbot, window, scale):

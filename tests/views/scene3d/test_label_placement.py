@@ -2,7 +2,14 @@
 
 import numpy as np
 
-from views.scene3d.label_placement import EDGE_PX, in_pane, place_label, segments_meet_box
+from views.scene3d.label_placement import (
+    EDGE_PX,
+    box_distance,
+    in_pane,
+    place_label,
+    place_nearest,
+    segments_meet_box,
+)
 
 
 def _touches(box, p, q, half) -> bool:
@@ -98,3 +105,33 @@ def test_a_label_keeps_clear_of_the_panes_edges_and_one_with_no_clear_spot_is_mo
     assert x + size[0] / 2 <= pane[0] - EDGE_PX and x - size[0] / 2 >= EDGE_PX
     x, bottom = in_pane(395, 295, size, pane)  # centred above a point at the corner: moved in
     assert (x + 10, bottom + 20) == (pane[0] - EDGE_PX, pane[1] - EDGE_PX)
+
+
+def test_a_long_label_with_no_room_beside_its_point_is_broken_into_lines_nearer_it_rather_than_carried_afar():
+    # The apex of a V of thick lines (closed at its top) 20 px above the bottom of a 300 x 240 pane, as
+    # the viewing pyramid seen from above: a 240 x 14 label finds no room beside the apex, only above
+    # the V's top, carried across all of it; broken into three lines (100 x 42) it fits inside the V
+    # where it is wide enough, 60 px nearer.
+    lines = [((150, 20), (60, 190), 2.0), ((150, 20), (240, 190), 2.0), ((60, 190), (240, 190), 2.0)]
+    segments = tuple(np.array([seg[k] for seg in lines], float) for k in range(3))
+    one_line, broken = (240.0, 14.0), (100.0, 42.0)
+    far = place_label((150, 20), one_line, segments, (300, 240))
+    assert far is not None and far[1] > 190  # alone, it goes past the V's top
+    k, (x, bottom) = place_nearest((150, 20), [one_line, broken], segments, (300, 240))
+    assert k == 1
+    assert box_distance((150, 20), x, bottom, broken) < box_distance((150, 20), *far, one_line) - 50
+    box = (x - 50, bottom, x + 50, bottom + 42)
+    assert not any(_touches(box, a, b, h + 4.0) for a, b, h in lines)
+
+
+def test_a_label_that_fits_beside_its_point_on_one_line_keeps_one_line():
+    no_lines = (np.zeros((0, 2)), np.zeros((0, 2)), np.zeros(0))
+    k, (x, bottom) = place_nearest((200, 100), [(120.0, 14.0), (60.0, 42.0)], no_lines, (400, 300))
+    assert (k, x, bottom) == (0, 200, 104)  # centred just above the point, one line
+    # With neither way beside the point, the nearer spot wins whichever way it is written.
+    wall = (np.array([[0.0, 95.0], [0.0, 150.0]]), np.array([[400.0, 95.0], [400.0, 150.0]]),
+            np.array([40.0, 2.0]))
+    sizes = [(120.0, 14.0), (60.0, 42.0)]
+    k, spot = place_nearest((200, 100), sizes, wall, (400, 300))
+    other = place_label((200, 100), sizes[1 - k], wall, (400, 300))
+    assert box_distance((200, 100), *spot, sizes[k]) <= box_distance((200, 100), *other, sizes[1 - k])
