@@ -43,7 +43,7 @@ from core.scene import Scene, Sphere
 from views.scene3d import vtk_convert
 from views.scene3d.framing import MARGIN, fit_view, label_bounds
 from views.scene3d.image_plotter import ImagePlotter
-from views.scene3d.label_placement import GAP_PX, broken, in_pane, place_nearest
+from views.scene3d.label_placement import GAP_PX, broken, in_pane, place_nearest, uncross
 from views.scene3d.projector_lines import PROJECTOR_OVERLAY
 from views.scene3d.scene_colors import FRUSTUM_COLOR, SCREEN_COLOR
 from views.scene3d.scene_overlays import label_font_file
@@ -726,6 +726,7 @@ class SceneView(QWidget):
         # The widest first, while the pane has room for it; each clear of the lines and the labels
         # placed before it, one line first; in a pane too small for that (presenting on a small
         # screen), clear of the labels only, across a line.
+        order = []  # each label placed: its actor and number, its text's edges, its lines (None: none)
         for _, a, k, segments, text in sorted(wanted, key=lambda item: -item[0]):
             actor, h, xy, spots, shown = actors[a]
             label = shown[k]
@@ -739,6 +740,7 @@ class SceneView(QWidget):
             if found is not None:
                 spot, words, (w, t, edges) = found[1], ways[found[0]], sizes[found[0]]
             else:  # nowhere clear: on one line, centred above the point
+                lines = None
                 words = label
                 w, t, edges = measured(text, words)
                 spot = xy[k][0], xy[k][1] + GAP_PX * self.line_scale
@@ -748,7 +750,13 @@ class SceneView(QWidget):
             cx, bottom = spot
             shown[k] = words
             taken.append((cx - w / 2, bottom, cx + w / 2, bottom + t))
-            at = np.array([cx - (edges[0] + edges[1]) / 2, bottom - edges[2]])
+            order.append((a, k, edges, lines))
+        marker = taken[:1]  # the axes marker's corner
+        boxes = uncross([actors[a][2][k] for a, k, _, _ in order], taken[1:], [lines for *_, lines in order],
+                        (width, height), marker, GAP_PX * self.line_scale)
+        for (a, k, edges, _), (x0, bottom, x1, _) in zip(order, boxes, strict=True):
+            _, h, _, spots, _ = actors[a]
+            at = np.array([(x0 + x1) / 2 - (edges[0] + edges[1]) / 2, bottom - edges[2]])
             spots[k, :2] = (at / to_pixels - 1) * h[k, 3]  # same depth, moved on the pane
         for actor, _, xy, spots, shown in actors:
             anchors, placed = actor._anchors, actor._placed

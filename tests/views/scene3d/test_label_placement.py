@@ -9,6 +9,7 @@ from views.scene3d.label_placement import (
     place_label,
     place_nearest,
     segments_meet_box,
+    uncross,
 )
 
 
@@ -135,3 +136,35 @@ def test_a_label_that_fits_beside_its_point_on_one_line_keeps_one_line():
     k, spot = place_nearest((200, 100), sizes, wall, (400, 300))
     other = place_label((200, 100), sizes[1 - k], wall, (400, 300))
     assert box_distance((200, 100), *spot, sizes[k]) <= box_distance((200, 100), *other, sizes[1 - k])
+
+
+def _crossing(anchors, boxes) -> bool:
+    """Brute force: whether the lines from two points to their boxes' centres meet, sampled."""
+    (a, b), (c, d) = ((np.asarray(p, float), np.array([(x0 + x1) / 2, (y0 + y1) / 2]))
+                      for p, (x0, y0, x1, y1) in zip(anchors, boxes, strict=True))
+    t = np.linspace(0, 1, 401)[:, None]
+    one, other = a * (1 - t) + b * t, c * (1 - t) + d * t
+    return bool((np.hypot(*(one[:, None] - other[None]).T) < 0.5).any())
+
+
+def test_two_labels_each_beside_the_others_point_are_swapped_so_their_leaders_no_longer_cross():
+    # Points at (100, 100) and (300, 100) in a 400 x 300 pane; each one's 60 x 16 label was put by the
+    # other's point, so the leaders cross.  Swapped, each label stands over its own point.
+    no_lines = (np.zeros((0, 2)), np.zeros((0, 2)), np.zeros(0))
+    anchors = [(100.0, 100.0), (300.0, 100.0)]
+    boxes = [(270.0, 130.0, 330.0, 146.0), (70.0, 120.0, 130.0, 136.0)]
+    assert _crossing(anchors, boxes)
+    swapped = uncross(anchors, boxes, [no_lines, no_lines], (400, 300))
+    assert not _crossing(anchors, swapped)
+    assert swapped == [(70.0, 120.0, 130.0, 136.0), (270.0, 130.0, 330.0, 146.0)]
+
+
+def test_labels_are_not_swapped_where_one_would_not_fit_or_must_stay():
+    no_lines = (np.zeros((0, 2)), np.zeros((0, 2)), np.zeros(0))
+    anchors = [(100.0, 100.0), (300.0, 100.0)]
+    boxes = [(270.0, 130.0, 330.0, 146.0), (70.0, 120.0, 130.0, 136.0)]
+    # A line through the first label's place in the swap (y = 128, 4 px thick): it stays where it is.
+    line = (np.array([[0.0, 128.0]]), np.array([[400.0, 128.0]]), np.array([2.0]))
+    assert uncross(anchors, boxes, [no_lines, line], (400, 300)) == boxes
+    assert uncross(anchors, boxes, [no_lines, None], (400, 300)) == boxes  # one placed nowhere clear
+    assert uncross(anchors, boxes, [no_lines, no_lines], (400, 300), fixed=[(60, 110, 140, 150)]) == boxes
