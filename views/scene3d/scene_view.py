@@ -724,8 +724,9 @@ class SceneView(QWidget):
                 wanted += [(measured(text, label)[0], len(actors) - 1, k, segments, text)
                            for k, label in enumerate(shown)]
         # The widest first, while the pane has room for it; each clear of the lines and the labels
-        # placed before it, one line first; in a pane too small for that (presenting on a small
-        # screen), clear of the labels only, across a line.
+        # placed before it, on one line or broken into lines where that is nearer its point; in a pane
+        # too small for that (presenting on a small screen), clear of the labels only, across a line.
+        # Then two whose leader lines cross change places where each fits the other's.
         order = []  # each label placed: its actor and number, its text's edges, its lines (None: none)
         for _, a, k, segments, text in sorted(wanted, key=lambda item: -item[0]):
             actor, h, xy, spots, shown = actors[a]
