@@ -7,8 +7,10 @@ the text.  :func:`place_label` tries spots around the point, nearest first
 (above, beside, below, then ever farther), and takes the first where the
 text's box stays inside the pane and clear of every line (each as thick as
 it is drawn) and of the labels placed before it.  It is plain 2D geometry
-in pixels, free of VTK.  A label that finds no clear spot may try again
-broken into lines (:func:`broken`).
+in pixels, free of VTK.  A label with no room beside its point is tried
+broken into lines too (:func:`broken`), and goes wherever is nearer
+(:func:`place_nearest`); once all are placed, two whose leader lines cross
+change places where each fits (:func:`uncross`).
 """
 
 from __future__ import annotations
