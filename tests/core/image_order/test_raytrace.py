@@ -9,7 +9,8 @@ import pytest
 
 from core import presets, presets_trace, shapes
 from core.image_order.flat_scene import TraceSettings
-from core.image_order.ray_casting import camera_array, primary_ray
+from core.image_order.kernels.render import _row_rays
+from core.image_order.ray_casting import camera_array, pixel_on_image_plane, primary_ray
 from core.image_order.ray_tracing import merge_band_stats, render_trace
 from core.image_order.ray_tree import trace_pixel
 from core.presets_trace import GLASS, MIRROR, translated
@@ -51,6 +52,24 @@ def test_primary_rays_pass_through_their_pixel_centres_from_near_to_far(projecti
                 assert tuple(o) == camera.eye
             else:
                 np.testing.assert_array_equal(d, camera.forward)
+
+
+@pytest.mark.parametrize("projection", ["perspective", "orthographic"])
+@pytest.mark.parametrize("width", [1, 7, 13, 640])
+def test_a_rows_primary_rays_worked_out_together_are_each_pixels_own_bit_for_bit(projection, width):
+    """The shading works out a row's primary rays in one loop the compiler turns into vector
+    instructions (eight pixels a time, then the ones left over); each is the ray the camera gives
+    that pixel alone (numpy's arithmetic, pixel by pixel: its rays are the kernels' ones, above)."""
+    camera = small(presets.lecture_scene(), width, 3, projection=projection).camera
+    camera = camera.replace(eye=(3.3, 2.9, 7.1), target=(-0.7, 0.4, -1.3))  # every component of d odd
+    cam = camera_array(camera)
+    origins, directions = camera.primary_rays()
+    pxs = np.array([pixel_on_image_plane(cam, float(x), 0.0)[0] for x in range(width)])
+    rays = np.full((6, width), np.nan)
+    for y in range(3):
+        _row_rays(cam, pxs, pixel_on_image_plane(cam, 0.0, float(y))[1], rays)
+        np.testing.assert_array_equal(rays[:3].T, origins[y])
+        np.testing.assert_array_equal(rays[3:].T, directions[y])
 
 
 def test_a_pixel_that_sees_nothing_returns_the_background():
