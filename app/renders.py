@@ -9,6 +9,7 @@ reach the GUI thread at most :data:`PROGRESS_PER_SECOND` times a second.
 
 from __future__ import annotations
 
+import time
 from dataclasses import dataclass
 
 from PySide6.QtCore import QObject, QThreadPool, QTimer, Signal
@@ -24,10 +25,17 @@ PROGRESS_PER_SECOND = 30
 @dataclass(frozen=True)
 class Waiting:
     """A job's partial result that says what it waits on (say, kernels compiling) in the progress bar,
-    with a partial result to show meanwhile (or None)."""
+    and why, with a partial result to show meanwhile (or None).  The bar counts the seconds of the
+    wait (:meth:`said`): a bar at 0% for a minute would look like a window that hangs."""
 
     what: str
+    why: str = ""
     partial: object = None
+
+    def said(self, title: str, seconds: float) -> str:
+        """The progress bar's text for tab ``title`` after ``seconds`` of the wait."""
+        why = f" ({self.why})" if self.why else ""
+        return f"{title}: {self.what}, {seconds:.0f} s so far{why}"
 
 
 class Renderer(JobRunner):
@@ -106,7 +114,11 @@ class RenderSchedule(QObject):
         self._full_shown: dict[str, object] = {}  # title -> the scene whose full image the tab shows
         self._preview_shown: dict[str, object] = {}
         self._status: dict[str, tuple[int, str, str]] = {}  # title -> percent, progress text, caption
-        self._waiting: set[str] = set()  # titles whose job said it waits on something (Waiting)
+        # title -> (tab, its job's Waiting, when the wait began): the tabs whose job said it waits
+        self._waiting: dict[str, tuple[object, Waiting, float]] = {}
+        self._wait_clock = QTimer(self)  # counts the waits' seconds in their tabs' status
+        self._wait_clock.setInterval(1000)
+        self._wait_clock.timeout.connect(self._count_waits)
         self._moving = False
         self._held = False
         self._rest = QTimer(self)
@@ -250,26 +262,39 @@ class RenderSchedule(QObject):
 
     def _progress(self, tab, percent, partial):
         if isinstance(partial, Waiting):  # said until the job's next progress
-            self._waiting.add(tab.title)
-            self._set_status(tab, percent, f"{tab.title}: {partial.what}… %p%")
+            # A newer job of the tab (the full render after a preview) waits on the same compile.
+            began = self._waiting.get(tab.title, (None, None, time.monotonic()))[2]
+            self._waiting[tab.title] = (tab, partial, began)
+            self._set_status(tab, percent, partial.said(tab.title, time.monotonic() - began))
+            self._wait_clock.start()
             partial = partial.partial
         elif not self._end_wait(tab, percent):
             self._set_status(tab, percent)
         if partial is not None and hasattr(tab, "show_progress"):
             tab.show_progress(partial)
 
+    def _count_waits(self) -> None:
+        for tab, waiting, began in self._waiting.values():
+            self._set_status(tab, None, waiting.said(tab.title, time.monotonic() - began))
+
+    def _stop_waiting(self, tab) -> bool:
+        """The tab's job no longer waits; whether it did."""
+        waited = self._waiting.pop(tab.title, None) is not None
+        if not self._waiting:
+            self._wait_clock.stop()
+        return waited
+
     def _end_wait(self, tab, percent) -> bool:
         """If the tab's job last said what it waits on, the bar stops saying it; whether it did."""
-        if tab.title not in self._waiting:
+        if not self._stop_waiting(tab):
             return False
-        self._waiting.discard(tab.title)
         self._set_status(tab, percent, f"{tab.title}: rendering… %p%")
         return True
 
     def _finished(self, tab, result):
         scene, preview = self._jobs.pop(tab.title)
         if not preview and scene is not self.model.scene:
-            self._waiting.discard(tab.title)
+            self._stop_waiting(tab)
             return  # a full image of a superseded scene is never shown
         # A job whose progress after the wait was thinned away ends it before its image shows.
         self._end_wait(tab, None)
@@ -289,7 +314,7 @@ class RenderSchedule(QObject):
             self._update()
 
     def _failed(self, tab, message: str):
-        self._waiting.discard(tab.title)
+        self._stop_waiting(tab)
         self._jobs.pop(tab.title, None)
         self._set_status(tab, 0, f"{tab.title}: render failed", f"Render failed — {message}")
         cover(tab.widget, f"Render failed: what this tab shows is not of the current scene.\n\n{message}")

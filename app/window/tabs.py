@@ -70,7 +70,8 @@ PREVIEW_STEP = 2
 """Previews render one pixel in every PREVIEW_STEP x PREVIEW_STEP block: a quarter of the pixels."""
 PREVIEW = "preview"
 FIRST_LOOK = "first look: numpy, no shadows or mirrors, while the renderer compiles"
-COMPILING = "compiling the {}'s kernels (once per machine and version of the code; a minute or two)"
+COMPILING = "compiling the {}'s kernels"
+WHY_COMPILING = "once per machine and version of the code; a minute or two"
 SLOW_TESTS = 2e9
 """Ray–object tests above which a full render without acceleration gets a warning (minutes here)."""
 ADAPTIVE_SEED = 0
@@ -144,7 +145,7 @@ def say_if_compiling(progress, scene: Scene, renderer: str, ready: bool, picture
     false), say in the progress bar that they compile, and show a first look at ``scene`` meanwhile."""
     if not ready:
         image = display_image(first_look(scene), FIRST_LOOK) if picture else None
-        progress(0, Waiting(COMPILING.format(renderer), image))
+        progress(0, Waiting(COMPILING.format(renderer), WHY_COMPILING, image))
 
 
 def preview_trace_settings(settings: TraceSettings) -> TraceSettings:

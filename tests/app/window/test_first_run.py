@@ -61,6 +61,33 @@ def test_an_image_that_ends_a_wait_is_never_shown_beside_it(qtbot, monkeypatch):
 
 
 @pytest.mark.gui
+def test_the_bar_counts_the_seconds_of_a_compile_and_stops_when_it_ends(qtbot, monkeypatch):
+    # A compile takes most of a minute on a fresh machine: a bar standing at "0%" all that time
+    # would look like a window that hangs. Here the "compile" lasts until the bar has counted to 2 s.
+    import re
+    import threading
+
+    compiled = threading.Event()
+    monkeypatch.setattr(ray_tracing, "compiled_for", lambda accel: compiled.is_set())
+    render = tabs.render_trace
+    monkeypatch.setattr(tabs, "render_trace", lambda *args, **kw: (compiled.wait(60), render(*args, **kw))[1])
+    win = MainWindow(presets.lecture_scene())
+    qtbot.addWidget(win)
+    counted = []  # the seconds the bar said, in order
+    win.renders.status_changed.connect(lambda tab: counted.extend(
+        int(n) for n in re.findall(r"compiling the tracer's kernels, (\d+) s so far", win.progress.format())))
+    win.show()
+    qtbot.waitUntil(lambda: 2 in counted, timeout=RENDER_TIMEOUT_MS)
+    assert "%" not in win.progress.text()  # no percent while nothing can be counted
+    assert "once per machine" in win.progress.format()  # and why the wait
+    assert counted == sorted(counted) and {0, 1} <= set(counted)
+    compiled.set()
+    qtbot.waitUntil(lambda: win.showing_full("image order"), timeout=RENDER_TIMEOUT_MS)
+    assert win.progress.format() == "Image order: done"
+    assert not win.renders._wait_clock.isActive()  # nothing is counted any more
+
+
+@pytest.mark.gui
 def test_nothing_is_said_to_compile_when_everything_is_compiled(qtbot):
     win, seen = _open(qtbot)
     assert seen and all("compiling" not in text for text, _ in seen)
