@@ -46,6 +46,7 @@ from app.process.long_lived import set_aside_once_loaded
 from app.renders import Renderer, RenderSchedule
 from app.window import session
 from app.window.background_compile import BackgroundCompile
+from app.window.close_on_signal import CloseOnSignal
 from app.window.dropped_files import DroppedFiles
 from app.window.first_frame import AfterFirstFrame
 from app.window.scene_editor import SceneEditor
@@ -704,11 +705,15 @@ def run(scene_path: str | None = None, memory_limit: int | None = None) -> int:
         window.setWindowTitle(f"Render Explorer — {window.scene_path.name}")
         window.recent_files.add(SCENE, scene_path)
     window.show()
+    closer = CloseOnSignal(window)
     set_aside_once_loaded(window)
     hand_over_often()
     if scene_path is not None:
         window.explain_if_too_large(Path(scene_path).name)
     status = app.exec()
+    closer.release()
+    if closer.received is not None:  # closed by Ctrl+C or SIGTERM: the status says which
+        status = 128 + closer.received
     session.remember(window)
     if not QThreadPool.globalInstance().waitForDone(EXIT_WAIT_MS) or not math_view.stop_typesetting(0):
         # A render thread still inside a kernel compile (minutes on a fresh machine; it cannot be
