@@ -95,6 +95,11 @@ def main(argv: list[str] | None = None) -> int:
     args = parser.parse_args(argv)
     try:
         if args.command == "gui":
+            from app.window.display_check import why_no_display
+
+            if (problem := why_no_display()) is not None:
+                print(f"{parser.prog}: error: {problem}", file=sys.stderr)
+                return 2
             from app.commands.render import parse_memory_limit
             from app.window.main_window import run
 

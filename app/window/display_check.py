@@ -1,0 +1,49 @@
+"""Is there a screen to open the window on?  Asked before Qt is, which would abort the program.
+
+Without a display (an ssh session without ``-X``, a server's console) Qt's X11 plugin cannot
+connect, prints a hint about a library that is not the problem (``xcb-cursor0 ... is needed``)
+and aborts the process (status 134, a core dump).  :func:`why_no_display` connects to the X server
+first, the way Qt would (``xcb_connect``), and says in words what is wrong instead.
+"""
+
+from __future__ import annotations
+
+import ctypes
+import ctypes.util
+import os
+
+#: What to do about it, said after what is wrong.
+ADVICE = ("run it in a desktop session, over `ssh -X`, or on a virtual screen (`xvfb-run -a python -m app`); "
+          "the command-line commands need no screen (`python -m app --help`)")
+
+
+def why_no_display(env=os.environ) -> str | None:
+    """What keeps the window from opening (``None``: nothing known), from the environment ``env``.
+
+    A platform chosen with ``QT_QPA_PLATFORM``, or a Wayland session, is left to Qt.
+    """
+    if env.get("QT_QPA_PLATFORM") or env.get("WAYLAND_DISPLAY"):
+        return None
+    display = env.get("DISPLAY", "")
+    if not display:
+        return f"no screen to open the window on: DISPLAY is not set; {ADVICE}"
+    if not _x_server_answers(display):
+        return f"no X server answers on display {display!r} (DISPLAY); {ADVICE}"
+    return None
+
+
+def _x_server_answers(display: str) -> bool:
+    """Whether an X server accepts a connection on ``display`` (true where libxcb is not found)."""
+    name = ctypes.util.find_library("xcb")
+    if name is None:
+        return True
+    xcb = ctypes.CDLL(name)
+    xcb.xcb_connect.restype = ctypes.c_void_p
+    xcb.xcb_connect.argtypes = [ctypes.c_char_p, ctypes.c_void_p]
+    xcb.xcb_connection_has_error.argtypes = [ctypes.c_void_p]
+    xcb.xcb_disconnect.argtypes = [ctypes.c_void_p]
+    connection = xcb.xcb_connect(display.encode(), None)
+    try:
+        return xcb.xcb_connection_has_error(connection) == 0
+    finally:
+        xcb.xcb_disconnect(connection)
