@@ -4,6 +4,9 @@ Ctrl+C while the modules load is held until they are loaded: numpy turns an
 interrupt inside its C extension's import into an ``ImportError``, which would
 end the program with a traceback and status 1 instead of the one line and 130.
 
+A terminal whose encoding lacks a character of the lecture's notation gets it spelled out
+(:mod:`app.process.terminal_text`) rather than a ``UnicodeEncodeError``.
+
 A reader that stops reading (``python -m app pixel ... | head -3``) ends the
 program quietly with status 141, as the shell's own tools end by SIGPIPE.
 """
@@ -19,6 +22,7 @@ if _held:
 try:
     from app.cli import interrupted, main
     from app.process.freed_memory import keep_freed_memory
+    from app.process.terminal_text import spell_out_what_the_terminal_cannot_show
     from app.process.thread_waits import let_waiting_threads_sleep
 finally:
     if _held:
@@ -26,6 +30,7 @@ finally:
 if _pressed:
     interrupted()
 try:
+    spell_out_what_the_terminal_cannot_show()  # a terminal without "²" or "Δ" gets "^2" and "Delta"
     keep_freed_memory()  # process-wide: the memory of one frame's arrays is reused by the next
     let_waiting_threads_sleep()  # process-wide, before numba loads OpenMP: no core spent spinning
     status = main()
