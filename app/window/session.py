@@ -56,7 +56,8 @@ def restore(window) -> bool:
         if observer:
             scene = replace(scene, camera=scene_file.from_dict({"camera": json.loads(observer)}).camera)
     except ValueError as exc:  # a SceneFileError, or json's error
-        window.statusBar().showMessage(f"The last session could not be restored: {exc}", 15000)
+        window.statusBar().showMessage(f"The last session could not be restored, so the lecture scene is "
+                                       f"shown: {exc} (in {store.fileName()})", 15000)
         return False
     window.scene_path = path
     window.setWindowTitle(f"Render Explorer — {path.name if path else 'last session'}")

@@ -631,7 +631,10 @@ def test_settings_that_no_longer_load_are_reported_and_the_lecture_scene_kept(qt
     fresh = _fresh_window(qtbot)
     assert not session.restore(fresh)
     assert fresh.model.scene == presets.lecture_scene()
-    assert "objects[0].radius: must be > 0, got -1" in fresh.statusBar().currentMessage()
+    said = fresh.statusBar().currentMessage()
+    assert "objects[0].radius: must be > 0, got -1" in said
+    assert said.startswith("The last session could not be restored, so the lecture scene is shown")
+    assert f"(in {store.fileName()})" in said  # where the broken session is kept
 
 
 def test_a_scene_file_on_the_command_line_wins_over_the_last_session(qtbot, tmp_path):
