@@ -13,7 +13,10 @@ from checkout import ROOT
 # The window as `python -m app` opens it, its background compile stood in for by a process that would
 # run for ten minutes; once that has started, the window is open and the process says its number.
 OPEN_WINDOW = """
+import signal
 import sys
+
+signal.signal(signal.SIGINT, signal.default_int_handler)  # a terminal's Ctrl+C, whatever started the test
 from app import cli
 from app.window import background_compile
 from PySide6.QtWidgets import QApplication
