@@ -1,13 +1,14 @@
-"""Ctrl+C in the terminal, or SIGTERM, closes the window as its close button does.
+"""Ctrl+C in the terminal, SIGTERM, or the terminal closing, closes the window as its close button does.
 
 The window is opened from a terminal (the README's first command), where Ctrl+C is how a program
 is stopped.  Qt's event loop runs in C++, so Python's handler of a signal only runs when some
 Python code next does, and the ``KeyboardInterrupt`` it raised came out of whatever slot that
 was: a traceback on the terminal, and the window stayed open.  SIGTERM ended the process on the
 spot, so the window's size and tabs were not remembered and the background compile it started
-(:mod:`app.window.background_compile`) ran on without it.
+(:mod:`app.window.background_compile`) ran on without it; so did SIGHUP, which the program gets
+when the terminal it was started from is closed.
 
-:class:`CloseOnSignal` makes both close the window instead, at once: the signal's number is
+:class:`CloseOnSignal` makes each of them close the window instead, at once: the signal's number is
 written to a socket that the event loop watches (:func:`signal.set_wakeup_fd`), which wakes it,
 and the window closes as if its close button were pressed (unsaved edits are asked about first).
 A second signal while it closes (say, that question is still open) ends the program at once.
@@ -25,11 +26,11 @@ import sys
 
 from PySide6.QtCore import QObject, QSocketNotifier
 
-SIGNALS = (signal.SIGINT, signal.SIGTERM)
+SIGNALS = (signal.SIGINT, signal.SIGTERM, signal.SIGHUP)
 
 
 class CloseOnSignal(QObject):
-    """While it lives, Ctrl+C and SIGTERM close ``window`` (see the module).
+    """While it lives, Ctrl+C, SIGTERM and SIGHUP close ``window`` (see the module).
 
     ``received``: the signal that closed the window, or ``None``.
     """

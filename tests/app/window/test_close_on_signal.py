@@ -1,4 +1,4 @@
-"""Ctrl+C in the terminal, or SIGTERM, closes the window as its close button does."""
+"""Ctrl+C, SIGTERM, or the terminal closing (SIGHUP) closes the window as its close button does."""
 
 import os
 import select
@@ -53,7 +53,8 @@ def _ended(pid: int) -> bool:
 
 
 @pytest.mark.gui
-@pytest.mark.parametrize("signum", [signal.SIGINT, signal.SIGTERM], ids=["ctrl-c", "sigterm"])
+@pytest.mark.parametrize("signum", [signal.SIGINT, signal.SIGTERM, signal.SIGHUP],
+                         ids=["ctrl-c", "sigterm", "terminal-closed"])
 def test_a_signal_closes_the_window_and_its_compile_and_the_session_is_remembered(tmp_path, signum):
     env = {**os.environ, "XDG_CONFIG_HOME": str(tmp_path)}
     window = subprocess.Popen([sys.executable, "-c", OPEN_WINDOW], cwd=ROOT, env=env, stdout=subprocess.PIPE,
