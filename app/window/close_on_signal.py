@@ -4,9 +4,9 @@ The window is opened from a terminal (the README's first command), where Ctrl+C 
 is stopped.  Qt's event loop runs in C++, so Python's handler of a signal only runs when some
 Python code next does, and the ``KeyboardInterrupt`` it raised came out of whatever slot that
 was: a traceback on the terminal, and the window stayed open.  SIGTERM ended the process on the
-spot, so the window's size and tabs were not remembered and the background compile it started
-(:mod:`app.window.background_compile`) ran on without it; so did SIGHUP, which the program gets
-when the terminal it was started from is closed.
+spot, so the session (:mod:`app.window.session`: the scene and the observer) was not remembered,
+and the background compile it started (:mod:`app.window.background_compile`) ran on without it;
+so did SIGHUP, which the program gets when the terminal it was started from is closed.
 
 :class:`CloseOnSignal` makes each of them close the window instead, at once: the signal's number is
 written to a socket that the event loop watches (:func:`signal.set_wakeup_fd`), which wakes it,

@@ -17,14 +17,14 @@ ADVICE = ("run it in a desktop session, over `ssh -X`, or on a virtual screen (`
           "the command-line commands need no screen (`python -m app --help`)")
 
 
-def why_no_display(env=os.environ) -> str | None:
-    """What keeps the window from opening (``None``: nothing known), from the environment ``env``.
+def why_no_display() -> str | None:
+    """What keeps the window from opening (``None``: nothing known), from this process's environment.
 
     A platform chosen with ``QT_QPA_PLATFORM``, or a Wayland session, is left to Qt.
     """
-    if env.get("QT_QPA_PLATFORM") or env.get("WAYLAND_DISPLAY"):
+    if os.environ.get("QT_QPA_PLATFORM") or os.environ.get("WAYLAND_DISPLAY"):
         return None
-    display = env.get("DISPLAY", "")
+    display = os.environ.get("DISPLAY", "")
     if not display:
         return f"no screen to open the window on: DISPLAY is not set; {ADVICE}"
     if not _x_server_answers(display):

@@ -712,7 +712,7 @@ def run(scene_path: str | None = None, memory_limit: int | None = None) -> int:
         window.explain_if_too_large(Path(scene_path).name)
     status = app.exec()
     closer.release()
-    if closer.received is not None:  # closed by Ctrl+C or SIGTERM: the status says which
+    if closer.received is not None:  # closed by a signal (Ctrl+C, SIGTERM, SIGHUP): the status says which
         status = 128 + closer.received
     session.remember(window)
     if not QThreadPool.globalInstance().waitForDone(EXIT_WAIT_MS) or not math_view.stop_typesetting(0):
