@@ -2,8 +2,8 @@
 
 The command line's answers use the lecture's notation (``r²``, ``Δ``, ``√``, ``α``, ``→``).  Where
 the terminal's encoding has no such character (an ASCII or Latin-1 locale, or
-``PYTHONIOENCODING=ascii``), Python's ``print`` raised ``UnicodeEncodeError`` and the command
-ended with a traceback and no answer.  :func:`spell_out_what_the_terminal_cannot_show` makes
+``PYTHONIOENCODING=ascii``), Python's ``print`` raised ``UnicodeEncodeError``: the command
+printed part of its answer and ended with a traceback.  :func:`spell_out_what_the_terminal_cannot_show` makes
 standard output and standard error write such a character in plain letters instead
 (:data:`SPELLED`: ``r^2``, ``Delta``, ``sqrt``, ``alpha``, ``->``), and ``?`` for any other.
 Files are not affected: every file the program writes names its encoding (UTF-8).
