@@ -2,13 +2,16 @@
 
 An exercise is judged on the scene of its lesson step (:mod:`core.lessons.exercises`), whatever the
 window shows.  When the student asks an exercise (brings the Exercises tab to the front, or goes to
-another exercise there) while the window shows another step of its lesson, :class:`AskedScene`
-shows the exercise's step: its scene and settings (a z-buffer question asked on the cleared buffers
-was otherwise asked beside the finished picture of the lesson's last step).  A student who then
-moves the observer (the arrow keys orbit it), edits the scene, goes to another step or opens another
-scene, and answers from the window, would be told "wrong" about what they see: while the window's
-scene differs from the one asked about, the exercise panel says which it asks about, what the window
-shows instead, and that Show me brings it back.
+another exercise there) while the window shows another step of its lesson, or no step but the scene
+of one (as the window opens, the Lessons tab shows the first lesson, not yet started, on its
+scene), :class:`AskedScene` shows the exercise's step: its scene and settings (a z-buffer question
+asked on the cleared buffers was otherwise asked beside the finished picture of the lesson's last
+step; one asked before any step was shown had none of its readouts withheld,
+:mod:`app.lessons.withheld_answers`).  A student who then moves the observer (the arrow keys orbit
+it), edits the scene, goes to another step or opens another scene, and answers from the window,
+would be told "wrong" about what they see: while the window's scene differs from the one asked
+about, the exercise panel says which it asks about, what the window shows instead, and that Show
+me brings it back.
 """
 
 from __future__ import annotations
@@ -39,15 +42,21 @@ class AskedScene:
         self.update()
 
     def show_its_step(self) -> None:
-        """While the window shows another step of the waiting exercise's lesson, show the exercise's
-        (as Show me does, without picking a pixel); another scene, or the step moved or edited, stays."""
+        """While the window shows another step of the waiting exercise's lesson, or no step but the scene
+        of one, show the exercise's (as Show me does, without picking a pixel); another scene, or the
+        step moved or edited, stays."""
         w = self.window
         ex, lesson = w.exercise_panel.waiting_for, w.exercise_panel.lesson
         shown = w.lessons.step
-        if ex is None or lesson is None or shown is None or w.lesson_panel.current_lesson() is not lesson:
+        if ex is None or lesson is None or w.lesson_panel.current_lesson() is not lesson:
             return
-        if shown is not lesson.steps[ex.step] and any(shown is step for step in lesson.steps) \
-                and w.model.scene == shown.scene:
+        if shown is None:  # no step shown since the window opened or a scene was opened: the scene
+            # decides (the lecture scene as the window opens is the first lesson's; a file stays)
+            if any(w.model.scene == step.scene for step in lesson.steps):
+                w.lesson_panel.select(w.lesson_panel.step_index()[0], ex.step)
+            return
+        another_step = shown is not lesson.steps[ex.step] and any(shown is step for step in lesson.steps)
+        if another_step and w.model.scene == shown.scene:
             w.lesson_panel.select(w.lesson_panel.step_index()[0], ex.step)
 
     def elsewhere(self) -> str:

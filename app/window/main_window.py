@@ -279,6 +279,7 @@ class MainWindow(QMainWindow):
         shows the exercise's step (and pixel); progress shows in the lesson list."""
         panel, exercises = self.lesson_panel, self.exercise_panel
         panel.step_selected.connect(lambda _step: exercises.set_lesson(panel.current_lesson()))
+        exercises.set_lesson(panel.current_lesson())  # the lesson the panel shows as the window opens
         object_order = self.tab("object order").widget
         for image in (self.tab("image order").widget.image, object_order.image, object_order.depth.image):
             image.pixel_chosen.connect(exercises.click)  # a click, or Enter

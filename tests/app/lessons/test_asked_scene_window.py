@@ -85,3 +85,38 @@ def test_asking_an_exercise_shows_the_step_it_asks_about(qtbot, window):
     assert window.lesson_panel.step_index() == (k, 3)
     window.lesson_panel.select(LESSONS["observer"], 1)  # another lesson: its step stays
     assert window.lesson_panel.step_index() == (LESSONS["observer"], 1)
+
+
+def test_as_the_window_opens_the_exercises_ask_about_the_lesson_shown_and_start_its_step(qtbot, window):
+    """As the window opens, the Lessons tab shows the first lesson, not yet started, on its scene (the
+    lecture scene): the Exercises tab said "No lesson open" beside it.  Now it asks that lesson's
+    questions, and brought to the front it starts the step the question asks about, whose readout of
+    the asked pixel is then covered (asked on no step, nothing was withheld: a click on pixel
+    (155, 110) answered "which object does the z-buffer keep there?")."""
+    from views.panels.pane_cover import ANSWER, covered_with
+
+    exercises, first = window.exercise_panel, window.lesson_panel.current_lesson()
+    assert window.lessons.step is None and first.id == shipped_lessons()[0].id
+    assert exercises.lesson is first and exercises.position.text() == "Exercise 1 of 3"
+    assert window.model.scene == presets.lecture_scene() == first.steps[0].scene
+    window.exercise_dock.raise_()
+    qtbot.waitUntil(lambda: window.lessons.step is not None)
+    assert window.lessons.step is first.steps[exercises.exercise().step]
+    assert window.windowTitle().startswith(f"Render Explorer — lesson: {window.lessons.step.title}")
+    why = covered_with(window.tab("compare").widget.pixel_box, ANSWER)
+    assert why is not None and why.startswith("Hidden while exercise 1 waits for your answer")
+
+
+def test_a_scene_opened_before_any_step_stays_when_the_exercises_are_asked(qtbot, window):
+    # Not the lesson's scene: an example from the File menu. Asking the exercises keeps it, and the
+    # question says which scene it is about.
+    from core import presets_trace
+
+    window.load_preset("mirror_and_glass", presets_trace.mirror_and_glass)
+    window.exercise_dock.raise_()
+    qtbot.waitUntil(lambda: in_front(window.exercise_dock))
+    assert window.lessons.step is None
+    assert window.model.scene == presets_trace.mirror_and_glass()
+    assert window.exercise_panel.elsewhere.text() == (
+        "<i>This question is about the scene of step 1; the window shows another scene. "
+        "Show me brings it back.</i>")

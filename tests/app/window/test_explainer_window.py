@@ -8,7 +8,6 @@ import numpy as np
 import pytest
 from PySide6.QtCore import Qt
 from PySide6.QtGui import QAction
-from PySide6.QtWidgets import QApplication
 from qt_fixtures import keys_listed
 from window_helpers import RENDER_TIMEOUT_MS
 
@@ -45,17 +44,6 @@ def test_the_window_opens_on_the_first_lesson_without_changing_the_scene(window)
     assert window.model.scene == presets.lecture_scene()
     assert set(window.visible_panes()) == {"scene 3D", "image order", "object order", "four views",
                                            "compare", "hard cases", "cost"}
-
-
-def test_pagedown_in_the_exercises_dock_opens_the_first_lessons_exercises_as_it_says(qtbot, window):
-    _activate(qtbot, window)  # typed keys go to the active window's focused widget
-    window.exercise_dock.raise_()
-    exercises = window.exercise_panel
-    assert exercises.position.text() == "No lesson open" and "PageDown" in exercises.question.text()
-    qtbot.keyClick(QApplication.focusWidget() or window, Qt.Key.Key_PageDown)  # where a typed key goes
-    first = shipped_lessons()[0]
-    qtbot.waitUntil(lambda: exercises.lesson is not None and exercises.lesson.id == first.id)
-    assert exercises.question.text() and exercises.check_button.isEnabled()
 
 
 def test_show_me_brings_the_step_the_pixel_the_question_names_and_the_pane_that_reads_it(qtbot, window):
