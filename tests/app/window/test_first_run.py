@@ -77,10 +77,11 @@ def test_the_bar_counts_the_seconds_of_a_compile_and_stops_when_it_ends(qtbot, m
     win.renders.status_changed.connect(lambda tab: counted.extend(
         int(n) for n in re.findall(r"compiling the tracer's kernels, (\d+) s so far", win.progress.format())))
     win.show()
-    qtbot.waitUntil(lambda: 2 in counted, timeout=RENDER_TIMEOUT_MS)
+    qtbot.waitUntil(lambda: max(counted, default=0) >= 2, timeout=RENDER_TIMEOUT_MS)
     assert "%" not in win.progress.text()  # no percent while nothing can be counted
     assert "once per machine" in win.progress.format()  # and why the wait
-    assert counted == sorted(counted) and {0, 1} <= set(counted)
+    # From 0 up, never back (a tick the busy GUI thread serves late may skip a second, never count back)
+    assert counted[0] == 0 and counted == sorted(counted)
     compiled.set()
     qtbot.waitUntil(lambda: win.showing_full("image order"), timeout=RENDER_TIMEOUT_MS)
     assert win.progress.format() == "Image order: done"
