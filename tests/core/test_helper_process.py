@@ -8,10 +8,10 @@ import signal
 import subprocess
 import sys
 import threading
-import time
 
 import pytest
 from checkout import ROOT
+from process_ends import ended
 
 from core import give_way, helper_process
 
@@ -79,30 +79,16 @@ sys.stdin.read()  # until killed
 """
 
 
-def _ended(pid: int, timeout_s: float = 60.0) -> bool:
-    """Whether process ``pid`` ends within ``timeout_s`` (a zombie waiting for its new parent has ended)."""
-    deadline = time.monotonic() + timeout_s
-    while time.monotonic() < deadline:
-        try:
-            with open(f"/proc/{pid}/stat") as stat:
-                if stat.read().rsplit(")", 1)[1].split()[0] == "Z":
-                    return True
-        except FileNotFoundError:
-            return True
-        time.sleep(0.05)  # a process, not the GUI: nothing to wait on but its entry in /proc
-    return False
-
-
 def test_the_helper_ends_with_the_window_process_however_that_ends():
     window = subprocess.Popen([sys.executable, "-c", WINDOW], cwd=ROOT, stdin=subprocess.PIPE,
                               stdout=subprocess.PIPE, text=True)
     try:
         pid = int(window.stdout.readline())
-        assert pid != window.pid and not _ended(pid, 0.5)  # it lives while the window does
+        assert pid != window.pid and not ended(pid, 0.5)  # it lives while the window does
     finally:
         window.kill()  # no clean-up of its own at all
         window.wait(60)
-    assert _ended(pid)
+    assert ended(pid)
 
 
 ASKED_AND_KILLED = """
@@ -126,5 +112,5 @@ def test_a_window_process_killed_during_a_call_leaves_the_helper_to_end_quietly(
         window.kill()
         window.wait(60)
     said = window.stderr.read()  # to its end: the helper, which shares it, has closed it too
-    assert _ended(pid)
+    assert ended(pid)
     assert said == ""
