@@ -9,7 +9,6 @@ first, the way Qt would (``xcb_connect``), and says in words what is wrong inste
 from __future__ import annotations
 
 import ctypes
-import ctypes.util
 import os
 
 #: What to do about it, said after what is wrong.
@@ -34,10 +33,10 @@ def why_no_display() -> str | None:
 
 def _x_server_answers(display: str) -> bool:
     """Whether an X server accepts a connection on ``display`` (true where libxcb is not found)."""
-    name = ctypes.util.find_library("xcb")
-    if name is None:
+    try:
+        xcb = ctypes.CDLL("libxcb.so.1")  # by its name: find_library would run ldconfig at every start
+    except OSError:
         return True
-    xcb = ctypes.CDLL(name)
     xcb.xcb_connect.restype = ctypes.c_void_p
     xcb.xcb_connect.argtypes = [ctypes.c_char_p, ctypes.c_void_p]
     xcb.xcb_connection_has_error.argtypes = [ctypes.c_void_p]
