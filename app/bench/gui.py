@@ -416,6 +416,9 @@ def _forget_formulas() -> None:
 def run(args) -> int:
     width, height = _size(args.size)
     actions = _actions(args.actions)
+    from app.window.display_check import require_display
+
+    require_display("bench gui")
     import os
     import tempfile
 

@@ -27,6 +27,7 @@ import time
 from dataclasses import dataclass
 
 from app.usage import UsageError
+from app.window.display_check import require_display
 
 #: The watched process.  It prints ``shown <t> <numba>`` and ``image <t> <numba>``: the moment
 #: (``time.time()``) and whether numba was imported by then (``True``/``False``).
@@ -139,8 +140,7 @@ def run(args) -> int:
     """Run the benchmark and print its figures; returns the exit status."""
     if args.runs < 1:
         raise UsageError(f"--runs must be at least 1, got {args.runs}")
-    if not os.environ.get("DISPLAY") and not os.environ.get("WAYLAND_DISPLAY"):
-        raise UsageError("bench startup needs a display; run it under xvfb-run -a")
+    require_display("bench startup")
     print(f"bench startup: python -m app on the lecture scene, fresh processes, numba and bytecode "
           f"caches warm; median of {args.runs} after one warm-up start [lowest .. highest]")
     shown, image = [], []
