@@ -29,6 +29,7 @@ edit of the scene.
 from __future__ import annotations
 
 import copy
+import math
 import os
 import re
 from dataclasses import replace
@@ -284,7 +285,10 @@ def plain_view_spot(scene: Scene, low, high) -> np.ndarray:
     object's box touches no other object's box, its position lies in the frustum and the line
     from the eye to it passes no object's box.  The target itself when no such point is near.
 
-    (The lecture scene's target lies behind the cone: a new object put there was hidden.)
+    (The lecture scene's target lies behind the cone: a new object put there was hidden.)  The
+    point's coordinates are rounded to a hundredth of the object's size in its order of magnitude
+    (a unit sphere's to 0.01), so that the editor shows its position as a person would type it
+    (it showed ``1.6641005``).
     """
     cam = scene.camera
     eye, target = np.asarray(cam.eye, float), np.asarray(cam.target, float)
@@ -295,9 +299,10 @@ def plain_view_spot(scene: Scene, low, high) -> np.ndarray:
     boxes = [object_bounds(obj) for obj in scene.objects]
     step = float(np.max(high - low))
     sideways = [0.0] + [sign * k * step for k in range(1, 6) for sign in (1.0, -1.0)]
+    digits = 2 - math.floor(math.log10(step)) if 0.0 < step < math.inf else 15  # a hundredth of its size
     for back in np.arange(0.0, max(cam.distance - cam.near - step, 0.0), step):
         for side in sideways:
-            spot = target - back * forward + side * right
+            spot = np.round(target - back * forward + side * right, digits)
             if (_free(spot + low, spot + high, boxes) and cam.project(spot).inside
                     and all(_misses(eye, spot, box) for box in boxes)):
                 return spot

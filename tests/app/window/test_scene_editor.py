@@ -405,7 +405,7 @@ def _covered(scene) -> np.ndarray:
 
 
 @pytest.mark.parametrize("type_name", ["sphere", "box", "cone"])
-def test_an_added_object_is_seen_by_the_observer(qtbot, window, type_name):
+def test_an_added_object_is_seen_by_the_observer_where_its_position_reads_as_typed(qtbot, window, type_name):
     # Edit > Add put the new object at the observer's target, which in the lecture scene lies
     # behind the cone: the new object was hidden.
     model = window.model
@@ -421,6 +421,11 @@ def test_an_added_object_is_seen_by_the_observer(qtbot, window, type_name):
     seen = _covered(after) < _covered(before)  # where it is the nearest surface
     assert alone.sum() > 100
     assert (seen & alone).sum() >= 0.9 * alone.sum()  # seen whole (nothing in front of it)
+    # and its position reads as a person would type it: hundredths of a unit for an object a unit
+    # across (it read 1.664100589, 0.8, -1.109400392)
+    typed = [box.text() for box in window.editor.panel.fields[
+        "base_center" if type_name == "cone" else "center"].boxes]
+    assert all(len(text.partition(".")[2]) <= 2 for text in typed), typed
 
 
 def test_a_mesh_file_is_added_through_the_safe_reader(qtbot, window, tmp_path):
