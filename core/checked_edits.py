@@ -298,11 +298,13 @@ def plain_view_spot(scene: Scene, low, high) -> np.ndarray:
     right /= np.linalg.norm(right)
     boxes = [object_bounds(obj) for obj in scene.objects]
     step = float(np.max(high - low))
+    if not 0.0 < step < math.inf:
+        return target
     sideways = [0.0] + [sign * k * step for k in range(1, 6) for sign in (1.0, -1.0)]
-    digits = 2 - math.floor(math.log10(step)) if 0.0 < step < math.inf else 15  # a hundredth of its size
+    digits = min(2 - math.floor(math.log10(step)), 15)  # a hundredth of its size (15 round nothing)
     for back in np.arange(0.0, max(cam.distance - cam.near - step, 0.0), step):
         for side in sideways:
-            spot = np.round(target - back * forward + side * right, digits)
+            spot = np.round(target - back * forward + side * right, digits) + 0.0  # no -0.0
             if (_free(spot + low, spot + high, boxes) and cam.project(spot).inside
                     and all(_misses(eye, spot, box) for box in boxes)):
                 return spot

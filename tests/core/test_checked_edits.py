@@ -188,3 +188,15 @@ def test_a_mesh_moved_beyond_the_coordinate_limit_is_refused():
     # A centre within the limit whose vertices are not: the tetrahedron's reach 0.5 beyond its centre.
     (problem,) = _problems(lambda: checked_edits.moved(scene, ("object", 0), (999_999.9, 0.0, 0.0)))
     assert "coordinates must be within ±1,000,000" in problem and problem.startswith("objects[0]")
+
+
+def test_a_new_objects_place_reads_as_typed_without_a_minus_zero_and_a_point_object_goes_to_the_target():
+    """plain_view_spot rounds to a hundredth of the object's size: a target 0.001 left of the
+    origin gives 0, not -0 (which the editor shows as "-0.0"); an object with no extent (nothing
+    to step by) goes to the observer's target."""
+    camera = presets.lecture_scene().camera.replace(target=(-0.001, 0.8, 0.002))
+    empty = Scene(camera=camera, objects=())
+    spot = checked_edits.plain_view_spot(empty, np.full(3, -0.5), np.full(3, 0.5))  # at the target
+    assert [np.copysign(1.0, c) for c in spot] == [1.0, 1.0, 1.0] and list(spot) == [0.0, 0.8, 0.0]
+    point = checked_edits.plain_view_spot(empty, np.zeros(3), np.zeros(3))
+    assert list(point) == [-0.001, 0.8, 0.002]
