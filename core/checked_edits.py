@@ -278,6 +278,12 @@ def new_object(scene: Scene, type_name: str, at) -> dict:
     return value
 
 
+#: How many steps towards the eye :func:`plain_view_spot` tries at most (for a tiny object they are
+#: longer than the object: the search runs on the GUI thread, and steps of a tiny object's size
+#: were billions).
+_MOST_STEPS_BACK = 100
+
+
 def plain_view_spot(scene: Scene, low, high) -> np.ndarray:
     """Where to put a new object whose bounding box, relative to its position, is ``low`` to
     ``high`` (scene units), so that the observer sees it: the point nearest the observer's
@@ -302,7 +308,8 @@ def plain_view_spot(scene: Scene, low, high) -> np.ndarray:
         return target
     sideways = [0.0] + [sign * k * step for k in range(1, 6) for sign in (1.0, -1.0)]
     digits = min(2 - math.floor(math.log10(step)), 15)  # a hundredth of its size (15 round nothing)
-    for back in np.arange(0.0, max(cam.distance - cam.near - step, 0.0), step):
+    reach = max(cam.distance - cam.near - step, 0.0)
+    for back in np.arange(0.0, reach, max(step, reach / _MOST_STEPS_BACK)):
         for side in sideways:
             spot = np.round(target - back * forward + side * right, digits) + 0.0  # no -0.0
             if (_free(spot + low, spot + high, boxes) and cam.project(spot).inside
