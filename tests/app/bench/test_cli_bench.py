@@ -9,10 +9,10 @@ from __future__ import annotations
 import os
 import subprocess
 import sys
-from pathlib import Path
 
 import pytest
 from checkout import ROOT
+from unserved_display import unserved_display
 
 
 def _run(*argv, env=None):
@@ -46,9 +46,8 @@ def test_the_benchmarks_that_open_the_window_say_when_there_is_no_screen_and_how
     DISPLAY unset only, and with a display nobody serves timed its windows' aborts."""
     env = {k: v for k, v in os.environ.items() if k not in ("DISPLAY", "WAYLAND_DISPLAY", "QT_QPA_PLATFORM")}
     if display == "nobody answers":
-        unused = next(n for n in range(90, 200) if not Path(f"/tmp/.X11-unix/X{n}").exists())
-        env["DISPLAY"] = f":{unused}"
-        why = f"no X server answers on display ':{unused}' (DISPLAY)"
+        env["DISPLAY"] = unserved_display()
+        why = f"no X server answers on display '{env['DISPLAY']}' (DISPLAY)"
     else:
         why = "DISPLAY is not set"
     out = _run("bench", bench, "--runs" if bench == "startup" else "--seconds", "1", env=env)

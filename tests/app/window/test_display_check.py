@@ -3,10 +3,10 @@
 import os
 import subprocess
 import sys
-from pathlib import Path
 
 import pytest
 from checkout import ROOT
+from unserved_display import unserved_display
 
 
 def _open_window(**env) -> subprocess.CompletedProcess:
@@ -25,10 +25,10 @@ def test_without_a_display_the_window_says_there_is_no_screen_and_what_to_do():
 
 
 def test_a_display_no_x_server_answers_on_is_named():
-    unused = next(n for n in range(90, 200) if not Path(f"/tmp/.X11-unix/X{n}").exists())
-    done = _open_window(DISPLAY=f":{unused}")
+    unserved = unserved_display()
+    done = _open_window(DISPLAY=unserved)
     assert done.returncode == 2
-    assert f"no X server answers on display ':{unused}'" in done.stderr
+    assert f"no X server answers on display '{unserved}'" in done.stderr
     assert "Traceback" not in done.stderr and "xcb-cursor" not in done.stderr
 
 
