@@ -47,6 +47,7 @@ from core.image_order.kernels.bvh_packet import (
     packet_occluded,
     ray_of,
     set_rays,
+    shear_rays,
 )
 from core.image_order.kernels.bvh_traverse import bvh_closest
 from core.image_order.kernels.intrinsics.bands import take_band
@@ -75,6 +76,8 @@ def _worker(queue, origins, directions, t_min, t_max, bvh, n_spheres, bvh_depth,
             shared = bvh[0].shape[0] > 0 and can_share_walk(rays, size, False)
             if shared:
                 packet_occluded(size, rays, axes, bvh, n_spheres, stack, stack_rays, count)
+            else:  # one by one: each ray's lone walk takes its shear from the packet's rows
+                shear_rays(rays, axes, size)
             for r in range(size):
                 if shared:
                     blocker, t = packet_blocker(rays, axes, r, bvh)

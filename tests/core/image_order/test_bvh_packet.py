@@ -50,6 +50,7 @@ from core.image_order.kernels.bvh_packet import (
     set_image_point,
     set_primary_rays,
     set_rays,
+    shear_rays,
 )
 from core.image_order.kernels.closest_hit import closest_hit
 from core.image_order.kernels.intrinsics.rows import ROW, row_greatest, row_least
@@ -421,6 +422,45 @@ def test_a_packet_of_shadow_rays_holds_the_batchs_rays_from_its_start(start, n):
     expected = np.hstack([narrow[0], narrow[1], narrow[2][:, None], narrow[3][:, None]])[start:start + n]
     assert back.dtype == np.float64 and np.array_equal(back, expected.astype(np.float64))
     assert (back[:, :6] != np.hstack([origins, directions])[start:start + n]).any()  # rounded: float32's
+
+
+@njit
+def _packet_shears(origins, directions, n):
+    """Each ray's shear ``(kx, ky, kz, sx, sy, sz)`` and origin on the shear's axes as the packet's
+    rows hold them once set_rays made the rays and shear_rays their shear."""
+    rays, axes = np.full(RAY_FIELDS * PACKET_SIZE, np.nan), np.full(AXIS_FIELDS * PACKET_SIZE, -9, np.int64)
+    set_rays(rays, axes, origins, directions, np.zeros(n, np.float32), np.ones(n, np.float32), 0, n)
+    shear_rays(rays, axes, n)
+    shears = np.empty((n, 9))
+    for r in range(n):
+        kx, ky, kz, sx, sy, sz = ray_of(rays, axes, r)[2]
+        shears[r, 0], shears[r, 1], shears[r, 2] = kx, ky, kz
+        shears[r, 3], shears[r, 4], shears[r, 5] = sx, sy, sz
+        for k in range(3):
+            shears[r, 6 + k] = rays[(R_SHEARED_ORIGIN + k) * PACKET_SIZE + r]
+    return shears
+
+
+@pytest.mark.parametrize("n", [RAYS, 5])
+def test_a_packet_of_shadow_rays_gets_each_rays_own_shear_for_its_triangle_tests(n):
+    # set_rays makes what the box tests need; shear_rays, called by the walk at its first leaf,
+    # the shear of the watertight triangle test: each ray's must be the scalar test's own
+    # (intersect_triangle.ray_shear, and the origin on its axes), bit for bit, whichever
+    # component is largest, ties between two (the later axis wins) and negative ones among them.
+    rng = np.random.default_rng(n)
+    origins = rng.normal(size=(n, 3)).astype(np.float32)
+    directions = rng.normal(size=(n, 3)).astype(np.float32)
+    directions[0] = (3.0, 0.5, -1.0)
+    directions[1] = (-0.25, 2.0, 2.0)
+    directions[2] = (1.0, -1.0, 0.5)
+    directions[3] = (1e-30, -4.0, 3.0)
+    shears = _packet_shears(origins, directions, n)
+    for r in range(n):
+        d, o = directions[r].astype(np.float64), origins[r].astype(np.float64)
+        own = ray_shear(*d)
+        assert tuple(shears[r, :6]) == own, r
+        assert tuple(shears[r, 6:]) == on_shear_axes(*o, own[2]), r
+    assert {int(k) for k in shears[:, 2]} == {0, 1, 2}  # every axis the largest somewhere
 
 
 def test_a_packet_is_as_many_rays_as_a_row_of_copied_coordinates():
