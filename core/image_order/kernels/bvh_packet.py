@@ -683,7 +683,6 @@ def packet_occluded(n, rays, axes, bvh, n_spheres, stack, stack_rays, counters):
                 for c in range(WIDTH - 1, -1, -1):  # pushed so that they come out in slot order
                     entered = children[c]
                     if entered != 0:
-                        prefetch_child(wide, refs, groups, at, c)
                         if near >= 0:
                             store_at(stack, top, stack_entry(load_at(refs, at + WIDE_REFS + near),
                                                              node * WIDTH + near))

@@ -128,12 +128,13 @@ def prefetch_child(wide, refs, groups, at, c):
     """Ask the caches for what a walk first reads of child ``c`` of the node at ``at`` (its row of
     the tree, or the leaf's triangle group: every line it spans), while the walk works elsewhere.
 
-    A packet's walk asks it for the children it will visit later (those it pushes): on the
-    1,000,000-triangle benchmark, whose tree and triangles (about 90 MB) are larger than the
-    machine's caches, its shadow rays took about a twentieth less time (one thread, 53 ms
-    against 56) and its primary rays about a twentieth (74 ms against 78); at 100,000 triangles,
-    whose tree fits, no change.  A lone ray's walk gains nothing from it: it reaches its next
-    node sooner than the line arrives.
+    A packet of primary rays asks it for the children it will visit later (those it pushes): on
+    the 1,000,000-triangle benchmark, whose tree and triangles (about 90 MB) are larger than the
+    machine's caches, the primary stage took 1/1.06 of its time (one thread, 70 ms against 74);
+    at 100,000 triangles, whose tree fits, no change.  A packet of shadow rays does not ask:
+    there it saved 1% at 1,000,000 triangles on two threads and nothing on one, and cost 1.6-1.7%
+    at 10,000 and 100,000 (the bench's batch, alternating in one process).  A lone ray's walk
+    gains nothing from it: it reaches its next node sooner than the line arrives.
     """
     ref = load_at(refs, at + WIDE_REFS + c)
     if ref >= 0:
