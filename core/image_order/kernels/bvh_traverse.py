@@ -132,7 +132,7 @@ def prefetch_child(wide, refs, groups, at, c):
     the 1,000,000-triangle benchmark, whose tree and triangles (about 90 MB) are larger than the
     machine's caches, the primary stage took 1/1.06 of its time (one thread, 70 ms against 74);
     at 100,000 triangles, whose tree fits, no change.  A packet of shadow rays does not ask:
-    there it saved 1% at 1,000,000 triangles on two threads and nothing on one, and cost 1.6-1.7%
+    there it saved 1% at 1,000,000 triangles on two threads and nothing on one, and cost 0.3-1.7%
     at 10,000 and 100,000 (the bench's batch, alternating in one process).  A lone ray's walk
     gains nothing from it: it reaches its next node sooner than the line arrives.
     """
