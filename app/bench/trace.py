@@ -336,7 +336,7 @@ def _scene_rays(label: str, mesh, camera, light, args, library) -> dict:
         peer_prims[order], peer_t[order] = peer[0], peer[1]
         row["disagree"] += _report_agreement("primary", mesh.corners, o, d, prims, ts, peer_prims, peer_t)
         if beside_embreex:
-            row["primary"].update(_ratios(beside, {"embreex": seconds["embreex"]}, ("embreex",)))
+            row["primary"].update(_ratios(beside, seconds, ("embreex",)))
         row["primary"].update(_ratios(runs, seconds, ("packets",)))
 
     # Shadow rays: from every lit hit of ours towards the light, the same rays for both tracers.
