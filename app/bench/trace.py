@@ -161,9 +161,9 @@ def run(args) -> int:
     for row in rows:
         for kind in ("primary", "shadow"):
             figures = row[kind]
-            goal = {"packets": ", goal >= 1.0" if kind in row["goals"] else ""}
+            goal = ", goal >= 1.0" if kind in row["goals"] else ""  # set against Embree's packets only
             peers = "".join(f"  {_PEER_NAMES[peer]} {figures[peer]:7.1f} "
-                            f"(ratio {figures[f'ratio {peer}']:.2f}{goal.get(peer, '')})"
+                            f"(ratio {figures[f'ratio {peer}']:.2f}{goal if peer == 'packets' else ''})"
                             for peer in ("embreex", "packets") if peer in figures)
             print(f"  {row['label']}, {kind:>7} rays: ours {figures['ours']:7.1f}{peers}")
     disagree = sum(row["disagree"] for row in rows)
